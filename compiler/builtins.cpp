@@ -1,0 +1,156 @@
+// compiler/builtins.cpp: the table of built-in functions and how each lowers.
+// To add a built-in: add a row to kBuiltins with its argument pattern and a lowering lambda.
+// Pattern letters: 'f' float, 't' point/vector/normal (a float is promoted), 'c' color,
+// 'a' float or any triple (the result has the widest argument type).
+#include "compiler/builtins.h"
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+namespace affray::compiler {
+
+namespace {
+
+using Lowering = std::function<Value(ValueOps&, const std::vector<Value>&)>;
+
+struct Builtin {
+    const char* name;
+    const char* pattern;
+    Lowering lower;
+};
+
+Value Scalar(ValueOps& ops, IrOp op, const Value& x) { return ops.Map(op, x); }
+
+const std::vector<Builtin>& Table() {
+    using A = const std::vector<Value>&;
+    static const std::vector<Builtin> kBuiltins = {
+        {"sin", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Sin, a[0]); }},
+        {"cos", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Cos, a[0]); }},
+        {"tan", "f", [](ValueOps& o, A a) {
+             return o.Div(Scalar(o, IrOp::Sin, a[0]), Scalar(o, IrOp::Cos, a[0]));
+         }},
+        {"exp", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Exp, a[0]); }},
+        {"log", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Log, a[0]); }},
+        {"log", "ff", [](ValueOps& o, A a) {
+             return o.Div(Scalar(o, IrOp::Log, a[0]), Scalar(o, IrOp::Log, a[1]));
+         }},
+        {"sqrt", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Sqrt, a[0]); }},
+        {"abs", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Abs, a[0]); }},
+        {"sign", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Sign, a[0]); }},
+        {"pow", "ff", [](ValueOps& o, A a) { return o.Pow(a[0], a[1]); }},
+        {"radians", "f", [](ValueOps& o, A a) { return o.Mul(a[0], o.Constant(std::numbers::pi / 180)); }},
+        {"degrees", "f", [](ValueOps& o, A a) { return o.Mul(a[0], o.Constant(180 / std::numbers::pi)); }},
+        {"length", "t", [](ValueOps& o, A a) { return o.Length(a[0]); }},
+        {"distance", "tt", [](ValueOps& o, A a) { return o.Distance(a[0], a[1]); }},
+        {"normalize", "t", [](ValueOps& o, A a) { return o.Promote(o.Normalize(a[0]), Type::Vector); }},
+        {"xcomp", "t", [](ValueOps& o, A a) { return o.Component(a[0], 0); }},
+        {"ycomp", "t", [](ValueOps& o, A a) { return o.Component(a[0], 1); }},
+        {"zcomp", "t", [](ValueOps& o, A a) { return o.Component(a[0], 2); }},
+        {"Du", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::DerivU, a[0]); }},
+        {"Dv", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::DerivV, a[0]); }},
+        {"calculatenormal", "t", [](ValueOps& o, A a) {
+             // RenderMan: calculatenormal(P) = Du(P) ^ Dv(P)
+             Value du = Scalar(o, IrOp::DerivU, a[0]), dv = Scalar(o, IrOp::DerivV, a[0]);
+             return o.Promote(o.Cross(du, dv), Type::Normal);
+         }},
+        {"mix", "aaf", [](ValueOps& o, A a) {
+             // mix(x, y, t) = x*(1-t) + y*t
+             Value oneMinusT = o.Sub(o.Constant(1.0), a[2]);
+             return o.Add(o.Mul(a[0], oneMinusT), o.Mul(a[1], a[2]));
+         }},
+    };
+    return kBuiltins;
+}
+
+// Functions of RenderMan's library that affray does not implement yet: a clear error, not
+// "unknown function".
+const char* const kNotYet[] = {
+    "noise", "pnoise", "cellnoise", "texture", "environment", "shadow", "transform", "vtransform",
+    "ntransform", "clamp", "min", "max", "step", "smoothstep", "floor", "ceil", "round", "mod",
+    "inversesqrt", "asin", "acos", "atan", "setxcomp", "setycomp", "setzcomp", "comp", "setcomp",
+    "faceforward", "reflect", "area", "Deriv", "filterstep", "spline", "random", "rotate",
+    "illuminance", "specular", "diffuse", "ambient", "printf", "format", "concat", "match",
+};
+
+bool ArgMatches(char pattern, Type type) {
+    switch (pattern) {
+        case 'f': return type == Type::Float;
+        case 't': return IsSpatial(type) || type == Type::Float;
+        case 'c': return type == Type::Color || type == Type::Float;
+        case 'a': return type == Type::Float || IsTriple(type);
+    }
+    return false;
+}
+
+std::string DescribePattern(const char* pattern) {
+    std::string out = "(";
+    for (const char* p = pattern; *p; ++p) {
+        if (p != pattern) out += ", ";
+        out += *p == 'f' ? "float" : *p == 't' ? "point" : *p == 'c' ? "color" : "float or triple";
+    }
+    return out + ")";
+}
+
+}  // namespace
+
+bool IsBuiltin(const std::string& name) {
+    for (const Builtin& b : Table())
+        if (name == b.name) return true;
+    return false;
+}
+
+std::optional<Value> LowerBuiltin(ValueOps& ops, const lang::Expr& call, const std::vector<Value>& args,
+                                  lang::Diagnostics& diags) {
+    std::vector<const Builtin*> candidates;
+    for (const Builtin& b : Table())
+        if (call.name == b.name) candidates.push_back(&b);
+    if (candidates.empty()) {
+        for (const char* name : kNotYet) {
+            if (call.name == name) {
+                diags.error(call.loc, "function '" + call.name + "' is not supported yet");
+                return std::nullopt;
+            }
+        }
+        diags.error(call.loc, "unknown function '" + call.name + "'");
+        return std::nullopt;
+    }
+
+    for (const Builtin* b : candidates) {
+        if (std::char_traits<char>::length(b->pattern) != args.size()) continue;
+        bool ok = true;
+        Type widest = Type::Float;
+        for (size_t i = 0; i < args.size() && ok; ++i) {
+            ok = ArgMatches(b->pattern[i], args[i].type);
+            if (IsTriple(args[i].type)) widest = args[i].type;
+        }
+        if (!ok) continue;
+        // Promote float arguments where the pattern wants a triple.
+        std::vector<Value> promoted = args;
+        for (size_t i = 0; i < args.size(); ++i) {
+            char p = b->pattern[i];
+            if (p == 't' && args[i].type == Type::Float) promoted[i] = ops.Promote(args[i], Type::Point);
+            if (p == 'c' && args[i].type == Type::Float) promoted[i] = ops.Promote(args[i], Type::Color);
+            if (p == 'a' && IsTriple(widest)) promoted[i] = ops.Promote(args[i], widest);
+        }
+        return b->lower(ops, promoted);
+    }
+
+    // No overload matched: say what was expected.
+    const Builtin* first = candidates.front();
+    if (candidates.size() == 1 && std::char_traits<char>::length(first->pattern) != args.size()) {
+        size_t n = std::char_traits<char>::length(first->pattern);
+        diags.error(call.loc, "'" + call.name + "' expects " + std::to_string(n) + " argument" +
+                                  (n == 1 ? "" : "s") + ", got " + std::to_string(args.size()));
+        return std::nullopt;
+    }
+    std::string got = "(";
+    for (size_t i = 0; i < args.size(); ++i) got += (i ? ", " : "") + std::string(ToString(args[i].type));
+    got += ")";
+    std::string expected;
+    for (const Builtin* b : candidates) expected += (expected.empty() ? "" : " or ") + DescribePattern(b->pattern);
+    diags.error(call.loc, "no version of '" + call.name + "' takes " + got + "; expected " + expected);
+    return std::nullopt;
+}
+
+}  // namespace affray::compiler

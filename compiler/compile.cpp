@@ -1,0 +1,60 @@
+// compiler/compile.cpp: parse -> check and lower -> emit two programs -> verify.
+#include "compiler/compile.h"
+
+#include <stdexcept>
+
+#include "compiler/emit.h"
+#include "lang/parse.h"
+#include "vm/verify.h"
+
+namespace affray::compiler {
+
+CompileResult CompileSource(const std::string& path, const std::string& text,
+                            const std::vector<ParamOverride>& overrides) {
+    CompileResult result;
+    lang::SourceFile file(path, text);
+    lang::Diagnostics diags(file);
+    lang::TranslationUnit unit = lang::Parse(diags);
+    std::optional<LoweredShader> lowered;
+    if (!diags.hasErrors()) lowered = Lower(unit, overrides, diags, &result.paramErrors);
+    result.diagnostics = diags.format();
+    if (!lowered) return result;
+
+    CompiledShader shader;
+    shader.name = lowered->name;
+    shader.sourcePath = path;
+    shader.sourceText = text;
+    shader.params = lowered->params;
+    shader.writesP = lowered->writesP;
+    shader.writesN = lowered->writesN;
+    shader.opsBeforeOptimisation = lowered->ir.requestedOps();
+    try {
+        shader.bound = Emit(lowered->ir, {{"P", lowered->finalP}});
+        shader.shade = Emit(lowered->ir, {{"P", lowered->finalP}, {"N", lowered->finalN}});
+    } catch (const std::length_error& e) {
+        result.diagnostics += path + ": error: " + e.what() + "\n";
+        return result;
+    }
+    for (vm::Program* p : {&shader.bound, &shader.shade}) {
+        p->shaderName = shader.name;
+        p->sourcePath = path;
+        std::string error;
+        if (!vm::Verify(*p, &error))
+            throw std::logic_error("compiler emitted an invalid program for " + path + ": " + error);
+    }
+    result.shader = std::move(shader);
+    return result;
+}
+
+CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides) {
+    lang::SourceFile file("", "");
+    std::string error;
+    if (!lang::SourceFile::Load(path, &file, &error)) {
+        CompileResult result;
+        result.diagnostics = error + "\n";
+        return result;
+    }
+    return CompileSource(path, file.text(), overrides);
+}
+
+}  // namespace affray::compiler

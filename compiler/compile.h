@@ -1,0 +1,44 @@
+// compiler/compile.h: the compiler's front door, from a .sl file to the programs the renderer
+// runs. Each shader instance is compiled with its parameter values, so the programs contain only
+// what that instance needs: the *bound program* computes the displaced P alone (what the
+// intersector evaluates millions of times), the *shade program* computes P and N.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compiler/lower.h"
+#include "vm/program.h"
+
+namespace affray::compiler {
+
+struct CompiledShader {
+    std::string name;
+    std::string sourcePath;
+    std::string sourceText;
+    vm::Program bound;  // outputs: P
+    vm::Program shade;  // outputs: P, N
+    std::vector<ParamInfo> params;
+    bool writesP = false;
+    bool writesN = false;
+    /// Scalar operations lowering asked for, before folding, sharing and dead-code removal.
+    int opsBeforeOptimisation = 0;
+};
+
+struct CompileResult {
+    std::optional<CompiledShader> shader;
+    /// Formatted diagnostics (errors and warnings), empty if there were none.
+    std::string diagnostics;
+    /// Problems with the parameter overrides, each a full sentence.
+    std::vector<std::string> paramErrors;
+    bool ok() const { return shader.has_value(); }
+};
+
+/// Compiles the shader in the file at `path` with `overrides` bound to its parameters.
+CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides = {});
+/// Same, from text already in memory (`path` names it in diagnostics).
+CompileResult CompileSource(const std::string& path, const std::string& text,
+                            const std::vector<ParamOverride>& overrides = {});
+
+}  // namespace affray::compiler

@@ -1,0 +1,476 @@
+// compiler/lower.cpp: type checking and lowering of statements and expressions.
+// Names: a stack of scopes over the shader globals (P, N, ... from vm/program.h) and the
+// parameters. A variable holds a Value (IR node ids), so assignment rebinds and never copies.
+// Every error is reported where it happens and the expression yields nothing; callers pass the
+// nothing on silently, so one mistake gives one message.
+#include "compiler/lower.h"
+
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+#include "compiler/builtins.h"
+
+namespace affray::compiler {
+
+namespace {
+
+using lang::Expr;
+using lang::ExprKind;
+using lang::SourceLoc;
+using lang::Stmt;
+using lang::StmtKind;
+
+struct Variable {
+    Type type = Type::Float;
+    Value value;
+    bool assigned = false;
+    bool writable = true;
+    bool isGlobal = false;
+    bool used = false;
+    SourceLoc loc;
+};
+
+class Lowerer {
+  public:
+    Lowerer(LoweredShader& out, lang::Diagnostics& diags) : m_out(out), m_diags(diags), m_ops(out.ir) {}
+
+    bool Run(const lang::ShaderDef& shader, const std::vector<ParamOverride>& overrides,
+             std::vector<std::string>* overrideErrors);
+
+  private:
+    std::optional<Value> LowerExpr(const Expr& e);
+    std::optional<Value> LowerBinary(const Expr& e);
+    std::optional<Value> LowerAssign(const Expr& e);
+    std::optional<Value> LowerCast(const Expr& e);
+    std::optional<Value> LowerIdent(const Expr& e);
+    void LowerStmt(const Stmt& s);
+    void LowerDecl(const lang::VarDecl& d, std::optional<Value> init);
+
+    /// Converts `v` for storing in a variable of `target` type (float -> triple promotion,
+    /// point/vector/normal interchange); reports and returns nothing if it cannot.
+    std::optional<Value> Convert(const Value& v, Type target, SourceLoc loc, const std::string& what);
+
+    void PushScope() { m_scopes.emplace_back(); }
+    void PopScope();
+    Variable* Find(const std::string& name);
+
+    LoweredShader& m_out;
+    lang::Diagnostics& m_diags;
+    ValueOps m_ops;
+    std::vector<std::unordered_map<std::string, Variable>> m_scopes;
+};
+
+std::string Article(Type t) {
+    std::string name = ToString(t);
+    return (name[0] == 'a' || name[0] == 'e' || name[0] == 'i' || name[0] == 'o' || name[0] == 'u' ? "an " : "a ") + name;
+}
+
+Variable* Lowerer::Find(const std::string& name) {
+    for (auto scope = m_scopes.rbegin(); scope != m_scopes.rend(); ++scope) {
+        auto it = scope->find(name);
+        if (it != scope->end()) return &it->second;
+    }
+    return nullptr;
+}
+
+void Lowerer::PopScope() {
+    // After an error, "unused" is more often a consequence than a finding: stay quiet.
+    for (const auto& [name, var] : m_scopes.back())
+        if (!var.used && !var.isGlobal && !m_diags.hasErrors()) m_diags.warning(var.loc, "unused variable '" + name + "'");
+    m_scopes.pop_back();
+}
+
+std::optional<Value> Lowerer::Convert(const Value& v, Type target, SourceLoc loc, const std::string& what) {
+    if (v.type == target) return v;
+    if (IsTriple(target) && v.type == Type::Float) return m_ops.Promote(v, target);
+    if (IsSpatial(target) && IsSpatial(v.type)) return m_ops.Promote(v, target);
+    m_diags.error(loc, "cannot assign " + Article(v.type) + " to " + what);
+    return std::nullopt;
+}
+
+std::optional<Value> Lowerer::LowerIdent(const Expr& e) {
+    Variable* var = Find(e.name);
+    if (!var) {
+        if (e.name == "PI") return m_ops.Constant(std::numbers::pi);
+        m_diags.error(e.loc, "unknown identifier '" + e.name + "'");
+        return std::nullopt;
+    }
+    var->used = true;
+    if (!var->assigned) {
+        m_diags.error(e.loc, "variable '" + e.name + "' is used before it is assigned a value");
+        return std::nullopt;
+    }
+    return var->value;
+}
+
+std::optional<Value> Lowerer::LowerBinary(const Expr& e) {
+    using lang::BinaryOp;
+    std::optional<Value> a = LowerExpr(*e.args[0]);
+    std::optional<Value> b = LowerExpr(*e.args[1]);
+    if (!a || !b) return std::nullopt;
+    m_ops.SetLine(e.loc.line);
+    const char* opName = lang::ToString(e.binaryOp);
+    auto bad = [&](const std::string& why) {
+        m_diags.error(e.loc, "invalid operands to '" + std::string(opName) + "' (" + ToString(a->type) +
+                                 " and " + ToString(b->type) + ")" + why);
+        return std::nullopt;
+    };
+    bool numeric = (a->type == Type::Float || IsTriple(a->type)) && (b->type == Type::Float || IsTriple(b->type));
+    if (!numeric) return bad("");
+    switch (e.binaryOp) {
+        case BinaryOp::Add:
+        case BinaryOp::Sub:
+        case BinaryOp::Mul:
+        case BinaryOp::Div: {
+            bool mixesColor = (a->type == Type::Color && IsSpatial(b->type)) ||
+                              (b->type == Type::Color && IsSpatial(a->type));
+            if (mixesColor) return bad(": a color does not combine with a point, vector or normal");
+            if (e.binaryOp == BinaryOp::Add) return m_ops.Add(*a, *b);
+            if (e.binaryOp == BinaryOp::Sub) return m_ops.Sub(*a, *b);
+            if (e.binaryOp == BinaryOp::Mul) return m_ops.Mul(*a, *b);
+            return m_ops.Div(*a, *b);
+        }
+        case BinaryOp::Dot:
+            if (!IsTriple(a->type) || !IsTriple(b->type)) return bad(": '.' is the dot product of two triples");
+            return m_ops.Dot(*a, *b);
+        case BinaryOp::Cross:
+            if (!IsSpatial(a->type) || !IsSpatial(b->type)) return bad(": '^' is the cross product of two vectors");
+            return m_ops.Cross(*a, *b);
+        default:
+            m_diags.error(e.loc, "operator '" + std::string(opName) + "' is not supported yet");
+            return std::nullopt;
+    }
+}
+
+std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
+    std::optional<Value> rhs = LowerExpr(*e.args[0]);
+    Variable* var = Find(e.name);
+    if (!var) {
+        m_diags.error(e.loc, "assignment to undeclared variable '" + e.name + "'");
+        return std::nullopt;
+    }
+    if (!var->writable) {
+        m_diags.error(e.loc, "cannot assign to '" + e.name + "': it is a read-only global");
+        return std::nullopt;
+    }
+    if (!rhs) return std::nullopt;
+    m_ops.SetLine(e.loc.line);
+    Value value = *rhs;
+    if (e.assignOp != lang::AssignOp::Assign) {
+        if (!var->assigned) {
+            m_diags.error(e.loc, "variable '" + e.name + "' is used before it is assigned a value");
+            return std::nullopt;
+        }
+        if (!IsTriple(var->type) && var->type != Type::Float) {
+            m_diags.error(e.loc, "invalid operands to '" + std::string(lang::ToString(e.assignOp)) + "'");
+            return std::nullopt;
+        }
+        if (IsTriple(value.type) && !IsTriple(var->type)) {
+            m_diags.error(e.loc, "cannot assign " + Article(value.type) + " to float variable '" + e.name + "'");
+            return std::nullopt;
+        }
+        if ((var->type == Type::Color && IsSpatial(value.type)) || (IsSpatial(var->type) && value.type == Type::Color)) {
+            m_diags.error(e.loc, "cannot assign " + Article(value.type) + " to " + ToString(var->type) +
+                                     " variable '" + e.name + "'");
+            return std::nullopt;
+        }
+        switch (e.assignOp) {
+            case lang::AssignOp::AddAssign: value = m_ops.Add(var->value, value); break;
+            case lang::AssignOp::SubAssign: value = m_ops.Sub(var->value, value); break;
+            case lang::AssignOp::MulAssign: value = m_ops.Mul(var->value, value); break;
+            case lang::AssignOp::DivAssign: value = m_ops.Div(var->value, value); break;
+            case lang::AssignOp::Assign: break;
+        }
+    }
+    std::optional<Value> converted =
+        Convert(value, var->type, e.loc, std::string(ToString(var->type)) + " variable '" + e.name + "'");
+    if (!converted) return std::nullopt;
+    var->value = *converted;
+    var->assigned = true;
+    return converted;
+}
+
+std::optional<Value> Lowerer::LowerCast(const Expr& e) {
+    Type target = FromTypeName(e.castType);
+    if (!e.castSpace.empty() && e.castSpace != "current" && !(target == Type::Color && e.castSpace == "rgb")) {
+        m_diags.error(e.loc, "coordinate space '" + e.castSpace + "' is not supported yet");
+        return std::nullopt;
+    }
+    std::optional<Value> v = LowerExpr(*e.args[0]);
+    if (!v) return std::nullopt;
+    if (v->type == target) return v;
+    if (target == Type::Float || v->type == Type::String || target == Type::String || target == Type::Void) {
+        m_diags.error(e.loc, "cannot cast " + Article(v->type) + " to " + ToString(target));
+        return std::nullopt;
+    }
+    return m_ops.Promote(*v, target);
+}
+
+std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
+    switch (e.kind) {
+        case ExprKind::Number: return m_ops.Constant(e.number);
+        case ExprKind::String:
+            m_diags.error(e.loc, "string values are not supported yet");
+            return std::nullopt;
+        case ExprKind::Ident: return LowerIdent(e);
+        case ExprKind::Unary: {
+            std::optional<Value> a = LowerExpr(*e.args[0]);
+            if (!a) return std::nullopt;
+            if (e.unaryOp == lang::UnaryOp::Not) {
+                m_diags.error(e.loc, "operator '!' is not supported yet");
+                return std::nullopt;
+            }
+            if (a->type != Type::Float && !IsTriple(a->type)) {
+                m_diags.error(e.loc, "invalid operand to unary '-' (" + std::string(ToString(a->type)) + ")");
+                return std::nullopt;
+            }
+            m_ops.SetLine(e.loc.line);
+            return m_ops.Neg(*a);
+        }
+        case ExprKind::Binary: return LowerBinary(e);
+        case ExprKind::Assign: return LowerAssign(e);
+        case ExprKind::Call: {
+            std::vector<Value> args;
+            bool ok = true;
+            for (const lang::ExprPtr& arg : e.args) {
+                std::optional<Value> v = LowerExpr(*arg);
+                if (v) args.push_back(*v);
+                ok = ok && v.has_value();
+            }
+            if (!ok) return std::nullopt;
+            m_ops.SetLine(e.loc.line);
+            return LowerBuiltin(m_ops, e, args, m_diags);
+        }
+        case ExprKind::Triple: {
+            std::array<ValueId, 3> c{};
+            bool ok = true;
+            for (int i = 0; i < 3; ++i) {
+                std::optional<Value> v = LowerExpr(*e.args[i]);
+                if (v && v->type != Type::Float) {
+                    m_diags.error(e.args[i]->loc, "a triple's components must be floats, got " + Article(v->type));
+                    v.reset();
+                }
+                if (v) c[i] = v->c[0];
+                ok = ok && v.has_value();
+            }
+            if (!ok) return std::nullopt;
+            return m_ops.Triple(Type::Point, c[0], c[1], c[2]);
+        }
+        case ExprKind::Cast: return LowerCast(e);
+        case ExprKind::Ternary:
+            m_diags.error(e.loc, "operator '?:' is not supported yet");
+            return std::nullopt;
+    }
+    return std::nullopt;
+}
+
+void Lowerer::LowerDecl(const lang::VarDecl& d, std::optional<Value> init) {
+    Type type = FromTypeName(d.type);
+    auto& scope = m_scopes.back();
+    if (auto it = scope.find(d.name); it != scope.end()) {
+        m_diags.error(d.loc, "redefinition of '" + d.name + "'");
+        m_diags.note(it->second.loc, "'" + d.name + "' was declared here");
+        return;
+    }
+    if (type != Type::Float && !IsTriple(type)) {
+        m_diags.error(d.loc, std::string(ToString(type)) + " variables are not supported yet");
+        return;
+    }
+    Variable var;
+    var.type = type;
+    var.loc = d.loc;
+    if (init) {
+        std::optional<Value> converted =
+            Convert(*init, type, d.loc, std::string(ToString(type)) + " variable '" + d.name + "'");
+        if (converted) {
+            var.value = *converted;
+            var.assigned = true;
+        }
+    }
+    scope.emplace(d.name, var);
+}
+
+void Lowerer::LowerStmt(const Stmt& s) {
+    switch (s.kind) {
+        case StmtKind::Expr: LowerExpr(*s.expr); break;
+        case StmtKind::Decl:
+            for (const lang::VarDecl& d : s.decls) {
+                std::optional<Value> init = d.init ? LowerExpr(*d.init) : std::nullopt;
+                if (d.init && !init) {
+                    // The initialiser's error is already reported; declare the name anyway (as
+                    // assigned) so later uses do not pile up "unknown identifier" errors.
+                    Variable var;
+                    var.type = FromTypeName(d.type);
+                    var.loc = d.loc;
+                    var.used = true;
+                    var.assigned = true;
+                    var.value = m_ops.Promote(m_ops.Constant(0.0), var.type);
+                    m_scopes.back().emplace(d.name, var);
+                    continue;
+                }
+                LowerDecl(d, init);
+            }
+            break;
+        case StmtKind::Block:
+            PushScope();
+            for (const lang::StmtPtr& child : s.body) LowerStmt(*child);
+            PopScope();
+            break;
+        case StmtKind::Empty: break;
+        case StmtKind::If: m_diags.error(s.loc, "'if' statements are not supported yet"); break;
+        case StmtKind::For: m_diags.error(s.loc, "'for' loops are not supported yet"); break;
+        case StmtKind::While: m_diags.error(s.loc, "'while' loops are not supported yet"); break;
+        case StmtKind::Return: m_diags.error(s.loc, "'return' is not supported yet"); break;
+        case StmtKind::Break: m_diags.error(s.loc, "'break' is not supported yet"); break;
+        case StmtKind::Continue: m_diags.error(s.loc, "'continue' is not supported yet"); break;
+    }
+}
+
+bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<ParamOverride>& overrides,
+                  std::vector<std::string>* overrideErrors) {
+    m_out.name = shader.name;
+    // Scope 0: the globals. P and N are the ones a displacement shader may write.
+    PushScope();
+    for (int g = 0; g < vm::kGlobalCount; ++g) {
+        auto global = static_cast<vm::Global>(g);
+        Variable var;
+        std::string name = vm::GlobalName(global);
+        var.type = vm::GlobalSize(global) == 1 ? Type::Float
+                   : name == "N" || name == "Ng" ? Type::Normal
+                   : name == "P" || name == "E" ? Type::Point
+                                                 : Type::Vector;
+        var.isGlobal = true;
+        var.assigned = true;
+        var.writable = name == "P" || name == "N";
+        for (int i = 0; i < vm::GlobalSize(global); ++i) var.value.c[i] = m_out.ir.Global(global, i);
+        if (var.type == Type::Float) var.value.c[1] = var.value.c[2] = var.value.c[0];
+        var.value.type = var.type;
+        m_scopes.back().emplace(name, var);
+    }
+    const Value inputP = Find("P")->value, inputN = Find("N")->value;
+
+    // Scope 1: the parameters, each bound to a constant (its override, else its default).
+    PushScope();
+    std::vector<bool> overrideUsed(overrides.size(), false);
+    // A parameter in error is still declared (as 0), so its uses do not repeat the error.
+    auto declarePlaceholder = [&](const lang::VarDecl& p, Type type) {
+        Variable var;
+        var.type = type;
+        var.value = m_ops.Promote(m_ops.Constant(0.0), type);
+        var.assigned = var.used = true;
+        var.loc = p.loc;
+        m_scopes.back().emplace(p.name, var);
+    };
+    for (const lang::VarDecl& p : shader.params) {
+        Type type = FromTypeName(p.type);
+        ParamInfo info{p.name, type, {}, p.isOutput};
+        if (!p.init) {
+            m_diags.error(p.loc, "parameter '" + p.name + "' needs a default value");
+            declarePlaceholder(p, type);
+            continue;
+        }
+        if (type == Type::String) {
+            m_diags.error(p.loc, "string parameters are not supported yet");
+            declarePlaceholder(p, Type::Float);
+            continue;
+        }
+        std::optional<Value> init = LowerExpr(*p.init);
+        std::optional<Value> value;
+        if (init) value = Convert(*init, type, p.loc, std::string(ToString(type)) + " parameter '" + p.name + "'");
+        if (!value) {
+            declarePlaceholder(p, type);
+            continue;
+        }
+        for (int i = 0; i < value->size(); ++i) {
+            std::optional<double> k = m_out.ir.ConstValue(value->c[i]);
+            if (!k) {
+                m_diags.error(p.loc, "default value of parameter '" + p.name + "' must be a constant expression");
+                value.reset();
+                break;
+            }
+            info.defaults.push_back(*k);
+        }
+        if (!value) {
+            declarePlaceholder(p, type);
+            continue;
+        }
+        for (size_t o = 0; o < overrides.size(); ++o) {
+            if (overrides[o].name != p.name) continue;
+            overrideUsed[o] = true;
+            const std::vector<double>& numbers = overrides[o].numbers;
+            size_t want = static_cast<size_t>(ScalarCount(type));
+            if (numbers.size() != want && !(numbers.size() == 1 && want == 3)) {
+                overrideErrors->push_back("parameter '" + p.name + "' of shader '" + shader.name + "' is " +
+                                          Article(type) + " and takes " + std::to_string(want) +
+                                          " value" + (want == 1 ? "" : "s") + ", got " + std::to_string(numbers.size()));
+                continue;
+            }
+            bool finite = true;
+            for (double x : numbers) finite = finite && std::isfinite(x);
+            if (!finite) {
+                overrideErrors->push_back("parameter '" + p.name + "' of shader '" + shader.name +
+                                          "' must be finite (got NaN or infinity)");
+                continue;
+            }
+            for (size_t i = 0; i < want; ++i) value->c[i] = m_out.ir.Const(numbers[numbers.size() == 1 ? 0 : i]);
+        }
+        Variable var;
+        var.type = type;
+        var.value = *value;
+        var.assigned = true;
+        var.used = true;  // an unused parameter is not worth a warning: the scene may set it
+        var.loc = p.loc;
+        if (m_scopes.back().count(p.name)) {
+            m_diags.error(p.loc, "redefinition of parameter '" + p.name + "'");
+            continue;
+        }
+        m_scopes.back().emplace(p.name, var);
+        m_out.params.push_back(info);
+    }
+    for (size_t o = 0; o < overrides.size(); ++o)
+        if (!overrideUsed[o])
+            overrideErrors->push_back("shader '" + shader.name + "' has no parameter '" + overrides[o].name + "'");
+
+    // Scope 2: the body.
+    PushScope();
+    for (const lang::StmtPtr& s : shader.body) LowerStmt(*s);
+    PopScope();
+    PopScope();
+
+    const Variable& P = *Find("P");
+    const Variable& N = *Find("N");
+    m_out.finalP = P.value;
+    m_out.finalN = N.value;
+    m_out.writesP = P.value.c != inputP.c;
+    m_out.writesN = N.value.c != inputN.c;
+    if (!m_out.writesP && !m_out.writesN && !m_diags.hasErrors())
+        m_diags.warning(shader.loc, "shader '" + shader.name + "' never changes P or N");
+    return !m_diags.hasErrors() && overrideErrors->empty();
+}
+
+}  // namespace
+
+std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, const std::vector<ParamOverride>& overrides,
+                                   lang::Diagnostics& diags, std::vector<std::string>* overrideErrors) {
+    if (unit.shaders.empty()) {
+        if (!diags.hasErrors()) diags.error({1, 1}, "no shader definition in file");
+        return std::nullopt;
+    }
+    for (size_t i = 1; i < unit.shaders.size(); ++i)
+        diags.error(unit.shaders[i].loc, "only one shader per file is supported");
+    const lang::ShaderDef& shader = unit.shaders.front();
+    if (shader.kind != lang::ShaderKind::Displacement) {
+        diags.error(shader.loc, std::string(lang::ToString(shader.kind)) +
+                                    " shaders are not supported yet; affray renders displacement shaders");
+        return std::nullopt;
+    }
+    std::vector<std::string> localErrors;
+    if (!overrideErrors) overrideErrors = &localErrors;
+    LoweredShader out;
+    Lowerer lowerer(out, diags);
+    if (!lowerer.Run(shader, overrides, overrideErrors)) return std::nullopt;
+    return out;
+}
+
+}  // namespace affray::compiler

@@ -1,0 +1,23 @@
+// compiler/types.h: the types of shading-language values as the compiler sees them.
+#pragma once
+
+#include "lang/ast.h"
+
+namespace affray::compiler {
+
+enum class Type { Float, Point, Vector, Normal, Color, String, Void };
+
+const char* ToString(Type t);
+Type FromTypeName(lang::TypeName t);
+
+/// Point, vector, normal and color are triples: three scalars in the VM.
+inline bool IsTriple(Type t) {
+    return t == Type::Point || t == Type::Vector || t == Type::Normal || t == Type::Color;
+}
+/// Point, vector and normal mix freely in arithmetic (RenderMan allows it); color does not mix
+/// with them.
+inline bool IsSpatial(Type t) { return t == Type::Point || t == Type::Vector || t == Type::Normal; }
+
+inline int ScalarCount(Type t) { return IsTriple(t) ? 3 : t == Type::Float ? 1 : 0; }
+
+}  // namespace affray::compiler

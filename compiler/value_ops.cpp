@@ -1,0 +1,49 @@
+// compiler/value_ops.cpp: scalar expansion of triple arithmetic.
+#include "compiler/value_ops.h"
+
+namespace affray::compiler {
+
+Value ValueOps::Promote(const Value& v, Type type) const {
+    if (v.type == Type::Float && IsTriple(type)) return {type, {v.c[0], v.c[0], v.c[0]}};
+    Value r = v;
+    r.type = type;
+    return r;
+}
+
+Value ValueOps::Componentwise(IrOp op, const Value& a, const Value& b) {
+    if (a.type == Type::Float && b.type == Type::Float) return Float(Scalar(op, a.c[0], b.c[0]));
+    Type type = IsTriple(a.type) ? a.type : b.type;
+    Value x = Promote(a, type), y = Promote(b, type);
+    return {type, {Scalar(op, x.c[0], y.c[0]), Scalar(op, x.c[1], y.c[1]), Scalar(op, x.c[2], y.c[2])}};
+}
+
+Value ValueOps::Map(IrOp op, const Value& a) {
+    if (a.type == Type::Float) return Float(Scalar(op, a.c[0]));
+    return {a.type, {Scalar(op, a.c[0]), Scalar(op, a.c[1]), Scalar(op, a.c[2])}};
+}
+
+Value ValueOps::Dot(const Value& a, const Value& b) {
+    ValueId xy = Scalar(IrOp::Add, Scalar(IrOp::Mul, a.c[0], b.c[0]), Scalar(IrOp::Mul, a.c[1], b.c[1]));
+    return Float(Scalar(IrOp::Add, xy, Scalar(IrOp::Mul, a.c[2], b.c[2])));
+}
+
+Value ValueOps::Cross(const Value& a, const Value& b) {
+    auto term = [&](int i, int j) {
+        return Scalar(IrOp::Sub, Scalar(IrOp::Mul, a.c[i], b.c[j]), Scalar(IrOp::Mul, a.c[j], b.c[i]));
+    };
+    return {Type::Vector, {term(1, 2), term(2, 0), term(0, 1)}};
+}
+
+Value ValueOps::Length(const Value& a) {
+    // sqr, not x*x: the same node squared keeps affine bounds non-negative and tight.
+    Value squares = Map(IrOp::Sqr, a);
+    ValueId sum = Scalar(IrOp::Add, Scalar(IrOp::Add, squares.c[0], squares.c[1]), squares.c[2]);
+    return Float(Scalar(IrOp::Sqrt, sum));
+}
+
+Value ValueOps::Normalize(const Value& a) {
+    ValueId inverse = Scalar(IrOp::Div, m_ir.Const(1.0), Length(a).c[0]);
+    return Mul(a, Float(inverse));
+}
+
+}  // namespace affray::compiler

@@ -1,0 +1,57 @@
+// lang/diagnostics.cpp: formatting diagnostics with the source line and a caret.
+#include "lang/diagnostics.h"
+
+namespace affray::lang {
+
+void Diagnostics::error(SourceLoc loc, std::string message) {
+    add(Severity::Error, loc, std::move(message));
+}
+void Diagnostics::warning(SourceLoc loc, std::string message) {
+    add(Severity::Warning, loc, std::move(message));
+}
+void Diagnostics::note(SourceLoc loc, std::string message) {
+    add(Severity::Note, loc, std::move(message));
+}
+
+void Diagnostics::add(Severity severity, SourceLoc loc, std::string message) {
+    if (severity == Severity::Error) {
+        // Past the limit, keep counting (so callers still fail) but stop storing: a cascade of
+        // errors after the first few helps nobody.
+        if (++m_errorCount > kMaxErrors) return;
+    }
+    m_list.push_back({severity, loc, std::move(message)});
+}
+
+std::string Diagnostics::format(const Diagnostic& d) const {
+    static const char* const kKind[] = {"error", "warning", "note"};
+    std::string out = m_file->path();
+    if (d.loc.line > 0) {
+        out += ":" + std::to_string(d.loc.line);
+        if (d.loc.column > 0) out += ":" + std::to_string(d.loc.column);
+    }
+    out += ": ";
+    out += kKind[static_cast<int>(d.severity)];
+    out += ": " + d.message + "\n";
+    std::string_view line = m_file->lineText(d.loc.line);
+    if (d.loc.line > 0 && !line.empty()) {
+        out += "    ";
+        out += line;
+        out += "\n    ";
+        // Keep tabs in the caret line so the caret lines up under tab-indented code.
+        for (int i = 1; i < d.loc.column && i <= static_cast<int>(line.size()); ++i)
+            out += line[i - 1] == '\t' ? '\t' : ' ';
+        out += "^\n";
+    }
+    return out;
+}
+
+std::string Diagnostics::format() const {
+    std::string out;
+    for (const Diagnostic& d : m_list) out += format(d);
+    if (m_errorCount > kMaxErrors)
+        out += m_file->path() + ": error: too many errors (" + std::to_string(m_errorCount) +
+               "), stopping after " + std::to_string(kMaxErrors) + "\n";
+    return out;
+}
+
+}  // namespace affray::lang

@@ -1,0 +1,274 @@
+// lang/parse.cpp: Parse(), and the node builders the grammar's actions call.
+// Owns the checks a context-free grammar cannot say well: assignment targets, tuple sizes,
+// `break N` levels and the depth limits that keep every later recursive pass (printing,
+// destruction, the compiler) within the stack. Builders never return null, so a tree built
+// while recovering from errors is still safe to walk.
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <new>
+
+#include "lang/parse.h"
+#include "parser.hh"
+
+namespace affray::lang {
+
+namespace {
+
+// Beyond this the lexer's int lengths would be at risk; no shader comes near it.
+constexpr size_t kMaxSourceBytes = size_t{1} << 28;
+
+}  // namespace
+
+// --- Diagnostics and limits ----------------------------------------------------------------------
+
+void ParseContext::Error(SourceLoc loc, std::string message) {
+    if (m_stopped) return;
+    m_diags.error(loc, std::move(message));
+    // Past the cap nothing more is shown, so stop rather than grind through garbage.
+    if (m_diags.errorCount() > Diagnostics::kMaxErrors) m_stopped = true;
+}
+
+ExprNode ParseContext::Finish(ExprPtr e, int depth) {
+    if (depth > kMaxDepth) {
+        if (!m_reportedExprDepth)
+            Error(e->loc, "expression too complex (nested more than " +
+                              std::to_string(kMaxDepth) + " levels deep)");
+        m_reportedExprDepth = true;
+        // Replace the subtree by a leaf so that nothing deeper is ever built.
+        e = std::make_unique<Expr>(ExprKind::Number, e->loc);
+        depth = 1;
+    }
+    return {std::move(e), depth};
+}
+
+StmtNode ParseContext::Finish(StmtPtr s, int depth) {
+    if (depth > kMaxDepth) {
+        if (!m_reportedStmtDepth)
+            Error(s->loc, "statements nested more than " + std::to_string(kMaxDepth) +
+                              " levels deep");
+        m_reportedStmtDepth = true;
+        s = std::make_unique<Stmt>(StmtKind::Empty, s->loc);
+        depth = 1;
+    }
+    return {std::move(s), depth};
+}
+
+// --- Expressions -----------------------------------------------------------------------------
+
+ExprNode ParseContext::Number(SourceLoc loc, double value) {
+    auto e = std::make_unique<Expr>(ExprKind::Number, loc);
+    e->number = value;
+    return Finish(std::move(e), 1);
+}
+
+ExprNode ParseContext::String(SourceLoc loc, std::string text) {
+    auto e = std::make_unique<Expr>(ExprKind::String, loc);
+    e->text = std::move(text);
+    return Finish(std::move(e), 1);
+}
+
+ExprNode ParseContext::Ident(SourceLoc loc, std::string name) {
+    auto e = std::make_unique<Expr>(ExprKind::Ident, loc);
+    e->name = std::move(name);
+    return Finish(std::move(e), 1);
+}
+
+ExprNode ParseContext::Unary(UnaryOp op, SourceLoc loc, ExprNode operand) {
+    auto e = std::make_unique<Expr>(ExprKind::Unary, loc);
+    e->unaryOp = op;
+    e->args.push_back(std::move(operand.expr));
+    return Finish(std::move(e), 1 + operand.depth);
+}
+
+ExprNode ParseContext::Binary(BinaryOp op, SourceLoc loc, ExprNode lhs, ExprNode rhs) {
+    auto e = std::make_unique<Expr>(ExprKind::Binary, loc);
+    e->binaryOp = op;
+    e->args.push_back(std::move(lhs.expr));
+    e->args.push_back(std::move(rhs.expr));
+    return Finish(std::move(e), 1 + std::max(lhs.depth, rhs.depth));
+}
+
+ExprNode ParseContext::Assign(AssignOp op, SourceLoc loc, ExprNode target, ExprNode value) {
+    if (target.expr->kind != ExprKind::Ident) {
+        Error(loc, "left side of assignment must be a variable");
+        return value;
+    }
+    auto e = std::make_unique<Expr>(ExprKind::Assign, loc);
+    e->assignOp = op;
+    e->name = std::move(target.expr->name);
+    e->args.push_back(std::move(value.expr));
+    return Finish(std::move(e), 1 + value.depth);
+}
+
+ExprNode ParseContext::Call(SourceLoc loc, std::string name, ExprList args) {
+    auto e = std::make_unique<Expr>(ExprKind::Call, loc);
+    e->name = std::move(name);
+    e->args = std::move(args.items);
+    return Finish(std::move(e), 1 + args.depth);
+}
+
+ExprNode ParseContext::Tuple(SourceLoc loc, ExprNode first, ExprList rest) {
+    size_t count = rest.items.size() + 1;
+    if (count != 3) {
+        Error(loc, count == 16 ? "matrix values are not supported yet"
+                               : "a tuple must have 3 components");
+        return Number(loc, 0);
+    }
+    auto e = std::make_unique<Expr>(ExprKind::Triple, loc);
+    e->args.push_back(std::move(first.expr));
+    for (ExprPtr& r : rest.items) e->args.push_back(std::move(r));
+    return Finish(std::move(e), 1 + std::max(first.depth, rest.depth));
+}
+
+ExprNode ParseContext::Cast(SourceLoc loc, TypeName type, std::string space, ExprNode operand) {
+    auto e = std::make_unique<Expr>(ExprKind::Cast, loc);
+    e->castType = type;
+    e->castSpace = std::move(space);
+    e->args.push_back(std::move(operand.expr));
+    return Finish(std::move(e), 1 + operand.depth);
+}
+
+ExprNode ParseContext::Ternary(SourceLoc loc, ExprNode cond, ExprNode yes, ExprNode no) {
+    auto e = std::make_unique<Expr>(ExprKind::Ternary, loc);
+    e->args.push_back(std::move(cond.expr));
+    e->args.push_back(std::move(yes.expr));
+    e->args.push_back(std::move(no.expr));
+    return Finish(std::move(e), 1 + std::max({cond.depth, yes.depth, no.depth}));
+}
+
+void ParseContext::Append(ExprList& list, ExprNode e) {
+    list.items.push_back(std::move(e.expr));
+    list.depth = std::max(list.depth, e.depth);
+}
+
+// --- Statements ------------------------------------------------------------------------------
+// A statement's depth counts statements only: its expressions are bounded on their own.
+
+StmtNode ParseContext::Simple(StmtKind kind, SourceLoc loc, ExprNode expr) {
+    auto s = std::make_unique<Stmt>(kind, loc);
+    s->expr = std::move(expr.expr);
+    return Finish(std::move(s), 1);
+}
+
+StmtNode ParseContext::Decl(SourceLoc loc, std::vector<VarDecl> decls) {
+    auto s = std::make_unique<Stmt>(StmtKind::Decl, loc);
+    s->decls = std::move(decls);
+    return Finish(std::move(s), 1);
+}
+
+StmtNode ParseContext::Block(SourceLoc loc, StmtList body) {
+    auto s = std::make_unique<Stmt>(StmtKind::Block, loc);
+    s->body = std::move(body.items);
+    return Finish(std::move(s), 1 + body.depth);
+}
+
+StmtNode ParseContext::If(SourceLoc loc, ExprNode cond, StmtNode yes, StmtNode no) {
+    auto s = std::make_unique<Stmt>(StmtKind::If, loc);
+    s->expr = std::move(cond.expr);
+    s->body.push_back(std::move(yes.stmt));
+    if (no.stmt) s->body.push_back(std::move(no.stmt));
+    return Finish(std::move(s), 1 + std::max(yes.depth, no.depth));
+}
+
+StmtNode ParseContext::For(SourceLoc loc, ExprNode init, ExprNode cond, ExprNode step,
+                           StmtNode body) {
+    auto s = std::make_unique<Stmt>(StmtKind::For, loc);
+    s->init = std::move(init.expr);
+    s->expr = std::move(cond.expr);
+    s->step = std::move(step.expr);
+    s->body.push_back(std::move(body.stmt));
+    return Finish(std::move(s), 1 + body.depth);
+}
+
+StmtNode ParseContext::While(SourceLoc loc, ExprNode cond, StmtNode body) {
+    auto s = std::make_unique<Stmt>(StmtKind::While, loc);
+    s->expr = std::move(cond.expr);
+    s->body.push_back(std::move(body.stmt));
+    return Finish(std::move(s), 1 + body.depth);
+}
+
+StmtNode ParseContext::Jump(StmtKind kind, SourceLoc loc, int level) {
+    auto s = std::make_unique<Stmt>(kind, loc);
+    s->level = level;
+    return Finish(std::move(s), 1);
+}
+
+void ParseContext::Append(StmtList& list, StmtNode s) {
+    list.items.push_back(std::move(s.stmt));
+    list.depth = std::max(list.depth, s.depth);
+}
+
+int ParseContext::JumpLevel(SourceLoc loc, double value) {
+    if (value >= 1 && value <= 1000000 && value == std::floor(value))
+        return static_cast<int>(value);
+    Error(loc, "the loop level must be a positive integer");
+    return 1;
+}
+
+// --- Declarations and shaders ------------------------------------------------------------------
+
+void ParseContext::AddVar(std::vector<VarDecl>& list, SourceLoc loc, std::string name,
+                          ExprNode init) {
+    VarDecl v;
+    v.name = std::move(name);
+    v.loc = loc;
+    v.init = std::move(init.expr);
+    list.push_back(std::move(v));
+}
+
+std::vector<VarDecl> ParseContext::Typed(std::vector<VarDecl> list, TypeName type, Detail detail,
+                                         bool output) {
+    for (VarDecl& v : list) {
+        v.type = type;
+        v.detail = detail;
+        v.isOutput = output;
+    }
+    return list;
+}
+
+TypeName ParseContext::Matrix(SourceLoc loc) {
+    Error(loc, "type 'matrix' is not supported yet");
+    return TypeName::Float;
+}
+
+void ParseContext::AddShader(ShaderKind kind, SourceLoc loc, std::string name,
+                             std::vector<VarDecl> params, StmtList body) {
+    ShaderDef def;
+    def.kind = kind;
+    def.name = std::move(name);
+    def.loc = loc;
+    def.params = std::move(params);
+    def.body = std::move(body.items);
+    m_unit.shaders.push_back(std::move(def));
+}
+
+// --- Entry point -------------------------------------------------------------------------------
+
+TranslationUnit Parse(Diagnostics& diags) {
+    const std::string& text = diags.file().text();
+    int errorsBefore = diags.errorCount();
+    if (text.size() > kMaxSourceBytes) {
+        diags.error({}, "file too large to parse (more than " + std::to_string(kMaxSourceBytes) +
+                            " bytes)");
+        return {};
+    }
+
+    ParseContext ctx(diags);
+    try {
+        std::unique_ptr<void, void (*)(void*)> scanner(NewScanner(ctx, text), DeleteScanner);
+        Parser parser(ctx);
+        parser.parse();
+    } catch (const std::bad_alloc&) {
+        diags.error(ctx.lex().Here(), "out of memory while parsing");
+    } catch (const std::exception& e) {
+        diags.error(ctx.lex().Here(), std::string("internal error while parsing: ") + e.what());
+    }
+
+    if (diags.errorCount() == errorsBefore && ctx.unit().shaders.empty())
+        diags.error({1, 1}, "no shader definition in file");
+    return std::move(ctx.unit());
+}
+
+}  // namespace affray::lang

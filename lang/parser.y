@@ -1,0 +1,456 @@
+// lang/parser.y: the RSL grammar (Bison 3.8, C++ skeleton, pure, IELR(1), no conflicts).
+// Owns the token kinds and their readable names, operator precedence and the shape of every
+// construct. Actions only build AST nodes through ParseContext (parse.cpp); the few rules a
+// context-free grammar cannot say well (assignment targets, tuple sizes, nesting depth) are
+// checked there. The grammar has no conflicts (%expect 0); keep it that way.
+// To add a construct: add its tokens here and in lexer.l, a rule whose action calls a builder,
+// and a case in ast.cpp's ToString.
+//
+// Token names in messages: "identifier", "number", "string", "end of file", keywords quoted
+// ('float', 'if', ...), operators and punctuation quoted (';', '+=', '&&', ...). So a message reads
+//     syntax error, unexpected identifier, expecting ';'
+// Error recovery: a bad statement is skipped up to its ';' (or the '}' closing its block); a bad
+// parameter list is skipped up to the '{' of the shader body; garbage between shaders is skipped
+// token by token until the next shader keyword. After a '}' or a shader body has resynchronised
+// the parser (yyerrok) the next error is reported at once; elsewhere bison's usual rule holds
+// (three tokens must be shifted before another error is reported), which keeps a statement
+// recovered at the wrong ';' from reporting its block's '}' as a second error.
+
+%require "3.8"
+%skeleton "lalr1.cc"
+%define api.namespace {affray::lang}
+%define api.parser.class {Parser}
+%define api.value.type variant
+%define api.value.automove
+%define api.token.constructor
+%define api.token.prefix {TOK_}
+%define api.location.type {affray::lang::SourceLoc}
+%define parse.error detailed
+// No LAC: with default reductions done first, the expected-token list is short and to the point
+// ("expecting ';'" rather than every operator that could also follow). IELR keeps LALR's state
+// merging from inventing expectations.
+%define lr.type ielr
+%define parse.assert
+%locations
+%param {ParseContext& ctx}
+%expect 0
+
+%code requires {
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lang/ast.h"
+#include "lang/diagnostics.h"
+
+namespace affray::lang {
+
+/// Where the lexer is in the text; the lexer (lexer.l) updates it for every token it matches.
+struct LexState {
+    void* scanner = nullptr;  // the flex scanner (yyscan_t)
+    int line = 1;             // where the next token starts
+    int column = 1;
+    SourceLoc token;          // where the current token starts
+    SourceLoc commentStart;   // of the open /* comment
+    int nesting = 0;          // parentheses and braces open now
+    SourceLoc lastEnd{1, 1};  // just after the last token returned
+    bool tokenHadError = false;  // the lexer reported an error while reading the last token
+
+    /// Records the start of a token of `length` bytes at the current position and moves past it.
+    void Advance(const char* text, int length);
+    SourceLoc Here() const { return {line, column}; }
+};
+
+/// A tree under construction, with its depth (1 for a leaf; 0 for none), so that the builders
+/// can enforce ParseContext::kMaxDepth in constant time per node.
+struct ExprNode {
+    ExprPtr expr;
+    int depth = 0;
+};
+struct ExprList {
+    std::vector<ExprPtr> items;
+    int depth = 0;  // of the deepest item
+};
+struct StmtNode {
+    StmtPtr stmt;
+    int depth = 0;
+};
+struct StmtList {
+    std::vector<StmtPtr> items;
+    int depth = 0;
+};
+
+/// The state of one Parse() call, shared by the lexer and the parser's actions: the diagnostics,
+/// the unit being built, and the node builders that enforce the nesting limits.
+class ParseContext {
+  public:
+    /// Open parentheses and braces at once; past this, parsing stops with an error.
+    static constexpr int kMaxNesting = 256;
+    /// Depth of an expression or statement tree (operators chain without parentheses, as in
+    /// `- - - x` or `if (a) if (b) ...`); past this, the subtree is replaced and parsing goes on.
+    static constexpr int kMaxDepth = 1000;
+
+    explicit ParseContext(Diagnostics& diags) : m_diags(diags) {}
+
+    /// Reports an error unless parsing has stopped. Past Diagnostics::kMaxErrors, stops.
+    void Error(SourceLoc loc, std::string message);
+    /// Ends the parse early: the lexer returns end of file and later syntax errors go unsaid.
+    void Stop() { m_stopped = true; }
+    bool StoppedP() const { return m_stopped; }
+    int ErrorCount() const { return m_diags.errorCount(); }
+    LexState& lex() { return m_lex; }
+    TranslationUnit& unit() { return m_unit; }
+
+    // Node builders (parse.cpp). Each takes ownership of its operands and returns a non-null
+    // node, so a tree built while recovering from errors is still safe to walk.
+    ExprNode Number(SourceLoc loc, double value);
+    ExprNode String(SourceLoc loc, std::string text);
+    ExprNode Ident(SourceLoc loc, std::string name);
+    ExprNode Unary(UnaryOp op, SourceLoc loc, ExprNode operand);
+    ExprNode Binary(BinaryOp op, SourceLoc loc, ExprNode lhs, ExprNode rhs);
+    /// `target op value`; reports an error at the operator unless target is a plain name.
+    ExprNode Assign(AssignOp op, SourceLoc loc, ExprNode target, ExprNode value);
+    ExprNode Call(SourceLoc loc, std::string name, ExprList args);
+    /// `(first, rest...)`: a triple if it has 3 components, else an error at the '('.
+    ExprNode Tuple(SourceLoc loc, ExprNode first, ExprList rest);
+    ExprNode Cast(SourceLoc loc, TypeName type, std::string space, ExprNode operand);
+    ExprNode Ternary(SourceLoc loc, ExprNode cond, ExprNode yes, ExprNode no);
+    void Append(ExprList& list, ExprNode e);
+
+    StmtNode Simple(StmtKind kind, SourceLoc loc, ExprNode expr = {});
+    StmtNode Decl(SourceLoc loc, std::vector<VarDecl> decls);
+    StmtNode Block(SourceLoc loc, StmtList body);
+    StmtNode If(SourceLoc loc, ExprNode cond, StmtNode yes, StmtNode no);
+    StmtNode For(SourceLoc loc, ExprNode init, ExprNode cond, ExprNode step, StmtNode body);
+    StmtNode While(SourceLoc loc, ExprNode cond, StmtNode body);
+    StmtNode Jump(StmtKind kind, SourceLoc loc, int level);
+    void Append(StmtList& list, StmtNode s);
+    /// The N of `break N`: reports an error unless it is a positive integer.
+    int JumpLevel(SourceLoc loc, double value);
+
+    /// Appends `name [= init]` to a declaration list still waiting for its type.
+    void AddVar(std::vector<VarDecl>& list, SourceLoc loc, std::string name, ExprNode init);
+    /// Gives every variable in `list` the shared type, detail and output flag.
+    std::vector<VarDecl> Typed(std::vector<VarDecl> list, TypeName type, Detail detail,
+                               bool output);
+    /// `matrix`: reports that it is unsupported, and stands in float to go on parsing.
+    TypeName Matrix(SourceLoc loc);
+    void AddShader(ShaderKind kind, SourceLoc loc, std::string name, std::vector<VarDecl> params,
+                   StmtList body);
+
+  private:
+    ExprNode Finish(ExprPtr e, int depth);
+    StmtNode Finish(StmtPtr s, int depth);
+
+    Diagnostics& m_diags;
+    LexState m_lex;
+    TranslationUnit m_unit;
+    bool m_stopped = false;
+    bool m_reportedExprDepth = false;
+    bool m_reportedStmtDepth = false;
+};
+
+}  // namespace affray::lang
+}
+
+%code provides {
+namespace affray::lang {
+// The scanner over one text (lexer.l): created before parsing, destroyed after.
+void* NewScanner(ParseContext& ctx, const std::string& text);
+void DeleteScanner(void* scanner);
+// The next token; end of file for ever once ctx.StoppedP().
+Parser::symbol_type yylex(ParseContext& ctx);
+}  // namespace affray::lang
+}
+
+%code {
+// A nonterminal's location is where its first token starts (an empty one takes the previous
+// symbol's), so an action's @1 is the first token of its first symbol.
+#define YYLLOC_DEFAULT(Current, Rhs, N) \
+    do { (Current) = (N) ? YYRHSLOC(Rhs, 1) : YYRHSLOC(Rhs, 0); } while (false)
+}
+
+%token END 0 "end of file"
+%token <std::string> IDENT "identifier"
+%token <double> NUMBER "number"
+%token <std::string> STRING "string"
+%token FLOAT "'float'" POINT "'point'" VECTOR "'vector'" NORMAL "'normal'" COLOR "'color'"
+%token STRING_TYPE "'string'" VOID "'void'" MATRIX "'matrix'"
+%token UNIFORM "'uniform'" VARYING "'varying'" OUTPUT "'output'"
+%token IF "'if'" ELSE "'else'" FOR "'for'" WHILE "'while'" RETURN "'return'"
+%token BREAK "'break'" CONTINUE "'continue'"
+%token DISPLACEMENT "'displacement'" SURFACE "'surface'" LIGHT "'light'" VOLUME "'volume'"
+%token IMAGER "'imager'"
+%token ADD_ASSIGN "'+='" SUB_ASSIGN "'-='" MUL_ASSIGN "'*='" DIV_ASSIGN "'/='"
+%token OR "'||'" AND "'&&'" EQ "'=='" NE "'!='" LE "'<='" GE "'>='"
+
+// Lowest first. Assignment and ?: are right-recursive rules below, not precedences.
+%precedence THEN
+%precedence ELSE
+// `point "space" -x`: after a type and a string, '+'/'-' start the cast's operand (shift).
+%precedence SPACE_STRING
+%left OR
+%left AND
+%left '<' '>' LE GE EQ NE
+%left '+' '-'
+%left '^'
+%left '*' '/'
+%left '.'
+
+%nterm <ShaderKind> shader_kind
+%nterm <std::vector<VarDecl>> params param_groups param_group var_items decl
+%nterm <ExprNode> opt_init expr expr_nc cond cond_nc binary binary_nc unary unary_nc primary
+%nterm <ExprNode> opt_expr
+%nterm <ExprList> args arg_list
+%nterm <StmtList> stmts body
+%nterm <StmtNode> stmt
+%nterm <TypeName> type
+%nterm <Detail> detail opt_detail
+%nterm <bool> opt_output
+%nterm <AssignOp> assign_op
+%nterm <BinaryOp> rel_op add_op mul_op
+%nterm <int> opt_level
+
+%start unit
+
+%%
+
+unit
+  : %empty
+  | unit shader
+  | unit error  // skips one token at a time until a shader keyword
+  ;
+
+shader
+  : shader_kind IDENT '(' params ')' body
+      { ctx.AddShader($1, @2, $2, $4, $6); }
+  | shader_kind IDENT '(' error body
+      { ctx.AddShader($1, @2, $2, {}, $5); yyerrok; }
+  ;
+
+shader_kind
+  : DISPLACEMENT  { $$ = ShaderKind::Displacement; }
+  | SURFACE       { $$ = ShaderKind::Surface; }
+  | LIGHT         { $$ = ShaderKind::Light; }
+  | VOLUME        { $$ = ShaderKind::Volume; }
+  | IMAGER        { $$ = ShaderKind::Imager; }
+  ;
+
+// Shader parameters: `[output] [uniform|varying] type a = 1, b = 2; type c = 3;` with an
+// optional ';' before the ')'.
+params
+  : %empty             { }
+  | param_groups       { $$ = $1; }
+  | param_groups ';'   { $$ = $1; }
+  ;
+
+param_groups
+  : param_group                    { $$ = $1; }
+  | param_groups ';' param_group
+      { $$ = $1; for (VarDecl& v : $3) $$.push_back(std::move(v)); }
+  ;
+
+param_group
+  : opt_output opt_detail type var_items  { $$ = ctx.Typed($4, $3, $2, $1); }
+  ;
+
+opt_output
+  : %empty  { $$ = false; }
+  | OUTPUT  { $$ = true; }
+  ;
+
+opt_detail
+  : %empty  { $$ = Detail::Default; }
+  | detail  { $$ = $1; }
+  ;
+
+detail
+  : UNIFORM  { $$ = Detail::Uniform; }
+  | VARYING  { $$ = Detail::Varying; }
+  ;
+
+// Names that will share one type: `a = 1, b`.
+var_items
+  : IDENT opt_init                { ctx.AddVar($$, @1, $1, $2); }
+  | var_items ',' IDENT opt_init  { $$ = $1; ctx.AddVar($$, @3, $3, $4); }
+  ;
+
+opt_init
+  : %empty    { }
+  | '=' expr  { $$ = $2; }
+  ;
+
+// `void` is accepted wherever a type is; the compiler rejects void variables.
+type
+  : FLOAT        { $$ = TypeName::Float; }
+  | POINT        { $$ = TypeName::Point; }
+  | VECTOR       { $$ = TypeName::Vector; }
+  | NORMAL       { $$ = TypeName::Normal; }
+  | COLOR        { $$ = TypeName::Color; }
+  | STRING_TYPE  { $$ = TypeName::String; }
+  | VOID         { $$ = TypeName::Void; }
+  | MATRIX       { $$ = ctx.Matrix(@1); }
+  ;
+
+body
+  : '{' stmts '}'        { $$ = $2; }
+  | '{' stmts error '}'  { $$ = $2; yyerrok; }
+  ;
+
+stmts
+  : %empty      { }
+  | stmts stmt  { $$ = $1; ctx.Append($$, $2); }
+  ;
+
+stmt
+  : ';'                     { $$ = ctx.Simple(StmtKind::Empty, @1); }
+  | expr_nc ';'             { $$ = ctx.Simple(StmtKind::Expr, @1, $1); }
+  | decl ';'                { $$ = ctx.Decl(@1, $1); }
+  | body                    { $$ = ctx.Block(@1, $1); }
+  | IF '(' expr ')' stmt %prec THEN
+      { $$ = ctx.If(@1, $3, $5, {}); }
+  | IF '(' expr ')' stmt ELSE stmt
+      { $$ = ctx.If(@1, $3, $5, $7); }
+  | WHILE '(' expr ')' stmt
+      { $$ = ctx.While(@1, $3, $5); }
+  | FOR '(' opt_expr ';' opt_expr ';' opt_expr ')' stmt
+      { $$ = ctx.For(@1, $3, $5, $7, $9); }
+  | RETURN opt_expr ';'     { $$ = ctx.Simple(StmtKind::Return, @1, $2); }
+  | BREAK opt_level ';'     { $$ = ctx.Jump(StmtKind::Break, @1, $2); }
+  | CONTINUE opt_level ';'  { $$ = ctx.Jump(StmtKind::Continue, @1, $2); }
+  | error ';'               { $$ = ctx.Simple(StmtKind::Empty, @1); }
+  ;
+
+// A local declaration. A statement that starts with a type is always a declaration, so an
+// expression statement cannot start with a cast (see expr_nc).
+decl
+  : type var_items         { $$ = ctx.Typed($2, $1, Detail::Default, false); }
+  | detail type var_items  { $$ = ctx.Typed($3, $2, $1, false); }
+  ;
+
+opt_level
+  : %empty  { $$ = 1; }
+  | NUMBER  { $$ = ctx.JumpLevel(@1, $1); }
+  ;
+
+opt_expr
+  : %empty  { }
+  | expr    { $$ = $1; }
+  ;
+
+// Expressions, lowest precedence first. Each *_nc rule is its twin that does not start with a
+// cast; only expression statements use them.
+expr
+  : cond                    { $$ = $1; }
+  | cond assign_op expr     { $$ = ctx.Assign($2, @2, $1, $3); }
+  ;
+
+expr_nc
+  : cond_nc                 { $$ = $1; }
+  | cond_nc assign_op expr  { $$ = ctx.Assign($2, @2, $1, $3); }
+  ;
+
+assign_op
+  : '='         { $$ = AssignOp::Assign; }
+  | ADD_ASSIGN  { $$ = AssignOp::AddAssign; }
+  | SUB_ASSIGN  { $$ = AssignOp::SubAssign; }
+  | MUL_ASSIGN  { $$ = AssignOp::MulAssign; }
+  | DIV_ASSIGN  { $$ = AssignOp::DivAssign; }
+  ;
+
+cond
+  : binary                    { $$ = $1; }
+  | binary '?' expr ':' cond  { $$ = ctx.Ternary(@2, $1, $3, $5); }
+  ;
+
+cond_nc
+  : binary_nc                    { $$ = $1; }
+  | binary_nc '?' expr ':' cond  { $$ = ctx.Ternary(@2, $1, $3, $5); }
+  ;
+
+binary
+  : unary                         { $$ = $1; }
+  | binary OR binary              { $$ = ctx.Binary(BinaryOp::Or, @2, $1, $3); }
+  | binary AND binary             { $$ = ctx.Binary(BinaryOp::And, @2, $1, $3); }
+  | binary rel_op binary %prec EQ { $$ = ctx.Binary($2, @2, $1, $3); }
+  | binary add_op binary %prec '+' { $$ = ctx.Binary($2, @2, $1, $3); }
+  | binary '^' binary             { $$ = ctx.Binary(BinaryOp::Cross, @2, $1, $3); }
+  | binary mul_op binary %prec '*' { $$ = ctx.Binary($2, @2, $1, $3); }
+  | binary '.' binary             { $$ = ctx.Binary(BinaryOp::Dot, @2, $1, $3); }
+  ;
+
+binary_nc
+  : unary_nc                         { $$ = $1; }
+  | binary_nc OR binary              { $$ = ctx.Binary(BinaryOp::Or, @2, $1, $3); }
+  | binary_nc AND binary             { $$ = ctx.Binary(BinaryOp::And, @2, $1, $3); }
+  | binary_nc rel_op binary %prec EQ { $$ = ctx.Binary($2, @2, $1, $3); }
+  | binary_nc add_op binary %prec '+' { $$ = ctx.Binary($2, @2, $1, $3); }
+  | binary_nc '^' binary             { $$ = ctx.Binary(BinaryOp::Cross, @2, $1, $3); }
+  | binary_nc mul_op binary %prec '*' { $$ = ctx.Binary($2, @2, $1, $3); }
+  | binary_nc '.' binary             { $$ = ctx.Binary(BinaryOp::Dot, @2, $1, $3); }
+  ;
+
+rel_op
+  : '<'  { $$ = BinaryOp::Less; }
+  | LE   { $$ = BinaryOp::LessEq; }
+  | '>'  { $$ = BinaryOp::Greater; }
+  | GE   { $$ = BinaryOp::GreaterEq; }
+  | EQ   { $$ = BinaryOp::Equal; }
+  | NE   { $$ = BinaryOp::NotEqual; }
+  ;
+
+add_op
+  : '+'  { $$ = BinaryOp::Add; }
+  | '-'  { $$ = BinaryOp::Sub; }
+  ;
+
+mul_op
+  : '*'  { $$ = BinaryOp::Mul; }
+  | '/'  { $$ = BinaryOp::Div; }
+  ;
+
+// Unary operators bind tighter than every binary one: `-a . b` is `(-a) . b`. A cast is
+// `type ["space"] operand` with a unary-level operand: `float noise(P)`, `point "world" (0,0,1)`.
+unary
+  : unary_nc                { $$ = $1; }
+  | type unary              { $$ = ctx.Cast(@1, $1, "", $2); }
+  | type STRING unary       { $$ = ctx.Cast(@1, $1, $2, $3); }
+  ;
+
+unary_nc
+  : primary    { $$ = $1; }
+  | '-' unary  { $$ = ctx.Unary(UnaryOp::Negate, @1, $2); }
+  | '+' unary  { $$ = $2; }
+  | '!' unary  { $$ = ctx.Unary(UnaryOp::Not, @1, $2); }
+  ;
+
+primary
+  : NUMBER                          { $$ = ctx.Number(@1, $1); }
+  | STRING %prec SPACE_STRING       { $$ = ctx.String(@1, $1); }
+  | IDENT                           { $$ = ctx.Ident(@1, $1); }
+  | IDENT '(' args ')'              { $$ = ctx.Call(@1, $1, $3); }
+  | '(' expr ')'                    { $$ = $2; }
+  | '(' expr ',' arg_list ')'       { $$ = ctx.Tuple(@1, $2, $4); }
+  ;
+
+args
+  : %empty    { }
+  | arg_list  { $$ = $1; }
+  ;
+
+arg_list
+  : expr               { ctx.Append($$, $1); }
+  | arg_list ',' expr  { $$ = $1; ctx.Append($$, $3); }
+  ;
+
+%%
+
+namespace affray::lang {
+
+// A syntax error at a token the lexer already complained about (say, after skipping an invalid
+// character) is the same mistake said twice: keep the lexer's, more precise, message.
+void Parser::error(const location_type& loc, const std::string& message) {
+    if (!ctx.lex().tokenHadError) ctx.Error(loc, message);
+}
+
+}  // namespace affray::lang

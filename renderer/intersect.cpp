@@ -1,0 +1,180 @@
+// renderer/intersect.cpp: region subdivision, the bound-versus-ray test and the nearest-first
+// traversal, written once for every bounding number type.
+//
+// The test (DESIGN.md, decision 5): pick two unit normals n1, n2 perpendicular to the ray and to
+// each other; the planes through the ray origin with these normals both contain the ray. For the
+// displaced point P' over a region, d1 = n1.(P'-o), d2 = n2.(P'-o) and t = d.(P'-o) are affine
+// forms; a surface point on the ray needs d1 = d2 = 0, so if either range excludes 0 the region
+// is missed. Because the forms share the symbols of u and v, a smooth surface gives much tighter
+// d1, d2 than an axis-aligned box of P' would.
+#include "renderer/intersect.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace affray::renderer {
+
+void IntersectStats::Merge(const IntersectStats& o) {
+    rays += o.rays;
+    regionsBounded += o.regionsBounded;
+    maxRegionsPerRay = std::max(maxRegionsPerRay, o.maxRegionsPerRay);
+    depthLimitHits += o.depthLimitHits;
+    maxHitError = std::max(maxHitError, o.maxHitError);
+}
+
+namespace {
+
+template <class T>
+const T& ValueOf(const T& x) {
+    return x;
+}
+template <class T>
+const T& ValueOf(const vm::Dual<T>& x) {
+    return x.v;
+}
+
+/// A region with its bound, measured in the ray's frame.
+struct Region {
+    double u0, u1, v0, v1;
+    int depth;
+    double tLo, tHi;
+    double size;  // diagonal of the bound in the ray frame; infinite if unbounded
+};
+
+template <class N>
+class PatchIntersectorT final : public PatchIntersector {
+  public:
+    PatchIntersectorT(const BilinearPatch& patch, const vm::Program& program, const glm::dvec3& eye, int maxDepth)
+        : m_patch(patch), m_interp(program), m_output(program.findOutput("P")), m_eye(eye), m_maxDepth(maxDepth) {
+        m_stack.reserve(4 * static_cast<size_t>(maxDepth) + 8);
+    }
+
+    bool Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit, Hit* hit,
+                   IntersectStats& stats) override;
+
+  private:
+    /// Bounds the region and measures it against the ray; false if it provably misses.
+    bool BoundRegion(Region& r, double tMin, double tMax);
+
+    BilinearPatch m_patch;
+    vm::Interpreter<N> m_interp;
+    const vm::ProgramOutput* m_output;
+    glm::dvec3 m_eye;
+    int m_maxDepth;
+    std::vector<Region> m_stack;
+    // The current ray's frame.
+    glm::dvec3 m_origin, m_dir, m_n1, m_n2;
+    uint64_t m_bounded = 0;
+};
+
+template <class N>
+bool PatchIntersectorT<N>::BoundRegion(Region& r, double tMin, double tMax) {
+    ++m_bounded;
+    if constexpr (std::is_same_v<N, vm::Affine> || std::is_same_v<N, vm::Dual<vm::Affine>>)
+        vm::Affine::BeginEvaluation();
+    SetPatchGlobals(m_interp, m_patch, r.u0, r.u1, r.v0, r.v1, m_eye);
+    m_interp.Run();
+    Vec3<N> p = m_interp.OutputTriple(*m_output);
+    using T = std::decay_t<decltype(ValueOf(p.x))>;
+    Vec3<T> rel{ValueOf(p.x) - m_origin.x, ValueOf(p.y) - m_origin.y, ValueOf(p.z) - m_origin.z};
+    auto along = [&](const glm::dvec3& n) { return RangeOf(rel.x * n.x + rel.y * n.y + rel.z * n.z); };
+    vm::Interval d1 = along(m_n1), d2 = along(m_n2), t = along(m_dir);
+    if (d1.isUnbounded() || d2.isUnbounded() || t.isUnbounded()) {
+        // Nothing is known about this region: keep it, nearest possible, to be subdivided.
+        r.tLo = tMin;
+        r.tHi = tMax;
+        r.size = INFINITY;
+        return true;
+    }
+    if (d1.lo() > 0 || d1.hi() < 0 || d2.lo() > 0 || d2.hi() < 0) return false;
+    if (t.hi() < tMin || t.lo() > tMax) return false;
+    r.tLo = t.lo();
+    r.tHi = t.hi();
+    double w1 = d1.hi() - d1.lo(), w2 = d2.hi() - d2.lo(), wt = t.hi() - t.lo();
+    r.size = std::sqrt(w1 * w1 + w2 * w2 + wt * wt) * (1 + 1e-15);
+    return true;
+}
+
+template <class N>
+bool PatchIntersectorT<N>::Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance,
+                                     bool anyHit, Hit* hit, IntersectStats& stats) {
+    m_origin = ray.origin;
+    m_dir = ray.dir;
+    // Any unit vector perpendicular to the ray, then a third completing the frame.
+    glm::dvec3 helper = std::abs(m_dir.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    m_n1 = glm::normalize(glm::cross(m_dir, helper));
+    m_n2 = glm::normalize(glm::cross(m_dir, m_n1));
+    m_bounded = 0;
+    m_stack.clear();
+
+    double best = tMax;
+    bool found = false;
+    Region root{0, 1, 0, 1, 0, 0, 0, 0};
+    if (BoundRegion(root, tMin, best)) m_stack.push_back(root);
+
+    while (!m_stack.empty()) {
+        Region r = m_stack.back();
+        m_stack.pop_back();
+        if (r.tLo > best) continue;  // a nearer hit was found since this region was bounded
+
+        bool small = r.size <= tolerance.At(r.tLo);
+        bool atLimit = r.depth >= m_maxDepth;
+        if (small || atLimit) {
+            double tHit = 0.5 * (r.tLo + r.tHi);
+            double error = r.size;
+            double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
+            if (!std::isfinite(r.size)) {
+                // Unbounded at the depth limit: take the surface point at the region's centre.
+                Region point{uc, uc, vc, vc, r.depth, 0, 0, 0};
+                if (!BoundRegion(point, tMin, best)) continue;
+                tHit = 0.5 * (point.tLo + point.tHi);
+                error = INFINITY;
+            }
+            tHit = std::clamp(tHit, std::max(r.tLo, tMin), std::max(std::min(r.tHi, best), tMin));
+            if (tHit > best || tHit < tMin) continue;
+            if (atLimit && !small) ++stats.depthLimitHits;
+            best = tHit;
+            found = true;
+            *hit = Hit{tHit, uc, vc, error, atLimit && !small};
+            if (anyHit) break;
+            continue;
+        }
+
+        // Split in four, bound each child, push the survivors farthest first (popped nearest first).
+        double um = 0.5 * (r.u0 + r.u1), vm_ = 0.5 * (r.v0 + r.v1);
+        Region children[4] = {{r.u0, um, r.v0, vm_, r.depth + 1, 0, 0, 0},
+                              {um, r.u1, r.v0, vm_, r.depth + 1, 0, 0, 0},
+                              {r.u0, um, vm_, r.v1, r.depth + 1, 0, 0, 0},
+                              {um, r.u1, vm_, r.v1, r.depth + 1, 0, 0, 0}};
+        Region kept[4];
+        int nKept = 0;
+        for (Region& c : children)
+            if (BoundRegion(c, tMin, best)) kept[nKept++] = c;
+        // Insertion sort, farthest first (four elements at most).
+        for (int i = 1; i < nKept; ++i)
+            for (int j = i; j > 0 && kept[j - 1].tLo < kept[j].tLo; --j) std::swap(kept[j - 1], kept[j]);
+        for (int i = 0; i < nKept; ++i) m_stack.push_back(kept[i]);
+    }
+
+    ++stats.rays;
+    stats.regionsBounded += m_bounded;
+    stats.maxRegionsPerRay = std::max(stats.maxRegionsPerRay, m_bounded);
+    if (found && std::isfinite(hit->error)) stats.maxHitError = std::max(stats.maxHitError, hit->error);
+    return found;
+}
+
+}  // namespace
+
+std::unique_ptr<PatchIntersector> MakePatchIntersector(const BilinearPatch& patch, const vm::Program& boundProgram,
+                                                       const glm::dvec3& eye, BoundMode mode, int maxDepth) {
+    bool dual = boundProgram.usesDerivatives();
+    if (mode == BoundMode::Affine) {
+        if (dual) return std::make_unique<PatchIntersectorT<vm::Dual<vm::Affine>>>(patch, boundProgram, eye, maxDepth);
+        return std::make_unique<PatchIntersectorT<vm::Affine>>(patch, boundProgram, eye, maxDepth);
+    }
+    if (dual) return std::make_unique<PatchIntersectorT<vm::Dual<vm::Interval>>>(patch, boundProgram, eye, maxDepth);
+    return std::make_unique<PatchIntersectorT<vm::Interval>>(patch, boundProgram, eye, maxDepth);
+}
+
+}  // namespace affray::renderer

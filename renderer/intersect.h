@@ -1,0 +1,64 @@
+// renderer/intersect.h: the guaranteed intersector of Heidrich & Seidel (GI 1998).
+// For a ray and a displaced patch, the (u,v) domain is subdivided hierarchically; each region is
+// bounded by running the shader's bound program over it in affine (or interval) arithmetic, and
+// a region is discarded only when its bound provably misses the ray. Children are visited
+// nearest first, with early exit past the best hit. A region is a hit once its bound, measured
+// in the ray's frame, is smaller than the tolerance at its distance; the size of that bound is
+// the hit's certified error.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "renderer/camera.h"
+#include "renderer/surface.h"
+#include "vm/program.h"
+
+namespace affray::renderer {
+
+enum class BoundMode { Affine, Interval };
+
+/// How small a region's bound must be to count as a hit at distance t: base + slope * t.
+/// Camera rays use slope = pixel angle * tolerance in pixels; secondary rays a cone.
+struct Tolerance {
+    double base = 0;
+    double slope = 0;
+    double At(double t) const { return base + slope * std::max(t, 0.0); }
+};
+
+struct Hit {
+    double t = 0;
+    double u = 0, v = 0;  // centre of the final region
+    double error = 0;     // certified: every surface point of the region lies this close to the hit
+    bool depthLimited = false;
+};
+
+struct IntersectStats {
+    uint64_t rays = 0;
+    uint64_t regionsBounded = 0;
+    uint64_t maxRegionsPerRay = 0;
+    uint64_t depthLimitHits = 0;
+    double maxHitError = 0;
+
+    void Merge(const IntersectStats& o);
+};
+
+/// Intersects rays with one displaced patch. Holds an interpreter, so make one per thread.
+class PatchIntersector {
+  public:
+    virtual ~PatchIntersector() = default;
+
+    /// The nearest hit with t in [tMin, tMax], or false. With `anyHit`, stops at the first hit
+    /// found (for shadow rays).
+    virtual bool Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit,
+                           Hit* hit, IntersectStats& stats) = 0;
+};
+
+/// An intersector for `patch` displaced by `boundProgram` (which outputs P), bounding regions in
+/// `mode`. If the program takes derivatives, the dual of the mode's number type is used. The
+/// program must outlive the intersector. Subdivision stops at `maxDepth` levels (2^-maxDepth of
+/// the domain per side); regions that reach it are counted and taken as hits.
+std::unique_ptr<PatchIntersector> MakePatchIntersector(const BilinearPatch& patch, const vm::Program& boundProgram,
+                                                       const glm::dvec3& eye, BoundMode mode, int maxDepth);
+
+}  // namespace affray::renderer

@@ -1,0 +1,230 @@
+// renderer/render.cpp: scene preparation and the pixel loop.
+// Each thread owns its intersectors and shading interpreters (they hold registers), takes rows
+// from a shared counter, and writes only its own pixels: the image does not depend on the
+// thread count, and the statistics are sums and maxima, which do not either.
+#include "renderer/render.h"
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include "renderer/camera.h"
+#include "renderer/shade.h"
+
+namespace affray::renderer {
+
+namespace {
+
+const vm::Program& Identity() {
+    static const vm::Program kIdentity = vm::IdentityProgram();
+    return kIdentity;
+}
+
+std::string FindShader(const std::string& name, const std::vector<std::string>& paths) {
+    for (const std::string& dir : paths) {
+        std::filesystem::path candidate = std::filesystem::path(dir) / (name + ".sl");
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(candidate, ec)) return candidate.string();
+    }
+    return {};
+}
+
+/// Everything one thread needs: per primitive an intersector and a shading interpreter.
+struct ThreadState {
+    std::vector<std::unique_ptr<PatchIntersector>> intersectors;
+    std::vector<std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> shaders;
+    IntersectStats cameraStats, shadowStats;
+
+    ThreadState(const PreparedScene& scene, const RenderOptions& options, const glm::dvec3& eye) {
+        for (const Primitive& prim : scene.primitives) {
+            intersectors.push_back(MakePatchIntersector(prim.patch, *prim.bound, eye, options.bounds, options.maxDepth));
+            shaders.push_back(std::make_unique<vm::Interpreter<vm::Dual<double>>>(*prim.shade));
+        }
+    }
+};
+
+struct NearestHit {
+    Hit hit;
+    int primitive = -1;
+};
+
+NearestHit TraceNearest(ThreadState& ts, const Ray& ray, double tMin, double tMax, const Tolerance& tol,
+                        IntersectStats& stats) {
+    NearestHit nearest;
+    for (size_t i = 0; i < ts.intersectors.size(); ++i) {
+        Hit hit;
+        if (ts.intersectors[i]->Intersect(ray, tMin, tMax, tol, false, &hit, stats)) {
+            tMax = hit.t;
+            nearest = {hit, static_cast<int>(i)};
+        }
+    }
+    return nearest;
+}
+
+glm::dvec3 ToGlm(const vm::Vec3<vm::Dual<double>>& v) { return {v.x.v, v.y.v, v.z.v}; }
+
+/// Shades the nearest hit of a camera ray: P and N from the shade program in dual numbers at
+/// the hit's (u,v), then the surface model with shadow rays through the same intersector.
+glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh,
+                    const Tolerance& tol, const glm::dvec3& eye) {
+    const Primitive& prim = scene.primitives[nh.primitive];
+    vm::Interpreter<vm::Dual<double>>& interp = *ts.shaders[nh.primitive];
+    SetPatchGlobals(interp, prim.patch, nh.hit.u, nh.hit.u, nh.hit.v, nh.hit.v, eye);
+    interp.Run();
+    glm::dvec3 P = ToGlm(interp.OutputTriple(*prim.shade->findOutput("P")));
+    glm::dvec3 N = ToGlm(interp.OutputTriple(*prim.shade->findOutput("N")));
+    if (!std::isfinite(glm::dot(P, P))) P = ray.origin + nh.hit.t * ray.dir;
+    double lengthN = glm::length(N);
+    N = lengthN > 0 && std::isfinite(lengthN) ? N / lengthN : -ray.dir;
+
+    ShadingPoint sp;
+    sp.P = P;
+    sp.V = -ray.dir;
+    sp.Nf = glm::dot(N, sp.V) < 0 ? -N : N;  // faceforward
+    // Shadow rays start above the surface by more than the hit's certified error and the
+    // tolerance, so they cannot find the region they left (no acne).
+    double footprint = tol.At(nh.hit.t);
+    double offset = 2.0 * std::max(std::isfinite(nh.hit.error) ? nh.hit.error : footprint, footprint) + 1e-9 * glm::length(P);
+    Tolerance shadowTol{footprint, 0.0};
+    auto occluded = [&](const glm::dvec3& toLight, double distance) {
+        Ray shadowRay{sp.P + sp.Nf * offset, toLight};
+        double tMax = std::isfinite(distance) ? distance - offset : INFINITY;
+        for (auto& intersector : ts.intersectors) {
+            Hit hit;
+            if (intersector->Intersect(shadowRay, offset, tMax, shadowTol, true, &hit, ts.shadowStats)) return true;
+        }
+        return false;
+    };
+    return ShadeSurface(prim.surface, prim.color, sp, scene.lights, occluded);
+}
+
+}  // namespace
+
+std::string RenderStats::ToJson() const {
+    double mean = camera.rays ? double(camera.regionsBounded) / double(camera.rays) : 0.0;
+    double shadowMean = shadow.rays ? double(shadow.regionsBounded) / double(shadow.rays) : 0.0;
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "{\"wall_seconds\":%.3f,\"width\":%d,\"height\":%d,\"camera_rays\":%llu,"
+                  "\"regions_per_ray_mean\":%.2f,\"regions_per_ray_max\":%llu,\"depth_limit_hits\":%llu,"
+                  "\"max_certified_error\":%.6g,\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f}",
+                  wallSeconds, width, height, static_cast<unsigned long long>(camera.rays), mean,
+                  static_cast<unsigned long long>(camera.maxRegionsPerRay),
+                  static_cast<unsigned long long>(camera.depthLimitHits + shadow.depthLimitHits),
+                  std::max(camera.maxHitError, 0.0), static_cast<unsigned long long>(shadow.rays), shadowMean);
+    return buf;
+}
+
+bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths, PreparedScene* out,
+                  std::string* error) {
+    out->desc = desc;
+    out->primitives.clear();
+    for (const PatchDesc& patch : desc.patches) {
+        Primitive prim;
+        prim.patch.corners = patch.corners;
+        prim.surface = patch.surface;
+        prim.color = patch.color;
+        if (patch.displacement) {
+            const ShaderRef& ref = *patch.displacement;
+            std::string where = desc.path + ":" + std::to_string(ref.line) + ": error: ";
+            std::string path = FindShader(ref.name, shaderPaths);
+            if (path.empty()) {
+                std::string searched;
+                for (const std::string& p : shaderPaths) searched += (searched.empty() ? "" : ", ") + p;
+                *error = where + "shader '" + ref.name + "' not found (searched " + searched + ")";
+                return false;
+            }
+            std::vector<compiler::ParamOverride> overrides;
+            for (const ParamValue& p : ref.params) {
+                if (!p.strings.empty()) {
+                    *error = where + "string value for parameter '" + p.name + "' is not supported yet";
+                    return false;
+                }
+                overrides.push_back({p.name, p.numbers});
+            }
+            compiler::CompileResult result = compiler::CompileFile(path, overrides);
+            if (!result.ok()) {
+                *error = result.diagnostics;
+                for (const std::string& e : result.paramErrors) *error += where + e + "\n";
+                if (result.paramErrors.empty()) *error += where + "cannot compile shader '" + ref.name + "'\n";
+                if (!error->empty() && error->back() == '\n') error->pop_back();
+                return false;
+            }
+            prim.shader = std::make_shared<compiler::CompiledShader>(std::move(*result.shader));
+            prim.bound = &prim.shader->bound;
+            prim.shade = &prim.shader->shade;
+        } else {
+            prim.bound = &Identity();
+            prim.shade = &Identity();
+        }
+        out->primitives.push_back(std::move(prim));
+    }
+    out->lights = desc.lights;
+    if (out->lights.empty()) {
+        // No lights: a key light from behind the camera, and a little ambient, so that something shows.
+        glm::dmat4 cameraToWorld = glm::inverse(desc.camera.worldToCamera);
+        glm::dvec3 eye = glm::dvec3(cameraToWorld * glm::dvec4(0, 0, 0, 1));
+        glm::dvec3 forward = glm::dvec3(cameraToWorld * glm::dvec4(0, 0, 1, 0));
+        LightDesc key;
+        key.kind = LightDesc::Kind::Distant;
+        key.from = eye;
+        key.to = eye + forward;
+        out->lights.push_back(key);
+        LightDesc ambient;
+        ambient.kind = LightDesc::Kind::Ambient;
+        ambient.intensity = 0.05;
+        out->lights.push_back(ambient);
+    }
+    return true;
+}
+
+void RenderImage(const PreparedScene& scene, const RenderOptions& options, ImageBuffer* image, RenderStats* stats) {
+    auto start = std::chrono::steady_clock::now();
+    const CameraDesc& cam = scene.desc.camera;
+    Camera camera(cam);
+    const glm::dvec3 eye = camera.Position();
+    image->width = cam.xres;
+    image->height = cam.yres;
+    image->rgba.assign(static_cast<size_t>(cam.xres) * cam.yres * 4, 0.0f);
+    image->extraChannels.clear();
+    const Tolerance tol{options.tolerancePixels * camera.PixelWidth(), options.tolerancePixels * camera.PixelAngle()};
+
+    int nThreads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    std::atomic<int> nextRow{0};
+    std::vector<IntersectStats> cameraStats(nThreads), shadowStats(nThreads);
+    auto worker = [&](int index) {
+        ThreadState ts(scene, options, eye);
+        for (int y = nextRow++; y < cam.yres; y = nextRow++) {
+            for (int x = 0; x < cam.xres; ++x) {
+                Ray ray = camera.GenerateRay(x + 0.5, y + 0.5);
+                NearestHit nh = TraceNearest(ts, ray, 0.0, INFINITY, tol, ts.cameraStats);
+                float* px = &image->rgba[(static_cast<size_t>(y) * cam.xres + x) * 4];
+                if (nh.primitive < 0) continue;
+                glm::dvec3 c = ShadeHit(scene, ts, ray, nh, tol, eye);
+                px[0] = static_cast<float>(c.r);
+                px[1] = static_cast<float>(c.g);
+                px[2] = static_cast<float>(c.b);
+                px[3] = 1.0f;
+            }
+        }
+        cameraStats[index] = ts.cameraStats;
+        shadowStats[index] = ts.shadowStats;
+    };
+    std::vector<std::thread> threads;
+    for (int i = 1; i < nThreads; ++i) threads.emplace_back(worker, i);
+    worker(0);
+    for (std::thread& t : threads) t.join();
+
+    *stats = RenderStats();
+    for (int i = 0; i < nThreads; ++i) {
+        stats->camera.Merge(cameraStats[i]);
+        stats->shadow.Merge(shadowStats[i]);
+    }
+    stats->width = cam.xres;
+    stats->height = cam.yres;
+    stats->wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace affray::renderer

@@ -1,0 +1,59 @@
+// renderer/render.h: from a scene description to an image: shader compilation per instance,
+// camera rays through the guaranteed intersector, shading with shadows, threads over rows.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "compiler/compile.h"
+#include "renderer/exr_writer.h"
+#include "renderer/intersect.h"
+#include "renderer/scene.h"
+
+namespace affray::renderer {
+
+struct RenderOptions {
+    int threads = 0;               // 0: one per core
+    double tolerancePixels = 0.5;  // a region is a hit once its bound is smaller than this many pixels
+    BoundMode bounds = BoundMode::Affine;
+    int maxDepth = 24;
+    std::vector<std::string> shaderPaths;  // searched in order for NAME.sl
+};
+
+struct RenderStats {
+    double wallSeconds = 0;
+    IntersectStats camera;  // camera rays only
+    IntersectStats shadow;  // shadow rays
+    int width = 0, height = 0;
+
+    /// The one-line JSON of `affray render --stats`.
+    std::string ToJson() const;
+};
+
+/// A patch ready to render: its base surface, its compiled shader instance and its looks.
+struct Primitive {
+    BilinearPatch patch;
+    std::shared_ptr<const compiler::CompiledShader> shader;  // null: no displacement
+    const vm::Program* bound = nullptr;
+    const vm::Program* shade = nullptr;
+    SurfaceDesc surface;
+    glm::dvec3 color{1.0};
+};
+
+struct PreparedScene {
+    SceneDesc desc;
+    std::vector<Primitive> primitives;
+    std::vector<LightDesc> lights;  // the scene's, or a default key light if it has none
+};
+
+/// Compiles every displacement instance of `desc` (each with its own parameter values). Shaders
+/// are found as NAME.sl in `shaderPaths`. On error returns false with a message naming the RIB
+/// line and the shader's diagnostics.
+bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths, PreparedScene* out,
+                  std::string* error);
+
+/// Renders the prepared scene into `image` (RGBA, row 0 at the top).
+void RenderImage(const PreparedScene& scene, const RenderOptions& options, ImageBuffer* image, RenderStats* stats);
+
+}  // namespace affray::renderer

@@ -1,0 +1,137 @@
+// renderer/rib_args.cpp: argument shape checks shared by all RIB requests (see rib_args.h).
+#include "renderer/rib_args.h"
+
+#include <algorithm>
+#include <glm/gtc/type_ptr.hpp>
+#include <sstream>
+#include <unordered_map>
+
+namespace affray::renderer {
+
+bool RibArgChecks::Fail(int line, const std::string& message) {
+    m_errorLine = line;
+    m_errorMessage = message;
+    return false;
+}
+
+std::string RibArgChecks::FormatNumber(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
+bool RibArgChecks::NoArgs(const RibRequest& r) {
+    if (r.args.empty()) return true;
+    return Fail(r.args[0].line,
+                Quote(r.name) + " takes no arguments, found " + r.args[0].Describe());
+}
+
+// Exactly `count` numbers, either bare or as one array (the RIB binding allows both).
+bool RibArgChecks::Numbers(const RibRequest& r, size_t count, const char* names, double* out) {
+    std::vector<double> values;
+    const RibArg* bad = nullptr;
+    if (r.args.size() == 1 && r.args[0].isArray && r.args[0].NumericP()) {
+        values = r.args[0].numbers;
+    } else {
+        for (const RibArg& arg : r.args) {
+            if (arg.isArray || !arg.NumericP()) {
+                bad = &arg;
+                break;
+            }
+            values.push_back(arg.numbers[0]);
+        }
+    }
+    if (bad || values.size() != count) {
+        std::string got = bad ? bad->Describe() : std::to_string(values.size());
+        return Fail(r.line, Quote(r.name) + " expects " + std::to_string(count) + " numbers (" +
+                                names + "), got " + got);
+    }
+    std::copy(values.begin(), values.end(), out);
+    return true;
+}
+
+bool RibArgChecks::LeadingString(const RibRequest& r, const char* what, std::string* out) {
+    if (r.args.empty() || r.args[0].isArray || !r.args[0].StringsP())
+        return Fail(r.args.empty() ? r.line : r.args[0].line,
+                    Quote(r.name) + " expects " + what + " as its first argument" +
+                        (r.args.empty() ? "" : ", found " + r.args[0].Describe()));
+    *out = r.args[0].strings[0];
+    return true;
+}
+
+// Token-value pairs from args[first]. A token may carry an inline declaration ("uniform float
+// Km"); its last word is the name. A repeated name replaces the earlier value.
+bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibParam>* out) {
+    std::unordered_map<std::string, size_t> index;
+    for (size_t i = 0; i < out->size(); ++i) index[(*out)[i].value.name] = i;
+    for (size_t i = first; i < r.args.size(); i += 2) {
+        const RibArg& token = r.args[i];
+        if (token.isArray || !token.StringsP())
+            return Fail(token.line, Quote(r.name) + " expects a parameter name string, found " +
+                                        token.Describe());
+        const std::string& text = token.strings[0];
+        size_t last = text.find_last_not_of(" \t\n\r");
+        if (last == std::string::npos)
+            return Fail(token.line, Quote(r.name) + " has an empty parameter name");
+        size_t space = text.find_last_of(" \t\n\r", last);
+        size_t start = space == std::string::npos ? 0 : space + 1;
+        RibParam p;
+        p.value.name = text.substr(start, last + 1 - start);
+        if (start > 0) {
+            size_t declBegin = text.find_first_not_of(" \t\n\r");
+            size_t declEnd = text.find_last_not_of(" \t\n\r", start - 1);
+            if (declBegin <= declEnd)
+                p.value.declaration = text.substr(declBegin, declEnd + 1 - declBegin);
+        }
+        if (i + 1 >= r.args.size())
+            return Fail(token.line,
+                        Quote(r.name) + " parameter " + Quote(p.value.name) + " has no value");
+        const RibArg& value = r.args[i + 1];
+        p.value.numbers = value.numbers;
+        p.value.strings = value.strings;
+        p.line = value.line;
+        // An index by name keeps long parameter lists linear.
+        auto [slot, isNew] = index.try_emplace(p.value.name, out->size());
+        if (isNew)
+            out->push_back(std::move(p));
+        else
+            (*out)[slot->second] = std::move(p);
+    }
+    return true;
+}
+
+bool RibArgChecks::ParamNumbers(const RibParam& p, const std::string& context, size_t count,
+                                double* out) {
+    if (!p.value.strings.empty() || p.value.numbers.size() != count) {
+        std::string got =
+            !p.value.strings.empty() ? "a string" : std::to_string(p.value.numbers.size());
+        return Fail(p.line, context + " parameter " + Quote(p.value.name) + " expects " +
+                                std::to_string(count) + (count == 1 ? " number" : " numbers") +
+                                ", got " + got);
+    }
+    std::copy(p.value.numbers.begin(), p.value.numbers.end(), out);
+    return true;
+}
+
+bool RibArgChecks::ParamVector(const RibParam& p, const std::string& context, glm::dvec3* out) {
+    double v[3];
+    if (!ParamNumbers(p, context, 3, v)) return false;
+    *out = glm::dvec3(v[0], v[1], v[2]);
+    return true;
+}
+
+// 16 numbers, row-major for row vectors, which is column-major for column vectors (see the file
+// head). Only affine matrices: the last column of the RIB matrix must be 0 0 0 w, w != 0.
+bool RibArgChecks::Matrix(const RibRequest& r, glm::dmat4* out) {
+    double m[16];
+    if (!Numbers(r, 16, "a 4x4 matrix", m)) return false;
+    if (m[3] != 0 || m[7] != 0 || m[11] != 0 || m[15] == 0)
+        return Fail(r.line,
+                    Quote(r.name) +
+                        " matrix must be affine (last column 0 0 0 1); projective transforms "
+                        "are not supported yet");
+    *out = glm::make_mat4(m) / m[15];
+    return true;
+}
+
+}  // namespace affray::renderer

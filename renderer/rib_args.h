@@ -1,0 +1,55 @@
+// renderer/rib_args.h: checks on the shape of a RIB request's arguments.
+// Owns the rules every request shares: positional numbers given bare or as one array, a leading
+// name string, token-value parameter lists with inline declarations ("uniform float Km"), and
+// 4x4 matrices. It knows no request's meaning (that is renderer/rib.cpp). Each check returns
+// false after Fail() has recorded the message and the line of the offending token.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+#include "renderer/rib_lexer.h"
+#include "renderer/scene.h"
+
+namespace affray::renderer {
+
+/// A parameter of a request with the line of its value, for messages.
+struct RibParam {
+    ParamValue value;
+    int line = 0;
+};
+
+/// Argument checks for the RIB reader, which derives from this class. Messages name the request.
+class RibArgChecks {
+  protected:
+    /// Records the first error ("message" and its line) and returns false.
+    bool Fail(int line, const std::string& message);
+
+    /// No arguments at all.
+    bool NoArgs(const RibRequest& r);
+    /// Exactly `count` numbers, bare or as one array (the RIB binding allows both). `names` lists
+    /// them for the message ("dx dy dz").
+    bool Numbers(const RibRequest& r, size_t count, const char* names, double* out);
+    /// A bare string as the first argument; `what` describes it ("a light shader name").
+    bool LeadingString(const RibRequest& r, const char* what, std::string* out);
+    /// Token-value pairs from args[first] on. The last word of a token is the name, the words
+    /// before it the inline declaration. A repeated name replaces the earlier value.
+    bool ParamList(const RibRequest& r, size_t first, std::vector<RibParam>* out);
+    /// A parameter of exactly `count` numbers; `context` names the request ("'Surface \"matte\"'").
+    bool ParamNumbers(const RibParam& p, const std::string& context, size_t count, double* out);
+    /// A parameter of exactly 3 numbers.
+    bool ParamVector(const RibParam& p, const std::string& context, glm::dvec3* out);
+    /// A 4x4 affine matrix in RIB order (row-major, row vectors), returned for column vectors.
+    bool Matrix(const RibRequest& r, glm::dmat4* out);
+
+    /// 's' quoted for messages: 'Sphere'.
+    static std::string Quote(const std::string& s) { return "'" + s + "'"; }
+    /// A number as printed in messages (shortest of %g).
+    static std::string FormatNumber(double v);
+
+    int m_errorLine = 0;
+    std::string m_errorMessage;
+};
+
+}  // namespace affray::renderer

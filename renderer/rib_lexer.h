@@ -1,0 +1,85 @@
+// renderer/rib_lexer.h: the RIB ASCII tokenizer and the grouping of tokens into requests.
+// Owns the syntax of RIB (RI Spec 3.2, Appendix C): request names, numbers, "strings" with C
+// escapes, [ arrays ] and # comments. It knows nothing about what a request means; that is
+// renderer/rib.cpp. Rules: every token carries the line it starts on; lexing always advances, so
+// no input can make it loop; a bad token is an Error token with a message, never an exception.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace affray::renderer {
+
+/// One RIB token.
+struct RibToken {
+    enum class Kind { Name, Number, String, ArrayBegin, ArrayEnd, End, Error } kind = Kind::End;
+    std::string text;   ///< Name: the name. String: the unescaped contents. Error: the message.
+    double number = 0;  ///< Number: the value (always finite).
+    int line = 1;       ///< The line the token starts on.
+};
+
+/// Splits RIB ASCII text into tokens. The text must outlive the lexer.
+class RibLexer {
+  public:
+    explicit RibLexer(std::string_view text) : m_text(text) {}
+
+    /// The next token; End at the end of the text (and for ever after).
+    RibToken Next();
+    /// The line the lexer has reached.
+    int Line() const { return m_line; }
+
+  private:
+    RibToken LexString();
+    RibToken LexNumber();
+    RibToken LexName();
+    RibToken Error(int line, std::string message);
+
+    std::string_view m_text;
+    size_t m_pos = 0;
+    int m_line = 1;
+};
+
+/// One argument of a request: a bare number, a bare string, or an array of either.
+struct RibArg {
+    bool isArray = false;
+    std::vector<double> numbers;       ///< Bare number: one value. Numeric array: its values.
+    std::vector<std::string> strings;  ///< Bare string: one value. String array: its values.
+    int line = 1;
+
+    /// True for a bare number or an array without strings (an empty array counts as both kinds).
+    bool NumericP() const { return strings.empty(); }
+    /// True for a bare string or an array without numbers.
+    bool StringsP() const { return numbers.empty(); }
+    /// "number 3", "string \"fov\"" or "array of 4 numbers", for messages.
+    std::string Describe() const;
+};
+
+/// A request name and its arguments, up to the next request name.
+struct RibRequest {
+    std::string name;
+    int line = 1;
+    std::vector<RibArg> args;
+};
+
+/// Reads requests one at a time from RIB text.
+class RibRequestReader {
+  public:
+    explicit RibRequestReader(std::string_view text) : m_lexer(text) { Advance(); }
+
+    enum class Status { Ok, End, Error };
+    /// Reads the next request into *request. On Error, *error is "message" and *errorLine its line.
+    Status Next(RibRequest* request, std::string* error, int* errorLine);
+    /// The line of the last token read, for errors at the end of the input.
+    int LastLine() const { return m_lastLine; }
+
+  private:
+    void Advance();
+    bool ReadArray(RibArg* arg, std::string* error, int* errorLine);
+
+    RibLexer m_lexer;
+    RibToken m_token;  // one token of lookahead
+    int m_lastLine = 1;
+};
+
+}  // namespace affray::renderer

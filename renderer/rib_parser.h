@@ -1,0 +1,101 @@
+// renderer/rib_parser.h: the RIB reader's state machine, shared by its two source files.
+// Private to the reader: use renderer/rib.h. rib.cpp holds dispatch, the block structure, options
+// and transforms; rib_attributes.cpp the shading attributes, lights and geometry. The graphics
+// state (CTM, color, surface, displacement) is saved by every Begin and restored by its End.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "renderer/rib_args.h"
+#include "renderer/rib_lexer.h"
+#include "renderer/scene.h"
+
+namespace affray::renderer {
+
+/// Builds a SceneDesc from the requests of one RIB text. Use once: construct, then Run().
+class RibParser : private RibArgChecks {
+  public:
+    RibParser(std::string_view text, const std::string& path, std::vector<std::string>* warnings)
+        : m_reader(text), m_path(path), m_warnings(warnings) {
+        m_scene.path = path;
+        m_scene.camera.perspective = false;  // RI default without a Projection request
+    }
+
+    /// Parses everything; on failure sets *error (may be null) to "file:line: error: message".
+    std::optional<SceneDesc> Run(std::string* error);
+
+  private:
+    struct State {
+        glm::dmat4 ctm{1.0};
+        glm::dvec3 color{1.0};
+        SurfaceDesc surface;
+        std::optional<ShaderRef> displacement;
+    };
+    enum class Block { Frame, World, Attribute, Transform };
+    struct OpenBlock {
+        Block kind;
+        int line;
+        State saved;
+    };
+    using Handler = bool (RibParser::*)(const RibRequest&);
+
+    bool Dispatch(const RibRequest& r);
+    void Warn(int line, const std::string& message);
+    static const char* BlockName(Block kind, bool end);
+    static bool FiniteP(const glm::dmat4& m);
+    static bool FiniteP(const glm::dvec3& v);
+    static glm::dvec3 TransformPoint(const glm::dmat4& m, const glm::dvec3& p) {
+        return glm::dvec3(m * glm::dvec4(p, 1.0));
+    }
+
+    bool SetCtm(const RibRequest& r, const glm::dmat4& ctm);
+    bool BeforeWorld(const RibRequest& r);
+    bool InsideWorld(const RibRequest& r);
+    bool Begin(const RibRequest& r, Block kind);
+    bool End(const RibRequest& r, Block kind);
+
+    // Handlers, one per implemented request: options, blocks and transforms in rib.cpp; attributes,
+    // lights and geometry in rib_attributes.cpp.
+    bool DoFormat(const RibRequest& r);
+    bool DoProjection(const RibRequest& r);
+    bool DoDisplay(const RibRequest& r);
+    bool DoFrameBegin(const RibRequest& r);
+    bool DoFrameEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::Frame); }
+    bool DoWorldBegin(const RibRequest& r);
+    bool DoWorldEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::World); }
+    bool DoAttributeBegin(const RibRequest& r) { return NoArgs(r) && Begin(r, Block::Attribute); }
+    bool DoAttributeEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::Attribute); }
+    bool DoTransformBegin(const RibRequest& r) { return NoArgs(r) && Begin(r, Block::Transform); }
+    bool DoTransformEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::Transform); }
+    bool DoIdentity(const RibRequest& r) { return NoArgs(r) && SetCtm(r, glm::dmat4(1.0)); }
+    bool DoTransform(const RibRequest& r);
+    bool DoConcatTransform(const RibRequest& r);
+    bool DoTranslate(const RibRequest& r);
+    bool DoRotate(const RibRequest& r);
+    bool DoScale(const RibRequest& r);
+    bool DoColor(const RibRequest& r);
+    bool DoSurface(const RibRequest& r);
+    bool DoDisplacement(const RibRequest& r);
+    bool DoLightSource(const RibRequest& r);
+    bool DoPatch(const RibRequest& r);
+    bool DoVersion(const RibRequest&) { return true; }  // "version 3.03": nothing to check
+
+    RibRequestReader m_reader;
+    std::string m_path;
+    std::vector<std::string>* m_warnings;
+    std::set<std::string> m_warned;  // each distinct warning once
+
+    SceneDesc m_scene;
+    State m_state;
+    std::vector<OpenBlock> m_blocks;
+    bool m_worldSeen = false;
+    bool m_worldEnded = false;
+    std::vector<LightDesc> m_cameraLights;  // lights given before WorldBegin, in camera space
+};
+
+}  // namespace affray::renderer

@@ -1,0 +1,211 @@
+// tests/compiler/compile_test.cpp: language semantics (expected values), compiler diagnostics
+// (exact text) and the shape of the emitted code (opcode sequences).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "../test_util.h"
+#include "vm/disasm.h"
+
+using namespace affray;
+using Catch::Matchers::WithinAbs;
+
+namespace {
+
+/// The displaced P.z of `body` (statements of a displacement shader) at (u, v).
+double ZOf(const std::string& body, double u = 0.25, double v = 0.75, const std::string& params = "") {
+    compiler::CompiledShader s = test::CompileOrThrow("displacement t(" + params + ") {\n" + body + "\n}\n");
+    return test::PointOnSquare(s.shade, u, v).z;
+}
+
+std::string Diagnose(const std::string& source) {
+    compiler::CompileResult r = compiler::CompileSource("test.sl", source);
+    REQUIRE_FALSE(r.ok());
+    return r.diagnostics;
+}
+
+std::vector<vm::Op> Opcodes(const vm::Program& p) {
+    std::vector<vm::Op> ops;
+    for (const vm::Instr& in : p.code) ops.push_back(in.op);
+    return ops;
+}
+
+}  // namespace
+
+TEST_CASE("arithmetic and precedence give the expected values", "[compiler]") {
+    CHECK_THAT(ZOf("P += 1 + 2 * 3;"), WithinAbs(7, 1e-15));
+    CHECK_THAT(ZOf("P += (1 + 2) * 3;"), WithinAbs(9, 1e-15));
+    CHECK_THAT(ZOf("P += 8 / 4 / 2;"), WithinAbs(1, 1e-15));
+    CHECK_THAT(ZOf("P += 2 - 3 - 4;"), WithinAbs(-5, 1e-15));
+    CHECK_THAT(ZOf("P += -2 * -3;"), WithinAbs(6, 1e-15));
+    // '.' binds tighter than '+': 1 + (a . b)
+    CHECK_THAT(ZOf("P += 1 + vector(1, 2, 3) . vector(4, 5, 6);"), WithinAbs(33, 1e-15));
+    // '^' is the cross product; x ^ y = z
+    CHECK_THAT(ZOf("P += zcomp(vector(1, 0, 0) ^ vector(0, 1, 0));"), WithinAbs(1, 1e-15));
+    // '^' binds looser than '*': a ^ (b * 2)
+    CHECK_THAT(ZOf("P += zcomp(vector(1, 0, 0) ^ vector(0, 1, 0) * 2);"), WithinAbs(2, 1e-15));
+}
+
+TEST_CASE("globals of the unit square", "[compiler]") {
+    CHECK_THAT(ZOf("P += u;", 0.25, 0.75), WithinAbs(0.25, 1e-15));
+    CHECK_THAT(ZOf("P += v;", 0.25, 0.75), WithinAbs(0.75, 1e-15));
+    CHECK_THAT(ZOf("P += s * 10 + t;", 0.25, 0.75), WithinAbs(3.25, 1e-15));
+    CHECK_THAT(ZOf("P += xcomp(P) + ycomp(P);", 0.25, 0.75), WithinAbs(1.0, 1e-15));
+    CHECK_THAT(ZOf("P += zcomp(N);"), WithinAbs(1.0, 1e-15));
+    CHECK_THAT(ZOf("P += xcomp(dPdu) + 10 * ycomp(dPdv);"), WithinAbs(11.0, 1e-15));
+    CHECK_THAT(ZOf("P += PI;"), WithinAbs(std::numbers::pi, 1e-15));
+    CHECK_THAT(ZOf("P += du * 1024;"), WithinAbs(1.0, 1e-15));
+}
+
+TEST_CASE("built-ins give their RenderMan values", "[compiler]") {
+    CHECK_THAT(ZOf("P += sin(PI / 2);"), WithinAbs(1, 1e-15));
+    CHECK_THAT(ZOf("P += cos(0);"), WithinAbs(1, 1e-15));
+    CHECK_THAT(ZOf("P += tan(PI / 4);"), WithinAbs(1, 1e-15));
+    CHECK_THAT(ZOf("P += exp(1);"), WithinAbs(std::exp(1.0), 1e-15));
+    CHECK_THAT(ZOf("P += log(exp(2));"), WithinAbs(2, 1e-15));
+    CHECK_THAT(ZOf("P += log(8, 2);"), WithinAbs(3, 1e-15));
+    CHECK_THAT(ZOf("P += sqrt(16);"), WithinAbs(4, 1e-15));
+    CHECK_THAT(ZOf("P += abs(-3);"), WithinAbs(3, 1e-15));
+    CHECK_THAT(ZOf("P += sign(-3) + 10 * sign(2);"), WithinAbs(9, 1e-15));
+    CHECK_THAT(ZOf("P += pow(2, 10);"), WithinAbs(1024, 1e-12));
+    CHECK_THAT(ZOf("P += pow(u, 3);", 0.5), WithinAbs(0.125, 1e-15));
+    CHECK_THAT(ZOf("P += length(vector(3, 4, 12));"), WithinAbs(13, 1e-14));
+    CHECK_THAT(ZOf("P += distance(point(1, 1, 1), point(4, 5, 1));"), WithinAbs(5, 1e-14));
+    CHECK_THAT(ZOf("P += xcomp(normalize(vector(3, 0, 4)));"), WithinAbs(0.6, 1e-15));
+    CHECK_THAT(ZOf("P += radians(180);"), WithinAbs(std::numbers::pi, 1e-15));
+    CHECK_THAT(ZOf("P += degrees(PI);"), WithinAbs(180, 1e-12));
+    CHECK_THAT(ZOf("P += mix(2, 4, 0.25);"), WithinAbs(2.5, 1e-15));
+    CHECK_THAT(ZOf("P += ycomp(mix(point(0, 0, 0), point(0, 8, 0), 0.5));"), WithinAbs(4, 1e-15));
+    // Du and Dv are exact derivatives along u and v.
+    CHECK_THAT(ZOf("P += Du(u * u) + 10 * Dv(u * v);", 0.25, 0.75), WithinAbs(0.5 + 2.5, 1e-14));
+}
+
+TEST_CASE("calculatenormal is Du(P) ^ Dv(P)", "[compiler]") {
+    compiler::CompiledShader s = test::CompileOrThrow(
+        "displacement t() { P += 0.5 * u * u * N; N = calculatenormal(P); }");
+    // P = (u, v, u^2/2): dP/du = (1, 0, u), dP/dv = (0, 1, 0); cross = (-u, 0, 1).
+    glm::dvec3 n = test::PointOnSquare(s.shade, 0.5, 0.5, "N");
+    CHECK_THAT(n.x, WithinAbs(-0.5, 1e-15));
+    CHECK_THAT(n.y, WithinAbs(0, 1e-15));
+    CHECK_THAT(n.z, WithinAbs(1, 1e-15));
+}
+
+TEST_CASE("variables, promotion, compound assignment and scopes", "[compiler]") {
+    CHECK_THAT(ZOf("float a = 2, b = a * 3; P += b;"), WithinAbs(6, 1e-15));
+    CHECK_THAT(ZOf("vector w = 2; P += zcomp(w) + xcomp(w);"), WithinAbs(4, 1e-15));
+    CHECK_THAT(ZOf("float a = 1; a += 2; a *= 5; a -= 1; a /= 2; P += a;"), WithinAbs(7, 1e-15));
+    CHECK_THAT(ZOf("float a = 1; { float a = 5; P += a; } P += a;"), WithinAbs(6, 1e-15));
+    CHECK_THAT(ZOf("point q = P; q *= 2; P = q;", 0.25, 0.75), WithinAbs(0, 1e-15));
+    CHECK_THAT(ZOf("float a, b; a = b = 3; P += a + b;"), WithinAbs(6, 1e-15));
+    CHECK_THAT(ZOf("P += point(1, 2, 3) + 1 - vector(0, 0, 1);"), WithinAbs(3, 1e-15));
+}
+
+TEST_CASE("parameters take defaults and overrides", "[compiler]") {
+    const std::string src = "displacement t(float Km = 0.5, k2 = Km * 2; point c = (1, 2, 3);) { P += Km + k2 + zcomp(c); }";
+    CHECK_THAT(test::PointOnSquare(test::CompileOrThrow(src).shade, 0, 0).z, WithinAbs(4.5, 1e-15));
+    // A default that names an earlier parameter sees that parameter's instance value.
+    CHECK_THAT(test::PointOnSquare(test::CompileOrThrow(src, {{"Km", {2}}}).shade, 0, 0).z,
+               WithinAbs(2 + 4 + 3, 1e-15));
+    CHECK_THAT(test::PointOnSquare(test::CompileOrThrow(src, {{"c", {0, 0, 10}}}).shade, 0, 0).z,
+               WithinAbs(11.5, 1e-15));
+
+    compiler::CompileResult bad = compiler::CompileSource("t.sl", src, {{"Kx", {1}}});
+    REQUIRE_FALSE(bad.ok());
+    REQUIRE(bad.paramErrors == std::vector<std::string>{"shader 't' has no parameter 'Kx'"});
+    bad = compiler::CompileSource("t.sl", src, {{"Km", {NAN}}});
+    REQUIRE(bad.paramErrors == std::vector<std::string>{"parameter 'Km' of shader 't' must be finite (got NaN or infinity)"});
+    bad = compiler::CompileSource("t.sl", src, {{"Km", {1, 2}}});
+    REQUIRE(bad.paramErrors == std::vector<std::string>{"parameter 'Km' of shader 't' is a float and takes 1 value, got 2"});
+}
+
+TEST_CASE("compiler diagnostics are exact", "[compiler]") {
+    CHECK(Diagnose("displacement t() {\n  P += foo;\n}\n") ==
+          "test.sl:2:8: error: unknown identifier 'foo'\n      P += foo;\n           ^\n");
+    CHECK(Diagnose("displacement t() {\n  float x = 1;\n  float x = 2;\n}\n") ==
+          "test.sl:3:9: error: redefinition of 'x'\n      float x = 2;\n            ^\n"
+          "test.sl:2:9: note: 'x' was declared here\n      float x = 1;\n            ^\n");
+    CHECK(Diagnose("displacement t() {\n  u = 1;\n}\n") ==
+          "test.sl:2:5: error: cannot assign to 'u': it is a read-only global\n      u = 1;\n        ^\n");
+    CHECK(Diagnose("displacement t() {\n  float x = P;\n}\n") ==
+          "test.sl:2:9: error: cannot assign a point to float variable 'x'\n      float x = P;\n            ^\n");
+    CHECK(Diagnose("displacement t() {\n  P += sin(P);\n}\n") ==
+          "test.sl:2:8: error: no version of 'sin' takes (point); expected (float)\n      P += sin(P);\n           ^\n");
+    CHECK(Diagnose("displacement t() {\n  P += pow(2);\n}\n") ==
+          "test.sl:2:8: error: 'pow' expects 2 arguments, got 1\n      P += pow(2);\n           ^\n");
+    CHECK(Diagnose("displacement t() {\n  P += frob(2);\n}\n") ==
+          "test.sl:2:8: error: unknown function 'frob'\n      P += frob(2);\n           ^\n");
+    CHECK(Diagnose("displacement t() {\n  P += noise(P);\n}\n") ==
+          "test.sl:2:8: error: function 'noise' is not supported yet\n      P += noise(P);\n           ^\n");
+    CHECK(Diagnose("displacement t() {\n  float x;\n  P += x;\n}\n") ==
+          "test.sl:3:8: error: variable 'x' is used before it is assigned a value\n      P += x;\n           ^\n");
+    CHECK(Diagnose("displacement t() {\n  P += color(1, 0, 0);\n}\n") ==
+          "test.sl:2:5: error: cannot assign a color to point variable 'P'\n      P += color(1, 0, 0);\n        ^\n");
+    CHECK(Diagnose("displacement t() {\n  P += P . 1;\n}\n") ==
+          "test.sl:2:10: error: invalid operands to '.' (point and float): '.' is the dot product of two triples\n"
+          "      P += P . 1;\n             ^\n");
+    CHECK(Diagnose("surface t() {\n  P += 1;\n}\n") ==
+          "test.sl:1:9: error: surface shaders are not supported yet; affray renders displacement shaders\n"
+          "    surface t() {\n            ^\n");
+    CHECK(Diagnose("displacement t(float k) {\n  P += k;\n}\n") ==
+          "test.sl:1:22: error: parameter 'k' needs a default value\n    displacement t(float k) {\n                         ^\n");
+    CHECK(Diagnose("displacement t(float k = u) {\n  P += k;\n}\n") ==
+          "test.sl:1:22: error: default value of parameter 'k' must be a constant expression\n"
+          "    displacement t(float k = u) {\n                         ^\n");
+    CHECK(Diagnose("displacement t() {\n  if (u) P += 1;\n}\n") ==
+          "test.sl:2:3: error: 'if' statements are not supported yet\n      if (u) P += 1;\n      ^\n");
+    CHECK(Diagnose("displacement t() {\n  P += point \"shader\" (1, 2, 3);\n}\n") ==
+          "test.sl:2:8: error: coordinate space 'shader' is not supported yet\n"
+          "      P += point \"shader\" (1, 2, 3);\n           ^\n");
+    CHECK(Diagnose("") == "test.sl:1:1: error: no shader definition in file\n");
+    // Several independent errors are all reported.
+    std::string many = Diagnose("displacement t() {\n  P += a;\n  P += b;\n}\n");
+    CHECK(many.find("'a'") != std::string::npos);
+    CHECK(many.find("'b'") != std::string::npos);
+}
+
+TEST_CASE("warnings: unused variables and shaders that change nothing", "[compiler]") {
+    compiler::CompileResult r = compiler::CompileSource("test.sl", "displacement t() {\n  float unused = 1;\n}\n");
+    REQUIRE(r.ok());
+    CHECK(r.diagnostics ==
+          "test.sl:2:9: warning: unused variable 'unused'\n      float unused = 1;\n            ^\n"
+          "test.sl:1:14: warning: shader 't' never changes P or N\n    displacement t() {\n                 ^\n");
+}
+
+TEST_CASE("constants fold, shared subexpressions are computed once, dead code goes", "[compiler]") {
+    using vm::Op;
+    // A constant expression folds to one constant; x + 0 leaves P.x and P.y untouched.
+    compiler::CompiledShader k = test::CompileOrThrow("displacement t() { P += vector(0, 0, (1 + 2) * sin(0.5)); }");
+    CHECK(Opcodes(k.bound) == std::vector<Op>{Op::AddRK});
+    // u*u becomes one Sqr; the repeated sin(u) is computed once.
+    compiler::CompiledShader s = test::CompileOrThrow("displacement t() { P += vector(0, 0, u * u + sin(u) + sin(u)); }");
+    CHECK(Opcodes(s.bound) == std::vector<Op>{Op::Sqr, Op::Sin, Op::AddRR, Op::AddRR, Op::AddRR});
+    // A parameter bound to a constant folds away; unused locals emit nothing.
+    compiler::CompiledShader p = test::CompileOrThrow(
+        "displacement t(float Km = 2) { float unused = sin(u) * 7; P += vector(0, 0, Km * 0.5); }");
+    CHECK(Opcodes(p.bound) == std::vector<Op>{Op::AddRK});
+    // The bound program leaves out N's computation; the shade program keeps it.
+    compiler::CompiledShader n = test::CompileOrThrow(
+        "displacement t() { P += u * N; N = calculatenormal(P); }");
+    CHECK_FALSE(n.bound.usesDerivatives());
+    CHECK(n.shade.usesDerivatives());
+    CHECK(n.bound.code.size() < n.shade.code.size());
+    CHECK_FALSE(n.bound.readsGlobal(vm::Global::dPdu));
+}
+
+TEST_CASE("only the globals a shader reads are inputs", "[compiler]") {
+    compiler::CompiledShader s = test::CompileOrThrow("displacement t() { P += s * N; }");
+    CHECK(s.bound.readsGlobal(vm::Global::P));
+    CHECK(s.bound.readsGlobal(vm::Global::N));
+    CHECK(s.bound.readsGlobal(vm::Global::s));
+    CHECK_FALSE(s.bound.readsGlobal(vm::Global::t));
+    CHECK_FALSE(s.bound.readsGlobal(vm::Global::I));
+}
+
+TEST_CASE("the disassembly shows opcodes, constants and source lines", "[compiler]") {
+    compiler::CompiledShader s = test::CompileOrThrow("displacement t() {\n  P += 0.25 * sin(u) * N;\n}\n");
+    std::string listing = vm::Disassemble(s.bound, s.sourceText);
+    CHECK(listing.find("; 2: P += 0.25 * sin(u) * N;") != std::string::npos);
+    CHECK(listing.find("Sin") != std::string::npos);
+    CHECK(listing.find("(0.25)") != std::string::npos);
+}

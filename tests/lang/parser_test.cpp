@@ -1,0 +1,471 @@
+// tests/lang/parser_test.cpp: the lexer and parser (lang/lexer.l, lang/parser.y, lang/parse.cpp)
+// and the printed tree (lang/ast.cpp). Valid programs are checked through ToString; invalid ones
+// through the exact text of Diagnostics::format(), so a change in any message shows up here.
+#include <catch2/catch.hpp>
+
+#include <random>
+#include <string>
+
+#include "lang/parse.h"
+
+namespace affray::lang {
+namespace {
+
+struct Parsed {
+    TranslationUnit unit;
+    std::string errors;  // Diagnostics::format()
+    int errorCount = 0;
+};
+
+Parsed Run(const std::string& text) {
+    SourceFile file("test.sl", text);
+    Diagnostics diags(file);
+    Parsed out;
+    out.unit = Parse(diags);
+    out.errors = diags.format();
+    out.errorCount = diags.errorCount();
+    return out;
+}
+
+// The formatted diagnostics for `text`, which must not parse cleanly.
+std::string Errors(const std::string& text) {
+    Parsed p = Run(text);
+    CHECK(p.errorCount > 0);
+    return p.errors;
+}
+
+// The printed shaders of `text`, which must parse without a diagnostic.
+std::string Tree(const std::string& text) {
+    Parsed p = Run(text);
+    INFO(p.errors);
+    REQUIRE(p.errors.empty());
+    std::string out;
+    for (const ShaderDef& s : p.unit.shaders) {
+        if (!out.empty()) out += '\n';
+        out += ToString(s);
+    }
+    return out;
+}
+
+// The printed statements of a displacement shader with this body.
+std::string Body(const std::string& body) {
+    Parsed p = Run("displacement d() {\n" + body + "\n}\n");
+    INFO(p.errors);
+    REQUIRE(p.errors.empty());
+    REQUIRE(p.unit.shaders.size() == 1);
+    std::string out;
+    for (const StmtPtr& s : p.unit.shaders[0].body) {
+        if (!out.empty()) out += ' ';
+        out += ToString(*s);
+    }
+    return out;
+}
+
+// The printed value of `x = <expr>;`.
+std::string Value(const std::string& expr) {
+    Parsed p = Run("displacement d() { x = " + expr + "; }");
+    INFO(p.errors);
+    REQUIRE(p.errors.empty());
+    const Stmt& s = *p.unit.shaders.at(0).body.at(0);
+    REQUIRE(s.kind == StmtKind::Expr);
+    REQUIRE(s.expr->kind == ExprKind::Assign);
+    return ToString(*s.expr->args.at(0));
+}
+
+}  // namespace
+
+// --- Valid programs ----------------------------------------------------------------------------
+
+TEST_CASE("binary operators follow RSL precedence", "[lang]") {
+    CHECK(Value("a + b . c") == "(+ a (. b c))");
+    CHECK(Value("a ^ b * c") == "(^ a (* b c))");
+    CHECK(Value("a * b . c") == "(* a (. b c))");
+    CHECK(Value("a + b ^ c") == "(+ a (^ b c))");
+    CHECK(Value("a - b - c") == "(- (- a b) c)");
+    CHECK(Value("a / b * c") == "(* (/ a b) c)");
+    CHECK(Value("a . b . c") == "(. (. a b) c)");
+    CHECK(Value("a < b + c == d") == "(== (< a (+ b c)) d)");
+    CHECK(Value("a || b && c <= d") == "(|| a (&& b (<= c d)))");
+    CHECK(Value("a != b || c >= d && e > f") == "(|| (!= a b) (&& (>= c d) (> e f)))");
+}
+
+TEST_CASE("unary operators bind tighter than dot", "[lang]") {
+    CHECK(Value("-a . b") == "(. (- a) b)");
+    CHECK(Value("!a && b") == "(&& (! a) b)");
+    CHECK(Value("+a") == "a");
+    CHECK(Value("- -a") == "(- (- a))");
+    CHECK(Value("-1") == "(- 1)");
+}
+
+TEST_CASE("assignment and ?: are right associative", "[lang]") {
+    CHECK(Body("a = b = c;") == "(= a (= b c))");
+    CHECK(Value("c ? x : y ? z : w") == "(? c x (? y z w))");
+    CHECK(Value("c ? x = 1 : y") == "(? c (= x 1) y)");
+    CHECK(Value("a || b ? c + d : e") == "(? (|| a b) (+ c d) e)");
+}
+
+TEST_CASE("compound assignment", "[lang]") {
+    CHECK(Body("P += Km * N;") == "(+= P (* Km N))");
+    CHECK(Body("a -= 1; b *= 2; c /= 3;") == "(-= a 1) (*= b 2) (/= c 3)");
+    CHECK(Body("(a) = 1;") == "(= a 1)");
+}
+
+TEST_CASE("casts take a unary operand and an optional space", "[lang]") {
+    CHECK(Value("point \"shader\" (1,2,3)") == "(cast point \"shader\" (triple 1 2 3))");
+    CHECK(Value("point \"shader\"(1, 2, 3)") == "(cast point \"shader\" (triple 1 2 3))");
+    CHECK(Value("float noise(P)") == "(cast float (call noise P))");
+    CHECK(Value("float noise(P) * 2") == "(* (cast float (call noise P)) 2)");
+    CHECK(Value("point(0.5, 0.5, 0)") == "(cast point (triple 0.5 0.5 0))");
+    CHECK(Value("vector \"world\" -N") == "(cast vector \"world\" (- N))");
+    CHECK(Value("color \"rgb\" (r, g, b)") == "(cast color \"rgb\" (triple r g b))");
+    CHECK(Value("normal N . I") == "(. (cast normal N) I)");
+    CHECK(Value("-float x") == "(- (cast float x))");
+    CHECK(Value("float \"a\" + 1") == "(cast float \"a\" 1)");
+}
+
+TEST_CASE("a parenthesised triple is not a parenthesised expression", "[lang]") {
+    CHECK(Value("(a)") == "a");
+    CHECK(Value("((a + b)) * c") == "(* (+ a b) c)");
+    CHECK(Value("(a, b + 1, c)") == "(triple a (+ b 1) c)");
+    CHECK(Value("(1, (2), (3, 4, 5))") == "(triple 1 2 (triple 3 4 5))");
+}
+
+TEST_CASE("calls, numbers, strings and the dot operator", "[lang]") {
+    CHECK(Value("f()") == "(call f)");
+    CHECK(Value("mix(a, b, smoothstep(0, 1, t))") == "(call mix a b (call smoothstep 0 1 t))");
+    CHECK(Value("1 + 1. + .5 + 1.5e-3 + 2E+4 + 1e-999") ==
+          "(+ (+ (+ (+ (+ 1 1) 0.5) 0.0015) 20000) 0)");
+    CHECK(Value("N.I + N . I + (N).(I)") == "(+ (+ (. N I) (. N I)) (. N I))");
+    CHECK(Value("\"a\\\"b\\n\\t\\\\\"") == "\"a\\\"b\\n\\t\\\\\"");
+}
+
+TEST_CASE("shader parameters share a type across commas", "[lang]") {
+    CHECK(Tree("displacement d(float a = 1, b = 2; point c = 0;) {}") ==
+          "(displacement d (params (float a 1) (float b 2) (point c 0)) (body))");
+    CHECK(Tree("displacement d(float a = 1; string s = \"x\") {}") ==
+          "(displacement d (params (float a 1) (string s \"x\")) (body))");
+    CHECK(Tree("displacement d(output varying vector v = 0, w; uniform color c = 1) {}") ==
+          "(displacement d (params (output varying vector v 0) (output varying vector w) "
+          "(uniform color c 1)) (body))");
+    CHECK(Tree("surface s() {} light l() {} volume v() {} imager i() {}") ==
+          "(surface s (params) (body))\n(light l (params) (body))\n(volume v (params) (body))\n"
+          "(imager i (params) (body))");
+}
+
+TEST_CASE("statements", "[lang]") {
+    CHECK(Body("if (a < b) x = 1; else { x = 2; y = 3; }") ==
+          "(if (< a b) (= x 1) (block (= x 2) (= y 3)))");
+    CHECK(Body("if (a) if (b) x = 1; else x = 2;") == "(if a (if b (= x 1) (= x 2)))");
+    CHECK(Body("for (i = 0; i < 10; i += 1) { P += N; }") ==
+          "(for (= i 0) (< i 10) (+= i 1) (block (+= P N)))");
+    CHECK(Body("for (;;) break;") == "(for () () () (break))");
+    CHECK(Body("while (i > 0) { i -= 1; continue 2; break 1; }") ==
+          "(while (> i 0) (block (-= i 1) (continue 2) (break)))");
+    CHECK(Body("float a = 1, b; uniform point p; varying normal n = N;") ==
+          "(decl (float a 1) (float b)) (decl (uniform point p)) (decl (varying normal n N))");
+    CHECK(Body("; {} return; return x + 1; f(x);") ==
+          "(empty) (block) (return) (return (+ x 1)) (call f x)");
+}
+
+TEST_CASE("the wave shader", "[lang]") {
+    const char* source = R"(
+displacement wave(float Km = 0.1, freq = 20, decay = 3; point center = point(0.5, 0.5, 0);)
+{
+    float r = distance(P, center);
+    P += Km * exp(-decay * r) * sin(freq * 2 * PI * r) * normalize(N);
+    N = calculatenormal(P);
+}
+)";
+    CHECK(Tree(source) ==
+          "(displacement wave (params (float Km 0.1) (float freq 20) (float decay 3) "
+          "(point center (cast point (triple 0.5 0.5 0)))) (body "
+          "(decl (float r (call distance P center))) "
+          "(+= P (* (* (* Km (call exp (* (- decay) r))) (call sin (* (* (* freq 2) PI) r))) "
+          "(call normalize N))) "
+          "(= N (call calculatenormal P))))");
+}
+
+TEST_CASE("nodes carry the location of their key token", "[lang]") {
+    Parsed p = Run("displacement\n  wave(float Km = 1)\n{\n  P += -a . b;\n  if (x) y = c ? (1,2,3) : point f(1);\n}\n");
+    REQUIRE(p.errors.empty());
+    const ShaderDef& s = p.unit.shaders.at(0);
+    CHECK(s.loc.line == 2);
+    CHECK(s.loc.column == 3);
+    CHECK(s.params.at(0).loc.column == 14);
+    const Stmt& assign = *s.body.at(0);
+    CHECK(assign.loc.column == 3);                       // the first token
+    CHECK(assign.expr->loc.column == 5);                 // +=
+    const Expr& dot = *assign.expr->args.at(0);
+    CHECK(dot.loc.column == 11);                         // .
+    CHECK(dot.args.at(0)->loc.column == 8);              // unary -
+    CHECK(dot.args.at(0)->args.at(0)->loc.column == 9);  // a
+    const Stmt& ifs = *s.body.at(1);
+    CHECK(ifs.loc.line == 5);
+    CHECK(ifs.loc.column == 3);
+    const Expr& ternary = *ifs.body.at(0)->expr->args.at(0);
+    CHECK(ternary.loc.column == 16);                     // ?
+    CHECK(ternary.args.at(1)->loc.column == 18);         // (
+    CHECK(ternary.args.at(2)->loc.column == 28);         // point
+    CHECK(ternary.args.at(2)->args.at(0)->loc.column == 34);  // f
+}
+
+TEST_CASE("pragmas are ignored and line markers renumber", "[lang]") {
+    Parsed p = Run("#pragma once\n  # 40 \"wave.sl\"\ndisplacement d() {}\n#line 7\n"
+                   "surface s() {}\n");
+    REQUIRE(p.errors.empty());
+    CHECK(p.unit.shaders.at(0).loc.line == 40);
+    CHECK(p.unit.shaders.at(1).loc.line == 7);
+}
+
+// --- Invalid programs --------------------------------------------------------------------------
+
+TEST_CASE("missing semicolon", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    float r = 1\n    P += r;\n}\n") ==
+          "test.sl:4:5: error: syntax error, unexpected identifier, expecting ';'\n"
+          "        P += r;\n"
+          "        ^\n");
+}
+
+TEST_CASE("missing closing parenthesis", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    P = sin(r;\n}\n") ==
+          "test.sl:3:14: error: syntax error, unexpected ';', expecting ')'\n"
+          "        P = sin(r;\n"
+          "                 ^\n");
+    CHECK(Errors("displacement d()\n{\n    if (r > 1 {\n        P = 0;\n    }\n}\n") ==
+          "test.sl:3:15: error: syntax error, unexpected '{', expecting ')'\n"
+          "        if (r > 1 {\n"
+          "                  ^\n");
+}
+
+TEST_CASE("unbalanced braces", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    P = 1;\n") ==
+          "test.sl:3:11: error: syntax error, unexpected end of file\n"
+          "        P = 1;\n"
+          "              ^\n");
+    CHECK(Errors("displacement d()\n{\n    P = 1;\n}\n}\n") ==
+          "test.sl:5:1: error: syntax error, unexpected '}'\n"
+          "    }\n"
+          "    ^\n");
+}
+
+TEST_CASE("unexpected token at top level", "[lang]") {
+    CHECK(Errors("float Km = 1;\n") ==
+          "test.sl:1:1: error: syntax error, unexpected 'float'\n"
+          "    float Km = 1;\n"
+          "    ^\n");
+}
+
+TEST_CASE("invalid characters", "[lang]") {
+    // The lexer's message stands alone: no syntax error follows for the same token.
+    CHECK(Errors("displacement d()\n{\n    P = P $ N;\n}\n") ==
+          "test.sl:3:11: error: invalid character '$'\n"
+          "        P = P $ N;\n"
+          "              ^\n");
+    CHECK(Errors("displacement d()\n{\n\tP = P + " + std::string(1, '\0') + ";\n}\n") ==
+          "test.sl:3:10: error: invalid character '\\x00'\n"
+          "    \tP = P + " + std::string(1, '\0') + ";\n"
+          "    \t        ^\n");
+    CHECK(Errors("displacement d() { x = \xCF\x80; }") ==
+          "test.sl:1:24: error: invalid character '\xCF\x80'\n"
+          "    displacement d() { x = \xCF\x80; }\n"
+          "                           ^\n");
+}
+
+TEST_CASE("unterminated comment", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    /* scale\n    P *= 2;\n}\n") ==
+          "test.sl:3:5: error: unterminated comment\n"
+          "        /* scale\n"
+          "        ^\n");
+}
+
+TEST_CASE("unterminated string", "[lang]") {
+    CHECK(Errors("displacement d() {\n    s = \"bumps;\n}\n") ==
+          "test.sl:2:9: error: unterminated string\n"
+          "        s = \"bumps;\n"
+          "            ^\n"
+          "test.sl:3:1: error: syntax error, unexpected '}', expecting ';'\n"
+          "    }\n"
+          "    ^\n");
+}
+
+TEST_CASE("malformed numbers and escapes", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    P = 1e + 1.2.3;\n}\n") ==
+          "test.sl:3:9: error: malformed number '1e'\n"
+          "        P = 1e + 1.2.3;\n"
+          "            ^\n"
+          "test.sl:3:14: error: malformed number '1.2.3'\n"
+          "        P = 1e + 1.2.3;\n"
+          "                 ^\n");
+    CHECK(Errors("displacement d() { x = 1e999; s = \"a\\qb\"; }") ==
+          "test.sl:1:24: error: number '1e999' is too large\n"
+          "    displacement d() { x = 1e999; s = \"a\\qb\"; }\n"
+          "                           ^\n"
+          "test.sl:1:37: error: unknown escape sequence '\\q' in string\n"
+          "    displacement d() { x = 1e999; s = \"a\\qb\"; }\n"
+          "                                        ^\n");
+}
+
+TEST_CASE("tuples other than triples", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    P = (1, 2);\n}\n") ==
+          "test.sl:3:9: error: a tuple must have 3 components\n"
+          "        P = (1, 2);\n"
+          "            ^\n");
+    CHECK(Errors("displacement d() {\n    m = (1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16);\n}\n") ==
+          "test.sl:2:9: error: matrix values are not supported yet\n"
+          "        m = (1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16);\n"
+          "            ^\n");
+}
+
+TEST_CASE("assignment to something other than a variable", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    1 = x;\n    a + b += c;\n}\n") ==
+          "test.sl:3:7: error: left side of assignment must be a variable\n"
+          "        1 = x;\n"
+          "          ^\n"
+          "test.sl:4:11: error: left side of assignment must be a variable\n"
+          "        a + b += c;\n"
+          "              ^\n");
+}
+
+TEST_CASE("matrix type", "[lang]") {
+    CHECK(Errors("displacement d(matrix m = 1)\n{\n    matrix q = m;\n}\n") ==
+          "test.sl:1:16: error: type 'matrix' is not supported yet\n"
+          "    displacement d(matrix m = 1)\n"
+          "                   ^\n"
+          "test.sl:3:5: error: type 'matrix' is not supported yet\n"
+          "        matrix q = m;\n"
+          "        ^\n");
+}
+
+TEST_CASE("preprocessor directives", "[lang]") {
+    CHECK(Errors("#include \"noise.h\"\n  #  ifdef BMRT\ndisplacement d() {}\n") ==
+          "test.sl:1:1: error: preprocessor directives are not supported yet\n"
+          "    #include \"noise.h\"\n"
+          "    ^\n"
+          "test.sl:2:3: error: preprocessor directives are not supported yet\n"
+          "      #  ifdef BMRT\n"
+          "      ^\n");
+}
+
+TEST_CASE("missing shader body", "[lang]") {
+    CHECK(Errors("displacement d(float Km = 1)\n") ==
+          "test.sl:1:29: error: syntax error, unexpected end of file, expecting '{'\n"
+          "    displacement d(float Km = 1)\n"
+          "                                ^\n");
+}
+
+TEST_CASE("bad parameter syntax", "[lang]") {
+    CHECK(Errors("displacement d(float Km 1)\n{\n}\n") ==
+          "test.sl:1:25: error: syntax error, unexpected number, expecting ')'\n"
+          "    displacement d(float Km 1)\n"
+          "                            ^\n");
+    CHECK(Errors("displacement d(Km = 1) {}\n") ==
+          "test.sl:1:16: error: syntax error, unexpected identifier\n"
+          "    displacement d(Km = 1) {}\n"
+          "                   ^\n");
+}
+
+TEST_CASE("a file without a shader", "[lang]") {
+    CHECK(Errors("") == "test.sl:1:1: error: no shader definition in file\n");
+    CHECK(Errors("// nothing here\n") ==
+          "test.sl:1:1: error: no shader definition in file\n"
+          "    // nothing here\n"
+          "    ^\n");
+}
+
+TEST_CASE("nesting limits", "[lang]") {
+    std::string parens = "displacement d() { x = " + std::string(300, '(') + "1" +
+                         std::string(300, ')') + "; }";
+    CHECK(Errors(parens) ==
+          "test.sl:1:279: error: nesting too deep (more than 256 open parentheses and braces)\n"
+          "    " + parens + "\n"
+          "    " + std::string(278, ' ') + "^\n");
+
+    std::string minus = "displacement d() {\nx = ";
+    for (int i = 0; i < 1200; ++i) minus += "- ";
+    minus += "1;\n}\n";
+    CHECK(Errors(minus) ==
+          "test.sl:2:405: error: expression too complex (nested more than 1000 levels deep)\n"
+          "    " + minus.substr(19, minus.size() - 22) + "\n"
+          "    " + std::string(404, ' ') + "^\n");
+
+    std::string ifs = "displacement d() {\n";
+    for (int i = 0; i < 1001; ++i) ifs += "if (a)\n";
+    ifs += "x = 1;\n}\n";
+    CHECK(Errors(ifs) ==
+          "test.sl:3:1: error: statements nested more than 1000 levels deep\n"
+          "    if (a)\n"
+          "    ^\n");
+}
+
+TEST_CASE("recovery reports several errors in one run", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    x = 1 +;\n    y = (2, 3, 4, 5);\n    z = 1\n}\n"
+                 "bogus;\nsurface s() { Ci = 1 }\n") ==
+          "test.sl:3:12: error: syntax error, unexpected ';'\n"
+          "        x = 1 +;\n"
+          "               ^\n"
+          "test.sl:4:9: error: a tuple must have 3 components\n"
+          "        y = (2, 3, 4, 5);\n"
+          "            ^\n"
+          "test.sl:6:1: error: syntax error, unexpected '}', expecting ';'\n"
+          "    }\n"
+          "    ^\n"
+          "test.sl:7:1: error: syntax error, unexpected identifier\n"
+          "    bogus;\n"
+          "    ^\n"
+          "test.sl:8:22: error: syntax error, unexpected '}', expecting ';'\n"
+          "    surface s() { Ci = 1 }\n"
+          "                         ^\n");
+    // The statements around the errors are still there.
+    Parsed p = Run("displacement d() { a = 1; b = ; c = 2; }");
+    REQUIRE(p.unit.shaders.size() == 1);
+    CHECK(ToString(p.unit.shaders[0]) == "(displacement d (params) (body (= a 1) (empty) (= c 2)))");
+}
+
+TEST_CASE("loop levels and line markers in messages", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    while (1) { break 0; }\n}\n") ==
+          "test.sl:3:23: error: the loop level must be a positive integer\n"
+          "        while (1) { break 0; }\n"
+          "                          ^\n");
+    // After a marker, lines are numbered from it; Diagnostics shows the text of that line of
+    // this file, and here there is none.
+    CHECK(Errors("# 20 \"wave.sl\"\ndisplacement d() { x = ; }\n") ==
+          "test.sl:20:24: error: syntax error, unexpected ';'\n");
+}
+
+TEST_CASE("garbage bytes never crash", "[lang]") {
+    CHECK(Errors("\x7F" "ELF\x02") ==
+          "test.sl:1:1: error: invalid character '\\x7F'\n"
+          "    \x7F" "ELF\x02\n"
+          "    ^\n"
+          "test.sl:1:5: error: invalid character '\\x02'\n"
+          "    \x7F" "ELF\x02\n"
+          "        ^\n");
+
+    std::mt19937 rng(42);
+    const char* pieces[] = {"displacement", "d", "(", ")", "{", "}", ";", ",", "=", "+", ".",
+                            "float", "point", "\"s\"", "1.5", "if", "else", "for", "return", "?",
+                            ":", "/*", "//", "\n", "#", "@", "\"", "1e", "matrix", "\xFF", "x"};
+    for (int i = 0; i < 300; ++i) {
+        std::string text;
+        int n = static_cast<int>(rng() % 50);
+        for (int k = 0; k < n; ++k) {
+            if (rng() % 4 == 0)
+                text += static_cast<char>(rng() % 256);
+            else
+                text += std::string(pieces[rng() % std::size(pieces)]) + " ";
+        }
+        Parsed p = Run(text);
+        // Every failure is reported: no diagnostics means a shader was found.
+        CHECK((p.errorCount > 0 || !p.unit.shaders.empty()));
+        for (const ShaderDef& s : p.unit.shaders) CHECK(!ToString(s).empty());
+    }
+}
+
+TEST_CASE("many errors stop at the diagnostics cap", "[lang]") {
+    Parsed p = Run(std::string(1000, '@'));
+    CHECK(p.errorCount == Diagnostics::kMaxErrors + 1);
+    CHECK(p.errors.substr(p.errors.rfind("test.sl: ")) ==
+          "test.sl: error: too many errors (51), stopping after 50\n");
+}
+
+}  // namespace affray::lang

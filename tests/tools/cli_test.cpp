@@ -1,0 +1,193 @@
+// tests/tools/cli_test.cpp: the `affray` program end to end: exit codes, the JSON that users and
+// tests rely on, a tiny render checked pixel by pixel, and bad input never leaving an image.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+
+#include "../test_util.h"
+#include "renderer/exr_writer.h"
+
+namespace fs = std::filesystem;
+using namespace affray;
+
+namespace {
+
+struct Output {
+    int status;
+    std::string out;
+};
+
+/// Runs the CLI with `args` (shell-quoted by the caller); captures stdout, and stderr when asked.
+Output Run(const std::string& args, bool withStderr = false) {
+    std::string cmd = std::string(AFFRAY_CLI) + " " + args + (withStderr ? " 2>&1" : " 2>/dev/null");
+    FILE* pipe = popen(cmd.c_str(), "r");
+    REQUIRE(pipe);
+    std::string out;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+    int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+fs::path TempDir(const std::string& name) {
+    fs::path dir = fs::temp_directory_path() / ("affray_cli_test_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+void WriteFile(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+const std::string kWave = test::SourceDir() + "/shaders/wave.sl";
+
+std::string SmallWaveScene(int w, int h) {
+    return "Format " + std::to_string(w) + " " + std::to_string(h) + " 1\n" +
+           R"(Projection "perspective" "fov" [40]
+Display "small.exr" "file" "rgba"
+Translate 0 0 3.1
+Rotate -130 1 0 0
+WorldBegin
+  LightSource "ambientlight" 1 "intensity" [0.06]
+  LightSource "distantlight" 2 "intensity" [1.1] "from" [-3 1.5 1.1] "to" [0 0 0]
+  Color [0.85 0.62 0.35]
+  Surface "plastic"
+  Displacement "wave" "Km" [0.06] "frequency" [8] "decay" [2.5]
+  Patch "bilinear" "P" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]
+WorldEnd
+)";
+}
+
+}  // namespace
+
+TEST_CASE("cli: eval --at prints P and N as JSON with round-trip precision", "[tools]") {
+    Output r = Run("eval " + kWave + " --at 0.5,0.5 --at 0.25,0.5");
+    REQUIRE(r.status == 0);
+    // At the centre r = 0: P = (0.5, 0.5, Km) with Km = 0.06.
+    std::string first = r.out.substr(0, r.out.find('\n'));
+    CHECK(first.rfind("{\"P\":[0.5,0.5,0.059999999999999998],\"N\":[", 0) == 0);
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 2);
+    // The second line: r = 0.25, P.z = Km * exp(-2.5 * 0.25) * cos(2 pi 8 0.25) = Km * exp(-0.625).
+    double expected = 0.06 * std::exp(-0.625) * std::cos(2 * M_PI * 8 * 0.25);
+    std::string second = r.out.substr(r.out.find('\n') + 1);
+    double z = std::stod(second.substr(second.find(",", second.find(",") + 1) + 1));
+    CHECK(z == Approx(expected).epsilon(1e-15));
+}
+
+TEST_CASE("cli: eval --region prints a bound that contains --at values", "[tools]") {
+    Output region = Run("eval " + kWave + " --region 0.1,0.2,0.3,0.4 --mode affine");
+    REQUIRE(region.status == 0);
+    CHECK(region.out.rfind("{\"P\":{\"lo\":[", 0) == 0);
+    double zlo = 0, zhi = 0;
+    {
+        std::string lo = region.out.substr(region.out.find("\"lo\":[") + 6);
+        std::string hi = region.out.substr(region.out.find("\"hi\":[") + 6);
+        zlo = std::stod(lo.substr(lo.rfind(',', lo.find(']')) + 1));
+        zhi = std::stod(hi.substr(hi.rfind(',', hi.find(']')) + 1));
+    }
+    Output at = Run("eval " + kWave + " --at 0.15,0.35");
+    REQUIRE(at.status == 0);
+    std::string p = at.out.substr(6, at.out.find(']') - 6);
+    double z = std::stod(p.substr(p.rfind(',') + 1));
+    CHECK(zlo <= z);
+    CHECK(z <= zhi);
+    CHECK(Run("eval " + kWave + " --region 0.1,0.2,0.3,0.4 --mode interval").status == 0);
+}
+
+TEST_CASE("cli: parameters, bad parameters and bad command lines", "[tools]") {
+    Output km = Run("eval " + kWave + " --param Km=0.5 --at 0.5,0.5");
+    REQUIRE(km.status == 0);
+    CHECK(km.out.find("[0.5,0.5,0.5]") != std::string::npos);
+    Output unknown = Run("eval " + kWave + " --param Kx=1 --at 0.5,0.5", true);
+    CHECK(unknown.status == 1);
+    CHECK(unknown.out == "affray: error: shader 'wave' has no parameter 'Kx'\n");
+    CHECK(Run("eval " + kWave + " --param Km=nan --at 0.5,0.5").status == 2);
+    CHECK(Run("eval " + kWave + " --param Km=inf --at 0.5,0.5").status == 2);
+    CHECK(Run("eval " + kWave).status == 2);
+    CHECK(Run("eval " + kWave + " --region 0.5,0.1,0,1 --mode affine").status == 2);
+    CHECK(Run("render").status == 2);
+    CHECK(Run("frobnicate").status == 2);
+    CHECK(Run("render x.rib --tolerance -1").status == 2);
+}
+
+TEST_CASE("cli: compile exits 0 or prints diagnostics and exits 1", "[tools]") {
+    CHECK(Run("compile " + kWave).status == 0);
+    Output listing = Run("compile " + kWave + " --disasm");
+    CHECK(listing.status == 0);
+    CHECK(listing.out.find("bound program") != std::string::npos);
+    CHECK(listing.out.find("Cos") != std::string::npos);
+    fs::path dir = TempDir("compile");
+    WriteFile(dir / "bad.sl", "displacement bad() {\n  P += ;\n}\n");
+    Output bad = Run("compile " + (dir / "bad.sl").string(), true);
+    CHECK(bad.status == 1);
+    CHECK(bad.out.find("bad.sl:2:") != std::string::npos);
+    CHECK(bad.out.find("^") != std::string::npos);
+    CHECK(Run("compile " + (dir / "missing.sl").string()).status == 1);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("cli: a tiny render is lit, shadowed, and the same with any thread count", "[tools][render]") {
+    fs::path dir = TempDir("render");
+    fs::copy_file(kWave, dir / "wave.sl");
+    WriteFile(dir / "small.rib", SmallWaveScene(48, 36));
+    Output one = Run("render " + (dir / "small.rib").string() + " -o " + (dir / "one.exr").string() +
+                     " --threads 1 --stats");
+    REQUIRE(one.status == 0);
+    CHECK(one.out.find("\"camera_rays\":1728") != std::string::npos);
+    CHECK(one.out.find("\"max_certified_error\":") != std::string::npos);
+    REQUIRE(Run("render " + (dir / "small.rib").string() + " -o " + (dir / "two.exr").string() + " --threads 2")
+                .status == 0);
+    renderer::ImageBuffer a, b;
+    std::string error;
+    REQUIRE(renderer::ReadExrRgba((dir / "one.exr").string(), &a, &error));
+    REQUIRE(renderer::ReadExrRgba((dir / "two.exr").string(), &b, &error));
+    CHECK(a.rgba == b.rgba);
+    // The patch covers the centre of the image; the corners see the background.
+    auto pixel = [&](int x, int y, int c) { return a.rgba[(static_cast<size_t>(y) * a.width + x) * 4 + c]; };
+    CHECK(pixel(24, 18, 3) == 1.0f);
+    CHECK(pixel(0, 0, 3) == 0.0f);
+    // Ripples and shadows: among covered pixels, some are bright and some only ambient-lit.
+    int bright = 0, dark = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            if (pixel(x, y, 3) != 1.0f) continue;
+            float luminance = pixel(x, y, 0) + pixel(x, y, 1) + pixel(x, y, 2);
+            bright += luminance > 0.8f;
+            dark += luminance < 0.15f;
+        }
+    CHECK(bright > 20);
+    CHECK(dark > 20);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("cli: bad scenes fail with their location and leave no image", "[tools][render]") {
+    fs::path dir = TempDir("badscene");
+    fs::copy_file(kWave, dir / "wave.sl");
+    std::string scene = SmallWaveScene(8, 8);
+    WriteFile(dir / "typo.rib", scene + "Frobnicate 1 2 3\n");
+    Output typo = Run("render " + (dir / "typo.rib").string() + " -o " + (dir / "out.exr").string(), true);
+    CHECK(typo.status == 1);
+    CHECK(typo.out.find("typo.rib:14:") != std::string::npos);
+    std::string nanScene = scene;
+    nanScene.replace(nanScene.find("\"Km\" [0.06]"), 11, "\"Km\" [1e999]");
+    WriteFile(dir / "nan.rib", nanScene);
+    CHECK(Run("render " + (dir / "nan.rib").string() + " -o " + (dir / "out.exr").string()).status == 1);
+    std::string noShader = scene;
+    noShader.replace(noShader.find("\"wave\""), 6, "\"nosuch\"");
+    WriteFile(dir / "noshader.rib", noShader);
+    Output missing = Run("render " + (dir / "noshader.rib").string() + " -o " + (dir / "out.exr").string(), true);
+    CHECK(missing.status == 1);
+    CHECK(missing.out.find("shader 'nosuch' not found") != std::string::npos);
+    CHECK(Run("render " + (dir / "nothere.rib").string() + " -o " + (dir / "out.exr").string()).status == 1);
+    // Unwritable output: fails, and nothing is left behind.
+    WriteFile(dir / "valid.rib", scene);
+    CHECK(Run("render " + (dir / "valid.rib").string() + " -o /nonexistent/dir/out.exr").status == 1);
+    CHECK_FALSE(fs::exists(dir / "out.exr"));
+    for (const auto& entry : fs::directory_iterator(dir)) CHECK(entry.path().extension() != ".tmp");
+    fs::remove_all(dir);
+}

@@ -1,0 +1,180 @@
+// tests/vm/interpreter_test.cpp: the interpreter's contracts over every shader in shaders/:
+// containment (the scalar result at any point of a region lies in the region's affine and
+// interval bounds), derivatives (duals agree with finite differences), and every opcode run
+// under every number type.
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "../test_util.h"
+#include "vm/verify.h"
+
+using namespace affray;
+
+namespace {
+
+template <class N>
+std::array<vm::Interval, 3> BoundOnSquare(const vm::Program& program, double u0, double u1, double v0, double v1) {
+    std::array<vm::Interval, 3> out;
+    if (program.usesDerivatives()) {
+        auto p = test::EvalOnSquare<vm::Dual<N>>(program, u0, u1, v0, v1);
+        for (int i = 0; i < 3; ++i) out[i] = RangeOf(p[i].v);
+    } else {
+        auto p = test::EvalOnSquare<N>(program, u0, u1, v0, v1);
+        for (int i = 0; i < 3; ++i) out[i] = RangeOf(p[i]);
+    }
+    return out;
+}
+
+/// Checks containment for `program` on `regions` random regions, each with `points` points.
+void CheckContainment(const std::string& name, const vm::Program& program, int regions, int points, uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int failures = 0;
+    for (int r = 0; r < regions; ++r) {
+        // Widths from the whole domain down to 1e-9, log-uniform.
+        double width = std::pow(10.0, -9.0 * unit(rng));
+        double wu = r == 0 ? 1.0 : width, wv = r == 0 ? 1.0 : width * (0.5 + unit(rng));
+        wv = std::min(wv, 1.0);
+        double u0 = (1 - wu) * unit(rng), v0 = (1 - wv) * unit(rng);
+        double u1 = u0 + wu, v1 = v0 + wv;
+        auto affine = BoundOnSquare<vm::Affine>(program, u0, u1, v0, v1);
+        auto interval = BoundOnSquare<vm::Interval>(program, u0, u1, v0, v1);
+        for (int k = 0; k < points; ++k) {
+            // Corners and centre on purpose, then uniform points.
+            double fu = k < 4 ? (k & 1) : k == 4 ? 0.5 : unit(rng);
+            double fv = k < 4 ? (k >> 1) : k == 4 ? 0.5 : unit(rng);
+            double u = std::min(u1, u0 + fu * (u1 - u0)), v = std::min(v1, v0 + fv * (v1 - v0));
+            glm::dvec3 p = test::PointOnSquare(program, u, v);
+            for (int i = 0; i < 3; ++i) {
+                bool inAffine = affine[i].contains(p[i]);
+                bool inInterval = interval[i].contains(p[i]);
+                if ((!inAffine || !inInterval) && failures++ < 5) {
+                    UNSCOPED_INFO(name << ": P[" << i << "] = " << p[i] << " at (" << u << ", " << v
+                                       << ") region [" << u0 << "," << u1 << "]x[" << v0 << "," << v1
+                                       << "] affine " << affine[i].toString() << " interval "
+                                       << interval[i].toString());
+                }
+            }
+        }
+    }
+    CHECK(failures == 0);
+}
+
+}  // namespace
+
+TEST_CASE("containment: every shader's scalar P lies in its affine and interval bounds", "[vm][containment]") {
+    for (const std::string& path : test::AllShaders()) {
+        compiler::CompileResult r = compiler::CompileFile(path);
+        INFO(path << "\n" << r.diagnostics);
+        REQUIRE(r.ok());
+        CheckContainment(path, r.shader->bound, 300, 24, 42);
+        CheckContainment(path + " (shade)", r.shader->shade, 60, 12, 43);
+    }
+}
+
+TEST_CASE("containment: stiff parameters of wave.sl", "[vm][containment]") {
+    const std::string path = test::SourceDir() + "/shaders/wave.sl";
+    const std::vector<std::vector<compiler::ParamOverride>> cases = {
+        {{"frequency", {1000}}},             // many periods per region
+        {{"Km", {1e3}}},                     // huge amplitude
+        {{"decay", {200}}, {"Km", {5}}},     // steep decay
+        {{"centerS", {0}}, {"centerT", {0}}},  // the sqrt's zero at a corner of the domain
+    };
+    for (const auto& params : cases) {
+        compiler::CompileResult r = compiler::CompileFile(path, params);
+        REQUIRE(r.ok());
+        CheckContainment(path + " " + params[0].name, r.shader->bound, 200, 16, 7);
+    }
+}
+
+TEST_CASE("dual derivatives agree with finite differences", "[vm][dual]") {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> unit(0.05, 0.95);
+    for (const std::string& path : test::AllShaders()) {
+        compiler::CompileResult r = compiler::CompileFile(path);
+        REQUIRE(r.ok());
+        const vm::Program& program = r.shader->shade;
+        for (int k = 0; k < 50; ++k) {
+            double u = unit(rng), v = unit(rng);
+            auto p = test::EvalOnSquare<vm::Dual<double>>(program, u, u, v, v);
+            const double h = 1e-6;
+            glm::dvec3 du = (test::PointOnSquare(program, u + h, v) - test::PointOnSquare(program, u - h, v)) / (2 * h);
+            glm::dvec3 dv = (test::PointOnSquare(program, u, v + h) - test::PointOnSquare(program, u, v - h)) / (2 * h);
+            for (int i = 0; i < 3; ++i) {
+                INFO(path << " at (" << u << ", " << v << ") component " << i);
+                CHECK(p[i].du == Approx(du[i]).epsilon(1e-5).margin(1e-6));
+                CHECK(p[i].dv == Approx(dv[i]).epsilon(1e-5).margin(1e-6));
+            }
+        }
+    }
+}
+
+TEMPLATE_TEST_CASE("every opcode runs under every number type", "[vm]", double, vm::Interval, vm::Affine,
+                   vm::Dual<double>, vm::Dual<vm::Affine>) {
+    // One expression per opcode family; the scalar value is known, every type must contain it.
+    compiler::CompiledShader s = test::CompileOrThrow(R"(
+        displacement all(float k = 3) {
+            float a = u + 1, b = v + 2;
+            float x = -a + (a + b) + (a + k) + (a - b) + (a - k) + (k - a) + a * b + a * k
+                    + a / b + a / k + k / a + a * a + sqrt(a) + exp(a) + log(a) + sin(a) + cos(a)
+                    + abs(a - 2) + sign(a - 1.2) + pow(a, b) + pow(a, 3.5) + Du(a * b) + Dv(a * b);
+            P += vector(0, 0, x);
+        })");
+    std::vector<vm::Op> seen;
+    for (const vm::Instr& in : s.bound.code) seen.push_back(in.op);
+    for (vm::Op op : {vm::Op::Neg, vm::Op::AddRR, vm::Op::AddRK, vm::Op::SubRR, vm::Op::SubRK, vm::Op::SubKR,
+                      vm::Op::MulRR, vm::Op::MulRK, vm::Op::DivRR, vm::Op::DivRK, vm::Op::DivKR, vm::Op::Sqr,
+                      vm::Op::Sqrt, vm::Op::Exp, vm::Op::Log, vm::Op::Sin, vm::Op::Cos, vm::Op::Abs,
+                      vm::Op::Sign, vm::Op::PowRR, vm::Op::PowRK, vm::Op::DerivU, vm::Op::DerivV})
+        CHECK(std::find(seen.begin(), seen.end(), op) != seen.end());
+
+    using vm::RangeOf;
+    const double u = 0.3, v = 0.6;
+    double a = u + 1, b = v + 2, k = 3;
+    double expected = -a + (a + b) + (a + k) + (a - b) + (a - k) + (k - a) + a * b + a * k + a / b + a / k + k / a +
+                      a * a + std::sqrt(a) + std::exp(a) + std::log(a) + std::sin(a) + std::cos(a) +
+                      std::abs(a - 2) + 1.0 + std::pow(a, b) + std::pow(a, 3.5) + b + a;
+    auto p = test::EvalOnSquare<TestType>(s.bound, u, u, v, v);
+    if constexpr (std::is_same_v<TestType, double>) {
+        // Without derivatives Du and Dv are unknown: NaN, never a silently wrong number.
+        CHECK(std::isnan(p.z));
+    } else if constexpr (std::is_same_v<TestType, vm::Interval> || std::is_same_v<TestType, vm::Affine>) {
+        CHECK(IsUnbounded(p.z));
+    } else {
+        vm::Interval range = RangeOf(p.z.v);
+        INFO(range.toString() << " expected " << expected);
+        CHECK(range.contains(expected));
+        CHECK(range.hi() - range.lo() < 1e-9);
+    }
+}
+
+TEST_CASE("the verifier rejects malformed programs", "[vm]") {
+    compiler::CompiledShader s = test::CompileOrThrow("displacement t() { P += sin(u) * N; }");
+    std::string error;
+    REQUIRE(vm::Verify(s.bound, &error));
+    vm::Program bad = s.bound;
+    bad.code[0].b = 999;
+    CHECK_FALSE(vm::Verify(bad, &error));
+    bad = s.bound;
+    bad.code[0].op = static_cast<vm::Op>(200);
+    CHECK_FALSE(vm::Verify(bad, &error));
+    CHECK(error.find("unknown opcode") != std::string::npos);
+    bad = s.bound;
+    bad.outputs[0].registers[0] = 60000;
+    CHECK_FALSE(vm::Verify(bad, &error));
+    // Random garbage never crashes the verifier.
+    std::mt19937 rng(5);
+    for (int i = 0; i < 2000; ++i) {
+        vm::Program g = s.bound;
+        for (vm::Instr& in : g.code) {
+            if (rng() % 4) continue;
+            in.op = static_cast<vm::Op>(rng() % 40);
+            in.a = rng() % 20;
+            in.b = rng() % 20;
+            in.c = rng() % 20;
+        }
+        g.registerCount = static_cast<int>(rng() % 30);
+        vm::Verify(g, &error);
+    }
+}

@@ -1,0 +1,174 @@
+// tools/commands.cpp: what `affray compile`, `affray eval` and `affray render` do.
+#include "tools/commands.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "compiler/compile.h"
+#include "renderer/exr_writer.h"
+#include "renderer/render.h"
+#include "renderer/rib.h"
+#include "renderer/surface.h"
+#include "vm/disasm.h"
+
+namespace affray::tools {
+
+namespace {
+
+/// A number with round-trip precision, or null if it is not finite (JSON has no NaN).
+std::string Json(double x) {
+    if (!std::isfinite(x)) return "null";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return buf;
+}
+
+std::string Json(const double (&v)[3]) { return "[" + Json(v[0]) + "," + Json(v[1]) + "," + Json(v[2]) + "]"; }
+
+bool WriteTextAtomically(const std::string& path, const std::string& text, std::string* error) {
+    std::string tmp = path + ".tmp." + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        if (!out.flush()) {
+            std::error_code ec;
+            std::filesystem::remove(tmp, ec);
+            *error = "cannot write '" + path + "'";
+            return false;
+        }
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ec);
+        *error = "cannot write '" + path + "'";
+        return false;
+    }
+    return true;
+}
+
+template <class T>
+const T& ValueOf(const T& x) { return x; }
+template <class T>
+const T& ValueOf(const vm::Dual<T>& x) { return x.v; }
+
+/// Bounds P over [u0,u1] x [v0,v1] of the unit square with number type N and prints the ranges.
+template <class N>
+void PrintBound(const vm::Program& program, double u0, double u1, double v0, double v1, FILE* out) {
+    if constexpr (std::is_same_v<N, vm::Affine> || std::is_same_v<N, vm::Dual<vm::Affine>>)
+        vm::Affine::BeginEvaluation();
+    vm::Interpreter<N> interp(program);
+    renderer::SetPatchGlobals(interp, renderer::BilinearPatch::UnitSquare(), u0, u1, v0, v1, glm::dvec3(0.0));
+    interp.Run();
+    vm::Vec3<N> p = interp.OutputTriple(*program.findOutput("P"));
+    double lo[3], hi[3];
+    bool unbounded = false;
+    for (int i = 0; i < 3; ++i) {
+        vm::Interval r = RangeOf(ValueOf(p[i]));
+        unbounded = unbounded || r.isUnbounded();
+        lo[i] = r.lo();
+        hi[i] = r.hi();
+    }
+    std::fprintf(out, "{\"P\":{\"lo\":%s,\"hi\":%s}%s}\n", Json(lo).c_str(), Json(hi).c_str(),
+                 unbounded ? ",\"unbounded\":true" : "");
+}
+
+}  // namespace
+
+int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
+    compiler::CompileResult result = compiler::CompileFile(cmd.shaderPath);
+    std::fputs(result.diagnostics.c_str(), err);
+    if (!result.ok()) return 1;
+    const compiler::CompiledShader& shader = *result.shader;
+    std::string listing = "; " + shader.name + " from " + shader.sourcePath + ": " +
+                          std::to_string(shader.opsBeforeOptimisation) + " operations before optimisation\n";
+    listing += "; ---- bound program (displaced P only) ----\n" + vm::Disassemble(shader.bound, shader.sourceText);
+    listing += "; ---- shade program (P and N) ----\n" + vm::Disassemble(shader.shade, shader.sourceText);
+    if (cmd.disasm) std::fputs(listing.c_str(), out);
+    if (!cmd.outputPath.empty()) {
+        std::string error;
+        if (!WriteTextAtomically(cmd.outputPath, listing, &error)) {
+            std::fprintf(err, "affray: error: %s\n", error.c_str());
+            return 1;
+        }
+    }
+    return 0;
+}
+
+int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
+    compiler::CompileResult result = compiler::CompileFile(cmd.shaderPath, cmd.params);
+    std::fputs(result.diagnostics.c_str(), err);
+    for (const std::string& e : result.paramErrors) std::fprintf(err, "affray: error: %s\n", e.c_str());
+    if (!result.ok()) return 1;
+    const compiler::CompiledShader& shader = *result.shader;
+    const renderer::BilinearPatch square = renderer::BilinearPatch::UnitSquare();
+
+    auto bound = [&](double u0, double u1, double v0, double v1) {
+        const vm::Program& p = shader.bound;
+        bool dual = p.usesDerivatives();
+        if (cmd.mode == "affine") {
+            if (dual) PrintBound<vm::Dual<vm::Affine>>(p, u0, u1, v0, v1, out);
+            else PrintBound<vm::Affine>(p, u0, u1, v0, v1, out);
+        } else {
+            if (dual) PrintBound<vm::Dual<vm::Interval>>(p, u0, u1, v0, v1, out);
+            else PrintBound<vm::Interval>(p, u0, u1, v0, v1, out);
+        }
+    };
+    if (cmd.hasRegion) {
+        bound(cmd.region[0], cmd.region[1], cmd.region[2], cmd.region[3]);
+        return 0;
+    }
+    vm::Interpreter<vm::Dual<double>> interp(shader.shade);
+    for (const auto& [u, v] : cmd.points) {
+        if (cmd.mode != "scalar") {
+            bound(u, u, v, v);
+            continue;
+        }
+        renderer::SetPatchGlobals(interp, square, u, u, v, v, glm::dvec3(0.0));
+        interp.Run();
+        vm::Vec3<vm::Dual<double>> P = interp.OutputTriple(*shader.shade.findOutput("P"));
+        vm::Vec3<vm::Dual<double>> N = interp.OutputTriple(*shader.shade.findOutput("N"));
+        double p[3] = {P.x.v, P.y.v, P.z.v}, n[3] = {N.x.v, N.y.v, N.z.v};
+        std::fprintf(out, "{\"P\":%s,\"N\":%s}\n", Json(p).c_str(), Json(n).c_str());
+    }
+    return 0;
+}
+
+int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
+    std::string error;
+    std::vector<std::string> warnings;
+    std::optional<renderer::SceneDesc> scene = renderer::ReadRib(cmd.scenePath, &error, &warnings);
+    for (const std::string& w : warnings) std::fprintf(err, "%s\n", w.c_str());
+    if (!scene) {
+        std::fprintf(err, "%s\n", error.c_str());
+        return 1;
+    }
+    std::filesystem::path ribDir = std::filesystem::path(cmd.scenePath).parent_path();
+    if (ribDir.empty()) ribDir = ".";
+    std::vector<std::string> shaderPaths = {ribDir.string(), (ribDir / ".." / "shaders").string(), "shaders"};
+    renderer::PreparedScene prepared;
+    if (!renderer::PrepareScene(*scene, shaderPaths, &prepared, &error)) {
+        std::fprintf(err, "%s\n", error.c_str());
+        return 1;
+    }
+    renderer::RenderOptions options;
+    options.threads = cmd.threads;
+    options.tolerancePixels = cmd.tolerance;
+    options.bounds = cmd.bounds;
+    options.maxDepth = cmd.maxDepth;
+    renderer::ImageBuffer image;
+    renderer::RenderStats stats;
+    renderer::RenderImage(prepared, options, &image, &stats);
+    std::string outputPath = cmd.outputPath.empty() ? scene->displayName : cmd.outputPath;
+    if (!renderer::WriteExr(outputPath, image, &error)) {
+        std::fprintf(err, "affray: error: %s\n", error.c_str());
+        return 1;
+    }
+    if (cmd.stats) std::fprintf(out, "%s\n", stats.ToJson().c_str());
+    return 0;
+}
+
+}  // namespace affray::tools

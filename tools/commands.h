@@ -1,0 +1,43 @@
+// tools/commands.h: the subcommands of the `affray` program. Each takes its parsed options and
+// returns the process exit code; messages go to the given streams, never exit().
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "compiler/lower.h"
+#include "renderer/intersect.h"
+
+namespace affray::tools {
+
+struct CompileCommand {
+    std::string shaderPath;
+    std::string outputPath;  // empty: none
+    bool disasm = false;
+};
+
+struct EvalCommand {
+    std::string shaderPath;
+    std::vector<compiler::ParamOverride> params;
+    std::vector<std::array<double, 2>> points;  // --at, in order
+    bool hasRegion = false;
+    std::array<double, 4> region{};              // u0, u1, v0, v1
+    std::string mode = "scalar";                 // scalar | affine | interval
+};
+
+struct RenderCommand {
+    std::string scenePath;
+    std::string outputPath;  // empty: the scene's Display name
+    int threads = 0;
+    double tolerance = 0.5;
+    renderer::BoundMode bounds = renderer::BoundMode::Affine;
+    int maxDepth = 24;
+    bool stats = false;
+};
+
+int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err);
+int RunEval(const EvalCommand& cmd, FILE* out, FILE* err);
+int RunRender(const RenderCommand& cmd, FILE* out, FILE* err);
+
+}  // namespace affray::tools

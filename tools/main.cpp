@@ -1,0 +1,172 @@
+// tools/main.cpp: the `affray` command line. Only argument parsing lives here; each subcommand's
+// work is in tools/commands.cpp.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tools/commands.h"
+
+namespace {
+
+const char* const kUsage =
+    "usage:\n"
+    "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS]\n"
+    "                [--bounds affine|interval] [--max-depth N] [--stats]\n"
+    "  affray compile SHADER.sl [-o OUT] [--disasm]\n"
+    "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
+    "              [--mode scalar|affine|interval]\n"
+    "  affray --help | --version\n";
+
+struct UsageError {
+    std::string message;
+};
+
+/// Parses a comma-separated list of finite numbers, e.g. "0.5,0.25".
+std::vector<double> ParseNumbers(const std::string& text, const std::string& option) {
+    std::vector<double> values;
+    std::stringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        char* end = nullptr;
+        double x = std::strtod(item.c_str(), &end);
+        if (item.empty() || *end != '\0') throw UsageError{option + ": '" + item + "' is not a number"};
+        if (!std::isfinite(x)) throw UsageError{option + ": '" + item + "' is not finite"};
+        values.push_back(x);
+    }
+    if (!text.empty() && text.back() == ',') throw UsageError{option + ": trailing comma in '" + text + "'"};
+    return values;
+}
+
+double ParseNumber(const std::string& text, const std::string& option) {
+    std::vector<double> v = ParseNumbers(text, option);
+    if (v.size() != 1) throw UsageError{option + " takes one number, got '" + text + "'"};
+    return v[0];
+}
+
+int ParseInt(const std::string& text, const std::string& option, int lo, int hi) {
+    double x = ParseNumber(text, option);
+    if (x != std::floor(x) || x < lo || x > hi)
+        throw UsageError{option + " takes an integer from " + std::to_string(lo) + " to " + std::to_string(hi)};
+    return static_cast<int>(x);
+}
+
+class Args {
+  public:
+    Args(int argc, char** argv, int first) : m_args(argv + first, argv + argc) {}
+    bool Done() const { return m_next >= m_args.size(); }
+    std::string Next() { return m_args[m_next++]; }
+    std::string Value(const std::string& option) {
+        if (Done()) throw UsageError{option + " needs a value"};
+        return Next();
+    }
+
+  private:
+    std::vector<std::string> m_args;
+    size_t m_next = 0;
+};
+
+void SetInput(std::string* slot, const std::string& arg) {
+    if (!arg.empty() && arg[0] == '-' && arg != "-") throw UsageError{"unknown option '" + arg + "'"};
+    if (!slot->empty()) throw UsageError{"unexpected argument '" + arg + "'"};
+    *slot = arg;
+}
+
+int Compile(Args& args) {
+    affray::tools::CompileCommand cmd;
+    while (!args.Done()) {
+        std::string a = args.Next();
+        if (a == "-o") cmd.outputPath = args.Value(a);
+        else if (a == "--disasm") cmd.disasm = true;
+        else SetInput(&cmd.shaderPath, a);
+    }
+    if (cmd.shaderPath.empty()) throw UsageError{"compile: missing SHADER.sl"};
+    return affray::tools::RunCompile(cmd, stdout, stderr);
+}
+
+int Eval(Args& args) {
+    affray::tools::EvalCommand cmd;
+    while (!args.Done()) {
+        std::string a = args.Next();
+        if (a == "--param") {
+            std::string p = args.Value(a);
+            size_t eq = p.find('=');
+            if (eq == std::string::npos || eq == 0) throw UsageError{"--param takes NAME=VALUE, got '" + p + "'"};
+            cmd.params.push_back({p.substr(0, eq), ParseNumbers(p.substr(eq + 1), "--param " + p.substr(0, eq))});
+        } else if (a == "--at") {
+            std::vector<double> uv = ParseNumbers(args.Value(a), a);
+            if (uv.size() != 2) throw UsageError{"--at takes U,V"};
+            cmd.points.push_back({uv[0], uv[1]});
+        } else if (a == "--region") {
+            std::vector<double> r = ParseNumbers(args.Value(a), a);
+            if (r.size() != 4) throw UsageError{"--region takes U0,U1,V0,V1"};
+            if (r[0] > r[1] || r[2] > r[3]) throw UsageError{"--region needs U0 <= U1 and V0 <= V1"};
+            cmd.hasRegion = true;
+            cmd.region = {r[0], r[1], r[2], r[3]};
+        } else if (a == "--mode") {
+            cmd.mode = args.Value(a);
+            if (cmd.mode != "scalar" && cmd.mode != "affine" && cmd.mode != "interval")
+                throw UsageError{"--mode takes scalar, affine or interval, got '" + cmd.mode + "'"};
+        } else {
+            SetInput(&cmd.shaderPath, a);
+        }
+    }
+    if (cmd.shaderPath.empty()) throw UsageError{"eval: missing SHADER.sl"};
+    if (cmd.points.empty() == !cmd.hasRegion) throw UsageError{"eval: give either --at U,V or --region U0,U1,V0,V1"};
+    if (cmd.hasRegion && cmd.mode == "scalar")
+        throw UsageError{"eval: --region bounds a region; use --mode affine or --mode interval"};
+    return affray::tools::RunEval(cmd, stdout, stderr);
+}
+
+int Render(Args& args) {
+    affray::tools::RenderCommand cmd;
+    while (!args.Done()) {
+        std::string a = args.Next();
+        if (a == "-o") cmd.outputPath = args.Value(a);
+        else if (a == "--threads") cmd.threads = ParseInt(args.Value(a), a, 1, 1024);
+        else if (a == "--tolerance") {
+            cmd.tolerance = ParseNumber(args.Value(a), a);
+            if (!(cmd.tolerance > 0)) throw UsageError{"--tolerance must be positive"};
+        } else if (a == "--max-depth") cmd.maxDepth = ParseInt(args.Value(a), a, 1, 40);
+        else if (a == "--bounds") {
+            std::string b = args.Value(a);
+            if (b == "affine") cmd.bounds = affray::renderer::BoundMode::Affine;
+            else if (b == "interval") cmd.bounds = affray::renderer::BoundMode::Interval;
+            else throw UsageError{"--bounds takes affine or interval, got '" + b + "'"};
+        } else if (a == "--stats") cmd.stats = true;
+        else SetInput(&cmd.scenePath, a);
+    }
+    if (cmd.scenePath.empty()) throw UsageError{"render: missing SCENE.rib"};
+    return affray::tools::RunRender(cmd, stdout, stderr);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fputs(kUsage, stderr);
+        return 2;
+    }
+    std::string command = argv[1];
+    if (command == "--help" || command == "-h" || command == "help") {
+        std::fputs(kUsage, stdout);
+        return 0;
+    }
+    if (command == "--version") {
+        std::puts("affray 0.1.0");
+        return 0;
+    }
+    Args args(argc, argv, 2);
+    try {
+        if (command == "compile") return Compile(args);
+        if (command == "eval") return Eval(args);
+        if (command == "render") return Render(args);
+        throw UsageError{"unknown command '" + command + "'"};
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "affray: error: %s\n%s", e.message.c_str(), kUsage);
+        return 2;
+    }
+}

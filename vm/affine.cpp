@@ -1,0 +1,398 @@
+// vm/affine.cpp: the core of affine arithmetic: construction, ranges, term bookkeeping (merge,
+// fold, fresh symbols), the linear operations, products, squares and ApplyFit, which turns any
+// linear approximation alpha*x + zeta +- delta of a unary function into a form.
+// Rounding (see vm/rounding.h): coefficients are computed rounded to nearest and a bound on each
+// rounding error is added to the error; on top of that every operation adds u*max|result| for the
+// rounding of the double (scalar) operation itself, since the scalar result is fl(x op y), not the
+// exact value that the form encloses. Linear operations put their error into e; products and
+// unary functions put theirs (input errors, the nonlinear remainder, all rounding) into a fresh
+// symbol, so that later operations keep the correlation (Stolfi & de Figueiredo 1997, sec. 3.6).
+#include <algorithm>
+#include <cstdio>
+
+#include "vm/affine.h"
+
+namespace affray::vm {
+
+namespace {
+
+thread_local Affine::SymbolId t_nextSymbol = Affine::kFirstFreshSymbol;
+
+// Error bounds of shared-term sums count at most this many roundings per term.
+constexpr double kTermSlack = 2.0 * Affine::kCapacity + 4.0;
+// The product's remainder is computed in about 5*kCapacity + 12 roundings (the sums of up to
+// kCapacity terms, then P - Q with Q <= P/2), which kSumSlack covers up to 256.
+static_assert(5 * Affine::kCapacity + 32 <= 256, "raise kSumSlack for this capacity");
+
+}  // namespace
+
+// A scratch term list: a merge of two forms plus one fresh term, before folding.
+struct Affine::Terms {
+    static constexpr int kMax = 2 * kCapacity + 2;
+    SymbolId symbols[kMax];
+    double coefs[kMax];
+    int count = 0;
+
+    // Appends a term with a larger id than any so far; zero coefficients are dropped.
+    void push(SymbolId s, double c) {
+        symbols[count] = s;
+        coefs[count] = c;
+        count += (c != 0);
+    }
+    // Inserts a term with an id not yet present, keeping the ids sorted.
+    void insert(SymbolId s, double c) {
+        int i = count;
+        while (i > 0 && symbols[i - 1] > s) {
+            symbols[i] = symbols[i - 1];
+            coefs[i] = coefs[i - 1];
+            --i;
+        }
+        symbols[i] = s;
+        coefs[i] = c;
+        ++count;
+    }
+};
+
+Affine Affine::Unbounded() {
+    Affine r;
+    r.m_error = kInfinity;
+    return r;
+}
+
+void Affine::BeginEvaluation() { t_nextSymbol = kFirstFreshSymbol; }
+
+Affine::SymbolId Affine::NewSymbol() { return t_nextSymbol++; }
+
+Affine Affine::FromSymbol(double center, double radius, SymbolId id) {
+    if (!std::isfinite(center) || !std::isfinite(radius)) return Unbounded();
+    Affine r(center);
+    r.m_symbols[0] = id;
+    r.m_coefs[0] = radius;
+    r.m_count = radius != 0;
+    return r;
+}
+
+Affine Affine::FromInterval(const Interval& range) {
+    if (range.isUnbounded()) return Unbounded();
+    if (range.isPoint()) return Affine(range.lo());
+    Affine r(range.mid());
+    r.m_symbols[0] = NewSymbol();
+    r.m_coefs[0] = range.radius();
+    r.m_count = 1;
+    return r;
+}
+
+Affine Affine::Assemble(double center, double error, Terms& terms) {
+    if (!(std::fabs(center) <= kMaxFinite && error <= kMaxFinite)) return Unbounded();
+    // Fold the smallest terms other than eps_u and eps_v into the error until the rest fit.
+    while (terms.count > kCapacity) {
+        int smallest = -1;
+        for (int i = 0; i < terms.count; ++i) {
+            if (terms.symbols[i] < kFirstFreshSymbol) continue;
+            if (smallest < 0 || std::fabs(terms.coefs[i]) < std::fabs(terms.coefs[smallest]))
+                smallest = i;
+        }
+        error = AddUp(error, std::fabs(terms.coefs[smallest]));
+        for (int i = smallest + 1; i < terms.count; ++i) {
+            terms.symbols[i - 1] = terms.symbols[i];
+            terms.coefs[i - 1] = terms.coefs[i];
+        }
+        --terms.count;
+    }
+    if (!(error <= kMaxFinite)) return Unbounded();
+    Affine r;
+    r.m_center = center;
+    r.m_error = error;
+    r.m_count = terms.count;
+    std::copy(terms.symbols, terms.symbols + terms.count, r.m_symbols);
+    std::copy(terms.coefs, terms.coefs + terms.count, r.m_coefs);
+    return r;
+}
+
+double Affine::coefficientOf(SymbolId id) const {
+    for (int i = 0; i < m_count; ++i)
+        if (m_symbols[i] == id) return m_coefs[i];
+    return 0.0;
+}
+
+double Affine::radius() const {
+    if (isUnbounded()) return kInfinity;
+    UpperSum r;
+    r.add(m_error);
+    for (int i = 0; i < m_count; ++i) r.add(std::fabs(m_coefs[i]));
+    return r.value();
+}
+
+Interval Affine::range() const {
+    if (isUnbounded()) return Interval::Unbounded();
+    double r = radius();
+    return Interval(SubDown(m_center, r), AddUp(m_center, r));
+}
+
+Interval Affine::evaluateAt(double epsU, double epsV) const {
+    if (isUnbounded()) return Interval::Unbounded();
+    double lo = m_center, hi = m_center;
+    UpperSum rest;
+    rest.add(m_error);
+    for (int i = 0; i < m_count; ++i) {
+        double c = m_coefs[i];
+        if (m_symbols[i] == kSymbolU || m_symbols[i] == kSymbolV) {
+            double eps = m_symbols[i] == kSymbolU ? epsU : epsV;
+            lo = AddDown(lo, MulDown(c, eps));
+            hi = AddUp(hi, MulUp(c, eps));
+        } else {
+            rest.add(std::fabs(c));
+        }
+    }
+    double r = rest.value();
+    return Interval(SubDown(lo, r), AddUp(hi, r));
+}
+
+std::string Affine::toString() const {
+    if (isUnbounded()) return "unbounded";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", m_center);
+    std::string s = buf;
+    for (int i = 0; i < m_count; ++i) {
+        double c = m_coefs[i];
+        std::snprintf(buf, sizeof buf, " %c %.17g*e%u", c < 0 ? '-' : '+', std::fabs(c),
+                      static_cast<unsigned>(m_symbols[i]));
+        s += buf;
+    }
+    if (m_error != 0) {
+        std::snprintf(buf, sizeof buf, " +- %.17g", m_error);
+        s += buf;
+    }
+    return s;
+}
+
+Affine Affine::withExtraError(double extra) const {
+    if (isUnbounded()) return *this;
+    Affine r = *this;
+    r.m_error = AddUp(m_error, extra);
+    if (!(r.m_error <= kMaxFinite)) return Unbounded();
+    return r;
+}
+
+Affine operator-(const Affine& x) {
+    Affine r = x;
+    r.m_center = -x.m_center;
+    for (int i = 0; i < x.m_count; ++i) r.m_coefs[i] = -x.m_coefs[i];
+    return r;
+}
+
+namespace {
+
+// Error of a linear operation: the operands' errors E, plus the rounding of every coefficient
+// (<= u*A, A = |z0| + sum|zi|) and of the scalar operation (<= u*max|result| <= u*(A + E)).
+double LinearError(double inputError, double absSum) {
+    return (inputError + (absSum + inputError) * kEpsilon) * kSumSlack;
+}
+
+}  // namespace
+
+template <bool kSubtract>
+Affine Affine::AddForms(const Affine& x, const Affine& y) {
+    if (x.isUnbounded() || y.isUnbounded()) return Affine::Unbounded();
+    const double sy = kSubtract ? -1.0 : 1.0;
+    // Both exact constants: the scalar result is exactly this double.
+    if (x.isConstant() && y.isConstant()) return Affine(x.center() + sy * y.center());
+    Affine::Terms t;
+    double absSum = 0;
+    int i = 0, j = 0;
+    const int nx = x.termCount(), ny = y.termCount();
+    while (i < nx && j < ny) {
+        Affine::SymbolId a = x.termSymbol(i), b = y.termSymbol(j);
+        double c;
+        if (a == b) {
+            c = x.termCoef(i++) + sy * y.termCoef(j++);
+        } else if (a < b) {
+            c = x.termCoef(i++);
+            b = a;
+        } else {
+            c = sy * y.termCoef(j++);
+        }
+        absSum += std::fabs(c);
+        t.push(b, c);
+    }
+    for (; i < nx; ++i) {
+        absSum += std::fabs(x.termCoef(i));
+        t.push(x.termSymbol(i), x.termCoef(i));
+    }
+    for (; j < ny; ++j) {
+        absSum += std::fabs(y.termCoef(j));
+        t.push(y.termSymbol(j), sy * y.termCoef(j));
+    }
+    double center = x.center() + sy * y.center();
+    absSum += std::fabs(center);
+    return Affine::Assemble(center, LinearError(x.error() + y.error(), absSum), t);
+}
+
+Affine operator+(const Affine& x, const Affine& y) { return Affine::AddForms<false>(x, y); }
+Affine operator-(const Affine& x, const Affine& y) { return Affine::AddForms<true>(x, y); }
+
+Affine operator+(const Affine& x, double c) {
+    if (x.isUnbounded() || !std::isfinite(c)) return Affine::Unbounded();
+    if (c == 0) return x;
+    if (x.isConstant()) return Affine(x.m_center + c);
+    Affine r = x;
+    r.m_center = x.m_center + c;
+    double absSum = std::fabs(r.m_center);
+    for (int i = 0; i < x.m_count; ++i) absSum += std::fabs(x.m_coefs[i]);
+    r.m_error = LinearError(x.m_error, absSum);
+    if (!(std::fabs(r.m_center) <= kMaxFinite && r.m_error <= kMaxFinite))
+        return Affine::Unbounded();
+    return r;
+}
+
+Affine operator*(const Affine& x, double c) {
+    if (x.isUnbounded() || !std::isfinite(c)) return Affine::Unbounded();
+    if (c == 0) return Affine(0.0);
+    if (c == 1) return x;
+    if (c == -1) return -x;
+    if (x.isConstant()) return Affine(x.m_center * c);
+    return Affine::Scale(x, c, 1.0);
+}
+
+Affine Affine::Scale(const Affine& x, double c, double roundingFactor) {
+    if (x.isUnbounded() || !std::isfinite(c)) return Unbounded();
+    Affine r;
+    r.m_center = x.m_center * c;
+    double absSum = std::fabs(r.m_center);
+    int n = 0;
+    for (int i = 0; i < x.m_count; ++i) {
+        // A product may underflow to 0: such a term is dropped (its rounding is in the slack).
+        double z = x.m_coefs[i] * c;
+        r.m_symbols[n] = x.m_symbols[i];
+        r.m_coefs[n] = z;
+        absSum += std::fabs(z);
+        n += (z != 0);
+    }
+    r.m_count = n;
+    double scaledError = std::fabs(c) * x.m_error * (1 + kEpsilon);
+    r.m_error = LinearError(scaledError, absSum * roundingFactor) + kUnderflowSlack;
+    if (!(std::fabs(r.m_center) <= kMaxFinite && r.m_error <= kMaxFinite)) return Unbounded();
+    return r;
+}
+
+// (x0 + X + Ex)(y0 + Y + Ey) with X = sum xi*eps_i and |Ex| <= ex:
+//   = x0*y0 + sum (x0*yi + y0*xi) eps_i + [x0*Ey + y0*Ex] + (X + Ex)(Y + Ey).
+// In the quadratic part, the diagonal sum xi*yi*eps_i^2 lies in [min(0, .), max(0, .)] per term,
+// so its midpoint (1/2) sum xi*yi moves to the center and the rest is bounded by
+// (rx + ex)(ry + ey) - (1/2) sum |xi*yi| (the tighter product rule of AFFINE-NOTES).
+Affine operator*(const Affine& x, const Affine& y) {
+    if (x.isUnbounded() || y.isUnbounded()) return Affine::Unbounded();
+    if (x.isConstant()) return y * x.m_center;
+    if (y.isConstant()) return x * y.m_center;
+    const double x0 = x.m_center, y0 = y.m_center;
+    Affine::Terms t;
+    double rx = 0, ry = 0, diag = 0, absDiag = 0, absSum = 0;
+    int i = 0, j = 0;
+    while (i < x.m_count && j < y.m_count) {
+        Affine::SymbolId a = x.m_symbols[i], b = y.m_symbols[j];
+        double c;
+        if (a == b) {
+            double xi = x.m_coefs[i++], yi = y.m_coefs[j++];
+            c = x0 * yi + y0 * xi;
+            double p = xi * yi;
+            diag += p;
+            absDiag += std::fabs(p);
+            rx += std::fabs(xi);
+            ry += std::fabs(yi);
+        } else if (a < b) {
+            double xi = x.m_coefs[i++];
+            c = y0 * xi;
+            rx += std::fabs(xi);
+            b = a;
+        } else {
+            double yi = y.m_coefs[j++];
+            c = x0 * yi;
+            ry += std::fabs(yi);
+        }
+        absSum += std::fabs(c);
+        t.push(b, c);
+    }
+    for (; i < x.m_count; ++i) {
+        double c = y0 * x.m_coefs[i];
+        rx += std::fabs(x.m_coefs[i]);
+        absSum += std::fabs(c);
+        t.push(x.m_symbols[i], c);
+    }
+    for (; j < y.m_count; ++j) {
+        double c = x0 * y.m_coefs[j];
+        ry += std::fabs(y.m_coefs[j]);
+        absSum += std::fabs(c);
+        t.push(y.m_symbols[j], c);
+    }
+    const double ex = x.m_error, ey = y.m_error;
+    const double p0 = x0 * y0;
+    const double center = p0 + 0.5 * diag;
+    absSum += std::fabs(center);
+    // The nonlinear remainder is >= half of (rx+ex)(ry+ey), so its relative rounding is small.
+    const double quad = (rx + ex) * (ry + ey) - 0.5 * absDiag;
+    const double linear = std::fabs(x0) * ey + std::fabs(y0) * ex;
+    const double maxResult = (std::fabs(x0) + rx + ex) * (std::fabs(y0) + ry + ey);
+    const double rounding = (std::fabs(x0) * ry + std::fabs(y0) * rx + std::fabs(p0) +
+                             kTermSlack * absDiag + absSum + maxResult) *
+                            kEpsilon;
+    const double delta = (quad + linear + rounding) * kSumSlack + kUnderflowSlack;
+    if (!(delta <= kMaxFinite)) return Affine::Unbounded();
+    t.insert(Affine::NewSymbol(), delta);
+    return Affine::Assemble(center, 0.0, t);
+}
+
+// (x0 + X + E)^2 = x0^2 + 2*x0*X + 2*x0*E + (X + E)^2 with (X + E)^2 in [0, q], q = (r + e)^2.
+Affine sqr(const Affine& x) {
+    if (x.isUnbounded()) return x;
+    if (x.isConstant()) return Affine(x.m_center * x.m_center);
+    const double x0 = x.m_center, twoX0 = 2 * x0;
+    Affine::Terms t;
+    double r = 0, absSum = 0;
+    for (int i = 0; i < x.m_count; ++i) {
+        double c = twoX0 * x.m_coefs[i];
+        r += std::fabs(x.m_coefs[i]);
+        absSum += std::fabs(c);
+        t.push(x.m_symbols[i], c);
+    }
+    const double e = x.m_error;
+    const double q = (r + e) * (r + e);
+    const double p0 = x0 * x0;
+    const double center = p0 + 0.5 * q;
+    absSum += std::fabs(center);
+    const double linear = std::fabs(twoX0) * e;
+    const double maxResult = (std::fabs(x0) + r + e) * (std::fabs(x0) + r + e);
+    const double rounding = (p0 + kTermSlack * q + absSum + maxResult) * kEpsilon;
+    const double delta = (0.5 * q + linear + rounding) * kSumSlack + kUnderflowSlack;
+    if (!(delta <= kMaxFinite)) return Affine::Unbounded();
+    t.insert(Affine::NewSymbol(), delta);
+    return Affine::Assemble(center, 0.0, t);
+}
+
+Affine Affine::ApplyFit(const Affine& x, double alpha, double gLo, double gHi) {
+    if (x.isUnbounded() || !(gLo <= gHi) || !std::isfinite(alpha)) return Unbounded();
+    const double zeta = 0.5 * gLo + 0.5 * gHi;
+    const double delta0 = std::fmax(SubUp(gHi, zeta), SubUp(zeta, gLo));
+    if (!(std::fabs(zeta) <= kMaxFinite && delta0 <= kMaxFinite)) return Unbounded();
+    Terms t;
+    if (alpha == 0) {
+        // zeta +- delta0 exactly: no coefficient is computed, so nothing else is rounded.
+        if (delta0 > 0) t.push(NewSymbol(), delta0);
+        return Assemble(zeta, 0.0, t);
+    }
+    double absSum = 0;
+    for (int i = 0; i < x.m_count; ++i) {
+        double c = alpha * x.m_coefs[i];
+        absSum += std::fabs(c);
+        t.push(x.m_symbols[i], c);
+    }
+    const double ax0 = alpha * x.m_center;
+    const double center = ax0 + zeta;
+    absSum += std::fabs(ax0) + std::fabs(center);
+    const double delta =
+        (delta0 + std::fabs(alpha) * x.m_error + absSum * kEpsilon) * kSumSlack + kUnderflowSlack;
+    if (!(delta <= kMaxFinite)) return Unbounded();
+    t.insert(NewSymbol(), delta);
+    return Assemble(center, 0.0, t);
+}
+
+}  // namespace affray::vm

@@ -1,0 +1,149 @@
+// vm/affine.h: affine arithmetic (AA), the VM's main bounded number type.
+// Owns class Affine: a fixed-capacity, allocation-free affine form
+//     x = x0 + sum_i xi*eps_i + e*eps_err,     every eps in [-1, 1], e >= 0,
+// where eps_u (kSymbolU) and eps_v (kSymbolV) stand for the surface parameters of the region being
+// bounded, further symbols are made fresh by nonlinear operations (so that later operations still
+// see their correlation), and e is an independent error term that is shared with nothing.
+// Rules every operation keeps (tested in tests/vm/affine_test.cpp):
+//  - Containment: for every assignment of the symbols, the double result of the same operation
+//    (vm/number.h's scalar semantics) on any operand values the operand forms allow at that
+//    assignment lies in the result form, rounding of both computations included (vm/rounding.h).
+//  - Anything that can be NaN or infinite somewhere is the explicit Unbounded value, which
+//    propagates through every function.
+//  - Terms are kept sorted by symbol id with no zero coefficient; when they do not fit in
+//    kCapacity, the smallest terms other than eps_u and eps_v are folded into e.
+// Symbols are numbered per thread: BeginEvaluation() restarts the fresh ids, so forms from
+// different evaluations (or threads) must never be combined.
+// Linear operations and products live in affine.cpp, the nonlinear unary functions (Chebyshev
+// and min-range approximations) in affine_functions.cpp.
+// Sources: Stolfi & de Figueiredo, "Self-Validated Numerical Methods and Applications" (1997) and
+// "Affine arithmetic: concepts and applications" (Numerical Algorithms, 2004); Heidrich & Seidel,
+// "Ray-tracing procedural displacement shaders" (GI 1998); Heidrich, Slusallek & Seidel, "Sampling
+// procedural shaders using affine arithmetic" (TOG 1998).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "vm/interval.h"
+
+namespace affray::vm {
+
+class Affine {
+  public:
+    using SymbolId = uint32_t;
+    /// Term slots, eps_u and eps_v included. Change it here; nothing else depends on the value.
+    static constexpr int kCapacity = 12;
+    static constexpr SymbolId kSymbolU = 0;
+    static constexpr SymbolId kSymbolV = 1;
+    /// BeginEvaluation() restarts fresh symbols here.
+    static constexpr SymbolId kFirstFreshSymbol = 2;
+    static_assert(kCapacity >= 2, "eps_u and eps_v must always fit");
+
+    /// The exact constant 0.
+    Affine() = default;
+    /// The exact constant c; NaN or infinite c gives Unbounded.
+    Affine(double c) : m_center(c) {  // NOLINT: implicit by design (Number API)
+        if (!std::isfinite(c)) *this = Unbounded();
+    }
+    /// center + radius*eps_id exactly (radius may be negative; 0 gives the constant).
+    static Affine FromSymbol(double center, double radius, SymbolId id);
+    /// A form with the range of `range` on a fresh symbol (a constant for a point).
+    static Affine FromInterval(const Interval& range);
+    /// The explicit "unknown" value.
+    static Affine Unbounded();
+    /// Restarts this thread's fresh symbols at kFirstFreshSymbol. Call before bounding a region.
+    static void BeginEvaluation();
+    /// A fresh symbol id, unused in this evaluation on this thread.
+    static SymbolId NewSymbol();
+
+    double center() const { return m_center; }
+    /// The independent error e >= 0 (infinite for Unbounded).
+    double error() const { return m_error; }
+    int termCount() const { return m_count; }
+    SymbolId termSymbol(int i) const { return m_symbols[i]; }
+    double termCoef(int i) const { return m_coefs[i]; }
+    /// The coefficient of symbol `id`, 0 if absent.
+    double coefficientOf(SymbolId id) const;
+    bool isUnbounded() const { return !(m_error <= kMaxFinite); }
+    /// No terms and no error: an exact double.
+    bool isConstant() const { return m_count == 0 && m_error == 0; }
+    /// The range [x0 - r, x0 + r] with r = sum |xi| + e, rounded outward.
+    Interval range() const;
+    /// sum |xi| + e, rounded up.
+    double radius() const;
+    /// The range with eps_u = epsU and eps_v = epsV fixed and every other symbol free.
+    Interval evaluateAt(double epsU, double epsV) const;
+    /// "c + a*e0 - b*e7 +- e" with round-trip precision, or "unbounded".
+    std::string toString() const;
+
+    // Linear operations and products (affine.cpp).
+    friend Affine operator-(const Affine& x);
+    friend Affine operator+(const Affine& x, const Affine& y);
+    friend Affine operator-(const Affine& x, const Affine& y);
+    friend Affine operator*(const Affine& x, const Affine& y);
+    friend Affine operator+(const Affine& x, double c);
+    friend Affine operator+(double c, const Affine& x) { return x + c; }
+    friend Affine operator-(const Affine& x, double c) { return x + (-c); }
+    friend Affine operator-(double c, const Affine& x) { return (-x) + c; }
+    friend Affine operator*(const Affine& x, double c);
+    friend Affine operator*(double c, const Affine& x) { return x * c; }
+    /// x*x by the square rule: center x0^2 + r^2/2, coefficients 2*x0*xi, error r^2/2.
+    friend Affine sqr(const Affine& x);
+
+    // Division and nonlinear functions (affine_functions.cpp).
+    /// Unbounded when the divisor's range contains 0.
+    friend Affine operator/(const Affine& x, const Affine& y);
+    friend Affine operator/(const Affine& x, double c);
+    friend Affine operator/(double c, const Affine& x);
+    friend Affine sqrt(const Affine& x);
+    friend Affine exp(const Affine& x);
+    friend Affine log(const Affine& x);
+    friend Affine sin(const Affine& x);
+    friend Affine cos(const Affine& x);
+    friend Affine abs(const Affine& x);
+    friend Affine sign(const Affine& x);
+    friend Affine pow(const Affine& x, const Affine& y);
+
+    // Number API (vm/number.h).
+    /// An affine form carries no derivatives: the "unknown" value.
+    friend Affine DerivU(const Affine&) { return Unbounded(); }
+    friend Affine DerivV(const Affine&) { return Unbounded(); }
+    friend Interval RangeOf(const Affine& x) { return x.range(); }
+    friend bool IsUnbounded(const Affine& x) { return x.isUnbounded(); }
+    friend bool IsExactlyZero(const Affine& x) { return x.isConstant() && x.m_center == 0; }
+    friend std::string ToString(const Affine& x) { return x.toString(); }
+
+  private:
+    struct Terms;  // a scratch term list, larger than kCapacity (affine.cpp)
+
+    /// Builds the result of an operation: terms folded to kCapacity, Unbounded if anything
+    /// is not finite. `error` is already rounded up.
+    static Affine Assemble(double center, double error, Terms& terms);
+    /// alpha*x + zeta +- delta on a fresh symbol, where g(t) = f(t) - alpha*t lies in [gLo, gHi]
+    /// for every t in x's range (f's glibc rounding included): the result of any unary f.
+    static Affine ApplyFit(const Affine& x, double alpha, double gLo, double gHi);
+    /// x + y or x - y by a sorted merge of the terms (affine.cpp).
+    template <bool kSubtract>
+    static Affine AddForms(const Affine& x, const Affine& y);
+    /// x*c with the coefficient rounding bound scaled by `roundingFactor` (2 when c is a rounded
+    /// reciprocal), and the scalar product's rounding included (affine.cpp).
+    static Affine Scale(const Affine& x, double c, double roundingFactor);
+    /// x with `extra` (>= 0, rounded up) more independent error.
+    Affine withExtraError(double extra) const;
+    /// 1/x; Unbounded if the range of x contains 0 (affine_functions.cpp).
+    static Affine Reciprocal(const Affine& x);
+    /// sin or cos (affine_functions.cpp).
+    static Affine SinOrCos(const Affine& x, bool isCos);
+    /// x^n for an integer 1 <= n by repeated squaring.
+    static Affine IntegerPower(const Affine& x, int n);
+    static Affine PowConstant(const Affine& x, double p);
+
+    double m_center = 0;
+    double m_error = 0;
+    int m_count = 0;
+    SymbolId m_symbols[kCapacity];
+    double m_coefs[kCapacity];
+};
+
+}  // namespace affray::vm

@@ -1,0 +1,344 @@
+// vm/affine_functions.cpp: division and the nonlinear functions of affine arithmetic.
+// Every unary f over the input range [a, b] becomes alpha*x + zeta +- delta (Affine::ApplyFit):
+// pick any slope alpha, then bound g(t) = f(t) - alpha*t over [a, b] rigorously: at the endpoints
+// and at every stationary point of g inside (one closed-form extreme for convex or concave f,
+// several for sin and cos), each evaluated in interval arithmetic so that the rounding of these
+// very computations is covered, then widened by glibc's slack over the whole range (the scalar
+// result is glibc's f(t), not the true one). Which alpha is a choice per function, explained at
+// each; if anything goes non-finite, the function falls back to its interval range on a fresh
+// symbol (alpha = 0), and to Unbounded only where the scalar result can be NaN or infinite.
+// Sources: Stolfi & de Figueiredo (1997), sec. 3.7-3.9 (Chebyshev and min-range approximations);
+// Heidrich & Seidel (GI 1998) for the use in displacement shaders; AFFINE-NOTES.md for the pitfalls
+// (a delta taken at sample points only, or delta = 0, is not conservative).
+#include <algorithm>
+
+#include "vm/affine.h"
+
+namespace affray::vm {
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;   // 2*pi rounded to nearest (below 2*pi)
+constexpr double kPi = 3.141592653589793;       // pi rounded to nearest (below pi)
+constexpr double kTwoPiBelow = 6.2831853;       // sin and cos cover [-1, 1] past this width
+constexpr double kTrigAnalysisLimit = 1e8;      // beyond it, sin and cos are just [-1, 1]
+constexpr int kMaxIntegerPower = 64;
+
+// An enclosure of the true f(t), and of glibc's f near t, from glibc's value r = f(t).
+Interval LibmAt(double r) {
+    if (!std::isfinite(r)) return Interval::Unbounded();
+    return Interval(LibmDown(r), LibmUp(r));
+}
+
+// An enclosure of g(t) = f(t) - alpha*t from an enclosure of f(t).
+Interval GAt(const Interval& f, double alpha, double t) {
+    return f - Interval(MulDown(alpha, t), MulUp(alpha, t));
+}
+
+// The bounds [gLo - slack, gHi + slack] of g for ApplyFit, where `slack` bounds glibc's rounding
+// of f anywhere in the range; `ok` is false if anything overflowed or alpha is unusable.
+struct Fit {
+    double alpha = 0, lo = 0, hi = 0;
+    bool ok = false;
+};
+
+Fit MakeFit(double alpha, double gLo, double gHi, double maxAbsF, double relSlack) {
+    double slack = AddUp(MulUp(maxAbsF, relSlack), kLibmAbs);
+    Fit f{alpha, SubDown(gLo, slack), AddUp(gHi, slack), false};
+    f.ok = std::isfinite(alpha) && std::isfinite(f.lo) && std::isfinite(f.hi) && f.lo <= f.hi;
+    return f;
+}
+
+double MaxAbs(const Interval& r) { return std::fmax(std::fabs(r.lo()), std::fabs(r.hi())); }
+
+}  // namespace
+
+// --- 1/x and division ---------------------------------------------------------------------------
+
+// Chebyshev for 1/t on [a, b], a > 0 (convex): alpha = -1/(ab), the secant; g(t) = 1/t + |alpha|t
+// has its maximum 1/a + 1/b at both endpoints and its minimum 2*sqrt(|alpha|) at t = sqrt(ab).
+// Encloses the real 1/t (callers add the rounding of their scalar division).
+Affine Affine::Reciprocal(const Affine& x) {
+    if (x.isUnbounded()) return x;
+    Interval range = x.range();
+    if (!(range.lo() > 0 || range.hi() < 0)) return Unbounded();
+    if (range.hi() < 0) return -Reciprocal(-x);
+    const double a = range.lo(), b = range.hi();
+    Interval ra(DivDown(1.0, a), DivUp(1.0, a)), rb(DivDown(1.0, b), DivUp(1.0, b));
+    Interval all = Hull(ra, rb);
+    if (all.isUnbounded()) return Unbounded();
+    if (a == b) return FromInterval(all);
+    const double alpha = -(1.0 / a) / b;
+    if (!(alpha < 0)) return FromInterval(all);
+    Interval ga = GAt(ra, alpha, a), gb = GAt(rb, alpha, b);
+    Interval gMin = 2.0 * sqrt(Interval(-alpha));
+    Fit f = MakeFit(alpha, std::min({ga.lo(), gb.lo(), gMin.lo()}), std::fmax(ga.hi(), gb.hi()),
+                    0.0, 0.0);
+    return f.ok ? ApplyFit(x, f.alpha, f.lo, f.hi) : FromInterval(all);
+}
+
+Affine operator/(const Affine& x, const Affine& y) {
+    if (x.isUnbounded() || y.isUnbounded()) return Affine::Unbounded();
+    if (y.isConstant()) return x / y.m_center;
+    if (x.isConstant()) return x.m_center / y;
+    // The product adds u*max|x/y|, the rounding of the scalar division.
+    return x * Affine::Reciprocal(y);
+}
+
+Affine operator/(const Affine& x, double c) {
+    if (x.isUnbounded() || !std::isfinite(c) || c == 0) return Affine::Unbounded();
+    if (x.isConstant()) return Affine(x.m_center / c);
+    if (c == 1) return x;
+    if (c == -1) return -x;
+    const double inv = 1.0 / c;
+    // fl(1/c) is within u of 1/c unless it is subnormal; then multiply by an enclosure instead.
+    if (MayUnderflow(inv)) return x * Affine::FromInterval(Interval(DivDown(1, c), DivUp(1, c)));
+    return Affine::Scale(x, inv, 2.0);
+}
+
+Affine operator/(double c, const Affine& x) {
+    if (x.isUnbounded() || !std::isfinite(c)) return Affine::Unbounded();
+    if (x.isConstant()) return Affine(c / x.m_center);
+    // Scaling adds u*max|c/x|, the rounding of the scalar division.
+    return Affine::Reciprocal(x) * c;
+}
+
+// --- sqrt, exp, log -----------------------------------------------------------------------------
+
+// Chebyshev (alpha = 1/(sqrt(a) + sqrt(b)), the secant): sqrt is concave and increasing, so the
+// lowest value of the form is sqrt(a) as with min-range (no dip below 0 but rounding), while the
+// remainder delta is half of min-range's. g's maximum is 1/(4 alpha) at t = 1/(4 alpha^2).
+Affine sqrt(const Affine& x) {
+    if (x.isUnbounded()) return x;
+    if (x.isConstant()) return Affine(std::sqrt(x.m_center));  // sqrt is correctly rounded
+    Interval range = x.range();
+    if (range.lo() < 0) return Affine::Unbounded();
+    const double a = range.lo(), b = range.hi();
+    Interval sa(SqrtDown(a), SqrtUp(a)), sb(SqrtDown(b), SqrtUp(b));
+    Interval all(sa.lo(), sb.hi());
+    const double alpha = 1.0 / (std::sqrt(a) + std::sqrt(b));
+    if (a == b || !(alpha > 0)) return Affine::FromInterval(all);
+    Interval ga = GAt(sa, alpha, a), gb = GAt(sb, alpha, b);
+    Interval gMax = Interval(0.25) / Interval(alpha);
+    Fit f = MakeFit(alpha, std::fmin(ga.lo(), gb.lo()), std::max({ga.hi(), gb.hi(), gMax.hi()}),
+                    sb.hi(), kEpsilon);
+    return f.ok ? Affine::ApplyFit(x, f.alpha, f.lo, f.hi) : Affine::FromInterval(all);
+}
+
+// alpha = min(secant, e^(a + 1/2)). The secant (Chebyshev) is tightest on narrow ranges; on wide
+// ones its tangent point ln(alpha) lies far from a and the form dips far below 0 (e.g. [0, 10]
+// gives [-7400, 29000]). Capping alpha at e^(a + 1/2) keeps the form's lowest value at
+// alpha*(1 + a - ln alpha) = e^(a + 1/2)/2 > 0.8 e^a (the min-range idea: exp stays positive) and
+// on wide ranges it is narrower than the secant as well. g is convex: maximum at an endpoint,
+// minimum alpha*(1 - ln alpha) at t = ln(alpha).
+Affine exp(const Affine& x) {
+    if (x.isUnbounded()) return x;
+    Interval range = x.range();
+    const double a = range.lo(), b = range.hi();
+    const double ea = std::exp(a), eb = std::exp(b);
+    Interval fa = LibmAt(ea), fb = LibmAt(eb);
+    if (fb.isUnbounded() || !(fb.hi() <= kMaxFinite)) return Affine::Unbounded();  // overflow
+    Interval all(std::fmax(0.0, fa.lo()), fb.hi());
+    if (a == b) return Affine::FromInterval(all);
+    const double alpha = std::fmin((eb - ea) / (b - a), std::exp(a + 0.5));
+    if (!(alpha > 0)) return Affine::FromInterval(all);
+    Interval ga = GAt(fa, alpha, a), gb = GAt(fb, alpha, b);
+    Interval gMin = Interval(alpha) * (1.0 - log(Interval(alpha)));
+    Fit f = MakeFit(alpha, std::min({ga.lo(), gb.lo(), gMin.lo()}), std::fmax(ga.hi(), gb.hi()),
+                    fb.hi(), kLibmRel);
+    return f.ok ? Affine::ApplyFit(x, f.alpha, f.lo, f.hi) : Affine::FromInterval(all);
+}
+
+// Chebyshev (secant slope): log is concave and increasing, so the form's lowest value is log(a)
+// and only the top overshoots. g's maximum is -ln(alpha) - 1 at t = 1/alpha.
+Affine log(const Affine& x) {
+    if (x.isUnbounded()) return x;
+    Interval range = x.range();
+    if (!(range.lo() > 0)) return Affine::Unbounded();  // log(0) = -inf, log(<0) = NaN
+    const double a = range.lo(), b = range.hi();
+    const double la = std::log(a), lb = std::log(b);
+    Interval fa = LibmAt(la), fb = LibmAt(lb);
+    Interval all(fa.lo(), fb.hi());
+    if (a == b) return Affine::FromInterval(all);
+    const double alpha = (lb - la) / (b - a);
+    if (!(alpha > 0)) return Affine::FromInterval(all);
+    Interval ga = GAt(fa, alpha, a), gb = GAt(fb, alpha, b);
+    Interval gMax = -log(Interval(alpha)) - 1.0;
+    Fit f = MakeFit(alpha, std::fmin(ga.lo(), gb.lo()), std::max({ga.hi(), gb.hi(), gMax.hi()}),
+                    MaxAbs(all), kLibmRel);
+    return f.ok ? Affine::ApplyFit(x, f.alpha, f.lo, f.hi) : Affine::FromInterval(all);
+}
+
+// --- sin, cos -----------------------------------------------------------------------------------
+
+namespace {
+
+// sin and cos over [a, b] (width below 2*pi, |a|, |b| <= 1e8) with the secant slope alpha.
+// g(t) = f(t) - alpha*t is not convex, so every stationary point of g inside [a, b] is visited:
+// f'(t) = alpha at t = base + 2*pi*k, with bases +-acos(alpha) for sin and -asin(alpha),
+// pi + asin(alpha) for cos. A computed point xi is within E of the true one (acos/asin and the
+// representation of pi and of k*2*pi, with a wide margin), so any point that may lie inside is
+// evaluated at xi clamped to [a, b] and widened by the Lipschitz bound (1 + |alpha|)*E of g.
+Fit TrigFit(double a, double b, bool isCos) {
+    auto f = [isCos](double t) { return isCos ? std::cos(t) : std::sin(t); };
+    const double fa = f(a), fb = f(b);
+    const double alpha = std::clamp((fb - fa) / (b - a), -1.0, 1.0);
+    Interval ia = LibmAt(fa), ib = LibmAt(fb);
+    Interval ga = GAt(ia, alpha, a), gb = GAt(ib, alpha, b);
+    double gLo = std::fmin(ga.lo(), gb.lo()), gHi = std::fmax(ga.hi(), gb.hi());
+    double bases[2];
+    if (isCos) {
+        double s = std::asin(alpha);
+        bases[0] = -s;
+        bases[1] = kPi + s;
+    } else {
+        double c = std::acos(alpha);
+        bases[0] = c;
+        bases[1] = -c;
+    }
+    const double lipschitz = 1.0 + std::fabs(alpha);
+    for (double base : bases) {
+        double k0 = std::floor((a - base) / kTwoPi);
+        for (double k = k0 - 2; k <= k0 + 3; k += 1) {
+            double xi = base + k * kTwoPi;
+            double err = 0x1p-47 * (std::fabs(base) + 8 * std::fabs(k) + std::fabs(xi) + 4);
+            if (xi < a - err || xi > b + err) continue;
+            double t = std::clamp(xi, a, b);
+            Interval g = GAt(LibmAt(f(t)), alpha, t);
+            double w = MulUp(lipschitz, err);
+            gLo = std::fmin(gLo, SubDown(g.lo(), w));
+            gHi = std::fmax(gHi, AddUp(g.hi(), w));
+        }
+    }
+    // |f| <= 1, and |f(t)| <= |f(a)| + |t - a| (Lipschitz 1): a bound of max |f| on [a, b].
+    double maxAbsF = std::fmin(1.0, AddUp(std::fmax(MaxAbs(ia), MaxAbs(ib)), b - a));
+    return MakeFit(alpha, gLo, gHi, maxAbsF, kLibmRel);
+}
+
+}  // namespace
+
+// Chebyshev-style fit with the secant slope, unless its radius exceeds the interval range's by a
+// quarter (wide ranges, where a line follows sin poorly): then the interval range on a fresh
+// symbol, as for widths past 2*pi (zeta = 0, delta = 1).
+Affine Affine::SinOrCos(const Affine& x, bool isCos) {
+    if (x.isUnbounded()) return x;
+    Interval range = x.range();
+    const double a = range.lo(), b = range.hi();
+    if (b - a >= kTwoPiBelow || std::fmax(std::fabs(a), std::fabs(b)) > kTrigAnalysisLimit)
+        return ApplyFit(x, 0.0, -1.0, 1.0);
+    Interval all = isCos ? cos(range) : sin(range);
+    if (a == b) return FromInterval(all);
+    Fit f = TrigFit(a, b, isCos);
+    if (!f.ok) return FromInterval(all);
+    double fitRadius = std::fabs(f.alpha) * x.radius() + 0.5 * (f.hi - f.lo);
+    if (fitRadius > 1.25 * all.radius()) return FromInterval(all);
+    return ApplyFit(x, f.alpha, f.lo, f.hi);
+}
+
+Affine sin(const Affine& x) { return Affine::SinOrCos(x, false); }
+Affine cos(const Affine& x) { return Affine::SinOrCos(x, true); }
+
+// --- abs, sign ----------------------------------------------------------------------------------
+
+// Decided signs give x or -x exactly (fabs is exact). Across 0 this is min-range, not Chebyshev:
+// the Chebyshev line through the kink (alpha = (a + b)/(b - a)) makes the form dip to alpha*a < 0,
+// so sqrt(abs(x)) or log(abs(x) + c) would turn Unbounded. min-range for a non-monotone function
+// is alpha = 0: m/2 +- m/2 on a fresh symbol, m = max(-a, b), whose range is exactly [0, m].
+Affine abs(const Affine& x) {
+    if (x.isUnbounded()) return x;
+    Interval range = x.range();
+    if (range.lo() >= 0) return x;
+    if (range.hi() <= 0) return -x;
+    return Affine::ApplyFit(x, 0.0, 0.0, std::fmax(-range.lo(), range.hi()));
+}
+
+// Decided ranges give the exact constants; otherwise the hull of the possible signs, 0.5 +- 0.5,
+// -0.5 +- 0.5 or 0 +- 1, on a fresh symbol.
+Affine sign(const Affine& x) {
+    if (x.isUnbounded()) return x;
+    Interval range = x.range();
+    if (range.lo() > 0) return Affine(1.0);
+    if (range.hi() < 0) return Affine(-1.0);
+    return Affine::ApplyFit(x, 0.0, range.lo() < 0 ? -1.0 : 0.0, range.hi() > 0 ? 1.0 : 0.0);
+}
+
+// --- pow ----------------------------------------------------------------------------------------
+
+Affine Affine::IntegerPower(const Affine& x, int n) {
+    Affine result, base = x;
+    bool have = false;
+    while (n > 0) {
+        if (n & 1) {
+            result = have ? result * base : base;
+            have = true;
+        }
+        n >>= 1;
+        if (n > 0) base = sqr(base);
+    }
+    return result;
+}
+
+// x^p for a constant p on x >= 0 (x > 0 if p < 0). Chebyshev with the secant slope: t^p is convex
+// for p > 1 or p < 0 and concave for 0 < p < 1, and g(t) = t^p - alpha*t has its one stationary
+// point at t = (alpha/p)^(1/(p-1)) with value (1 - p)*(alpha/p)^(p/(p-1)), bounded in interval
+// arithmetic. Elsewhere (negative bases) the interval range of std::pow on a fresh symbol.
+Affine Affine::PowConstant(const Affine& x, double p) {
+    Interval range = x.range();
+    const double a = range.lo(), b = range.hi();
+    if (a < 0 || (a == 0 && p < 0)) return FromInterval(pow(range, Interval(p)));
+    const double pa = std::pow(a, p), pb = std::pow(b, p);
+    Interval fa = LibmAt(pa), fb = LibmAt(pb);
+    Interval all = Hull(fa, fb);
+    if (all.isUnbounded()) return Unbounded();  // overflow, or pow(0, p < 0)
+    all = Interval(std::fmax(0.0, all.lo()), all.hi());
+    if (a == b) return FromInterval(all);
+    const double alpha = (pb - pa) / (b - a);
+    // alpha/p > 0 in exact arithmetic (x^p increases for p > 0, decreases for p < 0).
+    if (!(alpha / p > 0) || !std::isfinite(alpha)) return FromInterval(all);
+    Interval ip(p);
+    Interval gStat = (1.0 - ip) * pow(Interval(alpha) / ip, ip / (ip - 1.0));
+    Interval ga = GAt(fa, alpha, a), gb = GAt(fb, alpha, b);
+    double gLo = std::fmin(ga.lo(), gb.lo()), gHi = std::fmax(ga.hi(), gb.hi());
+    if (p > 1 || p < 0)
+        gLo = std::fmin(gLo, gStat.lo());  // convex: the stationary point is the minimum
+    else
+        gHi = std::fmax(gHi, gStat.hi());  // concave: the maximum
+    Fit f = MakeFit(alpha, gLo, gHi, all.hi(), kLibmRel);
+    return f.ok ? ApplyFit(x, f.alpha, f.lo, f.hi) : FromInterval(all);
+}
+
+// A constant integer exponent |n| <= 64: repeated squaring (of 1/x for n < 0), plus glibc's
+// rounding of pow. Another constant: PowConstant. A varying exponent on x > 0: exp(y*log(x)).
+// Anything else, or any of these going Unbounded: the interval range of std::pow, which is itself
+// Unbounded wherever pow can be NaN or infinite (0 to a negative power, negative base to a
+// non-integer power, overflow).
+Affine pow(const Affine& x, const Affine& y) {
+    if (x.isUnbounded() || y.isUnbounded()) return Affine::Unbounded();
+    if (y.isConstant()) {
+        const double p = y.m_center;
+        if (p == 0) return Affine(1.0);  // std::pow(x, 0) is 1 for every x
+        if (std::floor(p) == p && std::fabs(p) <= kMaxIntegerPower && !x.isConstant()) {
+            Affine base = p > 0 ? x : Affine::Reciprocal(x);
+            if (!base.isUnbounded()) {
+                Affine r = Affine::IntegerPower(base, static_cast<int>(std::fabs(p)));
+                if (!r.isUnbounded())
+                    return r.withExtraError(AddUp(MulUp(r.radius(), kLibmRel),
+                                                  MulUp(std::fabs(r.m_center), kLibmRel)) +
+                                            kLibmAbs);
+            }
+            return Affine::FromInterval(pow(x.range(), Interval(p)));
+        }
+        return Affine::PowConstant(x, p);
+    }
+    Interval rx = x.range();
+    if (rx.lo() > 0) {
+        Affine r = exp(y * log(x));
+        if (!r.isUnbounded())
+            return r.withExtraError(AddUp(MulUp(r.radius(), kLibmRel),
+                                          MulUp(std::fabs(r.m_center), kLibmRel)) +
+                                    kLibmAbs);
+    }
+    return Affine::FromInterval(pow(rx, y.range()));
+}
+
+}  // namespace affray::vm

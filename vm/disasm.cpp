@@ -1,0 +1,89 @@
+// vm/disasm.cpp: the disassembler, driven by the operand formats in vm/opcodes.h.
+#include "vm/disasm.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace affray::vm {
+
+namespace {
+std::string FormatNumber(double x) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.9g", x);
+    return buf;
+}
+
+std::string SourceLine(const std::string& text, int line) {
+    int current = 1;
+    size_t begin = 0;
+    while (current < line) {
+        size_t nl = text.find('\n', begin);
+        if (nl == std::string::npos) return {};
+        begin = nl + 1;
+        ++current;
+    }
+    size_t end = text.find('\n', begin);
+    std::string s = text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    size_t first = s.find_first_not_of(" \t");
+    return first == std::string::npos ? std::string() : s.substr(first);
+}
+}  // namespace
+
+std::string DisassembleInstr(const Program& program, const Instr& in) {
+    if (static_cast<int>(in.op) >= kOpCount) return "<bad opcode " + std::to_string(int(in.op)) + ">";
+    const OpInfo& info = Info(in.op);
+    std::string out = info.name;
+    out.resize(8, ' ');
+    const uint16_t operands[3] = {in.a, in.b, in.c};
+    bool first = true;
+    for (int i = 0; i < 3; ++i) {
+        char kind = info.format[i];
+        if (kind == '-') continue;
+        out += first ? "" : ", ";
+        first = false;
+        if (kind == 'k') {
+            out += "k" + std::to_string(operands[i]);
+            if (operands[i] < program.constants.size())
+                out += " (" + FormatNumber(program.constants[operands[i]]) + ")";
+        } else {
+            out += "r" + std::to_string(operands[i]);
+        }
+    }
+    return out;
+}
+
+std::string Disassemble(const Program& program, const std::string& sourceText) {
+    std::ostringstream out;
+    out << "; shader " << program.shaderName << ": " << program.code.size() << " instructions, "
+        << program.registerCount << " registers, " << program.constants.size() << " constants\n";
+    out << "; globals read:";
+    bool any = false;
+    for (int g = 0; g < kGlobalCount; ++g) {
+        uint16_t r = program.globalRegisters[g];
+        if (r == kNoRegister) continue;
+        any = true;
+        int size = GlobalSize(static_cast<Global>(g));
+        out << " " << GlobalName(static_cast<Global>(g)) << "=r" << r;
+        if (size == 3) out << "..r" << r + 2;
+    }
+    out << (any ? "\n" : " none\n");
+    for (const ProgramOutput& o : program.outputs) {
+        out << "; output " << o.name << " =";
+        for (int i = 0; i < o.size; ++i) out << " r" << o.registers[i];
+        out << "\n";
+    }
+    int lastLine = -1;
+    for (size_t pc = 0; pc < program.code.size(); ++pc) {
+        int line = pc < program.lines.size() ? program.lines[pc] : 0;
+        if (line != lastLine && line > 0) {
+            out << "; " << line << ": " << SourceLine(sourceText, line) << "\n";
+            lastLine = line;
+        }
+        char index[32];
+        std::snprintf(index, sizeof index, "%4zu  ", pc);
+        out << index << DisassembleInstr(program, program.code[pc]) << "\n";
+    }
+    return out.str();
+}
+
+}  // namespace affray::vm

@@ -1,0 +1,18 @@
+// vm/disasm.h: readable listings of programs, for `affray compile --disasm` and debugging.
+#pragma once
+
+#include <string>
+
+#include "vm/program.h"
+
+namespace affray::vm {
+
+/// One instruction as text, e.g. "MulRK   r3, r1, k2 (0.5)".
+std::string DisassembleInstr(const Program& program, const Instr& in);
+
+/// The whole program: a header (globals read, outputs, constants), then one line per
+/// instruction, preceded by the source line it came from whenever that line changes.
+/// `sourceText` is the shader's source (may be empty: then line numbers only).
+std::string Disassemble(const Program& program, const std::string& sourceText);
+
+}  // namespace affray::vm

@@ -1,0 +1,165 @@
+// vm/interval.cpp: the non-trivial interval functions (products, quotients, transcendentals).
+// Each bound is either a directed rounding of an exact extreme (arithmetic, sqrt) or a glibc value
+// at an extreme widened by LibmDown/LibmUp (see vm/rounding.h for why that also contains glibc's
+// value at every inner point). Extremes come from monotone pieces: endpoints, plus the stationary
+// points that lie inside (sin, cos) or 0 (sqr, abs, even powers).
+#include "vm/interval.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace affray::vm {
+
+namespace {
+
+constexpr double kInvPi = 0.31830988618379067154;  // 1/pi rounded to nearest
+// Width past which sin and cos take every value of [-1, 1] (a little below 2*pi).
+constexpr double kTwoPiBelow = 6.2831853;
+// Beyond this magnitude the period analysis is skipped: sin and cos are simply [-1, 1].
+constexpr double kTrigAnalysisLimit = 1e8;
+
+// The true f(t) and glibc's f at points near t lie within the slack of glibc's value r.
+Interval LibmEnclosure(double r) {
+    if (!std::isfinite(r)) return Interval::Unbounded();
+    return Interval(LibmDown(r), LibmUp(r));
+}
+
+// Bounds of sin (phase 0.5) or cos (phase 0) over [a, b] (finite, a <= b): the values at the
+// endpoints, plus +-1 for every extremum t = (k + phase) * pi that may lie inside, k even giving
+// +1. t/pi is computed with a relative error below 4u, so a tolerance of 2^-40 (1 + |t/pi|)
+// cannot exclude an extremum that is inside; including one that is just outside is harmless.
+Interval TrigRange(double a, double b, double fa, double fb, double phase) {
+    if (b - a >= kTwoPiBelow || std::fmax(std::fabs(a), std::fabs(b)) > kTrigAnalysisLimit)
+        return Interval(-1.0, 1.0);
+    double lo = std::fmin(LibmDown(fa), LibmDown(fb));
+    double hi = std::fmax(LibmUp(fa), LibmUp(fb));
+    double ta = a * kInvPi - phase;
+    double tb = b * kInvPi - phase;
+    double kLo = std::ceil(ta - 0x1p-40 * (1 + std::fabs(ta)));
+    double kHi = std::floor(tb + 0x1p-40 * (1 + std::fabs(tb)));
+    for (double k = kLo; k <= kHi && k <= kLo + 2; k += 1) {
+        if (std::fmod(k, 2.0) == 0)
+            hi = 1.0;
+        else
+            lo = -1.0;
+    }
+    // glibc's sin and cos never leave [-1, 1].
+    return Interval(std::fmax(lo, -1.0), std::fmin(hi, 1.0));
+}
+
+bool IsInteger(double y) { return std::isfinite(y) && std::floor(y) == y; }
+
+}  // namespace
+
+double Interval::mid() const {
+    if (isUnbounded()) return 0.0;
+    return 0.5 * m_lo + 0.5 * m_hi;  // no overflow; exact halves unless subnormal
+}
+
+double Interval::radius() const {
+    if (isUnbounded()) return kInfinity;
+    double m = mid();
+    return std::fmax(SubUp(m_hi, m), SubUp(m, m_lo));
+}
+
+std::string Interval::toString() const {
+    if (isUnbounded()) return "unbounded";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "[%.17g, %.17g]", m_lo, m_hi);
+    return buf;
+}
+
+Interval operator*(const Interval& a, const Interval& b) {
+    if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
+    double lo = std::min({MulDown(a.m_lo, b.m_lo), MulDown(a.m_lo, b.m_hi),
+                          MulDown(a.m_hi, b.m_lo), MulDown(a.m_hi, b.m_hi)});
+    double hi = std::max({MulUp(a.m_lo, b.m_lo), MulUp(a.m_lo, b.m_hi), MulUp(a.m_hi, b.m_lo),
+                          MulUp(a.m_hi, b.m_hi)});
+    return Interval(lo, hi);
+}
+
+Interval operator/(const Interval& a, const Interval& b) {
+    if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
+    // x/0 is +-inf or NaN in the scalar semantics.
+    if (b.m_lo <= 0 && b.m_hi >= 0) return Interval::Unbounded();
+    double lo = std::min({DivDown(a.m_lo, b.m_lo), DivDown(a.m_lo, b.m_hi),
+                          DivDown(a.m_hi, b.m_lo), DivDown(a.m_hi, b.m_hi)});
+    double hi = std::max({DivUp(a.m_lo, b.m_lo), DivUp(a.m_lo, b.m_hi), DivUp(a.m_hi, b.m_lo),
+                          DivUp(a.m_hi, b.m_hi)});
+    return Interval(lo, hi);
+}
+
+Interval sqr(const Interval& x) {
+    if (x.isUnbounded()) return x;
+    if (x.m_lo >= 0) return Interval(MulDown(x.m_lo, x.m_lo), MulUp(x.m_hi, x.m_hi));
+    if (x.m_hi <= 0) return Interval(MulDown(x.m_hi, x.m_hi), MulUp(x.m_lo, x.m_lo));
+    double m = std::fmax(-x.m_lo, x.m_hi);
+    return Interval(0.0, MulUp(m, m));
+}
+
+Interval sqrt(const Interval& x) {
+    if (x.isUnbounded() || x.m_lo < 0) return Interval::Unbounded();
+    return Interval(SqrtDown(x.m_lo), SqrtUp(x.m_hi));
+}
+
+Interval exp(const Interval& x) {
+    if (x.isUnbounded()) return x;
+    double hi = LibmUp(std::exp(x.m_hi));
+    if (!(hi <= kMaxFinite)) return Interval::Unbounded();
+    return Interval(std::fmax(0.0, LibmDown(std::exp(x.m_lo))), hi);
+}
+
+Interval log(const Interval& x) {
+    // log(0) = -inf, log(negative) = NaN.
+    if (x.isUnbounded() || !(x.m_lo > 0)) return Interval::Unbounded();
+    return Interval(LibmDown(std::log(x.m_lo)), LibmUp(std::log(x.m_hi)));
+}
+
+Interval sin(const Interval& x) {
+    if (x.isUnbounded()) return x;
+    return TrigRange(x.m_lo, x.m_hi, std::sin(x.m_lo), std::sin(x.m_hi), 0.5);
+}
+
+Interval cos(const Interval& x) {
+    if (x.isUnbounded()) return x;
+    return TrigRange(x.m_lo, x.m_hi, std::cos(x.m_lo), std::cos(x.m_hi), 0.0);
+}
+
+Interval abs(const Interval& x) {
+    if (x.isUnbounded() || x.m_lo >= 0) return x;
+    if (x.m_hi <= 0) return -x;
+    return Interval(0.0, std::fmax(-x.m_lo, x.m_hi));
+}
+
+Interval sign(const Interval& x) {
+    if (x.isUnbounded()) return x;
+    auto s = [](double t) { return t > 0 ? 1.0 : t < 0 ? -1.0 : 0.0; };
+    return Interval(s(x.m_lo), s(x.m_hi));
+}
+
+Interval pow(const Interval& x, const Interval& y) {
+    if (x.isUnbounded() || y.isUnbounded()) return Interval::Unbounded();
+    auto boundOf = [](double r) { return LibmEnclosure(r); };
+    if (y.isPoint() && IsInteger(y.m_lo)) {
+        // Integer exponent: x^n is monotone on each side of 0 (std::pow(x, 0) is 1 even at 0).
+        double n = y.m_lo;
+        if (n == 0) return Interval(1.0);
+        bool straddles = x.m_lo < 0 && x.m_hi > 0;
+        if (n < 0 && x.m_lo <= 0 && x.m_hi >= 0) return Interval::Unbounded();
+        Interval r = Hull(boundOf(std::pow(x.m_lo, n)), boundOf(std::pow(x.m_hi, n)));
+        if (r.isUnbounded()) return r;
+        bool even = std::fmod(n, 2.0) == 0;
+        if (straddles) r = Hull(r, Interval(0.0));
+        if (even) r = Interval(std::fmax(r.m_lo, 0.0), r.m_hi);
+        return r;
+    }
+    // Real exponent: needs x >= 0, and x > 0 where y can be < 0 (pow(0, y < 0) = inf).
+    // For x >= 0, x^y is monotone in x for fixed y and in y for fixed x, so the corners bound it.
+    if (x.m_lo < 0 || (x.m_lo == 0 && y.m_lo < 0)) return Interval::Unbounded();
+    Interval r = Hull(Hull(boundOf(std::pow(x.m_lo, y.m_lo)), boundOf(std::pow(x.m_lo, y.m_hi))),
+                      Hull(boundOf(std::pow(x.m_hi, y.m_lo)), boundOf(std::pow(x.m_hi, y.m_hi))));
+    if (r.isUnbounded()) return r;
+    return Interval(std::fmax(r.m_lo, 0.0), r.m_hi);
+}
+
+}  // namespace affray::vm

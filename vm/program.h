@@ -1,0 +1,83 @@
+// vm/program.h: a compiled shader program, the unit the interpreter runs and files store.
+// A program is straight-line register code over scalars: the caller writes the globals the
+// program reads into their registers, runs it, and reads the outputs' registers.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vm/opcodes.h"
+
+namespace affray::vm {
+
+/// The shader globals a displacement shader can read (RenderMan names).
+#define AFFRAY_GLOBALS(X) \
+    X(P, 3)               \
+    X(N, 3)               \
+    X(Ng, 3)              \
+    X(I, 3)               \
+    X(E, 3)               \
+    X(dPdu, 3)            \
+    X(dPdv, 3)            \
+    X(s, 1)               \
+    X(t, 1)               \
+    X(u, 1)               \
+    X(v, 1)               \
+    X(du, 1)              \
+    X(dv, 1)
+
+enum class Global : uint8_t {
+#define AFFRAY_GLOBAL_ENUM(name, size) name,
+    AFFRAY_GLOBALS(AFFRAY_GLOBAL_ENUM)
+#undef AFFRAY_GLOBAL_ENUM
+};
+#define AFFRAY_GLOBAL_COUNT(name, size) +1
+inline constexpr int kGlobalCount = 0 AFFRAY_GLOBALS(AFFRAY_GLOBAL_COUNT);
+#undef AFFRAY_GLOBAL_COUNT
+
+const char* GlobalName(Global g);
+int GlobalSize(Global g);  // 1 for floats, 3 for triples
+/// The global called `name`, or false.
+bool FindGlobal(const std::string& name, Global* out);
+
+inline constexpr uint16_t kNoRegister = 0xffff;
+
+/// A named result of the program: "P" or "N", one or three registers.
+struct ProgramOutput {
+    std::string name;
+    int size = 3;
+    std::array<uint16_t, 3> registers{kNoRegister, kNoRegister, kNoRegister};
+};
+
+struct Program {
+    std::string shaderName;
+    std::string sourcePath;
+    std::vector<Instr> code;
+    std::vector<int> lines;  // source line of each instruction (debug line table), 0 if none
+    std::vector<double> constants;
+    int registerCount = 0;
+    /// Base register of each global the program reads (three consecutive for triples), or
+    /// kNoRegister: the renderer computes only the globals that are read.
+    std::array<uint16_t, kGlobalCount> globalRegisters;
+    std::vector<ProgramOutput> outputs;
+
+    Program() { globalRegisters.fill(kNoRegister); }
+
+    bool readsGlobal(Global g) const {
+        return globalRegisters[static_cast<int>(g)] != kNoRegister;
+    }
+    /// The output called `name`, or nullptr.
+    const ProgramOutput* findOutput(const std::string& name) const;
+    /// True if the program takes derivatives (Du, Dv, calculatenormal): it then needs a number
+    /// type with derivatives (Dual) to give meaningful results.
+    bool usesDerivatives() const;
+};
+
+}  // namespace affray::vm
+
+namespace affray::vm {
+/// The program of a surface without displacement: outputs P and N are the globals P and N.
+Program IdentityProgram();
+}  // namespace affray::vm

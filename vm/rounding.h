@@ -1,0 +1,130 @@
+// vm/rounding.h: outward rounding and error bounds for the bounded number types (Interval, Affine).
+// Owns the error model; every constant that a containment proof relies on is defined here, once.
+//
+// Error model (round-to-nearest-even doubles, the default; nothing here calls fesetround):
+//  - One +, -, *, / or sqrt of doubles is correctly rounded: |exact - fl(exact)| <= u*|fl(exact)|
+//    with u = 2^-53, except that a product or quotient falling below 2^-1022 may lose up to
+//    2^-1075 absolutely (a sum or difference that underflows is exact).
+//  - NextUp/NextDown step one ulp or more outward; AddUp ... DivDown are the directed roundings of
+//    one operation, exact results kept exact (error-free transforms: TwoSum, and std::fma for the
+//    residual of a product, quotient or root, as in Stolfi & de Figueiredo's rounding discussion).
+//  - glibc's exp, log, sin, cos, pow, acos and asin are documented within 1-2 ulp on x86_64
+//    (glibc's libm-test-ulps). We allow kLibmUlps = 4 ulps (2^-50 relative, plus 16 subnormal
+//    steps), which covers the error of the value at an endpoint and of the value at any point
+//    inside (2 ulps together) with room to spare. LibmDown/LibmUp apply it.
+//  - A bound built from a chain of k <= 256 roundings of non-negative values (or of a difference
+//    P - Q with Q <= P/2, which at most triples the relative error) is at most (1+u)^k too small;
+//    multiplying by kSumSlack = 1 + 2^-45 = 1 + 256u covers that.
+// Sources: Stolfi & de Figueiredo, "Self-Validated Numerical Methods and Applications" (1997),
+// ch. 3-4 on rounding in AA; Heidrich & Seidel, "Ray-tracing procedural displacement shaders",
+// GI 1998. Everything assumes IEEE binary64 with no x87 excess precision (x86-64 SSE2).
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+namespace affray::vm {
+
+/// Unit roundoff u: the relative error of one correctly rounded operation.
+inline constexpr double kUnitRoundoff = 0x1p-53;
+/// 2u: one ulp of any double >= 1, and an upper bound of ulp(x)/|x| for normal x.
+inline constexpr double kEpsilon = 0x1p-52;
+/// The smallest positive (subnormal) double.
+inline constexpr double kMinSubnormal = 0x1p-1074;
+/// Below this, products and quotients may lose absolute (not relative) accuracy.
+inline constexpr double kUnderflowLimit = 0x1p-960;
+/// Absolute slack that covers every underflow of one Affine operation (<= 2^14 products).
+inline constexpr double kUnderflowSlack = 0x1p-1060;
+/// Relative slack for a glibc transcendental: 4 ulps (see the head comment).
+inline constexpr double kLibmRel = 0x1p-50;
+/// Absolute slack for a glibc transcendental whose result is subnormal.
+inline constexpr double kLibmAbs = 0x1p-1070;
+/// Factor that covers the rounding of a chain of up to 256 operations on non-negative values.
+inline constexpr double kSumSlack = 1.0 + 0x1p-45;
+inline constexpr double kMaxFinite = std::numeric_limits<double>::max();
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// A double >= the next double above x (x finite; NextUp(+inf) = +inf, NextUp(-inf) is NaN).
+inline double NextUp(double x) { return x + (std::fabs(x) * kEpsilon + kMinSubnormal); }
+/// A double <= the next double below x.
+inline double NextDown(double x) { return x - (std::fabs(x) * kEpsilon + kMinSubnormal); }
+
+/// The exact rounding error of s = fl(a + b): a + b = s + TwoSumError(a, b, s) (Knuth's TwoSum).
+/// NaN when the sum overflowed.
+inline double TwoSumError(double a, double b, double s) {
+    double bb = s - a;
+    return (a - (s - bb)) + (b - bb);
+}
+
+inline double AddUp(double a, double b) {
+    double s = a + b;
+    return TwoSumError(a, b, s) > 0 ? NextUp(s) : s;
+}
+inline double AddDown(double a, double b) {
+    double s = a + b;
+    return TwoSumError(a, b, s) < 0 ? NextDown(s) : s;
+}
+inline double SubUp(double a, double b) { return AddUp(a, -b); }
+inline double SubDown(double a, double b) { return AddDown(a, -b); }
+
+/// True when the residual of a product, quotient or root near p cannot be trusted (underflow).
+inline bool MayUnderflow(double p) { return std::fabs(p) < kUnderflowLimit; }
+
+inline double MulUp(double a, double b) {
+    double p = a * b;
+    if (MayUnderflow(p)) return (a == 0 || b == 0) ? p : NextUp(p);
+    return std::fma(a, b, -p) > 0 ? NextUp(p) : p;
+}
+inline double MulDown(double a, double b) {
+    double p = a * b;
+    if (MayUnderflow(p)) return (a == 0 || b == 0) ? p : NextDown(p);
+    return std::fma(a, b, -p) < 0 ? NextDown(p) : p;
+}
+
+/// Directed quotients; b != 0. The residual a - q*b has the sign of (a/b - q)*b.
+inline double DivUp(double a, double b) {
+    double q = a / b;
+    if (MayUnderflow(q) || MayUnderflow(a)) return a == 0 ? q : NextUp(q);
+    double r = std::fma(-q, b, a);
+    return (b > 0 ? r > 0 : r < 0) ? NextUp(q) : q;
+}
+inline double DivDown(double a, double b) {
+    double q = a / b;
+    if (MayUnderflow(q) || MayUnderflow(a)) return a == 0 ? q : NextDown(q);
+    double r = std::fma(-q, b, a);
+    return (b > 0 ? r < 0 : r > 0) ? NextDown(q) : q;
+}
+
+/// Directed square roots; x >= 0.
+inline double SqrtUp(double x) {
+    double s = std::sqrt(x);
+    if (MayUnderflow(x)) return x == 0 ? s : NextUp(s);
+    return std::fma(s, s, -x) < 0 ? NextUp(s) : s;
+}
+inline double SqrtDown(double x) {
+    double s = std::sqrt(x);
+    if (MayUnderflow(x)) return x == 0 ? s : NextDown(s);
+    return std::fma(s, s, -x) > 0 ? NextDown(s) : s;
+}
+
+/// Lower/upper bounds of both the true f(t) and glibc's f at any t near an endpoint where glibc
+/// returned r (kLibmUlps of slack; the final subtraction loses at most half an ulp of it).
+inline double LibmDown(double r) { return r - (std::fabs(r) * kLibmRel + kLibmAbs); }
+inline double LibmUp(double r) { return r + (std::fabs(r) * kLibmRel + kLibmAbs); }
+
+/// An upper bound of a sum of non-negative terms: exact when every partial sum was exact.
+class UpperSum {
+  public:
+    void add(double x) {
+        double s = m_sum + x;
+        m_err += std::fabs(TwoSumError(m_sum, x, s));
+        m_sum = s;
+    }
+    double value() const { return m_err == 0 ? m_sum : NextUp(m_sum + m_err); }
+
+  private:
+    double m_sum = 0;
+    double m_err = 0;
+};
+
+}  // namespace affray::vm
