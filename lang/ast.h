@@ -14,7 +14,8 @@
 
 namespace affray::lang {
 
-/// Types as written in source.
+/// Types as written in source. The parser accepts `void` wherever a type may be written (a
+/// declaration, a parameter, a cast) and leaves rejecting void variables to the compiler.
 enum class TypeName { Float, Point, Vector, Normal, Color, String, Void };
 const char* ToString(TypeName t);
 
@@ -116,7 +117,7 @@ struct TranslationUnit {
 };
 
 /// Prints a tree in a compact Lisp-like form, for tests and debugging:
-/// e.g. `(assign+= P (* Km N))`.
+/// e.g. `(+= P (* Km N))`. The format of every node is listed at the top of lang/ast.cpp.
 std::string ToString(const Expr& e);
 std::string ToString(const Stmt& s);
 std::string ToString(const ShaderDef& s);

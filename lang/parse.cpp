@@ -259,7 +259,9 @@ TranslationUnit Parse(Diagnostics& diags) {
     try {
         std::unique_ptr<void, void (*)(void*)> scanner(NewScanner(ctx, text), DeleteScanner);
         Parser parser(ctx);
-        parser.parse();
+        // Every way to fail reports first; this is a net under that rule, not a message users see.
+        if (parser.parse() != 0 && diags.errorCount() == errorsBefore)
+            diags.error(ctx.lex().lastEnd, "syntax error");
     } catch (const std::bad_alloc&) {
         diags.error(ctx.lex().Here(), "out of memory while parsing");
     } catch (const std::exception& e) {

@@ -339,7 +339,8 @@ opt_expr
   ;
 
 // Expressions, lowest precedence first. Each *_nc rule is its twin that does not start with a
-// cast; only expression statements use them.
+// cast; only expression statements use them. Relational operators share one level and are
+// left-associative (`a < b == c` is `(a < b) == c`); the compiler decides what types they take.
 expr
   : cond                    { $$ = $1; }
   | cond assign_op expr     { $$ = ctx.Assign($2, @2, $1, $3); }

@@ -3,6 +3,7 @@
 // through the exact text of Diagnostics::format(), so a change in any message shows up here.
 #include <catch2/catch.hpp>
 
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -186,7 +187,13 @@ displacement wave(float Km = 0.1, freq = 20, decay = 3; point center = point(0.5
 }
 
 TEST_CASE("nodes carry the location of their key token", "[lang]") {
-    Parsed p = Run("displacement\n  wave(float Km = 1)\n{\n  P += -a . b;\n  if (x) y = c ? (1,2,3) : point f(1);\n}\n");
+    Parsed p = Run(
+        "displacement\n"
+        "  wave(float Km = 1)\n"
+        "{\n"
+        "  P += -a . b;\n"
+        "  if (x) y = c ? (1,2,3) : point f(1);\n"
+        "}\n");
     REQUIRE(p.errors.empty());
     const ShaderDef& s = p.unit.shaders.at(0);
     CHECK(s.loc.line == 2);
@@ -418,7 +425,8 @@ TEST_CASE("recovery reports several errors in one run", "[lang]") {
     // The statements around the errors are still there.
     Parsed p = Run("displacement d() { a = 1; b = ; c = 2; }");
     REQUIRE(p.unit.shaders.size() == 1);
-    CHECK(ToString(p.unit.shaders[0]) == "(displacement d (params) (body (= a 1) (empty) (= c 2)))");
+    CHECK(ToString(p.unit.shaders[0]) ==
+          "(displacement d (params) (body (= a 1) (empty) (= c 2)))");
 }
 
 TEST_CASE("loop levels and line markers in messages", "[lang]") {
