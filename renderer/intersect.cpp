@@ -56,6 +56,9 @@ class PatchIntersectorT final : public PatchIntersector {
   private:
     /// Bounds the region and measures it against the ray; false if it provably misses.
     bool BoundRegion(Region& r, double tMin, double tMax);
+    /// The ray parameter of the point of the ray nearest to the surface point at (u, v); false if
+    /// the surface is undefined (not finite) there.
+    bool PointAlongRay(double u, double v, double* t);
 
     BilinearPatch m_patch;
     vm::Interpreter<N> m_interp;
@@ -97,6 +100,23 @@ bool PatchIntersectorT<N>::BoundRegion(Region& r, double tMin, double tMax) {
 }
 
 template <class N>
+bool PatchIntersectorT<N>::PointAlongRay(double u, double v, double* t) {
+    if constexpr (std::is_same_v<N, vm::Affine> || std::is_same_v<N, vm::Dual<vm::Affine>>)
+        vm::Affine::BeginEvaluation();
+    SetPatchGlobals(m_interp, m_patch, u, u, v, v, m_eye);
+    m_interp.Run();
+    Vec3<N> p = m_interp.OutputTriple(*m_output);
+    glm::dvec3 center;
+    for (int i = 0; i < 3; ++i) {
+        vm::Interval r = RangeOf(ValueOf(p[i]));
+        if (r.isUnbounded()) return false;
+        center[i] = r.mid();
+    }
+    *t = glm::dot(center - m_origin, m_dir);
+    return std::isfinite(*t);
+}
+
+template <class N>
 bool PatchIntersectorT<N>::Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance,
                                      bool anyHit, Hit* hit, IntersectStats& stats) {
     m_origin = ray.origin;
@@ -125,10 +145,10 @@ bool PatchIntersectorT<N>::Intersect(const Ray& ray, double tMin, double tMax, c
             double error = r.size;
             double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
             if (!std::isfinite(r.size)) {
-                // Unbounded at the depth limit: take the surface point at the region's centre.
-                Region point{uc, uc, vc, vc, r.depth, 0, 0, 0};
-                if (!BoundRegion(point, tMin, best)) continue;
-                tHit = 0.5 * (point.tLo + point.tHi);
+                // Unbounded down to the depth limit: nothing rules a hit out, so this is a possible
+                // hit (counted, with no certificate), placed where the ray passes the surface
+                // point at the region's centre.
+                if (!PointAlongRay(uc, vc, &tHit)) continue;
                 error = INFINITY;
             }
             tHit = std::clamp(tHit, std::max(r.tLo, tMin), std::max(std::min(r.tHi, best), tMin));

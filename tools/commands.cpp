@@ -9,6 +9,7 @@
 
 #include "compiler/compile.h"
 #include "renderer/exr_writer.h"
+#include "renderer/png_writer.h"
 #include "renderer/render.h"
 #include "renderer/rib.h"
 #include "renderer/surface.h"
@@ -164,6 +165,10 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     renderer::RenderImage(prepared, options, &image, &stats);
     std::string outputPath = cmd.outputPath.empty() ? scene->displayName : cmd.outputPath;
     if (!renderer::WriteExr(outputPath, image, &error)) {
+        std::fprintf(err, "affray: error: %s\n", error.c_str());
+        return 1;
+    }
+    if (!cmd.pngPath.empty() && !renderer::WritePngPreview(cmd.pngPath, image, &error)) {
         std::fprintf(err, "affray: error: %s\n", error.c_str());
         return 1;
     }

@@ -34,6 +34,7 @@ struct RenderCommand {
     renderer::BoundMode bounds = renderer::BoundMode::Affine;
     int maxDepth = 24;
     bool stats = false;
+    std::string pngPath;  // empty: no preview
 };
 
 int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err);

@@ -15,7 +15,7 @@ namespace {
 const char* const kUsage =
     "usage:\n"
     "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS]\n"
-    "                [--bounds affine|interval] [--max-depth N] [--stats]\n"
+    "                [--bounds affine|interval] [--max-depth N] [--stats] [--png PREVIEW.png]\n"
     "  affray compile SHADER.sl [-o OUT] [--disasm]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
     "              [--mode scalar|affine|interval]\n"
@@ -137,6 +137,7 @@ int Render(Args& args) {
             else if (b == "interval") cmd.bounds = affray::renderer::BoundMode::Interval;
             else throw UsageError{"--bounds takes affine or interval, got '" + b + "'"};
         } else if (a == "--stats") cmd.stats = true;
+        else if (a == "--png") cmd.pngPath = args.Value(a);
         else SetInput(&cmd.scenePath, a);
     }
     if (cmd.scenePath.empty()) throw UsageError{"render: missing SCENE.rib"};

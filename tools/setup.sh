@@ -3,7 +3,7 @@
 # packages. Idempotent, and silent when everything is already there.
 set -euo pipefail
 
-packages=(build-essential cmake flex bison libopenexr-dev libglm-dev catch2 python3)
+packages=(build-essential cmake flex bison libopenexr-dev libglm-dev zlib1g-dev catch2)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -162,6 +162,6 @@ TEST_CASE("intersector: the depth limit is counted and still yields hits", "[ren
     IntersectStats stats;
     REQUIRE(intersector->Intersect(ray, 0, INFINITY, {1e-9, 0}, false, &hit, stats));
     CHECK(hit.depthLimited);
-    CHECK(stats.depthLimitHits == 1);
+    CHECK(stats.depthLimitHits >= 1);
     CheckCertificate(r.shader->bound, ray, hit);
 }
