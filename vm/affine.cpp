@@ -7,10 +7,10 @@
 // exact value that the form encloses. Linear operations put their error into e; products and
 // unary functions put theirs (input errors, the nonlinear remainder, all rounding) into a fresh
 // symbol, so that later operations keep the correlation (Stolfi & de Figueiredo 1997, sec. 3.6).
+#include "vm/affine.h"
+
 #include <algorithm>
 #include <cstdio>
-
-#include "vm/affine.h"
 
 namespace affray::vm {
 
@@ -26,12 +26,23 @@ static_assert(5 * Affine::kCapacity + 32 <= 256, "raise kSumSlack for this capac
 
 }  // namespace
 
-// A scratch term list: a merge of two forms plus one fresh term, before folding.
+// Where an operation writes its terms: straight into the result when they are sure to fit (no
+// copy), else into a scratch list long enough for a merge plus a fresh term, which finish()
+// folds down to kCapacity.
 struct Affine::Terms {
     static constexpr int kMax = 2 * kCapacity + 2;
-    SymbolId symbols[kMax];
-    double coefs[kMax];
+    SymbolId* symbols;
+    double* coefs;
     int count = 0;
+    bool direct;
+    SymbolId scratchSymbols[kMax];
+    double scratchCoefs[kMax];
+
+    Terms(Affine& result, int maxTerms)
+        : symbols(maxTerms <= kCapacity ? result.m_symbols : scratchSymbols),
+          coefs(maxTerms <= kCapacity ? result.m_coefs : scratchCoefs),
+          direct(maxTerms <= kCapacity) {}
+    Terms(const Terms&) = delete;
 
     // Appends a term with a larger id than any so far; zero coefficients are dropped.
     void push(SymbolId s, double c) {
@@ -82,31 +93,32 @@ Affine Affine::FromInterval(const Interval& range) {
     return r;
 }
 
-Affine Affine::Assemble(double center, double error, Terms& terms) {
-    if (!(std::fabs(center) <= kMaxFinite && error <= kMaxFinite)) return Unbounded();
-    // Fold the smallest terms other than eps_u and eps_v into the error until the rest fit.
-    while (terms.count > kCapacity) {
-        int smallest = -1;
+bool Affine::finish(double center, double error, Terms& terms) {
+    if (!terms.direct) {
+        // Fold the smallest terms other than eps_u and eps_v into the error until the rest fit.
+        while (terms.count > kCapacity) {
+            int smallest = -1;
+            for (int i = 0; i < terms.count; ++i) {
+                if (terms.symbols[i] < kFirstFreshSymbol) continue;
+                if (smallest < 0 || std::fabs(terms.coefs[i]) < std::fabs(terms.coefs[smallest]))
+                    smallest = i;
+            }
+            error = AddUp(error, std::fabs(terms.coefs[smallest]));
+            for (int i = smallest + 1; i < terms.count; ++i) {
+                terms.symbols[i - 1] = terms.symbols[i];
+                terms.coefs[i - 1] = terms.coefs[i];
+            }
+            --terms.count;
+        }
         for (int i = 0; i < terms.count; ++i) {
-            if (terms.symbols[i] < kFirstFreshSymbol) continue;
-            if (smallest < 0 || std::fabs(terms.coefs[i]) < std::fabs(terms.coefs[smallest]))
-                smallest = i;
+            m_symbols[i] = terms.symbols[i];
+            m_coefs[i] = terms.coefs[i];
         }
-        error = AddUp(error, std::fabs(terms.coefs[smallest]));
-        for (int i = smallest + 1; i < terms.count; ++i) {
-            terms.symbols[i - 1] = terms.symbols[i];
-            terms.coefs[i - 1] = terms.coefs[i];
-        }
-        --terms.count;
     }
-    if (!(error <= kMaxFinite)) return Unbounded();
-    Affine r;
-    r.m_center = center;
-    r.m_error = error;
-    r.m_count = terms.count;
-    std::copy(terms.symbols, terms.symbols + terms.count, r.m_symbols);
-    std::copy(terms.coefs, terms.coefs + terms.count, r.m_coefs);
-    return r;
+    m_center = center;
+    m_error = error;
+    m_count = terms.count;
+    return std::fabs(center) <= kMaxFinite && error <= kMaxFinite;
 }
 
 double Affine::coefficientOf(SymbolId id) const {
@@ -197,35 +209,47 @@ Affine Affine::AddForms(const Affine& x, const Affine& y) {
     const double sy = kSubtract ? -1.0 : 1.0;
     // Both exact constants: the scalar result is exactly this double.
     if (x.isConstant() && y.isConstant()) return Affine(x.center() + sy * y.center());
-    Affine::Terms t;
+    Affine r;
+    Terms t(r, x.m_count + y.m_count);
+    // Locals, not t's members, in the loop: the stores through t.symbols could alias them.
+    SymbolId* ts = t.symbols;
+    double* tc = t.coefs;
+    int n = 0;
+    auto push = [&](SymbolId sym, double c) {
+        ts[n] = sym;
+        tc[n] = c;
+        n += (c != 0);
+    };
     double absSum = 0;
     int i = 0, j = 0;
-    const int nx = x.termCount(), ny = y.termCount();
+    const int nx = x.m_count, ny = y.m_count;
     while (i < nx && j < ny) {
-        Affine::SymbolId a = x.termSymbol(i), b = y.termSymbol(j);
+        SymbolId a = x.m_symbols[i], b = y.m_symbols[j];
         double c;
         if (a == b) {
-            c = x.termCoef(i++) + sy * y.termCoef(j++);
+            c = x.m_coefs[i++] + sy * y.m_coefs[j++];
         } else if (a < b) {
-            c = x.termCoef(i++);
+            c = x.m_coefs[i++];
             b = a;
         } else {
-            c = sy * y.termCoef(j++);
+            c = sy * y.m_coefs[j++];
         }
         absSum += std::fabs(c);
-        t.push(b, c);
+        push(b, c);
     }
     for (; i < nx; ++i) {
-        absSum += std::fabs(x.termCoef(i));
-        t.push(x.termSymbol(i), x.termCoef(i));
+        absSum += std::fabs(x.m_coefs[i]);
+        push(x.m_symbols[i], x.m_coefs[i]);
     }
     for (; j < ny; ++j) {
-        absSum += std::fabs(y.termCoef(j));
-        t.push(y.termSymbol(j), sy * y.termCoef(j));
+        absSum += std::fabs(y.m_coefs[j]);
+        push(y.m_symbols[j], sy * y.m_coefs[j]);
     }
-    double center = x.center() + sy * y.center();
+    t.count = n;
+    const double center = x.m_center + sy * y.m_center;
     absSum += std::fabs(center);
-    return Affine::Assemble(center, LinearError(x.error() + y.error(), absSum), t);
+    if (!r.finish(center, LinearError(x.m_error + y.m_error, absSum), t)) r = Unbounded();
+    return r;
 }
 
 Affine operator+(const Affine& x, const Affine& y) { return Affine::AddForms<false>(x, y); }
@@ -285,7 +309,16 @@ Affine operator*(const Affine& x, const Affine& y) {
     if (x.isConstant()) return y * x.m_center;
     if (y.isConstant()) return x * y.m_center;
     const double x0 = x.m_center, y0 = y.m_center;
-    Affine::Terms t;
+    Affine r;
+    Affine::Terms t(r, x.m_count + y.m_count + 1);
+    Affine::SymbolId* ts = t.symbols;
+    double* tc = t.coefs;
+    int n = 0;
+    auto push = [&](Affine::SymbolId sym, double c) {
+        ts[n] = sym;
+        tc[n] = c;
+        n += (c != 0);
+    };
     double rx = 0, ry = 0, diag = 0, absDiag = 0, absSum = 0;
     int i = 0, j = 0;
     while (i < x.m_count && j < y.m_count) {
@@ -310,20 +343,21 @@ Affine operator*(const Affine& x, const Affine& y) {
             ry += std::fabs(yi);
         }
         absSum += std::fabs(c);
-        t.push(b, c);
+        push(b, c);
     }
     for (; i < x.m_count; ++i) {
         double c = y0 * x.m_coefs[i];
         rx += std::fabs(x.m_coefs[i]);
         absSum += std::fabs(c);
-        t.push(x.m_symbols[i], c);
+        push(x.m_symbols[i], c);
     }
     for (; j < y.m_count; ++j) {
         double c = x0 * y.m_coefs[j];
         ry += std::fabs(y.m_coefs[j]);
         absSum += std::fabs(c);
-        t.push(y.m_symbols[j], c);
+        push(y.m_symbols[j], c);
     }
+    t.count = n;
     const double ex = x.m_error, ey = y.m_error;
     const double p0 = x0 * y0;
     const double center = p0 + 0.5 * diag;
@@ -338,7 +372,8 @@ Affine operator*(const Affine& x, const Affine& y) {
     const double delta = (quad + linear + rounding) * kSumSlack + kUnderflowSlack;
     if (!(delta <= kMaxFinite)) return Affine::Unbounded();
     t.insert(Affine::NewSymbol(), delta);
-    return Affine::Assemble(center, 0.0, t);
+    if (!r.finish(center, 0.0, t)) r = Affine::Unbounded();
+    return r;
 }
 
 // (x0 + X + E)^2 = x0^2 + 2*x0*X + 2*x0*E + (X + E)^2 with (X + E)^2 in [0, q], q = (r + e)^2.
@@ -346,14 +381,19 @@ Affine sqr(const Affine& x) {
     if (x.isUnbounded()) return x;
     if (x.isConstant()) return Affine(x.m_center * x.m_center);
     const double x0 = x.m_center, twoX0 = 2 * x0;
-    Affine::Terms t;
+    Affine result;
+    Affine::Terms t(result, x.m_count + 1);
     double r = 0, absSum = 0;
+    int n = 0;
     for (int i = 0; i < x.m_count; ++i) {
         double c = twoX0 * x.m_coefs[i];
         r += std::fabs(x.m_coefs[i]);
         absSum += std::fabs(c);
-        t.push(x.m_symbols[i], c);
+        t.symbols[n] = x.m_symbols[i];
+        t.coefs[n] = c;
+        n += (c != 0);
     }
+    t.count = n;
     const double e = x.m_error;
     const double q = (r + e) * (r + e);
     const double p0 = x0 * x0;
@@ -365,7 +405,8 @@ Affine sqr(const Affine& x) {
     const double delta = (0.5 * q + linear + rounding) * kSumSlack + kUnderflowSlack;
     if (!(delta <= kMaxFinite)) return Affine::Unbounded();
     t.insert(Affine::NewSymbol(), delta);
-    return Affine::Assemble(center, 0.0, t);
+    if (!result.finish(center, 0.0, t)) result = Affine::Unbounded();
+    return result;
 }
 
 Affine Affine::ApplyFit(const Affine& x, double alpha, double gLo, double gHi) {
@@ -373,18 +414,24 @@ Affine Affine::ApplyFit(const Affine& x, double alpha, double gLo, double gHi) {
     const double zeta = 0.5 * gLo + 0.5 * gHi;
     const double delta0 = std::fmax(SubUp(gHi, zeta), SubUp(zeta, gLo));
     if (!(std::fabs(zeta) <= kMaxFinite && delta0 <= kMaxFinite)) return Unbounded();
-    Terms t;
+    Affine r;
+    Terms t(r, x.m_count + 1);
     if (alpha == 0) {
         // zeta +- delta0 exactly: no coefficient is computed, so nothing else is rounded.
         if (delta0 > 0) t.push(NewSymbol(), delta0);
-        return Assemble(zeta, 0.0, t);
+        if (!r.finish(zeta, 0.0, t)) r = Unbounded();
+        return r;
     }
     double absSum = 0;
+    int n = 0;
     for (int i = 0; i < x.m_count; ++i) {
         double c = alpha * x.m_coefs[i];
         absSum += std::fabs(c);
-        t.push(x.m_symbols[i], c);
+        t.symbols[n] = x.m_symbols[i];
+        t.coefs[n] = c;
+        n += (c != 0);
     }
+    t.count = n;
     const double ax0 = alpha * x.m_center;
     const double center = ax0 + zeta;
     absSum += std::fabs(ax0) + std::fabs(center);
@@ -392,7 +439,8 @@ Affine Affine::ApplyFit(const Affine& x, double alpha, double gLo, double gHi) {
         (delta0 + std::fabs(alpha) * x.m_error + absSum * kEpsilon) * kSumSlack + kUnderflowSlack;
     if (!(delta <= kMaxFinite)) return Unbounded();
     t.insert(NewSymbol(), delta);
-    return Assemble(center, 0.0, t);
+    if (!r.finish(center, 0.0, t)) r = Unbounded();
+    return r;
 }
 
 }  // namespace affray::vm

@@ -46,7 +46,8 @@ class Affine {
     Affine(double c) : m_center(c) {  // NOLINT: implicit by design (Number API)
         if (!std::isfinite(c)) *this = Unbounded();
     }
-    /// center + radius*eps_id exactly (radius may be negative; 0 gives the constant).
+    /// center + radius*eps_id exactly (radius may be negative; 0 gives the constant). Ids from
+    /// kFirstFreshSymbol on are the fresh symbols': a caller using them must keep them apart.
     static Affine FromSymbol(double center, double radius, SymbolId id);
     /// A form with the range of `range` on a fresh symbol (a constant for a point).
     static Affine FromInterval(const Interval& range);
@@ -91,18 +92,28 @@ class Affine {
     /// x*x by the square rule: center x0^2 + r^2/2, coefficients 2*x0*xi, error r^2/2.
     friend Affine sqr(const Affine& x);
 
-    // Division and nonlinear functions (affine_functions.cpp).
-    /// Unbounded when the divisor's range contains 0.
+    // Division and nonlinear functions (affine_functions.cpp); each is explained there.
+    /// x * (1/y) by a Chebyshev 1/y; Unbounded when the divisor's range contains 0.
     friend Affine operator/(const Affine& x, const Affine& y);
     friend Affine operator/(const Affine& x, double c);
     friend Affine operator/(double c, const Affine& x);
+    /// Chebyshev; Unbounded if the range has negative values.
     friend Affine sqrt(const Affine& x);
+    /// Chebyshev with the slope capped to keep the form positive; Unbounded on overflow.
     friend Affine exp(const Affine& x);
+    /// Chebyshev; Unbounded unless the range is > 0.
     friend Affine log(const Affine& x);
+    /// Secant slope with every stationary point of the remainder visited; [-1, 1] on a fresh
+    /// symbol past a width of 2*pi or beyond |x| = 1e8.
     friend Affine sin(const Affine& x);
     friend Affine cos(const Affine& x);
+    /// x or -x where the sign is decided, else min-range [0, max|x|] on a fresh symbol.
     friend Affine abs(const Affine& x);
+    /// 1, -1 or 0 where decided, else the hull of the possible signs on a fresh symbol.
     friend Affine sign(const Affine& x);
+    /// std::pow's semantics: integer constant exponents by repeated squaring, other constants by
+    /// Chebyshev on x >= 0, varying ones by exp(y*log(x)) on x > 0, else interval bounds;
+    /// Unbounded wherever std::pow can be NaN or infinite.
     friend Affine pow(const Affine& x, const Affine& y);
 
     // Number API (vm/number.h).
@@ -115,11 +126,12 @@ class Affine {
     friend std::string ToString(const Affine& x) { return x.toString(); }
 
   private:
-    struct Terms;  // a scratch term list, larger than kCapacity (affine.cpp)
+    struct Terms;  // the term list an operation writes (affine.cpp)
 
-    /// Builds the result of an operation: terms folded to kCapacity, Unbounded if anything
-    /// is not finite. `error` is already rounded up.
-    static Affine Assemble(double center, double error, Terms& terms);
+    /// Completes this result of an operation: the terms folded to kCapacity if they were
+    /// written to scratch, then center and error (already rounded up). False if anything is
+    /// not finite (the caller returns Unbounded).
+    bool finish(double center, double error, Terms& terms);
     /// alpha*x + zeta +- delta on a fresh symbol, where g(t) = f(t) - alpha*t lies in [gLo, gHi]
     /// for every t in x's range (f's glibc rounding included): the result of any unary f.
     static Affine ApplyFit(const Affine& x, double alpha, double gLo, double gHi);
@@ -137,6 +149,7 @@ class Affine {
     static Affine SinOrCos(const Affine& x, bool isCos);
     /// x^n for an integer 1 <= n by repeated squaring.
     static Affine IntegerPower(const Affine& x, int n);
+    /// x^p for a constant p that is not a small integer (or x constant).
     static Affine PowConstant(const Affine& x, double p);
 
     double m_center = 0;

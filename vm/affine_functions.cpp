@@ -18,10 +18,10 @@ namespace affray::vm {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;   // 2*pi rounded to nearest (below 2*pi)
-constexpr double kPi = 3.141592653589793;       // pi rounded to nearest (below pi)
-constexpr double kTwoPiBelow = 6.2831853;       // sin and cos cover [-1, 1] past this width
-constexpr double kTrigAnalysisLimit = 1e8;      // beyond it, sin and cos are just [-1, 1]
+constexpr double kTwoPi = 6.283185307179586;  // 2*pi rounded to nearest (below 2*pi)
+constexpr double kPi = 3.141592653589793;     // pi rounded to nearest (below pi)
+constexpr double kTwoPiBelow = 6.2831853;     // sin and cos cover [-1, 1] past this width
+constexpr double kTrigAnalysisLimit = 1e8;    // beyond it, sin and cos are just [-1, 1]
 constexpr int kMaxIntegerPower = 64;
 
 // An enclosure of the true f(t), and of glibc's f near t, from glibc's value r = f(t).
@@ -30,9 +30,11 @@ Interval LibmAt(double r) {
     return Interval(LibmDown(r), LibmUp(r));
 }
 
-// An enclosure of g(t) = f(t) - alpha*t from an enclosure of f(t).
+// An enclosure of g(t) = f(t) - alpha*t from an enclosure of f(t). The product is widened by a
+// full ulp either way (cheaper than its exact directed roundings, and as good here).
 Interval GAt(const Interval& f, double alpha, double t) {
-    return f - Interval(MulDown(alpha, t), MulUp(alpha, t));
+    const double p = alpha * t;
+    return Interval(SubDown(f.lo(), NextUp(p)), SubUp(f.hi(), NextDown(p)));
 }
 
 // The bounds [gLo - slack, gHi + slack] of g for ApplyFit, where `slack` bounds glibc's rounding
@@ -71,9 +73,9 @@ Affine Affine::Reciprocal(const Affine& x) {
     const double alpha = -(1.0 / a) / b;
     if (!(alpha < 0)) return FromInterval(all);
     Interval ga = GAt(ra, alpha, a), gb = GAt(rb, alpha, b);
-    Interval gMin = 2.0 * sqrt(Interval(-alpha));
-    Fit f = MakeFit(alpha, std::min({ga.lo(), gb.lo(), gMin.lo()}), std::fmax(ga.hi(), gb.hi()),
-                    0.0, 0.0);
+    const double gMin = 2.0 * SqrtDown(-alpha);
+    Fit f =
+        MakeFit(alpha, std::min({ga.lo(), gb.lo(), gMin}), std::fmax(ga.hi(), gb.hi()), 0.0, 0.0);
     return f.ok ? ApplyFit(x, f.alpha, f.lo, f.hi) : FromInterval(all);
 }
 
@@ -119,9 +121,9 @@ Affine sqrt(const Affine& x) {
     const double alpha = 1.0 / (std::sqrt(a) + std::sqrt(b));
     if (a == b || !(alpha > 0)) return Affine::FromInterval(all);
     Interval ga = GAt(sa, alpha, a), gb = GAt(sb, alpha, b);
-    Interval gMax = Interval(0.25) / Interval(alpha);
-    Fit f = MakeFit(alpha, std::fmin(ga.lo(), gb.lo()), std::max({ga.hi(), gb.hi(), gMax.hi()}),
-                    sb.hi(), kEpsilon);
+    const double gMax = DivUp(0.25, alpha);
+    Fit f = MakeFit(alpha, std::fmin(ga.lo(), gb.lo()), std::max({ga.hi(), gb.hi(), gMax}), sb.hi(),
+                    kEpsilon);
     return f.ok ? Affine::ApplyFit(x, f.alpha, f.lo, f.hi) : Affine::FromInterval(all);
 }
 
@@ -143,9 +145,10 @@ Affine exp(const Affine& x) {
     const double alpha = std::fmin((eb - ea) / (b - a), std::exp(a + 0.5));
     if (!(alpha > 0)) return Affine::FromInterval(all);
     Interval ga = GAt(fa, alpha, a), gb = GAt(fb, alpha, b);
-    Interval gMin = Interval(alpha) * (1.0 - log(Interval(alpha)));
-    Fit f = MakeFit(alpha, std::min({ga.lo(), gb.lo(), gMin.lo()}), std::fmax(ga.hi(), gb.hi()),
-                    fb.hi(), kLibmRel);
+    // alpha > 0: the lower bound of alpha*(1 - ln alpha) takes the upper bound of ln alpha.
+    const double gMin = MulDown(alpha, SubDown(1.0, LibmUp(std::log(alpha))));
+    Fit f = MakeFit(alpha, std::min({ga.lo(), gb.lo(), gMin}), std::fmax(ga.hi(), gb.hi()), fb.hi(),
+                    kLibmRel);
     return f.ok ? Affine::ApplyFit(x, f.alpha, f.lo, f.hi) : Affine::FromInterval(all);
 }
 
@@ -163,8 +166,8 @@ Affine log(const Affine& x) {
     const double alpha = (lb - la) / (b - a);
     if (!(alpha > 0)) return Affine::FromInterval(all);
     Interval ga = GAt(fa, alpha, a), gb = GAt(fb, alpha, b);
-    Interval gMax = -log(Interval(alpha)) - 1.0;
-    Fit f = MakeFit(alpha, std::fmin(ga.lo(), gb.lo()), std::max({ga.hi(), gb.hi(), gMax.hi()}),
+    const double gMax = SubUp(-LibmDown(std::log(alpha)), 1.0);
+    Fit f = MakeFit(alpha, std::fmin(ga.lo(), gb.lo()), std::max({ga.hi(), gb.hi(), gMax}),
                     MaxAbs(all), kLibmRel);
     return f.ok ? Affine::ApplyFit(x, f.alpha, f.lo, f.hi) : Affine::FromInterval(all);
 }
@@ -176,9 +179,10 @@ namespace {
 // sin and cos over [a, b] (width below 2*pi, |a|, |b| <= 1e8) with the secant slope alpha.
 // g(t) = f(t) - alpha*t is not convex, so every stationary point of g inside [a, b] is visited:
 // f'(t) = alpha at t = base + 2*pi*k, with bases +-acos(alpha) for sin and -asin(alpha),
-// pi + asin(alpha) for cos. A computed point xi is within E of the true one (acos/asin and the
+// pi + asin(alpha) for cos. A computed point xi is within E of the true one t* (acos/asin and the
 // representation of pi and of k*2*pi, with a wide margin), so any point that may lie inside is
-// evaluated at xi clamped to [a, b] and widened by the Lipschitz bound (1 + |alpha|)*E of g.
+// evaluated at xi clamped to [a, b] (still within E of t*) and widened by E^2 >= E^2/2 max|g''|,
+// Taylor's bound around a stationary point.
 Fit TrigFit(double a, double b, bool isCos) {
     auto f = [isCos](double t) { return isCos ? std::cos(t) : std::sin(t); };
     const double fa = f(a), fb = f(b);
@@ -196,7 +200,6 @@ Fit TrigFit(double a, double b, bool isCos) {
         bases[0] = c;
         bases[1] = -c;
     }
-    const double lipschitz = 1.0 + std::fabs(alpha);
     for (double base : bases) {
         double k0 = std::floor((a - base) / kTwoPi);
         for (double k = k0 - 2; k <= k0 + 3; k += 1) {
@@ -205,7 +208,8 @@ Fit TrigFit(double a, double b, bool isCos) {
             if (xi < a - err || xi > b + err) continue;
             double t = std::clamp(xi, a, b);
             Interval g = GAt(LibmAt(f(t)), alpha, t);
-            double w = MulUp(lipschitz, err);
+            // g'(t*) = 0 and |g''| = |f''| <= 1: g(t) is within err^2/2 of g(t*).
+            double w = MulUp(err, err);
             gLo = std::fmin(gLo, SubDown(g.lo(), w));
             gHi = std::fmax(gHi, AddUp(g.hi(), w));
         }
@@ -219,19 +223,24 @@ Fit TrigFit(double a, double b, bool isCos) {
 
 // Chebyshev-style fit with the secant slope, unless its radius exceeds the interval range's by a
 // quarter (wide ranges, where a line follows sin poorly): then the interval range on a fresh
-// symbol, as for widths past 2*pi (zeta = 0, delta = 1).
+// symbol, as for widths past 2*pi (zeta = 0, delta = 1). Past |x| = 1e8 also [-1, 1]: the
+// stationary-point enumeration would need ever more care for a range that is all noise anyway.
 Affine Affine::SinOrCos(const Affine& x, bool isCos) {
     if (x.isUnbounded()) return x;
     Interval range = x.range();
     const double a = range.lo(), b = range.hi();
     if (b - a >= kTwoPiBelow || std::fmax(std::fabs(a), std::fabs(b)) > kTrigAnalysisLimit)
         return ApplyFit(x, 0.0, -1.0, 1.0);
-    Interval all = isCos ? cos(range) : sin(range);
-    if (a == b) return FromInterval(all);
+    auto all = [&] { return isCos ? cos(range) : sin(range); };
+    if (a == b) return FromInterval(all());
     Fit f = TrigFit(a, b, isCos);
-    if (!f.ok) return FromInterval(all);
-    double fitRadius = std::fabs(f.alpha) * x.radius() + 0.5 * (f.hi - f.lo);
-    if (fitRadius > 1.25 * all.radius()) return FromInterval(all);
+    if (!f.ok) return FromInterval(all());
+    // Below half a radian the line is never much worse than the interval: skip the comparison.
+    if (b - a > 0.5) {
+        Interval r = all();
+        double fitRadius = std::fabs(f.alpha) * x.radius() + 0.5 * (f.hi - f.lo);
+        if (fitRadius > 1.25 * r.radius()) return FromInterval(r);
+    }
     return ApplyFit(x, f.alpha, f.lo, f.hi);
 }
 
@@ -242,7 +251,7 @@ Affine cos(const Affine& x) { return Affine::SinOrCos(x, true); }
 
 // Decided signs give x or -x exactly (fabs is exact). Across 0 this is min-range, not Chebyshev:
 // the Chebyshev line through the kink (alpha = (a + b)/(b - a)) makes the form dip to alpha*a < 0,
-// so sqrt(abs(x)) or log(abs(x) + c) would turn Unbounded. min-range for a non-monotone function
+// so sqrt(abs(x)) or pow(abs(x), y) would turn Unbounded. min-range for a non-monotone function
 // is alpha = 0: m/2 +- m/2 on a fresh symbol, m = max(-a, b), whose range is exactly [0, m].
 Affine abs(const Affine& x) {
     if (x.isUnbounded()) return x;
@@ -322,9 +331,9 @@ Affine pow(const Affine& x, const Affine& y) {
             if (!base.isUnbounded()) {
                 Affine r = Affine::IntegerPower(base, static_cast<int>(std::fabs(p)));
                 if (!r.isUnbounded())
-                    return r.withExtraError(AddUp(MulUp(r.radius(), kLibmRel),
-                                                  MulUp(std::fabs(r.m_center), kLibmRel)) +
-                                            kLibmAbs);
+                    return r.withExtraError(
+                        AddUp(MulUp(r.radius(), kLibmRel), MulUp(std::fabs(r.m_center), kLibmRel)) +
+                        kLibmAbs);
             }
             return Affine::FromInterval(pow(x.range(), Interval(p)));
         }
@@ -334,9 +343,9 @@ Affine pow(const Affine& x, const Affine& y) {
     if (rx.lo() > 0) {
         Affine r = exp(y * log(x));
         if (!r.isUnbounded())
-            return r.withExtraError(AddUp(MulUp(r.radius(), kLibmRel),
-                                          MulUp(std::fabs(r.m_center), kLibmRel)) +
-                                    kLibmAbs);
+            return r.withExtraError(
+                AddUp(MulUp(r.radius(), kLibmRel), MulUp(std::fabs(r.m_center), kLibmRel)) +
+                kLibmAbs);
     }
     return Affine::FromInterval(pow(rx, y.range()));
 }

@@ -47,9 +47,7 @@ class Interval {
     bool isUnbounded() const { return !(m_hi <= kMaxFinite); }
     bool isPoint() const { return m_lo == m_hi; }
     /// NaN and infinities are contained only in Unbounded.
-    bool contains(double x) const {
-        return isUnbounded() || (x >= m_lo && x <= m_hi);
-    }
+    bool contains(double x) const { return isUnbounded() || (x >= m_lo && x <= m_hi); }
     /// "[lo, hi]" with round-trip precision, or "unbounded".
     std::string toString() const;
 

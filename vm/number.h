@@ -92,6 +92,8 @@ struct NumberTraits<Dual<Interval>> {
 /// What the interpreter uses: construction from a double constant, copies, arithmetic (also
 /// mixed with double on either side), the built-in functions, derivatives (the "unknown" value
 /// for types without them), the range of a value, and the traits.
+// (clang-format 14 garbles requires-expressions.)
+// clang-format off
 template <class T>
 concept Number = std::copyable<T> && std::convertible_to<double, T> &&
                  requires(T a, T b, double d) {
@@ -124,6 +126,7 @@ concept Number = std::copyable<T> && std::convertible_to<double, T> &&
                      { NumberTraits<T>::kName } -> std::convertible_to<const char*>;
                      { NumberTraits<T>::kHasDerivatives } -> std::convertible_to<bool>;
                  };
+// clang-format on
 
 static_assert(Number<double>);
 static_assert(Number<Interval>);

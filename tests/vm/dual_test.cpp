@@ -4,7 +4,6 @@
 // on both, so this is the containment invariant applied to derivative expressions); and the
 // Number API pieces (DerivU/DerivV, traits, IsExactlyZero) behave as documented.
 #include <catch2/catch.hpp>
-
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -41,14 +40,19 @@ T ShaderC(const T& u, const T& v) {
 template <class T>
 T Shader(int which, const T& u, const T& v) {
     switch (which) {
-        case 0: return ShaderA(u, v);
-        case 1: return ShaderB(u, v);
-        default: return ShaderC(u, v);
+        case 0:
+            return ShaderA(u, v);
+        case 1:
+            return ShaderB(u, v);
+        default:
+            return ShaderC(u, v);
     }
 }
 
 // |a - b| small relative to the scale of the derivative and of the function.
-bool Near(double a, double b, double scale) { return std::fabs(a - b) <= 1e-6 * (scale + std::fabs(b)); }
+bool Near(double a, double b, double scale) {
+    return std::fabs(a - b) <= 1e-6 * (scale + std::fabs(b));
+}
 
 }  // namespace
 
@@ -84,24 +88,41 @@ TEST_CASE("every dual function matches central differences", "[vm][dual]") {
         double lo, hi;
     };
     const Fn fns[] = {
-        {"sqr", [](const Dual<double>& x) { return sqr(x); }, [](double x) { return sqr(x); }, -3, 3},
-        {"sqrt", [](const Dual<double>& x) { return sqrt(x); }, [](double x) { return std::sqrt(x); }, 0.1, 9},
-        {"exp", [](const Dual<double>& x) { return exp(x); }, [](double x) { return std::exp(x); }, -5, 5},
-        {"log", [](const Dual<double>& x) { return log(x); }, [](double x) { return std::log(x); }, 0.1, 9},
-        {"sin", [](const Dual<double>& x) { return sin(x); }, [](double x) { return std::sin(x); }, -9, 9},
-        {"cos", [](const Dual<double>& x) { return cos(x); }, [](double x) { return std::cos(x); }, -9, 9},
-        {"abs", [](const Dual<double>& x) { return abs(x); }, [](double x) { return std::fabs(x); }, -3, 3},
-        {"sign", [](const Dual<double>& x) { return sign(x); }, [](double x) { return sign(x); }, -3, 3},
+        {"sqr", [](const Dual<double>& x) { return sqr(x); }, [](double x) { return sqr(x); }, -3,
+         3},
+        {"sqrt", [](const Dual<double>& x) { return sqrt(x); },
+         [](double x) { return std::sqrt(x); }, 0.1, 9},
+        {"exp", [](const Dual<double>& x) { return exp(x); }, [](double x) { return std::exp(x); },
+         -5, 5},
+        {"log", [](const Dual<double>& x) { return log(x); }, [](double x) { return std::log(x); },
+         0.1, 9},
+        {"sin", [](const Dual<double>& x) { return sin(x); }, [](double x) { return std::sin(x); },
+         -9, 9},
+        {"cos", [](const Dual<double>& x) { return cos(x); }, [](double x) { return std::cos(x); },
+         -9, 9},
+        {"abs", [](const Dual<double>& x) { return abs(x); }, [](double x) { return std::fabs(x); },
+         -3, 3},
+        {"sign", [](const Dual<double>& x) { return sign(x); }, [](double x) { return sign(x); },
+         -3, 3},
         {"neg", [](const Dual<double>& x) { return -x; }, [](double x) { return -x; }, -3, 3},
-        {"1/x", [](const Dual<double>& x) { return 1.0 / x; }, [](double x) { return 1.0 / x; }, 0.2, 3},
-        {"x/3", [](const Dual<double>& x) { return x / 3.0; }, [](double x) { return x / 3.0; }, -3, 3},
-        {"x/(x+2)", [](const Dual<double>& x) { return x / (x + 2.0); }, [](double x) { return x / (x + 2.0); }, -1, 3},
-        {"x*x*x", [](const Dual<double>& x) { return x * x * x; }, [](double x) { return x * x * x; }, -3, 3},
-        {"1-x", [](const Dual<double>& x) { return 1.0 - x; }, [](double x) { return 1.0 - x; }, -3, 3},
-        {"pow(x,2.5)", [](const Dual<double>& x) { return pow(x, 2.5); }, [](double x) { return std::pow(x, 2.5); }, 0.1, 3},
-        {"pow(x,-3)", [](const Dual<double>& x) { return pow(x, -3.0); }, [](double x) { return std::pow(x, -3.0); }, -3, -0.2},
-        {"pow(2,x)", [](const Dual<double>& x) { return pow(2.0, x); }, [](double x) { return std::pow(2.0, x); }, -3, 3},
-        {"pow(x,x)", [](const Dual<double>& x) { return pow(x, x); }, [](double x) { return std::pow(x, x); }, 0.1, 3},
+        {"1/x", [](const Dual<double>& x) { return 1.0 / x; }, [](double x) { return 1.0 / x; },
+         0.2, 3},
+        {"x/3", [](const Dual<double>& x) { return x / 3.0; }, [](double x) { return x / 3.0; }, -3,
+         3},
+        {"x/(x+2)", [](const Dual<double>& x) { return x / (x + 2.0); },
+         [](double x) { return x / (x + 2.0); }, -1, 3},
+        {"x*x*x", [](const Dual<double>& x) { return x * x * x; },
+         [](double x) { return x * x * x; }, -3, 3},
+        {"1-x", [](const Dual<double>& x) { return 1.0 - x; }, [](double x) { return 1.0 - x; }, -3,
+         3},
+        {"pow(x,2.5)", [](const Dual<double>& x) { return pow(x, 2.5); },
+         [](double x) { return std::pow(x, 2.5); }, 0.1, 3},
+        {"pow(x,-3)", [](const Dual<double>& x) { return pow(x, -3.0); },
+         [](double x) { return std::pow(x, -3.0); }, -3, -0.2},
+        {"pow(2,x)", [](const Dual<double>& x) { return pow(2.0, x); },
+         [](double x) { return std::pow(2.0, x); }, -3, 3},
+        {"pow(x,x)", [](const Dual<double>& x) { return pow(x, x); },
+         [](double x) { return std::pow(x, x); }, 0.1, 3},
     };
     std::mt19937_64 rng(2);
     for (const Fn& f : fns) {
@@ -187,14 +208,16 @@ TEST_CASE("dual affine and dual interval contain dual double", "[vm][dual]") {
             double eu = std::ldexp(std::round(std::ldexp(unit(rng), 10)), -10);
             double ev = std::ldexp(std::round(std::ldexp(unit(rng), 10)), -10);
             if (p == 0) eu = ev = -1;
-            Dual<double> rd = Shader(which, Dual<double>(uc + ur * eu, 1, 0), Dual<double>(vc + vr * ev, 0, 1));
+            Dual<double> rd =
+                Shader(which, Dual<double>(uc + ur * eu, 1, 0), Dual<double>(vc + vr * ev, 0, 1));
             checked++;
             bool ok = Contains(ra.v, rd.v, eu, ev) && Contains(ra.du, rd.du, eu, ev) &&
                       Contains(ra.dv, rd.dv, eu, ev) && Contains(ri.v, rd.v, eu, ev) &&
                       Contains(ri.du, rd.du, eu, ev) && Contains(ri.dv, rd.dv, eu, ev);
             if (!ok && failures++ < 4)
-                WARN("shader " << which << " eps " << eu << ", " << ev << "\n  double " << ToString(rd)
-                               << "\n  affine " << ToString(ra) << "\n  interval " << ToString(ri));
+                WARN("shader " << which << " eps " << eu << ", " << ev << "\n  double "
+                               << ToString(rd) << "\n  affine " << ToString(ra) << "\n  interval "
+                               << ToString(ri));
         }
     }
     if (std::getenv("AFFRAY_VERBOSE"))

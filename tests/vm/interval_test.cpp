@@ -5,7 +5,6 @@
 // for unary functions the interval must not exceed the hull of the sampled results by more than
 // rounding when the samples include every extreme. AFFRAY_SAMPLES=N raises the sample count.
 #include <catch2/catch.hpp>
-
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -34,12 +33,18 @@ struct Gen {
         double m = magnitude(e10lo, e10hi);
         double a = uniform(-m, m), w = m * std::pow(10.0, uniform(-8, 0.3));
         switch (integer(0, 7)) {
-            case 0: return Interval(0.0, w);         // touching 0 from above
-            case 1: return Interval(-w, 0.0);        // touching 0 from below
-            case 2: return Interval(-w, w * uniform(0.1, 2));  // across 0
-            case 3: return Interval(a);              // a point
-            case 4: return Interval(std::fabs(a), std::fabs(a) + w);
-            default: return Interval(a, a + w);
+            case 0:
+                return Interval(0.0, w);  // touching 0 from above
+            case 1:
+                return Interval(-w, 0.0);  // touching 0 from below
+            case 2:
+                return Interval(-w, w * uniform(0.1, 2));  // across 0
+            case 3:
+                return Interval(a);  // a point
+            case 4:
+                return Interval(std::fabs(a), std::fabs(a) + w);
+            default:
+                return Interval(a, a + w);
         }
     }
     // Points of x chosen on purpose, then random ones.
@@ -88,7 +93,8 @@ void CheckUnary(Tally& t, const Interval& x, F f, bool checkTight, Gen& g) {
     bool allFinite = true;
     for (double p : g.points(x, 6)) {
         double d = f(p);
-        Contain(t, [&] { return "f(" + Show(p) + ") over " + x.toString(); }, d, r);
+        Contain(
+            t, [&] { return "f(" + Show(p) + ") over " + x.toString(); }, d, r);
         allFinite = allFinite && std::isfinite(d);
         lo = std::fmin(lo, d);
         hi = std::fmax(hi, d);
@@ -97,7 +103,9 @@ void CheckUnary(Tally& t, const Interval& x, F f, bool checkTight, Gen& g) {
     double slack = 1e-13 * std::fmax(std::fabs(lo), std::fabs(hi)) + 1e-300;
     if (r.lo() < lo - slack || r.hi() > hi + slack) {
         t.loose++;
-        if (t.loose <= 4) t.first << "loose: " << r.toString() << " vs samples [" << Show(lo) << ", " << Show(hi) << "] over " << x.toString() << "\n";
+        if (t.loose <= 4)
+            t.first << "loose: " << r.toString() << " vs samples [" << Show(lo) << ", " << Show(hi)
+                    << "] over " << x.toString() << "\n";
     }
 }
 
@@ -107,13 +115,19 @@ void CheckBinary(Tally& t, const Interval& x, const Interval& y, F f, Gen& g) {
     if (!r.isUnbounded()) t.bounded++;
     for (double p : g.points(x, 3))
         for (double q : g.points(y, 3))
-            Contain(t, [&] { return "f(" + Show(p) + ", " + Show(q) + ") over " + x.toString() + ", " + y.toString(); },
-                    f(p, q), r);
+            Contain(
+                t,
+                [&] {
+                    return "f(" + Show(p) + ", " + Show(q) + ") over " + x.toString() + ", " +
+                           y.toString();
+                },
+                f(p, q), r);
 }
 
 void Report(const char* name, const Tally& t) {
     if (std::getenv("AFFRAY_VERBOSE"))
-        std::printf("%-12s %8d points %6d bounded  loose %d  failures %d\n", name, t.samples, t.bounded, t.loose, t.failures);
+        std::printf("%-12s %8d points %6d bounded  loose %d  failures %d\n", name, t.samples,
+                    t.bounded, t.loose, t.failures);
     INFO(name << ": " << t.samples << " points\n" << t.first.str());
     CHECK(t.failures == 0);
     CHECK(t.loose == 0);
@@ -128,12 +142,18 @@ TEST_CASE("interval arithmetic contains the scalar result", "[vm][interval]") {
     Tally add, sub, mul, div, neg, mixed;
     for (int i = 0; i < n; ++i) {
         Interval x = g.interval(-6, 6), y = g.interval(-6, 6);
-        CheckBinary(add, x, y, [](auto a, auto b) { return a + b; }, g);
-        CheckBinary(sub, x, y, [](auto a, auto b) { return a - b; }, g);
-        CheckBinary(mul, x, y, [](auto a, auto b) { return a * b; }, g);
-        CheckBinary(div, x, y, [](auto a, auto b) { return a / b; }, g);
-        CheckUnary(neg, x, [](auto a) { return -a; }, true, g);
-        CheckUnary(mixed, x, [](auto a) { return (0.1 - a) * 3.0 / 7.0 + 1e-3; }, false, g);
+        CheckBinary(
+            add, x, y, [](auto a, auto b) { return a + b; }, g);
+        CheckBinary(
+            sub, x, y, [](auto a, auto b) { return a - b; }, g);
+        CheckBinary(
+            mul, x, y, [](auto a, auto b) { return a * b; }, g);
+        CheckBinary(
+            div, x, y, [](auto a, auto b) { return a / b; }, g);
+        CheckUnary(
+            neg, x, [](auto a) { return -a; }, true, g);
+        CheckUnary(
+            mixed, x, [](auto a) { return (0.1 - a) * 3.0 / 7.0 + 1e-3; }, false, g);
     }
     Report("add", add);
     Report("sub", sub);
@@ -150,16 +170,26 @@ TEST_CASE("interval functions contain the scalar result and are tight", "[vm][in
     for (int i = 0; i < n; ++i) {
         Interval x = g.interval(-6, 6);
         Interval small = g.interval(-6, 1);
-        CheckUnary(sq, x, [](auto a) { return sqr(a); }, true, g);
-        CheckUnary(rt, x, [](auto a) { return sqrt(a); }, true, g);
-        CheckUnary(ex, small, [](auto a) { return exp(a); }, true, g);
-        CheckUnary(ex, small + 700.0 + 10.0 * (i % 2) * g.uniform(0, 1), [](auto a) { return exp(a); }, true, g);
-        CheckUnary(lg, x, [](auto a) { return log(a); }, true, g);
+        CheckUnary(
+            sq, x, [](auto a) { return sqr(a); }, true, g);
+        CheckUnary(
+            rt, x, [](auto a) { return sqrt(a); }, true, g);
+        CheckUnary(
+            ex, small, [](auto a) { return exp(a); }, true, g);
+        CheckUnary(
+            ex, small + 700.0 + 10.0 * (i % 2) * g.uniform(0, 1), [](auto a) { return exp(a); },
+            true, g);
+        CheckUnary(
+            lg, x, [](auto a) { return log(a); }, true, g);
         // Points include the extrema of sin and cos only on narrower ranges.
-        CheckUnary(sn, x, [](auto a) { return sin(a); }, x.width() < 100, g);
-        CheckUnary(cs, x, [](auto a) { return cos(a); }, x.width() < 100, g);
-        CheckUnary(ab, x, [](auto a) { return abs(a); }, true, g);
-        CheckUnary(sg, x, [](auto a) { return sign(a); }, true, g);
+        CheckUnary(
+            sn, x, [](auto a) { return sin(a); }, x.width() < 100, g);
+        CheckUnary(
+            cs, x, [](auto a) { return cos(a); }, x.width() < 100, g);
+        CheckUnary(
+            ab, x, [](auto a) { return abs(a); }, true, g);
+        CheckUnary(
+            sg, x, [](auto a) { return sign(a); }, true, g);
     }
     Report("sqr", sq);
     Report("sqrt", rt);
@@ -180,8 +210,10 @@ TEST_CASE("interval sin and cos over periods and far from 0", "[vm][interval]") 
             for (int i = 0; i < Samples(20000) / 25; ++i) {
                 double c = g.uniform(-center, center), w = width * g.uniform(0.99, 1.01);
                 Interval x(c - w / 2, c + w / 2);
-                CheckUnary(sn, x, [](auto a) { return sin(a); }, center < 1e8, g);
-                CheckUnary(cs, x, [](auto a) { return cos(a); }, center < 1e8, g);
+                CheckUnary(
+                    sn, x, [](auto a) { return sin(a); }, center < 1e8, g);
+                CheckUnary(
+                    cs, x, [](auto a) { return cos(a); }, center < 1e8, g);
             }
         }
     Report("sin periods", sn);
@@ -199,10 +231,13 @@ TEST_CASE("interval pow contains the scalar result", "[vm][interval]") {
     for (int i = 0; i < n; ++i) {
         Interval x = g.interval(-3, 1);
         double k = g.integer(-6, 6);
-        CheckUnary(integer, x, [k](auto a) { return pow(a, decltype(a)(k)); }, true, g);
+        CheckUnary(
+            integer, x, [k](auto a) { return pow(a, decltype(a)(k)); }, true, g);
         double p = g.uniform(-3, 3);
-        CheckUnary(real, x, [p](auto a) { return pow(a, decltype(a)(p)); }, true, g);
-        CheckBinary(general, x, g.interval(-1, 0.5), [](auto a, auto b) { return pow(a, b); }, g);
+        CheckUnary(
+            real, x, [p](auto a) { return pow(a, decltype(a)(p)); }, true, g);
+        CheckBinary(
+            general, x, g.interval(-1, 0.5), [](auto a, auto b) { return pow(a, b); }, g);
     }
     Report("pow integer", integer);
     Report("pow real", real);
@@ -220,12 +255,14 @@ TEST_CASE("interval pow contains the scalar result", "[vm][interval]") {
 TEST_CASE("interval Unbounded comes from every NaN/inf source and propagates", "[vm][interval]") {
     const double inf = std::numeric_limits<double>::infinity();
     Interval x(0.5, 2);
-    std::vector<Interval> sources = {
+    // clang-format off
+    std::vector<Interval> sources = {  // every way to NaN or infinity
         Interval(std::nan("")), Interval(inf), Interval(0, inf), Interval(3, 1),
         sqrt(Interval(-1e-300, 1)), log(Interval(0, 1)), log(Interval(-1, 1)), x / Interval(0, 1),
         x / Interval(-1, 1), x / 0.0, exp(Interval(0, 710)), Interval(1e300) * 1e300,
         pow(Interval(-1, 1), Interval(-2)), pow(Interval(-1, 1), Interval(0.5)),
         Interval::Unbounded(), DerivU(x), DerivV(x)};
+    // clang-format on
     for (const Interval& s : sources) CHECK(s.isUnbounded());
     Interval U = Interval::Unbounded();
     CHECK(U.contains(inf));
@@ -233,9 +270,11 @@ TEST_CASE("interval Unbounded comes from every NaN/inf source and propagates", "
     CHECK_FALSE(x.contains(inf));
     CHECK_FALSE(x.contains(std::nan("")));
     std::vector<Interval> results = {
-        U + x, x + U, U - x, x - U, U * x, x * U, U / x, x / U, -U, U + 1.0, 1.0 - U, U * 0.0,
-        2.0 / U, sqr(U), sqrt(U), exp(U), log(U), sin(U), cos(U), abs(U), sign(U), pow(U, x),
-        pow(x, U), pow(U, Interval(0.0)), Hull(U, x), Hull(x, U)};
+        U + x,      x + U,     U - x,   x - U,     U * x,     x * U,
+        U / x,      x / U,     -U,      U + 1.0,   1.0 - U,   U * 0.0,
+        2.0 / U,    sqr(U),    sqrt(U), exp(U),    log(U),    sin(U),
+        cos(U),     abs(U),    sign(U), pow(U, x), pow(x, U), pow(U, Interval(0.0)),
+        Hull(U, x), Hull(x, U)};
     for (size_t i = 0; i < results.size(); ++i) {
         INFO("result " << i);
         CHECK(results[i].isUnbounded());
