@@ -137,8 +137,26 @@ double Affine::radius() const {
 
 Interval Affine::range() const {
     if (isUnbounded()) return Interval::Unbounded();
+    if (m_rangeCached) return Interval(m_lo, m_hi);
     double r = radius();
-    return Interval(SubDown(m_center, r), AddUp(m_center, r));
+    double lo = SubDown(m_center, r), hi = AddUp(m_center, r);
+    // Both bounds hold every scalar value, so they overlap; if rounding ever made them miss
+    // each other, the form's own range is still valid.
+    if (std::fmax(lo, m_lo) <= std::fmin(hi, m_hi)) return Interval(std::fmax(lo, m_lo), std::fmin(hi, m_hi));
+    return Interval(lo, hi);
+}
+
+Affine Affine::Tighten(Affine r, const Interval& enclosure) {
+    if (enclosure.isUnbounded()) return r;
+    if (r.isUnbounded()) return FromInterval(enclosure);
+    r.m_rangeCached = false;
+    r.m_lo = std::fmax(r.m_lo, enclosure.lo());
+    r.m_hi = std::fmin(r.m_hi, enclosure.hi());
+    Interval full = r.range();
+    r.m_lo = full.lo();
+    r.m_hi = full.hi();
+    r.m_rangeCached = true;
+    return r;
 }
 
 Interval Affine::evaluateAt(double epsU, double epsV) const {
@@ -181,6 +199,7 @@ std::string Affine::toString() const {
 Affine Affine::withExtraError(double extra) const {
     if (isUnbounded()) return *this;
     Affine r = *this;
+    r.resetEnclosure();
     r.m_error = AddUp(m_error, extra);
     if (!(r.m_error <= kMaxFinite)) return Unbounded();
     return r;
@@ -188,6 +207,8 @@ Affine Affine::withExtraError(double extra) const {
 
 Affine operator-(const Affine& x) {
     Affine r = x;
+    r.m_lo = -x.m_hi;  // negation is exact: the enclosure negates too
+    r.m_hi = -x.m_lo;
     r.m_center = -x.m_center;
     for (int i = 0; i < x.m_count; ++i) r.m_coefs[i] = -x.m_coefs[i];
     return r;
@@ -252,14 +273,23 @@ Affine Affine::AddForms(const Affine& x, const Affine& y) {
     return r;
 }
 
-Affine operator+(const Affine& x, const Affine& y) { return Affine::AddForms<false>(x, y); }
-Affine operator-(const Affine& x, const Affine& y) { return Affine::AddForms<true>(x, y); }
+Affine operator+(const Affine& x, const Affine& y) {
+    return Affine::Tighten(Affine::AddForms<false>(x, y), x.range() + y.range());
+}
+Affine operator-(const Affine& x, const Affine& y) {
+    return Affine::Tighten(Affine::AddForms<true>(x, y), x.range() - y.range());
+}
 
 Affine operator+(const Affine& x, double c) {
     if (x.isUnbounded() || !std::isfinite(c)) return Affine::Unbounded();
+    return Affine::Tighten(Affine::AddConstantForm(x, c), x.range() + c);
+}
+
+Affine Affine::AddConstantForm(const Affine& x, double c) {
     if (c == 0) return x;
     if (x.isConstant()) return Affine(x.m_center + c);
     Affine r = x;
+    r.resetEnclosure();
     r.m_center = x.m_center + c;
     double absSum = std::fabs(r.m_center);
     for (int i = 0; i < x.m_count; ++i) absSum += std::fabs(x.m_coefs[i]);
@@ -271,6 +301,10 @@ Affine operator+(const Affine& x, double c) {
 
 Affine operator*(const Affine& x, double c) {
     if (x.isUnbounded() || !std::isfinite(c)) return Affine::Unbounded();
+    return Affine::Tighten(Affine::MulConstantForm(x, c), x.range() * c);
+}
+
+Affine Affine::MulConstantForm(const Affine& x, double c) {
     if (c == 0) return Affine(0.0);
     if (c == 1) return x;
     if (c == -1) return -x;
@@ -306,6 +340,10 @@ Affine Affine::Scale(const Affine& x, double c, double roundingFactor) {
 // (rx + ex)(ry + ey) - (1/2) sum |xi*yi| (the tighter product rule of AFFINE-NOTES).
 Affine operator*(const Affine& x, const Affine& y) {
     if (x.isUnbounded() || y.isUnbounded()) return Affine::Unbounded();
+    return Affine::Tighten(Affine::MulForms(x, y), x.range() * y.range());
+}
+
+Affine Affine::MulForms(const Affine& x, const Affine& y) {
     if (x.isConstant()) return y * x.m_center;
     if (y.isConstant()) return x * y.m_center;
     const double x0 = x.m_center, y0 = y.m_center;
@@ -379,6 +417,10 @@ Affine operator*(const Affine& x, const Affine& y) {
 // (x0 + X + E)^2 = x0^2 + 2*x0*X + 2*x0*E + (X + E)^2 with (X + E)^2 in [0, q], q = (r + e)^2.
 Affine sqr(const Affine& x) {
     if (x.isUnbounded()) return x;
+    return Affine::Tighten(Affine::SqrForm(x), sqr(x.range()));
+}
+
+Affine Affine::SqrForm(const Affine& x) {
     if (x.isConstant()) return Affine(x.m_center * x.m_center);
     const double x0 = x.m_center, twoX0 = 2 * x0;
     Affine result;

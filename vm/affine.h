@@ -12,6 +12,12 @@
 //    propagates through every function.
 //  - Terms are kept sorted by symbol id with no zero coefficient; when they do not fit in
 //    kCapacity, the smallest terms other than eps_u and eps_v are folded into e.
+//  - Every result also carries an *enclosure*: the interval-arithmetic result of the operation on
+//    its operands' ranges (rounded outward). range() is the form's range intersected with it, so
+//    affine bounds are never wider than interval ones, and a value known to be >= 0 (a square, a
+//    sum of squares) stays >= 0 despite the rounding slack of its form: sqrt(x*x + y*y) is then
+//    bounded even where x and y straddle 0. Sound because every scalar value lies in both (the
+//    usual hybrid of affine and interval arithmetic; Stolfi & de Figueiredo 1997, sec. 3.10).
 // Symbols are numbered per thread: BeginEvaluation() restarts the fresh ids, so forms from
 // different evaluations (or threads) must never be combined.
 // Linear operations and products live in affine.cpp, the nonlinear unary functions (Chebyshev
@@ -126,6 +132,31 @@ class Affine {
     friend std::string ToString(const Affine& x) { return x.toString(); }
 
   private:
+    /// `r` with its enclosure narrowed to `enclosure` (a valid interval bound of the same
+    /// scalar values) and its range cached; an unbounded form with a bounded enclosure becomes
+    /// the enclosure on a fresh symbol.
+    static Affine Tighten(Affine r, const Interval& enclosure);
+    /// Forgets the enclosure (after the form was changed in place).
+    void resetEnclosure() {
+        m_lo = -kInfinity;
+        m_hi = kInfinity;
+        m_rangeCached = false;
+    }
+    // The operations on forms alone; the public operators add the enclosure (Tighten).
+    static Affine AddConstantForm(const Affine& x, double c);
+    static Affine MulConstantForm(const Affine& x, double c);
+    static Affine MulForms(const Affine& x, const Affine& y);
+    static Affine SqrForm(const Affine& x);
+    static Affine DivForms(const Affine& x, const Affine& y);
+    static Affine DivConstantForm(const Affine& x, double c);
+    static Affine ConstantDivForm(double c, const Affine& x);
+    static Affine SqrtForm(const Affine& x);
+    static Affine ExpForm(const Affine& x);
+    static Affine LogForm(const Affine& x);
+    static Affine AbsForm(const Affine& x);
+    static Affine SignForm(const Affine& x);
+    static Affine PowForms(const Affine& x, const Affine& y);
+
     struct Terms;  // the term list an operation writes (affine.cpp)
 
     /// Completes this result of an operation: the terms folded to kCapacity if they were
@@ -154,6 +185,11 @@ class Affine {
 
     double m_center = 0;
     double m_error = 0;
+    // The enclosure [m_lo, m_hi] (see the head comment); when m_rangeCached it is the whole
+    // range() already intersected with the form's range.
+    double m_lo = -kInfinity;
+    double m_hi = kInfinity;
+    bool m_rangeCached = false;
     int m_count = 0;
     SymbolId m_symbols[kCapacity];
     double m_coefs[kCapacity];

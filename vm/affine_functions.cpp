@@ -79,7 +79,7 @@ Affine Affine::Reciprocal(const Affine& x) {
     return f.ok ? ApplyFit(x, f.alpha, f.lo, f.hi) : FromInterval(all);
 }
 
-Affine operator/(const Affine& x, const Affine& y) {
+Affine Affine::DivForms(const Affine& x, const Affine& y) {
     if (x.isUnbounded() || y.isUnbounded()) return Affine::Unbounded();
     if (y.isConstant()) return x / y.m_center;
     if (x.isConstant()) return x.m_center / y;
@@ -87,7 +87,7 @@ Affine operator/(const Affine& x, const Affine& y) {
     return x * Affine::Reciprocal(y);
 }
 
-Affine operator/(const Affine& x, double c) {
+Affine Affine::DivConstantForm(const Affine& x, double c) {
     if (x.isUnbounded() || !std::isfinite(c) || c == 0) return Affine::Unbounded();
     if (x.isConstant()) return Affine(x.m_center / c);
     if (c == 1) return x;
@@ -98,7 +98,7 @@ Affine operator/(const Affine& x, double c) {
     return Affine::Scale(x, inv, 2.0);
 }
 
-Affine operator/(double c, const Affine& x) {
+Affine Affine::ConstantDivForm(double c, const Affine& x) {
     if (x.isUnbounded() || !std::isfinite(c)) return Affine::Unbounded();
     if (x.isConstant()) return Affine(c / x.m_center);
     // Scaling adds u*max|c/x|, the rounding of the scalar division.
@@ -110,7 +110,7 @@ Affine operator/(double c, const Affine& x) {
 // Chebyshev (alpha = 1/(sqrt(a) + sqrt(b)), the secant): sqrt is concave and increasing, so the
 // lowest value of the form is sqrt(a) as with min-range (no dip below 0 but rounding), while the
 // remainder delta is half of min-range's. g's maximum is 1/(4 alpha) at t = 1/(4 alpha^2).
-Affine sqrt(const Affine& x) {
+Affine Affine::SqrtForm(const Affine& x) {
     if (x.isUnbounded()) return x;
     if (x.isConstant()) return Affine(std::sqrt(x.m_center));  // sqrt is correctly rounded
     Interval range = x.range();
@@ -133,7 +133,7 @@ Affine sqrt(const Affine& x) {
 // alpha*(1 + a - ln alpha) = e^(a + 1/2)/2 > 0.8 e^a (the min-range idea: exp stays positive) and
 // on wide ranges it is narrower than the secant as well. g is convex: maximum at an endpoint,
 // minimum alpha*(1 - ln alpha) at t = ln(alpha).
-Affine exp(const Affine& x) {
+Affine Affine::ExpForm(const Affine& x) {
     if (x.isUnbounded()) return x;
     Interval range = x.range();
     const double a = range.lo(), b = range.hi();
@@ -154,7 +154,7 @@ Affine exp(const Affine& x) {
 
 // Chebyshev (secant slope): log is concave and increasing, so the form's lowest value is log(a)
 // and only the top overshoots. g's maximum is -ln(alpha) - 1 at t = 1/alpha.
-Affine log(const Affine& x) {
+Affine Affine::LogForm(const Affine& x) {
     if (x.isUnbounded()) return x;
     Interval range = x.range();
     if (!(range.lo() > 0)) return Affine::Unbounded();  // log(0) = -inf, log(<0) = NaN
@@ -244,8 +244,8 @@ Affine Affine::SinOrCos(const Affine& x, bool isCos) {
     return ApplyFit(x, f.alpha, f.lo, f.hi);
 }
 
-Affine sin(const Affine& x) { return Affine::SinOrCos(x, false); }
-Affine cos(const Affine& x) { return Affine::SinOrCos(x, true); }
+Affine sin(const Affine& x) { return Affine::Tighten(Affine::SinOrCos(x, false), sin(x.range())); }
+Affine cos(const Affine& x) { return Affine::Tighten(Affine::SinOrCos(x, true), cos(x.range())); }
 
 // --- abs, sign ----------------------------------------------------------------------------------
 
@@ -253,7 +253,7 @@ Affine cos(const Affine& x) { return Affine::SinOrCos(x, true); }
 // the Chebyshev line through the kink (alpha = (a + b)/(b - a)) makes the form dip to alpha*a < 0,
 // so sqrt(abs(x)) or pow(abs(x), y) would turn Unbounded. min-range for a non-monotone function
 // is alpha = 0: m/2 +- m/2 on a fresh symbol, m = max(-a, b), whose range is exactly [0, m].
-Affine abs(const Affine& x) {
+Affine Affine::AbsForm(const Affine& x) {
     if (x.isUnbounded()) return x;
     Interval range = x.range();
     if (range.lo() >= 0) return x;
@@ -263,7 +263,7 @@ Affine abs(const Affine& x) {
 
 // Decided ranges give the exact constants; otherwise the hull of the possible signs, 0.5 +- 0.5,
 // -0.5 +- 0.5 or 0 +- 1, on a fresh symbol.
-Affine sign(const Affine& x) {
+Affine Affine::SignForm(const Affine& x) {
     if (x.isUnbounded()) return x;
     Interval range = x.range();
     if (range.lo() > 0) return Affine(1.0);
@@ -321,7 +321,7 @@ Affine Affine::PowConstant(const Affine& x, double p) {
 // Anything else, or any of these going Unbounded: the interval range of std::pow, which is itself
 // Unbounded wherever pow can be NaN or infinite (0 to a negative power, negative base to a
 // non-integer power, overflow).
-Affine pow(const Affine& x, const Affine& y) {
+Affine Affine::PowForms(const Affine& x, const Affine& y) {
     if (x.isUnbounded() || y.isUnbounded()) return Affine::Unbounded();
     if (y.isConstant()) {
         const double p = y.m_center;
@@ -348,6 +348,44 @@ Affine pow(const Affine& x, const Affine& y) {
                 kLibmAbs);
     }
     return Affine::FromInterval(pow(rx, y.range()));
+}
+
+// --- The public functions: the form, then its enclosure (Affine::Tighten) -------------------------
+
+Affine operator/(const Affine& x, const Affine& y) {
+    return Affine::Tighten(Affine::DivForms(x, y), x.range() / y.range());
+}
+
+Affine operator/(const Affine& x, double c) {
+    return Affine::Tighten(Affine::DivConstantForm(x, c), x.range() / c);
+}
+
+Affine operator/(double c, const Affine& x) {
+    return Affine::Tighten(Affine::ConstantDivForm(c, x), c / x.range());
+}
+
+Affine sqrt(const Affine& x) {
+    return Affine::Tighten(Affine::SqrtForm(x), sqrt(x.range()));
+}
+
+Affine exp(const Affine& x) {
+    return Affine::Tighten(Affine::ExpForm(x), exp(x.range()));
+}
+
+Affine log(const Affine& x) {
+    return Affine::Tighten(Affine::LogForm(x), log(x.range()));
+}
+
+Affine abs(const Affine& x) {
+    return Affine::Tighten(Affine::AbsForm(x), abs(x.range()));
+}
+
+Affine sign(const Affine& x) {
+    return Affine::Tighten(Affine::SignForm(x), sign(x.range()));
+}
+
+Affine pow(const Affine& x, const Affine& y) {
+    return Affine::Tighten(Affine::PowForms(x, y), pow(x.range(), y.range()));
 }
 
 }  // namespace affray::vm
