@@ -48,7 +48,6 @@ double RegionEvalsPerSecond(const vm::Program& program, double width, double sec
     std::uniform_real_distribution<double> corner(0.0, 1.0 - width);
     return EvalsPerSecond(seconds, [&](long) {
         double u0 = corner(rng), v0 = corner(rng);
-        if constexpr (std::is_same_v<N, vm::Affine>) vm::Affine::BeginEvaluation();
         renderer::SetPatchGlobals(interp, square, u0, u0 + width, v0, v0 + width, glm::dvec3(0.0));
         interp.Run();
         g_sink = RangeOf(interp.Register(P.registers[2])).hi();

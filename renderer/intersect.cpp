@@ -25,15 +25,6 @@ void IntersectStats::Merge(const IntersectStats& o) {
 
 namespace {
 
-template <class T>
-const T& ValueOf(const T& x) {
-    return x;
-}
-template <class T>
-const T& ValueOf(const vm::Dual<T>& x) {
-    return x.v;
-}
-
 /// A region with its bound, measured in the ray's frame.
 struct Region {
     double u0, u1, v0, v1;
@@ -74,13 +65,11 @@ class PatchIntersectorT final : public PatchIntersector {
 template <class N>
 bool PatchIntersectorT<N>::BoundRegion(Region& r, double tMin, double tMax) {
     ++m_bounded;
-    if constexpr (std::is_same_v<N, vm::Affine> || std::is_same_v<N, vm::Dual<vm::Affine>>)
-        vm::Affine::BeginEvaluation();
     SetPatchGlobals(m_interp, m_patch, r.u0, r.u1, r.v0, r.v1, m_eye);
     m_interp.Run();
     Vec3<N> p = m_interp.OutputTriple(*m_output);
-    using T = std::decay_t<decltype(ValueOf(p.x))>;
-    Vec3<T> rel{ValueOf(p.x) - m_origin.x, ValueOf(p.y) - m_origin.y, ValueOf(p.z) - m_origin.z};
+    using T = std::decay_t<decltype(vm::ValueOf(p.x))>;
+    Vec3<T> rel{vm::ValueOf(p.x) - m_origin.x, vm::ValueOf(p.y) - m_origin.y, vm::ValueOf(p.z) - m_origin.z};
     auto along = [&](const glm::dvec3& n) { return RangeOf(rel.x * n.x + rel.y * n.y + rel.z * n.z); };
     vm::Interval d1 = along(m_n1), d2 = along(m_n2), t = along(m_dir);
     if (d1.isUnbounded() || d2.isUnbounded() || t.isUnbounded()) {
@@ -101,14 +90,12 @@ bool PatchIntersectorT<N>::BoundRegion(Region& r, double tMin, double tMax) {
 
 template <class N>
 bool PatchIntersectorT<N>::PointAlongRay(double u, double v, double* t) {
-    if constexpr (std::is_same_v<N, vm::Affine> || std::is_same_v<N, vm::Dual<vm::Affine>>)
-        vm::Affine::BeginEvaluation();
     SetPatchGlobals(m_interp, m_patch, u, u, v, v, m_eye);
     m_interp.Run();
     Vec3<N> p = m_interp.OutputTriple(*m_output);
     glm::dvec3 center;
     for (int i = 0; i < 3; ++i) {
-        vm::Interval r = RangeOf(ValueOf(p[i]));
+        vm::Interval r = RangeOf(vm::ValueOf(p[i]));
         if (r.isUnbounded()) return false;
         center[i] = r.mid();
     }

@@ -79,12 +79,15 @@ struct BilinearPatch {
     }
 };
 
-/// Writes into `interp` the globals its program reads, for the patch over the region
-/// [u0,u1] x [v0,v1] (a point when the bounds are equal); `eye` is the camera position E.
+/// Starts a new evaluation for the interpreter `interp` over the patch region [u0,u1] x [v0,v1]
+/// (a point when the bounds are equal): writes the globals its program reads; `eye` is the
+/// camera position E. For affine types this restarts the fresh symbols, so the values of an
+/// earlier evaluation must not be combined with this one's.
 template <class T>
 void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, double u0, double u1, double v0,
                      double v1, const glm::dvec3& eye) {
     using vm::Global;
+    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
     const vm::Program& program = interp.program();
     T u = SurfaceParameter<T>(u0, u1, 0);
     T v = SurfaceParameter<T>(v0, v1, 1);

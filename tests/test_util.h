@@ -35,8 +35,6 @@ inline compiler::CompiledShader CompileOrThrow(const std::string& source,
 template <class N>
 vm::Vec3<N> EvalOnSquare(const vm::Program& program, double u0, double u1, double v0, double v1,
                          const char* name = "P") {
-    if constexpr (std::is_same_v<N, vm::Affine> || std::is_same_v<N, vm::Dual<vm::Affine>>)
-        vm::Affine::BeginEvaluation();
     vm::Interpreter<N> interp(program);
     renderer::SetPatchGlobals(interp, renderer::BilinearPatch::UnitSquare(), u0, u1, v0, v1, glm::dvec3(0.0));
     interp.Run();

@@ -51,16 +51,10 @@ bool WriteTextAtomically(const std::string& path, const std::string& text, std::
     return true;
 }
 
-template <class T>
-const T& ValueOf(const T& x) { return x; }
-template <class T>
-const T& ValueOf(const vm::Dual<T>& x) { return x.v; }
 
 /// Bounds P over [u0,u1] x [v0,v1] of the unit square with number type N and prints the ranges.
 template <class N>
 void PrintBound(const vm::Program& program, double u0, double u1, double v0, double v1, FILE* out) {
-    if constexpr (std::is_same_v<N, vm::Affine> || std::is_same_v<N, vm::Dual<vm::Affine>>)
-        vm::Affine::BeginEvaluation();
     vm::Interpreter<N> interp(program);
     renderer::SetPatchGlobals(interp, renderer::BilinearPatch::UnitSquare(), u0, u1, v0, v1, glm::dvec3(0.0));
     interp.Run();
@@ -68,7 +62,7 @@ void PrintBound(const vm::Program& program, double u0, double u1, double v0, dou
     double lo[3], hi[3];
     bool unbounded = false;
     for (int i = 0; i < 3; ++i) {
-        vm::Interval r = RangeOf(ValueOf(p[i]));
+        vm::Interval r = RangeOf(vm::ValueOf(p[i]));
         unbounded = unbounded || r.isUnbounded();
         lo[i] = r.lo();
         hi[i] = r.hi();

@@ -135,4 +135,15 @@ static_assert(Number<Dual<double>>);
 static_assert(Number<Dual<Affine>>);
 static_assert(Number<Dual<Interval>>);
 
+/// The value part of a number: the number itself, or a dual number's value (its derivatives
+/// dropped). Code that bounds or measures results uses it to serve plain and dual types alike.
+template <class T>
+const T& ValueOf(const T& x) {
+    return x;
+}
+template <class T>
+const T& ValueOf(const Dual<T>& x) {
+    return x.v;
+}
+
 }  // namespace affray::vm
