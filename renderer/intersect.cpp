@@ -70,17 +70,26 @@ bool PatchIntersectorT<N>::BoundRegion(Region& r, double tMin, double tMax) {
     Vec3<N> p = m_interp.OutputTriple(*m_output);
     using T = std::decay_t<decltype(vm::ValueOf(p.x))>;
     Vec3<T> rel{vm::ValueOf(p.x) - m_origin.x, vm::ValueOf(p.y) - m_origin.y, vm::ValueOf(p.z) - m_origin.z};
-    auto along = [&](const glm::dvec3& n) { return RangeOf(rel.x * n.x + rel.y * n.y + rel.z * n.z); };
+    // n.(P' - o), leaving out the components n does not weigh: an unbounded coordinate along
+    // which the ray frame does not measure must not make the others unmeasurable.
+    auto along = [&](const glm::dvec3& n) {
+        T sum(0.0);
+        for (int i = 0; i < 3; ++i)
+            if (n[i] != 0) sum = sum + rel[i] * n[i];
+        return RangeOf(sum);
+    };
     vm::Interval d1 = along(m_n1), d2 = along(m_n2), t = along(m_dir);
+    // Each bounded measure may rule the region out on its own, even if another is unbounded.
+    auto excludesZero = [](const vm::Interval& d) { return !d.isUnbounded() && (d.lo() > 0 || d.hi() < 0); };
+    if (excludesZero(d1) || excludesZero(d2)) return false;
+    if (!t.isUnbounded() && (t.hi() < tMin || t.lo() > tMax)) return false;
     if (d1.isUnbounded() || d2.isUnbounded() || t.isUnbounded()) {
-        // Nothing is known about this region: keep it, nearest possible, to be subdivided.
-        r.tLo = tMin;
-        r.tHi = tMax;
+        // Not ruled out, not measurable: keep it, to be subdivided.
+        r.tLo = t.isUnbounded() ? tMin : std::max(t.lo(), tMin);
+        r.tHi = t.isUnbounded() ? tMax : t.hi();
         r.size = INFINITY;
         return true;
     }
-    if (d1.lo() > 0 || d1.hi() < 0 || d2.lo() > 0 || d2.hi() < 0) return false;
-    if (t.hi() < tMin || t.lo() > tMax) return false;
     r.tLo = t.lo();
     r.tHi = t.hi();
     double w1 = d1.hi() - d1.lo(), w2 = d2.hi() - d2.lo(), wt = t.hi() - t.lo();
@@ -128,18 +137,19 @@ bool PatchIntersectorT<N>::Intersect(const Ray& ray, double tMin, double tMax, c
         bool small = r.size <= tolerance.At(r.tLo);
         bool atLimit = r.depth >= m_maxDepth;
         if (small || atLimit) {
-            double tHit = 0.5 * (r.tLo + r.tHi);
-            double error = r.size;
             double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
-            if (!std::isfinite(r.size)) {
+            double tHit, error;
+            if (std::isfinite(r.size)) {
+                // The bound's t range meets [tMin, best] (checked when bounded and popped).
+                tHit = std::clamp(0.5 * (r.tLo + r.tHi), std::max(r.tLo, tMin), std::min(r.tHi, best));
+                error = r.size;
+            } else {
                 // Unbounded down to the depth limit: nothing rules a hit out, so this is a possible
                 // hit (counted, with no certificate), placed where the ray passes the surface
                 // point at the region's centre.
-                if (!PointAlongRay(uc, vc, &tHit)) continue;
+                if (!PointAlongRay(uc, vc, &tHit) || tHit < tMin || tHit > best) continue;
                 error = INFINITY;
             }
-            tHit = std::clamp(tHit, std::max(r.tLo, tMin), std::max(std::min(r.tHi, best), tMin));
-            if (tHit > best || tHit < tMin) continue;
             if (atLimit && !small) ++stats.depthLimitHits;
             best = tHit;
             found = true;
@@ -149,11 +159,11 @@ bool PatchIntersectorT<N>::Intersect(const Ray& ray, double tMin, double tMax, c
         }
 
         // Split in four, bound each child, push the survivors farthest first (popped nearest first).
-        double um = 0.5 * (r.u0 + r.u1), vm_ = 0.5 * (r.v0 + r.v1);
-        Region children[4] = {{r.u0, um, r.v0, vm_, r.depth + 1, 0, 0, 0},
-                              {um, r.u1, r.v0, vm_, r.depth + 1, 0, 0, 0},
-                              {r.u0, um, vm_, r.v1, r.depth + 1, 0, 0, 0},
-                              {um, r.u1, vm_, r.v1, r.depth + 1, 0, 0, 0}};
+        double uMid = 0.5 * (r.u0 + r.u1), vMid = 0.5 * (r.v0 + r.v1);
+        Region children[4] = {{r.u0, uMid, r.v0, vMid, r.depth + 1, 0, 0, 0},
+                              {uMid, r.u1, r.v0, vMid, r.depth + 1, 0, 0, 0},
+                              {r.u0, uMid, vMid, r.v1, r.depth + 1, 0, 0, 0},
+                              {uMid, r.u1, vMid, r.v1, r.depth + 1, 0, 0, 0}};
         Region kept[4];
         int nKept = 0;
         for (Region& c : children)

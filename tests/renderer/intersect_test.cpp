@@ -165,3 +165,28 @@ TEST_CASE("intersector: the depth limit is counted and still yields hits", "[ren
     CHECK(stats.depthLimitHits >= 1);
     CheckCertificate(r.shader->bound, ray, hit);
 }
+
+TEST_CASE("intersector: unbounded regions are subdivided, never dropped, and counted at the limit",
+          "[renderer][intersect]") {
+    // P.z = 0.001 / (u - 0.5) is infinite at u = 0.5: every region touching it has an unbounded
+    // z (x and y stay bounded: the shader moves P along z only).
+    compiler::CompiledShader s =
+        test::CompileOrThrow("displacement pole() { P += vector(0, 0, 0.001 / (u - 0.5)); }");
+    auto intersector = renderer::MakePatchIntersector(kSquare, s.bound, glm::dvec3(0), BoundMode::Affine, 10);
+    // A ray down the pole: only the unbounded regions there can hold a hit.
+    Ray ray{{0.5, 0.3, 5.0}, {0, 0, -1}};
+    Hit hit;
+    IntersectStats stats;
+    REQUIRE(intersector->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats));
+    CHECK(hit.depthLimited);
+    CHECK(std::isinf(hit.error));  // a possible hit carries no certificate
+    CHECK(stats.depthLimitHits >= 1);
+    // The nearest surface point of a depth-10 region beside the pole is at z = 0.001 * 2^11.
+    CHECK(hit.t == Approx(5.0 - 0.001 * 2048).epsilon(1e-9));
+    // Away from the pole the bounded x rules the pole's regions out: an ordinary certified hit.
+    Ray away{{0.25, 0.3, 5.0}, {0, 0, -1}};
+    REQUIRE(intersector->Intersect(away, 0, INFINITY, {1e-2, 0}, false, &hit, stats));
+    CHECK_FALSE(hit.depthLimited);
+    CHECK(hit.t == Approx(5.0 + 0.001 / 0.25).margin(1e-2));
+    CheckCertificate(s.bound, away, hit);
+}
