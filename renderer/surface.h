@@ -91,17 +91,25 @@ void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, dou
     const vm::Program& program = interp.program();
     T u = SurfaceParameter<T>(u0, u1, 0);
     T v = SurfaceParameter<T>(v0, v1, 1);
-    // P = c0 + a*u + b*v + d*u*v, written so that each corner difference is a double constant.
+    // P = c0 + a*u + b*v + d*u*v, each coordinate a combination with double coefficients (zero
+    // terms skipped: for an axis-aligned patch most are, and every skipped product is work saved
+    // in every region bound).
     const auto& c = patch.corners;
     glm::dvec3 a = c[1] - c[0], b = c[2] - c[0], d = c[0] - c[1] - c[2] + c[3];
     bool twisted = d != glm::dvec3(0.0);
     T uv = twisted ? u * v : T(0.0);
-    Vec3<T> P = Constant<T>(c[0]) + Constant<T>(a) * u + Constant<T>(b) * v;
-    if (twisted) P = P + Constant<T>(d) * uv;
-    Vec3<T> dPdu = Constant<T>(a), dPdv = Constant<T>(b);
-    if (twisted) {
-        dPdu = dPdu + Constant<T>(d) * v;
-        dPdv = dPdv + Constant<T>(d) * u;
+    auto combine = [](double k0, double ku, const T& x, double kv, const T& y) {
+        T r(k0);
+        if (ku != 0) r = r + x * ku;
+        if (kv != 0) r = r + y * kv;
+        return r;
+    };
+    Vec3<T> P, dPdu, dPdv;
+    for (int i = 0; i < 3; ++i) {
+        P[i] = combine(c[0][i], a[i], u, b[i], v);
+        if (twisted && d[i] != 0) P[i] = P[i] + uv * d[i];
+        dPdu[i] = twisted ? combine(a[i], d[i], v, 0.0, v) : T(a[i]);
+        dPdv[i] = twisted ? combine(b[i], d[i], u, 0.0, u) : T(b[i]);
     }
     interp.SetGlobal(Global::P, P);
     interp.SetGlobal(Global::u, u);
