@@ -16,7 +16,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     lang::Diagnostics diags(file);
     lang::TranslationUnit unit = lang::Parse(diags);
     std::optional<LoweredShader> lowered;
-    if (!diags.hasErrors()) lowered = Lower(unit, overrides, diags, &result.paramErrors);
+    if (!diags.hasErrors()) lowered = Lower(unit, diags);
     result.diagnostics = diags.format();
     if (!lowered) return result;
 
@@ -28,16 +28,26 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     shader.writesP = lowered->writesP;
     shader.writesN = lowered->writesN;
     shader.opsBeforeOptimisation = lowered->ir.requestedOps();
+    std::vector<vm::ProgramParam> params;
+    for (const ParamInfo& p : lowered->params)
+        params.push_back({p.name, ToString(p.type), ScalarCount(p.type), vm::kNoRegister, p.defaults});
     try {
-        shader.bound = Emit(lowered->ir, {{"P", lowered->finalP}});
-        shader.shade = Emit(lowered->ir, {{"P", lowered->finalP}, {"N", lowered->finalN}});
+        shader.genericBound = Emit(lowered->ir, {{"P", lowered->finalP}}, params);
+        shader.genericShade = Emit(lowered->ir, {{"P", lowered->finalP}, {"N", lowered->finalN}}, params);
+        for (vm::Program* p : {&shader.genericBound, &shader.genericShade}) {
+            p->shaderName = shader.name;
+            p->sourcePath = path;
+        }
+        std::optional<vm::Program> bound = Specialise(shader.genericBound, overrides, &result.paramErrors);
+        if (!bound) return result;
+        std::vector<std::string> again;  // the same errors as for the bound program
+        shader.bound = std::move(*bound);
+        shader.shade = *Specialise(shader.genericShade, overrides, &again);
     } catch (const std::length_error& e) {
         result.diagnostics += path + ": error: " + e.what() + "\n";
         return result;
     }
-    for (vm::Program* p : {&shader.bound, &shader.shade}) {
-        p->shaderName = shader.name;
-        p->sourcePath = path;
+    for (vm::Program* p : {&shader.genericBound, &shader.genericShade, &shader.bound, &shader.shade}) {
         std::string error;
         if (!vm::Verify(*p, &error))
             throw std::logic_error("compiler emitted an invalid program for " + path + ": " + error);

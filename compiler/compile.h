@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "compiler/lower.h"
+#include "compiler/specialise.h"
 #include "vm/program.h"
 
 namespace affray::compiler {
@@ -17,8 +18,12 @@ struct CompiledShader {
     std::string name;
     std::string sourcePath;
     std::string sourceText;
-    vm::Program bound;  // outputs: P
-    vm::Program shade;  // outputs: P, N
+    /// The programs as compiled: parameters are registers (see vm::Program::params).
+    vm::Program genericBound;  // outputs: P
+    vm::Program genericShade;  // outputs: P, N
+    /// The same, specialised for this instance's parameter values.
+    vm::Program bound;
+    vm::Program shade;
     std::vector<ParamInfo> params;
     bool writesP = false;
     bool writesN = false;
@@ -35,7 +40,8 @@ struct CompileResult {
     bool ok() const { return shader.has_value(); }
 };
 
-/// Compiles the shader in the file at `path` with `overrides` bound to its parameters.
+/// Compiles the shader in the file at `path`, then specialises it with `overrides` bound to its
+/// parameters (defaults for the others).
 CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides = {});
 /// Same, from text already in memory (`path` names it in diagnostics).
 CompileResult CompileSource(const std::string& path, const std::string& text,

@@ -20,7 +20,7 @@ constexpr size_t kForever = std::numeric_limits<size_t>::max();
 class Emitter {
   public:
     Emitter(const IrBuilder& ir, vm::Program& out) : m_ir(ir), m_out(out) {}
-    void Run(const std::vector<NamedValue>& outputs);
+    void Run(const std::vector<NamedValue>& outputs, const std::vector<vm::ProgramParam>& params);
 
   private:
     void MarkLive(const std::vector<NamedValue>& outputs);
@@ -101,7 +101,7 @@ uint16_t Emitter::ConstantIndex(double k) {
 
 void Emitter::EmitNode(ValueId v) {
     const IrNode& n = m_ir.node(v);
-    if (n.op == IrOp::Global) return;  // placed up front
+    if (n.op == IrOp::Global || n.op == IrOp::Param) return;  // placed up front
     if (n.op == IrOp::Const) {
         if (!ConstInRegister(v)) return;  // used as a K operand only
         uint16_t r = Allocate();
@@ -148,12 +148,13 @@ void Emitter::EmitNode(ValueId v) {
         case IrOp::Div: op = aK ? Op::DivKR : bK ? Op::DivRK : Op::DivRR; break;
         case IrOp::Pow: op = bK ? Op::PowRK : Op::PowRR; break;
         case IrOp::Const:
-        case IrOp::Global: break;
+        case IrOp::Global:
+        case IrOp::Param: break;
     }
     Push(op, dst, ra, rb, n.line);
 }
 
-void Emitter::Run(const std::vector<NamedValue>& outputs) {
+void Emitter::Run(const std::vector<NamedValue>& outputs, const std::vector<vm::ProgramParam>& params) {
     MarkLive(outputs);
 
     // Globals first: a triple global gets three consecutive registers even if only one
@@ -167,6 +168,27 @@ void Emitter::Run(const std::vector<NamedValue>& outputs) {
             m_out.registerCount += vm::GlobalSize(static_cast<vm::Global>(n.a));
         }
         m_register[v] = static_cast<uint16_t>(base + n.b);
+    }
+    // Parameters the outputs read: like globals, consecutive registers written before the run.
+    m_out.params = params;
+    for (vm::ProgramParam& p : m_out.params) p.firstRegister = vm::kNoRegister;
+    for (ValueId v = 0; v < m_ir.size(); ++v) {
+        const IrNode& n = m_ir.node(v);
+        if (!m_live[v] || n.op != IrOp::Param) continue;
+        vm::ProgramParam& p = m_out.params.at(n.a);
+        if (p.firstRegister == vm::kNoRegister) {
+            p.firstRegister = static_cast<uint16_t>(m_out.registerCount);
+            m_out.registerCount += p.size;
+        }
+        m_register[v] = static_cast<uint16_t>(p.firstRegister + n.b);
+    }
+    for (size_t i = 0; i < m_out.params.size(); ++i) {
+        const vm::ProgramParam& p = m_out.params[i];
+        if (p.firstRegister == vm::kNoRegister) continue;
+        for (int c = 0; c < p.size; ++c) {
+            ValueId id = m_ir.Find(IrOp::Param, static_cast<uint32_t>(i), c);
+            if (id == kNoValue || !m_live[id]) m_free.insert(static_cast<uint16_t>(p.firstRegister + c));
+        }
     }
     // Components of read globals that nothing uses are free from the start.
     for (int g = 0; g < vm::kGlobalCount; ++g) {
@@ -192,10 +214,11 @@ void Emitter::Run(const std::vector<NamedValue>& outputs) {
 
 }  // namespace
 
-vm::Program Emit(const IrBuilder& ir, const std::vector<NamedValue>& outputs) {
+vm::Program Emit(const IrBuilder& ir, const std::vector<NamedValue>& outputs,
+                 const std::vector<vm::ProgramParam>& params) {
     vm::Program program;
     Emitter emitter(ir, program);
-    emitter.Run(outputs);
+    emitter.Run(outputs, params);
     return program;
 }
 

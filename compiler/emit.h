@@ -18,6 +18,8 @@ struct NamedValue {
 /// Emits a program computing `outputs` from the IR: only nodes the outputs reach are kept (dead
 /// code elimination), constant operands become K operands where an opcode takes one, and
 /// registers are reused as soon as a value's last use has passed.
-vm::Program Emit(const IrBuilder& ir, const std::vector<NamedValue>& outputs);
+/// `params` describes the IR's Param nodes (by index); those the outputs read get registers.
+vm::Program Emit(const IrBuilder& ir, const std::vector<NamedValue>& outputs,
+                 const std::vector<vm::ProgramParam>& params = {});
 
 }  // namespace affray::compiler

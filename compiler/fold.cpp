@@ -31,7 +31,8 @@ std::optional<double> Evaluate(IrOp op, double a, double b) {
         case IrOp::Div: return a / b;
         case IrOp::Pow: return std::pow(a, b);
         case IrOp::Const:
-        case IrOp::Global: break;
+        case IrOp::Global:
+        case IrOp::Param: break;
     }
     return std::nullopt;
 }

@@ -6,7 +6,7 @@
 namespace affray::compiler {
 
 const char* ToString(IrOp op) {
-    static const char* const kNames[] = {"const", "global", "neg",  "sqr", "sqrt", "exp",
+    static const char* const kNames[] = {"const", "global", "param", "neg",  "sqr", "sqrt", "exp",
                                          "log",   "sin",    "cos",  "abs", "sign", "du",
                                          "dv",    "add",    "sub",  "mul", "div",  "pow"};
     return kNames[static_cast<int>(op)];
@@ -33,6 +33,10 @@ ValueId IrBuilder::Const(double k) {
 
 ValueId IrBuilder::Global(vm::Global g, int component) {
     return Intern({IrOp::Global, static_cast<uint32_t>(g), static_cast<uint32_t>(component), 0, 0});
+}
+
+ValueId IrBuilder::Param(int index, int component) {
+    return Intern({IrOp::Param, static_cast<uint32_t>(index), static_cast<uint32_t>(component), 0, 0});
 }
 
 ValueId IrBuilder::Unary(IrOp op, ValueId a, int line) {

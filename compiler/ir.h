@@ -18,6 +18,7 @@ namespace affray::compiler {
 enum class IrOp : uint8_t {
     Const,   // k
     Global,  // a = vm::Global index, b = component
+    Param,   // a = parameter index, b = component (a parameter not bound to a constant)
     Neg, Sqr, Sqrt, Exp, Log, Sin, Cos, Abs, Sign, DerivU, DerivV,  // unary on a
     Add, Sub, Mul, Div, Pow,  // binary on a, b
 };
@@ -39,6 +40,7 @@ class IrBuilder {
   public:
     ValueId Const(double k);
     ValueId Global(vm::Global g, int component);
+    ValueId Param(int index, int component);
     ValueId Unary(IrOp op, ValueId a, int line);
     ValueId Binary(IrOp op, ValueId a, ValueId b, int line);
 

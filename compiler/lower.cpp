@@ -35,8 +35,7 @@ class Lowerer {
   public:
     Lowerer(LoweredShader& out, lang::Diagnostics& diags) : m_out(out), m_diags(diags), m_ops(out.ir) {}
 
-    bool Run(const lang::ShaderDef& shader, const std::vector<ParamOverride>& overrides,
-             std::vector<std::string>* overrideErrors);
+    bool Run(const lang::ShaderDef& shader);
 
   private:
     std::optional<Value> LowerExpr(const Expr& e);
@@ -327,8 +326,7 @@ void Lowerer::LowerStmt(const Stmt& s) {
     }
 }
 
-bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<ParamOverride>& overrides,
-                  std::vector<std::string>* overrideErrors) {
+bool Lowerer::Run(const lang::ShaderDef& shader) {
     m_out.name = shader.name;
     // Scope 0: the globals. P and N are the ones a displacement shader may write.
     PushScope();
@@ -350,9 +348,10 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<ParamOverride
     }
     const Value inputP = Find("P")->value, inputN = Find("N")->value;
 
-    // Scope 1: the parameters, each bound to a constant (its override, else its default).
+    // Scope 1: the parameters. A default is a constant expression, evaluated with the earlier
+    // parameters at their defaults; the body then sees each parameter as an IR Param node, bound
+    // to a constant per shader instance later (compiler/specialise).
     PushScope();
-    std::vector<bool> overrideUsed(overrides.size(), false);
     // A parameter in error is still declared (as 0), so its uses do not repeat the error.
     auto declarePlaceholder = [&](const lang::VarDecl& p, Type type) {
         Variable var;
@@ -364,7 +363,10 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<ParamOverride
     };
     for (const lang::VarDecl& p : shader.params) {
         Type type = FromTypeName(p.type);
-        ParamInfo info{p.name, type, {}, p.isOutput};
+        if (m_scopes.back().count(p.name)) {
+            m_diags.error(p.loc, "redefinition of parameter '" + p.name + "'");
+            continue;
+        }
         if (!p.init) {
             m_diags.error(p.loc, "parameter '" + p.name + "' needs a default value");
             declarePlaceholder(p, type);
@@ -378,11 +380,8 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<ParamOverride
         std::optional<Value> init = LowerExpr(*p.init);
         std::optional<Value> value;
         if (init) value = Convert(*init, type, p.loc, std::string(ToString(type)) + " parameter '" + p.name + "'");
-        if (!value) {
-            declarePlaceholder(p, type);
-            continue;
-        }
-        for (int i = 0; i < value->size(); ++i) {
+        ParamInfo info{p.name, type, {}, p.isOutput};
+        for (int i = 0; value && i < value->size(); ++i) {
             std::optional<double> k = m_out.ir.ConstValue(value->c[i]);
             if (!k) {
                 m_diags.error(p.loc, "default value of parameter '" + p.name + "' must be a constant expression");
@@ -395,42 +394,21 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<ParamOverride
             declarePlaceholder(p, type);
             continue;
         }
-        for (size_t o = 0; o < overrides.size(); ++o) {
-            if (overrides[o].name != p.name) continue;
-            overrideUsed[o] = true;
-            const std::vector<double>& numbers = overrides[o].numbers;
-            size_t want = static_cast<size_t>(ScalarCount(type));
-            if (numbers.size() != want && !(numbers.size() == 1 && want == 3)) {
-                overrideErrors->push_back("parameter '" + p.name + "' of shader '" + shader.name + "' is " +
-                                          Article(type) + " and takes " + std::to_string(want) +
-                                          " value" + (want == 1 ? "" : "s") + ", got " + std::to_string(numbers.size()));
-                continue;
-            }
-            bool finite = true;
-            for (double x : numbers) finite = finite && std::isfinite(x);
-            if (!finite) {
-                overrideErrors->push_back("parameter '" + p.name + "' of shader '" + shader.name +
-                                          "' must be finite (got NaN or infinity)");
-                continue;
-            }
-            for (size_t i = 0; i < want; ++i) value->c[i] = m_out.ir.Const(numbers[numbers.size() == 1 ? 0 : i]);
-        }
         Variable var;
         var.type = type;
-        var.value = *value;
+        var.value = *value;  // the default, while later defaults are evaluated
         var.assigned = true;
         var.used = true;  // an unused parameter is not worth a warning: the scene may set it
         var.loc = p.loc;
-        if (m_scopes.back().count(p.name)) {
-            m_diags.error(p.loc, "redefinition of parameter '" + p.name + "'");
-            continue;
-        }
         m_scopes.back().emplace(p.name, var);
         m_out.params.push_back(info);
     }
-    for (size_t o = 0; o < overrides.size(); ++o)
-        if (!overrideUsed[o])
-            overrideErrors->push_back("shader '" + shader.name + "' has no parameter '" + overrides[o].name + "'");
+    for (size_t i = 0; i < m_out.params.size(); ++i) {
+        const ParamInfo& info = m_out.params[i];
+        Variable& var = m_scopes.back().at(info.name);
+        for (int c = 0; c < ScalarCount(info.type); ++c) var.value.c[c] = m_out.ir.Param(static_cast<int>(i), c);
+        if (info.type == Type::Float) var.value.c[1] = var.value.c[2] = var.value.c[0];
+    }
 
     // Scope 2: the body.
     PushScope();
@@ -446,13 +424,12 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<ParamOverride
     m_out.writesN = N.value.c != inputN.c;
     if (!m_out.writesP && !m_out.writesN && !m_diags.hasErrors())
         m_diags.warning(shader.loc, "shader '" + shader.name + "' never changes P or N");
-    return !m_diags.hasErrors() && overrideErrors->empty();
+    return !m_diags.hasErrors();
 }
 
 }  // namespace
 
-std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, const std::vector<ParamOverride>& overrides,
-                                   lang::Diagnostics& diags, std::vector<std::string>* overrideErrors) {
+std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags) {
     if (unit.shaders.empty()) {
         if (!diags.hasErrors()) diags.error({1, 1}, "no shader definition in file");
         return std::nullopt;
@@ -465,11 +442,9 @@ std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, const std:
                                     " shaders are not supported yet; affray renders displacement shaders");
         return std::nullopt;
     }
-    std::vector<std::string> localErrors;
-    if (!overrideErrors) overrideErrors = &localErrors;
     LoweredShader out;
     Lowerer lowerer(out, diags);
-    if (!lowerer.Run(shader, overrides, overrideErrors)) return std::nullopt;
+    if (!lowerer.Run(shader)) return std::nullopt;
     return out;
 }
 

@@ -11,14 +11,9 @@
 #include "compiler/value_ops.h"
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
+#include "vm/program.h"
 
 namespace affray::compiler {
-
-/// A value given to a shader parameter by the scene (or `affray eval --param`).
-struct ParamOverride {
-    std::string name;
-    std::vector<double> numbers;
-};
 
 /// A shader parameter as declared: its type and default (already folded to constants).
 struct ParamInfo {
@@ -39,13 +34,9 @@ struct LoweredShader {
     std::vector<ParamInfo> params;
 };
 
-/// Checks and lowers the one displacement shader in `unit`, with every parameter bound to a
-/// constant: its override if given, else its default (specialisation). Problems in the source go
-/// to `diags`; problems with the overrides (unknown name, wrong count, NaN or infinite value) are
-/// appended to *overrideErrors. Returns nothing if there was any error.
-std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit,
-                                   const std::vector<ParamOverride>& overrides,
-                                   lang::Diagnostics& diags,
-                                   std::vector<std::string>* overrideErrors);
+/// Checks and lowers the one displacement shader in `unit`. Parameters stay IR Param nodes (the
+/// i-th declared parameter is index i of `params`), with constant defaults. Problems go to
+/// `diags`; returns nothing if there was any error.
+std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags);
 
 }  // namespace affray::compiler

@@ -50,6 +50,7 @@ struct LexState {
     void* scanner = nullptr;  // the flex scanner (yyscan_t)
     int line = 1;             // where the next token starts
     int column = 1;
+    int file = 0;             // Diagnostics::fileIndex of the file being read (line markers set it)
     SourceLoc token;          // where the current token starts
     SourceLoc commentStart;   // of the open /* comment
     int nesting = 0;          // parentheses and braces open now
@@ -58,7 +59,7 @@ struct LexState {
 
     /// Records the start of a token of `length` bytes at the current position and moves past it.
     void Advance(const char* text, int length);
-    SourceLoc Here() const { return {line, column}; }
+    SourceLoc Here() const { return {line, column, file}; }
 };
 
 /// A tree under construction, with its depth (1 for a leaf; 0 for none), so that the builders
@@ -90,7 +91,11 @@ class ParseContext {
     /// `- - - x` or `if (a) if (b) ...`); past this, the subtree is replaced and parsing goes on.
     static constexpr int kMaxDepth = 1000;
 
-    explicit ParseContext(Diagnostics& diags) : m_diags(diags) {}
+    /// With `markerFiles`, a line marker's file name also changes the file of later locations
+    /// (preprocessed text); without it, only the line changes and every location is in the main
+    /// file (text written by hand).
+    explicit ParseContext(Diagnostics& diags, bool markerFiles = false)
+        : m_diags(diags), m_markerFiles(markerFiles) {}
 
     /// Reports an error unless parsing has stopped. Past Diagnostics::kMaxErrors, stops.
     void Error(SourceLoc loc, std::string message);
@@ -98,6 +103,9 @@ class ParseContext {
     void Stop() { m_stopped = true; }
     bool StoppedP() const { return m_stopped; }
     int ErrorCount() const { return m_diags.errorCount(); }
+    bool MarkerFilesP() const { return m_markerFiles; }
+    /// Diagnostics::fileIndex of `path`, for a line marker naming it.
+    int FileIndex(const std::string& path) { return m_diags.fileIndex(path); }
     LexState& lex() { return m_lex; }
     TranslationUnit& unit() { return m_unit; }
 
@@ -143,6 +151,7 @@ class ParseContext {
     StmtNode Finish(StmtPtr s, int depth);
 
     Diagnostics& m_diags;
+    bool m_markerFiles = false;
     LexState m_lex;
     TranslationUnit m_unit;
     bool m_stopped = false;

@@ -9,10 +9,13 @@
 
 namespace affray::lang {
 
-/// A position in a source file. Lines and columns count from 1; 0 means "unknown".
+/// A position in a source file. Lines and columns count from 1; 0 means "unknown". `file` says
+/// which file: 0 is the file a Diagnostics was made for, others are the files its line markers
+/// named (an #include'd header), numbered by Diagnostics::fileIndex.
 struct SourceLoc {
     int line = 0;
     int column = 0;
+    int file = 0;
 };
 
 /// The text of one source file, with an index of its line starts for caret printing.

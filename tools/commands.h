@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "compiler/lower.h"
+#include "compiler/specialise.h"
 #include "renderer/intersect.h"
 
 namespace affray::tools {

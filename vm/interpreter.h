@@ -25,7 +25,11 @@ class Interpreter {
     void SetGlobal(Global g, const T& value);
     void SetGlobal(Global g, const Vec3<T>& value);
 
-    /// Runs the program once over the current globals.
+    /// Sets parameter `index` of program().params (size values) for the following runs; until
+    /// then a parameter has its default. Specialised programs have no parameters.
+    void SetParam(size_t index, const std::vector<double>& values);
+
+    /// Runs the program once over the current globals and parameters.
     void Run();
 
     /// The value of an output after Run(); the output must exist.
@@ -35,6 +39,7 @@ class Interpreter {
   private:
     const Program* m_program;
     std::vector<T> m_registers;
+    std::vector<std::vector<double>> m_paramValues;
 };
 
 extern template class Interpreter<double>;

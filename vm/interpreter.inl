@@ -18,7 +18,14 @@ namespace affray::vm {
 
 template <class T>
 Interpreter<T>::Interpreter(const Program& program)
-    : m_program(&program), m_registers(program.registerCount, T(0.0)) {}
+    : m_program(&program), m_registers(program.registerCount, T(0.0)) {
+    for (const ProgramParam& p : program.params) m_paramValues.push_back(p.defaults);
+}
+
+template <class T>
+void Interpreter<T>::SetParam(size_t index, const std::vector<double>& values) {
+    m_paramValues[index] = values;
+}
 
 template <class T>
 void Interpreter<T>::SetGlobal(Global g, const T& value) {
@@ -47,6 +54,12 @@ void Interpreter<T>::Run() {
     using std::abs, std::cos, std::exp, std::log, std::pow, std::sin, std::sqrt;
     T* R = m_registers.data();
     const double* K = m_program->constants.data();
+    // Parameter registers may be reused once read, so they are written before every run.
+    for (size_t i = 0; i < m_program->params.size(); ++i) {
+        const ProgramParam& p = m_program->params[i];
+        if (p.firstRegister == kNoRegister) continue;
+        for (int c = 0; c < p.size; ++c) R[p.firstRegister + c] = T(m_paramValues[i][c]);
+    }
     for (const Instr& in : m_program->code) {
         T& A = R[in.a];
         switch (in.op) {

@@ -51,6 +51,16 @@ struct ProgramOutput {
     std::array<uint16_t, 3> registers{kNoRegister, kNoRegister, kNoRegister};
 };
 
+/// A shader parameter the program reads from registers (a program not yet specialised): the
+/// caller's value, or the default, is written there before each run.
+struct ProgramParam {
+    std::string name;
+    std::string type;  // "float", "point", "vector", "normal" or "color"
+    int size = 1;      // 1 or 3 registers
+    uint16_t firstRegister = kNoRegister;
+    std::vector<double> defaults;  // size values
+};
+
 struct Program {
     std::string shaderName;
     std::string sourcePath;
@@ -62,6 +72,9 @@ struct Program {
     /// kNoRegister: the renderer computes only the globals that are read.
     std::array<uint16_t, kGlobalCount> globalRegisters;
     std::vector<ProgramOutput> outputs;
+    /// Parameters still read from registers; empty once the program is specialised (every
+    /// parameter then is a constant folded into the code).
+    std::vector<ProgramParam> params;
 
     Program() { globalRegisters.fill(kNoRegister); }
 

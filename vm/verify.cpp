@@ -31,6 +31,15 @@ bool Verify(const Program& program, std::string* error) {
         for (int i = 0; i < size; ++i) written[base + i] = true;
     }
 
+    for (const ProgramParam& p : program.params) {
+        if (p.size != 1 && p.size != 3) return Fail(error, "parameter " + p.name + " has a bad size");
+        if (p.defaults.size() != static_cast<size_t>(p.size))
+            return Fail(error, "parameter " + p.name + " has the wrong number of defaults");
+        if (p.firstRegister == kNoRegister) continue;  // not read
+        if (p.firstRegister + p.size > nRegs) return Fail(error, "parameter " + p.name + " register out of range");
+        for (int i = 0; i < p.size; ++i) written[p.firstRegister + i] = true;
+    }
+
     for (size_t pc = 0; pc < program.code.size(); ++pc) {
         const Instr& in = program.code[pc];
         std::string where = "instruction " + std::to_string(pc) + ": ";

@@ -104,9 +104,10 @@ TEST_CASE("variables, promotion, compound assignment and scopes", "[compiler]") 
 TEST_CASE("parameters take defaults and overrides", "[compiler]") {
     const std::string src = "displacement t(float Km = 0.5, k2 = Km * 2; point c = (1, 2, 3);) { P += Km + k2 + zcomp(c); }";
     CHECK_THAT(test::PointOnSquare(test::CompileOrThrow(src).shade, 0, 0).z, WithinAbs(4.5, 1e-15));
-    // A default that names an earlier parameter sees that parameter's instance value.
+    // Defaults are constants fixed at compile time: k2's default saw Km's default (0.5), and an
+    // instance value of Km does not change it.
     CHECK_THAT(test::PointOnSquare(test::CompileOrThrow(src, {{"Km", {2}}}).shade, 0, 0).z,
-               WithinAbs(2 + 4 + 3, 1e-15));
+               WithinAbs(2 + 1 + 3, 1e-15));
     CHECK_THAT(test::PointOnSquare(test::CompileOrThrow(src, {{"c", {0, 0, 10}}}).shade, 0, 0).z,
                WithinAbs(11.5, 1e-15));
 
@@ -208,4 +209,41 @@ TEST_CASE("the disassembly shows opcodes, constants and source lines", "[compile
     CHECK(listing.find("; 2: P += 0.25 * sin(u) * N;") != std::string::npos);
     CHECK(listing.find("Sin") != std::string::npos);
     CHECK(listing.find("(0.25)") != std::string::npos);
+}
+
+TEST_CASE("generic programs read parameters; specialised ones fold them away", "[compiler][specialise]") {
+    const std::string src = R"(
+        displacement t(float Km = 0.5, freq = 4; vector dir = (0, 0, 1)) {
+            P += Km * sin(freq * u) * dir;
+        })";
+    compiler::CompiledShader s = test::CompileOrThrow(src);
+    // The generic program reads Km, freq and dir from registers.
+    REQUIRE(s.genericBound.params.size() == 3);
+    CHECK(s.genericBound.params[0].name == "Km");
+    CHECK(s.genericBound.params[2].type == "vector");
+    CHECK(s.genericBound.params[2].defaults == std::vector<double>{0, 0, 1});
+    for (const vm::ProgramParam& p : s.genericBound.params) CHECK(p.firstRegister != vm::kNoRegister);
+    // Specialised with the defaults, the parameters are constants that fold into K operands
+    // (freq * u becomes one MulRK, Km * sin(...) another): shorter code, no parameter registers.
+    CHECK(s.bound.params.empty());
+    CHECK(s.bound.code.size() < s.genericBound.code.size());
+
+    // Generic (with parameter values set at run time) and specialised programs agree.
+    compiler::CompiledShader inst = test::CompileOrThrow(src, {{"Km", {2}}, {"freq", {7}}, {"dir", {0, 1, 0}}});
+    vm::Interpreter<double> generic(s.genericBound);
+    generic.SetParam(0, {2});
+    generic.SetParam(1, {7});
+    generic.SetParam(2, {0, 1, 0});
+    renderer::SetPatchGlobals(generic, renderer::BilinearPatch::UnitSquare(), 0.3, 0.3, 0.6, 0.6, glm::dvec3(0));
+    generic.Run();
+    vm::Vec3<double> g = generic.OutputTriple(*s.genericBound.findOutput("P"));
+    glm::dvec3 p = test::PointOnSquare(inst.bound, 0.3, 0.6);
+    CHECK(g.x == p.x);
+    CHECK(g.y == p.y);
+    CHECK(g.z == p.z);
+    CHECK(p.y == Approx(0.6 + 2 * std::sin(7 * 0.3)));
+
+    // A parameter whose instance value makes code dead: Km = 0 leaves nothing but P.
+    compiler::CompiledShader zero = test::CompileOrThrow(src, {{"Km", {0}}});
+    CHECK(zero.bound.code.size() <= s.bound.code.size());
 }

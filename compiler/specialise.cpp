@@ -1,0 +1,125 @@
+// compiler/specialise.cpp: lift a generic program back into the value graph with its parameters
+// replaced by constants, then emit it again. Lifting walks the straight-line code once, keeping
+// for each register the IR node it holds; the IR builder folds and shares as the nodes are
+// created, and emission drops what the outputs no longer need.
+#include "compiler/specialise.h"
+
+#include <cmath>
+
+#include "compiler/emit.h"
+
+namespace affray::compiler {
+
+namespace {
+
+/// The parameter values of one instance, or errors.
+bool BindValues(const vm::Program& program, const std::vector<ParamOverride>& overrides,
+                std::vector<std::vector<double>>* values, std::vector<std::string>* errors) {
+    const std::string shader = "shader '" + program.shaderName + "'";
+    for (const vm::ProgramParam& p : program.params) values->push_back(p.defaults);
+    bool ok = true;
+    for (const ParamOverride& o : overrides) {
+        size_t i = 0;
+        while (i < program.params.size() && program.params[i].name != o.name) ++i;
+        if (i == program.params.size()) {
+            errors->push_back(shader + " has no parameter '" + o.name + "'");
+            ok = false;
+            continue;
+        }
+        const vm::ProgramParam& p = program.params[i];
+        size_t want = static_cast<size_t>(p.size);
+        if (o.numbers.size() != want && !(o.numbers.size() == 1 && want == 3)) {
+            errors->push_back("parameter '" + o.name + "' of " + shader + " is a " + p.type + " and takes " +
+                              std::to_string(want) + " value" + (want == 1 ? "" : "s") + ", got " +
+                              std::to_string(o.numbers.size()));
+            ok = false;
+            continue;
+        }
+        bool finite = true;
+        for (double x : o.numbers) finite = finite && std::isfinite(x);
+        if (!finite) {
+            errors->push_back("parameter '" + o.name + "' of " + shader + " must be finite (got NaN or infinity)");
+            ok = false;
+            continue;
+        }
+        for (size_t c = 0; c < want; ++c) (*values)[i][c] = o.numbers[o.numbers.size() == 1 ? 0 : c];
+    }
+    return ok;
+}
+
+}  // namespace
+
+std::optional<vm::Program> Specialise(const vm::Program& program, const std::vector<ParamOverride>& overrides,
+                                      std::vector<std::string>* errors) {
+    std::vector<std::vector<double>> values;
+    if (!BindValues(program, overrides, &values, errors)) return std::nullopt;
+
+    IrBuilder ir;
+    std::vector<ValueId> reg(program.registerCount, kNoValue);
+    for (int g = 0; g < vm::kGlobalCount; ++g) {
+        uint16_t base = program.globalRegisters[g];
+        if (base == vm::kNoRegister) continue;
+        for (int i = 0; i < vm::GlobalSize(static_cast<vm::Global>(g)); ++i)
+            reg[base + i] = ir.Global(static_cast<vm::Global>(g), i);
+    }
+    for (size_t p = 0; p < program.params.size(); ++p) {
+        const vm::ProgramParam& param = program.params[p];
+        if (param.firstRegister == vm::kNoRegister) continue;
+        for (int i = 0; i < param.size; ++i) reg[param.firstRegister + i] = ir.Const(values[p][i]);
+    }
+
+    const std::vector<double>& K = program.constants;
+    for (size_t pc = 0; pc < program.code.size(); ++pc) {
+        const vm::Instr& in = program.code[pc];
+        const int line = pc < program.lines.size() ? program.lines[pc] : 0;
+        auto R = [&](uint16_t r) { return reg[r]; };
+        auto C = [&](uint16_t k) { return ir.Const(K[k]); };
+        auto unary = [&](IrOp op) { return ir.Unary(op, R(in.b), line); };
+        auto binary = [&](IrOp op, ValueId a, ValueId b) { return ir.Binary(op, a, b, line); };
+        using vm::Op;
+        ValueId v = kNoValue;
+        switch (in.op) {
+            case Op::LoadK: v = C(in.b); break;
+            case Op::Move: v = R(in.b); break;
+            case Op::Neg: v = unary(IrOp::Neg); break;
+            case Op::AddRR: v = binary(IrOp::Add, R(in.b), R(in.c)); break;
+            case Op::AddRK: v = binary(IrOp::Add, R(in.b), C(in.c)); break;
+            case Op::SubRR: v = binary(IrOp::Sub, R(in.b), R(in.c)); break;
+            case Op::SubRK: v = binary(IrOp::Sub, R(in.b), C(in.c)); break;
+            case Op::SubKR: v = binary(IrOp::Sub, C(in.b), R(in.c)); break;
+            case Op::MulRR: v = binary(IrOp::Mul, R(in.b), R(in.c)); break;
+            case Op::MulRK: v = binary(IrOp::Mul, R(in.b), C(in.c)); break;
+            case Op::DivRR: v = binary(IrOp::Div, R(in.b), R(in.c)); break;
+            case Op::DivRK: v = binary(IrOp::Div, R(in.b), C(in.c)); break;
+            case Op::DivKR: v = binary(IrOp::Div, C(in.b), R(in.c)); break;
+            case Op::Sqr: v = unary(IrOp::Sqr); break;
+            case Op::Sqrt: v = unary(IrOp::Sqrt); break;
+            case Op::Exp: v = unary(IrOp::Exp); break;
+            case Op::Log: v = unary(IrOp::Log); break;
+            case Op::Sin: v = unary(IrOp::Sin); break;
+            case Op::Cos: v = unary(IrOp::Cos); break;
+            case Op::Abs: v = unary(IrOp::Abs); break;
+            case Op::Sign: v = unary(IrOp::Sign); break;
+            case Op::PowRR: v = binary(IrOp::Pow, R(in.b), R(in.c)); break;
+            case Op::PowRK: v = binary(IrOp::Pow, R(in.b), C(in.c)); break;
+            case Op::DerivU: v = unary(IrOp::DerivU); break;
+            case Op::DerivV: v = unary(IrOp::DerivV); break;
+        }
+        reg[in.a] = v;
+    }
+
+    std::vector<NamedValue> outputs;
+    for (const vm::ProgramOutput& o : program.outputs) {
+        Value value;
+        value.type = o.size == 1 ? Type::Float : Type::Point;
+        for (int i = 0; i < o.size; ++i) value.c[i] = reg[o.registers[i]];
+        if (o.size == 1) value.c[1] = value.c[2] = value.c[0];
+        outputs.push_back({o.name, value});
+    }
+    vm::Program out = Emit(ir, outputs);
+    out.shaderName = program.shaderName;
+    out.sourcePath = program.sourcePath;
+    return out;
+}
+
+}  // namespace affray::compiler

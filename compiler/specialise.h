@@ -1,0 +1,28 @@
+// compiler/specialise.h: binding a program's parameters to one shader instance's values.
+// The compiler emits *generic* programs, whose parameters are registers; each shader instance
+// in a scene gets its own *specialised* copy, in which every parameter is a constant and the
+// code is folded and pruned again (OSL's runtime optimiser is the model): whatever the
+// instance's values make constant or dead disappears.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vm/program.h"
+
+namespace affray::compiler {
+
+/// A value given to a shader parameter by the scene (or `affray eval --param`).
+struct ParamOverride {
+    std::string name;
+    std::vector<double> numbers;  // 1 for a float, 3 (or 1, spread) for a triple
+};
+
+/// `program` with every parameter bound to its override, else its default, then folded, shared
+/// and pruned again. Problems with the overrides (unknown name, wrong count, NaN or infinity)
+/// are appended to *errors as sentences, and the result is empty.
+std::optional<vm::Program> Specialise(const vm::Program& program, const std::vector<ParamOverride>& overrides,
+                                      std::vector<std::string>* errors);
+
+}  // namespace affray::compiler
