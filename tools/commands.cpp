@@ -71,6 +71,14 @@ void PrintBound(const vm::Program& program, double u0, double u1, double v0, dou
                  unbounded ? ",\"unbounded\":true" : "");
 }
 
+/// Instruction counts of one shader instance, as a JSON object's members (no braces).
+std::string InstructionCounts(const compiler::CompiledShader& s) {
+    auto count = [](const vm::Program& p) { return std::to_string(p.code.size()); };
+    return "\"operations_requested\":" + std::to_string(s.opsBeforeOptimisation) + ",\"bound_generic\":" +
+           count(s.genericBound) + ",\"bound_specialised\":" + count(s.bound) + ",\"shade_generic\":" +
+           count(s.genericShade) + ",\"shade_specialised\":" + count(s.shade);
+}
+
 }  // namespace
 
 int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
@@ -83,6 +91,14 @@ int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
     listing += "; ---- bound program (displaced P only) ----\n" + vm::Disassemble(shader.bound, shader.sourceText);
     listing += "; ---- shade program (P and N) ----\n" + vm::Disassemble(shader.shade, shader.sourceText);
     if (cmd.disasm) std::fputs(listing.c_str(), out);
+    if (cmd.stats) {
+        std::string globals;
+        for (int g = 0; g < vm::kGlobalCount; ++g)
+            if (shader.shade.readsGlobal(static_cast<vm::Global>(g)))
+                globals += std::string(globals.empty() ? "" : ",") + "\"" + vm::GlobalName(static_cast<vm::Global>(g)) + "\"";
+        std::fprintf(out, "{\"shader\":\"%s\",%s,\"params\":%zu,\"globals_read\":[%s]}\n", shader.name.c_str(),
+                     InstructionCounts(shader).c_str(), shader.params.size(), globals.c_str());
+    }
     if (!cmd.outputPath.empty()) {
         std::string error;
         if (!WriteTextAtomically(cmd.outputPath, listing, &error)) {
@@ -166,7 +182,19 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
         std::fprintf(err, "affray: error: %s\n", error.c_str());
         return 1;
     }
-    if (cmd.stats) std::fprintf(out, "%s\n", stats.ToJson().c_str());
+    if (cmd.stats) {
+        // The render's figures, then each shader instance's instruction counts.
+        std::string json = stats.ToJson();
+        json.pop_back();
+        json += ",\"shaders\":[";
+        bool first = true;
+        for (const renderer::Primitive& prim : prepared.primitives) {
+            if (!prim.shader) continue;
+            json += std::string(first ? "" : ",") + "{\"name\":\"" + prim.shader->name + "\"," + InstructionCounts(*prim.shader) + "}";
+            first = false;
+        }
+        std::fprintf(out, "%s]}\n", json.c_str());
+    }
     return 0;
 }
 

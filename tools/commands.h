@@ -15,6 +15,7 @@ struct CompileCommand {
     std::string shaderPath;
     std::string outputPath;  // empty: none
     bool disasm = false;
+    bool stats = false;
 };
 
 struct EvalCommand {

@@ -16,7 +16,7 @@ const char* const kUsage =
     "usage:\n"
     "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS]\n"
     "                [--bounds affine|interval] [--max-depth N] [--stats] [--png PREVIEW.png]\n"
-    "  affray compile SHADER.sl [-o OUT] [--disasm]\n"
+    "  affray compile SHADER.sl [-o OUT] [--disasm] [--stats]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
     "              [--mode scalar|affine|interval]\n"
     "  affray --help | --version\n";
@@ -81,6 +81,7 @@ int Compile(Args& args) {
         std::string a = args.Next();
         if (a == "-o") cmd.outputPath = args.Value(a);
         else if (a == "--disasm") cmd.disasm = true;
+        else if (a == "--stats") cmd.stats = true;
         else SetInput(&cmd.shaderPath, a);
     }
     if (cmd.shaderPath.empty()) throw UsageError{"compile: missing SHADER.sl"};

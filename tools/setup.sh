@@ -3,7 +3,8 @@
 # packages. Idempotent, and silent when everything is already there.
 set -euo pipefail
 
-packages=(build-essential cmake flex bison libopenexr-dev libglm-dev zlib1g-dev catch2)
+packages=(build-essential cmake flex bison libopenexr-dev libglm-dev zlib1g-dev catch2
+          libmcpp-dev)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -128,6 +128,10 @@ TEST_CASE("cli: compile exits 0 or prints diagnostics and exits 1", "[tools]") {
     CHECK(bad.out.find("bad.sl:2:") != std::string::npos);
     CHECK(bad.out.find("^") != std::string::npos);
     CHECK(Run("compile " + (dir / "missing.sl").string()).status == 1);
+    Output stats = Run("compile " + kWave + " --stats");
+    CHECK(stats.status == 0);
+    CHECK(stats.out.rfind("{\"shader\":\"wave\",\"operations_requested\":", 0) == 0);
+    CHECK(stats.out.find("\"globals_read\":[\"P\",\"N\",\"s\",\"t\"]") != std::string::npos);
     fs::remove_all(dir);
 }
 
@@ -140,6 +144,7 @@ TEST_CASE("cli: a tiny render is lit, shadowed, and the same with any thread cou
     REQUIRE(one.status == 0);
     CHECK(one.out.find("\"camera_rays\":1728") != std::string::npos);
     CHECK(one.out.find("\"max_certified_error\":") != std::string::npos);
+    CHECK(one.out.find("\"shaders\":[{\"name\":\"wave\",\"operations_requested\":") != std::string::npos);
     REQUIRE(Run("render " + (dir / "small.rib").string() + " -o " + (dir / "two.exr").string() + " --threads 2")
                 .status == 0);
     renderer::ImageBuffer a, b;
