@@ -36,6 +36,7 @@ const std::vector<Builtin>& Table() {
              return o.Div(Scalar(o, IrOp::Log, a[0]), Scalar(o, IrOp::Log, a[1]));
          }},
         {"sqrt", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Sqrt, a[0]); }},
+        {"inversesqrt", "f", [](ValueOps& o, A a) { return o.Div(o.Constant(1.0), Scalar(o, IrOp::Sqrt, a[0])); }},
         {"abs", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Abs, a[0]); }},
         {"sign", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Sign, a[0]); }},
         {"pow", "ff", [](ValueOps& o, A a) { return o.Pow(a[0], a[1]); }},
@@ -49,6 +50,22 @@ const std::vector<Builtin>& Table() {
         {"zcomp", "t", [](ValueOps& o, A a) { return o.Component(a[0], 2); }},
         {"Du", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::DerivU, a[0]); }},
         {"Dv", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::DerivV, a[0]); }},
+        {"reflect", "tt", [](ValueOps& o, A a) {
+             // reflect(I, N) = I - 2 (I.N) N
+             return o.Promote(o.Sub(a[0], o.Mul(o.Mul(o.Constant(2.0), o.Dot(a[0], a[1])), a[1])), Type::Vector);
+         }},
+        {"area", "t", [](ValueOps& o, A a) {
+             // area(P) = length(Du(P)*du ^ Dv(P)*dv)
+             Value du = o.Float(o.ir().Global(vm::Global::du, 0)), dv = o.Float(o.ir().Global(vm::Global::dv, 0));
+             Value sideU = o.Mul(Scalar(o, IrOp::DerivU, a[0]), du), sideV = o.Mul(Scalar(o, IrOp::DerivV, a[0]), dv);
+             return o.Length(o.Cross(sideU, sideV));
+         }},
+        {"Deriv", "af", [](ValueOps& o, A a) {
+             // Deriv(num, den) = Du(num)/Du(den) + Dv(num)/Dv(den)
+             Value byU = o.Div(Scalar(o, IrOp::DerivU, a[0]), Scalar(o, IrOp::DerivU, a[1]));
+             Value byV = o.Div(Scalar(o, IrOp::DerivV, a[0]), Scalar(o, IrOp::DerivV, a[1]));
+             return o.Add(byU, byV);
+         }},
         {"calculatenormal", "t", [](ValueOps& o, A a) {
              // RenderMan: calculatenormal(P) = Du(P) ^ Dv(P)
              Value du = Scalar(o, IrOp::DerivU, a[0]), dv = Scalar(o, IrOp::DerivV, a[0]);
@@ -68,8 +85,7 @@ const std::vector<Builtin>& Table() {
 const char* const kNotYet[] = {
     "noise", "pnoise", "cellnoise", "texture", "environment", "shadow", "transform", "vtransform",
     "ntransform", "clamp", "min", "max", "step", "smoothstep", "floor", "ceil", "round", "mod",
-    "inversesqrt", "asin", "acos", "atan", "setxcomp", "setycomp", "setzcomp", "comp", "setcomp",
-    "faceforward", "reflect", "area", "Deriv", "filterstep", "spline", "random", "rotate",
+    "asin", "acos", "atan", "faceforward", "filterstep", "spline", "random", "rotate",
     "illuminance", "specular", "diffuse", "ambient", "printf", "format", "concat", "match",
 };
 

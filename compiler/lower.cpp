@@ -43,6 +43,9 @@ class Lowerer {
     std::optional<Value> LowerAssign(const Expr& e);
     std::optional<Value> LowerCast(const Expr& e);
     std::optional<Value> LowerIdent(const Expr& e);
+    /// comp, setcomp and setxcomp/setycomp/setzcomp: component access by a constant index, the
+    /// setters writing to their first argument, which must be a variable.
+    std::optional<Value> LowerComponentCall(const Expr& e);
     void LowerStmt(const Stmt& s);
     void LowerDecl(const lang::VarDecl& d, std::optional<Value> init);
 
@@ -101,6 +104,51 @@ std::optional<Value> Lowerer::LowerIdent(const Expr& e) {
         return std::nullopt;
     }
     return var->value;
+}
+
+std::optional<Value> Lowerer::LowerComponentCall(const Expr& e) {
+    const bool isSet = e.name != "comp";
+    const bool indexed = e.name == "comp" || e.name == "setcomp";
+    const size_t want = indexed ? (isSet ? 3 : 2) : 2;
+    if (e.args.size() != want) {
+        m_diags.error(e.loc, "'" + e.name + "' expects " + std::to_string(want) + " arguments, got " +
+                                 std::to_string(e.args.size()));
+        return std::nullopt;
+    }
+    std::optional<Value> target = LowerExpr(*e.args[0]);
+    int index = e.name == "setxcomp" ? 0 : e.name == "setycomp" ? 1 : 2;
+    if (indexed) {
+        std::optional<Value> i = LowerExpr(*e.args[1]);
+        if (!i) return std::nullopt;
+        std::optional<double> k = i->type == Type::Float ? m_out.ir.ConstValue(i->c[0]) : std::nullopt;
+        if (!k || (*k != 0 && *k != 1 && *k != 2)) {
+            m_diags.error(e.args[1]->loc, "the component index of '" + e.name + "' must be the constant 0, 1 or 2");
+            return std::nullopt;
+        }
+        index = static_cast<int>(*k);
+    }
+    std::optional<Value> x = isSet ? LowerExpr(*e.args.back()) : std::nullopt;
+    if (!target || (isSet && !x)) return std::nullopt;
+    if (!IsTriple(target->type)) {
+        m_diags.error(e.args[0]->loc, "the first argument of '" + e.name + "' must be a point, vector, normal or color");
+        return std::nullopt;
+    }
+    if (!isSet) return m_ops.Component(*target, index);
+    if (x->type != Type::Float) {
+        m_diags.error(e.args.back()->loc, "the new component of '" + e.name + "' must be a float, got " + Article(x->type));
+        return std::nullopt;
+    }
+    Variable* var = e.args[0]->kind == ExprKind::Ident ? Find(e.args[0]->name) : nullptr;
+    if (!var) {
+        m_diags.error(e.args[0]->loc, "the first argument of '" + e.name + "' must be a variable");
+        return std::nullopt;
+    }
+    if (!var->writable) {
+        m_diags.error(e.args[0]->loc, "cannot assign to '" + e.args[0]->name + "': it is a read-only global");
+        return std::nullopt;
+    }
+    var->value.c[index] = x->c[0];
+    return m_ops.Float(x->c[0]);
 }
 
 std::optional<Value> Lowerer::LowerBinary(const Expr& e) {
@@ -230,6 +278,9 @@ std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
         case ExprKind::Binary: return LowerBinary(e);
         case ExprKind::Assign: return LowerAssign(e);
         case ExprKind::Call: {
+            if (e.name == "comp" || e.name == "setcomp" || e.name == "setxcomp" || e.name == "setycomp" ||
+                e.name == "setzcomp")
+                return LowerComponentCall(e);
             std::vector<Value> args;
             bool ok = true;
             for (const lang::ExprPtr& arg : e.args) {

@@ -77,6 +77,18 @@ TEST_CASE("built-ins give their RenderMan values", "[compiler]") {
     CHECK_THAT(ZOf("P += degrees(PI);"), WithinAbs(180, 1e-12));
     CHECK_THAT(ZOf("P += mix(2, 4, 0.25);"), WithinAbs(2.5, 1e-15));
     CHECK_THAT(ZOf("P += ycomp(mix(point(0, 0, 0), point(0, 8, 0), 0.5));"), WithinAbs(4, 1e-15));
+    CHECK_THAT(ZOf("P += inversesqrt(4);"), WithinAbs(0.5, 1e-15));
+    // reflect(I, N) = I - 2 (I.N) N: (1, 0, -1) off the plane z = 0 is (1, 0, 1)
+    CHECK_THAT(ZOf("P += zcomp(reflect(vector(1, 0, -1), normal(0, 0, 1)));"), WithinAbs(1, 1e-15));
+    CHECK_THAT(ZOf("P += xcomp(reflect(vector(1, 0, -1), normal(0, 0, 1)));"), WithinAbs(1, 1e-15));
+    // area(P) = length(Du(P) du ^ Dv(P) dv) = du * dv on the unit square
+    CHECK_THAT(ZOf("P += area(P) * 1024 * 1024;"), WithinAbs(1, 1e-12));
+    // Deriv(num, den) = Du(num)/Du(den) + Dv(num)/Dv(den): d(u^2)/du + d(u^2 v)/... on (u, v)
+    CHECK_THAT(ZOf("P += Deriv(u * u, u + v);", 0.25, 0.75), WithinAbs(0.5, 1e-15));
+    CHECK_THAT(ZOf("P += comp(point(4, 5, 6), 1);"), WithinAbs(5, 1e-15));
+    CHECK_THAT(ZOf("point q = (1, 2, 3); setcomp(q, 2, 7); P += q;"), WithinAbs(7, 1e-15));
+    CHECK_THAT(ZOf("setzcomp(P, 2.5);"), WithinAbs(2.5, 1e-15));
+    CHECK_THAT(ZOf("setxcomp(P, 9); P += vector(0, 0, xcomp(P));"), WithinAbs(9, 1e-15));
     // Du and Dv are exact derivatives along u and v.
     CHECK_THAT(ZOf("P += Du(u * u) + 10 * Dv(u * v);", 0.25, 0.75), WithinAbs(0.5 + 2.5, 1e-14));
 }
@@ -159,6 +171,15 @@ TEST_CASE("compiler diagnostics are exact", "[compiler]") {
           "test.sl:2:8: error: coordinate space 'shader' is not supported yet\n"
           "      P += point \"shader\" (1, 2, 3);\n           ^\n");
     CHECK(Diagnose("") == "test.sl:1:1: error: no shader definition in file\n");
+    CHECK(Diagnose("displacement t() {\n  P += comp(P, u);\n}\n") ==
+          "test.sl:2:16: error: the component index of 'comp' must be the constant 0, 1 or 2\n"
+          "      P += comp(P, u);\n                   ^\n");
+    CHECK(Diagnose("displacement t() {\n  setxcomp(u, 1);\n}\n") ==
+          "test.sl:2:12: error: the first argument of 'setxcomp' must be a point, vector, normal or color\n"
+          "      setxcomp(u, 1);\n               ^\n");
+    CHECK(Diagnose("displacement t() {\n  setxcomp(dPdu, 1);\n}\n") ==
+          "test.sl:2:12: error: cannot assign to 'dPdu': it is a read-only global\n"
+          "      setxcomp(dPdu, 1);\n               ^\n");
     // Several independent errors are all reported.
     std::string many = Diagnose("displacement t() {\n  P += a;\n  P += b;\n}\n");
     CHECK(many.find("'a'") != std::string::npos);
