@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <new>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -170,5 +171,8 @@ int main(int argc, char** argv) {
     } catch (const UsageError& e) {
         std::fprintf(stderr, "affray: error: %s\n%s", e.message.c_str(), kUsage);
         return 2;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "affray: error: out of memory (is the image or the scene too large?)\n");
+        return 1;
     }
 }
