@@ -1,8 +1,11 @@
 // compiler/fold.cpp: the rewrite rules applied as each IR node is created.
 // A rule may fire only if its result is the same for every number type the VM runs (double,
-// interval, affine, dual): so x*0 is NOT rewritten to 0 (inf*0 is NaN, an unbounded form times 0
-// stays unbounded), and a constant whose value is NaN or infinite is never folded (the run-time
-// operation reports it instead). Constants fold with the scalar semantics (std:: functions),
+// interval, affine, dual), and a constant whose value is NaN or infinite is never folded (the
+// run-time operation reports it instead). One deliberate exception: x * 0 => 0, which differs
+// from IEEE only where x is infinite or NaN. Displacing along a constant axis (N = (0,0,1) on a
+// flat patch) multiplies two components by 0 everywhere, and keeping those products would keep
+// every singularity of the displacement in all three coordinates; since every number type then
+// runs the same folded program, containment is unaffected. Constants fold with the scalar semantics (std:: functions),
 // exactly what the scalar VM would compute.
 #include <cmath>
 
@@ -75,6 +78,8 @@ std::optional<ValueId> Fold(IrBuilder& ir, IrOp op, ValueId a, ValueId b, int li
             // x * 1 => x, 1 * x => x
             if (kb && *kb == 1.0) return a;
             if (ka && *ka == 1.0) return b;
+            // x * 0 => 0, 0 * x => 0 (see the head comment)
+            if ((kb && *kb == 0.0) || (ka && *ka == 0.0)) return ir.Const(0.0);
             // x * -1 => -x
             if (kb && *kb == -1.0) return ir.Unary(IrOp::Neg, a, line);
             if (ka && *ka == -1.0) return ir.Unary(IrOp::Neg, b, line);

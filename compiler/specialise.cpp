@@ -50,7 +50,8 @@ bool BindValues(const vm::Program& program, const std::vector<ParamOverride>& ov
 }  // namespace
 
 std::optional<vm::Program> Specialise(const vm::Program& program, const std::vector<ParamOverride>& overrides,
-                                      std::vector<std::string>* errors) {
+                                      std::vector<std::string>* errors,
+                                      const std::vector<ConstantGlobal>& constantGlobals) {
     std::vector<std::vector<double>> values;
     if (!BindValues(program, overrides, &values, errors)) return std::nullopt;
 
@@ -61,6 +62,11 @@ std::optional<vm::Program> Specialise(const vm::Program& program, const std::vec
         if (base == vm::kNoRegister) continue;
         for (int i = 0; i < vm::GlobalSize(static_cast<vm::Global>(g)); ++i)
             reg[base + i] = ir.Global(static_cast<vm::Global>(g), i);
+    }
+    for (const ConstantGlobal& c : constantGlobals) {
+        uint16_t base = program.globalRegisters[static_cast<int>(c.global)];
+        if (base == vm::kNoRegister) continue;
+        for (int i = 0; i < vm::GlobalSize(c.global); ++i) reg[base + i] = ir.Const(c.value[i]);
     }
     for (size_t p = 0; p < program.params.size(); ++p) {
         const vm::ProgramParam& param = program.params[p];

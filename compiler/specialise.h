@@ -5,6 +5,7 @@
 // instance's values make constant or dead disappears.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,10 +20,19 @@ struct ParamOverride {
     std::vector<double> numbers;  // 1 for a float, 3 (or 1, spread) for a triple
 };
 
-/// `program` with every parameter bound to its override, else its default, then folded, shared
-/// and pruned again. Problems with the overrides (unknown name, wrong count, NaN or infinity)
-/// are appended to *errors as sentences, and the result is empty.
+/// A global that is the same everywhere on a surface (N of a flat patch, E, du...): the
+/// renderer knows it per primitive, so the program can fold it like a constant.
+struct ConstantGlobal {
+    vm::Global global;
+    std::array<double, 3> value{};  // value[0] only, for a float global
+};
+
+/// `program` with every parameter bound to its override, else its default, and every global in
+/// `constantGlobals` bound to its value, then folded, shared and pruned again. Problems with the
+/// overrides (unknown name, wrong count, NaN or infinity) are appended to *errors as sentences,
+/// and the result is empty.
 std::optional<vm::Program> Specialise(const vm::Program& program, const std::vector<ParamOverride>& overrides,
-                                      std::vector<std::string>* errors);
+                                      std::vector<std::string>* errors,
+                                      const std::vector<ConstantGlobal>& constantGlobals = {});
 
 }  // namespace affray::compiler

@@ -17,9 +17,24 @@ namespace affray::renderer {
 
 namespace {
 
-const vm::Program& Identity() {
-    static const vm::Program kIdentity = vm::IdentityProgram();
-    return kIdentity;
+/// The globals that do not vary over `patch`, for specialising its programs.
+std::vector<compiler::ConstantGlobal> ConstantGlobals(const BilinearPatch& patch, const glm::dvec3& eye) {
+    using vm::Global;
+    std::vector<compiler::ConstantGlobal> out = {{Global::E, {eye.x, eye.y, eye.z}},
+                                                 {Global::du, {kParametricStep, 0, 0}},
+                                                 {Global::dv, {kParametricStep, 0, 0}}};
+    const auto& c = patch.corners;
+    glm::dvec3 a = c[1] - c[0], b = c[2] - c[0], d = c[0] - c[1] - c[2] + c[3];
+    glm::dvec3 n = glm::normalize(glm::cross(a, b));
+    if (d == glm::dvec3(0.0) && std::isfinite(glm::dot(n, n))) {
+        // A flat patch: the same tangents and normal everywhere (SetPatchGlobals computes the
+        // normal this same way, so the folded program sees the values it would have been given).
+        out.push_back({Global::dPdu, {a.x, a.y, a.z}});
+        out.push_back({Global::dPdv, {b.x, b.y, b.z}});
+        out.push_back({Global::N, {n.x, n.y, n.z}});
+        out.push_back({Global::Ng, {n.x, n.y, n.z}});
+    }
+    return out;
 }
 
 std::string FindShader(const std::string& name, const std::vector<std::string>& paths) {
@@ -39,8 +54,8 @@ struct ThreadState {
 
     ThreadState(const PreparedScene& scene, const RenderOptions& options, const glm::dvec3& eye) {
         for (const Primitive& prim : scene.primitives) {
-            intersectors.push_back(MakePatchIntersector(prim.patch, *prim.bound, eye, options.bounds, options.maxDepth));
-            shaders.push_back(std::make_unique<vm::Interpreter<vm::Dual<double>>>(*prim.shade));
+            intersectors.push_back(MakePatchIntersector(prim.patch, prim.bound, eye, options.bounds, options.maxDepth));
+            shaders.push_back(std::make_unique<vm::Interpreter<vm::Dual<double>>>(prim.shade));
         }
     }
 };
@@ -73,8 +88,8 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
     vm::Interpreter<vm::Dual<double>>& interp = *ts.shaders[nh.primitive];
     SetPatchGlobals(interp, prim.patch, nh.hit.u, nh.hit.u, nh.hit.v, nh.hit.v, eye);
     interp.Run();
-    glm::dvec3 P = ToGlm(interp.OutputTriple(*prim.shade->findOutput("P")));
-    glm::dvec3 N = ToGlm(interp.OutputTriple(*prim.shade->findOutput("N")));
+    glm::dvec3 P = ToGlm(interp.OutputTriple(*prim.shade.findOutput("P")));
+    glm::dvec3 N = ToGlm(interp.OutputTriple(*prim.shade.findOutput("N")));
     if (!std::isfinite(glm::dot(P, P))) P = ray.origin + nh.hit.t * ray.dir;
     double lengthN = glm::length(N);
     N = lengthN > 0 && std::isfinite(lengthN) ? N / lengthN : -ray.dir;
@@ -121,6 +136,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                   std::string* error) {
     out->desc = desc;
     out->primitives.clear();
+    const glm::dvec3 eye = Camera(desc.camera).Position();
     for (const PatchDesc& patch : desc.patches) {
         Primitive prim;
         prim.patch.corners = patch.corners;
@@ -153,12 +169,15 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                 return false;
             }
             prim.shader = std::make_shared<compiler::CompiledShader>(std::move(*result.shader));
-            prim.bound = &prim.shader->bound;
-            prim.shade = &prim.shader->shade;
+            prim.bound = prim.shader->bound;
+            prim.shade = prim.shader->shade;
         } else {
-            prim.bound = &Identity();
-            prim.shade = &Identity();
+            prim.bound = prim.shade = vm::IdentityProgram();
         }
+        std::vector<std::string> unused;  // no overrides here: nothing can go wrong
+        std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(prim.patch, eye);
+        prim.bound = *compiler::Specialise(prim.bound, {}, &unused, constants);
+        prim.shade = *compiler::Specialise(prim.shade, {}, &unused, constants);
         out->primitives.push_back(std::move(prim));
     }
     out->lights = desc.lights;

@@ -35,8 +35,10 @@ struct RenderStats {
 struct Primitive {
     BilinearPatch patch;
     std::shared_ptr<const compiler::CompiledShader> shader;  // null: no displacement
-    const vm::Program* bound = nullptr;
-    const vm::Program* shade = nullptr;
+    /// The shader instance's programs specialised further for this surface: globals that are
+    /// constant on it (E, du, dv, and N, Ng, dPdu, dPdv of a flat patch) folded in.
+    vm::Program bound;
+    vm::Program shade;
     SurfaceDesc surface;
     glm::dvec3 color{1.0};
 };
@@ -47,8 +49,8 @@ struct PreparedScene {
     std::vector<LightDesc> lights;  // the scene's, or a default key light if it has none
 };
 
-/// Compiles every displacement instance of `desc` (each with its own parameter values). Shaders
-/// are found as NAME.sl in `shaderPaths`. On error returns false with a message naming the RIB
+/// Compiles every displacement instance of `desc` (each with its own parameter values) and
+/// specialises it for its surface. Shaders are found as NAME.sl in `shaderPaths`. On error returns false with a message naming the RIB
 /// line and the shader's diagnostics.
 bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths, PreparedScene* out,
                   std::string* error);

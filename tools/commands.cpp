@@ -190,7 +190,9 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
         bool first = true;
         for (const renderer::Primitive& prim : prepared.primitives) {
             if (!prim.shader) continue;
-            json += std::string(first ? "" : ",") + "{\"name\":\"" + prim.shader->name + "\"," + InstructionCounts(*prim.shader) + "}";
+            json += std::string(first ? "" : ",") + "{\"name\":\"" + prim.shader->name + "\"," +
+                    InstructionCounts(*prim.shader) + ",\"bound_on_surface\":" + std::to_string(prim.bound.code.size()) +
+                    ",\"shade_on_surface\":" + std::to_string(prim.shade.code.size()) + "}";
             first = false;
         }
         std::fprintf(out, "%s]}\n", json.c_str());

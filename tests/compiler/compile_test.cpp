@@ -268,3 +268,19 @@ TEST_CASE("generic programs read parameters; specialised ones fold them away", "
     compiler::CompiledShader zero = test::CompileOrThrow(src, {{"Km", {0}}});
     CHECK(zero.bound.code.size() <= s.bound.code.size());
 }
+
+TEST_CASE("globals constant on a surface fold like parameters", "[compiler][specialise]") {
+    compiler::CompiledShader s = test::CompileOrThrow("displacement t() { P += 0.1 * sin(u) * normalize(N); }");
+    std::vector<std::string> errors;
+    std::optional<vm::Program> flat =
+        compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
+    REQUIRE(flat);
+    CHECK(errors.empty());
+    CHECK_FALSE(flat->readsGlobal(vm::Global::N));
+    // normalize(N) of a constant folds away, and so do the products with its zero components:
+    // only sin(u), the product and the add on P.z remain.
+    CHECK(Opcodes(*flat) == std::vector<vm::Op>{vm::Op::Sin, vm::Op::MulRK, vm::Op::AddRR});
+    // Same values as the unspecialised program given that N.
+    glm::dvec3 a = test::PointOnSquare(s.bound, 0.3, 0.7), b = test::PointOnSquare(*flat, 0.3, 0.7);
+    CHECK(a == b);
+}
