@@ -4,10 +4,30 @@
 #include <stdexcept>
 
 #include "compiler/emit.h"
+#include "vm/bytecode_file.h"
 #include "lang/parse.h"
 #include "vm/verify.h"
 
 namespace affray::compiler {
+
+namespace {
+/// Specialises the generic programs of `shader` with `overrides` into bound and shade.
+bool SpecialiseShader(CompiledShader& shader, const std::vector<ParamOverride>& overrides,
+                      std::vector<std::string>* errors) {
+    std::optional<vm::Program> bound = Specialise(shader.genericBound, overrides, errors);
+    if (!bound) return false;
+    std::vector<std::string> again;  // the same errors as for the bound program
+    shader.bound = std::move(*bound);
+    shader.shade = *Specialise(shader.genericShade, overrides, &again);
+    return true;
+}
+
+Type TypeFromName(const std::string& name) {
+    for (Type t : {Type::Float, Type::Point, Type::Vector, Type::Normal, Type::Color})
+        if (name == ToString(t)) return t;
+    return Type::Float;
+}
+}  // namespace
 
 CompileResult CompileSource(const std::string& path, const std::string& text,
                             const std::vector<ParamOverride>& overrides) {
@@ -38,11 +58,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
             p->shaderName = shader.name;
             p->sourcePath = path;
         }
-        std::optional<vm::Program> bound = Specialise(shader.genericBound, overrides, &result.paramErrors);
-        if (!bound) return result;
-        std::vector<std::string> again;  // the same errors as for the bound program
-        shader.bound = std::move(*bound);
-        shader.shade = *Specialise(shader.genericShade, overrides, &again);
+        if (!SpecialiseShader(shader, overrides, &result.paramErrors)) return result;
     } catch (const std::length_error& e) {
         result.diagnostics += path + ": error: " + e.what() + "\n";
         return result;
@@ -54,6 +70,34 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     }
     result.shader = std::move(shader);
     return result;
+}
+
+
+CompileResult LoadCompiledShader(const std::string& path, const std::vector<ParamOverride>& overrides) {
+    CompileResult result;
+    vm::BytecodeFile file;
+    std::string error;
+    if (!vm::ReadBytecodeFile(path, &file, &error)) {
+        result.diagnostics = error.rfind(path, 0) == 0 ? error + "\n" : path + ": error: " + error + "\n";
+        return result;
+    }
+    CompiledShader shader;
+    shader.name = file.shaderName;
+    shader.sourcePath = file.sourcePath;
+    shader.genericBound = std::move(file.bound);
+    shader.genericShade = std::move(file.shade);
+    for (const vm::ProgramParam& p : shader.genericShade.params)
+        shader.params.push_back({p.name, TypeFromName(p.type), p.defaults, false});
+    shader.writesP = shader.writesN = true;
+    shader.opsBeforeOptimisation = static_cast<int>(shader.genericShade.code.size());
+    if (!SpecialiseShader(shader, overrides, &result.paramErrors)) return result;
+    result.shader = std::move(shader);
+    return result;
+}
+
+CompileResult LoadShader(const std::string& path, const std::vector<ParamOverride>& overrides) {
+    bool compiled = path.size() > 4 && path.compare(path.size() - 4, 4, ".afb") == 0;
+    return compiled ? LoadCompiledShader(path, overrides) : CompileFile(path, overrides);
 }
 
 CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides) {

@@ -43,7 +43,13 @@ struct CompileResult {
 /// Compiles the shader in the file at `path`, then specialises it with `overrides` bound to its
 /// parameters (defaults for the others).
 CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides = {});
-/// Same, from text already in memory (`path` names it in diagnostics).
+/// Loads a shader compiled earlier (`affray compile -o NAME.afb`): the generic programs from the
+/// file, checked by the loader and the verifier, then specialised with `overrides`. The result
+/// has no source text; its ParamInfo list is rebuilt from the programs.
+CompileResult LoadCompiledShader(const std::string& path, const std::vector<ParamOverride>& overrides = {});
+/// A shader from either kind of file: `.afb` is loaded, anything else compiled.
+CompileResult LoadShader(const std::string& path, const std::vector<ParamOverride>& overrides = {});
+/// Same as CompileFile, from text already in memory (`path` names it in diagnostics).
 CompileResult CompileSource(const std::string& path, const std::string& text,
                             const std::vector<ParamOverride>& overrides = {});
 

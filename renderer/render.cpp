@@ -37,11 +37,14 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BilinearPatch& patch
     return out;
 }
 
+/// NAME.sl or, failing that, NAME.afb (compiled), in the first directory that has either.
 std::string FindShader(const std::string& name, const std::vector<std::string>& paths) {
     for (const std::string& dir : paths) {
-        std::filesystem::path candidate = std::filesystem::path(dir) / (name + ".sl");
-        std::error_code ec;
-        if (std::filesystem::is_regular_file(candidate, ec)) return candidate.string();
+        for (const char* extension : {".sl", ".afb"}) {
+            std::filesystem::path candidate = std::filesystem::path(dir) / (name + extension);
+            std::error_code ec;
+            if (std::filesystem::is_regular_file(candidate, ec)) return candidate.string();
+        }
     }
     return {};
 }
@@ -160,7 +163,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                 }
                 overrides.push_back({p.name, p.numbers});
             }
-            compiler::CompileResult result = compiler::CompileFile(path, overrides);
+            compiler::CompileResult result = compiler::LoadShader(path, overrides);
             if (!result.ok()) {
                 *error = result.diagnostics;
                 for (const std::string& e : result.paramErrors) *error += where + e + "\n";

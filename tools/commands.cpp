@@ -3,9 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
-#include <unistd.h>
 
 #include "compiler/compile.h"
 #include "renderer/exr_writer.h"
@@ -13,6 +11,7 @@
 #include "renderer/render.h"
 #include "renderer/rib.h"
 #include "renderer/surface.h"
+#include "vm/bytecode_file.h"
 #include "vm/disasm.h"
 
 namespace affray::tools {
@@ -28,29 +27,6 @@ std::string Json(double x) {
 }
 
 std::string Json(const double (&v)[3]) { return "[" + Json(v[0]) + "," + Json(v[1]) + "," + Json(v[2]) + "]"; }
-
-bool WriteTextAtomically(const std::string& path, const std::string& text, std::string* error) {
-    std::string tmp = path + ".tmp." + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        if (!out.flush()) {
-            std::error_code ec;
-            std::filesystem::remove(tmp, ec);
-            *error = "cannot write '" + path + "'";
-            return false;
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        *error = "cannot write '" + path + "'";
-        return false;
-    }
-    return true;
-}
-
 
 /// Bounds P over [u0,u1] x [v0,v1] of the unit square with number type N and prints the ranges.
 template <class N>
@@ -100,8 +76,10 @@ int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
                      InstructionCounts(shader).c_str(), shader.params.size(), globals.c_str());
     }
     if (!cmd.outputPath.empty()) {
+        vm::BytecodeFile file{shader.name, shader.sourcePath, vm::HashSource(shader.sourceText), shader.genericBound,
+                              shader.genericShade};
         std::string error;
-        if (!WriteTextAtomically(cmd.outputPath, listing, &error)) {
+        if (!vm::WriteBytecodeFile(cmd.outputPath, file, &error)) {
             std::fprintf(err, "affray: error: %s\n", error.c_str());
             return 1;
         }
@@ -110,7 +88,7 @@ int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
 }
 
 int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
-    compiler::CompileResult result = compiler::CompileFile(cmd.shaderPath, cmd.params);
+    compiler::CompileResult result = compiler::LoadShader(cmd.shaderPath, cmd.params);
     std::fputs(result.diagnostics.c_str(), err);
     for (const std::string& e : result.paramErrors) std::fprintf(err, "affray: error: %s\n", e.c_str());
     if (!result.ok()) return 1;

@@ -196,3 +196,32 @@ TEST_CASE("cli: bad scenes fail with their location and leave no image", "[tools
     for (const auto& entry : fs::directory_iterator(dir)) CHECK(entry.path().extension() != ".tmp");
     fs::remove_all(dir);
 }
+
+TEST_CASE("cli: compiled .afb shaders evaluate and render like their source", "[tools][bytecode]") {
+    fs::path dir = TempDir("afb");
+    fs::path afb = dir / "wave.afb";
+    REQUIRE(Run("compile " + kWave + " -o " + afb.string()).status == 0);
+    REQUIRE(fs::exists(afb));
+    // The same numbers from the compiled file as from the source, with a parameter set.
+    Output fromSource = Run("eval " + kWave + " --param Km=0.1 --at 0.25,0.5 --at 0.7,0.1");
+    Output fromBytecode = Run("eval " + afb.string() + " --param Km=0.1 --at 0.25,0.5 --at 0.7,0.1");
+    REQUIRE(fromSource.status == 0);
+    CHECK(fromBytecode.status == 0);
+    CHECK(fromBytecode.out == fromSource.out);
+    CHECK(Run("eval " + afb.string() + " --param Kx=1 --at 0.5,0.5").status == 1);
+    // The renderer finds NAME.afb when there is no NAME.sl.
+    WriteFile(dir / "scene.rib", SmallWaveScene(16, 12));
+    CHECK(Run("render " + (dir / "scene.rib").string() + " -o " + (dir / "out.exr").string()).status == 0);
+    // A damaged file is an error naming it, never a crash.
+    std::string bytes;
+    {
+        std::ifstream in(afb, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    WriteFile(dir / "cut.afb", bytes.substr(0, bytes.size() / 2));
+    Output cut = Run("eval " + (dir / "cut.afb").string() + " --at 0.5,0.5", true);
+    CHECK(cut.status == 1);
+    CHECK(cut.out.find("cut.afb: truncated file") != std::string::npos);
+    fs::remove_all(dir);
+}
+
