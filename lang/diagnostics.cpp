@@ -22,9 +22,34 @@ void Diagnostics::add(Severity severity, SourceLoc loc, std::string message) {
     m_list.push_back({severity, loc, std::move(message)});
 }
 
+int Diagnostics::fileIndex(const std::string& path) {
+    if (path == m_file->path()) return 0;
+    for (size_t i = 0; i < m_others.size(); ++i)
+        if (m_others[i].path == path) return static_cast<int>(i) + 1;
+    m_others.push_back({path, nullptr, false});
+    return static_cast<int>(m_others.size());
+}
+
+const std::string& Diagnostics::filePath(int index) const {
+    if (index < 1 || index > static_cast<int>(m_others.size())) return m_file->path();
+    return m_others[index - 1].path;
+}
+
+std::string_view Diagnostics::lineText(int index, int line) const {
+    if (index < 1 || index > static_cast<int>(m_others.size())) return m_file->lineText(line);
+    const OtherFile& other = m_others[index - 1];
+    if (!other.loadTried) {
+        // An unreadable file (deleted since, or never on disk) just shows no source line.
+        other.loadTried = true;
+        auto loaded = std::make_shared<SourceFile>(other.path, "");
+        if (SourceFile::Load(other.path, loaded.get(), nullptr)) other.text = std::move(loaded);
+    }
+    return other.text ? other.text->lineText(line) : std::string_view();
+}
+
 std::string Diagnostics::format(const Diagnostic& d) const {
     static const char* const kKind[] = {"error", "warning", "note"};
-    std::string out = m_file->path();
+    std::string out = filePath(d.loc.file);
     if (d.loc.line > 0) {
         out += ":" + std::to_string(d.loc.line);
         if (d.loc.column > 0) out += ":" + std::to_string(d.loc.column);
@@ -32,7 +57,7 @@ std::string Diagnostics::format(const Diagnostic& d) const {
     out += ": ";
     out += kKind[static_cast<int>(d.severity)];
     out += ": " + d.message + "\n";
-    std::string_view line = m_file->lineText(d.loc.line);
+    std::string_view line = lineText(d.loc.file, d.loc.line);
     if (d.loc.line > 0 && !line.empty()) {
         out += "    ";
         out += line;

@@ -246,8 +246,10 @@ void ParseContext::AddShader(ShaderKind kind, SourceLoc loc, std::string name,
 
 // --- Entry point -------------------------------------------------------------------------------
 
-TranslationUnit Parse(Diagnostics& diags) {
-    const std::string& text = diags.file().text();
+namespace {
+
+// Parses `text` as the contents of diags.file(); with `markerFiles`, line markers switch files.
+TranslationUnit ParseText(Diagnostics& diags, const std::string& text, bool markerFiles) {
     int errorsBefore = diags.errorCount();
     if (text.size() > kMaxSourceBytes) {
         diags.error({}, "file too large to parse (more than " + std::to_string(kMaxSourceBytes) +
@@ -255,7 +257,7 @@ TranslationUnit Parse(Diagnostics& diags) {
         return {};
     }
 
-    ParseContext ctx(diags);
+    ParseContext ctx(diags, markerFiles);
     try {
         std::unique_ptr<void, void (*)(void*)> scanner(NewScanner(ctx, text), DeleteScanner);
         Parser parser(ctx);
@@ -271,6 +273,26 @@ TranslationUnit Parse(Diagnostics& diags) {
     if (diags.errorCount() == errorsBefore && ctx.unit().shaders.empty())
         diags.error({1, 1}, "no shader definition in file");
     return std::move(ctx.unit());
+}
+
+}  // namespace
+
+TranslationUnit Parse(Diagnostics& diags) { return ParseText(diags, diags.file().text(), false); }
+
+TranslationUnit PreprocessAndParse(Diagnostics& diags, const PreprocessOptions& options) {
+    PreprocessResult pre = Preprocess(diags.file().path(), diags.file().text(), options);
+    std::vector<int> fileIndex;
+    for (const std::string& path : pre.files) fileIndex.push_back(diags.fileIndex(path));
+    for (Diagnostic& d : pre.errors) {
+        d.loc.file = fileIndex.at(static_cast<size_t>(d.loc.file));
+        switch (d.severity) {
+        case Severity::Error: diags.error(d.loc, std::move(d.message)); break;
+        case Severity::Warning: diags.warning(d.loc, std::move(d.message)); break;
+        case Severity::Note: diags.note(d.loc, std::move(d.message)); break;
+        }
+    }
+    if (!pre.ok) return {};
+    return ParseText(diags, pre.text, true);
 }
 
 }  // namespace affray::lang

@@ -5,6 +5,7 @@
 
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
+#include "lang/preprocess.h"
 
 namespace affray::lang {
 
@@ -12,5 +13,11 @@ namespace affray::lang {
 /// can recover); the returned unit holds what parsed, and is only meaningful if
 /// !diags.hasErrors(). Never throws on bad input.
 TranslationUnit Parse(Diagnostics& diags);
+
+/// Preprocesses `diags.file()` (lang/preprocess.h), then lexes and parses the result. Errors of
+/// both stages go to `diags`, at their line in the original file, the main one or an included one
+/// (Diagnostic::loc.file, see Diagnostics::fileIndex). If preprocessing fails, nothing is parsed
+/// and the unit is empty. Never throws on bad input.
+TranslationUnit PreprocessAndParse(Diagnostics& diags, const PreprocessOptions& options);
 
 }  // namespace affray::lang
