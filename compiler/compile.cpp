@@ -30,11 +30,11 @@ Type TypeFromName(const std::string& name) {
 }  // namespace
 
 CompileResult CompileSource(const std::string& path, const std::string& text,
-                            const std::vector<ParamOverride>& overrides) {
+                            const std::vector<ParamOverride>& overrides, const lang::PreprocessOptions& preprocess) {
     CompileResult result;
     lang::SourceFile file(path, text);
     lang::Diagnostics diags(file);
-    lang::TranslationUnit unit = lang::Parse(diags);
+    lang::TranslationUnit unit = lang::PreprocessAndParse(diags, preprocess);
     std::optional<LoweredShader> lowered;
     if (!diags.hasErrors()) lowered = Lower(unit, diags);
     result.diagnostics = diags.format();
@@ -95,12 +95,14 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
     return result;
 }
 
-CompileResult LoadShader(const std::string& path, const std::vector<ParamOverride>& overrides) {
+CompileResult LoadShader(const std::string& path, const std::vector<ParamOverride>& overrides,
+                         const lang::PreprocessOptions& preprocess) {
     bool compiled = path.size() > 4 && path.compare(path.size() - 4, 4, ".afb") == 0;
-    return compiled ? LoadCompiledShader(path, overrides) : CompileFile(path, overrides);
+    return compiled ? LoadCompiledShader(path, overrides) : CompileFile(path, overrides, preprocess);
 }
 
-CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides) {
+CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides,
+                          const lang::PreprocessOptions& preprocess) {
     lang::SourceFile file("", "");
     std::string error;
     if (!lang::SourceFile::Load(path, &file, &error)) {
@@ -108,7 +110,7 @@ CompileResult CompileFile(const std::string& path, const std::vector<ParamOverri
         result.diagnostics = error + "\n";
         return result;
     }
-    return CompileSource(path, file.text(), overrides);
+    return CompileSource(path, file.text(), overrides, preprocess);
 }
 
 }  // namespace affray::compiler

@@ -10,6 +10,7 @@
 
 #include "compiler/lower.h"
 #include "compiler/specialise.h"
+#include "lang/preprocess.h"
 #include "vm/program.h"
 
 namespace affray::compiler {
@@ -40,17 +41,21 @@ struct CompileResult {
     bool ok() const { return shader.has_value(); }
 };
 
-/// Compiles the shader in the file at `path`, then specialises it with `overrides` bound to its
+/// Preprocesses (C preprocessor: #include, #define, #if...) and compiles the shader in the file
+/// at `path`, then specialises it with `overrides` bound to its
 /// parameters (defaults for the others).
-CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides = {});
+CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides = {},
+                          const lang::PreprocessOptions& preprocess = {});
 /// Loads a shader compiled earlier (`affray compile -o NAME.afb`): the generic programs from the
 /// file, checked by the loader and the verifier, then specialised with `overrides`. The result
 /// has no source text; its ParamInfo list is rebuilt from the programs.
 CompileResult LoadCompiledShader(const std::string& path, const std::vector<ParamOverride>& overrides = {});
 /// A shader from either kind of file: `.afb` is loaded, anything else compiled.
-CompileResult LoadShader(const std::string& path, const std::vector<ParamOverride>& overrides = {});
+CompileResult LoadShader(const std::string& path, const std::vector<ParamOverride>& overrides = {},
+                         const lang::PreprocessOptions& preprocess = {});
 /// Same as CompileFile, from text already in memory (`path` names it in diagnostics).
 CompileResult CompileSource(const std::string& path, const std::string& text,
-                            const std::vector<ParamOverride>& overrides = {});
+                            const std::vector<ParamOverride>& overrides = {},
+                            const lang::PreprocessOptions& preprocess = {});
 
 }  // namespace affray::compiler

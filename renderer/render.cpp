@@ -135,8 +135,8 @@ std::string RenderStats::ToJson() const {
     return buf;
 }
 
-bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths, PreparedScene* out,
-                  std::string* error) {
+bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,
+                  const lang::PreprocessOptions& preprocess, PreparedScene* out, std::string* error) {
     out->desc = desc;
     out->primitives.clear();
     const glm::dvec3 eye = Camera(desc.camera).Position();
@@ -163,7 +163,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                 }
                 overrides.push_back({p.name, p.numbers});
             }
-            compiler::CompileResult result = compiler::LoadShader(path, overrides);
+            compiler::CompileResult result = compiler::LoadShader(path, overrides, preprocess);
             if (!result.ok()) {
                 *error = result.diagnostics;
                 for (const std::string& e : result.paramErrors) *error += where + e + "\n";

@@ -18,7 +18,6 @@ struct RenderOptions {
     double tolerancePixels = 0.5;  // a region is a hit once its bound is smaller than this many pixels
     BoundMode bounds = BoundMode::Affine;
     int maxDepth = 24;
-    std::vector<std::string> shaderPaths;  // searched in order for NAME.sl
 };
 
 struct RenderStats {
@@ -50,10 +49,11 @@ struct PreparedScene {
 };
 
 /// Compiles every displacement instance of `desc` (each with its own parameter values) and
-/// specialises it for its surface. Shaders are found as NAME.sl in `shaderPaths`. On error returns false with a message naming the RIB
+/// specialises it for its surface. Shaders are found as NAME.sl or NAME.afb in `shaderPaths`;
+/// `preprocess` gives the -I and -D of the C preprocessor. On error returns false with a message naming the RIB
 /// line and the shader's diagnostics.
-bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths, PreparedScene* out,
-                  std::string* error);
+bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,
+                  const lang::PreprocessOptions& preprocess, PreparedScene* out, std::string* error);
 
 /// Renders the prepared scene into `image` (RGBA, row 0 at the top).
 void RenderImage(const PreparedScene& scene, const RenderOptions& options, ImageBuffer* image, RenderStats* stats);

@@ -58,7 +58,7 @@ std::string InstructionCounts(const compiler::CompiledShader& s) {
 }  // namespace
 
 int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
-    compiler::CompileResult result = compiler::CompileFile(cmd.shaderPath);
+    compiler::CompileResult result = compiler::CompileFile(cmd.shaderPath, {}, cmd.preprocess);
     std::fputs(result.diagnostics.c_str(), err);
     if (!result.ok()) return 1;
     const compiler::CompiledShader& shader = *result.shader;
@@ -88,7 +88,7 @@ int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
 }
 
 int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
-    compiler::CompileResult result = compiler::LoadShader(cmd.shaderPath, cmd.params);
+    compiler::CompileResult result = compiler::LoadShader(cmd.shaderPath, cmd.params, cmd.preprocess);
     std::fputs(result.diagnostics.c_str(), err);
     for (const std::string& e : result.paramErrors) std::fprintf(err, "affray: error: %s\n", e.c_str());
     if (!result.ok()) return 1;
@@ -139,7 +139,7 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     if (ribDir.empty()) ribDir = ".";
     std::vector<std::string> shaderPaths = {ribDir.string(), (ribDir / ".." / "shaders").string(), "shaders"};
     renderer::PreparedScene prepared;
-    if (!renderer::PrepareScene(*scene, shaderPaths, &prepared, &error)) {
+    if (!renderer::PrepareScene(*scene, shaderPaths, cmd.preprocess, &prepared, &error)) {
         std::fprintf(err, "%s\n", error.c_str());
         return 1;
     }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "compiler/specialise.h"
+#include "lang/preprocess.h"
 #include "renderer/intersect.h"
 
 namespace affray::tools {
@@ -16,6 +17,7 @@ struct CompileCommand {
     std::string outputPath;  // empty: none
     bool disasm = false;
     bool stats = false;
+    lang::PreprocessOptions preprocess;
 };
 
 struct EvalCommand {
@@ -25,6 +27,7 @@ struct EvalCommand {
     bool hasRegion = false;
     std::array<double, 4> region{};              // u0, u1, v0, v1
     std::string mode = "scalar";                 // scalar | affine | interval
+    lang::PreprocessOptions preprocess;
 };
 
 struct RenderCommand {
@@ -36,6 +39,7 @@ struct RenderCommand {
     int maxDepth = 24;
     bool stats = false;
     std::string pngPath;  // empty: no preview
+    lang::PreprocessOptions preprocess;
 };
 
 int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err);

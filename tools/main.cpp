@@ -15,11 +15,11 @@ namespace {
 
 const char* const kUsage =
     "usage:\n"
-    "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS]\n"
+    "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS] [-I DIR] [-D NAME[=VALUE]]\n"
     "                [--bounds affine|interval] [--max-depth N] [--stats] [--png PREVIEW.png]\n"
-    "  affray compile SHADER.sl [-o OUT] [--disasm] [--stats]\n"
+    "  affray compile SHADER.sl [-o OUT.afb] [--disasm] [--stats] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
-    "              [--mode scalar|affine|interval]\n"
+    "              [--mode scalar|affine|interval] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray --help | --version\n";
 
 struct UsageError {
@@ -70,6 +70,15 @@ class Args {
     size_t m_next = 0;
 };
 
+/// Takes -I DIR, -IDIR, -D NAME[=VALUE] and -DNAME[=VALUE]; false if `a` is none of them.
+bool PreprocessorOption(const std::string& a, Args& args, affray::lang::PreprocessOptions* options) {
+    if (a.size() < 2 || a[0] != '-' || (a[1] != 'I' && a[1] != 'D')) return false;
+    std::string value = a.size() > 2 ? a.substr(2) : args.Value(a);
+    if (value.empty()) throw UsageError{a.substr(0, 2) + " needs a value"};
+    (a[1] == 'I' ? options->includeDirs : options->defines).push_back(value);
+    return true;
+}
+
 void SetInput(std::string* slot, const std::string& arg) {
     if (!arg.empty() && arg[0] == '-' && arg != "-") throw UsageError{"unknown option '" + arg + "'"};
     if (!slot->empty()) throw UsageError{"unexpected argument '" + arg + "'"};
@@ -83,6 +92,7 @@ int Compile(Args& args) {
         if (a == "-o") cmd.outputPath = args.Value(a);
         else if (a == "--disasm") cmd.disasm = true;
         else if (a == "--stats") cmd.stats = true;
+        else if (PreprocessorOption(a, args, &cmd.preprocess)) continue;
         else SetInput(&cmd.shaderPath, a);
     }
     if (cmd.shaderPath.empty()) throw UsageError{"compile: missing SHADER.sl"};
@@ -112,7 +122,7 @@ int Eval(Args& args) {
             cmd.mode = args.Value(a);
             if (cmd.mode != "scalar" && cmd.mode != "affine" && cmd.mode != "interval")
                 throw UsageError{"--mode takes scalar, affine or interval, got '" + cmd.mode + "'"};
-        } else {
+        } else if (!PreprocessorOption(a, args, &cmd.preprocess)) {
             SetInput(&cmd.shaderPath, a);
         }
     }
@@ -140,6 +150,7 @@ int Render(Args& args) {
             else throw UsageError{"--bounds takes affine or interval, got '" + b + "'"};
         } else if (a == "--stats") cmd.stats = true;
         else if (a == "--png") cmd.pngPath = args.Value(a);
+        else if (PreprocessorOption(a, args, &cmd.preprocess)) continue;
         else SetInput(&cmd.scenePath, a);
     }
     if (cmd.scenePath.empty()) throw UsageError{"render: missing SCENE.rib"};

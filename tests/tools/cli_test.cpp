@@ -225,3 +225,28 @@ TEST_CASE("cli: compiled .afb shaders evaluate and render like their source", "[
     fs::remove_all(dir);
 }
 
+
+TEST_CASE("cli: -I and -D reach the preprocessor of compile, eval and render", "[tools][preprocess]") {
+    fs::path dir = TempDir("pp");
+    fs::create_directories(dir / "include");
+    WriteFile(dir / "include" / "amp.h", "#define AMPLITUDE(x) (0.5 * (x))\n");
+    WriteFile(dir / "pp.sl",
+              "#include \"amp.h\"\n"
+              "displacement pp() {\n"
+              "#ifdef HIGH\n"
+              "    P += vector(0, 0, AMPLITUDE(LEVEL));\n"
+              "#else\n"
+              "    P += vector(0, 0, AMPLITUDE(1));\n"
+              "#endif\n"
+              "}\n");
+    const std::string sl = (dir / "pp.sl").string(), inc = (dir / "include").string();
+    Output missing = Run("compile " + sl, true);
+    CHECK(missing.status == 1);
+    CHECK(missing.out.find("pp.sl:1:") != std::string::npos);
+    CHECK(Run("compile " + sl + " -I " + inc).status == 0);
+    Output low = Run("eval " + sl + " -I" + inc + " --at 0.5,0.5");
+    CHECK(low.out == "{\"P\":[0.5,0.5,0.5],\"N\":[0,0,1]}\n");
+    Output high = Run("eval " + sl + " -I " + inc + " -D HIGH -DLEVEL=4 --at 0.5,0.5");
+    CHECK(high.out == "{\"P\":[0.5,0.5,2],\"N\":[0,0,1]}\n");
+    fs::remove_all(dir);
+}
