@@ -2,6 +2,8 @@
 // the unit square in any number type, and listing the shaders in shaders/.
 #pragma once
 
+#include <catch2/catch.hpp>
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -12,6 +14,15 @@
 namespace affray::test {
 
 inline std::string SourceDir() { return AFFRAY_SOURCE_DIR; }
+
+/// Requires `got` to equal `want` within 1e-12 per component, printing both on failure.
+inline void RequireVec(const glm::dvec3& got, const glm::dvec3& want) {
+    INFO("got [" << got.x << " " << got.y << " " << got.z << "], want [" << want.x << " " << want.y << " "
+                 << want.z << "]");
+    REQUIRE(got.x == Approx(want.x).margin(1e-12));
+    REQUIRE(got.y == Approx(want.y).margin(1e-12));
+    REQUIRE(got.z == Approx(want.z).margin(1e-12));
+}
 
 /// Every .sl file in shaders/, sorted.
 inline std::vector<std::string> AllShaders() {

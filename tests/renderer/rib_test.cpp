@@ -9,16 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "../test_util.h"
+
 using namespace affray::renderer;
 
 namespace {
 
-void RequireVec(const glm::dvec3& got, const glm::dvec3& want) {
-    INFO("got " << ToString(got) << ", want " << ToString(want));
-    REQUIRE(got.x == Approx(want.x).margin(1e-12));
-    REQUIRE(got.y == Approx(want.y).margin(1e-12));
-    REQUIRE(got.z == Approx(want.z).margin(1e-12));
-}
+using affray::test::RequireVec;
 
 // The error ParseRib gives for `text` (empty if it parses).
 std::string ErrorOf(const std::string& text) {
