@@ -139,7 +139,7 @@ TEST_CASE("#ifdef, #ifndef, #elif and #else pick branches", "[lang][preprocess]"
     CHECK(Code(r) == "bmrt\ntwo\n");
 }
 
-TEST_CASE("-D NAME=VALUE and -D NAME define macros", "[lang][preprocess]") {
+TEST_CASE("defines from the options, NAME=VALUE and NAME, define macros", "[lang][preprocess]") {
     TempDir dir;
     PreprocessOptions options;
     options.defines = {"SCALE=2.5", "FLAG"};
