@@ -57,7 +57,14 @@ struct Capture {
 
 std::mutex g_mcppMutex;        // mcpp's globals are shared by every caller
 Capture* g_capture = nullptr;  // the running call's capture, under g_mcppMutex
-std::unordered_set<void*> g_leftovers;  // allocated by the last run and not freed, under the mutex
+// Allocated by the last run and not freed, under the mutex. Freed at exit too: once this set is
+// destroyed nothing points at the blocks, and LeakSanitizer would report mcpp's leftovers.
+struct Leftovers : std::unordered_set<void*> {
+    ~Leftovers() {
+        for (void* p : *this) free(p);
+    }
+};
+Leftovers g_leftovers;
 
 // Appends for mcpp; EOF makes mcpp stop with "File write error". No exception may cross mcpp.
 int Put(const char* s, size_t n, OUTDEST od) {
@@ -133,7 +140,8 @@ Capture RunMcpp(const std::vector<std::string>& args) {
     for (FILE* f : capture.files) fclose(f);
     capture.files.clear();
     for (void* p : g_leftovers) free(p);
-    g_leftovers = std::move(capture.blocks);
+    g_leftovers.clear();
+    g_leftovers.swap(capture.blocks);
     capture.blocks.clear();
     g_capture = nullptr;
     return capture;
