@@ -110,12 +110,6 @@ std::string DescribePattern(const char* pattern) {
 
 }  // namespace
 
-bool IsBuiltin(const std::string& name) {
-    for (const Builtin& b : Table())
-        if (name == b.name) return true;
-    return false;
-}
-
 std::optional<Value> LowerBuiltin(ValueOps& ops, const lang::Expr& call, const std::vector<Value>& args,
                                   lang::Diagnostics& diags) {
     std::vector<const Builtin*> candidates;

@@ -12,9 +12,6 @@
 
 namespace affray::compiler {
 
-/// True if `name` is a built-in function.
-bool IsBuiltin(const std::string& name);
-
 /// Lowers the call `call` to built-in `call.name` with already lowered `args`. Reports a
 /// diagnostic at the call (unknown overload, wrong argument count, unsupported function) and
 /// returns nothing on error.

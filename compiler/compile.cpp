@@ -45,8 +45,6 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     shader.sourcePath = path;
     shader.sourceText = text;
     shader.params = lowered->params;
-    shader.writesP = lowered->writesP;
-    shader.writesN = lowered->writesN;
     shader.opsBeforeOptimisation = lowered->ir.requestedOps();
     std::vector<vm::ProgramParam> params;
     for (const ParamInfo& p : lowered->params)
@@ -88,7 +86,6 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
     shader.genericShade = std::move(file.shade);
     for (const vm::ProgramParam& p : shader.genericShade.params)
         shader.params.push_back({p.name, TypeFromName(p.type), p.defaults, false});
-    shader.writesP = shader.writesN = true;
     shader.opsBeforeOptimisation = static_cast<int>(shader.genericShade.code.size());
     if (!SpecialiseShader(shader, overrides, &result.paramErrors)) return result;
     result.shader = std::move(shader);

@@ -26,8 +26,6 @@ struct CompiledShader {
     vm::Program bound;
     vm::Program shade;
     std::vector<ParamInfo> params;
-    bool writesP = false;
-    bool writesN = false;
     /// Scalar operations lowering asked for, before folding, sharing and dead-code removal.
     int opsBeforeOptimisation = 0;
 };

@@ -18,16 +18,6 @@ constexpr GlobalInfo kGlobalInfo[] = {
 const char* GlobalName(Global g) { return kGlobalInfo[static_cast<int>(g)].name; }
 int GlobalSize(Global g) { return kGlobalInfo[static_cast<int>(g)].size; }
 
-bool FindGlobal(const std::string& name, Global* out) {
-    for (int i = 0; i < kGlobalCount; ++i) {
-        if (name == kGlobalInfo[i].name) {
-            *out = static_cast<Global>(i);
-            return true;
-        }
-    }
-    return false;
-}
-
 const ProgramOutput* Program::findOutput(const std::string& name) const {
     for (const ProgramOutput& o : outputs)
         if (o.name == name) return &o;

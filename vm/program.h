@@ -39,8 +39,6 @@ inline constexpr int kGlobalCount = 0 AFFRAY_GLOBALS(AFFRAY_GLOBAL_COUNT);
 
 const char* GlobalName(Global g);
 int GlobalSize(Global g);  // 1 for floats, 3 for triples
-/// The global called `name`, or false.
-bool FindGlobal(const std::string& name, Global* out);
 
 inline constexpr uint16_t kNoRegister = 0xffff;
 
