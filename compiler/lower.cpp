@@ -48,6 +48,9 @@ class Lowerer {
     std::optional<Value> LowerComponentCall(const Expr& e);
     void LowerStmt(const Stmt& s);
     void LowerDecl(const lang::VarDecl& d, std::optional<Value> init);
+    /// Declares `d` (as 0 of `type`, assigned and used) after an error in its declaration, so
+    /// that its later uses do not repeat the error as "unknown identifier".
+    void DeclarePlaceholder(const lang::VarDecl& d, Type type);
 
     /// Converts `v` for storing in a variable of `target` type (float -> triple promotion,
     /// point/vector/normal interchange); reports and returns nothing if it cannot.
@@ -341,6 +344,15 @@ void Lowerer::LowerDecl(const lang::VarDecl& d, std::optional<Value> init) {
     scope.emplace(d.name, var);
 }
 
+void Lowerer::DeclarePlaceholder(const lang::VarDecl& d, Type type) {
+    Variable var;
+    var.type = type;
+    var.value = m_ops.Promote(m_ops.Constant(0.0), type);
+    var.assigned = var.used = true;
+    var.loc = d.loc;
+    m_scopes.back().emplace(d.name, var);
+}
+
 void Lowerer::LowerStmt(const Stmt& s) {
     switch (s.kind) {
         case StmtKind::Expr: LowerExpr(*s.expr); break;
@@ -348,15 +360,7 @@ void Lowerer::LowerStmt(const Stmt& s) {
             for (const lang::VarDecl& d : s.decls) {
                 std::optional<Value> init = d.init ? LowerExpr(*d.init) : std::nullopt;
                 if (d.init && !init) {
-                    // The initialiser's error is already reported; declare the name anyway (as
-                    // assigned) so later uses do not pile up "unknown identifier" errors.
-                    Variable var;
-                    var.type = FromTypeName(d.type);
-                    var.loc = d.loc;
-                    var.used = true;
-                    var.assigned = true;
-                    var.value = m_ops.Promote(m_ops.Constant(0.0), var.type);
-                    m_scopes.back().emplace(d.name, var);
+                    DeclarePlaceholder(d, FromTypeName(d.type));  // the initialiser's error is reported
                     continue;
                 }
                 LowerDecl(d, init);
@@ -403,15 +407,6 @@ bool Lowerer::Run(const lang::ShaderDef& shader) {
     // parameters at their defaults; the body then sees each parameter as an IR Param node, bound
     // to a constant per shader instance later (compiler/specialise).
     PushScope();
-    // A parameter in error is still declared (as 0), so its uses do not repeat the error.
-    auto declarePlaceholder = [&](const lang::VarDecl& p, Type type) {
-        Variable var;
-        var.type = type;
-        var.value = m_ops.Promote(m_ops.Constant(0.0), type);
-        var.assigned = var.used = true;
-        var.loc = p.loc;
-        m_scopes.back().emplace(p.name, var);
-    };
     for (const lang::VarDecl& p : shader.params) {
         Type type = FromTypeName(p.type);
         if (m_scopes.back().count(p.name)) {
@@ -420,12 +415,12 @@ bool Lowerer::Run(const lang::ShaderDef& shader) {
         }
         if (!p.init) {
             m_diags.error(p.loc, "parameter '" + p.name + "' needs a default value");
-            declarePlaceholder(p, type);
+            DeclarePlaceholder(p, type);
             continue;
         }
         if (type == Type::String) {
             m_diags.error(p.loc, "string parameters are not supported yet");
-            declarePlaceholder(p, Type::Float);
+            DeclarePlaceholder(p, Type::Float);
             continue;
         }
         std::optional<Value> init = LowerExpr(*p.init);
@@ -442,7 +437,7 @@ bool Lowerer::Run(const lang::ShaderDef& shader) {
             info.defaults.push_back(*k);
         }
         if (!value) {
-            declarePlaceholder(p, type);
+            DeclarePlaceholder(p, type);
             continue;
         }
         Variable var;
