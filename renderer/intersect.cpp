@@ -65,9 +65,7 @@ class PatchIntersectorT final : public PatchIntersector {
 template <class N>
 bool PatchIntersectorT<N>::BoundRegion(Region& r, double tMin, double tMax) {
     ++m_bounded;
-    SetPatchGlobals(m_interp, m_patch, r.u0, r.u1, r.v0, r.v1, m_eye);
-    m_interp.Run();
-    Vec3<N> p = m_interp.OutputTriple(*m_output);
+    Vec3<N> p = EvaluateOnPatch(m_interp, m_patch, r.u0, r.u1, r.v0, r.v1, m_eye, *m_output);
     using T = std::decay_t<decltype(vm::ValueOf(p.x))>;
     Vec3<T> rel{vm::ValueOf(p.x) - m_origin.x, vm::ValueOf(p.y) - m_origin.y, vm::ValueOf(p.z) - m_origin.z};
     // n.(P' - o), leaving out the components n does not weigh: an unbounded coordinate along
@@ -99,9 +97,7 @@ bool PatchIntersectorT<N>::BoundRegion(Region& r, double tMin, double tMax) {
 
 template <class N>
 bool PatchIntersectorT<N>::PointAlongRay(double u, double v, double* t) {
-    SetPatchGlobals(m_interp, m_patch, u, u, v, v, m_eye);
-    m_interp.Run();
-    Vec3<N> p = m_interp.OutputTriple(*m_output);
+    Vec3<N> p = EvaluateOnPatch(m_interp, m_patch, u, u, v, v, m_eye, *m_output);
     glm::dvec3 center;
     for (int i = 0; i < 3; ++i) {
         vm::Interval r = RangeOf(vm::ValueOf(p[i]));

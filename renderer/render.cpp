@@ -23,12 +23,9 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BilinearPatch& patch
     std::vector<compiler::ConstantGlobal> out = {{Global::E, {eye.x, eye.y, eye.z}},
                                                  {Global::du, {kParametricStep, 0, 0}},
                                                  {Global::dv, {kParametricStep, 0, 0}}};
-    const auto& c = patch.corners;
-    glm::dvec3 a = c[1] - c[0], b = c[2] - c[0], d = c[0] - c[1] - c[2] + c[3];
-    glm::dvec3 n = glm::normalize(glm::cross(a, b));
-    if (d == glm::dvec3(0.0) && std::isfinite(glm::dot(n, n))) {
-        // A flat patch: the same tangents and normal everywhere (SetPatchGlobals computes the
-        // normal this same way, so the folded program sees the values it would have been given).
+    glm::dvec3 a = patch.a(), b = patch.b(), n = patch.flatNormal();
+    if (patch.flat() && std::isfinite(glm::dot(n, n))) {
+        // The same tangents and normal everywhere, the values SetPatchGlobals would give.
         out.push_back({Global::dPdu, {a.x, a.y, a.z}});
         out.push_back({Global::dPdv, {b.x, b.y, b.z}});
         out.push_back({Global::N, {n.x, n.y, n.z}});
@@ -89,9 +86,8 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
                     const Tolerance& tol, const glm::dvec3& eye) {
     const Primitive& prim = scene.primitives[nh.primitive];
     vm::Interpreter<vm::Dual<double>>& interp = *ts.shaders[nh.primitive];
-    SetPatchGlobals(interp, prim.patch, nh.hit.u, nh.hit.u, nh.hit.v, nh.hit.v, eye);
-    interp.Run();
-    glm::dvec3 P = ToGlm(interp.OutputTriple(*prim.shade.findOutput("P")));
+    const double u = nh.hit.u, v = nh.hit.v;
+    glm::dvec3 P = ToGlm(EvaluateOnPatch(interp, prim.patch, u, u, v, v, eye, *prim.shade.findOutput("P")));
     glm::dvec3 N = ToGlm(interp.OutputTriple(*prim.shade.findOutput("N")));
     if (!std::isfinite(glm::dot(P, P))) P = ray.origin + nh.hit.t * ray.dir;
     double lengthN = glm::length(N);

@@ -77,6 +77,15 @@ struct BilinearPatch {
     static BilinearPatch UnitSquare() {
         return {{glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(1, 1, 0)}};
     }
+
+    // P(u,v) = c0 + a*u + b*v + d*u*v
+    glm::dvec3 a() const { return corners[1] - corners[0]; }
+    glm::dvec3 b() const { return corners[2] - corners[0]; }
+    glm::dvec3 d() const { return corners[0] - corners[1] - corners[2] + corners[3]; }
+    /// A flat patch (d = 0) has the same tangents a, b and normal everywhere.
+    bool flat() const { return d() == glm::dvec3(0.0); }
+    /// The normal of a flat patch, normalize(a ^ b) (not finite if the patch is degenerate).
+    glm::dvec3 flatNormal() const { return glm::normalize(glm::cross(a(), b())); }
 };
 
 /// Starts a new evaluation for the interpreter `interp` over the patch region [u0,u1] x [v0,v1]
@@ -94,9 +103,8 @@ void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, dou
     // P = c0 + a*u + b*v + d*u*v, each coordinate a combination with double coefficients (zero
     // terms skipped: for an axis-aligned patch most are, and every skipped product is work saved
     // in every region bound).
-    const auto& c = patch.corners;
-    glm::dvec3 a = c[1] - c[0], b = c[2] - c[0], d = c[0] - c[1] - c[2] + c[3];
-    bool twisted = d != glm::dvec3(0.0);
+    const glm::dvec3 c0 = patch.corners[0], a = patch.a(), b = patch.b(), d = patch.d();
+    const bool twisted = !patch.flat();
     T uv = twisted ? u * v : T(0.0);
     auto combine = [](double k0, double ku, const T& x, double kv, const T& y) {
         T r(k0);
@@ -106,7 +114,7 @@ void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, dou
     };
     Vec3<T> P, dPdu, dPdv;
     for (int i = 0; i < 3; ++i) {
-        P[i] = combine(c[0][i], a[i], u, b[i], v);
+        P[i] = combine(c0[i], a[i], u, b[i], v);
         if (twisted && d[i] != 0) P[i] = P[i] + uv * d[i];
         dPdu[i] = twisted ? combine(a[i], d[i], v, 0.0, v) : T(a[i]);
         dPdv[i] = twisted ? combine(b[i], d[i], u, 0.0, u) : T(b[i]);
@@ -124,12 +132,22 @@ void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, dou
         // A flat patch has one normal: compute it in doubles and pass it as a constant, so its
         // bound stays exact; only a twisted patch needs the normal per region.
         Vec3<T> N = twisted ? vm::Normalize(vm::Cross(dPdu, dPdv))
-                            : Constant<T>(glm::normalize(glm::cross(a, b)));
+                            : Constant<T>(patch.flatNormal());
         interp.SetGlobal(Global::N, N);
         interp.SetGlobal(Global::Ng, N);
     }
     if (program.readsGlobal(Global::E)) interp.SetGlobal(Global::E, Constant<T>(eye));
     if (program.readsGlobal(Global::I)) interp.SetGlobal(Global::I, P - Constant<T>(eye));
+}
+
+/// Runs `interp`'s program over the patch region [u0,u1] x [v0,v1] (see SetPatchGlobals) and
+/// returns its triple output `output`.
+template <class T>
+Vec3<T> EvaluateOnPatch(vm::Interpreter<T>& interp, const BilinearPatch& patch, double u0, double u1, double v0,
+                        double v1, const glm::dvec3& eye, const vm::ProgramOutput& output) {
+    SetPatchGlobals(interp, patch, u0, u1, v0, v1, eye);
+    interp.Run();
+    return interp.OutputTriple(output);
 }
 
 }  // namespace affray::renderer

@@ -47,9 +47,8 @@ template <class N>
 vm::Vec3<N> EvalOnSquare(const vm::Program& program, double u0, double u1, double v0, double v1,
                          const char* name = "P") {
     vm::Interpreter<N> interp(program);
-    renderer::SetPatchGlobals(interp, renderer::BilinearPatch::UnitSquare(), u0, u1, v0, v1, glm::dvec3(0.0));
-    interp.Run();
-    return interp.OutputTriple(*program.findOutput(name));
+    return renderer::EvaluateOnPatch(interp, renderer::BilinearPatch::UnitSquare(), u0, u1, v0, v1, glm::dvec3(0.0),
+                                     *program.findOutput(name));
 }
 
 /// The displaced P at one point, in doubles (through duals if the program takes derivatives).

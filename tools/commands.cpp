@@ -32,9 +32,8 @@ std::string Json(const double (&v)[3]) { return "[" + Json(v[0]) + "," + Json(v[
 template <class N>
 void PrintBound(const vm::Program& program, double u0, double u1, double v0, double v1, FILE* out) {
     vm::Interpreter<N> interp(program);
-    renderer::SetPatchGlobals(interp, renderer::BilinearPatch::UnitSquare(), u0, u1, v0, v1, glm::dvec3(0.0));
-    interp.Run();
-    vm::Vec3<N> p = interp.OutputTriple(*program.findOutput("P"));
+    vm::Vec3<N> p = renderer::EvaluateOnPatch(interp, renderer::BilinearPatch::UnitSquare(), u0, u1, v0, v1,
+                                              glm::dvec3(0.0), *program.findOutput("P"));
     double lo[3], hi[3];
     bool unbounded = false;
     for (int i = 0; i < 3; ++i) {
@@ -116,9 +115,8 @@ int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
             bound(u, u, v, v);
             continue;
         }
-        renderer::SetPatchGlobals(interp, square, u, u, v, v, glm::dvec3(0.0));
-        interp.Run();
-        vm::Vec3<vm::Dual<double>> P = interp.OutputTriple(*shader.shade.findOutput("P"));
+        vm::Vec3<vm::Dual<double>> P =
+            renderer::EvaluateOnPatch(interp, square, u, u, v, v, glm::dvec3(0.0), *shader.shade.findOutput("P"));
         vm::Vec3<vm::Dual<double>> N = interp.OutputTriple(*shader.shade.findOutput("N"));
         double p[3] = {P.x.v, P.y.v, P.z.v}, n[3] = {N.x.v, N.y.v, N.z.v};
         std::fprintf(out, "{\"P\":%s,\"N\":%s}\n", Json(p).c_str(), Json(n).c_str());

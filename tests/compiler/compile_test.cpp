@@ -255,9 +255,8 @@ TEST_CASE("generic programs read parameters; specialised ones fold them away", "
     generic.SetParam(0, {2});
     generic.SetParam(1, {7});
     generic.SetParam(2, {0, 1, 0});
-    renderer::SetPatchGlobals(generic, renderer::BilinearPatch::UnitSquare(), 0.3, 0.3, 0.6, 0.6, glm::dvec3(0));
-    generic.Run();
-    vm::Vec3<double> g = generic.OutputTriple(*s.genericBound.findOutput("P"));
+    vm::Vec3<double> g = renderer::EvaluateOnPatch(generic, renderer::BilinearPatch::UnitSquare(), 0.3, 0.3, 0.6, 0.6,
+                                                   glm::dvec3(0), *s.genericBound.findOutput("P"));
     glm::dvec3 p = test::PointOnSquare(inst.bound, 0.3, 0.6);
     CHECK(g.x == p.x);
     CHECK(g.y == p.y);
