@@ -71,6 +71,41 @@ const std::vector<Builtin>& Table() {
              Value du = Scalar(o, IrOp::DerivU, a[0]), dv = Scalar(o, IrOp::DerivV, a[0]);
              return o.Promote(o.Cross(du, dv), Type::Normal);
          }},
+        {"floor", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::Floor, a[0]); }},
+        {"ceil", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::Ceil, a[0]); }},
+        {"round", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::Round, a[0]); }},
+        {"asin", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Asin, a[0]); }},
+        {"acos", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Acos, a[0]); }},
+        {"atan", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Atan, a[0]); }},
+        {"atan", "ff", [](ValueOps& o, A a) { return o.Binary(IrOp::Atan2, a[0], a[1]); }},
+        {"mod", "aa", [](ValueOps& o, A a) {
+             // RenderMan's mod has the sign of the divisor: a - b*floor(a/b)
+             return o.Sub(a[0], o.Mul(a[1], o.Map(IrOp::Floor, o.Div(a[0], a[1]))));
+         }},
+        {"min", "aa", [](ValueOps& o, A a) { return o.Binary(IrOp::Min, a[0], a[1]); }},
+        {"min", "aaa", [](ValueOps& o, A a) { return o.Binary(IrOp::Min, o.Binary(IrOp::Min, a[0], a[1]), a[2]); }},
+        {"max", "aa", [](ValueOps& o, A a) { return o.Binary(IrOp::Max, a[0], a[1]); }},
+        {"max", "aaa", [](ValueOps& o, A a) { return o.Binary(IrOp::Max, o.Binary(IrOp::Max, a[0], a[1]), a[2]); }},
+        {"clamp", "aaa", [](ValueOps& o, A a) { return o.Clamp(a[0], a[1], a[2]); }},
+        {"step", "ff", [](ValueOps& o, A a) {
+             // step(edge, x) = x < edge ? 0 : 1, i.e. edge <= x
+             return o.Binary(IrOp::Le, a[0], a[1]);
+         }},
+        {"smoothstep", "fff", [](ValueOps& o, A a) {
+             // 0 below e0, 1 above e1, the cubic Hermite 3t^2 - 2t^3 between
+             Value t = o.Clamp(o.Div(o.Sub(a[2], a[0]), o.Sub(a[1], a[0])), o.Constant(0.0), o.Constant(1.0));
+             return o.Mul(o.Map(IrOp::Sqr, t), o.Sub(o.Constant(3.0), o.Mul(o.Constant(2.0), t)));
+         }},
+        {"faceforward", "tt", [](ValueOps& o, A a) {
+             // faceforward(N, I) = I.Ng > 0 ? -N : N
+             Value ng = o.Triple(Type::Normal, o.ir().Global(vm::Global::Ng, 0), o.ir().Global(vm::Global::Ng, 1),
+                                 o.ir().Global(vm::Global::Ng, 2));
+             return o.Promote(o.SelectValue(o.Binary(IrOp::Lt, o.Constant(0.0), o.Dot(a[1], ng)), o.Neg(a[0]), a[0]), Type::Vector);
+         }},
+        {"faceforward", "ttt", [](ValueOps& o, A a) {
+             // faceforward(N, I, Nref) = I.Nref > 0 ? -N : N
+             return o.Promote(o.SelectValue(o.Binary(IrOp::Lt, o.Constant(0.0), o.Dot(a[1], a[2])), o.Neg(a[0]), a[0]), Type::Vector);
+         }},
         {"mix", "aaf", [](ValueOps& o, A a) {
              // mix(x, y, t) = x*(1-t) + y*t
              Value oneMinusT = o.Sub(o.Constant(1.0), a[2]);
@@ -83,10 +118,9 @@ const std::vector<Builtin>& Table() {
 // Functions of RenderMan's library that affray does not implement yet: a clear error, not
 // "unknown function".
 const char* const kNotYet[] = {
-    "noise", "pnoise", "cellnoise", "texture", "environment", "shadow", "transform", "vtransform",
-    "ntransform", "clamp", "min", "max", "step", "smoothstep", "floor", "ceil", "round", "mod",
-    "asin", "acos", "atan", "faceforward", "filterstep", "spline", "random", "rotate",
+    "texture", "environment", "shadow", "random", "rotate", "translate", "scale", "determinant",
     "illuminance", "specular", "diffuse", "ambient", "printf", "format", "concat", "match",
+    "bump", "trace", "fresnel", "refract", "setcomp_matrix", "comp_matrix", "ptlined", "depth",
 };
 
 bool ArgMatches(char pattern, Type type) {

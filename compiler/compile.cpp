@@ -56,7 +56,21 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
             p->shaderName = shader.name;
             p->sourcePath = path;
         }
-        if (!SpecialiseShader(shader, overrides, &result.paramErrors)) return result;
+        // The instance: lowered again with its parameter values as constants, so that the
+        // branches and loops they decide fold during lowering (bytecode specialisation cannot
+        // undo the unrolling of a loop whose bound was a parameter).
+        std::optional<std::vector<std::vector<double>>> values =
+            BindParameters(shader.genericBound, overrides, &result.paramErrors);
+        if (!values) return result;
+        lang::Diagnostics again(file);  // the same diagnostics as the generic lowering
+        std::optional<LoweredShader> instance = Lower(unit, again, &*values);
+        if (!instance) throw std::logic_error("lowering " + path + " with its parameter values failed");
+        shader.bound = Emit(instance->ir, {{"P", instance->finalP}}, {});
+        shader.shade = Emit(instance->ir, {{"P", instance->finalP}, {"N", instance->finalN}}, {});
+        for (vm::Program* p : {&shader.bound, &shader.shade}) {
+            p->shaderName = shader.name;
+            p->sourcePath = path;
+        }
     } catch (const std::length_error& e) {
         result.diagnostics += path + ": error: " + e.what() + "\n";
         return result;

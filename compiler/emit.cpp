@@ -5,6 +5,8 @@
 // is computed and gives it back after its last use.
 #include "compiler/emit.h"
 
+#include "compiler/opcode_map.h"
+
 #include <bit>
 #include <limits>
 #include <map>
@@ -30,10 +32,17 @@ class Emitter {
     uint16_t ConstantIndex(double k);
     uint16_t RegisterOf(ValueId v) const { return m_register.at(v); }
     void EmitNode(ValueId v);
-    void Push(vm::Op op, uint16_t a, uint16_t b, uint16_t c, int line) {
-        m_out.code.push_back({op, 0, a, b, c});
+    void Push(vm::Op op, uint16_t a, uint16_t b, uint16_t c, int line, uint8_t flags = 0) {
+        m_out.code.push_back({op, flags, a, b, c});
         m_out.lines.push_back(line);
     }
+    /// The opcode for a node and which operands it takes as constants (swap: the operands of a
+    /// commutative operation exchanged so that its constant comes second).
+    struct Selection {
+        vm::Op op = vm::Op::Move;
+        bool aIsK = false, bIsK = false, swap = false;
+    };
+    Selection Select(const IrNode& n) const;
 
     const IrBuilder& m_ir;
     vm::Program& m_out;
@@ -66,14 +75,41 @@ void Emitter::MarkLive(const std::vector<NamedValue>& outputs) {
             if (m_ir.node(operand).op == IrOp::Const && !constantAllowed) m_constNeedsRegister.insert(operand);
             stack.push_back(operand);
         };
-        if (IsUnary(n.op)) use(n.a, false);
-        if (IsBinary(n.op)) {
-            // Every binary opcode has a K form for its second operand; Sub and Div also for the
-            // first, Add and Mul commute. Only pow's base must be in a register.
-            use(n.a, n.op != IrOp::Pow);
-            use(n.b, true);
-        }
+        const Selection s = Select(n);
+        for (int i = 0; i < n.count; ++i) use(n.in[i], (i == 0 && s.aIsK) || (i == 1 && s.bIsK));
     }
+}
+
+Emitter::Selection Emitter::Select(const IrNode& n) const {
+    Selection s;
+    if (n.count == 0) return s;  // leaves are not instructions
+    if (n.count != 2) {
+        s.op = OpcodeFor(n.op, n.count, OperandForm::RR).value();
+        return s;
+    }
+    auto isConst = [&](ValueId x) { return m_ir.node(x).op == IrOp::Const; };
+    const bool aK = isConst(n.in[0]), bK = isConst(n.in[1]);
+    if (bK)
+        if (auto op = OpcodeFor(n.op, 2, OperandForm::RK)) {
+            s.op = *op;
+            s.bIsK = true;
+            return s;
+        }
+    if (aK && IsCommutative(n.op))
+        if (auto op = OpcodeFor(n.op, 2, OperandForm::RK)) {
+            s.op = *op;
+            s.aIsK = true;
+            s.swap = true;
+            return s;
+        }
+    if (aK)
+        if (auto op = OpcodeFor(n.op, 2, OperandForm::KR)) {
+            s.op = *op;
+            s.aIsK = true;
+            return s;
+        }
+    s.op = OpcodeFor(n.op, 2, OperandForm::RR).value();
+    return s;
 }
 
 uint16_t Emitter::Allocate() {
@@ -112,46 +148,28 @@ void Emitter::EmitNode(ValueId v) {
 
     // Operand registers are read before the destination is written, so a register whose last
     // use is this instruction can be its destination.
-    auto isK = [&](ValueId x) { return m_ir.node(x).op == IrOp::Const && !m_register.count(x); };
-    ValueId a = n.a, b = n.b;
-    uint16_t ra = 0, rb = 0;
-    bool binary = IsBinary(n.op);
-    bool aK = isK(a), bK = binary && isK(b);
-    if ((n.op == IrOp::Add || n.op == IrOp::Mul) && aK) {
-        std::swap(a, b);
-        std::swap(aK, bK);
+    const Selection sel = Select(n);
+    uint16_t operands[kMaxIrOperands] = {};
+    for (int i = 0; i < n.count; ++i) {
+        const bool isK = (i == 0 && sel.aIsK) || (i == 1 && sel.bIsK);
+        operands[i] = isK ? ConstantIndex(m_ir.node(n.in[i]).k) : RegisterOf(n.in[i]);
     }
-    ra = aK ? ConstantIndex(m_ir.node(a).k) : RegisterOf(a);
-    if (binary) rb = bK ? ConstantIndex(m_ir.node(b).k) : RegisterOf(b);
-    Release(a, v);
-    if (binary && b != a) Release(b, v);
+    if (sel.swap) std::swap(operands[0], operands[1]);
+    for (int i = 0; i < n.count; ++i) {
+        bool repeated = false;
+        for (int j = 0; j < i; ++j) repeated = repeated || n.in[j] == n.in[i];
+        if (!repeated) Release(n.in[i], v);
+    }
     uint16_t dst = Allocate();
     m_register[v] = dst;
 
-    using vm::Op;
-    Op op = Op::Move;
-    switch (n.op) {
-        case IrOp::Neg: op = Op::Neg; break;
-        case IrOp::Sqr: op = Op::Sqr; break;
-        case IrOp::Sqrt: op = Op::Sqrt; break;
-        case IrOp::Exp: op = Op::Exp; break;
-        case IrOp::Log: op = Op::Log; break;
-        case IrOp::Sin: op = Op::Sin; break;
-        case IrOp::Cos: op = Op::Cos; break;
-        case IrOp::Abs: op = Op::Abs; break;
-        case IrOp::Sign: op = Op::Sign; break;
-        case IrOp::DerivU: op = Op::DerivU; break;
-        case IrOp::DerivV: op = Op::DerivV; break;
-        case IrOp::Add: op = bK ? Op::AddRK : Op::AddRR; break;
-        case IrOp::Mul: op = bK ? Op::MulRK : Op::MulRR; break;
-        case IrOp::Sub: op = aK ? Op::SubKR : bK ? Op::SubRK : Op::SubRR; break;
-        case IrOp::Div: op = aK ? Op::DivKR : bK ? Op::DivRK : Op::DivRR; break;
-        case IrOp::Pow: op = bK ? Op::PowRK : Op::PowRR; break;
-        case IrOp::Const:
-        case IrOp::Global:
-        case IrOp::Param: break;
-    }
-    Push(op, dst, ra, rb, n.line);
+    // The operands fill B, C, then the Ext words' A, B, C (vm/opcodes.h).
+    const int words = vm::Words(sel.op);
+    uint16_t slots[9] = {dst};
+    for (int i = 0; i < n.count; ++i) slots[i + 1] = operands[i];
+    for (int w = 0; w < words; ++w)
+        Push(w == 0 ? sel.op : vm::Op::Ext, slots[3 * w], slots[3 * w + 1], slots[3 * w + 2], n.line,
+             w == 0 ? n.channel : 0);
 }
 
 void Emitter::Run(const std::vector<NamedValue>& outputs, const std::vector<vm::ProgramParam>& params) {
@@ -162,12 +180,12 @@ void Emitter::Run(const std::vector<NamedValue>& outputs, const std::vector<vm::
     for (ValueId v = 0; v < m_ir.size(); ++v) {
         const IrNode& n = m_ir.node(v);
         if (!m_live[v] || n.op != IrOp::Global) continue;
-        uint16_t& base = m_out.globalRegisters[n.a];
+        uint16_t& base = m_out.globalRegisters[n.in[0]];
         if (base == vm::kNoRegister) {
             base = static_cast<uint16_t>(m_out.registerCount);
-            m_out.registerCount += vm::GlobalSize(static_cast<vm::Global>(n.a));
+            m_out.registerCount += vm::GlobalSize(static_cast<vm::Global>(n.in[0]));
         }
-        m_register[v] = static_cast<uint16_t>(base + n.b);
+        m_register[v] = static_cast<uint16_t>(base + n.in[1]);
     }
     // Parameters the outputs read: like globals, consecutive registers written before the run.
     m_out.params = params;
@@ -175,18 +193,18 @@ void Emitter::Run(const std::vector<NamedValue>& outputs, const std::vector<vm::
     for (ValueId v = 0; v < m_ir.size(); ++v) {
         const IrNode& n = m_ir.node(v);
         if (!m_live[v] || n.op != IrOp::Param) continue;
-        vm::ProgramParam& p = m_out.params.at(n.a);
+        vm::ProgramParam& p = m_out.params.at(n.in[0]);
         if (p.firstRegister == vm::kNoRegister) {
             p.firstRegister = static_cast<uint16_t>(m_out.registerCount);
             m_out.registerCount += p.size;
         }
-        m_register[v] = static_cast<uint16_t>(p.firstRegister + n.b);
+        m_register[v] = static_cast<uint16_t>(p.firstRegister + n.in[1]);
     }
     for (size_t i = 0; i < m_out.params.size(); ++i) {
         const vm::ProgramParam& p = m_out.params[i];
         if (p.firstRegister == vm::kNoRegister) continue;
         for (int c = 0; c < p.size; ++c) {
-            ValueId id = m_ir.Find(IrOp::Param, static_cast<uint32_t>(i), c);
+            ValueId id = m_ir.FindLeaf(IrOp::Param, static_cast<uint32_t>(i), c);
             if (id == kNoValue || !m_live[id]) m_free.insert(static_cast<uint16_t>(p.firstRegister + c));
         }
     }
@@ -195,7 +213,7 @@ void Emitter::Run(const std::vector<NamedValue>& outputs, const std::vector<vm::
         uint16_t base = m_out.globalRegisters[g];
         if (base == vm::kNoRegister) continue;
         for (int i = 0; i < vm::GlobalSize(static_cast<vm::Global>(g)); ++i) {
-            ValueId id = m_ir.Find(IrOp::Global, g, i);
+            ValueId id = m_ir.FindLeaf(IrOp::Global, g, i);
             if (id == kNoValue || !m_live[id]) m_free.insert(static_cast<uint16_t>(base + i));
         }
     }

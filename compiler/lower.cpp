@@ -1,4 +1,5 @@
-// compiler/lower.cpp: type checking and lowering of statements and expressions.
+// compiler/lower.cpp: type checking and lowering of names, declarations and expressions
+// (statements and control flow: compiler/lower_flow.cpp; the state both share: lowerer.h).
 // Names: a stack of scopes over the shader globals (P, N, ... from vm/program.h) and the
 // parameters. A variable holds a Value (IR node ids), so assignment rebinds and never copies.
 // Every error is reported where it happens and the expression yields nothing; callers pass the
@@ -10,10 +11,9 @@
 #include <unordered_map>
 
 #include "compiler/builtins.h"
+#include "compiler/lowerer.h"
 
 namespace affray::compiler {
-
-namespace {
 
 using lang::Expr;
 using lang::ExprKind;
@@ -21,50 +21,22 @@ using lang::SourceLoc;
 using lang::Stmt;
 using lang::StmtKind;
 
-struct Variable {
-    Type type = Type::Float;
-    Value value;
-    bool assigned = false;
-    bool writable = true;
-    bool isGlobal = false;
-    bool used = false;
-    SourceLoc loc;
-};
+Lowerer::Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues)
+    : m_out(out), m_diags(diags), m_ops(out.ir), m_paramValues(paramValues) {}
 
-class Lowerer {
-  public:
-    Lowerer(LoweredShader& out, lang::Diagnostics& diags) : m_out(out), m_diags(diags), m_ops(out.ir) {}
+Value Lowerer::StringValue(const std::string& text) {
+    size_t index = 0;
+    while (index < m_strings.size() && m_strings[index] != text) ++index;
+    if (index == m_strings.size()) m_strings.push_back(text);
+    ValueId id = ir().Const(static_cast<double>(index));
+    return {Type::String, {id, id, id}};
+}
 
-    bool Run(const lang::ShaderDef& shader);
-
-  private:
-    std::optional<Value> LowerExpr(const Expr& e);
-    std::optional<Value> LowerBinary(const Expr& e);
-    std::optional<Value> LowerAssign(const Expr& e);
-    std::optional<Value> LowerCast(const Expr& e);
-    std::optional<Value> LowerIdent(const Expr& e);
-    /// comp, setcomp and setxcomp/setycomp/setzcomp: component access by a constant index, the
-    /// setters writing to their first argument, which must be a variable.
-    std::optional<Value> LowerComponentCall(const Expr& e);
-    void LowerStmt(const Stmt& s);
-    void LowerDecl(const lang::VarDecl& d, std::optional<Value> init);
-    /// Declares `d` (as 0 of `type`, assigned and used) after an error in its declaration, so
-    /// that its later uses do not repeat the error as "unknown identifier".
-    void DeclarePlaceholder(const lang::VarDecl& d, Type type);
-
-    /// Converts `v` for storing in a variable of `target` type (float -> triple promotion,
-    /// point/vector/normal interchange); reports and returns nothing if it cannot.
-    std::optional<Value> Convert(const Value& v, Type target, SourceLoc loc, const std::string& what);
-
-    void PushScope() { m_scopes.emplace_back(); }
-    void PopScope();
-    Variable* Find(const std::string& name);
-
-    LoweredShader& m_out;
-    lang::Diagnostics& m_diags;
-    ValueOps m_ops;
-    std::vector<std::unordered_map<std::string, Variable>> m_scopes;
-};
+std::optional<std::string> Lowerer::StringOf(const Value& v) const {
+    std::optional<double> k = m_out.ir.ConstValue(v.c[0]);
+    if (v.type != Type::String || !k) return std::nullopt;
+    return m_strings[static_cast<size_t>(*k)];
+}
 
 std::string Article(Type t) {
     std::string name = ToString(t);
@@ -72,7 +44,7 @@ std::string Article(Type t) {
 }
 
 Variable* Lowerer::Find(const std::string& name) {
-    for (auto scope = m_scopes.rbegin(); scope != m_scopes.rend(); ++scope) {
+    for (auto scope = m_state.scopes.rbegin(); scope != m_state.scopes.rend(); ++scope) {
         auto it = scope->find(name);
         if (it != scope->end()) return &it->second;
     }
@@ -81,12 +53,16 @@ Variable* Lowerer::Find(const std::string& name) {
 
 void Lowerer::PopScope() {
     // After an error, "unused" is more often a consequence than a finding: stay quiet.
-    for (const auto& [name, var] : m_scopes.back())
+    for (const auto& [name, var] : m_state.scopes.back())
         if (!var.used && !var.isGlobal && !m_diags.hasErrors()) m_diags.warning(var.loc, "unused variable '" + name + "'");
-    m_scopes.pop_back();
+    m_state.scopes.pop_back();
+    // Functions defined in the scope go with it.
+    while (!m_functions.empty() && m_functions.back().first > m_state.scopes.size()) m_functions.pop_back();
 }
 
-std::optional<Value> Lowerer::Convert(const Value& v, Type target, SourceLoc loc, const std::string& what) {
+std::optional<Value> Lowerer::Convert(const Value& value, Type target, SourceLoc loc, const std::string& what) {
+    Value v = value;
+    if (v.type == Type::Bool && target != Type::Bool) v.type = Type::Float;  // 1 or 0, as in C
     if (v.type == target) return v;
     if (IsTriple(target) && v.type == Type::Float) return m_ops.Promote(v, target);
     if (IsSpatial(target) && IsSpatial(v.type)) return m_ops.Promote(v, target);
@@ -150,7 +126,9 @@ std::optional<Value> Lowerer::LowerComponentCall(const Expr& e) {
         m_diags.error(e.args[0]->loc, "cannot assign to '" + e.args[0]->name + "': it is a read-only global");
         return std::nullopt;
     }
-    var->value.c[index] = x->c[0];
+    Value updated = var->value;
+    updated.c[index] = x->c[0];
+    Store(*var, updated);
     return m_ops.Float(x->c[0]);
 }
 
@@ -160,6 +138,20 @@ std::optional<Value> Lowerer::LowerBinary(const Expr& e) {
     std::optional<Value> b = LowerExpr(*e.args[1]);
     if (!a || !b) return std::nullopt;
     m_ops.SetLine(e.loc.line);
+    switch (e.binaryOp) {
+        case BinaryOp::Less:
+        case BinaryOp::LessEq:
+        case BinaryOp::Greater:
+        case BinaryOp::GreaterEq:
+        case BinaryOp::Equal:
+        case BinaryOp::NotEqual:
+        case BinaryOp::And:
+        case BinaryOp::Or: return LowerComparison(e, *a, *b);
+        default: break;
+    }
+    // A boolean in arithmetic is the float 1 or 0, as in C.
+    if (a->type == Type::Bool) a->type = Type::Float;
+    if (b->type == Type::Bool) b->type = Type::Float;
     const char* opName = lang::ToString(e.binaryOp);
     auto bad = [&](const std::string& why) {
         m_diags.error(e.loc, "invalid operands to '" + std::string(opName) + "' (" + ToString(a->type) +
@@ -187,26 +179,131 @@ std::optional<Value> Lowerer::LowerBinary(const Expr& e) {
         case BinaryOp::Cross:
             if (!IsSpatial(a->type) || !IsSpatial(b->type)) return bad(": '^' is the cross product of two vectors");
             return m_ops.Cross(*a, *b);
-        default:
-            m_diags.error(e.loc, "operator '" + std::string(opName) + "' is not supported yet");
-            return std::nullopt;
+        default: break;
     }
+    return std::nullopt;  // the comparisons were handled above
+}
+
+std::optional<Value> Lowerer::LowerComparison(const Expr& e, const Value& a, const Value& b) {
+    using lang::BinaryOp;
+    const BinaryOp op = e.binaryOp;
+    const std::string opName = lang::ToString(op);
+    auto bad = [&](const std::string& why) {
+        m_diags.error(e.loc, "invalid operands to '" + opName + "' (" + ToString(a.type) + " and " + ToString(b.type) +
+                                 ")" + why);
+        return std::nullopt;
+    };
+    auto boolean = [&](ValueId v) { return Value{Type::Bool, {v, v, v}}; };
+    if (op == BinaryOp::And || op == BinaryOp::Or) {
+        auto truth = [&](const Value& v) -> std::optional<ValueId> {
+            if (v.type == Type::Bool) return v.c[0];
+            if (v.type == Type::Float) return ir().Binary(IrOp::Ne, v.c[0], ir().Const(0.0), e.loc.line);
+            return std::nullopt;
+        };
+        std::optional<ValueId> x = truth(a), y = truth(b);
+        if (!x || !y) return bad(": '" + opName + "' combines conditions");
+        return boolean(ir().Binary(op == BinaryOp::And ? IrOp::And : IrOp::Or, *x, *y, e.loc.line));
+    }
+    // Strings compare by their ids (one id per distinct text): folded when both are known, a
+    // comparison of ids when a string was chosen by a condition.
+    if (a.type == Type::String || b.type == Type::String) {
+        if (a.type != b.type || (op != BinaryOp::Equal && op != BinaryOp::NotEqual))
+            return bad(": strings compare only with == and != to strings");
+        const ValueId same = ir().Binary(IrOp::Eq, a.c[0], b.c[0], e.loc.line);
+        return boolean(op == BinaryOp::Equal ? same : ir().Unary(IrOp::Not, same, e.loc.line));
+    }
+    Value x = a, y = b;
+    for (Value* v : {&x, &y})
+        if (v->type == Type::Bool) v->type = Type::Float;
+    const bool bothNumeric = (x.type == Type::Float || IsTriple(x.type)) && (y.type == Type::Float || IsTriple(y.type));
+    if (!bothNumeric) return bad("");
+    if (op == BinaryOp::Equal || op == BinaryOp::NotEqual) {
+        if ((x.type == Type::Color && IsSpatial(y.type)) || (y.type == Type::Color && IsSpatial(x.type)))
+            return bad(": a color does not compare with a point, vector or normal");
+        // Triples are equal when every component is.
+        const int n = IsTriple(x.type) || IsTriple(y.type) ? 3 : 1;
+        Type type = IsTriple(x.type) ? x.type : y.type;
+        x = m_ops.Promote(x, type);
+        y = m_ops.Promote(y, type);
+        ValueId all = ir().Binary(IrOp::Eq, x.c[0], y.c[0], e.loc.line);
+        for (int i = 1; i < n; ++i)
+            all = ir().Binary(IrOp::And, all, ir().Binary(IrOp::Eq, x.c[i], y.c[i], e.loc.line), e.loc.line);
+        return boolean(op == BinaryOp::Equal ? all : ir().Unary(IrOp::Not, all, e.loc.line));
+    }
+    if (x.type != Type::Float || y.type != Type::Float) return bad(": only floats are ordered");
+    // a > b is b < a, a >= b is b <= a.
+    const bool swap = op == BinaryOp::Greater || op == BinaryOp::GreaterEq;
+    const IrOp irOp = op == BinaryOp::Less || op == BinaryOp::Greater ? IrOp::Lt : IrOp::Le;
+    return boolean(swap ? ir().Binary(irOp, y.c[0], x.c[0], e.loc.line) : ir().Binary(irOp, x.c[0], y.c[0], e.loc.line));
+}
+
+std::optional<ValueId> Lowerer::LowerCondition(const Expr& e) {
+    std::optional<Value> v = LowerExpr(e);
+    if (!v) return std::nullopt;
+    if (v->type == Type::Bool) return v->c[0];
+    // A float condition means "!= 0" (C's rule; some RenderMan compilers accept it too).
+    if (v->type == Type::Float) return ir().Binary(IrOp::Ne, v->c[0], ir().Const(0.0), e.loc.line);
+    m_diags.error(e.loc, "a condition must be a comparison or a float, not " + Article(v->type));
+    return std::nullopt;
+}
+
+std::optional<Value> Lowerer::LowerTernary(const Expr& e) {
+    std::optional<ValueId> c = LowerCondition(*e.args[0]);
+    std::optional<Value> a = LowerExpr(*e.args[1]);
+    std::optional<Value> b = LowerExpr(*e.args[2]);
+    if (!c || !a || !b) return std::nullopt;
+    Value x = *a, y = *b;
+    if (x.type == Type::Bool && y.type == Type::Bool) {
+        return Value{Type::Bool, {ir().Select(*c, x.c[0], y.c[0], e.loc.line), 0, 0}};
+    }
+    for (Value* v : {&x, &y})
+        if (v->type == Type::Bool) v->type = Type::Float;
+    if (x.type == Type::String && y.type == Type::String) {
+        ValueId id = ir().Select(*c, x.c[0], y.c[0], e.loc.line);
+        return Value{Type::String, {id, id, id}};
+    }
+    const bool numeric = (x.type == Type::Float || IsTriple(x.type)) && (y.type == Type::Float || IsTriple(y.type));
+    const bool mixesColor = (x.type == Type::Color && IsSpatial(y.type)) || (y.type == Type::Color && IsSpatial(x.type));
+    if (!numeric || mixesColor) {
+        m_diags.error(e.loc, "the two results of '?:' have incompatible types (" + std::string(ToString(x.type)) +
+                                 " and " + ToString(y.type) + ")");
+        return std::nullopt;
+    }
+    Type type = IsTriple(x.type) ? x.type : y.type;
+    x = m_ops.Promote(x, type);
+    y = m_ops.Promote(y, type);
+    Value out{type, {}};
+    for (int i = 0; i < 3; ++i) out.c[i] = ir().Select(*c, x.c[i], y.c[i], e.loc.line);
+    if (type == Type::Float) out.c[1] = out.c[2] = out.c[0];
+    return out;
 }
 
 std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
-    std::optional<Value> rhs = LowerExpr(*e.args[0]);
+    const Variable* target = Find(e.name);
+    std::optional<Value> rhs = LowerExpecting(*e.args[0], target ? target->type : Type::Void);
+    const bool isElement = e.args.size() == 2;
+    std::optional<Value> index = isElement ? LowerExpr(*e.args[1]) : std::nullopt;
     Variable* var = Find(e.name);
     if (!var) {
         m_diags.error(e.loc, "assignment to undeclared variable '" + e.name + "'");
         return std::nullopt;
     }
     if (!var->writable) {
-        m_diags.error(e.loc, "cannot assign to '" + e.name + "': it is a read-only global");
+        m_diags.error(e.loc, "cannot assign to '" + e.name + "': it is " +
+                                 (var->isGlobal ? "a read-only global" : "read-only"));
         return std::nullopt;
     }
-    if (!rhs) return std::nullopt;
+    if (isElement != (var->arraySize >= 0)) {
+        m_diags.error(e.loc, isElement ? "'" + e.name + "' is not an array" : "cannot assign to the whole array '" + e.name + "'");
+        return std::nullopt;
+    }
+    if (!rhs || (isElement && !index)) return std::nullopt;
     m_ops.SetLine(e.loc.line);
+    const std::string what = std::string(ToString(var->type)) + (isElement ? " element of '" : " variable '") + e.name + "'";
+    std::optional<Value> current = isElement ? Element(*var, *index, e.args[1]->loc) : var->value;
+    if (!current) return std::nullopt;
     Value value = *rhs;
+    if (value.type == Type::Bool) value.type = Type::Float;
     if (e.assignOp != lang::AssignOp::Assign) {
         if (!var->assigned) {
             m_diags.error(e.loc, "variable '" + e.name + "' is used before it is assigned a value");
@@ -217,39 +314,49 @@ std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
             return std::nullopt;
         }
         if (IsTriple(value.type) && !IsTriple(var->type)) {
-            m_diags.error(e.loc, "cannot assign " + Article(value.type) + " to float variable '" + e.name + "'");
+            m_diags.error(e.loc, "cannot assign " + Article(value.type) + " to " + what);
             return std::nullopt;
         }
         if ((var->type == Type::Color && IsSpatial(value.type)) || (IsSpatial(var->type) && value.type == Type::Color)) {
-            m_diags.error(e.loc, "cannot assign " + Article(value.type) + " to " + ToString(var->type) +
-                                     " variable '" + e.name + "'");
+            m_diags.error(e.loc, "cannot assign " + Article(value.type) + " to " + what);
             return std::nullopt;
         }
         switch (e.assignOp) {
-            case lang::AssignOp::AddAssign: value = m_ops.Add(var->value, value); break;
-            case lang::AssignOp::SubAssign: value = m_ops.Sub(var->value, value); break;
-            case lang::AssignOp::MulAssign: value = m_ops.Mul(var->value, value); break;
-            case lang::AssignOp::DivAssign: value = m_ops.Div(var->value, value); break;
+            case lang::AssignOp::AddAssign: value = m_ops.Add(*current, value); break;
+            case lang::AssignOp::SubAssign: value = m_ops.Sub(*current, value); break;
+            case lang::AssignOp::MulAssign: value = m_ops.Mul(*current, value); break;
+            case lang::AssignOp::DivAssign: value = m_ops.Div(*current, value); break;
             case lang::AssignOp::Assign: break;
         }
     }
-    std::optional<Value> converted =
-        Convert(value, var->type, e.loc, std::string(ToString(var->type)) + " variable '" + e.name + "'");
+    std::optional<Value> converted = Convert(value, var->type, e.loc, what);
     if (!converted) return std::nullopt;
-    var->value = *converted;
-    var->assigned = true;
+    if (isElement)
+        StoreElement(*var, *index, *converted);
+    else
+        Store(*var, *converted);
     return converted;
 }
 
 std::optional<Value> Lowerer::LowerCast(const Expr& e) {
     Type target = FromTypeName(e.castType);
-    if (!e.castSpace.empty() && e.castSpace != "current" && !(target == Type::Color && e.castSpace == "rgb")) {
-        m_diags.error(e.loc, "coordinate space '" + e.castSpace + "' is not supported yet");
+    // A space on a spatial cast is checked like a transform's (all are the identity for now, see
+    // lower_library.cpp); a color's is "rgb" (the only color space affray knows).
+    if (!e.castSpace.empty()) {
+        if (target == Type::Color && e.castSpace != "rgb") {
+            m_diags.error(e.loc, "color space '" + e.castSpace + "' is not supported yet (only \"rgb\")");
+            return std::nullopt;
+        }
+        if (target != Type::Color && !SpaceName(StringValue(e.castSpace), e.loc)) return std::nullopt;
+    }
+    std::optional<Value> v = LowerExpecting(*e.args[0], target);
+    if (!v) return std::nullopt;
+    if (v->type == Type::Bool) v->type = Type::Float;
+    if (v->type == target) return v;
+    if (target == Type::Matrix) {
+        m_diags.error(e.loc, "matrix values are not supported yet");
         return std::nullopt;
     }
-    std::optional<Value> v = LowerExpr(*e.args[0]);
-    if (!v) return std::nullopt;
-    if (v->type == target) return v;
     if (target == Type::Float || v->type == Type::String || target == Type::String || target == Type::Void) {
         m_diags.error(e.loc, "cannot cast " + Article(v->type) + " to " + ToString(target));
         return std::nullopt;
@@ -257,20 +364,28 @@ std::optional<Value> Lowerer::LowerCast(const Expr& e) {
     return m_ops.Promote(*v, target);
 }
 
+std::optional<Value> Lowerer::LowerExpecting(const Expr& e, Type expected) {
+    m_expected = e.kind == ExprKind::Call ? expected : Type::Void;
+    std::optional<Value> v = LowerExpr(e);
+    m_expected = Type::Void;
+    return v;
+}
+
 std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
     switch (e.kind) {
         case ExprKind::Number: return m_ops.Constant(e.number);
-        case ExprKind::String:
-            m_diags.error(e.loc, "string values are not supported yet");
-            return std::nullopt;
+        case ExprKind::String: return StringValue(e.text);
         case ExprKind::Ident: return LowerIdent(e);
         case ExprKind::Unary: {
+            if (e.unaryOp == lang::UnaryOp::Not) {
+                std::optional<ValueId> c = LowerCondition(*e.args[0]);
+                if (!c) return std::nullopt;
+                ValueId v = ir().Unary(IrOp::Not, *c, e.loc.line);
+                return Value{Type::Bool, {v, v, v}};
+            }
             std::optional<Value> a = LowerExpr(*e.args[0]);
             if (!a) return std::nullopt;
-            if (e.unaryOp == lang::UnaryOp::Not) {
-                m_diags.error(e.loc, "operator '!' is not supported yet");
-                return std::nullopt;
-            }
+            if (a->type == Type::Bool) a->type = Type::Float;
             if (a->type != Type::Float && !IsTriple(a->type)) {
                 m_diags.error(e.loc, "invalid operand to unary '-' (" + std::string(ToString(a->type)) + ")");
                 return std::nullopt;
@@ -281,6 +396,23 @@ std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
         case ExprKind::Binary: return LowerBinary(e);
         case ExprKind::Assign: return LowerAssign(e);
         case ExprKind::Call: {
+            const Type expected = m_expected;  // for this call only, not its arguments
+            m_expected = Type::Void;
+            // A user function wins over a built-in of the same name.
+            if (const lang::FunctionDef* f = FindFunction(e.name)) return LowerUserCall(e, *f);
+            if (IsLibraryCall(e.name) && IsTriple(expected)) {
+                std::vector<Value> args;
+                for (const lang::ExprPtr& arg : e.args) {
+                    std::optional<Value> v = LowerExpr(*arg);
+                    if (!v) return std::nullopt;
+                    args.push_back(*v);
+                }
+                m_ops.SetLine(e.loc.line);
+                m_expected = expected;
+                std::optional<Value> r = LowerLibraryCall(e, args);
+                m_expected = Type::Void;
+                return r;
+            }
             if (e.name == "comp" || e.name == "setcomp" || e.name == "setxcomp" || e.name == "setycomp" ||
                 e.name == "setzcomp")
                 return LowerComponentCall(e);
@@ -293,6 +425,9 @@ std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
             }
             if (!ok) return std::nullopt;
             m_ops.SetLine(e.loc.line);
+            if (IsLibraryCall(e.name)) return LowerLibraryCall(e, args);
+            for (Value& a : args)
+                if (a.type == Type::Bool) a.type = Type::Float;
             return LowerBuiltin(m_ops, e, args, m_diags);
         }
         case ExprKind::Triple: {
@@ -311,8 +446,10 @@ std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
             return m_ops.Triple(Type::Point, c[0], c[1], c[2]);
         }
         case ExprKind::Cast: return LowerCast(e);
-        case ExprKind::Ternary:
-            m_diags.error(e.loc, "operator '?:' is not supported yet");
+        case ExprKind::Ternary: return LowerTernary(e);
+        case ExprKind::Index: return LowerIndex(e);
+        case ExprKind::Tuple16:
+            m_diags.error(e.loc, "matrix values are not supported yet");
             return std::nullopt;
     }
     return std::nullopt;
@@ -320,26 +457,27 @@ std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
 
 void Lowerer::LowerDecl(const lang::VarDecl& d, std::optional<Value> init) {
     Type type = FromTypeName(d.type);
-    auto& scope = m_scopes.back();
+    auto& scope = m_state.scopes.back();
     if (auto it = scope.find(d.name); it != scope.end()) {
         m_diags.error(d.loc, "redefinition of '" + d.name + "'");
         m_diags.note(it->second.loc, "'" + d.name + "' was declared here");
         return;
     }
-    if (type != Type::Float && !IsTriple(type)) {
+    if (type != Type::Float && type != Type::String && !IsTriple(type)) {
         m_diags.error(d.loc, std::string(ToString(type)) + " variables are not supported yet");
         return;
     }
     Variable var;
     var.type = type;
     var.loc = d.loc;
+    // Not yet assigned: 0, so that a path that never assigns it still has a value to merge.
+    var.value = type == Type::String ? StringValue("") : m_ops.Promote(m_ops.Constant(0.0), type);
     if (init) {
         std::optional<Value> converted =
             Convert(*init, type, d.loc, std::string(ToString(type)) + " variable '" + d.name + "'");
-        if (converted) {
-            var.value = *converted;
-            var.assigned = true;
-        }
+        if (converted) var.value = *converted;
+        var.assigned = true;  // (after an error too: its uses should not add "used before assigned")
+        var.used = var.used || !converted;
     }
     scope.emplace(d.name, var);
 }
@@ -350,39 +488,12 @@ void Lowerer::DeclarePlaceholder(const lang::VarDecl& d, Type type) {
     var.value = m_ops.Promote(m_ops.Constant(0.0), type);
     var.assigned = var.used = true;
     var.loc = d.loc;
-    m_scopes.back().emplace(d.name, var);
+    m_state.scopes.back().emplace(d.name, var);
 }
 
-void Lowerer::LowerStmt(const Stmt& s) {
-    switch (s.kind) {
-        case StmtKind::Expr: LowerExpr(*s.expr); break;
-        case StmtKind::Decl:
-            for (const lang::VarDecl& d : s.decls) {
-                std::optional<Value> init = d.init ? LowerExpr(*d.init) : std::nullopt;
-                if (d.init && !init) {
-                    DeclarePlaceholder(d, FromTypeName(d.type));  // the initialiser's error is reported
-                    continue;
-                }
-                LowerDecl(d, init);
-            }
-            break;
-        case StmtKind::Block:
-            PushScope();
-            for (const lang::StmtPtr& child : s.body) LowerStmt(*child);
-            PopScope();
-            break;
-        case StmtKind::Empty: break;
-        case StmtKind::If: m_diags.error(s.loc, "'if' statements are not supported yet"); break;
-        case StmtKind::For: m_diags.error(s.loc, "'for' loops are not supported yet"); break;
-        case StmtKind::While: m_diags.error(s.loc, "'while' loops are not supported yet"); break;
-        case StmtKind::Return: m_diags.error(s.loc, "'return' is not supported yet"); break;
-        case StmtKind::Break: m_diags.error(s.loc, "'break' is not supported yet"); break;
-        case StmtKind::Continue: m_diags.error(s.loc, "'continue' is not supported yet"); break;
-    }
-}
-
-bool Lowerer::Run(const lang::ShaderDef& shader) {
+bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_ptr<lang::FunctionDef>>& functions) {
     m_out.name = shader.name;
+    for (const auto& f : functions) DefineFunction(*f);
     // Scope 0: the globals. P and N are the ones a displacement shader may write.
     PushScope();
     for (int g = 0; g < vm::kGlobalCount; ++g) {
@@ -399,7 +510,7 @@ bool Lowerer::Run(const lang::ShaderDef& shader) {
         for (int i = 0; i < vm::GlobalSize(global); ++i) var.value.c[i] = m_out.ir.Global(global, i);
         if (var.type == Type::Float) var.value.c[1] = var.value.c[2] = var.value.c[0];
         var.value.type = var.type;
-        m_scopes.back().emplace(name, var);
+        m_state.scopes.back().emplace(name, var);
     }
     const Value inputP = Find("P")->value, inputN = Find("N")->value;
 
@@ -409,7 +520,7 @@ bool Lowerer::Run(const lang::ShaderDef& shader) {
     PushScope();
     for (const lang::VarDecl& p : shader.params) {
         Type type = FromTypeName(p.type);
-        if (m_scopes.back().count(p.name)) {
+        if (m_state.scopes.back().count(p.name)) {
             m_diags.error(p.loc, "redefinition of parameter '" + p.name + "'");
             continue;
         }
@@ -419,8 +530,20 @@ bool Lowerer::Run(const lang::ShaderDef& shader) {
             continue;
         }
         if (type == Type::String) {
-            m_diags.error(p.loc, "string parameters are not supported yet");
-            DeclarePlaceholder(p, Type::Float);
+            // A string parameter is its default everywhere: the compiler folds what depends on
+            // it (a space name, a switch between variants). Scenes cannot set it yet.
+            std::optional<Value> init = LowerExpr(*p.init);
+            if (init && init->type != Type::String) {
+                m_diags.error(p.loc, "default value of string parameter '" + p.name + "' must be a string");
+                init.reset();
+            }
+            Variable var;
+            var.type = Type::String;
+            var.value = init ? *init : StringValue("");
+            var.assigned = var.used = true;
+            var.writable = false;
+            var.loc = p.loc;
+            m_state.scopes.back().emplace(p.name, var);
             continue;
         }
         std::optional<Value> init = LowerExpr(*p.init);
@@ -446,19 +569,28 @@ bool Lowerer::Run(const lang::ShaderDef& shader) {
         var.assigned = true;
         var.used = true;  // an unused parameter is not worth a warning: the scene may set it
         var.loc = p.loc;
-        m_scopes.back().emplace(p.name, var);
+        m_state.scopes.back().emplace(p.name, var);
         m_out.params.push_back(info);
     }
     for (size_t i = 0; i < m_out.params.size(); ++i) {
         const ParamInfo& info = m_out.params[i];
-        Variable& var = m_scopes.back().at(info.name);
-        for (int c = 0; c < ScalarCount(info.type); ++c) var.value.c[c] = m_out.ir.Param(static_cast<int>(i), c);
+        Variable& var = m_state.scopes.back().at(info.name);
+        for (int c = 0; c < ScalarCount(info.type); ++c)
+            var.value.c[c] = m_paramValues ? m_out.ir.Const((*m_paramValues)[i][c]) : m_out.ir.Param(static_cast<int>(i), c);
         if (info.type == Type::Float) var.value.c[1] = var.value.c[2] = var.value.c[0];
     }
 
-    // Scope 2: the body.
+    // Scope 2: the body, lowered as a function that returns nothing.
     PushScope();
+    m_state.alive = True();
+    FlowContext body;
+    body.isLoop = false;
+    body.isShader = true;
+    body.left = body.skipped = False();
+    m_state.contexts.push_back(body);
     for (const lang::StmtPtr& s : shader.body) LowerStmt(*s);
+    m_state.contexts.pop_back();
+    CheckUncalledFunctions();  // nested ones still in scope, and the top-level ones
     PopScope();
     PopScope();
 
@@ -473,9 +605,8 @@ bool Lowerer::Run(const lang::ShaderDef& shader) {
     return !m_diags.hasErrors();
 }
 
-}  // namespace
-
-std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags) {
+std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
+                                   const std::vector<std::vector<double>>* paramValues) {
     if (unit.shaders.empty()) {
         if (!diags.hasErrors()) diags.error({1, 1}, "no shader definition in file");
         return std::nullopt;
@@ -489,8 +620,8 @@ std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diag
         return std::nullopt;
     }
     LoweredShader out;
-    Lowerer lowerer(out, diags);
-    if (!lowerer.Run(shader)) return std::nullopt;
+    Lowerer lowerer(out, diags, paramValues);
+    if (!lowerer.Run(shader, unit.functions)) return std::nullopt;
     return out;
 }
 

@@ -35,8 +35,11 @@ struct LoweredShader {
 };
 
 /// Checks and lowers the one displacement shader in `unit`. Parameters stay IR Param nodes (the
-/// i-th declared parameter is index i of `params`), with constant defaults. Problems go to
-/// `diags`; returns nothing if there was any error.
-std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags);
+/// i-th declared parameter is index i of `params`), with constant defaults, unless
+/// `paramValues` gives every parameter's value: then they are constants, and every branch and
+/// loop they decide is folded while lowering (a shader instance's specialisation). Problems go
+/// to `diags`; returns nothing if there was any error.
+std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
+                                   const std::vector<std::vector<double>>* paramValues = nullptr);
 
 }  // namespace affray::compiler

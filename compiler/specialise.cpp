@@ -7,12 +7,12 @@
 #include <cmath>
 
 #include "compiler/emit.h"
+#include "compiler/opcode_map.h"
 
 namespace affray::compiler {
 
 namespace {
 
-/// The parameter values of one instance, or errors.
 bool BindValues(const vm::Program& program, const std::vector<ParamOverride>& overrides,
                 std::vector<std::vector<double>>* values, std::vector<std::string>* errors) {
     const std::string shader = "shader '" + program.shaderName + "'";
@@ -49,6 +49,14 @@ bool BindValues(const vm::Program& program, const std::vector<ParamOverride>& ov
 
 }  // namespace
 
+std::optional<std::vector<std::vector<double>>> BindParameters(const vm::Program& program,
+                                                              const std::vector<ParamOverride>& overrides,
+                                                              std::vector<std::string>* errors) {
+    std::vector<std::vector<double>> values;
+    if (!BindValues(program, overrides, &values, errors)) return std::nullopt;
+    return values;
+}
+
 std::optional<vm::Program> Specialise(const vm::Program& program, const std::vector<ParamOverride>& overrides,
                                       std::vector<std::string>* errors,
                                       const std::vector<ConstantGlobal>& constantGlobals) {
@@ -75,41 +83,29 @@ std::optional<vm::Program> Specialise(const vm::Program& program, const std::vec
     }
 
     const std::vector<double>& K = program.constants;
-    for (size_t pc = 0; pc < program.code.size(); ++pc) {
+    for (size_t pc = 0; pc < program.code.size(); pc += vm::Words(program.code[pc].op)) {
         const vm::Instr& in = program.code[pc];
         const int line = pc < program.lines.size() ? program.lines[pc] : 0;
-        auto R = [&](uint16_t r) { return reg[r]; };
-        auto C = [&](uint16_t k) { return ir.Const(K[k]); };
-        auto unary = [&](IrOp op) { return ir.Unary(op, R(in.b), line); };
-        auto binary = [&](IrOp op, ValueId a, ValueId b) { return ir.Binary(op, a, b, line); };
-        using vm::Op;
+        const char* format = vm::Info(in.op).format;
+        // Operand i of the IR node is format letter i + 1 (letter 0 is the destination).
+        auto operand = [&](int i) {
+            uint16_t x = vm::OperandOf(&in, i + 1);
+            return format[i + 1] == 'k' ? ir.Const(K[x]) : reg[x];
+        };
         ValueId v = kNoValue;
-        switch (in.op) {
-            case Op::LoadK: v = C(in.b); break;
-            case Op::Move: v = R(in.b); break;
-            case Op::Neg: v = unary(IrOp::Neg); break;
-            case Op::AddRR: v = binary(IrOp::Add, R(in.b), R(in.c)); break;
-            case Op::AddRK: v = binary(IrOp::Add, R(in.b), C(in.c)); break;
-            case Op::SubRR: v = binary(IrOp::Sub, R(in.b), R(in.c)); break;
-            case Op::SubRK: v = binary(IrOp::Sub, R(in.b), C(in.c)); break;
-            case Op::SubKR: v = binary(IrOp::Sub, C(in.b), R(in.c)); break;
-            case Op::MulRR: v = binary(IrOp::Mul, R(in.b), R(in.c)); break;
-            case Op::MulRK: v = binary(IrOp::Mul, R(in.b), C(in.c)); break;
-            case Op::DivRR: v = binary(IrOp::Div, R(in.b), R(in.c)); break;
-            case Op::DivRK: v = binary(IrOp::Div, R(in.b), C(in.c)); break;
-            case Op::DivKR: v = binary(IrOp::Div, C(in.b), R(in.c)); break;
-            case Op::Sqr: v = unary(IrOp::Sqr); break;
-            case Op::Sqrt: v = unary(IrOp::Sqrt); break;
-            case Op::Exp: v = unary(IrOp::Exp); break;
-            case Op::Log: v = unary(IrOp::Log); break;
-            case Op::Sin: v = unary(IrOp::Sin); break;
-            case Op::Cos: v = unary(IrOp::Cos); break;
-            case Op::Abs: v = unary(IrOp::Abs); break;
-            case Op::Sign: v = unary(IrOp::Sign); break;
-            case Op::PowRR: v = binary(IrOp::Pow, R(in.b), R(in.c)); break;
-            case Op::PowRK: v = binary(IrOp::Pow, R(in.b), C(in.c)); break;
-            case Op::DerivU: v = unary(IrOp::DerivU); break;
-            case Op::DerivV: v = unary(IrOp::DerivV); break;
+        if (in.op == vm::Op::LoadK) {
+            v = ir.Const(K[in.b]);
+        } else if (in.op == vm::Op::Move) {
+            v = reg[in.b];
+        } else {
+            const OpcodeRow* row = RowOf(in.op);
+            IrNode n;
+            n.op = row->ir;
+            n.count = static_cast<uint8_t>(row->count);
+            n.channel = in.flags;
+            n.line = line;
+            for (int i = 0; i < row->count; ++i) n.in[i] = operand(i);
+            v = ir.Create(n);
         }
         reg[in.a] = v;
     }
@@ -123,6 +119,14 @@ std::optional<vm::Program> Specialise(const vm::Program& program, const std::vec
         outputs.push_back({o.name, value});
     }
     vm::Program out = Emit(ir, outputs);
+    for (double k : out.constants) {
+        if (IsParameterLoopPoison(k)) {
+            errors->push_back("shader '" + program.shaderName + "': with these parameter values a loop runs longer "
+                              "than the compiled program was unrolled for; use the shader's source (.sl), which is "
+                              "unrolled for each instance's values");
+            return std::nullopt;
+        }
+    }
     out.shaderName = program.shaderName;
     out.sourcePath = program.sourcePath;
     return out;

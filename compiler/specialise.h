@@ -27,6 +27,12 @@ struct ConstantGlobal {
     std::array<double, 3> value{};  // value[0] only, for a float global
 };
 
+/// The value of every parameter of `program`: its override, else its default. Problems with the
+/// overrides are appended to *errors as sentences, and the result is empty.
+std::optional<std::vector<std::vector<double>>> BindParameters(const vm::Program& program,
+                                                              const std::vector<ParamOverride>& overrides,
+                                                              std::vector<std::string>* errors);
+
 /// `program` with every parameter bound to its override, else its default, and every global in
 /// `constantGlobals` bound to its value, then folded, shared and pruned again. Problems with the
 /// overrides (unknown name, wrong count, NaN or infinity) are appended to *errors as sentences,

@@ -12,6 +12,8 @@ const char* ToString(Type t) {
         case Type::Color: return "color";
         case Type::String: return "string";
         case Type::Void: return "void";
+        case Type::Bool: return "boolean";
+        case Type::Matrix: return "matrix";
     }
     return "?";
 }
@@ -25,6 +27,7 @@ Type FromTypeName(lang::TypeName t) {
         case lang::TypeName::Color: return Type::Color;
         case lang::TypeName::String: return Type::String;
         case lang::TypeName::Void: return Type::Void;
+        case lang::TypeName::Matrix: return Type::Matrix;
     }
     return Type::Void;
 }

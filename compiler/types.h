@@ -5,7 +5,9 @@
 
 namespace affray::compiler {
 
-enum class Type { Float, Point, Vector, Normal, Color, String, Void };
+/// Bool is the type of comparisons and of && || !: a 1 or 0 in the VM, usable in conditions (and,
+/// as in C, as a float).
+enum class Type { Float, Point, Vector, Normal, Color, String, Void, Bool, Matrix };
 
 const char* ToString(Type t);
 Type FromTypeName(lang::TypeName t);
@@ -18,6 +20,6 @@ inline bool IsTriple(Type t) {
 /// with them.
 inline bool IsSpatial(Type t) { return t == Type::Point || t == Type::Vector || t == Type::Normal; }
 
-inline int ScalarCount(Type t) { return IsTriple(t) ? 3 : t == Type::Float ? 1 : 0; }
+inline int ScalarCount(Type t) { return IsTriple(t) ? 3 : t == Type::Float || t == Type::Bool ? 1 : 0; }
 
 }  // namespace affray::compiler

@@ -22,6 +22,14 @@ Value ValueOps::Map(IrOp op, const Value& a) {
     return {a.type, {Scalar(op, a.c[0]), Scalar(op, a.c[1]), Scalar(op, a.c[2])}};
 }
 
+Value ValueOps::SelectValue(const Value& c, const Value& a, const Value& b) {
+    Type type = IsTriple(a.type) ? a.type : b.type;
+    Value x = Promote(a, type), y = Promote(b, type);
+    Value out{type, {}};
+    for (int i = 0; i < 3; ++i) out.c[i] = m_ir.Select(c.c[0], x.c[i], y.c[i], m_line);
+    return out;
+}
+
 Value ValueOps::Dot(const Value& a, const Value& b) {
     ValueId xy = Scalar(IrOp::Add, Scalar(IrOp::Mul, a.c[0], b.c[0]), Scalar(IrOp::Mul, a.c[1], b.c[1]));
     return Float(Scalar(IrOp::Add, xy, Scalar(IrOp::Mul, a.c[2], b.c[2])));

@@ -15,7 +15,8 @@ struct Value {
     Type type = Type::Void;
     std::array<ValueId, 3> c{};  // c[0] only for floats
 
-    int size() const { return ScalarCount(type); }
+    /// IR values it holds: a string is one (its id, see Lowerer::StringValue).
+    int size() const { return type == Type::String ? 1 : ScalarCount(type); }
 };
 
 class ValueOps {
@@ -42,6 +43,14 @@ class ValueOps {
     /// Applies a unary scalar operation to each component.
     Value Map(IrOp op, const Value& a);
     Value Pow(const Value& a, const Value& b) { return Componentwise(IrOp::Pow, a, b); }
+    /// Any binary scalar operation, componentwise (min, max, atan2, comparisons...).
+    Value Binary(IrOp op, const Value& a, const Value& b) { return Componentwise(op, a, b); }
+    /// min(max(x, lo), hi), componentwise.
+    Value Clamp(const Value& x, const Value& lo, const Value& hi) {
+        return Binary(IrOp::Min, Binary(IrOp::Max, x, lo), hi);
+    }
+    /// c ? a : b for a float condition c (1 or 0), componentwise.
+    Value SelectValue(const Value& c, const Value& a, const Value& b);
 
     Value Dot(const Value& a, const Value& b);
     Value Cross(const Value& a, const Value& b);

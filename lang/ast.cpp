@@ -7,16 +7,24 @@
 //   Unary       (op a)                      (- a)   (! a)        (unary + is dropped)
 //   Binary      (op a b)                    (+ a b)  (. a b) dot   (^ a b) cross   (&& a b)
 //   Assign      (op name value)             (= x 1)   (+= P (* Km N))
+//               (op ([] name i) value)      (= ([] a i) 1)   for an array element
 //   Call        (call name args...)         (call noise P)
 //   Triple      (triple a b c)              (triple 0 0 1)
+//   Tuple16     (tuple16 a...)              (tuple16 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1)
 //   Cast        (cast type ["space"] a)     (cast point "shader" (triple 1 2 3))
 //   Ternary     (? cond a b)                (? c x y)
-//   VarDecl     ([output] [uniform|varying] type name [init])       (float Km 0.1)
+//   Index       ([] array index)            ([] a (+ i 1))
+//   VarDecl     ([extern] [output] [uniform|varying] type name[[N]] [init])
+//               with an array's size after its name and an init list in braces:
+//               (float Km 0.1)   (float a[3] {1 2 3})   (output float f[])   (extern point P)
 //   Stmt        Expr: the expression itself; Decl: (decl VarDecl...); Block: (block s...);
 //               Empty: (empty); If: (if c then [else]); For: (for init cond step body) with an
 //               absent part printed as (); While: (while c body); Return: (return [e]);
-//               Break/Continue: (break) or (break N) when N is not 1.
+//               Break/Continue: (break) or (break N) when N is not 1; FunctionDef: the
+//               FunctionDef.
 //   ShaderDef   (kind name (params VarDecl...) (body s...))
+//   FunctionDef (function type name (params VarDecl...) (body s...))
+//               (function float f (params (float x) (output point p[])) (body (return x)))
 // To add a node kind: add a case here and a line above.
 #include <cstdio>
 
@@ -33,6 +41,7 @@ const char* ToString(TypeName t) {
     case TypeName::Color: return "color";
     case TypeName::String: return "string";
     case TypeName::Void: return "void";
+    case TypeName::Matrix: return "matrix";
     }
     return "?";
 }
@@ -120,21 +129,44 @@ std::string List(std::string head, const std::vector<std::string>& items) {
 
 std::string ToString(const VarDecl& v) {
     std::string out = "(";
+    if (v.isExtern) out += "extern ";
     if (v.isOutput) out += "output ";
     if (v.detail == Detail::Uniform) out += "uniform ";
     if (v.detail == Detail::Varying) out += "varying ";
     out += ToString(v.type);
     out += ' ';
     out += v.name;
+    if (v.arraySize > 0) out += "[" + std::to_string(v.arraySize) + "]";
+    if (v.arraySize == 0) out += "[]";
     if (v.init) {
         out += ' ';
         out += ToString(*v.init);
+    }
+    if (v.hasInitList) {
+        out += " {";
+        for (size_t i = 0; i < v.initList.size(); ++i) {
+            if (i > 0) out += ' ';
+            out += v.initList[i] ? ToString(*v.initList[i]) : "()";
+        }
+        out += '}';
     }
     return out + ")";
 }
 
 std::string Maybe(const ExprPtr& e) { return e ? ToString(*e) : "()"; }
 std::string Maybe(const StmtPtr& s) { return s ? ToString(*s) : "()"; }
+
+std::string Params(const std::vector<VarDecl>& params) {
+    std::vector<std::string> items;
+    for (const VarDecl& v : params) items.push_back(ToString(v));
+    return List("params", items);
+}
+
+std::string Body(const std::vector<StmtPtr>& body) {
+    std::vector<std::string> items;
+    for (const StmtPtr& s : body) items.push_back(Maybe(s));
+    return List("body", items);
+}
 
 }  // namespace
 
@@ -151,17 +183,21 @@ std::string ToString(const Expr& e) {
     case ExprKind::Ident: return e.name;
     case ExprKind::Unary: return List(ToString(e.unaryOp), args);
     case ExprKind::Binary: return List(ToString(e.binaryOp), args);
-    case ExprKind::Assign:
-        args.insert(args.begin(), e.name);
-        return List(ToString(e.assignOp), args);
+    case ExprKind::Assign: {
+        std::string target = e.name;
+        if (args.size() == 2) target = List("[]", {target, args[1]});
+        return List(ToString(e.assignOp), {target, args.empty() ? "()" : args[0]});
+    }
     case ExprKind::Call:
         args.insert(args.begin(), e.name);
         return List("call", args);
     case ExprKind::Triple: return List("triple", args);
+    case ExprKind::Tuple16: return List("tuple16", args);
     case ExprKind::Cast:
         if (!e.castSpace.empty()) args.insert(args.begin(), Quoted(e.castSpace));
         return List(std::string("cast ") + ToString(e.castType), args);
     case ExprKind::Ternary: return List("?", args);
+    case ExprKind::Index: return List("[]", args);
     }
     return "(?)";
 }
@@ -193,16 +229,18 @@ std::string ToString(const Stmt& s) {
         std::string head = s.kind == StmtKind::Break ? "break" : "continue";
         return s.level == 1 ? "(" + head + ")" : List(head, {std::to_string(s.level)});
     }
+    case StmtKind::FunctionDef: return s.function ? ToString(*s.function) : "(function)";
     }
     return "(?)";
 }
 
 std::string ToString(const ShaderDef& s) {
-    std::vector<std::string> params, body;
-    for (const VarDecl& v : s.params) params.push_back(ToString(v));
-    for (const StmtPtr& b : s.body) body.push_back(Maybe(b));
-    return List(std::string(ToString(s.kind)) + " " + s.name,
-                {List("params", params), List("body", body)});
+    return List(std::string(ToString(s.kind)) + " " + s.name, {Params(s.params), Body(s.body)});
+}
+
+std::string ToString(const FunctionDef& f) {
+    return List(std::string("function ") + ToString(f.returnType) + " " + f.name,
+                {Params(f.params), Body(f.body)});
 }
 
 }  // namespace affray::lang

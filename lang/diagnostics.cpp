@@ -14,6 +14,16 @@ void Diagnostics::note(SourceLoc loc, std::string message) {
 }
 
 void Diagnostics::add(Severity severity, SourceLoc loc, std::string message) {
+    // The same error or warning at the same place again (an unrolled loop body or an inlined
+    // function lowered once per iteration or call) is reported once; so are the notes after it.
+    if (severity != Severity::Note) {
+        m_repeating = false;
+        for (const Diagnostic& d : m_list)
+            if (d.severity == severity && d.loc.line == loc.line && d.loc.column == loc.column &&
+                d.loc.file == loc.file && d.message == message)
+                m_repeating = true;
+    }
+    if (m_repeating) return;  // (an error repeated was counted the first time)
     if (severity == Severity::Error) {
         // Past the limit, keep counting (so callers still fail) but stop storing: a cascade of
         // errors after the first few helps nobody.

@@ -66,6 +66,7 @@ class Diagnostics {
     std::vector<OtherFile> m_others;  // file index i > 0 is m_others[i - 1]
     std::vector<Diagnostic> m_list;
     int m_errorCount = 0;
+    bool m_repeating = false;  // the last error or warning repeated an earlier one
 };
 
 }  // namespace affray::lang

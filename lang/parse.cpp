@@ -1,8 +1,9 @@
 // lang/parse.cpp: Parse(), and the node builders the grammar's actions call.
 // Owns the checks a context-free grammar cannot say well: assignment targets, tuple sizes,
-// `break N` levels and the depth limits that keep every later recursive pass (printing,
-// destruction, the compiler) within the stack. Builders never return null, so a tree built
-// while recovering from errors is still safe to walk.
+// `break N` levels, array sizes and initialisers, what each kind of declaration may have
+// (defaults, unsized arrays, initialisers on externs), and the depth limits that keep every
+// later recursive pass (printing, destruction, the compiler) within the stack. Builders never
+// return null, so a tree built while recovering from errors is still safe to walk.
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -91,15 +92,19 @@ ExprNode ParseContext::Binary(BinaryOp op, SourceLoc loc, ExprNode lhs, ExprNode
 }
 
 ExprNode ParseContext::Assign(AssignOp op, SourceLoc loc, ExprNode target, ExprNode value) {
-    if (target.expr->kind != ExprKind::Ident) {
-        Error(loc, "left side of assignment must be a variable");
+    Expr& t = *target.expr;
+    bool element = t.kind == ExprKind::Index && t.args[0]->kind == ExprKind::Ident;
+    if (t.kind != ExprKind::Ident && !element) {
+        Error(loc, "left side of assignment must be a variable or an array element");
         return value;
     }
     auto e = std::make_unique<Expr>(ExprKind::Assign, loc);
     e->assignOp = op;
-    e->name = std::move(target.expr->name);
+    e->name = std::move(element ? t.args[0]->name : t.name);
     e->args.push_back(std::move(value.expr));
-    return Finish(std::move(e), 1 + value.depth);
+    if (element) e->args.push_back(std::move(t.args[1]));
+    // The target's depth bounds its index's.
+    return Finish(std::move(e), 1 + std::max(value.depth, target.depth));
 }
 
 ExprNode ParseContext::Call(SourceLoc loc, std::string name, ExprList args) {
@@ -111,15 +116,21 @@ ExprNode ParseContext::Call(SourceLoc loc, std::string name, ExprList args) {
 
 ExprNode ParseContext::Tuple(SourceLoc loc, ExprNode first, ExprList rest) {
     size_t count = rest.items.size() + 1;
-    if (count != 3) {
-        Error(loc, count == 16 ? "matrix values are not supported yet"
-                               : "a tuple must have 3 components");
+    if (count != 3 && count != 16) {
+        Error(loc, "a tuple must have 3 or 16 components");
         return Number(loc, 0);
     }
-    auto e = std::make_unique<Expr>(ExprKind::Triple, loc);
+    auto e = std::make_unique<Expr>(count == 3 ? ExprKind::Triple : ExprKind::Tuple16, loc);
     e->args.push_back(std::move(first.expr));
     for (ExprPtr& r : rest.items) e->args.push_back(std::move(r));
     return Finish(std::move(e), 1 + std::max(first.depth, rest.depth));
+}
+
+ExprNode ParseContext::Index(SourceLoc loc, ExprNode array, ExprNode index) {
+    auto e = std::make_unique<Expr>(ExprKind::Index, loc);
+    e->args.push_back(std::move(array.expr));
+    e->args.push_back(std::move(index.expr));
+    return Finish(std::move(e), 1 + std::max(array.depth, index.depth));
 }
 
 ExprNode ParseContext::Cast(SourceLoc loc, TypeName type, std::string space, ExprNode operand) {
@@ -153,6 +164,7 @@ StmtNode ParseContext::Simple(StmtKind kind, SourceLoc loc, ExprNode expr) {
 }
 
 StmtNode ParseContext::Decl(SourceLoc loc, std::vector<VarDecl> decls) {
+    RequireSizes(decls);
     auto s = std::make_unique<Stmt>(StmtKind::Decl, loc);
     s->decls = std::move(decls);
     return Finish(std::move(s), 1);
@@ -207,14 +219,52 @@ int ParseContext::JumpLevel(SourceLoc loc, double value) {
     return 1;
 }
 
-// --- Declarations and shaders ------------------------------------------------------------------
+// --- Declarations, shaders and functions ----------------------------------------------------
+
+int ParseContext::ArraySize(SourceLoc loc, double value) {
+    if (value >= 1 && value <= 1000000 && value == std::floor(value))
+        return static_cast<int>(value);
+    Error(loc, "the array size must be a positive integer");
+    return 1;
+}
+
+Init ParseContext::ExprInit(SourceLoc loc, ExprNode expr) {
+    Init init;
+    init.loc = loc;
+    init.expr = std::move(expr);
+    return init;
+}
+
+Init ParseContext::ListInit(SourceLoc loc, ExprList list, bool bad) {
+    Init init;
+    init.loc = loc;
+    init.list = std::move(list);
+    init.isList = true;
+    init.bad = bad;
+    return init;
+}
 
 void ParseContext::AddVar(std::vector<VarDecl>& list, SourceLoc loc, std::string name,
-                          ExprNode init) {
+                          int arraySize, Init init) {
     VarDecl v;
     v.name = std::move(name);
     v.loc = loc;
-    v.init = std::move(init.expr);
+    v.arraySize = arraySize;
+    v.init = std::move(init.expr.expr);
+    v.hasInitList = init.isList;
+    v.initList = std::move(init.list.items);
+    // A bad list was reported where it went wrong; its (partial) contents say nothing more.
+    if (v.hasInitList && !init.bad) {
+        if (v.arraySize < 0)
+            Error(init.loc,
+                  "'" + v.name + "' is not an array; only an array takes a list in braces");
+        else if (v.arraySize > 0 && v.initList.size() != static_cast<size_t>(v.arraySize))
+            Error(init.loc, "array '" + v.name + "' of size " + std::to_string(v.arraySize) +
+                                " has " + std::to_string(v.initList.size()) + " initial values");
+    } else if (v.init && v.arraySize >= 0) {
+        Error(init.loc, "the initial values of array '" + v.name +
+                            "' must be a list in braces, as in {1, 2, 3}");
+    }
     list.push_back(std::move(v));
 }
 
@@ -228,9 +278,29 @@ std::vector<VarDecl> ParseContext::Typed(std::vector<VarDecl> list, TypeName typ
     return list;
 }
 
-TypeName ParseContext::Matrix(SourceLoc loc) {
-    Error(loc, "type 'matrix' is not supported yet");
-    return TypeName::Float;
+std::vector<VarDecl> ParseContext::Extern(std::vector<VarDecl> list) {
+    for (VarDecl& v : list) {
+        v.isExtern = true;
+        if (v.init || v.hasInitList) {
+            Error(v.loc, "extern variable '" + v.name + "' cannot have an initial value");
+            v.init = nullptr;
+            v.hasInitList = false;
+            v.initList.clear();
+        }
+    }
+    return list;
+}
+
+void ParseContext::RequireSizes(const std::vector<VarDecl>& decls) {
+    for (const VarDecl& v : decls)
+        if (v.arraySize == 0 && !v.isExtern)
+            Error(v.loc, "array '" + v.name +
+                             "' needs a size (only function parameters and externs may omit it)");
+}
+
+std::vector<VarDecl> ParseContext::ShaderParams(std::vector<VarDecl> params) {
+    RequireSizes(params);
+    return params;
 }
 
 void ParseContext::AddShader(ShaderKind kind, SourceLoc loc, std::string name,
@@ -242,6 +312,39 @@ void ParseContext::AddShader(ShaderKind kind, SourceLoc loc, std::string name,
     def.params = std::move(params);
     def.body = std::move(body.items);
     m_unit.shaders.push_back(std::move(def));
+}
+
+std::shared_ptr<FunctionDef> ParseContext::FunctionHead(TypeName type, SourceLoc loc,
+                                                        std::string name,
+                                                        std::vector<VarDecl> params) {
+    auto def = std::make_shared<FunctionDef>();
+    def->returnType = type;
+    def->name = std::move(name);
+    def->loc = loc;
+    for (VarDecl& v : params) {
+        if (v.init || v.hasInitList) {
+            Error(v.loc, "parameter '" + v.name + "' of function '" + def->name +
+                             "' cannot have a default value");
+            v.init = nullptr;
+            v.hasInitList = false;
+            v.initList.clear();
+        }
+    }
+    def->params = std::move(params);
+    return def;
+}
+
+FunctionNode ParseContext::FunctionBody(std::shared_ptr<FunctionDef> head, StmtList body) {
+    head->body = std::move(body.items);
+    return {std::move(head), body.depth};
+}
+
+void ParseContext::AddFunction(FunctionNode f) { m_unit.functions.push_back(std::move(f.def)); }
+
+StmtNode ParseContext::Function(SourceLoc loc, FunctionNode f) {
+    auto s = std::make_unique<Stmt>(StmtKind::FunctionDef, loc);
+    s->function = std::move(f.def);
+    return Finish(std::move(s), 1 + f.depth);
 }
 
 // --- Entry point -------------------------------------------------------------------------------

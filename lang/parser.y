@@ -2,7 +2,8 @@
 // Owns the token kinds and their readable names, operator precedence and the shape of every
 // construct. Actions only build AST nodes through ParseContext (parse.cpp); the few rules a
 // context-free grammar cannot say well (assignment targets, tuple sizes, nesting depth) are
-// checked there. The grammar has no conflicts (%expect 0); keep it that way.
+// checked there, as are array sizes, initialiser lists and what each kind of declaration may
+// have (defaults, unsized arrays). The grammar has no conflicts (%expect 0); keep it that way.
 // To add a construct: add its tokens here and in lexer.l, a rule whose action calls a builder,
 // and a case in ast.cpp's ToString.
 //
@@ -10,8 +11,9 @@
 // ('float', 'if', ...), operators and punctuation quoted (';', '+=', '&&', ...). So a message reads
 //     syntax error, unexpected identifier, expecting ';'
 // Error recovery: a bad statement is skipped up to its ';' (or the '}' closing its block); a bad
-// parameter list is skipped up to the '{' of the shader body; garbage between shaders is skipped
-// token by token until the next shader keyword. After a '}' or a shader body has resynchronised
+// initialiser list up to its '}'; a bad parameter list up to the '{' of the shader's or the
+// function's body; garbage between definitions token by token until the next shader keyword or
+// type (which starts a function). After a '}' or a shader's or function's body has resynchronised
 // the parser (yyerrok) the next error is reported at once; elsewhere bison's usual rule holds
 // (three tokens must be shifted before another error is reported), which keeps a statement
 // recovered at the wrong ';' from reporting its block's '}' as a second error.
@@ -53,7 +55,7 @@ struct LexState {
     int file = 0;             // Diagnostics::fileIndex of the file being read (line markers set it)
     SourceLoc token;          // where the current token starts
     SourceLoc commentStart;   // of the open /* comment
-    int nesting = 0;          // parentheses and braces open now
+    int nesting = 0;          // parentheses, brackets and braces open now
     SourceLoc lastEnd{1, 1};  // just after the last token returned
     bool tokenHadError = false;  // the lexer reported an error while reading the last token
 
@@ -80,12 +82,25 @@ struct StmtList {
     std::vector<StmtPtr> items;
     int depth = 0;
 };
+/// A function definition with the depth of its body.
+struct FunctionNode {
+    std::shared_ptr<FunctionDef> def;
+    int depth = 0;
+};
+/// What follows a declared name's '=': an expression, or a list in braces (isList).
+struct Init {
+    SourceLoc loc;      // of its first token
+    ExprNode expr;
+    ExprList list;
+    bool isList = false;
+    bool bad = false;   // a list with a syntax error in it, already reported
+};
 
 /// The state of one Parse() call, shared by the lexer and the parser's actions: the diagnostics,
 /// the unit being built, and the node builders that enforce the nesting limits.
 class ParseContext {
   public:
-    /// Open parentheses and braces at once; past this, parsing stops with an error.
+    /// Open parentheses, brackets and braces at once; past this, parsing stops with an error.
     static constexpr int kMaxNesting = 256;
     /// Depth of an expression or statement tree (operators chain without parentheses, as in
     /// `- - - x` or `if (a) if (b) ...`); past this, the subtree is replaced and parsing goes on.
@@ -119,8 +134,10 @@ class ParseContext {
     /// `target op value`; reports an error at the operator unless target is a plain name.
     ExprNode Assign(AssignOp op, SourceLoc loc, ExprNode target, ExprNode value);
     ExprNode Call(SourceLoc loc, std::string name, ExprList args);
-    /// `(first, rest...)`: a triple if it has 3 components, else an error at the '('.
+    /// `(first, rest...)`: a triple or a 16-tuple (a matrix); other sizes are an error at '('.
     ExprNode Tuple(SourceLoc loc, ExprNode first, ExprList rest);
+    /// `array[index]`, at the '['.
+    ExprNode Index(SourceLoc loc, ExprNode array, ExprNode index);
     ExprNode Cast(SourceLoc loc, TypeName type, std::string space, ExprNode operand);
     ExprNode Ternary(SourceLoc loc, ExprNode cond, ExprNode yes, ExprNode no);
     void Append(ExprList& list, ExprNode e);
@@ -136,18 +153,38 @@ class ParseContext {
     /// The N of `break N`: reports an error unless it is a positive integer.
     int JumpLevel(SourceLoc loc, double value);
 
-    /// Appends `name [= init]` to a declaration list still waiting for its type.
-    void AddVar(std::vector<VarDecl>& list, SourceLoc loc, std::string name, ExprNode init);
+    /// Appends `name [[N]] [= init]` to a declaration list still waiting for its type; reports
+    /// an init list on a non-array, an array initialised without braces, and a list whose length
+    /// is not the array's size.
+    /// `arraySize` is VarDecl::arraySize.
+    void AddVar(std::vector<VarDecl>& list, SourceLoc loc, std::string name, int arraySize,
+                Init init);
+    /// The N of `[N]`: reports an error unless it is a positive integer.
+    int ArraySize(SourceLoc loc, double value);
+    /// `=` followed by an expression or by a list in braces, for AddVar.
+    Init ExprInit(SourceLoc loc, ExprNode expr);
+    Init ListInit(SourceLoc loc, ExprList list, bool bad = false);
     /// Gives every variable in `list` the shared type, detail and output flag.
     std::vector<VarDecl> Typed(std::vector<VarDecl> list, TypeName type, Detail detail,
                                bool output);
-    /// `matrix`: reports that it is unsupported, and stands in float to go on parsing.
-    TypeName Matrix(SourceLoc loc);
+    /// `extern type a, b`: marks the variables extern; reports any initialiser.
+    std::vector<VarDecl> Extern(std::vector<VarDecl> list);
+    /// Reports unsized arrays among a shader's parameters.
+    std::vector<VarDecl> ShaderParams(std::vector<VarDecl> params);
     void AddShader(ShaderKind kind, SourceLoc loc, std::string name, std::vector<VarDecl> params,
                    StmtList body);
+    /// `type name(params)`, the head of a function definition: reports parameters with defaults.
+    std::shared_ptr<FunctionDef> FunctionHead(TypeName type, SourceLoc loc, std::string name,
+                                              std::vector<VarDecl> params);
+    /// The definition with its body; then added at the top level, or nested as a statement.
+    FunctionNode FunctionBody(std::shared_ptr<FunctionDef> head, StmtList body);
+    void AddFunction(FunctionNode f);
+    StmtNode Function(SourceLoc loc, FunctionNode f);
 
   private:
     ExprNode Finish(ExprPtr e, int depth);
+    /// Reports unsized arrays among `decls` unless each is allowed to be one.
+    void RequireSizes(const std::vector<VarDecl>& decls);
     StmtNode Finish(StmtPtr s, int depth);
 
     Diagnostics& m_diags;
@@ -185,7 +222,7 @@ Parser::symbol_type yylex(ParseContext& ctx);
 %token <std::string> STRING "string"
 %token FLOAT "'float'" POINT "'point'" VECTOR "'vector'" NORMAL "'normal'" COLOR "'color'"
 %token STRING_TYPE "'string'" VOID "'void'" MATRIX "'matrix'"
-%token UNIFORM "'uniform'" VARYING "'varying'" OUTPUT "'output'"
+%token UNIFORM "'uniform'" VARYING "'varying'" OUTPUT "'output'" EXTERN "'extern'"
 %token IF "'if'" ELSE "'else'" FOR "'for'" WHILE "'while'" RETURN "'return'"
 %token BREAK "'break'" CONTINUE "'continue'"
 %token DISPLACEMENT "'displacement'" SURFACE "'surface'" LIGHT "'light'" VOLUME "'volume'"
@@ -207,10 +244,13 @@ Parser::symbol_type yylex(ParseContext& ctx);
 %left '.'
 
 %nterm <ShaderKind> shader_kind
-%nterm <std::vector<VarDecl>> params param_groups param_group var_items decl
-%nterm <ExprNode> opt_init expr expr_nc cond cond_nc binary binary_nc unary unary_nc primary
+%nterm <std::vector<VarDecl>> shader_params params param_groups param_group var_items decl
+%nterm <ExprNode> expr expr_nc cond cond_nc binary binary_nc unary unary_nc primary
 %nterm <ExprNode> opt_expr
 %nterm <ExprList> args arg_list
+%nterm <Init> opt_init
+%nterm <std::shared_ptr<FunctionDef>> function_head
+%nterm <FunctionNode> function
 %nterm <StmtList> stmts body
 %nterm <StmtNode> stmt
 %nterm <TypeName> type
@@ -218,7 +258,7 @@ Parser::symbol_type yylex(ParseContext& ctx);
 %nterm <bool> opt_output
 %nterm <AssignOp> assign_op
 %nterm <BinaryOp> rel_op add_op mul_op
-%nterm <int> opt_level
+%nterm <int> opt_level opt_array
 
 %start unit
 
@@ -227,11 +267,12 @@ Parser::symbol_type yylex(ParseContext& ctx);
 unit
   : %empty
   | unit shader
-  | unit error  // skips one token at a time until a shader keyword
+  | unit function  { ctx.AddFunction($2); }
+  | unit error  // skips one token at a time until a shader keyword or a type
   ;
 
 shader
-  : shader_kind IDENT '(' params ')' body
+  : shader_kind IDENT '(' shader_params ')' body
       { ctx.AddShader($1, @2, $2, $4, $6); }
   | shader_kind IDENT '(' error body
       { ctx.AddShader($1, @2, $2, {}, $5); yyerrok; }
@@ -245,8 +286,25 @@ shader_kind
   | IMAGER        { $$ = ShaderKind::Imager; }
   ;
 
-// Shader parameters: `[output] [uniform|varying] type a = 1, b = 2; type c = 3;` with an
-// optional ';' before the ')'.
+// Checked as soon as they are read, so that their errors come before the body's.
+shader_params
+  : params  { $$ = ctx.ShaderParams($1); }
+  ;
+
+// A function definition, `type name(params) { body }`, at the top level or as a statement. Its
+// parameters are written like a shader's; FunctionHead rejects their defaults.
+function
+  : function_head body         { $$ = ctx.FunctionBody($1, $2); }
+  | type IDENT '(' error body  { $$ = ctx.FunctionBody(ctx.FunctionHead($1, @2, $2, {}), $5);
+                                 yyerrok; }
+  ;
+
+function_head
+  : type IDENT '(' params ')'  { $$ = ctx.FunctionHead($1, @2, $2, $4); }
+  ;
+
+// Shader and function parameters: `[output] [uniform|varying] type a = 1, b[2] = {1, 2}; type
+// c = 3;` with an optional ';' before the ')'.
 params
   : %empty             { }
   | param_groups       { $$ = $1; }
@@ -278,15 +336,23 @@ detail
   | VARYING  { $$ = Detail::Varying; }
   ;
 
-// Names that will share one type: `a = 1, b`.
+// Names that will share one type: `a = 1, b, c[3] = {1, 2, 3}, d[]`.
 var_items
-  : IDENT opt_init                { ctx.AddVar($$, @1, $1, $2); }
-  | var_items ',' IDENT opt_init  { $$ = $1; ctx.AddVar($$, @3, $3, $4); }
+  : IDENT opt_array opt_init                { ctx.AddVar($$, @1, $1, $2, $3); }
+  | var_items ',' IDENT opt_array opt_init  { $$ = $1; ctx.AddVar($$, @3, $3, $4, $5); }
+  ;
+
+opt_array
+  : %empty          { $$ = -1; }
+  | '[' NUMBER ']'  { $$ = ctx.ArraySize(@2, $2); }
+  | '[' ']'         { $$ = 0; }
   ;
 
 opt_init
-  : %empty    { }
-  | '=' expr  { $$ = $2; }
+  : %empty                { }
+  | '=' expr              { $$ = ctx.ExprInit(@2, $2); }
+  | '=' '{' arg_list '}'  { $$ = ctx.ListInit(@2, $3); }
+  | '=' '{' error '}'     { $$ = ctx.ListInit(@2, {}, true); }
   ;
 
 // `void` is accepted wherever a type is; the compiler rejects void variables.
@@ -298,7 +364,7 @@ type
   | COLOR        { $$ = TypeName::Color; }
   | STRING_TYPE  { $$ = TypeName::String; }
   | VOID         { $$ = TypeName::Void; }
-  | MATRIX       { $$ = ctx.Matrix(@1); }
+  | MATRIX       { $$ = TypeName::Matrix; }
   ;
 
 body
@@ -327,14 +393,17 @@ stmt
   | RETURN opt_expr ';'     { $$ = ctx.Simple(StmtKind::Return, @1, $2); }
   | BREAK opt_level ';'     { $$ = ctx.Jump(StmtKind::Break, @1, $2); }
   | CONTINUE opt_level ';'  { $$ = ctx.Jump(StmtKind::Continue, @1, $2); }
+  | function                { $$ = ctx.Function(@1, $1); }
   | error ';'               { $$ = ctx.Simple(StmtKind::Empty, @1); }
   ;
 
-// A local declaration. A statement that starts with a type is always a declaration, so an
-// expression statement cannot start with a cast (see expr_nc).
+// A local declaration. A statement that starts with a type is always a declaration (or a
+// function definition), so an expression statement cannot start with a cast (see expr_nc).
 decl
-  : type var_items         { $$ = ctx.Typed($2, $1, Detail::Default, false); }
-  | detail type var_items  { $$ = ctx.Typed($3, $2, $1, false); }
+  : type var_items                { $$ = ctx.Typed($2, $1, Detail::Default, false); }
+  | detail type var_items         { $$ = ctx.Typed($3, $2, $1, false); }
+  | EXTERN type var_items         { $$ = ctx.Extern(ctx.Typed($3, $2, Detail::Default, false)); }
+  | EXTERN detail type var_items  { $$ = ctx.Extern(ctx.Typed($4, $3, $2, false)); }
   ;
 
 opt_level
@@ -439,6 +508,7 @@ primary
   | STRING %prec SPACE_STRING       { $$ = ctx.String(@1, $1); }
   | IDENT                           { $$ = ctx.Ident(@1, $1); }
   | IDENT '(' args ')'              { $$ = ctx.Call(@1, $1, $3); }
+  | primary '[' expr ']'            { $$ = ctx.Index(@2, $1, $3); }
   | '(' expr ')'                    { $$ = $2; }
   | '(' expr ',' arg_list ')'       { $$ = ctx.Tuple(@1, $2, $4); }
   ;

@@ -21,7 +21,10 @@
 // Symbols are numbered per thread: BeginEvaluation() restarts the fresh ids, so forms from
 // different evaluations (or threads) must never be combined.
 // Linear operations and products live in affine.cpp, the nonlinear unary functions (Chebyshev
-// and min-range approximations) in affine_functions.cpp.
+// and min-range approximations) and atan2 in affine_functions.cpp, the piecewise-constant and
+// branching ones (floor/ceil/round, Min/Max, comparisons, logic, TruthOf, Join) in
+// affine_logic.cpp. Comparisons return the exact constant 1 or 0 where decided, decided from the
+// range of the affine difference a - b (so correlations cancel), else 0.5 +- 0.5 on a fresh symbol.
 // Sources: Stolfi & de Figueiredo, "Self-Validated Numerical Methods and Applications" (1997) and
 // "Affine arithmetic: concepts and applications" (Numerical Algorithms, 2004); Heidrich & Seidel,
 // "Ray-tracing procedural displacement shaders" (GI 1998); Heidrich, Slusallek & Seidel, "Sampling
@@ -121,6 +124,39 @@ class Affine {
     /// Chebyshev on x >= 0, varying ones by exp(y*log(x)) on x > 0, else interval bounds;
     /// Unbounded wherever std::pow can be NaN or infinite.
     friend Affine pow(const Affine& x, const Affine& y);
+    /// Secant slope with g bounded at the endpoints, at 0 and by a tangent line at the point of
+    /// each convex or concave side where f' = alpha; asin and acos Unbounded outside [-1, 1].
+    friend Affine asin(const Affine& x);
+    friend Affine acos(const Affine& x);
+    friend Affine atan(const Affine& x);
+    /// atan(y/x) where x > 0, +-pi/2 - atan(x/y) where y > 0 or y < 0 (the narrower), plus the
+    /// difference between those and glibc's atan2; else the interval atan2 on a fresh symbol.
+    friend Affine atan2(const Affine& y, const Affine& x);
+
+    // Piecewise-constant functions, min/max, comparisons and logic (affine_logic.cpp).
+    /// The exact constant where the range lies in one integer cell (or past 2^52, x itself);
+    /// else x - 1/2 +- 1/2 (floor), x + 1/2 +- 1/2 (ceil) or x +- 1/2 (round) on a fresh symbol.
+    friend Affine floor(const Affine& x);
+    friend Affine ceil(const Affine& x);
+    friend Affine round(const Affine& x);
+    /// std::fmin/fmax: the operand itself where a - b has a decided sign, else
+    /// (a + b)/2 -+ abs(a - b)/2 plus the rounding of that formula.
+    friend Affine Min(const Affine& a, const Affine& b);
+    friend Affine Max(const Affine& a, const Affine& b);
+    /// The exact constant 1 or 0 where decided, else 0.5 +- 0.5 on a fresh symbol (always so
+    /// when an operand is Unbounded).
+    friend Affine Less(const Affine& a, const Affine& b);
+    friend Affine LessEq(const Affine& a, const Affine& b);
+    friend Affine Equal(const Affine& a, const Affine& b);
+    friend Affine NotEqual(const Affine& a, const Affine& b);
+    friend Affine And(const Affine& a, const Affine& b);
+    friend Affine Or(const Affine& a, const Affine& b);
+    friend Affine Not(const Affine& a);
+    /// True if the range excludes 0, False if it is exactly [0, 0], else (Unbounded too) Unknown.
+    friend Truth TruthOf(const Affine& x);
+    /// A form containing both, for an undecided condition: (a + b)/2 with the shared symbols,
+    /// plus max |a - b|/2 of independent error; within the hull of the ranges.
+    friend Affine Join(const Affine& a, const Affine& b);
 
     // Number API (vm/number.h).
     /// An affine form carries no derivatives: the "unknown" value.
@@ -182,6 +218,15 @@ class Affine {
     static Affine IntegerPower(const Affine& x, int n);
     /// x^p for a constant p that is not a small integer (or x constant).
     static Affine PowConstant(const Affine& x, double p);
+    /// asin (0), acos (1) or atan (2) (affine_functions.cpp).
+    static Affine InverseTrigForm(const Affine& x, int which);
+    static Affine Atan2Forms(const Affine& y, const Affine& x);
+    /// floor, ceil or round: f(t) - t lies in [gLo, gHi] (affine_logic.cpp).
+    static Affine StepForm(const Affine& x, double (*f)(double), double gLo, double gHi);
+    /// 1, 0 or 0.5 +- 0.5 on a fresh symbol (affine_logic.cpp).
+    static Affine FromTruth(Truth t);
+    /// Min or Max without the enclosure (affine_logic.cpp).
+    static Affine MinMaxForm(const Affine& a, const Affine& b, bool isMax);
 
     double m_center = 0;
     double m_error = 0;

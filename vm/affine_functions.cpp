@@ -7,6 +7,10 @@
 // result is glibc's f(t), not the true one). Which alpha is a choice per function, explained at
 // each; if anything goes non-finite, the function falls back to its interval range on a fresh
 // symbol (alpha = 0), and to Unbounded only where the scalar result can be NaN or infinite.
+// asin, acos and atan are convex on one side of 0 and concave on the other, so their g is bounded
+// at the endpoints, at 0, and on each side by a tangent line of g (a rigorous bound wherever the
+// tangent point is, tight near g's stationary point). atan2 composes atan with a quotient and adds
+// the (tiny) difference between that composition and glibc's atan2.
 // Sources: Stolfi & de Figueiredo (1997), sec. 3.7-3.9 (Chebyshev and min-range approximations);
 // Heidrich & Seidel (GI 1998) for the use in displacement shaders; AFFINE-NOTES.md for the pitfalls
 // (a delta taken at sample points only, or delta = 0, is not conservative).
@@ -350,6 +354,145 @@ Affine Affine::PowForms(const Affine& x, const Affine& y) {
     return Affine::FromInterval(pow(rx, y.range()));
 }
 
+// --- asin, acos, atan ---------------------------------------------------------------------------
+
+namespace {
+
+// asin, acos and atan have one inflection point, 0: asin is concave on [-1, 0] and convex on
+// [0, 1], acos and atan the other way round. f' is even, so f'(t) = alpha at t = +-tangent(alpha).
+struct InverseTrig {
+    double (*f)(double);               // glibc's
+    Interval (*df)(const Interval& t);  // an enclosure of the true f' at t
+    double (*tangent)(double alpha);   // the t >= 0 with f'(t) = alpha (NaN if there is none)
+    bool convexAbove0;                 // f convex on [0, inf), concave on (-inf, 0]
+};
+
+Interval AsinDerivative(const Interval& t) { return 1.0 / sqrt(1.0 - sqr(t)); }
+Interval AcosDerivative(const Interval& t) { return -AsinDerivative(t); }
+Interval AtanDerivative(const Interval& t) { return 1.0 / (1.0 + sqr(t)); }
+// 1/sqrt(1 - t^2) = |alpha| at t = sqrt(1 - 1/alpha^2); 1/(1 + t^2) = alpha at sqrt(1/alpha - 1).
+double AsinTangent(double alpha) { return std::sqrt(1.0 - 1.0 / (alpha * alpha)); }
+double AtanTangent(double alpha) { return std::sqrt(1.0 / alpha - 1.0); }
+
+const InverseTrig kInverseTrig[3] = {
+    {[](double t) { return std::asin(t); }, AsinDerivative, AsinTangent, true},
+    {[](double t) { return std::acos(t); }, AcosDerivative, AsinTangent, false},
+    {[](double t) { return std::atan(t); }, AtanDerivative, AtanTangent, false},
+};
+
+// On a side [p, q] of 0 where f, hence g(t) = f(t) - alpha*t, is convex,
+// g(t) >= g(s) + g'(s)(t - s) for every s and t in [p, q] (concave: <=). Returns an enclosure of
+// that tangent line over [p, q]: its lower bound bounds g from below on a convex side, its upper
+// bound from above on a concave one. g(s) and g'(s) are enclosed in interval arithmetic (f(s)
+// with glibc's slack, f' by its exact formula), so the bound holds wherever s is; s at g's
+// stationary point (f'(s) = alpha, computed approximately) makes g'(s) ~ 0 and the bound as tight
+// as the extreme itself.
+Interval TangentBound(const InverseTrig& fn, double alpha, double s, double p, double q) {
+    s = std::fmin(std::fmax(s, p), q);  // into the side (NaN: p)
+    Interval gs = GAt(LibmAt(fn.f(s)), alpha, s);
+    Interval slope = fn.df(Interval(s)) - alpha;
+    return gs + Hull(slope * (Interval(p) - s), slope * (Interval(q) - s));
+}
+
+// The secant slope (Chebyshev's choice for a convex or concave f) over [a, b], a < b. g's extremes
+// on a side of 0 are at the side's ends (endpoints, 0) or bounded by the side's tangent line.
+Fit InverseTrigFit(const InverseTrig& fn, double a, double b) {
+    const double fa = fn.f(a), fb = fn.f(b);
+    const double alpha = (fb - fa) / (b - a);
+    Interval ia = LibmAt(fa), ib = LibmAt(fb);
+    Interval ga = GAt(ia, alpha, a), gb = GAt(ib, alpha, b);
+    double gLo = std::fmin(ga.lo(), gb.lo()), gHi = std::fmax(ga.hi(), gb.hi());
+    const double s = fn.tangent(alpha);
+    if (b > 0) {
+        Interval t = TangentBound(fn, alpha, s, std::fmax(a, 0.0), b);
+        if (fn.convexAbove0)
+            gLo = std::fmin(gLo, t.lo());
+        else
+            gHi = std::fmax(gHi, t.hi());
+    }
+    if (a < 0) {
+        Interval t = TangentBound(fn, alpha, -s, a, std::fmin(b, 0.0));
+        if (fn.convexAbove0)
+            gHi = std::fmax(gHi, t.hi());
+        else
+            gLo = std::fmin(gLo, t.lo());
+    }
+    if (a < 0 && b > 0) {  // 0 ends both sides
+        Interval g0 = GAt(LibmAt(fn.f(0.0)), alpha, 0.0);
+        gLo = std::fmin(gLo, g0.lo());
+        gHi = std::fmax(gHi, g0.hi());
+    }
+    // f is monotone: |f| is largest at an endpoint.
+    return MakeFit(alpha, gLo, gHi, std::fmax(MaxAbs(ia), MaxAbs(ib)), kLibmRel);
+}
+
+}  // namespace
+
+// Chebyshev (secant slope) rather than min-range for all three: min-range takes alpha = f' at an
+// endpoint, which is infinite at +-1 for asin and acos and nearly 0 far out for atan (the form
+// would then be the interval range); their results are bounded anyway, so no domain needs the
+// min-range guarantee that the form stays inside [f(a), f(b)] (Tighten clips the range to it).
+// As for sin and cos, a fit wider than the interval range by a quarter (wide atan ranges, where a
+// line follows the arctangent poorly) gives the interval range on a fresh symbol instead.
+Affine Affine::InverseTrigForm(const Affine& x, int which) {
+    if (x.isUnbounded()) return x;
+    Interval range = x.range();
+    // asin and acos are NaN outside [-1, 1].
+    if (which != 2 && (range.lo() < -1 || range.hi() > 1)) return Unbounded();
+    auto all = [&] { return which == 0 ? asin(range) : which == 1 ? acos(range) : atan(range); };
+    const double a = range.lo(), b = range.hi();
+    if (a == b) return FromInterval(all());
+    Fit f = InverseTrigFit(kInverseTrig[which], a, b);
+    if (!f.ok) return FromInterval(all());
+    Interval r = all();
+    double fitRadius = std::fabs(f.alpha) * x.radius() + 0.5 * (f.hi - f.lo);
+    if (fitRadius > 1.25 * r.radius()) return FromInterval(r);
+    return ApplyFit(x, f.alpha, f.lo, f.hi);
+}
+
+// --- atan2 --------------------------------------------------------------------------------------
+
+namespace {
+
+constexpr double kHalfPi = 1.5707963267948966;  // pi/2 rounded to nearest
+// Bound of |glibc atan2(y, x) - T|, T the scalar value of atan(y/x) or +-pi/2 - atan(x/y) as
+// computed by the forms (|theta| <= pi, each glibc call within kLibmRel*|f| + kLibmAbs):
+// atan2's own error (pi*kLibmRel), atan's at fl(q) (pi/2*kLibmRel), atan(fl(q)) - atan(q) <=
+// |fl(q) - q|/(1 + q^2) <= u, pi/2 - fl(pi/2) < u/2, the rounding of +-pi/2 - A (<= pi*u):
+// under 5.4*kLibmRel + 2*kLibmAbs in all.
+constexpr double kAtan2Slack = 8 * kLibmRel + 4 * kLibmAbs;
+
+}  // namespace
+
+// atan2(y, x) = atan(y/x) for x > 0, and pi/2 - atan(x/y) for y > 0, -pi/2 - atan(x/y) for y < 0
+// (exact identities); each keeps the correlation of y and x through the quotient. Where two
+// apply, the one with less uncorrelated remainder (error plus the terms on symbols made while
+// computing it): the radius alone would prefer a fresh-symbol interval fallback of about the same
+// width to a fit that follows y and x. Elsewhere (x <= 0 possible and y across 0: the branch cut,
+// where atan2 jumps between -pi and pi) the interval atan2 on a fresh symbol.
+Affine Affine::Atan2Forms(const Affine& y, const Affine& x) {
+    if (y.isUnbounded() || x.isUnbounded()) return Unbounded();
+    Interval ry = y.range(), rx = x.range();
+    // Symbols made from here on are fresh to the candidates (ids increase).
+    const SymbolId marker = NewSymbol();
+    auto remainder = [marker](const Affine& r) {
+        UpperSum sum;
+        sum.add(r.m_error);
+        for (int i = 0; i < r.m_count; ++i)
+            if (r.m_symbols[i] > marker) sum.add(std::fabs(r.m_coefs[i]));
+        return sum.value();
+    };
+    Affine best = Unbounded();
+    if (rx.lo() > 0) best = atan(y / x);
+    if (ry.lo() > 0 || ry.hi() < 0) {
+        Affine other = Affine(ry.lo() > 0 ? kHalfPi : -kHalfPi) - atan(x / y);
+        if (best.isUnbounded() || (!other.isUnbounded() && remainder(other) < remainder(best)))
+            best = other;
+    }
+    if (best.isUnbounded()) return FromInterval(atan2(ry, rx));
+    return best.withExtraError(kAtan2Slack);
+}
+
 // --- The public functions: the form, then its enclosure (Affine::Tighten) -------------------------
 
 Affine operator/(const Affine& x, const Affine& y) {
@@ -386,6 +529,22 @@ Affine sign(const Affine& x) {
 
 Affine pow(const Affine& x, const Affine& y) {
     return Affine::Tighten(Affine::PowForms(x, y), pow(x.range(), y.range()));
+}
+
+Affine asin(const Affine& x) {
+    return Affine::Tighten(Affine::InverseTrigForm(x, 0), asin(x.range()));
+}
+
+Affine acos(const Affine& x) {
+    return Affine::Tighten(Affine::InverseTrigForm(x, 1), acos(x.range()));
+}
+
+Affine atan(const Affine& x) {
+    return Affine::Tighten(Affine::InverseTrigForm(x, 2), atan(x.range()));
+}
+
+Affine atan2(const Affine& y, const Affine& x) {
+    return Affine::Tighten(Affine::Atan2Forms(y, x), atan2(y.range(), x.range()));
 }
 
 }  // namespace affray::vm

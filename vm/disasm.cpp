@@ -29,26 +29,27 @@ std::string SourceLine(const std::string& text, int line) {
 }
 }  // namespace
 
-std::string DisassembleInstr(const Program& program, const Instr& in) {
-    if (static_cast<int>(in.op) >= kOpCount) return "<bad opcode " + std::to_string(int(in.op)) + ">";
-    const OpInfo& info = Info(in.op);
+std::string DisassembleInstr(const Program& program, const Instr* in, size_t available) {
+    if (static_cast<int>(in->op) >= kOpCount) return "<bad opcode " + std::to_string(int(in->op)) + ">";
+    const OpInfo& info = Info(in->op);
+    if (static_cast<size_t>(WordCount(info.format)) > available) return std::string(info.name) + " <operands missing>";
     std::string out = info.name;
     out.resize(8, ' ');
-    const uint16_t operands[3] = {in.a, in.b, in.c};
     bool first = true;
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; info.format[i]; ++i) {
         char kind = info.format[i];
         if (kind == '-') continue;
+        uint16_t x = OperandOf(in, i);
         out += first ? "" : ", ";
         first = false;
         if (kind == 'k') {
-            out += "k" + std::to_string(operands[i]);
-            if (operands[i] < program.constants.size())
-                out += " (" + FormatNumber(program.constants[operands[i]]) + ")";
+            out += "k" + std::to_string(x);
+            if (x < program.constants.size()) out += " (" + FormatNumber(program.constants[x]) + ")";
         } else {
-            out += "r" + std::to_string(operands[i]);
+            out += "r" + std::to_string(x);
         }
     }
+    if (in->flags != 0) out += "  [channel " + std::to_string(in->flags) + "]";
     return out;
 }
 
@@ -81,7 +82,9 @@ std::string Disassemble(const Program& program, const std::string& sourceText) {
         }
         char index[32];
         std::snprintf(index, sizeof index, "%4zu  ", pc);
-        out << index << DisassembleInstr(program, program.code[pc]) << "\n";
+        out << index << DisassembleInstr(program, &program.code[pc], program.code.size() - pc) << "\n";
+        if (static_cast<int>(program.code[pc].op) < kOpCount)
+            pc += WordCount(Info(program.code[pc].op).format) - 1;
     }
     return out.str();
 }

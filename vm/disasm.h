@@ -7,8 +7,9 @@
 
 namespace affray::vm {
 
-/// One instruction as text, e.g. "MulRK   r3, r1, k2 (0.5)".
-std::string DisassembleInstr(const Program& program, const Instr& in);
+/// The instruction starting at `in` as text, e.g. "MulRK   r3, r1, k2 (0.5)", its Ext words
+/// included; `available` is the number of words from `in` to the end of the code.
+std::string DisassembleInstr(const Program& program, const Instr* in, size_t available);
 
 /// The whole program: a header (globals read, outputs, constants), then one line per
 /// instruction, preceded by the source line it came from whenever that line changes.

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "vm/interpreter.h"
+#include "vm/noise.h"
 
 #ifdef AFFRAY_TRACE_VM
 #include <cstdio>
@@ -52,6 +53,7 @@ template <class T>
 void Interpreter<T>::Run() {
     // For T = double the std functions are the scalar semantics; other types find theirs by ADL.
     using std::abs, std::cos, std::exp, std::log, std::pow, std::sin, std::sqrt;
+    using std::acos, std::asin, std::atan, std::atan2, std::ceil, std::floor, std::round;
     T* R = m_registers.data();
     const double* K = m_program->constants.data();
     // Parameter registers may be reused once read, so they are written before every run.
@@ -60,8 +62,15 @@ void Interpreter<T>::Run() {
         if (p.firstRegister == kNoRegister) continue;
         for (int c = 0; c < p.size; ++c) R[p.firstRegister + c] = T(m_paramValues[i][c]);
     }
-    for (const Instr& in : m_program->code) {
+    const Instr* code = m_program->code.data();
+    const size_t size = m_program->code.size();
+    for (size_t pc = 0; pc < size; ++pc) {
+        const Instr& in = code[pc];
         T& A = R[in.a];
+        // The operands of a noise function: R[B], R[C], then the Ext words' registers.
+        auto noiseArgs = [&](int count, T* args) {
+            for (int i = 0; i < count; ++i) args[i] = R[OperandOf(&in, i + 1)];
+        };
         switch (in.op) {
             case Op::LoadK: A = T(K[in.b]); break;
             case Op::Move: A = R[in.b]; break;
@@ -88,11 +97,69 @@ void Interpreter<T>::Run() {
             case Op::PowRK: A = pow(R[in.b], T(K[in.c])); break;
             case Op::DerivU: A = DerivU(R[in.b]); break;
             case Op::DerivV: A = DerivV(R[in.b]); break;
+            case Op::Floor: A = floor(R[in.b]); break;
+            case Op::Ceil: A = ceil(R[in.b]); break;
+            case Op::Round: A = round(R[in.b]); break;
+            case Op::Asin: A = asin(R[in.b]); break;
+            case Op::Acos: A = acos(R[in.b]); break;
+            case Op::Atan: A = atan(R[in.b]); break;
+            case Op::Not: A = Not(R[in.b]); break;
+            case Op::Atan2RR: A = atan2(R[in.b], R[in.c]); break;
+            case Op::MinRR: A = Min(R[in.b], R[in.c]); break;
+            case Op::MinRK: A = Min(R[in.b], T(K[in.c])); break;
+            case Op::MaxRR: A = Max(R[in.b], R[in.c]); break;
+            case Op::MaxRK: A = Max(R[in.b], T(K[in.c])); break;
+            case Op::LtRR: A = Less(R[in.b], R[in.c]); break;
+            case Op::LtRK: A = Less(R[in.b], T(K[in.c])); break;
+            case Op::LtKR: A = Less(T(K[in.b]), R[in.c]); break;
+            case Op::LeRR: A = LessEq(R[in.b], R[in.c]); break;
+            case Op::LeRK: A = LessEq(R[in.b], T(K[in.c])); break;
+            case Op::LeKR: A = LessEq(T(K[in.b]), R[in.c]); break;
+            case Op::EqRR: A = Equal(R[in.b], R[in.c]); break;
+            case Op::EqRK: A = Equal(R[in.b], T(K[in.c])); break;
+            case Op::NeRR: A = NotEqual(R[in.b], R[in.c]); break;
+            case Op::NeRK: A = NotEqual(R[in.b], T(K[in.c])); break;
+            case Op::AndRR: A = And(R[in.b], R[in.c]); break;
+            case Op::OrRR: A = Or(R[in.b], R[in.c]); break;
+            case Op::Select: A = Select(R[in.b], R[in.c], R[code[pc + 1].a]); break;
+            case Op::Ext: break;  // the verifier rules out an Ext word on its own
+            case Op::Noise1:
+            case Op::Noise2:
+            case Op::Noise3:
+            case Op::Noise4: {
+                const int dims = static_cast<int>(in.op) - static_cast<int>(Op::Noise1) + 1;
+                T args[4];
+                noiseArgs(dims, args);
+                A = Noise(args, dims, in.flags);
+                break;
+            }
+            case Op::PNoise1:
+            case Op::PNoise2:
+            case Op::PNoise3:
+            case Op::PNoise4: {
+                const int dims = static_cast<int>(in.op) - static_cast<int>(Op::PNoise1) + 1;
+                T args[8];
+                noiseArgs(2 * dims, args);
+                A = PNoise(args, args + dims, dims, in.flags);
+                break;
+            }
+            case Op::CellNoise1:
+            case Op::CellNoise2:
+            case Op::CellNoise3:
+            case Op::CellNoise4: {
+                const int dims = static_cast<int>(in.op) - static_cast<int>(Op::CellNoise1) + 1;
+                T args[4];
+                noiseArgs(dims, args);
+                A = CellNoise(args, dims, in.flags);
+                break;
+            }
+
         }
 #ifdef AFFRAY_TRACE_VM
         std::fprintf(stderr, "[%s] %-40s -> %s\n", NumberTraits<T>::kName,
-                     DisassembleInstr(*m_program, in).c_str(), ToString(A).c_str());
+                     DisassembleInstr(*m_program, &in, size - pc).c_str(), ToString(A).c_str());
 #endif
+        pc += Words(in.op) - 1;  // skip the Ext words
     }
 }
 

@@ -2,7 +2,8 @@
 // Each bound is either a directed rounding of an exact extreme (arithmetic, sqrt) or a glibc value
 // at an extreme widened by LibmDown/LibmUp (see vm/rounding.h for why that also contains glibc's
 // value at every inner point). Extremes come from monotone pieces: endpoints, plus the stationary
-// points that lie inside (sin, cos) or 0 (sqr, abs, even powers).
+// points that lie inside (sin, cos) or 0 (sqr, abs, even powers); atan2 from the corners of its
+// quadrant. Also the exact step functions (floor, ceil, round), min/max, comparisons and logic.
 #include "vm/interval.h"
 
 #include <algorithm>
@@ -173,5 +174,122 @@ Interval pow(const Interval& x, const Interval& y) {
     if (r.isUnbounded()) return r;
     return Interval(std::fmax(r.m_lo, 0.0), r.m_hi);
 }
+
+// --- floor, ceil, round --------------------------------------------------------------------------
+
+// Monotone and exact on doubles: the images of the endpoints are the bounds.
+Interval floor(const Interval& x) {
+    if (x.isUnbounded()) return x;
+    return Interval(std::floor(x.m_lo), std::floor(x.m_hi));
+}
+
+Interval ceil(const Interval& x) {
+    if (x.isUnbounded()) return x;
+    return Interval(std::ceil(x.m_lo), std::ceil(x.m_hi));
+}
+
+Interval round(const Interval& x) {
+    if (x.isUnbounded()) return x;
+    return Interval(std::round(x.m_lo), std::round(x.m_hi));
+}
+
+// --- asin, acos, atan, atan2 --------------------------------------------------------------------
+
+namespace {
+
+// pi rounded to nearest (below pi); LibmUp(kPi) is above pi and above glibc's atan2 everywhere.
+constexpr double kPi = 3.141592653589793;
+
+}  // namespace
+
+// Increasing on [-1, 1]; asin(+-1) = +-pi/2, outside NaN.
+Interval asin(const Interval& x) {
+    if (x.isUnbounded() || x.m_lo < -1 || x.m_hi > 1) return Interval::Unbounded();
+    return Interval(LibmDown(std::asin(x.m_lo)), LibmUp(std::asin(x.m_hi)));
+}
+
+// Decreasing on [-1, 1], >= 0 (acos(1) = +0: the slack would only reach below 0).
+Interval acos(const Interval& x) {
+    if (x.isUnbounded() || x.m_lo < -1 || x.m_hi > 1) return Interval::Unbounded();
+    return Interval(std::fmax(0.0, LibmDown(std::acos(x.m_hi))), LibmUp(std::acos(x.m_lo)));
+}
+
+Interval atan(const Interval& x) {
+    if (x.isUnbounded()) return x;
+    return Interval(LibmDown(std::atan(x.m_lo)), LibmUp(std::atan(x.m_hi)));
+}
+
+// The angle of (x, y) over a box. For y > 0 it lies in (0, pi), continuous in x and y, decreasing
+// in x, increasing in y where x > 0 and decreasing where x < 0 (constant pi/2 at x = +-0): the
+// smallest angle is at the right edge x = xh (with y = yl if xh > 0, else yh), the largest at the
+// left edge x = xl (with y = yh if xl > 0, else yl). y < 0 mirrors it: atan2(-y, x) = -atan2(y, x).
+// Where y can be 0: with x > 0 the angle lies in (-pi/2, pi/2) and increases with y and with |y|/x
+// decreasing, so the corners (yl, xl) and (yh, xl) bound it; with x able to be <= 0 the box meets
+// the branch cut (atan2(+-0, x < 0) = +-pi, atan2(+-0, -0) = +-pi): [-pi, pi]. glibc's atan2 is
+// within 1 ulp (libm-test-ulps), so the corner values widened by LibmDown/LibmUp hold it at every
+// inner point (vm/rounding.h).
+Interval atan2(const Interval& y, const Interval& x) {
+    if (y.isUnbounded() || x.isUnbounded()) return Interval::Unbounded();
+    if (y.m_hi < 0) return -atan2(-y, x);
+    if (y.m_lo > 0) {
+        const double lo = std::atan2(x.m_hi > 0 ? y.m_lo : y.m_hi, x.m_hi);
+        const double hi = std::atan2(x.m_lo > 0 ? y.m_hi : y.m_lo, x.m_lo);
+        return Interval(LibmDown(lo), LibmUp(hi));
+    }
+    if (x.m_lo > 0)
+        return Interval(LibmDown(std::atan2(y.m_lo, x.m_lo)), LibmUp(std::atan2(y.m_hi, x.m_lo)));
+    return Interval(-LibmUp(kPi), LibmUp(kPi));
+}
+
+// --- Min, Max -----------------------------------------------------------------------------------
+
+Interval Min(const Interval& a, const Interval& b) {
+    if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
+    return Interval(std::fmin(a.m_lo, b.m_lo), std::fmin(a.m_hi, b.m_hi));
+}
+
+Interval Max(const Interval& a, const Interval& b) {
+    if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
+    return Interval(std::fmax(a.m_lo, b.m_lo), std::fmax(a.m_hi, b.m_hi));
+}
+
+// --- Comparisons and logic ----------------------------------------------------------------------
+
+// An Unbounded operand may be NaN (every comparison false but !=) or anything: undecided.
+Interval Less(const Interval& a, const Interval& b) {
+    if (a.isUnbounded() || b.isUnbounded()) return Interval::FromTruth(Truth::Unknown);
+    if (a.m_hi < b.m_lo) return Interval::FromTruth(Truth::True);
+    if (a.m_lo >= b.m_hi) return Interval::FromTruth(Truth::False);
+    return Interval::FromTruth(Truth::Unknown);
+}
+
+Interval LessEq(const Interval& a, const Interval& b) {
+    if (a.isUnbounded() || b.isUnbounded()) return Interval::FromTruth(Truth::Unknown);
+    if (a.m_hi <= b.m_lo) return Interval::FromTruth(Truth::True);
+    if (a.m_lo > b.m_hi) return Interval::FromTruth(Truth::False);
+    return Interval::FromTruth(Truth::Unknown);
+}
+
+// Equal points are equal (-0 == +0); disjoint ranges are not.
+Interval Equal(const Interval& a, const Interval& b) {
+    if (a.isUnbounded() || b.isUnbounded()) return Interval::FromTruth(Truth::Unknown);
+    if (a.isPoint() && b.isPoint() && a.m_lo == b.m_lo) return Interval::FromTruth(Truth::True);
+    if (a.m_hi < b.m_lo || b.m_hi < a.m_lo) return Interval::FromTruth(Truth::False);
+    return Interval::FromTruth(Truth::Unknown);
+}
+
+Interval NotEqual(const Interval& a, const Interval& b) {
+    return Interval::FromTruth(TruthNot(TruthOf(Equal(a, b))));
+}
+
+Interval And(const Interval& a, const Interval& b) {
+    return Interval::FromTruth(TruthAnd(TruthOf(a), TruthOf(b)));
+}
+
+Interval Or(const Interval& a, const Interval& b) {
+    return Interval::FromTruth(TruthOr(TruthOf(a), TruthOf(b)));
+}
+
+Interval Not(const Interval& a) { return Interval::FromTruth(TruthNot(TruthOf(a))); }
 
 }  // namespace affray::vm

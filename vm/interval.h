@@ -4,6 +4,9 @@
 // operands, including the rounding of that double computation: bounds round outward (vm/rounding.h)
 // and transcendental bounds allow kLibmRel of slack. Anything that can be NaN or infinite somewhere
 // in the operands is the explicit Unbounded value, and Unbounded propagates through every function.
+// Also owns enum Truth (the answer of TruthOf for every number type, here because every number
+// header includes this one) and its three-valued And/Or/Not. Comparisons and logic return the
+// point 1 or 0 where decided over the whole operand ranges, else [0, 1] (tests/vm/branch_test.cpp).
 // To add a function: derive its bounds from monotone pieces or exact extremum analysis, round
 // outward, and add its containment test to tests/vm/interval_test.cpp.
 // Sources: Moore, "Interval Analysis" (1966); Stolfi & de Figueiredo, "Self-Validated Numerical
@@ -15,6 +18,24 @@
 #include "vm/rounding.h"
 
 namespace affray::vm {
+
+/// The truth of a condition (a number, true where != 0, NaN included, as in C) over every value
+/// a bounded number stands for: True for all of them, False for all (the number is exactly 0),
+/// or Unknown. A double is never Unknown.
+enum class Truth { False, True, Unknown };
+
+/// Three-valued (Kleene) logic: decided wherever the decided operands alone decide.
+inline Truth TruthAnd(Truth a, Truth b) {
+    if (a == Truth::False || b == Truth::False) return Truth::False;
+    return a == Truth::True && b == Truth::True ? Truth::True : Truth::Unknown;
+}
+inline Truth TruthOr(Truth a, Truth b) {
+    if (a == Truth::True || b == Truth::True) return Truth::True;
+    return a == Truth::False && b == Truth::False ? Truth::False : Truth::Unknown;
+}
+inline Truth TruthNot(Truth a) {
+    return a == Truth::True ? Truth::False : a == Truth::False ? Truth::True : Truth::Unknown;
+}
 
 class Interval {
   public:
@@ -91,6 +112,45 @@ class Interval {
     friend Interval Hull(const Interval& a, const Interval& b) {
         if (a.isUnbounded() || b.isUnbounded()) return Unbounded();
         return Interval(std::fmin(a.m_lo, b.m_lo), std::fmax(a.m_hi, b.m_hi));
+    }
+
+    // Rounding, inverse trigonometry, min/max, comparisons and logic (interval.cpp).
+    /// [f(lo), f(hi)]: std::floor, ceil and round (half away from zero) are monotone and exact.
+    friend Interval floor(const Interval& x);
+    friend Interval ceil(const Interval& x);
+    friend Interval round(const Interval& x);
+    /// Monotone; Unbounded if x leaves [-1, 1] (the scalar result is NaN there).
+    friend Interval asin(const Interval& x);
+    friend Interval acos(const Interval& x);
+    friend Interval atan(const Interval& x);
+    /// std::atan2(y, x) by quadrants: monotone in y and x away from the branch cut; [-pi, pi]
+    /// (rounded outward) wherever y can be 0 and x <= 0 (a signed zero reaches both -pi and pi).
+    friend Interval atan2(const Interval& y, const Interval& x);
+    /// std::fmin and std::fmax, endpoint by endpoint.
+    friend Interval Min(const Interval& a, const Interval& b);
+    friend Interval Max(const Interval& a, const Interval& b);
+    /// The point 1 (true) or 0 (false) where decided for every pair of values, else [0, 1];
+    /// always [0, 1] when an operand is Unbounded (it may be NaN).
+    friend Interval Less(const Interval& a, const Interval& b);
+    friend Interval LessEq(const Interval& a, const Interval& b);
+    friend Interval Equal(const Interval& a, const Interval& b);
+    friend Interval NotEqual(const Interval& a, const Interval& b);
+    /// Logic on truth values (TruthOf of the operands): 1, 0 or [0, 1].
+    friend Interval And(const Interval& a, const Interval& b);
+    friend Interval Or(const Interval& a, const Interval& b);
+    friend Interval Not(const Interval& a);
+    /// True if the range excludes 0, False if it is exactly [0, 0], else (Unbounded too) Unknown.
+    friend Truth TruthOf(const Interval& x) {
+        if (x.isUnbounded()) return Truth::Unknown;
+        if (x.m_lo > 0 || x.m_hi < 0) return Truth::True;
+        return x.m_lo == 0 && x.m_hi == 0 ? Truth::False : Truth::Unknown;
+    }
+    /// A value containing both (for an undecided condition): the hull.
+    friend Interval Join(const Interval& a, const Interval& b) { return Hull(a, b); }
+    /// 1, 0 or [0, 1].
+    static Interval FromTruth(Truth t) {
+        if (t == Truth::Unknown) return Interval(0.0, 1.0);
+        return Interval(t == Truth::True ? 1.0 : 0.0);
     }
 
     // Number API (vm/number.h).

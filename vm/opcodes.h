@@ -6,7 +6,7 @@
 // Encoding: every instruction is 8 bytes,
 //
 //   bits  0..7   op      (MAXARG_OP = 255)
-//   bits  8..15  unused  (reserved for flags)
+//   bits  8..15  flags   (the noise functions' seed, which picks an independent channel; else 0)
 //   bits 16..31  A       destination register
 //   bits 32..47  B       first operand: a register R[B] or a constant K[B]
 //   bits 48..63  C       second operand: a register R[C] or a constant K[C]
@@ -17,6 +17,11 @@
 //
 // Format letters: 'w' a register written, 'r' a register read, 'k' a constant read, '-' unused.
 // The name says where the operands come from: AddRK is R[B] + K[C], SubKR is K[B] - R[C].
+// An operation with more operands than B and C (Select, the noise functions) is followed by one
+// or two Ext words whose A, B and C are its further operands (format letters 4..6 and 7..9, as
+// the operand list R[D], R[E], ...): the format's length says how many words an instruction takes.
+// Booleans are numbers: comparisons give 1 or 0 (a bound type: [0, 1] when undecided over the
+// region) and every truth test is "not 0".
 #pragma once
 
 #include <cstdint>
@@ -49,7 +54,45 @@ namespace affray::vm {
     X(PowRR, 21, "wrr", "R[A] := pow(R[B], R[C])")                               \
     X(PowRK, 22, "wrk", "R[A] := pow(R[B], K[C])")                               \
     X(DerivU, 23, "wr-", "R[A] := d R[B] / du  (needs a number type with derivatives)") \
-    X(DerivV, 24, "wr-", "R[A] := d R[B] / dv")
+    X(DerivV, 24, "wr-", "R[A] := d R[B] / dv")                                  \
+    X(Floor, 25, "wr-", "R[A] := floor(R[B])")                                   \
+    X(Ceil, 26, "wr-", "R[A] := ceil(R[B])")                                     \
+    X(Round, 27, "wr-", "R[A] := round(R[B])  (halves away from 0)")             \
+    X(Asin, 28, "wr-", "R[A] := asin(R[B])")                                     \
+    X(Acos, 29, "wr-", "R[A] := acos(R[B])")                                     \
+    X(Atan, 30, "wr-", "R[A] := atan(R[B])")                                     \
+    X(Not, 31, "wr-", "R[A] := R[B] == 0")                                       \
+    X(Atan2RR, 32, "wrr", "R[A] := atan2(R[B], R[C])  (y, x)")                   \
+    X(MinRR, 33, "wrr", "R[A] := min(R[B], R[C])")                               \
+    X(MinRK, 34, "wrk", "R[A] := min(R[B], K[C])")                               \
+    X(MaxRR, 35, "wrr", "R[A] := max(R[B], R[C])")                               \
+    X(MaxRK, 36, "wrk", "R[A] := max(R[B], K[C])")                               \
+    X(LtRR, 37, "wrr", "R[A] := R[B] < R[C]")                                    \
+    X(LtRK, 38, "wrk", "R[A] := R[B] < K[C]")                                    \
+    X(LtKR, 39, "wkr", "R[A] := K[B] < R[C]")                                    \
+    X(LeRR, 40, "wrr", "R[A] := R[B] <= R[C]")                                   \
+    X(LeRK, 41, "wrk", "R[A] := R[B] <= K[C]")                                   \
+    X(LeKR, 42, "wkr", "R[A] := K[B] <= R[C]")                                   \
+    X(EqRR, 43, "wrr", "R[A] := R[B] == R[C]")                                   \
+    X(EqRK, 44, "wrk", "R[A] := R[B] == K[C]")                                   \
+    X(NeRR, 45, "wrr", "R[A] := R[B] != R[C]")                                   \
+    X(NeRK, 46, "wrk", "R[A] := R[B] != K[C]")                                   \
+    X(AndRR, 47, "wrr", "R[A] := R[B] != 0 && R[C] != 0")                        \
+    X(OrRR, 48, "wrr", "R[A] := R[B] != 0 || R[C] != 0")                         \
+    X(Select, 49, "wrrr--", "R[A] := R[B] != 0 ? R[C] : R[D]  (undecided: a bound of both)") \
+    X(Ext, 50, "---", "further operands of the instruction before; never runs on its own") \
+    X(Noise1, 51, "wr-", "R[A] := noise(R[B]), channel = flags")                 \
+    X(Noise2, 52, "wrr", "R[A] := noise(R[B], R[C])")                            \
+    X(Noise3, 53, "wrrr--", "R[A] := noise(R[B], R[C], R[D])")                   \
+    X(Noise4, 54, "wrrrr-", "R[A] := noise(R[B], R[C], R[D], R[E])")             \
+    X(PNoise1, 55, "wrr", "R[A] := pnoise(x; period), operands x then period")   \
+    X(PNoise2, 56, "wrrrr-", "R[A] := pnoise(x, y; periods)")                    \
+    X(PNoise3, 57, "wrrrrrr--", "R[A] := pnoise(x, y, z; periods)")              \
+    X(PNoise4, 58, "wrrrrrrrr", "R[A] := pnoise(x, y, z, w; periods)")           \
+    X(CellNoise1, 59, "wr-", "R[A] := cellnoise(R[B]), channel = flags")         \
+    X(CellNoise2, 60, "wrr", "R[A] := cellnoise(R[B], R[C])")                    \
+    X(CellNoise3, 61, "wrrr--", "R[A] := cellnoise(R[B], R[C], R[D])")           \
+    X(CellNoise4, 62, "wrrrr-", "R[A] := cellnoise(R[B], R[C], R[D], R[E])")
 
 enum class Op : uint8_t {
 #define AFFRAY_OP_ENUM(name, number, format, meaning) name = number,
@@ -74,9 +117,16 @@ static_assert(sizeof(Instr) == 8, "instructions are 8 bytes (see the encoding ab
 /// Static facts about one opcode, generated from the list.
 struct OpInfo {
     const char* name;
-    const char* format;  // three letters from "wrk-", for A, B and C
+    const char* format;  // letters from "wrk-": A, B and C, then A, B, C of each Ext word
     const char* meaning;
 };
+
+/// Words (Instr) an instruction of this format takes: itself and its Ext words.
+constexpr int WordCount(const char* format) {
+    int n = 0;
+    while (format[n]) ++n;
+    return n / 3;
+}
 
 inline constexpr OpInfo kOpInfo[] = {
 #define AFFRAY_OP_INFO(name, number, format, meaning) {#name, format, meaning},
@@ -103,6 +153,27 @@ constexpr bool OpsListedInOrder() {
 static_assert(OpsListedInOrder(), "list the opcodes in the order of their numbers");
 }  // namespace detail
 
+// Every format is whole words of three letters.
+#define AFFRAY_OP_FORMAT_CHECK(op, number, format, meaning) \
+    static_assert(sizeof(format) - 1 >= 3 && (sizeof(format) - 1) % 3 == 0, "formats are 3 letters per word");
+AFFRAY_OPCODES(AFFRAY_OP_FORMAT_CHECK)
+#undef AFFRAY_OP_FORMAT_CHECK
+
 inline const OpInfo& Info(Op op) { return kOpInfo[static_cast<int>(op)]; }
+
+/// Words each opcode's instructions take (WordCount of its format), as a table.
+inline constexpr uint8_t kOpWords[] = {
+#define AFFRAY_OP_WORDS(name, number, format, meaning) static_cast<uint8_t>(WordCount(format)),
+    AFFRAY_OPCODES(AFFRAY_OP_WORDS)
+#undef AFFRAY_OP_WORDS
+};
+inline int Words(Op op) { return kOpWords[static_cast<int>(op)]; }
+
+/// Operand `i` of the instruction starting at `in` (0 = its A, 1 = B, 2 = C, 3 = the first Ext
+/// word's A, ...), following format letter i. The caller checks the Ext words exist.
+inline uint16_t OperandOf(const Instr* in, int i) {
+    const Instr& word = in[i / 3];
+    return i % 3 == 0 ? word.a : i % 3 == 1 ? word.b : word.c;
+}
 
 }  // namespace affray::vm

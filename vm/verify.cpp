@@ -45,11 +45,15 @@ bool Verify(const Program& program, std::string* error) {
         std::string where = "instruction " + std::to_string(pc) + ": ";
         if (static_cast<int>(in.op) >= kOpCount)
             return Fail(error, where + "unknown opcode " + std::to_string(int(in.op)));
+        if (in.op == Op::Ext) return Fail(error, where + "an Ext word without an instruction before it");
         const char* format = Info(in.op).format;
-        const uint16_t operands[3] = {in.a, in.b, in.c};
+        const int words = WordCount(format);
+        if (pc + words > program.code.size()) return Fail(error, where + "its operand words are missing");
+        for (int w = 1; w < words; ++w)
+            if (program.code[pc + w].op != Op::Ext) return Fail(error, where + "its operand words are missing");
         // Reads first, then the write: an instruction may overwrite one of its own operands.
-        for (int i = 0; i < 3; ++i) {
-            uint16_t x = operands[i];
+        for (int i = 0; format[i]; ++i) {
+            uint16_t x = OperandOf(&in, i);
             switch (format[i]) {
                 case 'r':
                     if (x >= nRegs)
@@ -71,6 +75,7 @@ bool Verify(const Program& program, std::string* error) {
                 return Fail(error, where + "register r" + std::to_string(in.a) + " out of range");
             written[in.a] = true;
         }
+        pc += words - 1;
     }
 
     for (const ProgramOutput& out : program.outputs) {

@@ -148,8 +148,8 @@ TEST_CASE("compiler diagnostics are exact", "[compiler]") {
           "test.sl:2:8: error: 'pow' expects 2 arguments, got 1\n      P += pow(2);\n           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += frob(2);\n}\n") ==
           "test.sl:2:8: error: unknown function 'frob'\n      P += frob(2);\n           ^\n");
-    CHECK(Diagnose("displacement t() {\n  P += noise(P);\n}\n") ==
-          "test.sl:2:8: error: function 'noise' is not supported yet\n      P += noise(P);\n           ^\n");
+    CHECK(Diagnose("displacement t() {\n  P += texture(\"x\");\n}\n") ==
+          "test.sl:2:8: error: function 'texture' is not supported yet\n      P += texture(\"x\");\n           ^\n");
     CHECK(Diagnose("displacement t() {\n  float x;\n  P += x;\n}\n") ==
           "test.sl:3:8: error: variable 'x' is used before it is assigned a value\n      P += x;\n           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += color(1, 0, 0);\n}\n") ==
@@ -165,11 +165,11 @@ TEST_CASE("compiler diagnostics are exact", "[compiler]") {
     CHECK(Diagnose("displacement t(float k = u) {\n  P += k;\n}\n") ==
           "test.sl:1:22: error: default value of parameter 'k' must be a constant expression\n"
           "    displacement t(float k = u) {\n                         ^\n");
-    CHECK(Diagnose("displacement t() {\n  if (u) P += 1;\n}\n") ==
-          "test.sl:2:3: error: 'if' statements are not supported yet\n      if (u) P += 1;\n      ^\n");
-    CHECK(Diagnose("displacement t() {\n  P += point \"shader\" (1, 2, 3);\n}\n") ==
-          "test.sl:2:8: error: coordinate space 'shader' is not supported yet\n"
-          "      P += point \"shader\" (1, 2, 3);\n           ^\n");
+    CHECK(Diagnose("displacement t() {\n  if (u) break;\n}\n") ==
+          "test.sl:2:10: error: 'break' outside of a loop\n      if (u) break;\n             ^\n");
+    CHECK(Diagnose("displacement t() {\n  P += point \"shoder\" (1, 2, 3);\n}\n") ==
+          "test.sl:2:8: error: unknown coordinate space 'shoder'\n"
+          "      P += point \"shoder\" (1, 2, 3);\n           ^\n");
     CHECK(Diagnose("") == "test.sl:1:1: error: no shader definition in file\n");
     CHECK(Diagnose("displacement t() {\n  P += comp(P, u);\n}\n") ==
           "test.sl:2:16: error: the component index of 'comp' must be the constant 0, 1 or 2\n"

@@ -48,6 +48,17 @@ std::string Tree(const std::string& text) {
     return out;
 }
 
+// The printed functions of `text`, then its shaders, one a line; `text` must parse cleanly.
+std::string Unit(const std::string& text) {
+    Parsed p = Run(text);
+    INFO(p.errors);
+    REQUIRE(p.errors.empty());
+    std::string out;
+    for (const std::shared_ptr<FunctionDef>& f : p.unit.functions) out += ToString(*f) + "\n";
+    for (const ShaderDef& s : p.unit.shaders) out += ToString(s) + "\n";
+    return out;
+}
+
 // The printed statements of a displacement shader with this body.
 std::string Body(const std::string& body) {
     Parsed p = Run("displacement d() {\n" + body + "\n}\n");
@@ -186,6 +197,148 @@ displacement wave(float Km = 0.1, freq = 20, decay = 3; point center = point(0.5
           "(= N (call calculatenormal P))))");
 }
 
+TEST_CASE("the matrix type", "[lang]") {
+    CHECK(Tree("displacement d(matrix m = 1; uniform matrix w = matrix \"world\" 1) {}") ==
+          "(displacement d (params (matrix m 1) (uniform matrix w (cast matrix \"world\" 1))) "
+          "(body))");
+    CHECK(Body("matrix q = m, r; varying matrix v;") ==
+          "(decl (matrix q m) (matrix r)) (decl (varying matrix v))");
+    CHECK(Value("matrix \"shader\" 1") == "(cast matrix \"shader\" 1)");
+    CHECK(Value("matrix(m)") == "(cast matrix m)");
+    CHECK(Unit("matrix f(matrix a) { return a; }\ndisplacement d() {}") ==
+          "(function matrix f (params (matrix a)) (body (return a)))\n"
+          "(displacement d (params) (body))\n");
+}
+
+TEST_CASE("16-tuples are matrices", "[lang]") {
+    CHECK(Value("(1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1)") ==
+          "(tuple16 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1)");
+    CHECK(Value("matrix \"world\" (a, b, c, d, e, f, g, h, i, j, k, l, m, n, o, (p + 1))") ==
+          "(cast matrix \"world\" (tuple16 a b c d e f g h i j k l m n o (+ p 1)))");
+    CHECK(Value("(1, 2, (3, 4, 5))") == "(triple 1 2 (triple 3 4 5))");
+}
+
+TEST_CASE("array declarations and initialiser lists", "[lang]") {
+    CHECK(Body("float a[3]; float b[3] = {1, 2, 3}, c, e[1] = {x + 1};") ==
+          "(decl (float a[3])) (decl (float b[3] {1 2 3}) (float c) (float e[1] {(+ x 1)}))");
+    CHECK(Body("point pts[2] = {(0,0,0), (1,1,1)}; uniform color k[2] = {0, color(1,0,0)};") ==
+          "(decl (point pts[2] {(triple 0 0 0) (triple 1 1 1)})) "
+          "(decl (uniform color k[2] {0 (cast color (triple 1 0 0))}))");
+    CHECK(Tree("displacement d(float a[3] = {1, 2, 3}, s = 1; output varying point p[2] = "
+               "{P, N};) {}") ==
+          "(displacement d (params (float a[3] {1 2 3}) (float s 1) "
+          "(output varying point p[2] {P N})) (body))");
+    // A parsed declaration holds what the compiler needs.
+    Parsed p = Run("displacement d() { float a[2] = {1, 2}, b = 3, c[4]; }");
+    REQUIRE(p.errors.empty());
+    const std::vector<VarDecl>& decls = p.unit.shaders.at(0).body.at(0)->decls;
+    REQUIRE(decls.size() == 3);
+    CHECK(decls[0].arraySize == 2);
+    CHECK(decls[0].hasInitList);
+    CHECK(decls[0].init == nullptr);
+    CHECK(decls[0].initList.size() == 2);
+    CHECK(decls[1].arraySize == -1);
+    CHECK(!decls[1].hasInitList);
+    CHECK(decls[1].init != nullptr);
+    CHECK(decls[2].arraySize == 4);
+    CHECK(!decls[2].hasInitList);
+    CHECK(decls[2].init == nullptr);
+}
+
+TEST_CASE("array elements in expressions and as assignment targets", "[lang]") {
+    CHECK(Value("a[i]") == "([] a i)");
+    CHECK(Value("a[i + 1] * b[a[0]]") == "(* ([] a (+ i 1)) ([] b ([] a 0)))");
+    CHECK(Value("-a[1] . v[2]") == "(. (- ([] a 1)) ([] v 2))");
+    CHECK(Value("float a[1]") == "(cast float ([] a 1))");
+    CHECK(Value("(a)[1]") == "([] a 1)");
+    CHECK(Body("a[i] = x; a[0] += 1; a[1] -= 2; a[2] *= 3; a[3] /= 4;") ==
+          "(= ([] a i) x) (+= ([] a 0) 1) (-= ([] a 1) 2) (*= ([] a 2) 3) (/= ([] a 3) 4)");
+    CHECK(Body("a[i] = b[j] = c;") == "(= ([] a i) (= ([] b j) c))");
+    CHECK(Body("for (i = 0; i < 3; i += 1) s += a[i];") ==
+          "(for (= i 0) (< i 3) (+= i 1) (+= s ([] a i)))");
+    // The element's assignment keeps the array's name, the value and then the index.
+    Parsed p = Run("displacement d() {\n  a[i + 1] += v;\n}");
+    REQUIRE(p.errors.empty());
+    const Expr& assign = *p.unit.shaders.at(0).body.at(0)->expr;
+    CHECK(assign.kind == ExprKind::Assign);
+    CHECK(assign.name == "a");
+    REQUIRE(assign.args.size() == 2);
+    CHECK(ToString(*assign.args[0]) == "v");
+    CHECK(ToString(*assign.args[1]) == "(+ i 1)");
+}
+
+TEST_CASE("user functions at the top level", "[lang]") {
+    CHECK(Unit("float f(float x; output point p) { p = P; return x; }\n"
+               "displacement d() { P += f(1, Q) * N; }\n"
+               "void g(float a, b; uniform vector v; output varying float r[]; point q[2];) {\n"
+               "    r[0] = a + b;\n"
+               "    return;\n"
+               "}\n"
+               "color c() { return 1; }\n") ==
+          "(function float f (params (float x) (output point p)) "
+          "(body (= p P) (return x)))\n"
+          "(function void g (params (float a) (float b) (uniform vector v) "
+          "(output varying float r[]) (point q[2])) (body (= ([] r 0) (+ a b)) (return)))\n"
+          "(function color c (params) (body (return 1)))\n"
+          "(displacement d (params) (body (+= P (* (call f 1 Q) N))))\n");
+    Parsed p = Run("displacement d() {}\n\nstring  name(float x) { return \"a\"; }");
+    REQUIRE(p.errors.empty());
+    REQUIRE(p.unit.functions.size() == 1);
+    const FunctionDef& f = *p.unit.functions[0];
+    CHECK(f.returnType == TypeName::String);
+    CHECK(f.name == "name");
+    CHECK(f.loc.line == 3);
+    CHECK(f.loc.column == 9);
+    CHECK(f.params.at(0).loc.column == 20);
+}
+
+TEST_CASE("functions nested in shader and function bodies", "[lang]") {
+    CHECK(Body("float h(float z) {\n"
+               "    extern point P;\n"
+               "    float k(float w) { extern float z; return w * z; }\n"
+               "    return k(z);\n"
+               "}\n"
+               "P += h(1) * N;") ==
+          "(function float h (params (float z)) (body (decl (extern point P)) "
+          "(function float k (params (float w)) (body (decl (extern float z)) (return (* w z)))) "
+          "(return (call k z)))) (+= P (* (call h 1) N))");
+    Parsed p = Run("displacement d() {\n  void v() {}\n}");
+    REQUIRE(p.errors.empty());
+    const Stmt& s = *p.unit.shaders.at(0).body.at(0);
+    CHECK(s.kind == StmtKind::FunctionDef);
+    REQUIRE(s.function != nullptr);
+    CHECK(s.function->returnType == TypeName::Void);
+    CHECK(s.function->loc.column == 8);
+    CHECK(p.unit.functions.empty());
+}
+
+TEST_CASE("extern declarations", "[lang]") {
+    CHECK(Body("extern point P; extern varying float x, y[]; extern uniform normal n[3];") ==
+          "(decl (extern point P)) (decl (extern varying float x) (extern varying float y[])) "
+          "(decl (extern uniform normal n[3]))");
+    Parsed p = Run("float f() { extern float Km; return Km; } displacement d() {}");
+    REQUIRE(p.errors.empty());
+    const VarDecl& v = p.unit.functions.at(0)->body.at(0)->decls.at(0);
+    CHECK(v.isExtern);
+    CHECK(v.init == nullptr);
+    CHECK(!v.hasInitList);
+}
+
+TEST_CASE("return with and without a value, and older forms inside functions", "[lang]") {
+    CHECK(Unit("float f(float a, b;) {\n"
+               "    if (a > b) return; else return a - b;\n"
+               "    while (1) { for (;;) { break 2; continue 2; } }\n"
+               "    return point \"world\" (a, b, 0) . vector \"shader\"(0, 0, 1);\n"
+               "}\n"
+               "displacement d() { return; }\n") ==
+          "(function float f (params (float a) (float b)) (body "
+          "(if (> a b) (return) (return (- a b))) "
+          "(while 1 (block (for () () () (block (break 2) (continue 2))))) "
+          "(return (. (cast point \"world\" (triple a b 0)) (cast vector \"shader\" "
+          "(triple 0 0 1))))))\n"
+          "(displacement d (params) (body (return)))\n");
+}
+
 TEST_CASE("nodes carry the location of their key token", "[lang]") {
     Parsed p = Run(
         "displacement\n"
@@ -214,6 +367,16 @@ TEST_CASE("nodes carry the location of their key token", "[lang]") {
     CHECK(ternary.args.at(1)->loc.column == 18);         // (
     CHECK(ternary.args.at(2)->loc.column == 28);         // point
     CHECK(ternary.args.at(2)->args.at(0)->loc.column == 34);  // f
+
+    Parsed q = Run("displacement d() {\n  x = a [i];\n  b[j] = 1;\n}\n");
+    REQUIRE(q.errors.empty());
+    const Expr& index = *q.unit.shaders.at(0).body.at(0)->expr->args.at(0);
+    CHECK(index.kind == ExprKind::Index);
+    CHECK(index.loc.column == 9);                        // [
+    CHECK(index.args.at(0)->loc.column == 7);            // a
+    const Expr& element = *q.unit.shaders.at(0).body.at(1)->expr;
+    CHECK(element.loc.column == 8);                      // =
+    CHECK(element.args.at(1)->loc.column == 5);          // j
 }
 
 TEST_CASE("pragmas are ignored and line markers renumber", "[lang]") {
@@ -256,10 +419,15 @@ TEST_CASE("unbalanced braces", "[lang]") {
 }
 
 TEST_CASE("unexpected token at top level", "[lang]") {
-    CHECK(Errors("float Km = 1;\n") ==
-          "test.sl:1:1: error: syntax error, unexpected 'float'\n"
-          "    float Km = 1;\n"
+    CHECK(Errors("Km = 1;\n") ==
+          "test.sl:1:1: error: syntax error, unexpected identifier\n"
+          "    Km = 1;\n"
           "    ^\n");
+    // A type at the top level starts a function definition: there are no global variables.
+    CHECK(Errors("float Km = 1;\n") ==
+          "test.sl:1:10: error: syntax error, unexpected '=', expecting '('\n"
+          "    float Km = 1;\n"
+          "             ^\n");
 }
 
 TEST_CASE("invalid characters", "[lang]") {
@@ -312,35 +480,160 @@ TEST_CASE("malformed numbers and escapes", "[lang]") {
           "                                        ^\n");
 }
 
-TEST_CASE("tuples other than triples", "[lang]") {
+TEST_CASE("tuples other than triples and 16-tuples", "[lang]") {
     CHECK(Errors("displacement d()\n{\n    P = (1, 2);\n}\n") ==
-          "test.sl:3:9: error: a tuple must have 3 components\n"
+          "test.sl:3:9: error: a tuple must have 3 or 16 components\n"
           "        P = (1, 2);\n"
           "            ^\n");
-    CHECK(Errors("displacement d() {\n    m = (1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16);\n}\n") ==
-          "test.sl:2:9: error: matrix values are not supported yet\n"
-          "        m = (1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16);\n"
+    CHECK(Errors("displacement d() {\n    m = (1,2,3,4,5,6,7,8,9,10,11,12,13,14,15);\n}\n") ==
+          "test.sl:2:9: error: a tuple must have 3 or 16 components\n"
+          "        m = (1,2,3,4,5,6,7,8,9,10,11,12,13,14,15);\n"
           "            ^\n");
 }
 
 TEST_CASE("assignment to something other than a variable", "[lang]") {
     CHECK(Errors("displacement d()\n{\n    1 = x;\n    a + b += c;\n}\n") ==
-          "test.sl:3:7: error: left side of assignment must be a variable\n"
+          "test.sl:3:7: error: left side of assignment must be a variable or an array element\n"
           "        1 = x;\n"
           "          ^\n"
-          "test.sl:4:11: error: left side of assignment must be a variable\n"
+          "test.sl:4:11: error: left side of assignment must be a variable or an array element\n"
           "        a + b += c;\n"
           "              ^\n");
+    // Only an element of a named array: not of a call's result, nor of an element.
+    CHECK(Errors("displacement d()\n{\n    f(x)[1] = 2;\n    a[1][2] *= 3;\n}\n") ==
+          "test.sl:3:13: error: left side of assignment must be a variable or an array element\n"
+          "        f(x)[1] = 2;\n"
+          "                ^\n"
+          "test.sl:4:13: error: left side of assignment must be a variable or an array element\n"
+          "        a[1][2] *= 3;\n"
+          "                ^\n");
 }
 
-TEST_CASE("matrix type", "[lang]") {
-    CHECK(Errors("displacement d(matrix m = 1)\n{\n    matrix q = m;\n}\n") ==
-          "test.sl:1:16: error: type 'matrix' is not supported yet\n"
-          "    displacement d(matrix m = 1)\n"
-          "                   ^\n"
-          "test.sl:3:5: error: type 'matrix' is not supported yet\n"
-          "        matrix q = m;\n"
-          "        ^\n");
+TEST_CASE("missing ']'", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    P += a[1;\n    float b[2;\n    N = 0;\n}\n") ==
+          "test.sl:3:13: error: syntax error, unexpected ';', expecting ']'\n"
+          "        P += a[1;\n"
+          "                ^\n"
+          "test.sl:4:14: error: syntax error, unexpected ';', expecting ']'\n"
+          "        float b[2;\n"
+          "                 ^\n");
+}
+
+TEST_CASE("array initialisers without braces or of the wrong length", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    float a[3] = (1, 2, 3);\n}\n") ==
+          "test.sl:3:18: error: the initial values of array 'a' must be a list in braces, as in "
+          "{1, 2, 3}\n"
+          "        float a[3] = (1, 2, 3);\n"
+          "                     ^\n");
+    // Without braces the list's commas then look like more names.
+    CHECK(Errors("displacement d()\n{\n    float a[3] = 1, 2, 3;\n}\n") ==
+          "test.sl:3:18: error: the initial values of array 'a' must be a list in braces, as in "
+          "{1, 2, 3}\n"
+          "        float a[3] = 1, 2, 3;\n"
+          "                     ^\n"
+          "test.sl:3:21: error: syntax error, unexpected number, expecting identifier\n"
+          "        float a[3] = 1, 2, 3;\n"
+          "                        ^\n");
+    CHECK(Errors("displacement d(float a[3] = {1, 2})\n"
+                 "{\n    float b = {1}, c[1] = {1, 2};\n}\n") ==
+          "test.sl:1:29: error: array 'a' of size 3 has 2 initial values\n"
+          "    displacement d(float a[3] = {1, 2})\n"
+          "                                ^\n"
+          "test.sl:3:15: error: 'b' is not an array; only an array takes a list in braces\n"
+          "        float b = {1}, c[1] = {1, 2};\n"
+          "                  ^\n"
+          "test.sl:3:27: error: array 'c' of size 1 has 2 initial values\n"
+          "        float b = {1}, c[1] = {1, 2};\n"
+          "                              ^\n");
+}
+
+TEST_CASE("array sizes", "[lang]") {
+    CHECK(Errors("displacement d(float p[])\n{\n    float a[];\n    float b[0], c[2.5];\n"
+                 "    float e[n];\n}\n") ==
+          "test.sl:1:22: error: array 'p' needs a size (only function parameters and externs may "
+          "omit it)\n"
+          "    displacement d(float p[])\n"
+          "                         ^\n"
+          "test.sl:3:11: error: array 'a' needs a size (only function parameters and externs may "
+          "omit it)\n"
+          "        float a[];\n"
+          "              ^\n"
+          "test.sl:4:13: error: the array size must be a positive integer\n"
+          "        float b[0], c[2.5];\n"
+          "                ^\n"
+          "test.sl:4:19: error: the array size must be a positive integer\n"
+          "        float b[0], c[2.5];\n"
+          "                      ^\n"
+          "test.sl:5:13: error: syntax error, unexpected identifier, expecting number or ']'\n"
+          "        float e[n];\n"
+          "                ^\n");
+}
+
+TEST_CASE("a bad initialiser list is skipped up to its '}'", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    float a[2] = {1, 2 3}, b = 1;\n    float c[1] = {};\n"
+                 "    P = 1 +;\n}\n") ==
+          "test.sl:3:24: error: syntax error, unexpected number, expecting ',' or '}'\n"
+          "        float a[2] = {1, 2 3}, b = 1;\n"
+          "                           ^\n"
+          "test.sl:4:19: error: syntax error, unexpected '}'\n"
+          "        float c[1] = {};\n"
+          "                      ^\n"
+          "test.sl:5:12: error: syntax error, unexpected ';'\n"
+          "        P = 1 +;\n"
+          "               ^\n");
+    Parsed p = Run("displacement d() { float a[2] = {1 2}, b = 1; c = 2; }");
+    REQUIRE(p.unit.shaders.size() == 1);
+    CHECK(ToString(p.unit.shaders[0]) ==
+          "(displacement d (params) (body (decl (float a[2] {}) (float b 1)) (= c 2)))");
+}
+
+TEST_CASE("function definitions without a body", "[lang]") {
+    CHECK(Errors("float f(float x);\ndisplacement d()\n{\n    void g();\n    P = 1 +;\n}\n") ==
+          "test.sl:1:17: error: syntax error, unexpected ';', expecting '{'\n"
+          "    float f(float x);\n"
+          "                    ^\n"
+          "test.sl:4:13: error: syntax error, unexpected ';', expecting '{'\n"
+          "        void g();\n"
+          "                ^\n"
+          "test.sl:5:12: error: syntax error, unexpected ';'\n"
+          "        P = 1 +;\n"
+          "               ^\n");
+    CHECK(Errors("displacement d() {}\nfloat f(float x)\n") ==
+          "test.sl:2:17: error: syntax error, unexpected end of file, expecting '{'\n"
+          "    float f(float x)\n"
+          "                    ^\n");
+}
+
+TEST_CASE("bad function parameters", "[lang]") {
+    CHECK(Errors("float f(float x = 1; point p[2] = {0, 1}; float q) { return x; }\n"
+                 "displacement d() {}\n") ==
+          "test.sl:1:15: error: parameter 'x' of function 'f' cannot have a default value\n"
+          "    float f(float x = 1; point p[2] = {0, 1}; float q) { return x; }\n"
+          "                  ^\n"
+          "test.sl:1:28: error: parameter 'p' of function 'f' cannot have a default value\n"
+          "    float f(float x = 1; point p[2] = {0, 1}; float q) { return x; }\n"
+          "                               ^\n");
+    // The body of a function whose parameters do not parse is still read.
+    Parsed p = Run("float f(float x; {\n    return x;\n}\ndisplacement d() { P = ; }\n");
+    CHECK(p.errors ==
+          "test.sl:1:18: error: syntax error, unexpected '{'\n"
+          "    float f(float x; {\n"
+          "                     ^\n"
+          "test.sl:4:24: error: syntax error, unexpected ';'\n"
+          "    displacement d() { P = ; }\n"
+          "                           ^\n");
+    REQUIRE(p.unit.functions.size() == 1);
+    CHECK(ToString(*p.unit.functions[0]) == "(function float f (params) (body (return x)))");
+}
+
+TEST_CASE("extern with an initial value", "[lang]") {
+    CHECK(Errors("displacement d()\n{\n    extern float x = 1, y, z[2] = {1, 2};\n}\n") ==
+          "test.sl:3:18: error: extern variable 'x' cannot have an initial value\n"
+          "        extern float x = 1, y, z[2] = {1, 2};\n"
+          "                     ^\n"
+          "test.sl:3:28: error: extern variable 'z' cannot have an initial value\n"
+          "        extern float x = 1, y, z[2] = {1, 2};\n"
+          "                               ^\n");
 }
 
 TEST_CASE("preprocessor directives", "[lang]") {
@@ -383,9 +676,20 @@ TEST_CASE("nesting limits", "[lang]") {
     std::string parens = "displacement d() { x = " + std::string(300, '(') + "1" +
                          std::string(300, ')') + "; }";
     CHECK(Errors(parens) ==
-          "test.sl:1:279: error: nesting too deep (more than 256 open parentheses and braces)\n"
+          "test.sl:1:279: error: nesting too deep (more than 256 open parentheses, brackets and "
+          "braces)\n"
           "    " + parens + "\n"
           "    " + std::string(278, ' ') + "^\n");
+
+    // Brackets count as well: the body's '{' and 256 '[' of `a[a[a[...]]]` are one too many.
+    std::string brackets = "displacement d() { x = ";
+    for (int i = 0; i < 300; ++i) brackets += "a[";
+    brackets += "1" + std::string(300, ']') + "; }";
+    CHECK(Errors(brackets) ==
+          "test.sl:1:535: error: nesting too deep (more than 256 open parentheses, brackets and "
+          "braces)\n"
+          "    " + brackets + "\n"
+          "    " + std::string(534, ' ') + "^\n");
 
     std::string minus = "displacement d() {\nx = ";
     for (int i = 0; i < 1200; ++i) minus += "- ";
@@ -410,7 +714,7 @@ TEST_CASE("recovery reports several errors in one run", "[lang]") {
           "test.sl:3:12: error: syntax error, unexpected ';'\n"
           "        x = 1 +;\n"
           "               ^\n"
-          "test.sl:4:9: error: a tuple must have 3 components\n"
+          "test.sl:4:9: error: a tuple must have 3 or 16 components\n"
           "        y = (2, 3, 4, 5);\n"
           "            ^\n"
           "test.sl:6:1: error: syntax error, unexpected '}', expecting ';'\n"
@@ -452,7 +756,8 @@ TEST_CASE("garbage bytes never crash", "[lang]") {
     std::mt19937 rng(42);
     const char* pieces[] = {"displacement", "d", "(", ")", "{", "}", ";", ",", "=", "+", ".",
                             "float", "point", "\"s\"", "1.5", "if", "else", "for", "return", "?",
-                            ":", "/*", "//", "\n", "#", "@", "\"", "1e", "matrix", "\xFF", "x"};
+                            ":", "/*", "//", "\n", "#", "@", "\"", "1e", "matrix", "\xFF", "x",
+                            "[", "]", "extern", "void", "output", "{1, 2}"};
     for (int i = 0; i < 300; ++i) {
         std::string text;
         int n = static_cast<int>(rng() % 50);
@@ -466,6 +771,8 @@ TEST_CASE("garbage bytes never crash", "[lang]") {
         // Every failure is reported: no diagnostics means a shader was found.
         CHECK((p.errorCount > 0 || !p.unit.shaders.empty()));
         for (const ShaderDef& s : p.unit.shaders) CHECK(!ToString(s).empty());
+        for (const std::shared_ptr<FunctionDef>& f : p.unit.functions)
+            CHECK(!ToString(*f).empty());
     }
 }
 

@@ -364,6 +364,44 @@ TEST_CASE("affine pow contains the scalar result", "[vm][affine]") {
     Expect("pow(x, y)", CheckOp(42, n, g, r, exponent, BINARY(pow(x, y))), 0.05, 1e300);
 }
 
+TEST_CASE("affine branch functions contain the scalar result", "[vm][affine]") {
+    // Operands from the recipes (nonlinear terms, fresh symbols); tests/vm/branch_test.cpp fixes
+    // every symbol instead, and checks the exactness properties.
+    const int n = Samples(20000) / 2;
+    RegionConfig g;
+    RecipeConfig r;
+    RegionConfig small;
+    small.expLo = -20;
+    small.expHi = 3;
+    RecipeConfig mild = r;
+    mild.coefExpHi = 1;
+    Expect("floor", CheckOp(80, n, small, mild, r, UNARY(floor(x))), 1.0, 1.01);
+    Expect("ceil", CheckOp(81, n, small, mild, r, UNARY(ceil(x * 3.0))), 1.0, 1.01);
+    Expect("round", CheckOp(82, n, small, mild, r, UNARY(round(x))), 1.0, 1.01);
+    Expect("floor wide", CheckOp(83, n, g, r, r, UNARY(floor(x))), 1.0, 1.01);
+    RegionConfig unit;
+    unit.expLo = -20;
+    unit.expHi = 0;
+    RecipeConfig quarter = mild;
+    quarter.scale = 0.25;
+    Expect("asin", CheckOp(84, n, unit, quarter, r, UNARY(asin(x))), 0.3, 1.01);
+    Expect("acos", CheckOp(85, n, unit, quarter, r, UNARY(acos(x))), 0.3, 1.01);
+    Expect("atan", CheckOp(86, n, g, r, r, UNARY(atan(x))), 1.0, 1.01);
+    Expect("atan small", CheckOp(87, n, small, mild, r, UNARY(atan(x))), 1.0, 1.01);
+    Expect("atan2", CheckOp(88, n, small, mild, mild, BINARY(atan2(x, y))), 1.0, 1.01);
+    Expect("atan2 wide", CheckOp(89, n, g, r, r, BINARY(atan2(y, x))), 1.0, 1.01);
+    Expect("Min", CheckOp(90, n, g, r, r, BINARY(Min(x, y))), 1.0, 1.01);
+    Expect("Max", CheckOp(91, n, g, r, r, BINARY(Max(x, y))), 1.0, 1.01);
+    Expect("Less", CheckOp(92, n, g, r, r, BINARY(Less(x, y))), 1.0, 1.01);
+    Expect("LessEq", CheckOp(93, n, g, r, r, BINARY(LessEq(x, y))), 1.0, 1.01);
+    Expect("Equal", CheckOp(94, n, g, r, r, BINARY(Equal(x, y))), 1.0, 1.01);
+    Expect("NotEqual", CheckOp(95, n, g, r, r, BINARY(NotEqual(x, y))), 1.0, 1.01);
+    Expect("And", CheckOp(96, n, g, r, r, BINARY(And(x, y - 1.0))), 1.0, 1.01);
+    Expect("Or", CheckOp(97, n, g, r, r, BINARY(Or(x - 0.5, y))), 1.0, 1.01);
+    Expect("Not", CheckOp(98, n, g, r, r, UNARY(Not(x))), 1.0, 1.01);
+    Expect("Select", CheckOp(99, n, g, r, r, BINARY(Select(Less(x, y), y - x, x * y))), 0.3, 1e300);
+}
+
 namespace {
 
 /// A random straight-line program over registers 0 = u, 1 = v: every built-in, any operands.

@@ -166,7 +166,7 @@ TEST_CASE("layout: little-endian fields at documented offsets, exact doubles", "
                             std::numeric_limits<double>::denorm_min()};
     file.bound.code = {vm::Instr{vm::Op::LoadK, 0, 0, 3, 0}};
     const std::string bytes = vm::SaveBytecode(file);
-    CHECK(bytes.substr(0, 12) == std::string("AFRAYBC\0\1\0\0\0", 12));
+    CHECK(bytes.substr(0, 12) == std::string("AFRAYBC\0\2\0\0\0", 12));
     uint64_t length = 0;
     for (int i = 7; i >= 0; --i) length = (length << 8) | static_cast<uint8_t>(bytes[12 + i]);
     CHECK(length == bytes.size());
@@ -189,7 +189,8 @@ TEST_CASE("wrong magic, wrong version and trailing bytes", "[vm][bytecode]") {
     CHECK(LoadError(wrongMagic) == "not an affray bytecode file");
     std::string version7 = bytes;
     version7[8] = 7;
-    CHECK(LoadError(version7) == "unsupported bytecode version 7 (this affray reads 1)");
+    CHECK(LoadError(version7) == "unsupported bytecode version 7 (this affray reads " +
+                                     std::to_string(vm::kBytecodeVersion) + ")");
     CHECK(LoadError(bytes + "x") == "trailing bytes after the end of the file (1 extra)");
 }
 
@@ -213,8 +214,9 @@ TEST_CASE("every single-byte flip is detected", "[vm][bytecode]") {
             std::string expected = "corrupt file (checksum mismatch)";
             if (i < 8) expected = "not an affray bytecode file";
             if (i >= 8 && i < 12)
-                expected = "unsupported bytecode version " + std::to_string(1u ^ (uint32_t(mask) << (8 * (i - 8)))) +
-                           " (this affray reads 1)";
+                expected = "unsupported bytecode version " +
+                           std::to_string(vm::kBytecodeVersion ^ (uint32_t(mask) << (8 * (i - 8)))) +
+                           " (this affray reads " + std::to_string(vm::kBytecodeVersion) + ")";
             std::string error = LoadError(flipped);
             if (error != expected && wrong++ < 5) FAIL_CHECK("byte " << i << " ^ " << mask << ": " << error);
         }

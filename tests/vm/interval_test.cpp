@@ -1,4 +1,5 @@
-// tests/vm/interval_test.cpp: containment and tightness of every Interval operation.
+// tests/vm/interval_test.cpp: containment and tightness of every Interval operation (the branch
+// functions' exactness properties are in tests/vm/branch_test.cpp).
 // Random operand intervals (magnitudes 1e-6..1e6, across and touching 0, points) and points chosen
 // on purpose (both endpoints, 0, the extrema of sin and cos, random inner points): the double
 // result at every point must lie in the interval result (Unbounded if it is NaN or infinite), and
@@ -199,6 +200,84 @@ TEST_CASE("interval functions contain the scalar result and are tight", "[vm][in
     Report("cos", cs);
     Report("abs", ab);
     Report("sign", sg);
+}
+
+TEST_CASE("interval steps, inverse trigonometry, min/max and logic contain the scalar result",
+          "[vm][interval]") {
+    using std::floor, std::ceil, std::round, std::asin, std::acos, std::atan, std::atan2;
+    const int n = Samples(20000) / 2;
+    Gen g(6);
+    Tally fl, ce, ro, as, ac, at, at2, mn, mx, cmp, logic;
+    for (int i = 0; i < n; ++i) {
+        Interval x = g.interval(-6, 6), y = g.interval(-6, 6);
+        // Magnitudes up to about 1.3: inside, across and outside [-1, 1].
+        Interval unit = g.interval(-4, 0.1);
+        // Near integers and half-integers.
+        Interval near = Interval(0.5 * std::round(g.uniform(-10, 10))) + g.interval(-8, 0);
+        for (const Interval& z : {x, near}) {
+            CheckUnary(
+                fl, z, [](auto a) { return floor(a); }, true, g);
+            CheckUnary(
+                ce, z, [](auto a) { return ceil(a); }, true, g);
+            CheckUnary(
+                ro, z, [](auto a) { return round(a); }, true, g);
+        }
+        CheckUnary(
+            as, unit, [](auto a) { return asin(a); }, true, g);
+        CheckUnary(
+            ac, unit, [](auto a) { return acos(a); }, true, g);
+        CheckUnary(
+            at, x, [](auto a) { return atan(a); }, true, g);
+        CheckBinary(
+            at2, y, x, [](auto a, auto b) { return atan2(a, b); }, g);
+        CheckBinary(
+            at2, unit, x, [](auto a, auto b) { return atan2(a, b); }, g);
+        // Signed zeros on the branch cut: atan2(-0, x < 0) = -pi, atan2(+-0, -0) = +-pi.
+        for (const Interval& yy : {y, unit})
+            if (yy.contains(0.0))
+                for (double p : g.points(x, 2))
+                    for (double zero : {0.0, -0.0})
+                        for (double q : {p, p == 0 ? -0.0 : p})
+                            Contain(
+                                at2, [&] { return "atan2(" + Show(zero) + ", " + Show(q) + ")"; },
+                                std::atan2(zero, q), atan2(yy, x));
+        CheckBinary(
+            mn, x, y, [](auto a, auto b) { return Min(a, b); }, g);
+        CheckBinary(
+            mx, x, y, [](auto a, auto b) { return Max(a, b); }, g);
+        for (const Interval& yy : {y, x}) {
+            CheckBinary(
+                cmp, x, yy, [](auto a, auto b) { return Less(a, b); }, g);
+            CheckBinary(
+                cmp, x, yy, [](auto a, auto b) { return LessEq(a, b); }, g);
+            CheckBinary(
+                cmp, x, yy, [](auto a, auto b) { return Equal(a, b); }, g);
+            CheckBinary(
+                cmp, x, yy, [](auto a, auto b) { return NotEqual(a, b); }, g);
+        }
+        CheckBinary(
+            logic, x, y, [](auto a, auto b) { return And(a, b); }, g);
+        CheckBinary(
+            logic, x, y, [](auto a, auto b) { return Or(a, b); }, g);
+        CheckUnary(
+            logic, x, [](auto a) { return Not(a); }, false, g);
+    }
+    Report("floor", fl);
+    Report("ceil", ce);
+    Report("round", ro);
+    Report("asin", as);
+    Report("acos", ac);
+    Report("atan", at);
+    Report("atan2", at2);
+    Report("Min", mn);
+    Report("Max", mx);
+    Report("comparisons", cmp);
+    Report("logic", logic);
+    CHECK(as.bounded > n / 10);
+    CHECK(as.bounded < n);  // some ranges leave [-1, 1]
+    CHECK(atan2(Interval(1, 2), Interval(1, 2)).lo() > 0.4);
+    CHECK(Min(Interval(1, 4), Interval(2, 3)).hi() == 3);
+    CHECK(Max(Interval(1, 4), Interval(2, 3)).lo() == 2);
 }
 
 TEST_CASE("interval sin and cos over periods and far from 0", "[vm][interval]") {

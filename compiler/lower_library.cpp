@@ -1,0 +1,229 @@
+// compiler/lower_library.cpp: the built-ins that need more than a table row (builtins.cpp):
+// noise, pnoise and cellnoise (their result type comes from the context: `float noise(P)`,
+// `vector v = noise(P)`), the transforms (their space names are strings), spline (any number
+// of knots, an optional basis name) and filterstep (optional trailing parameter pairs).
+#include <algorithm>
+
+#include "compiler/lowerer.h"
+
+namespace affray::compiler {
+
+using lang::Expr;
+
+namespace {
+
+bool IsNoise(const std::string& name) { return name == "noise" || name == "pnoise" || name == "cellnoise"; }
+bool IsTransform(const std::string& name) {
+    return name == "transform" || name == "vtransform" || name == "ntransform";
+}
+
+// Spaces a shader may name. Every one is the identity for now: the scenes affray reads are in
+// world space with no transform stack, so current, world, object, shader and camera coincide
+// (`affray eval` documents the same). The projective ones cannot be the identity.
+bool IsKnownSpace(const std::string& s) {
+    return s == "current" || s == "world" || s == "object" || s == "shader" || s == "camera";
+}
+bool IsProjectiveSpace(const std::string& s) { return s == "screen" || s == "raster" || s == "NDC"; }
+
+}  // namespace
+
+bool Lowerer::IsLibraryCall(const std::string& name) const {
+    return IsNoise(name) || IsTransform(name) || name == "spline" || name == "filterstep";
+}
+
+std::optional<std::string> Lowerer::SpaceName(const Value& v, lang::SourceLoc loc) {
+    std::optional<std::string> name = StringOf(v);
+    if (!name) {
+        m_diags.error(loc, v.type == Type::String ? "the space name must be known when the shader is compiled "
+                                                    "(here it depends on a condition)"
+                                                  : "expected the name of a coordinate space, got " + Article(v.type));
+        return std::nullopt;
+    }
+    if (IsProjectiveSpace(*name)) {
+        m_diags.error(loc, "coordinate space '" + *name + "' is projective and not supported");
+        return std::nullopt;
+    }
+    if (!IsKnownSpace(*name)) {
+        m_diags.error(loc, "unknown coordinate space '" + *name + "'");
+        return std::nullopt;
+    }
+    return name;
+}
+
+std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value> args) {
+    const std::string& name = e.name;
+    const int line = e.loc.line;
+    for (Value& a : args)
+        if (a.type == Type::Bool) a.type = Type::Float;
+    auto argLoc = [&](size_t i) { return e.args[i]->loc; };
+
+    if (IsTransform(name)) {
+        // transform([from,] to, x): the spaces are checked; the point itself is unchanged.
+        if (args.size() != 2 && args.size() != 3) {
+            m_diags.error(e.loc, "'" + name + "' expects 2 or 3 arguments, got " + std::to_string(args.size()));
+            return std::nullopt;
+        }
+        for (size_t i = 0; i + 1 < args.size(); ++i)
+            if (!SpaceName(args[i], argLoc(i))) return std::nullopt;
+        const Value& x = args.back();
+        if (!IsSpatial(x.type) && x.type != Type::Float) {
+            m_diags.error(argLoc(args.size() - 1), "'" + name + "' transforms a point, vector or normal, not " + Article(x.type));
+            return std::nullopt;
+        }
+        const Type result = name == "transform" ? Type::Point : name == "vtransform" ? Type::Vector : Type::Normal;
+        return m_ops.Promote(x, x.type == Type::Float ? result : IsSpatial(x.type) ? x.type : result);
+    }
+
+    if (IsNoise(name)) {
+        // Coordinates: a float, two floats, a point, or a point and a float (1 to 4 dimensions);
+        // pnoise then takes periods of the same shape.
+        const bool periodic = name == "pnoise";
+        const size_t half = periodic ? args.size() / 2 : args.size();
+        auto coordinates = [&](size_t first, size_t count, std::vector<ValueId>* out) {
+            if (count == 1 && args[first].type == Type::Float) {
+                out->push_back(args[first].c[0]);
+            } else if (count == 1 && IsSpatial(args[first].type)) {
+                out->insert(out->end(), args[first].c.begin(), args[first].c.end());
+            } else if (count == 2 && args[first].type == Type::Float && args[first + 1].type == Type::Float) {
+                out->push_back(args[first].c[0]);
+                out->push_back(args[first + 1].c[0]);
+            } else if (count == 2 && IsSpatial(args[first].type) && args[first + 1].type == Type::Float) {
+                out->insert(out->end(), args[first].c.begin(), args[first].c.end());
+                out->push_back(args[first + 1].c[0]);
+            } else {
+                return false;
+            }
+            return true;
+        };
+        std::vector<ValueId> operands, periods;
+        bool ok = (args.size() == 1 || args.size() == 2 || (periodic && args.size() == 4)) &&
+                  (!periodic || args.size() % 2 == 0) && coordinates(0, half, &operands);
+        if (ok && periodic) ok = coordinates(half, half, &periods) && periods.size() == operands.size();
+        if (!ok) {
+            std::string got;
+            for (const Value& a : args) got += (got.empty() ? "" : ", ") + std::string(ToString(a.type));
+            m_diags.error(e.loc, "no version of '" + name + "' takes (" + got + "); expected " +
+                                     (periodic ? "(x, period) with x a float, two floats, a point, or a point and a float"
+                                               : "a float, two floats, a point, or a point and a float"));
+            return std::nullopt;
+        }
+        operands.insert(operands.end(), periods.begin(), periods.end());
+        const IrOp op = name == "noise" ? IrOp::Noise : periodic ? IrOp::PNoise : IrOp::CellNoise;
+        // The result type comes from the context: a triple context gets three independent
+        // channels, anything else the float.
+        const Type result = IsTriple(m_expected) ? m_expected : Type::Float;
+        Value out{result, {}};
+        for (int c = 0; c < 3; ++c)
+            out.c[c] = IsTriple(result) || c == 0 ? ir().Noise(op, operands, c, line) : out.c[0];
+        return out;
+    }
+
+    if (name == "filterstep") {
+        // filterstep(edge, x [, "param", value...]) is step(edge, x) box-filtered over the
+        // width x sweeps across the surface element, |Du(x) du| + |Dv(x) dv| ("width" scales
+        // it); filterstep(edge, x0, x1, ...) filters over [x0, x1].
+        size_t numeric = 0;
+        while (numeric < args.size() && args[numeric].type != Type::String) ++numeric;
+        double widthScale = 1.0;
+        for (size_t i = numeric; i < args.size(); i += 2) {
+            std::optional<std::string> param = StringOf(args[i]);
+            std::optional<double> v = i + 1 < args.size() ? ir().ConstValue(args[i + 1].c[0]) : std::nullopt;
+            if (!param || !v || args[i + 1].type != Type::Float) {
+                m_diags.error(argLoc(i), "filterstep's optional arguments are pairs of a name and a constant float");
+                return std::nullopt;
+            }
+            if (*param == "width") widthScale = *v;
+            else if (*param != "filter") {
+                m_diags.error(argLoc(i), "unknown filterstep parameter '" + *param + "'");
+                return std::nullopt;
+            }
+        }
+        if ((numeric != 2 && numeric != 3) ||
+            std::any_of(args.begin(), args.begin() + numeric, [](const Value& a) { return a.type != Type::Float; })) {
+            m_diags.error(e.loc, "'filterstep' expects (float edge, float x) or (float edge, float x0, float x1)");
+            return std::nullopt;
+        }
+        const Value edge = args[0];
+        Value lo, hi;
+        if (numeric == 3) {
+            lo = args[1];
+            hi = args[2];
+        } else {
+            const Value& x = args[1];
+            auto global = [&](vm::Global g) { return m_ops.Float(ir().Global(g, 0)); };
+            Value w = m_ops.Add(m_ops.Map(IrOp::Abs, m_ops.Mul(m_ops.Map(IrOp::DerivU, x), global(vm::Global::du))),
+                                m_ops.Map(IrOp::Abs, m_ops.Mul(m_ops.Map(IrOp::DerivV, x), global(vm::Global::dv))));
+            w = m_ops.Mul(w, m_ops.Constant(0.5 * widthScale));
+            lo = m_ops.Sub(x, w);
+            hi = m_ops.Add(x, w);
+        }
+        // The fraction of [lo, hi] above the edge; a zero-width filter is the plain step.
+        const Value width = m_ops.Sub(hi, lo);
+        const Value filtered =
+            m_ops.Clamp(m_ops.Div(m_ops.Sub(hi, edge), width), m_ops.Constant(0.0), m_ops.Constant(1.0));
+        const Value step = m_ops.Binary(IrOp::Le, edge, hi);
+        return m_ops.SelectValue(m_ops.Binary(IrOp::Lt, m_ops.Constant(0.0), width), filtered, step);
+    }
+
+    // spline([basis,] t, k0, k1, ..., kn): RenderMan's spline through n+1 >= 4 knots (floats or
+    // all triples), t clamped to [0, 1] spread over the n - 2 segments.
+    size_t first = 0;
+    std::string basis = "catmull-rom";
+    if (!args.empty() && args[0].type == Type::String) {
+        std::optional<std::string> b = StringOf(args[0]);
+        if (!b) {
+            m_diags.error(argLoc(0), "the spline basis must be known when the shader is compiled");
+            return std::nullopt;
+        }
+        basis = *b;
+        first = 1;
+    }
+    if (basis != "catmull-rom" && basis != "linear") {
+        m_diags.error(argLoc(0), "spline basis '" + basis + "' is not supported yet (catmull-rom and linear are)");
+        return std::nullopt;
+    }
+    if (args.size() < first + 5 || args[first].type != Type::Float) {
+        m_diags.error(e.loc, "'spline' expects a float parameter and at least 4 knots");
+        return std::nullopt;
+    }
+    Type knotType = args[first + 1].type;
+    for (size_t i = first + 1; i < args.size(); ++i) {
+        const bool fits = args[i].type == knotType || (IsSpatial(args[i].type) && IsSpatial(knotType)) ||
+                          (args[i].type == Type::Float && IsTriple(knotType));
+        if (!fits && IsTriple(args[i].type) && knotType == Type::Float) knotType = args[i].type;
+        else if (!fits) {
+            m_diags.error(argLoc(i), "spline knots must all be floats or all triples");
+            return std::nullopt;
+        }
+    }
+    std::vector<Value> knots;
+    for (size_t i = first + 1; i < args.size(); ++i) knots.push_back(m_ops.Promote(args[i], knotType));
+    const Value t = m_ops.Clamp(args[first], m_ops.Constant(0.0), m_ops.Constant(1.0));
+    return Spline(basis, t, knots);
+}
+
+Value Lowerer::Spline(const std::string& basis, const Value& t, const std::vector<Value>& knots) {
+    const int segments = static_cast<int>(knots.size()) - 3;
+    const Value x = m_ops.Mul(t, m_ops.Constant(segments));
+    // The segment: floor(x), with t = 1 in the last one.
+    const Value segment = m_ops.Binary(IrOp::Min, m_ops.Map(IrOp::Floor, x), m_ops.Constant(segments - 1));
+    const Value u = m_ops.Sub(x, segment);
+    auto piece = [&](int s) {
+        const Value &k0 = knots[s], &k1 = knots[s + 1], &k2 = knots[s + 2], &k3 = knots[s + 3];
+        if (basis == "linear") return m_ops.Add(k1, m_ops.Mul(u, m_ops.Sub(k2, k1)));
+        // Catmull-Rom: 0.5 * ((2 k1) + (-k0 + k2) u + (2k0 - 5k1 + 4k2 - k3) u^2 + (-k0 + 3k1 - 3k2 + k3) u^3),
+        // in Horner form.
+        auto c = [&](double a, double b, double cc, double d) {
+            return m_ops.Add(m_ops.Add(m_ops.Mul(m_ops.Constant(a), k0), m_ops.Mul(m_ops.Constant(b), k1)),
+                             m_ops.Add(m_ops.Mul(m_ops.Constant(cc), k2), m_ops.Mul(m_ops.Constant(d), k3)));
+        };
+        const Value c0 = c(0, 1, 0, 0), c1 = c(-0.5, 0, 0.5, 0), c2 = c(1, -2.5, 2, -0.5), c3 = c(-0.5, 1.5, -1.5, 0.5);
+        return m_ops.Add(c0, m_ops.Mul(u, m_ops.Add(c1, m_ops.Mul(u, m_ops.Add(c2, m_ops.Mul(u, c3))))));
+    };
+    Value out = piece(segments - 1);
+    for (int s = segments - 2; s >= 0; --s)
+        out = m_ops.SelectValue(m_ops.Binary(IrOp::Eq, segment, m_ops.Constant(s)), piece(s), out);
+    return out;
+}
+
+}  // namespace affray::compiler

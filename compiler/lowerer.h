@@ -1,0 +1,187 @@
+// compiler/lowerer.h: the lowering walk's state, shared by its files (private to compiler/).
+// lower.cpp owns names, declarations and expressions; lower_flow.cpp owns statements and
+// control flow. The walk keeps variables as IR values, so control flow becomes data flow:
+//  - `alive` is a boolean IR value: "execution reaches this point" on the current path. An
+//    assignment under an alive that is not the constant 1 selects between the new and the old
+//    value, so paths that already left (break, continue, return) keep their values.
+//  - if/else lowers both arms from the same state and merges the two states with Select on the
+//    condition (one Select per variable an arm changed). A constant condition folds the Select
+//    away, so only the arm taken remains.
+//  - Loops are unrolled: each iteration runs while `alive && condition` may hold; a constant
+//    condition ends the unrolling exactly, a varying one after kVaryingLoopBudget iterations,
+//    past which the paths still running get NaN (Unbounded in bound types), never a wrong value.
+// Sources: Allen, Kennedy, Porterfield & Warren, "Conversion of control dependence to data
+// dependence" (POPL 1983), i.e. if-conversion; OSL's runtime optimiser for the folding.
+#pragma once
+
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "compiler/lower.h"
+
+namespace affray::compiler {
+
+struct Variable {
+    Type type = Type::Float;
+    Value value;
+    bool assigned = false;
+    bool writable = true;
+    bool isGlobal = false;
+    bool used = false;
+    lang::SourceLoc loc;
+    /// Arrays: the size (else -1) and the elements, each of `type`; `value` is unused.
+    int arraySize = -1;
+    std::vector<Value> elements;
+};
+
+/// A loop or a function body being lowered: which paths left it, for break/continue/return.
+struct FlowContext {
+    bool isLoop = true;
+    bool isShader = false;  // the shader body (a function that returns nothing)
+    /// Paths that left for good (break, return; a multi-level break or continue passing through).
+    ValueId left = kNoValue;
+    /// Paths that skip the rest of this iteration (continue).
+    ValueId skipped = kNoValue;
+    /// Functions: the value returned on each path so far, and its type.
+    Value returned;
+    Type returnType = Type::Void;
+};
+
+/// Everything control flow must save and merge.
+struct FlowState {
+    std::vector<std::unordered_map<std::string, Variable>> scopes;
+    ValueId alive = kNoValue;
+    std::vector<FlowContext> contexts;
+};
+
+class Lowerer {
+  public:
+    Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues);
+
+    bool Run(const lang::ShaderDef& shader, const std::vector<std::shared_ptr<lang::FunctionDef>>& functions);
+
+    // Iterations a loop with a condition that varies over the surface is unrolled for.
+    static constexpr int kVaryingLoopBudget = 64;
+    // Iterations a loop with a constant condition may run.
+    static constexpr int kConstantLoopBudget = 100000;
+    // IR nodes a shader may grow to by unrolling.
+    static constexpr size_t kMaxNodes = 4'000'000;
+
+  private:
+    // --- expressions (lower.cpp)
+    std::optional<Value> LowerExpr(const lang::Expr& e);
+    std::optional<Value> LowerBinary(const lang::Expr& e);
+    std::optional<Value> LowerComparison(const lang::Expr& e, const Value& a, const Value& b);
+    std::optional<Value> LowerTernary(const lang::Expr& e);
+    std::optional<Value> LowerAssign(const lang::Expr& e);
+    std::optional<Value> LowerCast(const lang::Expr& e);
+    std::optional<Value> LowerIdent(const lang::Expr& e);
+    std::optional<Value> LowerCall(const lang::Expr& e);
+    /// comp, setcomp and setxcomp/setycomp/setzcomp: component access by a constant index, the
+    /// setters writing to their first argument, which must be a variable.
+    std::optional<Value> LowerComponentCall(const lang::Expr& e);
+    /// A condition: a boolean, or a float meaning "!= 0". Reports and returns nothing otherwise.
+    std::optional<ValueId> LowerCondition(const lang::Expr& e);
+
+    // --- user functions and arrays (lower_functions.cpp)
+    /// The function `name` visible here (nested definitions shadow outer ones), or null.
+    const lang::FunctionDef* FindFunction(const std::string& name) const;
+    void DefineFunction(const lang::FunctionDef& f);
+    /// Inlines a call of `f`: its body is lowered in place with the arguments bound to its
+    /// parameters (output parameters written back), so recursion is a compile error.
+    std::optional<Value> LowerUserCall(const lang::Expr& call, const lang::FunctionDef& f);
+    std::optional<Value> LowerIndex(const lang::Expr& e);
+    /// Element `index` of an array: a constant index is checked and picked, a varying one
+    /// selects among the elements (NaN outside the array).
+    std::optional<Value> Element(const Variable& array, const Value& index, lang::SourceLoc loc);
+    void StoreElement(Variable& array, const Value& index, const Value& value);
+    /// Declares an array variable from `d` (its initialiser list lowered here).
+    void LowerArrayDecl(const lang::VarDecl& d);
+
+    // --- built-ins that need the lowerer (lower_library.cpp)
+    bool IsLibraryCall(const std::string& name) const;
+    std::optional<Value> LowerLibraryCall(const lang::Expr& e, std::vector<Value> args);
+    /// A string naming a known, affine coordinate space; reports and returns nothing otherwise.
+    std::optional<std::string> SpaceName(const Value& v, lang::SourceLoc loc);
+    Value Spline(const std::string& basis, const Value& t, const std::vector<Value>& knots);
+    /// Lowers `e` with `expected` as the type its context wants (picks noise's result type).
+    std::optional<Value> LowerExpecting(const lang::Expr& e, Type expected);
+
+    // --- statements and control flow (lower_flow.cpp)
+    void LowerStmt(const lang::Stmt& s);
+    void LowerIf(const lang::Stmt& s);
+    void LowerLoop(const lang::Stmt& s);
+    void LowerJump(const lang::Stmt& s);
+    /// Merges `thenState` (the state after the then arm) into the current state (after the else
+    /// arm): cond ? then : else for every variable, alive and flow flag that differ.
+    void Merge(ValueId cond, const FlowState& thenState);
+    /// Writes `value` to `var` on the paths still alive.
+    void Store(Variable& var, const Value& value);
+    /// `value` where alive, `old` elsewhere.
+    Value Guard(const Value& value, const Value& old);
+    /// Reaches a Param node.
+    bool DependsOnParameter(ValueId v) const;
+    /// Marks in `into` the variables the current state has used (after lowering dead code).
+    void KeepUsedFlags(FlowState& into) const;
+    /// `v` simplified on the assumption that the current `alive` holds.
+    ValueId AssumingAlive(ValueId v);
+    /// alive with every path that left an enclosing context (from `firstContext` out) removed.
+    ValueId AliveExcludingLeft(ValueId base, size_t firstContext);
+
+    // --- declarations (lower.cpp)
+    void LowerDecl(const lang::VarDecl& d, std::optional<Value> init);
+    /// Declares `d` (as 0 of `type`, assigned and used) after an error in its declaration, so
+    /// that its later uses do not repeat the error as "unknown identifier".
+    void DeclarePlaceholder(const lang::VarDecl& d, Type type);
+    /// Converts `v` for storing in a variable of `target` type (float -> triple promotion,
+    /// point/vector/normal interchange); reports and returns nothing if it cannot.
+    std::optional<Value> Convert(const Value& v, Type target, lang::SourceLoc loc, const std::string& what);
+
+    void PushScope() { m_state.scopes.emplace_back(); }
+    void PopScope();
+    Variable* Find(const std::string& name);
+    IrBuilder& ir() { return m_out.ir; }
+    ValueId True() { return ir().Const(1.0); }
+    ValueId False() { return ir().Const(0.0); }
+    int Line() const { return m_line; }
+    /// A string is a compile-time constant: its index in m_strings.
+    Value StringValue(const std::string& text);
+    /// The text of a string value, if it is one constant string.
+    std::optional<std::string> StringOf(const Value& v) const;
+
+    LoweredShader& m_out;
+    lang::Diagnostics& m_diags;
+    ValueOps m_ops;
+    FlowState m_state;
+    /// The instance's parameter values (then parameters are constants), or null (registers).
+    const std::vector<std::vector<double>>* m_paramValues;
+    std::vector<std::string> m_strings;
+    /// The type the context of the call being lowered wants (Void: none).
+    Type m_expected = Type::Void;
+    /// Functions by visibility: (scope depth at definition, definition), innermost last.
+    std::vector<std::pair<size_t, const lang::FunctionDef*>> m_functions;
+    /// Functions being inlined, outermost first.
+    std::vector<const lang::FunctionDef*> m_callStack;
+    /// Per function being inlined: its caller's scopes (where `extern` looks) and the names it
+    /// declared extern (written back after the call).
+    struct ExternFrame {
+        std::vector<std::unordered_map<std::string, Variable>>* callerScopes;
+        std::vector<std::string> names;
+    };
+    std::vector<ExternFrame> m_externs;
+    /// Declares `d` (extern) as an alias of the caller's variable of that name.
+    void DeclareExtern(const lang::VarDecl& d);
+    /// Every function defined, and those inlined at least once.
+    std::vector<const lang::FunctionDef*> m_defined;
+    std::unordered_set<const lang::FunctionDef*> m_called;
+    /// Lowering a function nobody calls, for its diagnostics only.
+    bool m_checkingOnly = false;
+    void CheckUncalledFunctions();
+    int m_line = 0;
+    bool m_reportedSize = false;
+};
+
+std::string Article(Type t);
+
+}  // namespace affray::compiler
