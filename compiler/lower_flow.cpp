@@ -51,7 +51,7 @@ ValueId Lowerer::AssumingAlive(ValueId v) {
     std::unordered_map<ValueId, ValueId> memo;
     constexpr int kMaxDepth = 4000;
     std::function<ValueId(ValueId, int)> rewrite = [&](ValueId x, int depth) -> ValueId {
-        const IrNode& n = ir().node(x);
+        const IrNode n = ir().node(x);  // a copy: rewriting creates nodes, which may move the table
         if (n.count == 0 || depth > kMaxDepth) return x;
         if (auto it = memo.find(x); it != memo.end()) return it->second;
         ValueId result;

@@ -232,7 +232,7 @@ TEST_CASE("the disassembly shows opcodes, constants and source lines", "[compile
     CHECK(listing.find("(0.25)") != std::string::npos);
 }
 
-TEST_CASE("generic programs read parameters; specialised ones fold them away", "[compiler][specialise]") {
+TEST_CASE("generic programs read parameters, specialised ones fold them away", "[compiler][specialise]") {
     const std::string src = R"(
         displacement t(float Km = 0.5, freq = 4; vector dir = (0, 0, 1)) {
             P += Km * sin(freq * u) * dir;

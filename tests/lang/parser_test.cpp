@@ -509,7 +509,7 @@ TEST_CASE("assignment to something other than a variable", "[lang]") {
           "                ^\n");
 }
 
-TEST_CASE("missing ']'", "[lang]") {
+TEST_CASE("a missing closing bracket", "[lang]") {
     CHECK(Errors("displacement d()\n{\n    P += a[1;\n    float b[2;\n    N = 0;\n}\n") ==
           "test.sl:3:13: error: syntax error, unexpected ';', expecting ']'\n"
           "        P += a[1;\n"

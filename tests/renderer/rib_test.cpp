@@ -207,7 +207,7 @@ TEST_CASE("RIB defaults and variants", "[renderer]") {
     RequireVec(scene->patches[1].corners[3], {1, 1, 4});
 }
 
-TEST_CASE("Unsupported RIB requests warn once per name; unknown ones are errors", "[renderer]") {
+TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors", "[renderer]") {
     std::string error;
     std::vector<std::string> warnings;
     auto scene = ParseRib(

@@ -39,7 +39,7 @@ struct Rng {
 // ---------------------------------------------------------------------------------------------
 // The double functions.
 
-TEST_CASE("noise values lie in [0, 1] with mean 0.5 and the measured spread", "[vm][noise]") {
+TEST_CASE("noise values lie between 0 and 1 with mean 0.5 and the measured spread", "[vm][noise]") {
     // Standard deviations measured over 1e6 points (vm/noise.h's gradient sets and scales):
     // d = 1: 0.192-0.199, d = 2: 0.162, d = 3: 0.1286, d = 4: 0.1062. The bounds sit ~10 % below:
     // the sample deviation of 1e5 points of a field correlated over about one cell varies by ~1 %
@@ -137,7 +137,7 @@ TEST_CASE("noise Dual<double> derivatives match central differences", "[vm][nois
     CHECK(maxGradient < 1.6);  // measured 1.55 (d = 2); the continuity test relies on < 4
 }
 
-TEST_CASE("cellnoise is constant on cells, differs between them and lies in [0, 1)", "[vm][noise]") {
+TEST_CASE("cellnoise is constant on cells, differs between them and lies between 0 and 1", "[vm][noise]") {
     Rng rng(13);
     for (int dims = 1; dims <= 4; ++dims) {
         int same = 0, pairs = 0;
@@ -371,7 +371,7 @@ struct ScaleProof {
     }
 };
 
-TEST_CASE("noise scale: computer-assisted proof that unclamped noise lies in [0, 1]", "[vm][noise]") {
+TEST_CASE("noise scale: computer-assisted proof that unclamped noise lies between 0 and 1", "[vm][noise]") {
     // d = 1 is proven analytically in vm/noise.h (its sup 1/2 is attained, so no margin is left
     // for bisection); check its premise: every gradient has |g| <= 1 and the scale is 1.
     const NoiseGradientSet& one = NoiseGradients(1);
