@@ -1,6 +1,8 @@
 // compiler/compile.cpp: parse -> check and lower -> emit two programs -> verify.
 #include "compiler/compile.h"
 
+#include <algorithm>
+#include <map>
 #include <stdexcept>
 
 #include "compiler/emit.h"
@@ -59,12 +61,39 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         // The instance: lowered again with its parameter values as constants, so that the
         // branches and loops they decide fold during lowering (bytecode specialisation cannot
         // undo the unrolling of a loop whose bound was a parameter).
+        std::vector<ParamOverride> numeric;
+        std::map<std::string, std::string> strings;
+        bool stringsOk = true;
+        for (const ParamOverride& o : overrides) {
+            const bool isStringParam = std::count(lowered->stringParams.begin(), lowered->stringParams.end(), o.name) > 0;
+            if (o.text && !isStringParam) {
+                const bool known = std::any_of(params.begin(), params.end(), [&](auto& p) { return p.name == o.name; });
+                result.paramErrors.push_back(known ? "parameter '" + o.name + "' of shader '" + shader.name +
+                                                         "' is not a string, got a string value"
+                                                   : "shader '" + shader.name + "' has no parameter '" + o.name + "'");
+                stringsOk = false;
+            } else if (o.text) {
+                strings[o.name] = *o.text;
+            } else if (isStringParam) {
+                result.paramErrors.push_back("parameter '" + o.name + "' of shader '" + shader.name +
+                                             "' is a string, got a number");
+                stringsOk = false;
+            } else {
+                numeric.push_back(o);
+            }
+        }
         std::optional<std::vector<std::vector<double>>> values =
-            BindParameters(shader.genericBound, overrides, &result.paramErrors);
-        if (!values) return result;
+            BindParameters(shader.genericBound, numeric, &result.paramErrors);
+        if (!values || !stringsOk) return result;
         lang::Diagnostics again(file);  // the same diagnostics as the generic lowering
-        std::optional<LoweredShader> instance = Lower(unit, again, &*values);
+        std::optional<LoweredShader> instance = Lower(unit, again, &*values, &strings);
+        if (!instance && again.hasErrors()) {
+            // A string value can make code reachable that the defaults left out (a space name).
+            result.diagnostics += again.format();
+            return result;
+        }
         if (!instance) throw std::logic_error("lowering " + path + " with its parameter values failed");
+        shader.stringParams = lowered->stringParams;
         shader.bound = Emit(instance->ir, {{"P", instance->finalP}}, {});
         shader.shade = Emit(instance->ir, {{"P", instance->finalP}, {"N", instance->finalN}}, {});
         for (vm::Program* p : {&shader.bound, &shader.shade}) {
@@ -101,6 +130,13 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
     for (const vm::ProgramParam& p : shader.genericShade.params)
         shader.params.push_back({p.name, TypeFromName(p.type), p.defaults, false});
     shader.opsBeforeOptimisation = static_cast<int>(shader.genericShade.code.size());
+    for (const ParamOverride& o : overrides) {
+        if (o.text) {
+            result.paramErrors.push_back("parameter '" + o.name + "': string values need the shader's source (.sl); '" +
+                                         path + "' is compiled bytecode");
+            return result;
+        }
+    }
     if (!SpecialiseShader(shader, overrides, &result.paramErrors)) return result;
     result.shader = std::move(shader);
     return result;

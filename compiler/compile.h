@@ -26,6 +26,7 @@ struct CompiledShader {
     vm::Program bound;
     vm::Program shade;
     std::vector<ParamInfo> params;
+    std::vector<std::string> stringParams;
     /// Scalar operations lowering asked for, before folding, sharing and dead-code removal.
     int opsBeforeOptimisation = 0;
 };

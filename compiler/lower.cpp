@@ -21,8 +21,9 @@ using lang::SourceLoc;
 using lang::Stmt;
 using lang::StmtKind;
 
-Lowerer::Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues)
-    : m_out(out), m_diags(diags), m_ops(out.ir), m_paramValues(paramValues) {}
+Lowerer::Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues,
+                 const std::map<std::string, std::string>* stringValues)
+    : m_out(out), m_diags(diags), m_ops(out.ir), m_paramValues(paramValues), m_stringValues(stringValues) {}
 
 Value Lowerer::StringValue(const std::string& text) {
     size_t index = 0;
@@ -540,6 +541,8 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
             Variable var;
             var.type = Type::String;
             var.value = init ? *init : StringValue("");
+            m_out.stringParams.push_back(p.name);
+            if (m_stringValues && m_stringValues->count(p.name)) var.value = StringValue(m_stringValues->at(p.name));
             var.assigned = var.used = true;
             var.writable = false;
             var.loc = p.loc;
@@ -606,7 +609,8 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
 }
 
 std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
-                                   const std::vector<std::vector<double>>* paramValues) {
+                                   const std::vector<std::vector<double>>* paramValues,
+                                   const std::map<std::string, std::string>* stringValues) {
     if (unit.shaders.empty()) {
         if (!diags.hasErrors()) diags.error({1, 1}, "no shader definition in file");
         return std::nullopt;
@@ -620,7 +624,7 @@ std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diag
         return std::nullopt;
     }
     LoweredShader out;
-    Lowerer lowerer(out, diags, paramValues);
+    Lowerer lowerer(out, diags, paramValues, stringValues);
     if (!lowerer.Run(shader, unit.functions)) return std::nullopt;
     return out;
 }

@@ -32,14 +32,19 @@ struct LoweredShader {
     bool writesP = false;
     bool writesN = false;
     std::vector<ParamInfo> params;
+    /// String parameters: compile-time constants (their default, or the instance's value), so
+    /// not in `params` and not in the programs.
+    std::vector<std::string> stringParams;
 };
 
 /// Checks and lowers the one displacement shader in `unit`. Parameters stay IR Param nodes (the
 /// i-th declared parameter is index i of `params`), with constant defaults, unless
 /// `paramValues` gives every parameter's value: then they are constants, and every branch and
-/// loop they decide is folded while lowering (a shader instance's specialisation). Problems go
+/// loop they decide is folded while lowering (a shader instance's specialisation); string
+/// parameters take their value from `stringValues` when it names them. Problems go
 /// to `diags`; returns nothing if there was any error.
 std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
-                                   const std::vector<std::vector<double>>* paramValues = nullptr);
+                                   const std::vector<std::vector<double>>* paramValues = nullptr,
+                                   const std::map<std::string, std::string>* stringValues = nullptr);
 
 }  // namespace affray::compiler

@@ -14,6 +14,7 @@
 // dependence" (POPL 1983), i.e. if-conversion; OSL's runtime optimiser for the folding.
 #pragma once
 
+#include <map>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -57,7 +58,8 @@ struct FlowState {
 
 class Lowerer {
   public:
-    Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues);
+    Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues,
+            const std::map<std::string, std::string>* stringValues);
 
     bool Run(const lang::ShaderDef& shader, const std::vector<std::shared_ptr<lang::FunctionDef>>& functions);
 
@@ -156,6 +158,8 @@ class Lowerer {
     FlowState m_state;
     /// The instance's parameter values (then parameters are constants), or null (registers).
     const std::vector<std::vector<double>>* m_paramValues;
+    /// The instance's string parameter values, or null (defaults).
+    const std::map<std::string, std::string>* m_stringValues;
     std::vector<std::string> m_strings;
     /// The type the context of the call being lowered wants (Void: none).
     Type m_expected = Type::Void;

@@ -16,8 +16,19 @@ namespace affray::compiler {
 
 /// A value given to a shader parameter by the scene (or `affray eval --param`).
 struct ParamOverride {
+    ParamOverride() = default;
+    ParamOverride(std::string name_, std::vector<double> numbers_) : name(std::move(name_)), numbers(std::move(numbers_)) {}
+    /// A string parameter's value.
+    static ParamOverride String(std::string name, std::string text) {
+        ParamOverride o;
+        o.name = std::move(name);
+        o.text = std::move(text);
+        return o;
+    }
+
     std::string name;
-    std::vector<double> numbers;  // 1 for a float, 3 (or 1, spread) for a triple
+    std::vector<double> numbers;      // 1 for a float, 3 (or 1, spread) for a triple
+    std::optional<std::string> text;  // a string parameter's value (then `numbers` is empty)
 };
 
 /// A global that is the same everywhere on a surface (N of a flat patch, E, du...): the

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "compiler/shader_cache.h"
 #include "renderer/camera.h"
 #include "renderer/shade.h"
 
@@ -136,6 +137,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
     out->desc = desc;
     out->primitives.clear();
     const glm::dvec3 eye = Camera(desc.camera).Position();
+    compiler::ShaderCache cache;
     for (const PatchDesc& patch : desc.patches) {
         Primitive prim;
         prim.patch.corners = patch.corners;
@@ -153,13 +155,16 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
             }
             std::vector<compiler::ParamOverride> overrides;
             for (const ParamValue& p : ref.params) {
-                if (!p.strings.empty()) {
-                    *error = where + "string value for parameter '" + p.name + "' is not supported yet";
+                if (p.strings.size() > 1) {
+                    *error = where + "parameter '" + p.name + "' takes one string, got " + std::to_string(p.strings.size());
                     return false;
                 }
-                overrides.push_back({p.name, p.numbers});
+                if (p.strings.empty())
+                    overrides.emplace_back(p.name, p.numbers);
+                else
+                    overrides.push_back(compiler::ParamOverride::String(p.name, p.strings[0]));
             }
-            compiler::CompileResult result = compiler::LoadShader(path, overrides, preprocess);
+            compiler::CompileResult result = cache.Load(path, overrides, preprocess);
             if (!result.ok()) {
                 *error = result.diagnostics;
                 for (const std::string& e : result.paramErrors) *error += where + e + "\n";
@@ -179,6 +184,8 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         prim.shade = *compiler::Specialise(prim.shade, {}, &unused, constants);
         out->primitives.push_back(std::move(prim));
     }
+    out->shadersCompiled = cache.misses();
+    out->shadersReused = cache.hits();
     out->lights = desc.lights;
     if (out->lights.empty()) {
         // No lights: a key light from behind the camera, and a little ambient, so that something shows.

@@ -46,10 +46,14 @@ struct PreparedScene {
     SceneDesc desc;
     std::vector<Primitive> primitives;
     std::vector<LightDesc> lights;  // the scene's, or a default key light if it has none
+    /// Shader instances compiled, and those that reused a compilation (same file bytes, same
+    /// parameter values: compiler/shader_cache.h).
+    int shadersCompiled = 0, shadersReused = 0;
 };
 
 /// Compiles every displacement instance of `desc` (each with its own parameter values) and
-/// specialises it for its surface. Shaders are found as NAME.sl or NAME.afb in `shaderPaths`;
+/// specialises it for its surface (an instance like an earlier one reuses its compilation).
+/// Shaders are found as NAME.sl or NAME.afb in `shaderPaths`;
 /// `preprocess` gives the -I and -D of the C preprocessor. On error returns false with a message naming the RIB
 /// line and the shader's diagnostics.
 bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,

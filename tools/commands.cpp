@@ -162,7 +162,8 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
         // The render's figures, then each shader instance's instruction counts.
         std::string json = stats.ToJson();
         json.pop_back();
-        json += ",\"shaders\":[";
+        json += ",\"shader_compilations\":" + std::to_string(prepared.shadersCompiled) +
+                ",\"shader_compilations_reused\":" + std::to_string(prepared.shadersReused) + ",\"shaders\":[";
         bool first = true;
         for (const renderer::Primitive& prim : prepared.primitives) {
             if (!prim.shader) continue;

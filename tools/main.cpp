@@ -42,6 +42,18 @@ std::vector<double> ParseNumbers(const std::string& text, const std::string& opt
     return values;
 }
 
+/// Every comma-separated item starts like a number (strtod reads something, nan and inf too).
+bool LooksNumeric(const std::string& text) {
+    std::stringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        char* end = nullptr;
+        std::strtod(item.c_str(), &end);
+        if (end == item.c_str()) return false;
+    }
+    return !text.empty();
+}
+
 double ParseNumber(const std::string& text, const std::string& option) {
     std::vector<double> v = ParseNumbers(text, option);
     if (v.size() != 1) throw UsageError{option + " takes one number, got '" + text + "'"};
@@ -107,7 +119,12 @@ int Eval(Args& args) {
             std::string p = args.Value(a);
             size_t eq = p.find('=');
             if (eq == std::string::npos || eq == 0) throw UsageError{"--param takes NAME=VALUE, got '" + p + "'"};
-            cmd.params.push_back({p.substr(0, eq), ParseNumbers(p.substr(eq + 1), "--param " + p.substr(0, eq))});
+            // A value that is not a list of numbers is a string parameter's value.
+            const std::string name = p.substr(0, eq), value = p.substr(eq + 1);
+            if (LooksNumeric(value))
+                cmd.params.emplace_back(name, ParseNumbers(value, "--param " + name));
+            else
+                cmd.params.push_back(affray::compiler::ParamOverride::String(name, value));
         } else if (a == "--at") {
             std::vector<double> uv = ParseNumbers(args.Value(a), a);
             if (uv.size() != 2) throw UsageError{"--at takes U,V"};

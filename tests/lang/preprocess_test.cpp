@@ -11,6 +11,7 @@
 #include <string>
 #include <thread>
 
+#include "../test_util.h"
 #include "lang/parse.h"
 #include "lang/preprocess.h"
 
@@ -19,30 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A temporary directory, removed at the end of the test.
-class TempDir {
-  public:
-    TempDir() {
-        std::string pattern = (fs::temp_directory_path() / "affray-pptest-XXXXXX").string();
-        REQUIRE(mkdtemp(pattern.data()) != nullptr);
-        m_path = pattern;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(m_path, ec);
-    }
-    /// Writes `text` to `name` (which may contain subdirectories); returns its full path.
-    std::string Write(const std::string& name, const std::string& text) const {
-        fs::path p = m_path / name;
-        fs::create_directories(p.parent_path());
-        std::ofstream(p, std::ios::binary) << text;
-        return p.string();
-    }
-    std::string Path(const std::string& name) const { return (m_path / name).string(); }
-
-  private:
-    fs::path m_path;
-};
+using test::TempDir;
 
 // The preprocessed text without line markers and blank lines, for comparing expansions.
 std::string Code(const PreprocessResult& r) {

@@ -250,3 +250,42 @@ TEST_CASE("cli: -I and -D reach the preprocessor of compile, eval and render", "
     CHECK(high.out == "{\"P\":[0.5,0.5,2],\"N\":[0,0,1]}\n");
     fs::remove_all(dir);
 }
+
+TEST_CASE("cli: string parameters from --param and RIB, and one compilation per distinct instance",
+          "[tools][render]") {
+    fs::path dir = TempDir("strings");
+    WriteFile(dir / "s.sl",
+              "displacement s(float Km = 0.05; string mode = \"up\") {\n"
+              "  P += (mode == \"up\" ? Km : -Km) * normalize(N);\n}\n");
+    Output up = Run("eval " + (dir / "s.sl").string() + " --at 0.5,0.5");
+    Output down = Run("eval " + (dir / "s.sl").string() + " --param mode=down --at 0.5,0.5");
+    REQUIRE((up.status == 0 && down.status == 0));
+    CHECK(up.out.find("\"P\":[0.5,0.5,0.050000000000000003]") != std::string::npos);
+    CHECK(down.out.find("\"P\":[0.5,0.5,-0.050000000000000003]") != std::string::npos);
+    CHECK(Run("eval " + (dir / "s.sl").string() + " --param Km=down --at 0.5,0.5").status == 1);
+
+    // Two patches with the same instance share one compilation; a third differs.
+    std::string scene = R"(Format 8 6 1
+Projection "perspective" "fov" [40]
+Translate 0 0 3.1
+WorldBegin
+  AttributeBegin
+    Displacement "s" "mode" "down"
+    Patch "bilinear" "P" [-1 -1 0  0 -1 0  -1 1 0  0 1 0]
+  AttributeEnd
+  AttributeBegin
+    Displacement "s" "mode" "down"
+    Patch "bilinear" "P" [0 -1 0  1 -1 0  0 1 0  1 1 0]
+  AttributeEnd
+  AttributeBegin
+    Displacement "s" "mode" "up"
+    Patch "bilinear" "P" [0 -1 1  1 -1 1  0 1 1  1 1 1]
+  AttributeEnd
+WorldEnd
+)";
+    WriteFile(dir / "s.rib", scene);
+    Output render = Run("render " + (dir / "s.rib").string() + " -o " + (dir / "s.exr").string() + " --stats");
+    REQUIRE(render.status == 0);
+    CHECK(render.out.find("\"shader_compilations\":2,\"shader_compilations_reused\":1") != std::string::npos);
+    fs::remove_all(dir);
+}

@@ -1,0 +1,57 @@
+// compiler/shader_cache.cpp: the key is everything the result depends on.
+#include "compiler/shader_cache.h"
+
+#include <bit>
+#include <fstream>
+#include <sstream>
+
+#include "vm/bytecode_file.h"
+
+namespace affray::compiler {
+
+namespace {
+
+/// The file's bytes (empty if unreadable: then the compiler reports the error itself).
+std::string ReadAll(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return in ? text.str() : std::string();
+}
+
+std::string Key(const std::string& path, const std::string& bytes, const std::vector<ParamOverride>& overrides,
+                const lang::PreprocessOptions& preprocess) {
+    // The path is part of the key too: #include "x.h" resolves next to the including file.
+    std::string key = path + '\n' + std::to_string(vm::HashSource(bytes)) + '\n' + std::to_string(bytes.size());
+    for (const std::string& d : preprocess.includeDirs) key += "\n-I" + d;
+    for (const std::string& d : preprocess.defines) key += "\n-D" + d;
+    for (const ParamOverride& o : overrides) {
+        key += "\n" + o.name + "=";
+        for (double x : o.numbers) key += std::to_string(std::bit_cast<uint64_t>(x)) + ",";
+        if (o.text) key += "\"" + *o.text + "\"";
+    }
+    return key;
+}
+
+}  // namespace
+
+CompileResult ShaderCache::Load(const std::string& path, const std::vector<ParamOverride>& overrides,
+                                const lang::PreprocessOptions& preprocess) {
+    const std::string bytes = ReadAll(path);
+    const std::string key = Key(path, bytes, overrides, preprocess);
+    if (!bytes.empty()) {
+        auto it = m_compiled.find(key);
+        if (it != m_compiled.end()) {
+            ++m_hits;
+            CompileResult hit;
+            hit.shader = it->second;
+            return hit;
+        }
+    }
+    ++m_misses;
+    CompileResult result = LoadShader(path, overrides, preprocess);
+    if (result.ok() && !bytes.empty()) m_compiled.emplace(key, *result.shader);
+    return result;
+}
+
+}  // namespace affray::compiler

@@ -1,0 +1,30 @@
+// compiler/shader_cache.h: compiled shaders kept by the content of their source, so that a scene
+// naming one shader for many primitives compiles it once per distinct parameter set, and an
+// edited file is never served stale (the key is a hash of its bytes, not its name or date).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "compiler/compile.h"
+
+namespace affray::compiler {
+
+class ShaderCache {
+  public:
+    /// LoadShader(path, overrides, preprocess), or the result of an earlier call whose file had
+    /// the same bytes and whose overrides and options were the same. Failures are not kept.
+    CompileResult Load(const std::string& path, const std::vector<ParamOverride>& overrides,
+                       const lang::PreprocessOptions& preprocess);
+
+    int hits() const { return m_hits; }
+    int misses() const { return m_misses; }
+
+  private:
+    std::map<std::string, CompiledShader> m_compiled;
+    int m_hits = 0, m_misses = 0;
+};
+
+}  // namespace affray::compiler
