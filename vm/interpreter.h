@@ -29,17 +29,36 @@ class Interpreter {
     /// then a parameter has its default. Specialised programs have no parameters.
     void SetParam(size_t index, const std::vector<double>& values);
 
-    /// Runs the program once over the current globals and parameters.
+    /// Runs the program over the current globals and parameters. For a bound type, a floor, ceil
+    /// or round whose argument straddles one integer is split into its two cases: the program
+    /// runs once per combination (at most 2^kMaxSplits runs) with that result a constant, and the
+    /// outputs are the Join of the runs. Every case is a valid bound of the points it covers, so
+    /// the Join contains every point's result; and within a case the pattern a floor cuts (a
+    /// tile, a brick, a cell) keeps its shape, where the unsplit bound of x - floor(x) is [0, 1].
     void Run();
+    static constexpr int kMaxSplits = 4;
 
     /// The value of an output after Run(); the output must exist.
     Vec3<T> OutputTriple(const ProgramOutput& out) const;
     const T& Register(int r) const { return m_registers[r]; }
 
   private:
+    /// One pass over the code, with the split decisions in m_decisions.
+    void RunOnce();
+    /// floor/ceil/round (`f` its scalar, `bounded` its T version) of x, split as Run() says.
+    template <class F, class B>
+    T Rounding(const T& x, F f, B bounded);
+
     const Program* m_program;
     std::vector<T> m_registers;
     std::vector<std::vector<double>> m_paramValues;
+    // Splitting (see Run): whether this program and type can split at all, the decision (0: the
+    // lower integer, 1: the upper) for each split met so far in this pass, the registers as they
+    // were before the first pass, and the outputs joined over the passes.
+    bool m_splits = false;
+    std::vector<uint8_t> m_decisions;
+    size_t m_decisionIndex = 0;
+    std::vector<T> m_saved, m_joined;
 };
 
 extern template class Interpreter<double>;

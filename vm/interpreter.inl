@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 #include "vm/interpreter.h"
 #include "vm/noise.h"
@@ -21,6 +22,58 @@ template <class T>
 Interpreter<T>::Interpreter(const Program& program)
     : m_program(&program), m_registers(program.registerCount, T(0.0)) {
     for (const ProgramParam& p : program.params) m_paramValues.push_back(p.defaults);
+    // A point type (double, Dual<double>) never straddles an integer: no need to save inputs.
+    const bool pointType = std::is_same_v<T, double> || std::is_same_v<T, Dual<double>>;
+    for (const Instr& in : program.code)
+        if (in.op == Op::Floor || in.op == Op::Ceil || in.op == Op::Round) m_splits = !pointType;
+}
+
+template <class T>
+template <class F, class B>
+T Interpreter<T>::Rounding(const T& x, F f, B bounded) {
+    if (m_splits && m_decisionIndex < static_cast<size_t>(kMaxSplits)) {
+        const Interval r = RangeOf(ValueOf(x));
+        const double lo = f(r.lo()), hi = f(r.hi());
+        if (!r.isUnbounded() && hi == lo + 1) {
+            const size_t i = m_decisionIndex++;
+            if (i == m_decisions.size()) m_decisions.push_back(0);
+            return T(m_decisions[i] ? hi : lo);
+        }
+    }
+    return bounded(x);
+}
+
+template <class T>
+void Interpreter<T>::Run() {
+    if (!m_splits) {
+        RunOnce();
+        return;
+    }
+    // Depth-first over the decisions: run, join the outputs, flip the last lower decision to
+    // upper (dropping those after it), restore the inputs, run again; until all are upper.
+    m_saved = m_registers;
+    m_decisions.clear();
+    m_joined.clear();
+    for (;;) {
+        m_decisionIndex = 0;
+        RunOnce();
+        size_t j = 0;
+        for (const ProgramOutput& out : m_program->outputs)
+            for (int c = 0; c < out.size; ++c, ++j) {
+                const T& value = m_registers[out.registers[c]];
+                if (j == m_joined.size())
+                    m_joined.push_back(value);
+                else
+                    m_joined[j] = Join(m_joined[j], value);
+            }
+        while (!m_decisions.empty() && m_decisions.back() == 1) m_decisions.pop_back();
+        if (m_decisions.empty()) break;
+        m_decisions.back() = 1;
+        m_registers = m_saved;
+    }
+    size_t j = 0;
+    for (const ProgramOutput& out : m_program->outputs)
+        for (int c = 0; c < out.size; ++c, ++j) m_registers[out.registers[c]] = m_joined[j];
 }
 
 template <class T>
@@ -50,7 +103,7 @@ Vec3<T> Interpreter<T>::OutputTriple(const ProgramOutput& out) const {
 }
 
 template <class T>
-void Interpreter<T>::Run() {
+void Interpreter<T>::RunOnce() {
     // For T = double the std functions are the scalar semantics; other types find theirs by ADL.
     using std::abs, std::cos, std::exp, std::log, std::pow, std::sin, std::sqrt;
     using std::acos, std::asin, std::atan, std::atan2, std::ceil, std::floor, std::round;
@@ -97,9 +150,9 @@ void Interpreter<T>::Run() {
             case Op::PowRK: A = pow(R[in.b], T(K[in.c])); break;
             case Op::DerivU: A = DerivU(R[in.b]); break;
             case Op::DerivV: A = DerivV(R[in.b]); break;
-            case Op::Floor: A = floor(R[in.b]); break;
-            case Op::Ceil: A = ceil(R[in.b]); break;
-            case Op::Round: A = round(R[in.b]); break;
+            case Op::Floor: A = Rounding(R[in.b], [](double x) { return std::floor(x); }, [](const T& x) { return floor(x); }); break;
+            case Op::Ceil: A = Rounding(R[in.b], [](double x) { return std::ceil(x); }, [](const T& x) { return ceil(x); }); break;
+            case Op::Round: A = Rounding(R[in.b], [](double x) { return std::round(x); }, [](const T& x) { return round(x); }); break;
             case Op::Asin: A = asin(R[in.b]); break;
             case Op::Acos: A = acos(R[in.b]); break;
             case Op::Atan: A = atan(R[in.b]); break;

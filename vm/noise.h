@@ -181,22 +181,48 @@ T CellPolynomial(const T* t, int dims, GradientOf&& gradient) {
     return v[0];
 }
 
+/// The lattice cells a box of inputs touches: floor(lo_i) .. floor(hi_i) in each coordinate.
+struct CellBox {
+    double kLo[4] = {0, 0, 0, 0}, count[4] = {1, 1, 1, 1};
+    double cells = 1;  // their number (a double: it may be huge)
+
+    /// False if dims is out of 1..4 or an input is unbounded.
+    template <class T>
+    bool Of(const T* p, int dims) {
+        if (dims < 1 || dims > 4) return false;
+        for (int i = 0; i < dims; ++i) {
+            Interval r = RangeOf(ValueOf(p[i]));
+            if (r.isUnbounded()) return false;
+            kLo[i] = std::floor(r.lo());
+            count[i] = std::floor(r.hi()) - kLo[i] + 1;
+            cells *= count[i];
+        }
+        return true;
+    }
+
+    /// Calls visit(k) for each cell k (its lowest corner) in turn: a mixed-radix counter.
+    template <class Visit>
+    void ForEach(int dims, Visit&& visit) const {
+        int j[4] = {0, 0, 0, 0};
+        for (;;) {
+            double k[4] = {0, 0, 0, 0};
+            for (int i = 0; i < dims; ++i) k[i] = kLo[i] + j[i];
+            visit(k);
+            int i = 0;
+            while (i < dims && ++j[i] >= count[i]) j[i++] = 0;
+            if (i == dims) return;
+        }
+    }
+};
+
 /// Noise and PNoise (period == nullptr for Noise).
 template <class T>
 T GradientNoise(const T* p, const T* period, int dims, uint32_t seed) {
     const T nan(std::numeric_limits<double>::quiet_NaN());
-    if (dims < 1 || dims > 4) return nan;
-    double kLo[4], count[4];
-    double cells = 1;
-    for (int i = 0; i < dims; ++i) {
-        Interval r = RangeOf(ValueOf(p[i]));
-        if (r.isUnbounded()) return nan;
-        kLo[i] = std::floor(r.lo());
-        count[i] = std::floor(r.hi()) - kLo[i] + 1;
-        cells *= count[i];
-    }
+    CellBox box;
+    if (!box.Of(p, dims)) return nan;
     int64_t periods[4];
-    bool cellwise = cells <= kNoiseCellCap;
+    bool cellwise = box.cells <= kNoiseCellCap;
     for (int i = 0; period && i < dims; ++i) {
         Interval r = RangeOf(ValueOf(period[i]));
         if (r.isUnbounded()) return nan;
@@ -207,16 +233,13 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed) {
     }
     T raw(0.0);
     if (cellwise) {
-        // Every cell of the box kLo + [0, count): mixed-radix counter j.
-        int j[4] = {0, 0, 0, 0};
         bool first = true;
-        for (;;) {
+        box.ForEach(dims, [&](const double* k) {
             T t[4];
             int64_t cell[4];
             for (int i = 0; i < dims; ++i) {
-                double k = kLo[i] + j[i];
-                t[i] = ClampUnit(T(p[i] - k), kNoiseOverhang);
-                cell[i] = CellIndex(k);
+                t[i] = ClampUnit(T(p[i] - k[i]), kNoiseOverhang);
+                cell[i] = CellIndex(k[i]);
             }
             double g[16][4];
             for (int o = 0; o < (1 << dims); ++o) {
@@ -230,10 +253,7 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed) {
             T v = CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; });
             raw = first ? v : Join(raw, v);
             first = false;
-            int i = 0;
-            while (i < dims && ++j[i] >= count[i]) j[i++] = 0;
-            if (i == dims) break;
-        }
+        });
     } else {
         T t[4];
         for (int i = 0; i < dims; ++i) t[i] = ClampUnit(T(p[i] - floor(p[i])));
@@ -262,31 +282,18 @@ T PNoise(const T* p, const T* period, int dims, uint32_t seed) {
 /// RenderMan cellnoise: a value in [0, 1) constant on each cell floor(p[0..dims)), dims = 1..4.
 template <class T>
 T CellNoise(const T* p, int dims, uint32_t seed) {
-    const T nan(std::numeric_limits<double>::quiet_NaN());
-    if (dims < 1 || dims > 4) return nan;
-    double kLo[4], count[4];
-    double cells = 1;
-    for (int i = 0; i < dims; ++i) {
-        Interval r = RangeOf(ValueOf(p[i]));
-        if (r.isUnbounded()) return nan;
-        kLo[i] = std::floor(r.lo());
-        count[i] = std::floor(r.hi()) - kLo[i] + 1;
-        cells *= count[i];
-    }
-    if (!(cells <= kNoiseCellCap)) return Join(T(0.0), T(1.0));
-    int j[4] = {0, 0, 0, 0};
+    noise_detail::CellBox box;
+    if (!box.Of(p, dims)) return T(std::numeric_limits<double>::quiet_NaN());
+    if (!(box.cells <= kNoiseCellCap)) return Join(T(0.0), T(1.0));
     T result(0.0);
     bool first = true;
-    for (;;) {
+    box.ForEach(dims, [&](const double* k) {
         int64_t cell[4];
-        for (int i = 0; i < dims; ++i) cell[i] = noise_detail::CellIndex(kLo[i] + j[i]);
+        for (int i = 0; i < dims; ++i) cell[i] = noise_detail::CellIndex(k[i]);
         T v(noise_detail::CellValue(cell, dims, seed));
         result = first ? v : Join(result, v);
         first = false;
-        int i = 0;
-        while (i < dims && ++j[i] >= count[i]) j[i++] = 0;
-        if (i == dims) break;
-    }
+    });
     return result;
 }
 

@@ -12,33 +12,13 @@
 #include <sstream>
 
 #include "vm/number.h"
+#include "../test_random.h"
 
 using namespace affray::vm;
+using affray::test::Rng;
+using affray::test::Samples;
 
 namespace {
-
-int Samples(int base) {
-    const char* s = std::getenv("AFFRAY_SAMPLES");
-    return s ? std::max(base, std::atoi(s)) : base;
-}
-
-struct Rng {
-    std::mt19937_64 gen;
-    explicit Rng(uint64_t seed) : gen(seed) {}
-    double uniform(double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(gen); }
-    int integer(int lo, int hi) { return std::uniform_int_distribution<>(lo, hi)(gen); }
-    bool chance(double p) { return uniform(0, 1) < p; }
-    // A double with `bits` significant bits, of magnitude about 2^exponent, random sign.
-    double dyadic(int exponent, int bits = 20) {
-        double m = static_cast<double>(integer(1 << (bits - 1), (1 << bits) - 1));
-        return std::ldexp(chance(0.5) ? m : -m, exponent - bits + 1);
-    }
-    // -1, 0 or 1, or a uniform multiple of 2^-12.
-    double eps() {
-        int k = integer(0, 4);
-        return k < 3 ? k - 1.0 : std::ldexp(integer(-(1 << 12), 1 << 12), -12);
-    }
-};
 
 bool ExactSum(double c, double r, double e, double* out) {
     double p = r * e, s = c + p;

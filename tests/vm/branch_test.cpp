@@ -20,37 +20,17 @@
 #include <sstream>
 
 #include "vm/number.h"
+#include "../test_random.h"
 
 using namespace affray::vm;
+using affray::test::Rng;
+using affray::test::Samples;
 
 namespace {
-
-int Samples(int base) {
-    const char* s = std::getenv("AFFRAY_SAMPLES");
-    return s ? std::max(base, std::atoi(s)) : base;
-}
 
 using SymbolId = Affine::SymbolId;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
-
-struct Rng {
-    std::mt19937_64 gen;
-    explicit Rng(uint64_t seed) : gen(seed) {}
-    int64_t integer(int64_t lo, int64_t hi) {
-        return std::uniform_int_distribution<int64_t>(lo, hi)(gen);
-    }
-    bool chance(double p) { return std::uniform_real_distribution<>(0, 1)(gen) < p; }
-    template <class T>
-    const T& pick(const std::vector<T>& v) {
-        return v[integer(0, static_cast<int64_t>(v.size()) - 1)];
-    }
-    // -1, 0 or 1, or a uniform multiple of 2^-12 in [-1, 1].
-    double eps() {
-        int64_t k = integer(0, 4);
-        return k < 3 ? k - 1.0 : std::ldexp(static_cast<double>(integer(-4096, 4096)), -12);
-    }
-};
 
 // --- Synthetic operands -------------------------------------------------------------------------
 
@@ -84,7 +64,7 @@ Form RandomForm(Rng& rng, const std::vector<SymbolId>& pool, int exponent) {
     const int64_t m = int64_t(1) << (28 - rng.integer(0, 24));
     for (SymbolId s : pool)
         if (rng.chance(0.6)) f.coefs[s] = static_cast<double>(rng.integer(-m, m)) * 4096 * f.q;
-    if (rng.chance(0.3)) f.free = static_cast<double>(rng.integer(0, m)) * 4096 * f.q;
+    if (rng.chance(0.3)) f.free = static_cast<double>(rng.integer<int64_t>(0, m)) * 4096 * f.q;
     return f;
 }
 

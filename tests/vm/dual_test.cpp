@@ -10,15 +10,13 @@
 #include <random>
 
 #include "vm/number.h"
+#include "../test_random.h"
 
 using namespace affray::vm;
+using affray::test::Rng;
+using affray::test::Samples;
 
 namespace {
-
-int Samples(int base) {
-    const char* s = std::getenv("AFFRAY_SAMPLES");
-    return s ? std::max(base, std::atoi(s)) : base;
-}
 
 // Shader-like functions of (u, v), each written once for every number type.
 template <class T>

@@ -182,3 +182,29 @@ TEST_CASE("the verifier rejects malformed programs", "[vm]") {
         vm::Verify(g, &error);
     }
 }
+
+TEST_CASE("floor straddling an integer is split into its two cases", "[vm][interpreter]") {
+    // A bump in the middle of each of 4 cells along u: (frac(4u) - 0.5)^2 is 0.25 at every cell
+    // boundary. Over a region straddling u = 0.25 the unsplit bound of frac is [0, 1], so the
+    // bound would be [0, 0.25]; split, each side is within 4 * 1e-4 of frac = 0 or 1, so f^2 is
+    // within 0.5 * 8e-4 of 0.25.
+    compiler::CompiledShader s = test::CompileOrThrow(
+        "displacement t() {\n  float f = u * 4 - floor(u * 4) - 0.5;\n  P = point(0, 0, f * f);\n}\n");
+    const double u0 = 0.25 - 1e-4, u1 = 0.25 + 1e-4;
+    for (vm::Interval z : {test::EvalOnSquare<vm::Affine>(s.bound, u0, u1, 0.5, 0.6).z.range(),
+                           test::EvalOnSquare<vm::Interval>(s.bound, u0, u1, 0.5, 0.6).z,
+                           test::EvalOnSquare<vm::Dual<vm::Affine>>(s.bound, u0, u1, 0.5, 0.6).z.v.range()}) {
+        CHECK(z.lo() > 0.2495);
+        CHECK(z.hi() < 0.2505);
+        for (double u : {u0, 0.25 - 1e-9, 0.25, u1})  // both sides, and the boundary itself
+            CHECK(z.contains(test::PointOnSquare(s.bound, u, 0.55).z));
+    }
+    // Two straddled boundaries (u and v): four cases, all joined.
+    compiler::CompiledShader two = test::CompileOrThrow(
+        "displacement t() {\n  P = point(0, 0, floor(u * 4) + 10 * floor(v * 4));\n}\n");
+    vm::Interval z = test::EvalOnSquare<vm::Affine>(two.bound, u0, u1, u0, u1).z.range();
+    CHECK(z.lo() == 0);
+    CHECK(z.hi() == 11);
+    for (double u : {u0, u1})
+        for (double v : {u0, u1}) CHECK(z.contains(test::PointOnSquare(two.bound, u, v).z));
+}

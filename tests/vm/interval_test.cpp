@@ -12,15 +12,13 @@
 #include <sstream>
 
 #include "vm/number.h"
+#include "../test_random.h"
 
 using namespace affray::vm;
+using affray::test::Rng;
+using affray::test::Samples;
 
 namespace {
-
-int Samples(int base) {
-    const char* s = std::getenv("AFFRAY_SAMPLES");
-    return s ? std::max(base, std::atoi(s)) : base;
-}
 
 struct Gen {
     std::mt19937_64 rng;

@@ -13,28 +13,13 @@
 #include <vector>
 
 #include "vm/noise.h"
+#include "../test_random.h"
 
 using namespace affray::vm;
+using affray::test::Rng;
+using affray::test::Samples;
 
 namespace {
-
-int Samples(int base) {
-    const char* s = std::getenv("AFFRAY_SAMPLES");
-    return s ? std::max(base, std::atoi(s)) : base;
-}
-
-struct Rng {
-    std::mt19937_64 gen;
-    explicit Rng(uint64_t seed) : gen(seed) {}
-    double uniform(double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(gen); }
-    int integer(int lo, int hi) { return std::uniform_int_distribution<>(lo, hi)(gen); }
-    bool chance(double p) { return uniform(0, 1) < p; }
-    // -1, 0 or 1, or a uniform multiple of 2^-12 in [-1, 1].
-    double eps() {
-        int k = integer(0, 4);
-        return k < 3 ? k - 1.0 : std::ldexp(integer(-(1 << 12), 1 << 12), -12);
-    }
-};
 
 // ---------------------------------------------------------------------------------------------
 // The double functions.
