@@ -525,6 +525,16 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
             m_diags.error(p.loc, "redefinition of parameter '" + p.name + "'");
             continue;
         }
+        if (p.arraySize >= 0) {
+            m_diags.error(p.loc, "array parameters are not supported yet (parameter '" + p.name + "')");
+            DeclarePlaceholder(p, type);
+            continue;
+        }
+        if (type == Type::Matrix) {
+            m_diags.error(p.loc, "matrix values are not supported yet (parameter '" + p.name + "')");
+            DeclarePlaceholder(p, Type::Float);
+            continue;
+        }
         if (!p.init) {
             m_diags.error(p.loc, "parameter '" + p.name + "' needs a default value");
             DeclarePlaceholder(p, type);

@@ -27,6 +27,24 @@ bool IsProjectiveSpace(const std::string& s) { return s == "screen" || s == "ras
 
 }  // namespace
 
+// The bases of RenderMan's spline (RI Spec 3.2, RiBasis), as the matrices M of
+// [u^3 u^2 u 1] M [k0 k1 k2 k3]^T, and the knots each segment advances. "linear" interpolates
+// between the middle two knots of each group (the first and last knots are ignored, as with
+// Catmull-Rom).
+const SplineBasis* FindSplineBasis(const std::string& name) {
+    static const SplineBasis kBases[] = {
+        {"catmull-rom", {{-0.5, 1.5, -1.5, 0.5}, {1, -2.5, 2, -0.5}, {-0.5, 0, 0.5, 0}, {0, 1, 0, 0}}, 1},
+        {"bezier", {{-1, 3, -3, 1}, {3, -6, 3, 0}, {-3, 3, 0, 0}, {1, 0, 0, 0}}, 3},
+        {"bspline", {{-1.0 / 6, 0.5, -0.5, 1.0 / 6}, {0.5, -1, 0.5, 0}, {-0.5, 0, 0.5, 0}, {1.0 / 6, 4.0 / 6, 1.0 / 6, 0}}, 1},
+        {"hermite", {{2, 1, -2, 1}, {-3, -2, 3, -1}, {0, 1, 0, 0}, {1, 0, 0, 0}}, 2},
+        {"power", {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}, 4},
+        {"linear", {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, -1, 1, 0}, {0, 1, 0, 0}}, 1},
+    };
+    for (const SplineBasis& b : kBases)
+        if (name == b.name) return &b;
+    return nullptr;
+}
+
 bool Lowerer::IsLibraryCall(const std::string& name) const {
     return IsNoise(name) || IsTransform(name) || name == "spline" || name == "filterstep";
 }
@@ -178,12 +196,20 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
         basis = *b;
         first = 1;
     }
-    if (basis != "catmull-rom" && basis != "linear") {
-        m_diags.error(argLoc(0), "spline basis '" + basis + "' is not supported yet (catmull-rom and linear are)");
+    const SplineBasis* b = FindSplineBasis(basis);
+    if (!b) {
+        m_diags.error(argLoc(0), "unknown spline basis '" + basis +
+                                     "' (catmull-rom, bezier, bspline, hermite, power and linear are known)");
         return std::nullopt;
     }
+    const size_t knotCount = args.size() - first - 1;
     if (args.size() < first + 5 || args[first].type != Type::Float) {
         m_diags.error(e.loc, "'spline' expects a float parameter and at least 4 knots");
+        return std::nullopt;
+    }
+    if ((knotCount - 4) % static_cast<size_t>(b->step) != 0) {
+        m_diags.error(e.loc, "a " + basis + " spline takes 4 + " + std::to_string(b->step) + "n knots, got " +
+                                 std::to_string(knotCount));
         return std::nullopt;
     }
     Type knotType = args[first + 1].type;
@@ -199,26 +225,26 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
     std::vector<Value> knots;
     for (size_t i = first + 1; i < args.size(); ++i) knots.push_back(m_ops.Promote(args[i], knotType));
     const Value t = m_ops.Clamp(args[first], m_ops.Constant(0.0), m_ops.Constant(1.0));
-    return Spline(basis, t, knots);
+    return Spline(*b, t, knots);
 }
 
-Value Lowerer::Spline(const std::string& basis, const Value& t, const std::vector<Value>& knots) {
-    const int segments = static_cast<int>(knots.size()) - 3;
+Value Lowerer::Spline(const SplineBasis& basis, const Value& t, const std::vector<Value>& knots) {
+    // RenderMan: segment s uses knots s*step .. s*step+3, and its value is
+    // [u^3 u^2 u 1] * M * [k0 k1 k2 k3]^T with u the position in the segment.
+    const int segments = (static_cast<int>(knots.size()) - 4) / basis.step + 1;
     const Value x = m_ops.Mul(t, m_ops.Constant(segments));
     // The segment: floor(x), with t = 1 in the last one.
     const Value segment = m_ops.Binary(IrOp::Min, m_ops.Map(IrOp::Floor, x), m_ops.Constant(segments - 1));
     const Value u = m_ops.Sub(x, segment);
     auto piece = [&](int s) {
-        const Value &k0 = knots[s], &k1 = knots[s + 1], &k2 = knots[s + 2], &k3 = knots[s + 3];
-        if (basis == "linear") return m_ops.Add(k1, m_ops.Mul(u, m_ops.Sub(k2, k1)));
-        // Catmull-Rom: 0.5 * ((2 k1) + (-k0 + k2) u + (2k0 - 5k1 + 4k2 - k3) u^2 + (-k0 + 3k1 - 3k2 + k3) u^3),
-        // in Horner form.
-        auto c = [&](double a, double b, double cc, double d) {
-            return m_ops.Add(m_ops.Add(m_ops.Mul(m_ops.Constant(a), k0), m_ops.Mul(m_ops.Constant(b), k1)),
-                             m_ops.Add(m_ops.Mul(m_ops.Constant(cc), k2), m_ops.Mul(m_ops.Constant(d), k3)));
-        };
-        const Value c0 = c(0, 1, 0, 0), c1 = c(-0.5, 0, 0.5, 0), c2 = c(1, -2.5, 2, -0.5), c3 = c(-0.5, 1.5, -1.5, 0.5);
-        return m_ops.Add(c0, m_ops.Mul(u, m_ops.Add(c1, m_ops.Mul(u, m_ops.Add(c2, m_ops.Mul(u, c3))))));
+        const Value* k = &knots[static_cast<size_t>(s * basis.step)];
+        Value c[4];
+        for (int row = 0; row < 4; ++row) {
+            c[row] = m_ops.Mul(m_ops.Constant(basis.m[row][0]), k[0]);
+            for (int j = 1; j < 4; ++j) c[row] = m_ops.Add(c[row], m_ops.Mul(m_ops.Constant(basis.m[row][j]), k[j]));
+        }
+        // Horner: ((c0 u + c1) u + c2) u + c3
+        return m_ops.Add(m_ops.Mul(m_ops.Add(m_ops.Mul(m_ops.Add(m_ops.Mul(c[0], u), c[1]), u), c[2]), u), c[3]);
     };
     Value out = piece(segments - 1);
     for (int s = segments - 2; s >= 0; --s)

@@ -56,6 +56,14 @@ struct FlowState {
     std::vector<FlowContext> contexts;
 };
 
+/// A spline basis: its matrix and how many knots a segment advances (lower_library.cpp).
+struct SplineBasis {
+    const char* name;
+    double m[4][4];
+    int step;
+};
+const SplineBasis* FindSplineBasis(const std::string& name);
+
 class Lowerer {
   public:
     Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues,
@@ -106,7 +114,7 @@ class Lowerer {
     std::optional<Value> LowerLibraryCall(const lang::Expr& e, std::vector<Value> args);
     /// A string naming a known, affine coordinate space; reports and returns nothing otherwise.
     std::optional<std::string> SpaceName(const Value& v, lang::SourceLoc loc);
-    Value Spline(const std::string& basis, const Value& t, const std::vector<Value>& knots);
+    Value Spline(const SplineBasis& basis, const Value& t, const std::vector<Value>& knots);
     /// Lowers `e` with `expected` as the type its context wants (picks noise's result type).
     std::optional<Value> LowerExpecting(const lang::Expr& e, Type expected);
 

@@ -55,7 +55,7 @@
 //                   57 cannot assign to 'Ng': it is a read-only global
 //                   58 'spline' expects a float parameter and at least 4 knots
 //                   59 spline knots must all be floats or all triples
-//                   60 spline basis '...' is not supported yet
+//                   60 unknown spline basis '...' (also: a bezier spline takes 4 + 3n knots)
 //                   61 no version of 'noise' takes (...)   62 no version of 'pnoise' takes (...)
 //                   63 unknown filterstep parameter       64 filterstep's optional arguments are pairs
 //                   65 'filterstep' expects (float edge, float x) or (float edge, float x0, float x1)
@@ -444,6 +444,17 @@ TEST_CASE("arguments of built-ins", "[compiler][diagnostics]") {
           "               ^\n");
 }
 
+TEST_CASE("parameters affray does not support yet", "[compiler][diagnostics]") {
+    CHECK(Diagnose("displacement t(float w[2] = {1, 2}) {\n  P += w;\n}\n") ==
+          "test.sl:1:22: error: array parameters are not supported yet (parameter 'w')\n"
+          "    displacement t(float w[2] = {1, 2}) {\n"
+          "                         ^\n");
+    CHECK(Diagnose("displacement t(matrix m = 1) {\n  P += 1;\n}\n") ==
+          "test.sl:1:23: error: matrix values are not supported yet (parameter 'm')\n"
+          "    displacement t(matrix m = 1) {\n"
+          "                          ^\n");
+}
+
 TEST_CASE("spline, noise and filterstep arguments", "[compiler][diagnostics]") {
     CHECK(Diagnose("displacement t() {\n  P += spline(0.5, 1, 2, 3);\n}\n") ==
           "test.sl:2:8: error: 'spline' expects a float parameter and at least 4 knots\n"
@@ -453,10 +464,15 @@ TEST_CASE("spline, noise and filterstep arguments", "[compiler][diagnostics]") {
           "test.sl:2:36: error: spline knots must all be floats or all triples\n"
           "      P += spline(0.5, color(1, 1, 1), P, P, P);\n"
           "                                       ^\n");
-    CHECK(Diagnose("displacement t() {\n  P += spline(\"bezier\", 0.5, 1, 2, 3, 4);\n}\n") ==
-          "test.sl:2:15: error: spline basis 'bezier' is not supported yet (catmull-rom and linear are)\n"
-          "      P += spline(\"bezier\", 0.5, 1, 2, 3, 4);\n"
+    CHECK(Diagnose("displacement t() {\n  P += spline(\"bezir\", 0.5, 1, 2, 3, 4);\n}\n") ==
+          "test.sl:2:15: error: unknown spline basis 'bezir' (catmull-rom, bezier, bspline, hermite, power and linear "
+          "are known)\n"
+          "      P += spline(\"bezir\", 0.5, 1, 2, 3, 4);\n"
           "                  ^\n");
+    CHECK(Diagnose("displacement t() {\n  P += spline(\"bezier\", 0.5, 1, 2, 3, 4, 5);\n}\n") ==
+          "test.sl:2:8: error: a bezier spline takes 4 + 3n knots, got 5\n"
+          "      P += spline(\"bezier\", 0.5, 1, 2, 3, 4, 5);\n"
+          "           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += noise(color(1, 0, 0));\n}\n") ==
           "test.sl:2:8: error: no version of 'noise' takes (color); expected a float, two floats, a point, or a point and a float\n"
           "      P += noise(color(1, 0, 0));\n"

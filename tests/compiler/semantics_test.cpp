@@ -1027,6 +1027,20 @@ TEST_CASE("built-ins: spline", "[compiler][semantics][builtins]") {
     CHECK_THAT(Z("P += spline(\"linear\", 0.5, " + knots + ");"), WithinAbs(20, kEps));
 }
 
+TEST_CASE("built-ins: spline bases", "[compiler][semantics][builtins]") {
+    // Bezier, one segment: (k0 + 3 k1 + 3 k2 + k3) / 8 at t = 0.5; through k0 and k3 at the ends.
+    CHECK_THAT(Z("P += spline(\"bezier\", 0.5, 0, 1, 3, 8);"), WithinAbs(2.5, kEps));
+    CHECK_THAT(Z("P += spline(\"bezier\", 1, 0, 1, 3, 8);"), WithinAbs(8, kEps));
+    // Bezier, two segments (7 knots, step 3): t = 0.75 is the middle of the second: (8 + 3*2 + 3*2 + 0) / 8.
+    CHECK_THAT(Z("P += spline(\"bezier\", 0.75, 0, 1, 3, 8, 2, 2, 0);"), WithinAbs(2.5, kEps));
+    // B-spline at a segment start: (k0 + 4 k1 + k2) / 6.
+    CHECK_THAT(Z("P += spline(\"bspline\", 0, 0, 6, 12, 6);"), WithinAbs(6, kEps));
+    // Hermite (p0, t0, p1, t1): p1 at t = 1, p0 at t = 0.
+    CHECK_THAT(Z("P += spline(\"hermite\", 1, 1, 0, 5, 0) + 10 * spline(\"hermite\", 0, 1, 0, 5, 0);"), WithinAbs(15, kEps));
+    // Power basis: k0 u^3 + k1 u^2 + k2 u + k3.
+    CHECK_THAT(Z("P += spline(\"power\", 0.5, 8, 4, 2, 1);"), WithinAbs(1 + 1 + 1 + 1, kEps));
+}
+
 TEST_CASE("built-ins: filterstep", "[compiler][semantics][builtins]") {
     // A constant x has zero filter width: the plain step (edge <= x).
     CHECK_THAT(Z("P += filterstep(0.5, 0.7);"), WithinAbs(1, kEps));
