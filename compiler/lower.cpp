@@ -1,5 +1,7 @@
-// compiler/lower.cpp: type checking and lowering of names, declarations and expressions
-// (statements and control flow: compiler/lower_flow.cpp; the state both share: lowerer.h).
+// compiler/lower.cpp: type checking and lowering of names, declarations and expressions, and
+// the entry point. Siblings: lower_logic.cpp (comparisons, conditions, ?:), lower_flow.cpp
+// (statements and control flow), lower_functions.cpp (user functions, arrays),
+// lower_library.cpp (noise, transforms, spline, filterstep); the state they share: lowerer.h.
 // Names: a stack of scopes over the shader globals (P, N, ... from vm/program.h) and the
 // parameters. A variable holds a Value (IR node ids), so assignment rebinds and never copies.
 // Every error is reported where it happens and the expression yields nothing; callers pass the
@@ -183,100 +185,6 @@ std::optional<Value> Lowerer::LowerBinary(const Expr& e) {
         default: break;
     }
     return std::nullopt;  // the comparisons were handled above
-}
-
-std::optional<Value> Lowerer::LowerComparison(const Expr& e, const Value& a, const Value& b) {
-    using lang::BinaryOp;
-    const BinaryOp op = e.binaryOp;
-    const std::string opName = lang::ToString(op);
-    auto bad = [&](const std::string& why) {
-        m_diags.error(e.loc, "invalid operands to '" + opName + "' (" + ToString(a.type) + " and " + ToString(b.type) +
-                                 ")" + why);
-        return std::nullopt;
-    };
-    auto boolean = [&](ValueId v) { return Value{Type::Bool, {v, v, v}}; };
-    if (op == BinaryOp::And || op == BinaryOp::Or) {
-        auto truth = [&](const Value& v) -> std::optional<ValueId> {
-            if (v.type == Type::Bool) return v.c[0];
-            if (v.type == Type::Float) return ir().Binary(IrOp::Ne, v.c[0], ir().Const(0.0), e.loc.line);
-            return std::nullopt;
-        };
-        std::optional<ValueId> x = truth(a), y = truth(b);
-        if (!x || !y) return bad(": '" + opName + "' combines conditions");
-        return boolean(ir().Binary(op == BinaryOp::And ? IrOp::And : IrOp::Or, *x, *y, e.loc.line));
-    }
-    // Strings compare by their ids (one id per distinct text): folded when both are known, a
-    // comparison of ids when a string was chosen by a condition.
-    if (a.type == Type::String || b.type == Type::String) {
-        if (a.type != b.type || (op != BinaryOp::Equal && op != BinaryOp::NotEqual))
-            return bad(": strings compare only with == and != to strings");
-        const ValueId same = ir().Binary(IrOp::Eq, a.c[0], b.c[0], e.loc.line);
-        return boolean(op == BinaryOp::Equal ? same : ir().Unary(IrOp::Not, same, e.loc.line));
-    }
-    Value x = a, y = b;
-    for (Value* v : {&x, &y})
-        if (v->type == Type::Bool) v->type = Type::Float;
-    const bool bothNumeric = (x.type == Type::Float || IsTriple(x.type)) && (y.type == Type::Float || IsTriple(y.type));
-    if (!bothNumeric) return bad("");
-    if (op == BinaryOp::Equal || op == BinaryOp::NotEqual) {
-        if ((x.type == Type::Color && IsSpatial(y.type)) || (y.type == Type::Color && IsSpatial(x.type)))
-            return bad(": a color does not compare with a point, vector or normal");
-        // Triples are equal when every component is.
-        const int n = IsTriple(x.type) || IsTriple(y.type) ? 3 : 1;
-        Type type = IsTriple(x.type) ? x.type : y.type;
-        x = m_ops.Promote(x, type);
-        y = m_ops.Promote(y, type);
-        ValueId all = ir().Binary(IrOp::Eq, x.c[0], y.c[0], e.loc.line);
-        for (int i = 1; i < n; ++i)
-            all = ir().Binary(IrOp::And, all, ir().Binary(IrOp::Eq, x.c[i], y.c[i], e.loc.line), e.loc.line);
-        return boolean(op == BinaryOp::Equal ? all : ir().Unary(IrOp::Not, all, e.loc.line));
-    }
-    if (x.type != Type::Float || y.type != Type::Float) return bad(": only floats are ordered");
-    // a > b is b < a, a >= b is b <= a.
-    const bool swap = op == BinaryOp::Greater || op == BinaryOp::GreaterEq;
-    const IrOp irOp = op == BinaryOp::Less || op == BinaryOp::Greater ? IrOp::Lt : IrOp::Le;
-    return boolean(swap ? ir().Binary(irOp, y.c[0], x.c[0], e.loc.line) : ir().Binary(irOp, x.c[0], y.c[0], e.loc.line));
-}
-
-std::optional<ValueId> Lowerer::LowerCondition(const Expr& e) {
-    std::optional<Value> v = LowerExpr(e);
-    if (!v) return std::nullopt;
-    if (v->type == Type::Bool) return v->c[0];
-    // A float condition means "!= 0" (C's rule; some RenderMan compilers accept it too).
-    if (v->type == Type::Float) return ir().Binary(IrOp::Ne, v->c[0], ir().Const(0.0), e.loc.line);
-    m_diags.error(e.loc, "a condition must be a comparison or a float, not " + Article(v->type));
-    return std::nullopt;
-}
-
-std::optional<Value> Lowerer::LowerTernary(const Expr& e) {
-    std::optional<ValueId> c = LowerCondition(*e.args[0]);
-    std::optional<Value> a = LowerExpr(*e.args[1]);
-    std::optional<Value> b = LowerExpr(*e.args[2]);
-    if (!c || !a || !b) return std::nullopt;
-    Value x = *a, y = *b;
-    if (x.type == Type::Bool && y.type == Type::Bool) {
-        return Value{Type::Bool, {ir().Select(*c, x.c[0], y.c[0], e.loc.line), 0, 0}};
-    }
-    for (Value* v : {&x, &y})
-        if (v->type == Type::Bool) v->type = Type::Float;
-    if (x.type == Type::String && y.type == Type::String) {
-        ValueId id = ir().Select(*c, x.c[0], y.c[0], e.loc.line);
-        return Value{Type::String, {id, id, id}};
-    }
-    const bool numeric = (x.type == Type::Float || IsTriple(x.type)) && (y.type == Type::Float || IsTriple(y.type));
-    const bool mixesColor = (x.type == Type::Color && IsSpatial(y.type)) || (y.type == Type::Color && IsSpatial(x.type));
-    if (!numeric || mixesColor) {
-        m_diags.error(e.loc, "the two results of '?:' have incompatible types (" + std::string(ToString(x.type)) +
-                                 " and " + ToString(y.type) + ")");
-        return std::nullopt;
-    }
-    Type type = IsTriple(x.type) ? x.type : y.type;
-    x = m_ops.Promote(x, type);
-    y = m_ops.Promote(y, type);
-    Value out{type, {}};
-    for (int i = 0; i < 3; ++i) out.c[i] = ir().Select(*c, x.c[i], y.c[i], e.loc.line);
-    if (type == Type::Float) out.c[1] = out.c[2] = out.c[0];
-    return out;
 }
 
 std::optional<Value> Lowerer::LowerAssign(const Expr& e) {

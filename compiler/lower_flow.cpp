@@ -207,7 +207,7 @@ void Lowerer::LowerLoop(const Stmt& s) {
                 m_state.alive = run;
                 for (size_t sc = 0; sc < entry.scopes.size(); ++sc)
                     for (auto& [name, var] : m_state.scopes[sc]) {
-                                auto before = entry.scopes[sc].find(name);
+                        auto before = entry.scopes[sc].find(name);
                         if (before == entry.scopes[sc].end() || var.type == Type::String) continue;
                         const Value poison = m_ops.Promote(m_ops.Float(nan), var.type);
                         for (size_t i = 0; i < var.elements.size(); ++i)

@@ -1,6 +1,7 @@
 // compiler/lowerer.h: the lowering walk's state, shared by its files (private to compiler/).
-// lower.cpp owns names, declarations and expressions; lower_flow.cpp owns statements and
-// control flow. The walk keeps variables as IR values, so control flow becomes data flow:
+// lower.cpp owns names, declarations and expressions (lower_logic.cpp the comparisons and
+// conditions), lower_flow.cpp statements and control flow, lower_functions.cpp user functions
+// and arrays, lower_library.cpp the built-ins that need the lowerer. The walk keeps variables as IR values, so control flow becomes data flow:
 //  - `alive` is a boolean IR value: "execution reaches this point" on the current path. An
 //    assignment under an alive that is not the constant 1 selects between the new and the old
 //    value, so paths that already left (break, continue, return) keep their values.
@@ -79,7 +80,7 @@ class Lowerer {
     static constexpr size_t kMaxNodes = 4'000'000;
 
   private:
-    // --- expressions (lower.cpp)
+    // --- expressions (lower.cpp; comparisons, conditions and ?: in lower_logic.cpp)
     std::optional<Value> LowerExpr(const lang::Expr& e);
     std::optional<Value> LowerBinary(const lang::Expr& e);
     std::optional<Value> LowerComparison(const lang::Expr& e, const Value& a, const Value& b);
