@@ -1,7 +1,8 @@
 // compiler/lowerer.h: the lowering walk's state, shared by its files (private to compiler/).
 // lower.cpp owns names, declarations and expressions (lower_logic.cpp the comparisons and
 // conditions), lower_flow.cpp statements and control flow, lower_functions.cpp user functions
-// and arrays, lower_library.cpp the built-ins that need the lowerer. The walk keeps variables as IR values, so control flow becomes data flow:
+// and arrays, lower_library.cpp the built-ins that need the lowerer.
+// The walk keeps variables as IR values, so control flow becomes data flow:
 //  - `alive` is a boolean IR value: "execution reaches this point" on the current path. An
 //    assignment under an alive that is not the constant 1 selects between the new and the old
 //    value, so paths that already left (break, continue, return) keep their values.
