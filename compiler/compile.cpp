@@ -32,7 +32,8 @@ Type TypeFromName(const std::string& name) {
 }  // namespace
 
 CompileResult CompileSource(const std::string& path, const std::string& text,
-                            const std::vector<ParamOverride>& overrides, const lang::PreprocessOptions& preprocess) {
+                            const std::vector<ParamOverride>& overrides, const lang::PreprocessOptions& preprocess,
+                            const Spaces* spaces) {
     CompileResult result;
     lang::SourceFile file(path, text);
     lang::Diagnostics diags(file);
@@ -57,6 +58,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         for (vm::Program* p : {&shader.genericBound, &shader.genericShade}) {
             p->shaderName = shader.name;
             p->sourcePath = path;
+            p->spaces = lowered->spaces;
         }
         // The instance: lowered again with its parameter values as constants, so that the
         // branches and loops they decide fold during lowering (bytecode specialisation cannot
@@ -86,7 +88,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
             BindParameters(shader.genericBound, numeric, &result.paramErrors);
         if (!values || !stringsOk) return result;
         lang::Diagnostics again(file);  // the same diagnostics as the generic lowering
-        std::optional<LoweredShader> instance = Lower(unit, again, &*values, &strings);
+        std::optional<LoweredShader> instance = Lower(unit, again, &*values, &strings, spaces);
         if (!instance && again.hasErrors()) {
             // A string value can make code reachable that the defaults left out (a space name).
             result.diagnostics += again.format();
@@ -114,7 +116,8 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
 }
 
 
-CompileResult LoadCompiledShader(const std::string& path, const std::vector<ParamOverride>& overrides) {
+CompileResult LoadCompiledShader(const std::string& path, const std::vector<ParamOverride>& overrides,
+                                 const Spaces* spaces) {
     CompileResult result;
     vm::BytecodeFile file;
     std::string error;
@@ -130,6 +133,14 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
     for (const vm::ProgramParam& p : shader.genericShade.params)
         shader.params.push_back({p.name, TypeFromName(p.type), p.defaults, false});
     shader.opsBeforeOptimisation = static_cast<int>(shader.genericShade.code.size());
+    for (const std::string& space : shader.genericBound.spaces) {
+        if (spaces && spaces->count(space) && spaces->at(space).toCurrent != kIdentity4) {
+            result.paramErrors.push_back("shader '" + shader.name + "' uses coordinate space '" + space +
+                                         "', which is not world space here; compiled bytecode treats every space "
+                                         "as world space: use the shader's source (.sl)");
+            return result;
+        }
+    }
     for (const ParamOverride& o : overrides) {
         if (o.text) {
             result.paramErrors.push_back("parameter '" + o.name + "': string values need the shader's source (.sl); '" +
@@ -143,13 +154,13 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
 }
 
 CompileResult LoadShader(const std::string& path, const std::vector<ParamOverride>& overrides,
-                         const lang::PreprocessOptions& preprocess) {
+                         const lang::PreprocessOptions& preprocess, const Spaces* spaces) {
     bool compiled = path.size() > 4 && path.compare(path.size() - 4, 4, ".afb") == 0;
-    return compiled ? LoadCompiledShader(path, overrides) : CompileFile(path, overrides, preprocess);
+    return compiled ? LoadCompiledShader(path, overrides, spaces) : CompileFile(path, overrides, preprocess, spaces);
 }
 
 CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides,
-                          const lang::PreprocessOptions& preprocess) {
+                          const lang::PreprocessOptions& preprocess, const Spaces* spaces) {
     lang::SourceFile file("", "");
     std::string error;
     if (!lang::SourceFile::Load(path, &file, &error)) {
@@ -157,7 +168,7 @@ CompileResult CompileFile(const std::string& path, const std::vector<ParamOverri
         result.diagnostics = error + "\n";
         return result;
     }
-    return CompileSource(path, file.text(), overrides, preprocess);
+    return CompileSource(path, file.text(), overrides, preprocess, spaces);
 }
 
 }  // namespace affray::compiler

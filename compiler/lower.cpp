@@ -24,8 +24,13 @@ using lang::Stmt;
 using lang::StmtKind;
 
 Lowerer::Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues,
-                 const std::map<std::string, std::string>* stringValues)
-    : m_out(out), m_diags(diags), m_ops(out.ir), m_paramValues(paramValues), m_stringValues(stringValues) {}
+                 const std::map<std::string, std::string>* stringValues, const Spaces* spaces)
+    : m_out(out),
+      m_diags(diags),
+      m_ops(out.ir),
+      m_paramValues(paramValues),
+      m_stringValues(stringValues),
+      m_spaces(spaces) {}
 
 Value Lowerer::StringValue(const std::string& text) {
     size_t index = 0;
@@ -261,6 +266,11 @@ std::optional<Value> Lowerer::LowerCast(const Expr& e) {
     std::optional<Value> v = LowerExpecting(*e.args[0], target);
     if (!v) return std::nullopt;
     if (v->type == Type::Bool) v->type = Type::Float;
+    if (!e.castSpace.empty() && IsSpatial(target) && (v->type == Type::Float || IsSpatial(v->type))) {
+        // `point "shader" (x, y, z)`: coordinates given in that space, converted to current.
+        m_ops.SetLine(e.loc.line);
+        return ToCurrent(e.castSpace, m_ops.Promote(*v, target), target);
+    }
     if (v->type == target) return v;
     if (target == Type::Matrix) {
         m_diags.error(e.loc, "matrix values are not supported yet");
@@ -528,7 +538,7 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
 
 std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
                                    const std::vector<std::vector<double>>* paramValues,
-                                   const std::map<std::string, std::string>* stringValues) {
+                                   const std::map<std::string, std::string>* stringValues, const Spaces* spaces) {
     if (unit.shaders.empty()) {
         if (!diags.hasErrors()) diags.error({1, 1}, "no shader definition in file");
         return std::nullopt;
@@ -542,7 +552,7 @@ std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diag
         return std::nullopt;
     }
     LoweredShader out;
-    Lowerer lowerer(out, diags, paramValues, stringValues);
+    Lowerer lowerer(out, diags, paramValues, stringValues, spaces);
     if (!lowerer.Run(shader, unit.functions)) return std::nullopt;
     return out;
 }

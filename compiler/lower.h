@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "compiler/spaces.h"
 #include "compiler/value_ops.h"
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
@@ -35,16 +36,20 @@ struct LoweredShader {
     /// String parameters: compile-time constants (their default, or the instance's value), so
     /// not in `params` and not in the programs.
     std::vector<std::string> stringParams;
+    /// The coordinate spaces the shader names, "current" aside (sorted, once each).
+    std::vector<std::string> spaces;
 };
 
 /// Checks and lowers the one displacement shader in `unit`. Parameters stay IR Param nodes (the
 /// i-th declared parameter is index i of `params`), with constant defaults, unless
 /// `paramValues` gives every parameter's value: then they are constants, and every branch and
 /// loop they decide is folded while lowering (a shader instance's specialisation); string
-/// parameters take their value from `stringValues` when it names them. Problems go
+/// parameters take their value from `stringValues` when it names them, and named coordinate
+/// spaces their matrices from `spaces` (else the identity). Problems go
 /// to `diags`; returns nothing if there was any error.
 std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
                                    const std::vector<std::vector<double>>* paramValues = nullptr,
-                                   const std::map<std::string, std::string>* stringValues = nullptr);
+                                   const std::map<std::string, std::string>* stringValues = nullptr,
+                                   const Spaces* spaces = nullptr);
 
 }  // namespace affray::compiler

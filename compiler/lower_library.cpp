@@ -17,9 +17,9 @@ bool IsTransform(const std::string& name) {
     return name == "transform" || name == "vtransform" || name == "ntransform";
 }
 
-// Spaces a shader may name. Every one is the identity for now: the scenes affray reads are in
-// world space with no transform stack, so current, world, object, shader and camera coincide
-// (`affray eval` documents the same). The projective ones cannot be the identity.
+// Spaces a shader may name: their matrices come with the instance (compiler/spaces.h; the
+// renderer gives "shader", "object", "world" and "camera"), the identity where none is given
+// (`affray eval`). The projective ones are not affine maps, which a bound needs.
 bool IsKnownSpace(const std::string& s) {
     return s == "current" || s == "world" || s == "object" || s == "shader" || s == "camera";
 }
@@ -76,20 +76,23 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
     auto argLoc = [&](size_t i) { return e.args[i]->loc; };
 
     if (IsTransform(name)) {
-        // transform([from,] to, x): the spaces are checked; the point itself is unchanged.
+        // transform([from,] to, x): from `from` (else current) to current, then to `to`.
         if (args.size() != 2 && args.size() != 3) {
             m_diags.error(e.loc, "'" + name + "' expects 2 or 3 arguments, got " + std::to_string(args.size()));
             return std::nullopt;
         }
-        for (size_t i = 0; i + 1 < args.size(); ++i)
-            if (!SpaceName(args[i], argLoc(i))) return std::nullopt;
+        std::optional<std::string> from = args.size() == 3 ? SpaceName(args[0], argLoc(0)) : "current";
+        if (!from) return std::nullopt;
+        std::optional<std::string> to = SpaceName(args[args.size() - 2], argLoc(args.size() - 2));
+        if (!to) return std::nullopt;
         const Value& x = args.back();
         if (!IsSpatial(x.type) && x.type != Type::Float) {
             m_diags.error(argLoc(args.size() - 1), "'" + name + "' transforms a point, vector or normal, not " + Article(x.type));
             return std::nullopt;
         }
-        const Type result = name == "transform" ? Type::Point : name == "vtransform" ? Type::Vector : Type::Normal;
-        return m_ops.Promote(x, x.type == Type::Float ? result : IsSpatial(x.type) ? x.type : result);
+        const Type kind = name == "transform" ? Type::Point : name == "vtransform" ? Type::Vector : Type::Normal;
+        const Value typed = m_ops.Promote(x, x.type == Type::Float ? kind : x.type);
+        return FromCurrent(*to, ToCurrent(*from, typed, kind), kind);
     }
 
     if (IsNoise(name)) {
@@ -226,6 +229,41 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
     for (size_t i = first + 1; i < args.size(); ++i) knots.push_back(m_ops.Promote(args[i], knotType));
     const Value t = m_ops.Clamp(args[first], m_ops.Constant(0.0), m_ops.Constant(1.0));
     return Spline(*b, t, knots);
+}
+
+Value Lowerer::MapBy(const Matrix4& m, const Matrix4& inverse, const Value& x, Type kind) {
+    Value out = x;
+    for (int i = 0; i < 3; ++i) {
+        // Row i of m (a point or vector), or column i of the inverse (a normal: inverse transpose).
+        auto coefficient = [&](int j) { return kind == Type::Normal ? inverse[4 * j + i] : m[4 * i + j]; };
+        ValueId sum = kind == Type::Point ? ir().Const(m[4 * i + 3]) : ir().Const(0.0);
+        for (int j = 0; j < 3; ++j)
+            sum = ir().Binary(IrOp::Add, sum, ir().Binary(IrOp::Mul, ir().Const(coefficient(j)), x.c[j], Line()), Line());
+        out.c[i] = sum;
+    }
+    return out;
+}
+
+void Lowerer::NoteSpace(const std::string& space) {
+    if (std::count(m_out.spaces.begin(), m_out.spaces.end(), space)) return;
+    m_out.spaces.push_back(space);
+    std::sort(m_out.spaces.begin(), m_out.spaces.end());
+}
+
+Value Lowerer::ToCurrent(const std::string& space, const Value& x, Type kind) {
+    if (space == "current") return x;
+    NoteSpace(space);
+    if (!m_spaces || !m_spaces->count(space)) return x;  // the identity
+    const SpaceTransform& t = m_spaces->at(space);
+    return MapBy(t.toCurrent, t.fromCurrent, x, kind);
+}
+
+Value Lowerer::FromCurrent(const std::string& space, const Value& x, Type kind) {
+    if (space == "current") return x;
+    NoteSpace(space);
+    if (!m_spaces || !m_spaces->count(space)) return x;
+    const SpaceTransform& t = m_spaces->at(space);
+    return MapBy(t.fromCurrent, t.toCurrent, x, kind);
 }
 
 Value Lowerer::Spline(const SplineBasis& basis, const Value& t, const std::vector<Value>& knots) {

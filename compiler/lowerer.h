@@ -69,7 +69,7 @@ const SplineBasis* FindSplineBasis(const std::string& name);
 class Lowerer {
   public:
     Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues,
-            const std::map<std::string, std::string>* stringValues);
+            const std::map<std::string, std::string>* stringValues, const Spaces* spaces);
 
     bool Run(const lang::ShaderDef& shader, const std::vector<std::shared_ptr<lang::FunctionDef>>& functions);
 
@@ -117,6 +117,14 @@ class Lowerer {
     /// A string naming a known, affine coordinate space; reports and returns nothing otherwise.
     std::optional<std::string> SpaceName(const Value& v, lang::SourceLoc loc);
     Value Spline(const SplineBasis& basis, const Value& t, const std::vector<Value>& knots);
+    /// `x` (a point, vector or normal, as `kind` says) from `space` to current, and back.
+    Value ToCurrent(const std::string& space, const Value& x, Type kind);
+    Value FromCurrent(const std::string& space, const Value& x, Type kind);
+    /// Records that the shader names `space` (LoweredShader::spaces).
+    void NoteSpace(const std::string& space);
+    /// x mapped by the affine matrix m (a point: with its translation; a vector: without; a
+    /// normal: by the transpose of `inverse`, m's inverse).
+    Value MapBy(const Matrix4& m, const Matrix4& inverse, const Value& x, Type kind);
     /// Lowers `e` with `expected` as the type its context wants (picks noise's result type).
     std::optional<Value> LowerExpecting(const lang::Expr& e, Type expected);
 
@@ -170,6 +178,8 @@ class Lowerer {
     const std::vector<std::vector<double>>* m_paramValues;
     /// The instance's string parameter values, or null (defaults).
     const std::map<std::string, std::string>* m_stringValues;
+    /// The instance's coordinate spaces, or null (all the identity).
+    const Spaces* m_spaces;
     std::vector<std::string> m_strings;
     /// The type the context of the call being lowered wants (Void: none).
     Type m_expected = Type::Void;

@@ -20,7 +20,7 @@ std::string ReadAll(const std::string& path) {
 }
 
 std::string Key(const std::string& path, const std::string& bytes, const std::vector<ParamOverride>& overrides,
-                const lang::PreprocessOptions& preprocess) {
+                const lang::PreprocessOptions& preprocess, const Spaces* spaces) {
     // The path is part of the key too: #include "x.h" resolves next to the including file.
     std::string key = path + '\n' + std::to_string(vm::HashSource(bytes)) + '\n' + std::to_string(bytes.size());
     for (const std::string& d : preprocess.includeDirs) key += "\n-I" + d;
@@ -30,15 +30,19 @@ std::string Key(const std::string& path, const std::string& bytes, const std::ve
         for (double x : o.numbers) key += std::to_string(std::bit_cast<uint64_t>(x)) + ",";
         if (o.text) key += "\"" + *o.text + "\"";
     }
+    for (const auto& [name, t] : spaces ? *spaces : Spaces{}) {
+        key += "\nspace " + name + ":";
+        for (double x : t.toCurrent) key += std::to_string(std::bit_cast<uint64_t>(x)) + ",";
+    }
     return key;
 }
 
 }  // namespace
 
 CompileResult ShaderCache::Load(const std::string& path, const std::vector<ParamOverride>& overrides,
-                                const lang::PreprocessOptions& preprocess) {
+                                const lang::PreprocessOptions& preprocess, const Spaces* spaces) {
     const std::string bytes = ReadAll(path);
-    const std::string key = Key(path, bytes, overrides, preprocess);
+    const std::string key = Key(path, bytes, overrides, preprocess, spaces);
     if (!bytes.empty()) {
         auto it = m_compiled.find(key);
         if (it != m_compiled.end()) {
@@ -49,7 +53,7 @@ CompileResult ShaderCache::Load(const std::string& path, const std::vector<Param
         }
     }
     ++m_misses;
-    CompileResult result = LoadShader(path, overrides, preprocess);
+    CompileResult result = LoadShader(path, overrides, preprocess, spaces);
     if (result.ok() && !bytes.empty()) m_compiled.emplace(key, *result.shader);
     return result;
 }

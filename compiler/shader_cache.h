@@ -14,10 +14,11 @@ namespace affray::compiler {
 
 class ShaderCache {
   public:
-    /// LoadShader(path, overrides, preprocess), or the result of an earlier call whose file had
-    /// the same bytes and whose overrides and options were the same. Failures are not kept.
+    /// LoadShader(path, overrides, preprocess, spaces), or the result of an earlier call whose
+    /// file had the same bytes and whose overrides, options and spaces were the same. Failures
+    /// are not kept.
     CompileResult Load(const std::string& path, const std::vector<ParamOverride>& overrides,
-                       const lang::PreprocessOptions& preprocess);
+                       const lang::PreprocessOptions& preprocess, const Spaces* spaces = nullptr);
 
     int hits() const { return m_hits; }
     int misses() const { return m_misses; }

@@ -132,6 +132,32 @@ std::string RenderStats::ToJson() const {
     return buf;
 }
 
+namespace {
+
+compiler::Matrix4 RowMajor(const glm::dmat4& m) {
+    compiler::Matrix4 out{};
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col) out[4 * row + col] = m[col][row];  // glm is column-major
+    return out;
+}
+
+bool IsAffine(const compiler::Matrix4& m) { return m[12] == 0 && m[13] == 0 && m[14] == 0 && m[15] == 1; }
+
+/// The spaces a shader on `patch` sees. "current" is world space: P is computed there.
+compiler::Spaces SpacesOf(const CameraDesc& camera, const PatchDesc& patch) {
+    auto space = [](const glm::dmat4& toWorld) {
+        return compiler::SpaceTransform{RowMajor(toWorld), RowMajor(glm::inverse(toWorld))};
+    };
+    compiler::Spaces spaces;
+    spaces["world"] = compiler::SpaceTransform{};
+    spaces["object"] = space(patch.objectToWorld);
+    spaces["shader"] = space(patch.displacement ? patch.displacement->shaderToWorld : patch.objectToWorld);
+    spaces["camera"] = space(glm::inverse(camera.worldToCamera));
+    return spaces;
+}
+
+}  // namespace
+
 bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,
                   const lang::PreprocessOptions& preprocess, PreparedScene* out, std::string* error) {
     out->desc = desc;
@@ -164,7 +190,8 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                 else
                     overrides.push_back(compiler::ParamOverride::String(p.name, p.strings[0]));
             }
-            compiler::CompileResult result = cache.Load(path, overrides, preprocess);
+            const compiler::Spaces spaces = SpacesOf(desc.camera, patch);
+            compiler::CompileResult result = cache.Load(path, overrides, preprocess, &spaces);
             if (!result.ok()) {
                 *error = result.diagnostics;
                 for (const std::string& e : result.paramErrors) *error += where + e + "\n";
@@ -173,6 +200,13 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                 return false;
             }
             prim.shader = std::make_shared<compiler::CompiledShader>(std::move(*result.shader));
+            for (const std::string& name : prim.shader->genericBound.spaces) {
+                if (spaces.count(name) && !IsAffine(spaces.at(name).toCurrent)) {
+                    *error = where + "shader '" + ref.name + "' uses coordinate space '" + name +
+                             "', which the scene makes projective (not supported)";
+                    return false;
+                }
+            }
             prim.bound = prim.shader->bound;
             prim.shade = prim.shader->shade;
         } else {

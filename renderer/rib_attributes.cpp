@@ -66,6 +66,7 @@ bool RibParser::DoDisplacement(const RibRequest& r) {
         return true;
     }
     shader.line = r.line;
+    shader.shaderToWorld = m_state.ctm;
     for (RibParam& p : params) shader.params.push_back(std::move(p.value));
     m_state.displacement = std::move(shader);
     return true;
@@ -178,6 +179,7 @@ bool RibParser::DoPatch(const RibRequest& r) {
     patch.surface = m_state.surface;
     patch.displacement = m_state.displacement;
     patch.line = r.line;
+    patch.objectToWorld = m_state.ctm;
     m_scene.patches.push_back(std::move(patch));
     return true;
 }

@@ -27,6 +27,8 @@ struct ShaderRef {
     std::string name;
     std::vector<ParamValue> params;  ///< In file order; a repeated name replaces the earlier value.
     int line = 0;                    ///< RIB line of the request, for diagnostics.
+    /// Shader space: the current transform at the request (shader -> world, column vectors).
+    glm::dmat4 shaderToWorld{1.0};
 };
 
 /// The built-in surface models. Defaults are those of RenderMan's "plastic"; "matte" sets Kd = 1.
@@ -53,6 +55,8 @@ struct PatchDesc {
     SurfaceDesc surface;
     std::optional<ShaderRef> displacement;
     int line = 0;
+    /// Object space: the current transform at the patch (object -> world, column vectors).
+    glm::dmat4 objectToWorld{1.0};
 };
 
 /// The camera options in effect at WorldBegin.

@@ -143,6 +143,8 @@ void WriteProgram(Writer& w, const char* tag, const Program& p) {
         w.Count(param.defaults.size());
         for (double d : param.defaults) w.F64(d);
     }
+    w.Count(p.spaces.size());
+    for (const std::string& space : p.spaces) w.Str(space);
 }
 
 const char* kRunsPastEnd = "corrupt file (a field runs past the end of the data)";
@@ -205,6 +207,8 @@ bool ReadProgram(Reader& r, const std::string& tag, Program* p, std::string* err
         for (double& d : param.defaults) d = r.F64();
         if (r.failed()) break;
     }
+    p->spaces.resize(r.Count(4));  // smallest: an empty name
+    for (std::string& space : p->spaces) space = r.Str();
     if (r.failed()) return Fail(error, kRunsPastEnd);
 
     std::string problem;

@@ -29,6 +29,7 @@
 //     u32  output count, then per output: str name, i32 size, u16 registers[3]
 //     u32  param count, then per param: str name, str type, i32 size, u16 firstRegister,
 //          u32 default count, then per default: u64 binary64 bits
+//     u32  space count, then per space: str name (the coordinate spaces the shader names)
 //
 // The header check and the length let a reader tell a truncated file ("truncated file") from a
 // damaged one ("corrupt file (checksum mismatch)"); the checksum is tested before any field

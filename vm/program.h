@@ -73,6 +73,9 @@ struct Program {
     /// Parameters still read from registers; empty once the program is specialised (every
     /// parameter then is a constant folded into the code).
     std::vector<ProgramParam> params;
+    /// Coordinate spaces the shader names (other than "current"). A generic program computes
+    /// them as the identity; an instance compiled from source has their matrices folded in.
+    std::vector<std::string> spaces;
 
     Program() { globalRegisters.fill(kNoRegister); }
 

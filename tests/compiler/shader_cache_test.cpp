@@ -1,9 +1,10 @@
 // tests/compiler/shader_cache_test.cpp: compiled shaders are reused by content, never stale;
-// string parameters take instance values.
+// string parameters take instance values; coordinate spaces fold into an instance.
 #include <catch2/catch.hpp>
 
 #include "../test_util.h"
 #include "compiler/shader_cache.h"
+#include "vm/bytecode_file.h"
 
 using namespace affray;
 using Catch::Matchers::WithinAbs;
@@ -55,4 +56,44 @@ TEST_CASE("string parameters take instance values", "[compiler][cache]") {
     CHECK(wrong.paramErrors == std::vector<std::string>{"parameter 'mode' of shader 'c' is a string, got a number"});
     wrong = compiler::CompileSource("c.sl", kShader, {compiler::ParamOverride::String("style", "x")});
     CHECK(wrong.paramErrors == std::vector<std::string>{"shader 'c' has no parameter 'style'"});
+}
+
+TEST_CASE("coordinate spaces of an instance are folded into its programs", "[compiler][spaces]") {
+    // Shader space: translated by (1, 2, 3) and scaled by 2 along x, from world (= current).
+    compiler::SpaceTransform shader;
+    shader.toCurrent = {2, 0, 0, 1, 0, 1, 0, 2, 0, 0, 1, 3, 0, 0, 0, 1};
+    shader.fromCurrent = {0.5, 0, 0, -0.5, 0, 1, 0, -2, 0, 0, 1, -3, 0, 0, 0, 1};
+    const compiler::Spaces spaces{{"shader", shader}};
+    auto at = [&](const std::string& body, const compiler::Spaces* s) {
+        compiler::CompileResult r = compiler::CompileSource("s.sl", "displacement s() {\n" + body + "\n}\n", {}, {}, s);
+        REQUIRE(r.ok());
+        return test::PointOnSquare(r.shader->shade, 0.5, 0.25);  // P = (0.5, 0.25, 0) there
+    };
+    auto same = [](glm::dvec3 a, glm::dvec3 b) {
+        INFO(a.x << " " << a.y << " " << a.z << " vs " << b.x << " " << b.y << " " << b.z);
+        CHECK(glm::length(a - b) < 1e-15);
+    };
+    same(at("P = transform(\"shader\", P);", &spaces), {(0.5 - 1) / 2, 0.25 - 2, -3});
+    same(at("P = vtransform(\"shader\", vector P);", &spaces), {0.25, 0.25, 0});
+    same(at("P = transform(\"shader\", \"world\", P);", &spaces), {2, 2.25, 3});
+    same(at("P = point \"shader\" (0, 0, 0);", &spaces), {1, 2, 3});
+    // A normal goes by the inverse transpose: (1, 0, 0) in world is (2, 0, 0) in shader space.
+    same(at("P = point(0, 0, 0) + ntransform(\"shader\", normal(1, 0, 0));", &spaces), {2, 0, 0});
+    same(at("P = transform(\"object\", P);", &spaces), {0.5, 0.25, 0});  // not given: the identity
+    same(at("P = transform(\"shader\", P);", nullptr), {0.5, 0.25, 0});  // eval: the identity
+
+    // Compiled bytecode computes every space as the identity, so it refuses a scene that
+    // makes a space it uses something else.
+    test::TempDir dir;
+    compiler::CompileResult src = compiler::CompileSource("s.sl", "displacement s() {\n  P = transform(\"shader\", P);\n}\n");
+    REQUIRE(src.ok());
+    CHECK(src.shader->genericBound.spaces == std::vector<std::string>{"shader"});
+    vm::BytecodeFile file{"s", "s.sl", 0, src.shader->genericBound, src.shader->genericShade};
+    std::string error;
+    REQUIRE(vm::WriteBytecodeFile(dir.Path("s.afb"), file, &error));
+    CHECK(compiler::LoadCompiledShader(dir.Path("s.afb"), {}, nullptr).ok());
+    compiler::CompileResult refused = compiler::LoadCompiledShader(dir.Path("s.afb"), {}, &spaces);
+    CHECK_FALSE(refused.ok());
+    REQUIRE(refused.paramErrors.size() == 1);
+    CHECK(refused.paramErrors[0].find("uses coordinate space 'shader'") != std::string::npos);
 }
