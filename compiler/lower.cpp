@@ -283,11 +283,29 @@ std::optional<Value> Lowerer::LowerCast(const Expr& e) {
     return m_ops.Promote(*v, target);
 }
 
+std::optional<Value> Lowerer::LowerCall(const Expr& e, Type expected) {
+    // A user function wins over a built-in of the same name.
+    if (const lang::FunctionDef* f = FindFunction(e.name)) return LowerUserCall(e, *f);
+    if (e.name == "comp" || e.name == "setcomp" || e.name == "setxcomp" || e.name == "setycomp" ||
+        e.name == "setzcomp")
+        return LowerComponentCall(e);
+    std::vector<Value> args;
+    bool ok = true;
+    for (const lang::ExprPtr& arg : e.args) {
+        std::optional<Value> v = LowerExpr(*arg);
+        if (v) args.push_back(*v);
+        ok = ok && v.has_value();
+    }
+    if (!ok) return std::nullopt;
+    m_ops.SetLine(e.loc.line);
+    if (IsLibraryCall(e.name)) return LowerLibraryCall(e, args, expected);
+    for (Value& a : args)
+        if (a.type == Type::Bool) a.type = Type::Float;
+    return LowerBuiltin(m_ops, e, args, m_diags);
+}
+
 std::optional<Value> Lowerer::LowerExpecting(const Expr& e, Type expected) {
-    m_expected = e.kind == ExprKind::Call ? expected : Type::Void;
-    std::optional<Value> v = LowerExpr(e);
-    m_expected = Type::Void;
-    return v;
+    return e.kind == ExprKind::Call ? LowerCall(e, expected) : LowerExpr(e);
 }
 
 std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
@@ -314,41 +332,7 @@ std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
         }
         case ExprKind::Binary: return LowerBinary(e);
         case ExprKind::Assign: return LowerAssign(e);
-        case ExprKind::Call: {
-            const Type expected = m_expected;  // for this call only, not its arguments
-            m_expected = Type::Void;
-            // A user function wins over a built-in of the same name.
-            if (const lang::FunctionDef* f = FindFunction(e.name)) return LowerUserCall(e, *f);
-            if (IsLibraryCall(e.name) && IsTriple(expected)) {
-                std::vector<Value> args;
-                for (const lang::ExprPtr& arg : e.args) {
-                    std::optional<Value> v = LowerExpr(*arg);
-                    if (!v) return std::nullopt;
-                    args.push_back(*v);
-                }
-                m_ops.SetLine(e.loc.line);
-                m_expected = expected;
-                std::optional<Value> r = LowerLibraryCall(e, args);
-                m_expected = Type::Void;
-                return r;
-            }
-            if (e.name == "comp" || e.name == "setcomp" || e.name == "setxcomp" || e.name == "setycomp" ||
-                e.name == "setzcomp")
-                return LowerComponentCall(e);
-            std::vector<Value> args;
-            bool ok = true;
-            for (const lang::ExprPtr& arg : e.args) {
-                std::optional<Value> v = LowerExpr(*arg);
-                if (v) args.push_back(*v);
-                ok = ok && v.has_value();
-            }
-            if (!ok) return std::nullopt;
-            m_ops.SetLine(e.loc.line);
-            if (IsLibraryCall(e.name)) return LowerLibraryCall(e, args);
-            for (Value& a : args)
-                if (a.type == Type::Bool) a.type = Type::Float;
-            return LowerBuiltin(m_ops, e, args, m_diags);
-        }
+        case ExprKind::Call: return LowerCall(e, Type::Void);
         case ExprKind::Triple: {
             std::array<ValueId, 3> c{};
             bool ok = true;

@@ -68,7 +68,7 @@ std::optional<std::string> Lowerer::SpaceName(const Value& v, lang::SourceLoc lo
     return name;
 }
 
-std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value> args) {
+std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value> args, Type expected) {
     const std::string& name = e.name;
     const int line = e.loc.line;
     for (Value& a : args)
@@ -132,7 +132,7 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
         const IrOp op = name == "noise" ? IrOp::Noise : periodic ? IrOp::PNoise : IrOp::CellNoise;
         // The result type comes from the context: a triple context gets three independent
         // channels, anything else the float.
-        const Type result = IsTriple(m_expected) ? m_expected : Type::Float;
+        const Type result = IsTriple(expected) ? expected : Type::Float;
         Value out{result, {}};
         for (int c = 0; c < 3; ++c)
             out.c[c] = IsTriple(result) || c == 0 ? ir().Noise(op, operands, c, line) : out.c[0];

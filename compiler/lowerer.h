@@ -89,7 +89,9 @@ class Lowerer {
     std::optional<Value> LowerAssign(const lang::Expr& e);
     std::optional<Value> LowerCast(const lang::Expr& e);
     std::optional<Value> LowerIdent(const lang::Expr& e);
-    std::optional<Value> LowerCall(const lang::Expr& e);
+    /// A call; `expected` is the type its context wants (only noise's result type depends on
+    /// it; Void: none). The arguments are lowered with no expectation.
+    std::optional<Value> LowerCall(const lang::Expr& e, Type expected);
     /// comp, setcomp and setxcomp/setycomp/setzcomp: component access by a constant index, the
     /// setters writing to their first argument, which must be a variable.
     std::optional<Value> LowerComponentCall(const lang::Expr& e);
@@ -113,7 +115,8 @@ class Lowerer {
 
     // --- built-ins that need the lowerer (lower_library.cpp)
     bool IsLibraryCall(const std::string& name) const;
-    std::optional<Value> LowerLibraryCall(const lang::Expr& e, std::vector<Value> args);
+    /// `expected`: the type the call's context wants (picks noise's result type), else Void.
+    std::optional<Value> LowerLibraryCall(const lang::Expr& e, std::vector<Value> args, Type expected);
     /// A string naming a known, affine coordinate space; reports and returns nothing otherwise.
     std::optional<std::string> SpaceName(const Value& v, lang::SourceLoc loc);
     Value Spline(const SplineBasis& basis, const Value& t, const std::vector<Value>& knots);
@@ -181,8 +184,6 @@ class Lowerer {
     /// The instance's coordinate spaces, or null (all the identity).
     const Spaces* m_spaces;
     std::vector<std::string> m_strings;
-    /// The type the context of the call being lowered wants (Void: none).
-    Type m_expected = Type::Void;
     /// Functions by visibility: (scope depth at definition, definition), innermost last.
     std::vector<std::pair<size_t, const lang::FunctionDef*>> m_functions;
     /// Functions being inlined, outermost first.
