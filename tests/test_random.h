@@ -1,4 +1,4 @@
-// tests/test_random.h: the random sampling the property tests share. Every test seeds its own
+// tests/test_random.h: the random sampling and failure tally the property tests share. Every test seeds its own
 // generator, so a failure reproduces; AFFRAY_SAMPLES raises the sample counts (e.g. 1e6 for a
 // long run) without changing what CTest runs.
 #pragma once
@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <random>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace affray::test {
@@ -41,6 +43,17 @@ struct Rng {
     double eps() {
         int k = integer(0, 4);
         return k < 3 ? k - 1.0 : std::ldexp(integer(-4096, 4096), -12);
+    }
+};
+
+/// Counts of a property test's samples, and the first few failures' descriptions (the rest
+/// are only counted, so a broken bound does not print a million lines).
+struct Tally {
+    int samples = 0, failures = 0;
+    int bounded = 0, finite = 0, loose = 0;  // what a test chooses to count besides
+    std::ostringstream first;
+    void fail(const std::string& s) {
+        if (failures++ < 4) first << s << "\n";
     }
 };
 

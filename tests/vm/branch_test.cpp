@@ -25,6 +25,7 @@
 using namespace affray::vm;
 using affray::test::Rng;
 using affray::test::Samples;
+using affray::test::Tally;
 
 namespace {
 
@@ -122,20 +123,6 @@ Interval EvalAt(const Affine& r, const Assignment& a) {
     return Interval(SubDown(lo, w), AddUp(hi, w));
 }
 
-struct Tally {
-    int samples = 0, failures = 0, bounded = 0, finite = 0;
-    std::ostringstream first;
-    void fail(const std::string& s) {
-        if (failures++ < 4) first << s << "\n";
-    }
-};
-
-std::string Show(double d) {
-    char b[40];
-    std::snprintf(b, sizeof b, "%.17g", d);
-    return b;
-}
-
 // One result triple: the double rd must be in the affine form at `a` and in its range, and in
 // the interval result; NaN/inf requires both Unbounded. `what()` describes the sample (on failure).
 template <class W>
@@ -143,16 +130,16 @@ void Check(Tally& t, W what, double rd, const Affine& ra, const Interval& ri, co
     t.samples++;
     if (!std::isfinite(rd)) {
         if (!ra.isUnbounded() || !ri.isUnbounded())
-            t.fail(what() + ": " + Show(rd) + " but affine " + ra.toString() + ", interval " +
+            t.fail(what() + ": " + ToString(rd) + " but affine " + ra.toString() + ", interval " +
                    ri.toString());
         return;
     }
     t.finite++;
     if (!ra.isUnbounded()) t.bounded++;
     if (!EvalAt(ra, a).contains(rd) || !ra.range().contains(rd))
-        t.fail(what() + ": " + Show(rd) + " not in affine " + ra.toString() + " (at point " +
+        t.fail(what() + ": " + ToString(rd) + " not in affine " + ra.toString() + " (at point " +
                EvalAt(ra, a).toString() + ", range " + ra.range().toString() + ")");
-    if (!ri.contains(rd)) t.fail(what() + ": " + Show(rd) + " not in interval " + ri.toString());
+    if (!ri.contains(rd)) t.fail(what() + ": " + ToString(rd) + " not in interval " + ri.toString());
 }
 
 void Expect(const char* name, const Tally& t, double minBounded) {

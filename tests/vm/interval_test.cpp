@@ -17,6 +17,7 @@
 using namespace affray::vm;
 using affray::test::Rng;
 using affray::test::Samples;
+using affray::test::Tally;
 
 namespace {
 
@@ -61,26 +62,12 @@ struct Gen {
     }
 };
 
-struct Tally {
-    int samples = 0, failures = 0, bounded = 0, loose = 0;
-    std::ostringstream first;
-    void fail(const std::string& s) {
-        if (failures++ < 4) first << s << "\n";
-    }
-};
-
-std::string Show(double d) {
-    char b[40];
-    std::snprintf(b, sizeof b, "%.17g", d);
-    return b;
-}
-
 // `what` describes the sample; it is called only on failure.
 template <class W>
 void Contain(Tally& t, W what, double rd, const Interval& ri) {
     t.samples++;
     bool ok = std::isfinite(rd) ? ri.contains(rd) : ri.isUnbounded();
-    if (!ok) t.fail(what() + " -> " + Show(rd) + " not in " + ri.toString());
+    if (!ok) t.fail(what() + " -> " + ToString(rd) + " not in " + ri.toString());
 }
 
 // Containment of f at every chosen point; for exactly sampled unary f, tightness too.
@@ -93,7 +80,7 @@ void CheckUnary(Tally& t, const Interval& x, F f, bool checkTight, Gen& g) {
     for (double p : g.points(x, 6)) {
         double d = f(p);
         Contain(
-            t, [&] { return "f(" + Show(p) + ") over " + x.toString(); }, d, r);
+            t, [&] { return "f(" + ToString(p) + ") over " + x.toString(); }, d, r);
         allFinite = allFinite && std::isfinite(d);
         lo = std::fmin(lo, d);
         hi = std::fmax(hi, d);
@@ -103,7 +90,7 @@ void CheckUnary(Tally& t, const Interval& x, F f, bool checkTight, Gen& g) {
     if (r.lo() < lo - slack || r.hi() > hi + slack) {
         t.loose++;
         if (t.loose <= 4)
-            t.first << "loose: " << r.toString() << " vs samples [" << Show(lo) << ", " << Show(hi)
+            t.first << "loose: " << r.toString() << " vs samples [" << ToString(lo) << ", " << ToString(hi)
                     << "] over " << x.toString() << "\n";
     }
 }
@@ -117,7 +104,7 @@ void CheckBinary(Tally& t, const Interval& x, const Interval& y, F f, Gen& g) {
             Contain(
                 t,
                 [&] {
-                    return "f(" + Show(p) + ", " + Show(q) + ") over " + x.toString() + ", " +
+                    return "f(" + ToString(p) + ", " + ToString(q) + ") over " + x.toString() + ", " +
                            y.toString();
                 },
                 f(p, q), r);
@@ -237,7 +224,7 @@ TEST_CASE("interval steps, inverse trigonometry, min/max and logic contain the s
                     for (double zero : {0.0, -0.0})
                         for (double q : {p, p == 0 ? -0.0 : p})
                             Contain(
-                                at2, [&] { return "atan2(" + Show(zero) + ", " + Show(q) + ")"; },
+                                at2, [&] { return "atan2(" + ToString(zero) + ", " + ToString(q) + ")"; },
                                 std::atan2(zero, q), atan2(yy, x));
         CheckBinary(
             mn, x, y, [](auto a, auto b) { return Min(a, b); }, g);
