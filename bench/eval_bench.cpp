@@ -2,7 +2,6 @@
 // hand-written C++ function computing the same displacement, all in one process so the figures
 // are ratios against a baseline measured on the same machine at the same time.
 // Usage: affray_bench_eval [SHADER.sl] [--seconds S]   (Release builds only)
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -10,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "bench/evals_per_second.h"
 #include "compiler/compile.h"
 #include "renderer/surface.h"
 
@@ -17,24 +17,15 @@ using namespace affray;
 
 namespace {
 
+using affray::bench::EvalsPerSecond;
+// Evaluations between clock reads.
+constexpr int kBatch = 256;
+
 /// wave.sl with its default parameters, written by hand: the speed a native shader would have.
 double NativeWaveZ(double u, double v) {
     const double Km = 0.06, frequency = 8, decay = 2.5;
     double r = std::sqrt((u - 0.5) * (u - 0.5) + (v - 0.5) * (v - 0.5));
     return Km * std::exp(-decay * r) * std::cos(2 * std::numbers::pi * frequency * r);
-}
-
-template <class F>
-double EvalsPerSecond(double seconds, F&& evaluate) {
-    using Clock = std::chrono::steady_clock;
-    long n = 0;
-    auto start = Clock::now();
-    double elapsed = 0;
-    do {
-        for (int i = 0; i < 256; ++i) evaluate(n++);
-        elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    } while (elapsed < seconds);
-    return n / elapsed;
 }
 
 volatile double g_sink;  // keeps results alive so the optimiser cannot drop the work
@@ -46,7 +37,7 @@ double RegionEvalsPerSecond(const vm::Program& program, double width, double sec
     const auto square = renderer::BilinearPatch::UnitSquare();
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> corner(0.0, 1.0 - width);
-    return EvalsPerSecond(seconds, [&](long) {
+    return EvalsPerSecond(seconds, kBatch, [&](long) {
         double u0 = corner(rng), v0 = corner(rng);
         renderer::SetPatchGlobals(interp, square, u0, u0 + width, v0, v0 + width, glm::dvec3(0.0));
         interp.Run();
@@ -74,11 +65,11 @@ int main(int argc, char** argv) {
 
     std::mt19937_64 rng(1);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
-    double native = EvalsPerSecond(seconds, [&](long) { g_sink = NativeWaveZ(unit(rng), unit(rng)); });
+    double native = EvalsPerSecond(seconds, kBatch, [&](long) { g_sink = NativeWaveZ(unit(rng), unit(rng)); });
 
     vm::Interpreter<double> scalar(bound);
     const auto square = renderer::BilinearPatch::UnitSquare();
-    double scalarRate = EvalsPerSecond(seconds, [&](long) {
+    double scalarRate = EvalsPerSecond(seconds, kBatch, [&](long) {
         double u = unit(rng), v = unit(rng);
         renderer::SetPatchGlobals(scalar, square, u, u, v, v, glm::dvec3(0.0));
         scalar.Run();

@@ -2,11 +2,12 @@
 // point (double, Dual<double>) and over regions one cell wide, a few cells wide and past the cell
 // cap (Interval, Affine, Dual<Affine>), for 1 to 4 dimensions.
 // Usage: affray_bench_noise [--seconds S]   (Release builds only)
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <random>
+
+#include "bench/evals_per_second.h"
 
 #include "vm/noise.h"
 
@@ -14,20 +15,11 @@ using namespace affray::vm;
 
 namespace {
 
-volatile double g_sink;  // keeps results alive so the optimiser cannot drop the work
+using affray::bench::EvalsPerSecond;
+// Evaluations between clock reads.
+constexpr int kBatch = 64;
 
-template <class F>
-double EvalsPerSecond(double seconds, F&& evaluate) {
-    using Clock = std::chrono::steady_clock;
-    long n = 0;
-    auto start = Clock::now();
-    double elapsed = 0;
-    do {
-        for (int i = 0; i < 64; ++i) evaluate(n++);
-        elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    } while (elapsed < seconds);
-    return n / elapsed;
-}
+volatile double g_sink;  // keeps results alive so the optimiser cannot drop the work
 
 /// Noise over p_i = o_i + a_i*u + b_i*v with u, v on [c - r, c + r] and p_i about `width` wide.
 template <class T>
@@ -84,7 +76,7 @@ double Rate(int dims, double width, double seconds) {
     constexpr int kArgs = 256;
     static T args[kArgs][4];
     for (auto& p : args) MakeRegion(rng, dims, width, p);
-    return EvalsPerSecond(seconds, [&](long n) {
+    return EvalsPerSecond(seconds, kBatch, [&](long n) {
         g_sink = RangeOf(ValueOf(Noise(args[n % kArgs], dims, static_cast<uint32_t>(n % 3)))).hi();
     });
 }
