@@ -115,25 +115,6 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
     return ShadeSurface(prim.surface, prim.color, sp, scene.lights, occluded);
 }
 
-}  // namespace
-
-std::string RenderStats::ToJson() const {
-    double mean = camera.rays ? double(camera.regionsBounded) / double(camera.rays) : 0.0;
-    double shadowMean = shadow.rays ? double(shadow.regionsBounded) / double(shadow.rays) : 0.0;
-    char buf[512];
-    std::snprintf(buf, sizeof buf,
-                  "{\"wall_seconds\":%.3f,\"width\":%d,\"height\":%d,\"camera_rays\":%llu,"
-                  "\"regions_per_ray_mean\":%.2f,\"regions_per_ray_max\":%llu,\"depth_limit_hits\":%llu,"
-                  "\"max_certified_error\":%.6g,\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f}",
-                  wallSeconds, width, height, static_cast<unsigned long long>(camera.rays), mean,
-                  static_cast<unsigned long long>(camera.maxRegionsPerRay),
-                  static_cast<unsigned long long>(camera.depthLimitHits + shadow.depthLimitHits),
-                  std::max(camera.maxHitError, 0.0), static_cast<unsigned long long>(shadow.rays), shadowMean);
-    return buf;
-}
-
-namespace {
-
 compiler::Matrix4 RowMajor(const glm::dmat4& m) {
     compiler::Matrix4 out{};
     for (int row = 0; row < 4; ++row)
@@ -156,7 +137,23 @@ compiler::Spaces SpacesOf(const CameraDesc& camera, const PatchDesc& patch) {
     return spaces;
 }
 
+
 }  // namespace
+
+std::string RenderStats::ToJson() const {
+    double mean = camera.rays ? double(camera.regionsBounded) / double(camera.rays) : 0.0;
+    double shadowMean = shadow.rays ? double(shadow.regionsBounded) / double(shadow.rays) : 0.0;
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "{\"wall_seconds\":%.3f,\"width\":%d,\"height\":%d,\"camera_rays\":%llu,"
+                  "\"regions_per_ray_mean\":%.2f,\"regions_per_ray_max\":%llu,\"depth_limit_hits\":%llu,"
+                  "\"max_certified_error\":%.6g,\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f}",
+                  wallSeconds, width, height, static_cast<unsigned long long>(camera.rays), mean,
+                  static_cast<unsigned long long>(camera.maxRegionsPerRay),
+                  static_cast<unsigned long long>(camera.depthLimitHits + shadow.depthLimitHits),
+                  std::max(camera.maxHitError, 0.0), static_cast<unsigned long long>(shadow.rays), shadowMean);
+    return buf;
+}
 
 bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,
                   const lang::PreprocessOptions& preprocess, PreparedScene* out, std::string* error) {
