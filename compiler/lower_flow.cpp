@@ -14,10 +14,7 @@ using lang::StmtKind;
 Value Lowerer::Guard(const Value& value, const Value& old) {
     const ValueId alive = m_state.alive;
     if (ir().ConstValue(alive) == 1.0 || old.type == Type::Void) return value;
-    Value out = value;
-    for (int i = 0; i < value.size(); ++i) out.c[i] = ir().Select(alive, value.c[i], old.c[i], Line());
-    if (value.size() == 1) out.c[1] = out.c[2] = out.c[0];
-    return out;
+    return m_ops.SelectValue(m_ops.Float(alive), value, old);
 }
 
 void Lowerer::Store(Variable& var, const Value& value) {
@@ -75,12 +72,7 @@ ValueId Lowerer::AssumingAlive(ValueId v) {
 }
 
 void Lowerer::Merge(ValueId cond, const FlowState& thenState) {
-    auto select = [&](const Value& t, const Value& e) {
-        Value out = e;
-        for (int i = 0; i < e.size(); ++i) out.c[i] = ir().Select(cond, t.c[i], e.c[i], Line());
-        if (e.size() == 1) out.c[1] = out.c[2] = out.c[0];
-        return out;
-    };
+    auto select = [&](const Value& t, const Value& e) { return m_ops.SelectValue(m_ops.Float(cond), t, e); };
     for (size_t s = 0; s < m_state.scopes.size(); ++s) {
         for (auto& [name, var] : m_state.scopes[s]) {
             const Variable& t = thenState.scopes[s].at(name);

@@ -76,7 +76,8 @@ std::optional<Value> Lowerer::LowerTernary(const Expr& e) {
     if (!c || !a || !b) return std::nullopt;
     Value x = *a, y = *b;
     if (x.type == Type::Bool && y.type == Type::Bool) {
-        return Value{Type::Bool, {ir().Select(*c, x.c[0], y.c[0], e.loc.line), 0, 0}};
+        ValueId v = ir().Select(*c, x.c[0], y.c[0], e.loc.line);
+        return Value{Type::Bool, {v, v, v}};
     }
     for (Value* v : {&x, &y})
         if (v->type == Type::Bool) v->type = Type::Float;

@@ -137,7 +137,6 @@ compiler::Spaces SpacesOf(const CameraDesc& camera, const PatchDesc& patch) {
     return spaces;
 }
 
-
 }  // namespace
 
 std::string RenderStats::ToJson() const {
