@@ -1,7 +1,8 @@
 // compiler/builtins.cpp: the table of built-in functions and how each lowers.
 // To add a built-in: add a row to kBuiltins with its argument pattern and a lowering lambda.
 // Pattern letters: 'f' float, 't' point/vector/normal (a float is promoted), 'c' color,
-// 'a' float or any triple (the result has the widest argument type).
+// 'a' float or any triple (the result has the widest argument type), 'm' matrix (a float is
+// promoted: x times the identity).
 #include "compiler/builtins.h"
 
 #include <cmath>
@@ -106,6 +107,18 @@ const std::vector<Builtin>& Table() {
              // faceforward(N, I, Nref) = I.Nref > 0 ? -N : N
              return o.Promote(o.SelectValue(o.Binary(IrOp::Lt, o.Constant(0.0), o.Dot(a[1], a[2])), o.Neg(a[0]), a[0]), Type::Vector);
          }},
+        {"determinant", "m", [](ValueOps& o, A a) { return o.Float(o.Determinant(a[0])); }},
+        {"translate", "mt", [](ValueOps& o, A a) { return o.Translate(a[0], a[1]); }},
+        {"rotate", "mft", [](ValueOps& o, A a) { return o.Rotate(a[0], a[1], a[2]); }},
+        {"scale", "mt", [](ValueOps& o, A a) { return o.Scale(a[0], a[1]); }},
+        {"rotate", "tftt", [](ValueOps& o, A a) {
+             // rotate(Q, angle, P0, P1): Q turned by angle about the line through P0 and P1 (move
+             // P0 to the origin, rotate about P1 - P0, move back).
+             const Value toLine = o.Translate(o.Promote(o.Constant(1.0), Type::Matrix), a[2]);
+             const Value turn = o.Rotate(toLine, a[1], o.Sub(a[3], a[2]));
+             const Value m = o.Translate(turn, o.Neg(a[2]));
+             return o.Promote(o.TransformBy(m, a[0], Type::Point), a[0].type);
+         }},
         {"mix", "aaf", [](ValueOps& o, A a) {
              // mix(x, y, t) = x*(1-t) + y*t
              Value oneMinusT = o.Sub(o.Constant(1.0), a[2]);
@@ -118,9 +131,8 @@ const std::vector<Builtin>& Table() {
 // Functions of RenderMan's library that affray does not implement yet: a clear error, not
 // "unknown function".
 const char* const kNotYet[] = {
-    "texture", "environment", "shadow", "random", "rotate", "translate", "scale", "determinant",
-    "illuminance", "specular", "diffuse", "ambient", "printf", "format", "concat", "match",
-    "bump", "trace", "fresnel", "refract", "setcomp_matrix", "comp_matrix", "ptlined", "depth",
+    "texture", "environment", "shadow", "random", "illuminance", "specular", "diffuse", "ambient",
+    "printf", "format", "concat", "match", "bump", "trace", "fresnel", "refract", "ptlined", "depth",
 };
 
 bool ArgMatches(char pattern, Type type) {
@@ -129,6 +141,7 @@ bool ArgMatches(char pattern, Type type) {
         case 't': return IsSpatial(type) || type == Type::Float;
         case 'c': return type == Type::Color || type == Type::Float;
         case 'a': return type == Type::Float || IsTriple(type);
+        case 'm': return type == Type::Matrix || type == Type::Float;
     }
     return false;
 }
@@ -137,7 +150,7 @@ std::string DescribePattern(const char* pattern) {
     std::string out = "(";
     for (const char* p = pattern; *p; ++p) {
         if (p != pattern) out += ", ";
-        out += *p == 'f' ? "float" : *p == 't' ? "point" : *p == 'c' ? "color" : "float or triple";
+        out += *p == 'f' ? "float" : *p == 't' ? "point" : *p == 'c' ? "color" : *p == 'm' ? "matrix" : "float or triple";
     }
     return out + ")";
 }
@@ -176,6 +189,7 @@ std::optional<Value> LowerBuiltin(ValueOps& ops, const lang::Expr& call, const s
             if (p == 't' && args[i].type == Type::Float) promoted[i] = ops.Promote(args[i], Type::Point);
             if (p == 'c' && args[i].type == Type::Float) promoted[i] = ops.Promote(args[i], Type::Color);
             if (p == 'a' && IsTriple(widest)) promoted[i] = ops.Promote(args[i], widest);
+            if (p == 'm') promoted[i] = ops.Promote(args[i], Type::Matrix);
         }
         return b->lower(ops, promoted);
     }

@@ -24,10 +24,19 @@ bool SpecialiseShader(CompiledShader& shader, const std::vector<ParamOverride>& 
     return true;
 }
 
-Type TypeFromName(const std::string& name) {
-    for (Type t : {Type::Float, Type::Point, Type::Vector, Type::Normal, Type::Color})
-        if (name == ToString(t)) return t;
-    return Type::Float;
+/// A parameter's type as the bytecode names it: "point", or "float[3]" for an array.
+std::string ParamTypeName(const ParamInfo& p) {
+    return std::string(ToString(p.type)) + (p.arraySize >= 0 ? "[" + std::to_string(p.arraySize) + "]" : "");
+}
+
+ParamInfo ParamFromProgram(const vm::ProgramParam& p) {
+    ParamInfo info{p.name, Type::Float, p.defaults, false};
+    const size_t bracket = p.type.find('[');
+    const std::string base = p.type.substr(0, bracket);
+    for (Type t : {Type::Float, Type::Point, Type::Vector, Type::Normal, Type::Color, Type::Matrix})
+        if (base == ToString(t)) info.type = t;
+    if (bracket != std::string::npos) info.arraySize = std::atoi(p.type.c_str() + bracket + 1);
+    return info;
 }
 }  // namespace
 
@@ -51,7 +60,8 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     shader.opsBeforeOptimisation = lowered->ir.requestedOps();
     std::vector<vm::ProgramParam> params;
     for (const ParamInfo& p : lowered->params)
-        params.push_back({p.name, ToString(p.type), ScalarCount(p.type), vm::kNoRegister, p.defaults});
+        params.push_back({p.name, ParamTypeName(p), ScalarCount(p.type) * std::max(p.arraySize, 1), vm::kNoRegister,
+                          p.defaults});
     try {
         shader.genericBound = Emit(lowered->ir, {{"P", lowered->finalP}}, params);
         shader.genericShade = Emit(lowered->ir, {{"P", lowered->finalP}, {"N", lowered->finalN}}, params);
@@ -131,7 +141,7 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
     shader.genericBound = std::move(file.bound);
     shader.genericShade = std::move(file.shade);
     for (const vm::ProgramParam& p : shader.genericShade.params)
-        shader.params.push_back({p.name, TypeFromName(p.type), p.defaults, false});
+        shader.params.push_back(ParamFromProgram(p));
     shader.opsBeforeOptimisation = static_cast<int>(shader.genericShade.code.size());
     for (const std::string& space : shader.genericBound.spaces) {
         if (spaces && spaces->count(space) && spaces->at(space).toCurrent != kIdentity4) {

@@ -72,7 +72,7 @@ std::optional<Value> Lowerer::Convert(const Value& value, Type target, SourceLoc
     Value v = value;
     if (v.type == Type::Bool && target != Type::Bool) v.type = Type::Float;  // 1 or 0, as in C
     if (v.type == target) return v;
-    if (IsTriple(target) && v.type == Type::Float) return m_ops.Promote(v, target);
+    if ((IsTriple(target) || target == Type::Matrix) && v.type == Type::Float) return m_ops.Promote(v, target);
     if (IsSpatial(target) && IsSpatial(v.type)) return m_ops.Promote(v, target);
     m_diags.error(loc, "cannot assign " + Article(v.type) + " to " + what);
     return std::nullopt;
@@ -96,31 +96,50 @@ std::optional<Value> Lowerer::LowerIdent(const Expr& e) {
 std::optional<Value> Lowerer::LowerComponentCall(const Expr& e) {
     const bool isSet = e.name != "comp";
     const bool indexed = e.name == "comp" || e.name == "setcomp";
-    const size_t want = indexed ? (isSet ? 3 : 2) : 2;
+    // (A plain Value and a flag: GCC 12 misreads an optional's state through the checks below.)
+    Value target;
+    bool haveTarget = false;
+    if (!e.args.empty()) {
+        if (std::optional<Value> t = LowerExpr(*e.args[0])) {
+            target = *t;
+            haveTarget = true;
+        }
+    }
+    // A matrix entry takes a row and a column: comp(m, row, column), setcomp(m, row, column, x).
+    const bool ofMatrix = indexed && haveTarget && target.type == Type::Matrix;
+    const size_t want = (indexed ? (isSet ? 3 : 2) : 2) + (ofMatrix ? 1 : 0);
     if (e.args.size() != want) {
-        m_diags.error(e.loc, "'" + e.name + "' expects " + std::to_string(want) + " arguments, got " +
-                                 std::to_string(e.args.size()));
+        m_diags.error(e.loc, "'" + e.name + "' expects " + std::to_string(want) + " arguments" +
+                                 (ofMatrix ? " for a matrix" : "") + ", got " + std::to_string(e.args.size()));
         return std::nullopt;
     }
-    std::optional<Value> target = LowerExpr(*e.args[0]);
     int index = e.name == "setxcomp" ? 0 : e.name == "setycomp" ? 1 : 2;
     if (indexed) {
-        std::optional<Value> i = LowerExpr(*e.args[1]);
-        if (!i) return std::nullopt;
-        std::optional<double> k = i->type == Type::Float ? m_out.ir.ConstValue(i->c[0]) : std::nullopt;
-        if (!k || (*k != 0 && *k != 1 && *k != 2)) {
-            m_diags.error(e.args[1]->loc, "the component index of '" + e.name + "' must be the constant 0, 1 or 2");
-            return std::nullopt;
+        // Constant indices: a varying one would select among all the components.
+        const int limit = ofMatrix ? 3 : 2;
+        index = 0;
+        for (size_t a = 1; a <= (ofMatrix ? 2u : 1u); ++a) {
+            std::optional<Value> i = LowerExpr(*e.args[a]);
+            if (!i) return std::nullopt;
+            std::optional<double> k = i->type == Type::Float ? m_out.ir.ConstValue(i->c[0]) : std::nullopt;
+            if (!k || *k < 0 || *k > limit || *k != std::floor(*k)) {
+                m_diags.error(e.args[a]->loc, "the " + std::string(ofMatrix ? (a == 1 ? "row" : "column") : "component") +
+                                                  " index of '" + e.name + "' must be the constant 0, 1" +
+                                                  (ofMatrix ? ", 2 or 3" : " or 2"));
+                return std::nullopt;
+            }
+            index = index * 4 + static_cast<int>(*k);
         }
-        index = static_cast<int>(*k);
     }
     std::optional<Value> x = isSet ? LowerExpr(*e.args.back()) : std::nullopt;
-    if (!target || (isSet && !x)) return std::nullopt;
-    if (!IsTriple(target->type)) {
-        m_diags.error(e.args[0]->loc, "the first argument of '" + e.name + "' must be a point, vector, normal or color");
+    if (!haveTarget || (isSet && !x)) return std::nullopt;
+    if (!IsTriple(target.type) && !ofMatrix) {
+        m_diags.error(e.args[0]->loc, "the first argument of '" + e.name + "' must be a point, vector, normal" +
+                                          (indexed ? ", color or matrix" : " or color"));
         return std::nullopt;
     }
-    if (!isSet) return m_ops.Component(*target, index);
+    if (!isSet) return m_ops.Component(target, index);
+    if (x->type == Type::Bool) x->type = Type::Float;
     if (x->type != Type::Float) {
         m_diags.error(e.args.back()->loc, "the new component of '" + e.name + "' must be a float, got " + Article(x->type));
         return std::nullopt;
@@ -166,8 +185,16 @@ std::optional<Value> Lowerer::LowerBinary(const Expr& e) {
                                  " and " + ToString(b->type) + ")" + why);
         return std::nullopt;
     };
-    bool numeric = (a->type == Type::Float || IsTriple(a->type)) && (b->type == Type::Float || IsTriple(b->type));
-    if (!numeric) return bad("");
+    if (!IsNumeric(a->type) || !IsNumeric(b->type)) return bad("");
+    if (a->type == Type::Matrix || b->type == Type::Matrix) {
+        // Matrices multiply and divide (by the inverse) each other and floats; a point goes
+        // through transform().
+        const bool mulOrDiv = e.binaryOp == BinaryOp::Mul || e.binaryOp == BinaryOp::Div;
+        if (!mulOrDiv || IsTriple(a->type) || IsTriple(b->type))
+            return bad(": a matrix only multiplies or divides a matrix or a float (transform() applies it to a point)");
+        m_ops.SetLine(e.loc.line);
+        return e.binaryOp == BinaryOp::Mul ? m_ops.Mul(*a, *b) : m_ops.Div(*a, *b);
+    }
     switch (e.binaryOp) {
         case BinaryOp::Add:
         case BinaryOp::Sub:
@@ -223,8 +250,13 @@ std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
             m_diags.error(e.loc, "variable '" + e.name + "' is used before it is assigned a value");
             return std::nullopt;
         }
-        if (!IsTriple(var->type) && var->type != Type::Float) {
-            m_diags.error(e.loc, "invalid operands to '" + std::string(lang::ToString(e.assignOp)) + "'");
+        const bool matrixOp = var->type == Type::Matrix && (e.assignOp == lang::AssignOp::MulAssign ||
+                                                             e.assignOp == lang::AssignOp::DivAssign);
+        if ((!IsTriple(var->type) && var->type != Type::Float && !matrixOp) ||
+            (var->type == Type::Matrix && value.type != Type::Float && value.type != Type::Matrix) ||
+            (value.type == Type::Matrix && var->type != Type::Matrix)) {
+            m_diags.error(e.loc, "invalid operands to '" + std::string(lang::ToString(e.assignOp)) + "' (" +
+                                     ToString(var->type) + " and " + ToString(value.type) + ")");
             return std::nullopt;
         }
         if (IsTriple(value.type) && !IsTriple(var->type)) {
@@ -271,12 +303,16 @@ std::optional<Value> Lowerer::LowerCast(const Expr& e) {
         m_ops.SetLine(e.loc.line);
         return ToCurrent(e.castSpace, m_ops.Promote(*v, target), target);
     }
-    if (v->type == target) return v;
-    if (target == Type::Matrix) {
-        m_diags.error(e.loc, "matrix values are not supported yet");
-        return std::nullopt;
+    if (target == Type::Matrix && (v->type == Type::Float || v->type == Type::Matrix)) {
+        // `matrix "shader" 1` maps current to shader space; `matrix "world" (...)` prepends the
+        // current-to-world transform to the given one (RI Spec 3.2, section 11.4).
+        m_ops.SetLine(e.loc.line);
+        const Value m = m_ops.Promote(*v, Type::Matrix);
+        return e.castSpace.empty() ? m : m_ops.MatrixProduct(CurrentTo(e.castSpace), m);
     }
-    if (target == Type::Float || v->type == Type::String || target == Type::String || target == Type::Void) {
+    if (v->type == target) return v;
+    if (target == Type::Float || v->type == Type::String || target == Type::String || target == Type::Void ||
+        target == Type::Matrix || v->type == Type::Matrix) {
         m_diags.error(e.loc, "cannot cast " + Article(v->type) + " to " + ToString(target));
         return std::nullopt;
     }
@@ -351,9 +387,22 @@ std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
         case ExprKind::Cast: return LowerCast(e);
         case ExprKind::Ternary: return LowerTernary(e);
         case ExprKind::Index: return LowerIndex(e);
-        case ExprKind::Tuple16:
-            m_diags.error(e.loc, "matrix values are not supported yet");
-            return std::nullopt;
+        case ExprKind::Tuple16: {
+            Value m{Type::Matrix, {}};
+            bool ok = true;
+            for (int i = 0; i < 16; ++i) {
+                std::optional<Value> v = LowerExpr(*e.args[i]);
+                if (v && v->type == Type::Bool) v->type = Type::Float;
+                if (v && v->type != Type::Float) {
+                    m_diags.error(e.args[i]->loc, "a matrix's entries must be floats, got " + Article(v->type));
+                    v.reset();
+                }
+                if (v) m.c[i] = v->c[0];
+                ok = ok && v.has_value();
+            }
+            if (!ok) return std::nullopt;
+            return m;
+        }
     }
     return std::nullopt;
 }
@@ -366,7 +415,7 @@ void Lowerer::LowerDecl(const lang::VarDecl& d, std::optional<Value> init) {
         m_diags.note(it->second.loc, "'" + d.name + "' was declared here");
         return;
     }
-    if (type != Type::Float && type != Type::String && !IsTriple(type)) {
+    if (type != Type::String && !IsNumeric(type)) {
         m_diags.error(d.loc, std::string(ToString(type)) + " variables are not supported yet");
         return;
     }
@@ -428,13 +477,23 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
             continue;
         }
         if (p.arraySize >= 0) {
-            m_diags.error(p.loc, "array parameters are not supported yet (parameter '" + p.name + "')");
-            DeclarePlaceholder(p, type);
-            continue;
-        }
-        if (type == Type::Matrix) {
-            m_diags.error(p.loc, "matrix values are not supported yet (parameter '" + p.name + "')");
-            DeclarePlaceholder(p, Type::Float);
+            // An array parameter: its default is an initialiser list of constants, and the scene
+            // sets all its elements at once.
+            if (!p.hasInitList) m_diags.error(p.loc, "array parameter '" + p.name + "' needs a default value ({...})");
+            LowerArrayDecl(p);
+            Variable& var = m_state.scopes.back().at(p.name);
+            var.used = true;
+            ParamInfo info{p.name, type, {}, p.isOutput, p.arraySize};
+            bool constant = true;
+            for (const Value& element : var.elements)
+                for (int c = 0; c < ScalarCount(type) && constant; ++c) {
+                    std::optional<double> k = m_out.ir.ConstValue(element.c[c]);
+                    constant = k.has_value();
+                    if (k) info.defaults.push_back(*k);
+                }
+            if (!constant)
+                m_diags.error(p.loc, "default value of parameter '" + p.name + "' must be a constant expression");
+            if (!m_diags.hasErrors()) m_out.params.push_back(info);
             continue;
         }
         if (!p.init) {
@@ -490,9 +549,20 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
     for (size_t i = 0; i < m_out.params.size(); ++i) {
         const ParamInfo& info = m_out.params[i];
         Variable& var = m_state.scopes.back().at(info.name);
-        for (int c = 0; c < ScalarCount(info.type); ++c)
-            var.value.c[c] = m_paramValues ? m_out.ir.Const((*m_paramValues)[i][c]) : m_out.ir.Param(static_cast<int>(i), c);
-        if (info.type == Type::Float) var.value.c[1] = var.value.c[2] = var.value.c[0];
+        // Scalar `c` of the parameter (element by element for an array).
+        auto scalar = [&](int c) {
+            return m_paramValues ? m_out.ir.Const((*m_paramValues)[i][c]) : m_out.ir.Param(static_cast<int>(i), c);
+        };
+        const int n = ScalarCount(info.type);
+        std::vector<Value*> values{&var.value};
+        if (info.arraySize >= 0) {
+            values.clear();
+            for (Value& element : var.elements) values.push_back(&element);
+        }
+        for (size_t k = 0; k < values.size(); ++k) {
+            for (int c = 0; c < n; ++c) values[k]->c[c] = scalar(static_cast<int>(k) * n + c);
+            if (info.type == Type::Float) values[k]->c[1] = values[k]->c[2] = values[k]->c[0];
+        }
     }
 
     // Scope 2: the body, lowered as a function that returns nothing.

@@ -20,8 +20,9 @@ namespace affray::compiler {
 struct ParamInfo {
     std::string name;
     Type type = Type::Float;
-    std::vector<double> defaults;
+    std::vector<double> defaults;  // element by element for an array
     bool isOutput = false;
+    int arraySize = -1;  // an array of that many elements of `type`, else -1
 };
 
 /// The result of lowering one shader instance: its IR and the final values of P and N.

@@ -276,7 +276,7 @@ void Lowerer::CheckUncalledFunctions() {
 }
 
 std::optional<Value> Lowerer::Element(const Variable& array, const Value& index, lang::SourceLoc loc) {
-    if (index.type != Type::Float) {
+    if (index.type != Type::Float && index.type != Type::Bool) {  // (a boolean is 1 or 0, as in C)
         m_diags.error(loc, "an array index must be a float, not " + Article(index.type));
         return std::nullopt;
     }
@@ -293,7 +293,8 @@ std::optional<Value> Lowerer::Element(const Variable& array, const Value& index,
     // the fraction is dropped as RenderMan does). Outside the array: NaN, i.e. Unbounded.
     const ValueId i = ir().Unary(IrOp::Floor, index.c[0], Line());
     const ValueId nan = ir().Const(std::numeric_limits<double>::quiet_NaN());
-    Value out = m_ops.Promote(m_ops.Float(nan), array.type);
+    Value out{array.type, {}};
+    out.c.fill(nan);  // every component, a matrix's off-diagonal ones too
     for (int k = n - 1; k >= 0; --k) {
         const ValueId here = ir().Binary(IrOp::Eq, i, ir().Const(k), Line());
         for (int c = 0; c < out.size(); ++c) out.c[c] = ir().Select(here, array.elements[k].c[c], out.c[c], Line());
@@ -343,7 +344,7 @@ void Lowerer::LowerArrayDecl(const lang::VarDecl& d) {
     const Value zero = m_ops.Promote(m_ops.Constant(0.0), type);
     var.elements.assign(static_cast<size_t>(std::max(d.arraySize, 0)), zero);
     if (d.arraySize == 0) m_diags.error(d.loc, "array '" + d.name + "' needs a size");
-    if (type != Type::Float && !IsTriple(type)) m_diags.error(d.loc, std::string(ToString(type)) + " arrays are not supported yet");
+    if (!IsNumeric(type)) m_diags.error(d.loc, std::string(ToString(type)) + " arrays are not supported yet");
     for (size_t i = 0; i < d.initList.size() && i < var.elements.size(); ++i) {
         std::optional<Value> v = LowerExpr(*d.initList[i]);
         if (!v) continue;

@@ -76,14 +76,17 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
     auto argLoc = [&](size_t i) { return e.args[i]->loc; };
 
     if (IsTransform(name)) {
-        // transform([from,] to, x): from `from` (else current) to current, then to `to`.
+        // transform([from,] to, x): from `from` (else current) to current, then to `to`, which
+        // is a space name or a matrix (applied to x as RenderMan does: x * m).
         if (args.size() != 2 && args.size() != 3) {
             m_diags.error(e.loc, "'" + name + "' expects 2 or 3 arguments, got " + std::to_string(args.size()));
             return std::nullopt;
         }
         std::optional<std::string> from = args.size() == 3 ? SpaceName(args[0], argLoc(0)) : "current";
         if (!from) return std::nullopt;
-        std::optional<std::string> to = SpaceName(args[args.size() - 2], argLoc(args.size() - 2));
+        const Value& toArg = args[args.size() - 2];
+        const bool byMatrix = toArg.type == Type::Matrix;
+        std::optional<std::string> to = byMatrix ? "" : SpaceName(toArg, argLoc(args.size() - 2));
         if (!to) return std::nullopt;
         const Value& x = args.back();
         if (!IsSpatial(x.type) && x.type != Type::Float) {
@@ -92,7 +95,9 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
         }
         const Type kind = name == "transform" ? Type::Point : name == "vtransform" ? Type::Vector : Type::Normal;
         const Value typed = m_ops.Promote(x, x.type == Type::Float ? kind : x.type);
-        return FromCurrent(*to, ToCurrent(*from, typed, kind), kind);
+        const Value inCurrent = ToCurrent(*from, typed, kind);
+        if (!byMatrix) return FromCurrent(*to, inCurrent, kind);
+        return m_ops.Promote(m_ops.TransformBy(toArg, inCurrent, kind), typed.type);
     }
 
     if (IsNoise(name)) {
@@ -104,12 +109,12 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
             if (count == 1 && args[first].type == Type::Float) {
                 out->push_back(args[first].c[0]);
             } else if (count == 1 && IsSpatial(args[first].type)) {
-                out->insert(out->end(), args[first].c.begin(), args[first].c.end());
+                out->insert(out->end(), args[first].c.begin(), args[first].c.begin() + 3);
             } else if (count == 2 && args[first].type == Type::Float && args[first + 1].type == Type::Float) {
                 out->push_back(args[first].c[0]);
                 out->push_back(args[first + 1].c[0]);
             } else if (count == 2 && IsSpatial(args[first].type) && args[first + 1].type == Type::Float) {
-                out->insert(out->end(), args[first].c.begin(), args[first].c.end());
+                out->insert(out->end(), args[first].c.begin(), args[first].c.begin() + 3);
                 out->push_back(args[first + 1].c[0]);
             } else {
                 return false;
@@ -256,6 +261,12 @@ Value Lowerer::ToCurrent(const std::string& space, const Value& x, Type kind) {
     if (!m_spaces || !m_spaces->count(space)) return x;  // the identity
     const SpaceTransform& t = m_spaces->at(space);
     return MapBy(t.toCurrent, t.fromCurrent, x, kind);
+}
+
+Value Lowerer::CurrentTo(const std::string& space) {
+    if (space != "current") NoteSpace(space);
+    if (space == "current" || !m_spaces || !m_spaces->count(space)) return m_ops.Promote(m_ops.Constant(1.0), Type::Matrix);
+    return m_ops.MatrixConstant(m_spaces->at(space).fromCurrent);
 }
 
 Value Lowerer::FromCurrent(const std::string& space, const Value& x, Type kind) {

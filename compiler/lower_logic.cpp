@@ -37,19 +37,15 @@ std::optional<Value> Lowerer::LowerComparison(const Expr& e, const Value& a, con
     Value x = a, y = b;
     for (Value* v : {&x, &y})
         if (v->type == Type::Bool) v->type = Type::Float;
-    const bool bothNumeric = (x.type == Type::Float || IsTriple(x.type)) && (y.type == Type::Float || IsTriple(y.type));
-    if (!bothNumeric) return bad("");
+    if (!IsNumeric(x.type) || !IsNumeric(y.type)) return bad("");
     if (op == BinaryOp::Equal || op == BinaryOp::NotEqual) {
         if ((x.type == Type::Color && IsSpatial(y.type)) || (y.type == Type::Color && IsSpatial(x.type)))
             return bad(": a color does not compare with a point, vector or normal");
-        // Triples are equal when every component is.
-        const int n = IsTriple(x.type) || IsTriple(y.type) ? 3 : 1;
-        Type type = IsTriple(x.type) ? x.type : y.type;
-        x = m_ops.Promote(x, type);
-        y = m_ops.Promote(y, type);
-        ValueId all = ir().Binary(IrOp::Eq, x.c[0], y.c[0], e.loc.line);
-        for (int i = 1; i < n; ++i)
-            all = ir().Binary(IrOp::And, all, ir().Binary(IrOp::Eq, x.c[i], y.c[i], e.loc.line), e.loc.line);
+        if ((x.type == Type::Matrix && IsTriple(y.type)) || (y.type == Type::Matrix && IsTriple(x.type)))
+            return bad(": a matrix compares with a matrix or a float");
+        // Triples and matrices are equal when every component is.
+        m_ops.SetLine(e.loc.line);
+        const ValueId all = m_ops.AllEqual(x, y);
         return boolean(op == BinaryOp::Equal ? all : ir().Unary(IrOp::Not, all, e.loc.line));
     }
     if (x.type != Type::Float || y.type != Type::Float) return bad(": only floats are ordered");
@@ -85,20 +81,16 @@ std::optional<Value> Lowerer::LowerTernary(const Expr& e) {
         ValueId id = ir().Select(*c, x.c[0], y.c[0], e.loc.line);
         return Value{Type::String, {id, id, id}};
     }
-    const bool numeric = (x.type == Type::Float || IsTriple(x.type)) && (y.type == Type::Float || IsTriple(y.type));
+    const bool numeric = IsNumeric(x.type) && IsNumeric(y.type);
     const bool mixesColor = (x.type == Type::Color && IsSpatial(y.type)) || (y.type == Type::Color && IsSpatial(x.type));
-    if (!numeric || mixesColor) {
+    const bool mixesMatrix = (x.type == Type::Matrix && IsTriple(y.type)) || (y.type == Type::Matrix && IsTriple(x.type));
+    if (!numeric || mixesColor || mixesMatrix) {
         m_diags.error(e.loc, "the two results of '?:' have incompatible types (" + std::string(ToString(x.type)) +
                                  " and " + ToString(y.type) + ")");
         return std::nullopt;
     }
-    Type type = IsTriple(x.type) ? x.type : y.type;
-    x = m_ops.Promote(x, type);
-    y = m_ops.Promote(y, type);
-    Value out{type, {}};
-    for (int i = 0; i < 3; ++i) out.c[i] = ir().Select(*c, x.c[i], y.c[i], e.loc.line);
-    if (type == Type::Float) out.c[1] = out.c[2] = out.c[0];
-    return out;
+    m_ops.SetLine(e.loc.line);
+    return m_ops.SelectValue(m_ops.Float(*c), x, y);
 }
 
 }  // namespace affray::compiler

@@ -123,6 +123,8 @@ class Lowerer {
     /// `x` (a point, vector or normal, as `kind` says) from `space` to current, and back.
     Value ToCurrent(const std::string& space, const Value& x, Type kind);
     Value FromCurrent(const std::string& space, const Value& x, Type kind);
+    /// The matrix that maps current space to `space` (`matrix "space" 1`).
+    Value CurrentTo(const std::string& space);
     /// Records that the shader names `space` (LoweredShader::spaces).
     void NoteSpace(const std::string& space);
     /// x mapped by the affine matrix m (a point: with its translation; a vector: without; a

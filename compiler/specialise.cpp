@@ -28,7 +28,10 @@ bool BindValues(const vm::Program& program, const std::vector<ParamOverride>& ov
         }
         const vm::ProgramParam& p = program.params[i];
         size_t want = static_cast<size_t>(p.size);
-        if (o.numbers.size() != want && !(o.numbers.size() == 1 && want == 3)) {
+        // One number stands for a triple of three equal components, or for a matrix x * identity.
+        const bool isArray = p.type.find('[') != std::string::npos;
+        const bool promoted = o.numbers.size() == 1 && !isArray && (want == 3 || want == 16);
+        if (o.numbers.size() != want && !promoted) {
             errors->push_back("parameter '" + o.name + "' of " + shader + " is a " + p.type + " and takes " +
                               std::to_string(want) + " value" + (want == 1 ? "" : "s") + ", got " +
                               std::to_string(o.numbers.size()));
@@ -42,7 +45,8 @@ bool BindValues(const vm::Program& program, const std::vector<ParamOverride>& ov
             ok = false;
             continue;
         }
-        for (size_t c = 0; c < want; ++c) (*values)[i][c] = o.numbers[o.numbers.size() == 1 ? 0 : c];
+        for (size_t c = 0; c < want; ++c)
+            (*values)[i][c] = !promoted ? o.numbers[c] : want == 16 && c % 5 != 0 ? 0.0 : o.numbers[0];
     }
     return ok;
 }

@@ -20,6 +20,10 @@ inline bool IsTriple(Type t) {
 /// with them.
 inline bool IsSpatial(Type t) { return t == Type::Point || t == Type::Vector || t == Type::Normal; }
 
-inline int ScalarCount(Type t) { return IsTriple(t) ? 3 : t == Type::Float || t == Type::Bool ? 1 : 0; }
+inline int ScalarCount(Type t) {
+    return IsTriple(t) ? 3 : t == Type::Matrix ? 16 : t == Type::Float || t == Type::Bool ? 1 : 0;
+}
+/// The types arithmetic works on.
+inline bool IsNumeric(Type t) { return t == Type::Float || IsTriple(t) || t == Type::Matrix; }
 
 }  // namespace affray::compiler

@@ -53,8 +53,8 @@ struct ProgramOutput {
 /// caller's value, or the default, is written there before each run.
 struct ProgramParam {
     std::string name;
-    std::string type;  // "float", "point", "vector", "normal" or "color"
-    int size = 1;      // 1 or 3 registers
+    std::string type;  // "float", "point", "vector", "normal", "color", "matrix"; "float[4]"...
+    int size = 1;      // registers: 1, 3 or 16 per element
     uint16_t firstRegister = kNoRegister;
     std::vector<double> defaults;  // size values
 };

@@ -32,7 +32,7 @@ bool Verify(const Program& program, std::string* error) {
     }
 
     for (const ProgramParam& p : program.params) {
-        if (p.size != 1 && p.size != 3) return Fail(error, "parameter " + p.name + " has a bad size");
+        if (p.size < 1) return Fail(error, "parameter " + p.name + " has a bad size");
         if (p.defaults.size() != static_cast<size_t>(p.size))
             return Fail(error, "parameter " + p.name + " has the wrong number of defaults");
         if (p.firstRegister == kNoRegister) continue;  // not read

@@ -185,7 +185,7 @@ TEST_CASE("invalid operands to arithmetic", "[compiler][diagnostics]") {
           "      P = (1, \"a\", 2);\n"
           "              ^\n");
     CHECK(Diagnose("displacement t() {\n  string s = \"a\";\n  s += 1;\n}\n") ==
-          "test.sl:3:5: error: invalid operands to '+='\n"
+          "test.sl:3:5: error: invalid operands to '+=' (string and float)\n"
           "      s += 1;\n"
           "        ^\n");
 }
@@ -399,18 +399,6 @@ TEST_CASE("unknown and unsupported functions and types", "[compiler][diagnostics
           "test.sl:2:8: error: function 'environment' is not supported yet\n"
           "      P += environment(\"x\", N);\n"
           "           ^\n");
-    CHECK(Diagnose("displacement t() {\n  P += (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1);\n}\n") ==
-          "test.sl:2:8: error: matrix values are not supported yet\n"
-          "      P += (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1);\n"
-          "           ^\n");
-    CHECK(Diagnose("displacement t() {\n  P += matrix 1;\n}\n") ==
-          "test.sl:2:8: error: matrix values are not supported yet\n"
-          "      P += matrix 1;\n"
-          "           ^\n");
-    CHECK(Diagnose("displacement t() {\n  matrix m;\n}\n") ==
-          "test.sl:2:10: error: matrix variables are not supported yet\n"
-          "      matrix m;\n"
-          "             ^\n");
     CHECK(Diagnose("surface t() {\n  P += 1;\n}\n") ==
           "test.sl:1:9: error: surface shaders are not supported yet; affray renders displacement shaders\n"
           "    surface t() {\n"
@@ -444,15 +432,55 @@ TEST_CASE("arguments of built-ins", "[compiler][diagnostics]") {
           "               ^\n");
 }
 
-TEST_CASE("parameters affray does not support yet", "[compiler][diagnostics]") {
-    CHECK(Diagnose("displacement t(float w[2] = {1, 2}) {\n  P += w;\n}\n") ==
-          "test.sl:1:22: error: array parameters are not supported yet (parameter 'w')\n"
-          "    displacement t(float w[2] = {1, 2}) {\n"
+TEST_CASE("array parameters need constant initialiser lists", "[compiler][diagnostics]") {
+    CHECK(Diagnose("displacement t(float w[2] = {1, u}) {\n  P += w[0];\n}\n") ==
+          "test.sl:1:22: error: default value of parameter 'w' must be a constant expression\n"
+          "    displacement t(float w[2] = {1, u}) {\n"
           "                         ^\n");
-    CHECK(Diagnose("displacement t(matrix m = 1) {\n  P += 1;\n}\n") ==
-          "test.sl:1:23: error: matrix values are not supported yet (parameter 'm')\n"
-          "    displacement t(matrix m = 1) {\n"
+    CHECK(Diagnose("displacement t(float w[2]) {\n  P += w[0];\n}\n") ==
+          "test.sl:1:22: error: array parameter 'w' needs a default value ({...})\n"
+          "    displacement t(float w[2]) {\n"
+          "                         ^\n");
+    CHECK(Diagnose("displacement t(string w[2] = {\"a\", \"b\"}) {\n  P += 1;\n}\n") ==
+          "test.sl:1:23: error: string arrays are not supported yet\n"
+          "    displacement t(string w[2] = {\"a\", \"b\"}) {\n"
           "                          ^\n");
+}
+
+TEST_CASE("matrices: what they combine with", "[compiler][diagnostics]") {
+    CHECK(Diagnose("displacement t() {\n  P = P * matrix 1;\n}\n") ==
+          "test.sl:2:9: error: invalid operands to '*' (point and matrix): a matrix only multiplies or divides a "
+          "matrix or a float (transform() applies it to a point)\n"
+          "      P = P * matrix 1;\n"
+          "            ^\n");
+    CHECK(Diagnose("displacement t() {\n  matrix m = 1;\n  m += m;\n  P += determinant(m);\n}\n") ==
+          "test.sl:3:5: error: invalid operands to '+=' (matrix and matrix)\n"
+          "      m += m;\n"
+          "        ^\n");
+    CHECK(Diagnose("displacement t() {\n  matrix m = 1;\n  P += comp(m, 4, 0);\n}\n") ==
+          "test.sl:3:16: error: the row index of 'comp' must be the constant 0, 1, 2 or 3\n"
+          "      P += comp(m, 4, 0);\n"
+          "                   ^\n");
+    CHECK(Diagnose("displacement t() {\n  matrix m = 1;\n  P += comp(m, 1);\n}\n") ==
+          "test.sl:3:8: error: 'comp' expects 3 arguments for a matrix, got 2\n"
+          "      P += comp(m, 1);\n"
+          "           ^\n");
+    CHECK(Diagnose("displacement t(matrix m = P) {\n  P = transform(m, P);\n}\n") ==
+          "test.sl:1:23: error: cannot assign a point to matrix parameter 'm'\n"
+          "    displacement t(matrix m = P) {\n"
+          "                          ^\n");
+    CHECK(Diagnose("displacement t() {\n  matrix m = 1;\n  P = u > 0 ? m : P;\n}\n") ==
+          "test.sl:3:13: error: the two results of '?:' have incompatible types (matrix and point)\n"
+          "      P = u > 0 ? m : P;\n"
+          "                ^\n");
+    CHECK(Diagnose("displacement t() {\n  matrix m = (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, \"a\");\n  P = transform(m, P);\n}\n") ==
+          "test.sl:2:60: error: a matrix's entries must be floats, got a string\n"
+          "      matrix m = (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, \"a\");\n"
+          "                                                               ^\n");
+    CHECK(Diagnose("displacement t() {\n  P += -(matrix 1);\n}\n") ==
+          "test.sl:2:8: error: invalid operand to unary '-' (matrix)\n"
+          "      P += -(matrix 1);\n"
+          "           ^\n");
 }
 
 TEST_CASE("spline, noise and filterstep arguments", "[compiler][diagnostics]") {
