@@ -1,0 +1,91 @@
+// renderer/quadric.h: RenderMan's quadrics as base surfaces over (u,v), for every number type.
+// Owns the (u,v) parameterisations of RI Spec 3.2, section 5.2 (Sphere, Cylinder, Cone, Disk,
+// Torus, Hyperboloid, Paraboloid, each swept by u from 0 to thetamax about the z axis): one
+// template evaluates a point at doubles, bounds a region with Interval or Affine, and gives exact
+// tangents with Dual<T>, so a quadric is bounded by the same machinery as a displaced patch.
+// The RIB's angles are in degrees; they are converted to radians once, in double, so that every
+// number type multiplies by the same constants (a bound then contains the double evaluation,
+// rounding included).
+#pragma once
+
+#include <numbers>
+#include <string>
+
+#include "vm/number.h"
+#include "vm/vec3.h"
+
+namespace affray::renderer {
+
+struct Quadric {
+    enum class Kind { Sphere, Cylinder, Cone, Disk, Torus, Hyperboloid, Paraboloid };
+    Kind kind = Kind::Sphere;
+    // The request's arguments (only those of `kind` are used); angles in degrees.
+    double radius = 1;         // Sphere, Cylinder, Cone, Disk; Paraboloid's rmax
+    double zmin = -1, zmax = 1;  // Sphere, Cylinder, Paraboloid
+    double height = 0;         // Cone (apex height), Disk (its z)
+    double majorRadius = 1, minorRadius = 0.25, phimin = 0, phimax = 360;  // Torus
+    double point1[3] = {1, 0, -1}, point2[3] = {1, 0, 1};                   // Hyperboloid
+    double thetamax = 360;
+
+    /// The RIB request's name, "Sphere" etc.
+    static const char* Name(Kind kind);
+    /// An empty string if the arguments describe a surface, else what is wrong with them.
+    std::string Problem() const;
+};
+
+namespace quadric_detail {
+inline double Radians(double degrees) { return degrees * (std::numbers::pi / 180.0); }
+}  // namespace quadric_detail
+
+/// The point of `q` at (u, v) in its object space (u, v in [0, 1]).
+template <class T>
+vm::Vec3<T> QuadricPoint(const Quadric& q, const T& u, const T& v) {
+    using quadric_detail::Radians;
+    using std::asin;
+    const T theta = u * Radians(q.thetamax);
+    switch (q.kind) {
+        case Quadric::Kind::Sphere: {
+            // phi runs from the latitude of zmin to that of zmax (clamped to the poles).
+            const double r = q.radius;
+            const double phiMin = q.zmin > -r ? asin(q.zmin / r) : -std::numbers::pi / 2;
+            const double phiMax = q.zmax < r ? asin(q.zmax / r) : std::numbers::pi / 2;
+            const T phi = T(phiMin) + v * (phiMax - phiMin);
+            const T ring = cos(phi) * r;
+            return {ring * cos(theta), ring * sin(theta), sin(phi) * r};
+        }
+        case Quadric::Kind::Cylinder:
+            return {cos(theta) * q.radius, sin(theta) * q.radius, T(q.zmin) + v * (q.zmax - q.zmin)};
+        case Quadric::Kind::Cone: {
+            // From the base circle (v = 0) to the apex (v = 1).
+            const T ring = (T(1.0) - v) * q.radius;
+            return {ring * cos(theta), ring * sin(theta), v * q.height};
+        }
+        case Quadric::Kind::Disk: {
+            const T ring = (T(1.0) - v) * q.radius;
+            return {ring * cos(theta), ring * sin(theta), T(q.height)};
+        }
+        case Quadric::Kind::Torus: {
+            const double phiMin = Radians(q.phimin), phiMax = Radians(q.phimax);
+            const T phi = T(phiMin) + v * (phiMax - phiMin);
+            const T ring = cos(phi) * q.minorRadius + q.majorRadius;
+            return {ring * cos(theta), ring * sin(theta), sin(phi) * q.minorRadius};
+        }
+        case Quadric::Kind::Hyperboloid: {
+            // The segment point1 -> point2 swept about z.
+            const T x = T(q.point1[0]) + v * (q.point2[0] - q.point1[0]);
+            const T y = T(q.point1[1]) + v * (q.point2[1] - q.point1[1]);
+            const T z = T(q.point1[2]) + v * (q.point2[2] - q.point1[2]);
+            const T c = cos(theta), s = sin(theta);
+            return {x * c - y * s, x * s + y * c, z};
+        }
+        case Quadric::Kind::Paraboloid: {
+            // z from zmin to zmax; the radius grows as sqrt(z), reaching rmax at zmax.
+            const T z = T(q.zmin) + v * (q.zmax - q.zmin);
+            const T ring = sqrt(z * (1.0 / q.zmax)) * q.radius;
+            return {ring * cos(theta), ring * sin(theta), z};
+        }
+    }
+    return {};
+}
+
+}  // namespace affray::renderer

@@ -1,0 +1,174 @@
+// tests/renderer/quadric_test.cpp: the quadrics' (u,v) parameterisations (renderer/quadric.h):
+// hand-computed points, bounds that contain every point of a region in Interval and Affine, and
+// tangents from duals that agree with finite differences.
+#include <catch2/catch.hpp>
+
+#include <numbers>
+
+#include "renderer/quadric.h"
+#include "renderer/surface.h"
+#include "tests/test_random.h"
+
+using namespace affray;
+using renderer::Quadric;
+using Catch::Matchers::WithinAbs;
+
+namespace {
+
+constexpr double kEps = 1e-12;
+
+Quadric Make(Quadric::Kind kind) {
+    Quadric q;
+    q.kind = kind;
+    return q;
+}
+
+/// Every kind, with arguments that exercise partial sweeps and ranges.
+std::vector<Quadric> Examples() {
+    std::vector<Quadric> out;
+    Quadric q = Make(Quadric::Kind::Sphere);
+    q.radius = 2, q.zmin = -3, q.zmax = 3;  // clamped to the poles
+    out.push_back(q);
+    q.zmin = -0.5, q.zmax = 1.5, q.thetamax = 270;
+    out.push_back(q);
+    q = Make(Quadric::Kind::Cylinder);
+    q.radius = 0.5, q.zmin = -1, q.zmax = 2, q.thetamax = -180;
+    out.push_back(q);
+    q = Make(Quadric::Kind::Cone);
+    q.radius = 1.5, q.height = 2;
+    out.push_back(q);
+    q = Make(Quadric::Kind::Disk);
+    q.radius = 3, q.height = 0.25, q.thetamax = 90;
+    out.push_back(q);
+    q = Make(Quadric::Kind::Torus);
+    q.majorRadius = 2, q.minorRadius = 0.5, q.phimin = -90, q.phimax = 270;
+    out.push_back(q);
+    q = Make(Quadric::Kind::Hyperboloid);
+    q.point1[0] = 1, q.point1[1] = 0, q.point1[2] = -1;
+    q.point2[0] = 0, q.point2[1] = 1, q.point2[2] = 1;
+    out.push_back(q);
+    q = Make(Quadric::Kind::Paraboloid);
+    q.radius = 1, q.zmin = 0.5, q.zmax = 4;
+    out.push_back(q);
+    return out;
+}
+
+glm::dvec3 At(const Quadric& q, double u, double v) {
+    vm::Vec3<double> p = renderer::QuadricPoint<double>(q, u, v);
+    return {p.x, p.y, p.z};
+}
+
+void CheckPoint(const glm::dvec3& got, const glm::dvec3& want) {
+    INFO("got (" << got.x << ", " << got.y << ", " << got.z << "), want (" << want.x << ", " << want.y << ", "
+                 << want.z << ")");
+    CHECK_THAT(got.x, WithinAbs(want.x, kEps));
+    CHECK_THAT(got.y, WithinAbs(want.y, kEps));
+    CHECK_THAT(got.z, WithinAbs(want.z, kEps));
+}
+
+}  // namespace
+
+TEST_CASE("quadrics: points of RenderMan's parameterisations", "[renderer][quadric]") {
+    Quadric sphere = Make(Quadric::Kind::Sphere);
+    sphere.radius = 2, sphere.zmin = -2, sphere.zmax = 2;
+    CheckPoint(At(sphere, 0.25, 0.5), {0, 2, 0});  // theta 90, on the equator
+    CheckPoint(At(sphere, 0.5, 1), {0, 0, 2});     // the north pole
+    CheckPoint(At(sphere, 0, 0), {0, 0, -2});
+    sphere.zmin = 0, sphere.zmax = 1;              // phi from 0 to 30 degrees
+    CheckPoint(At(sphere, 0, 1), {std::sqrt(3.0), 0, 1});
+
+    Quadric cylinder = Make(Quadric::Kind::Cylinder);
+    cylinder.radius = 0.5, cylinder.zmin = -1, cylinder.zmax = 3, cylinder.thetamax = 180;
+    CheckPoint(At(cylinder, 1, 0.25), {-0.5, 0, 0});
+
+    Quadric cone = Make(Quadric::Kind::Cone);
+    cone.radius = 2, cone.height = 4;
+    CheckPoint(At(cone, 0.25, 0.5), {0, 1, 2});
+    CheckPoint(At(cone, 0.7, 1), {0, 0, 4});  // the apex
+
+    Quadric disk = Make(Quadric::Kind::Disk);
+    disk.radius = 2, disk.height = 0.5;
+    CheckPoint(At(disk, 0.5, 0.25), {-1.5, 0, 0.5});
+
+    Quadric torus = Make(Quadric::Kind::Torus);
+    torus.majorRadius = 3, torus.minorRadius = 1;
+    CheckPoint(At(torus, 0, 0.25), {3, 0, 1});   // phi 90: the top of the tube
+    CheckPoint(At(torus, 0.25, 0.5), {0, 2, 0});  // phi 180: the inner equator
+
+    Quadric hyperboloid = Make(Quadric::Kind::Hyperboloid);
+    hyperboloid.point1[0] = 1, hyperboloid.point1[1] = 0, hyperboloid.point1[2] = -1;
+    hyperboloid.point2[0] = 0, hyperboloid.point2[1] = 1, hyperboloid.point2[2] = 1;
+    CheckPoint(At(hyperboloid, 0, 0.5), {0.5, 0.5, 0});
+    CheckPoint(At(hyperboloid, 0.25, 0), {0, 1, -1});
+
+    Quadric paraboloid = Make(Quadric::Kind::Paraboloid);
+    paraboloid.radius = 1, paraboloid.zmin = 0, paraboloid.zmax = 4;
+    CheckPoint(At(paraboloid, 0, 0.25), {0.5, 0, 1});
+    CheckPoint(At(paraboloid, 0.5, 1), {-1, 0, 4});
+}
+
+TEST_CASE("quadrics: Interval and Affine bounds contain every point of a region", "[renderer][quadric]") {
+    test::Rng rng(11);
+    const int regions = test::Samples(400);
+    for (const Quadric& q : Examples()) {
+        INFO(Quadric::Name(q.kind));
+        for (int r = 0; r < regions; ++r) {
+            const double width = std::pow(10.0, -rng.uniform(0, 9));
+            const double u0 = rng.uniform(0, 1 - width), v0 = rng.uniform(0, 1 - width);
+            const double u1 = u0 + width, v1 = v0 + width;
+            vm::Affine::BeginEvaluation();
+            const vm::Vec3<vm::Affine> a = renderer::QuadricPoint<vm::Affine>(
+                q, renderer::SurfaceParameter<vm::Affine>(u0, u1, 0), renderer::SurfaceParameter<vm::Affine>(v0, v1, 1));
+            const vm::Vec3<vm::Interval> iv = renderer::QuadricPoint<vm::Interval>(q, vm::Interval(u0, u1), vm::Interval(v0, v1));
+            for (int k = 0; k < 8; ++k) {
+                // The corners, and points inside.
+                const double u = k < 4 ? (k & 1 ? u1 : u0) : rng.uniform(u0, u1);
+                const double v = k < 4 ? (k & 2 ? v1 : v0) : rng.uniform(v0, v1);
+                const vm::Vec3<double> p = renderer::QuadricPoint<double>(q, u, v);
+                for (int c = 0; c < 3; ++c) {
+                    INFO("region [" << u0 << ", " << u1 << "] x [" << v0 << ", " << v1 << "], point (" << u << ", " << v
+                                    << "), component " << c << " = " << p[c]);
+                    CHECK(iv[c].contains(p[c]));
+                    CHECK(RangeOf(a[c]).contains(p[c]));
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("quadrics: dual tangents agree with finite differences", "[renderer][quadric]") {
+    test::Rng rng(12);
+    for (const Quadric& q : Examples()) {
+        INFO(Quadric::Name(q.kind));
+        for (int i = 0; i < 50; ++i) {
+            const double u = rng.uniform(0.05, 0.95), v = rng.uniform(0.05, 0.95), h = 1e-6;
+            using D = vm::Dual<double>;
+            const vm::Vec3<D> p = renderer::QuadricPoint<D>(q, D(u, 1.0, 0.0), D(v, 0.0, 1.0));
+            for (int c = 0; c < 3; ++c) {
+                const double du = (renderer::QuadricPoint<double>(q, u + h, v)[c] - renderer::QuadricPoint<double>(q, u - h, v)[c]) / (2 * h);
+                const double dv = (renderer::QuadricPoint<double>(q, u, v + h)[c] - renderer::QuadricPoint<double>(q, u, v - h)[c]) / (2 * h);
+                CHECK_THAT(p[c].du, WithinAbs(du, 1e-6 * std::max(1.0, std::abs(du))));
+                CHECK_THAT(p[c].dv, WithinAbs(dv, 1e-6 * std::max(1.0, std::abs(dv))));
+            }
+        }
+    }
+}
+
+TEST_CASE("quadrics: arguments that describe no surface are named", "[renderer][quadric]") {
+    for (const Quadric& q : Examples()) CHECK(q.Problem().empty());
+    Quadric q = Make(Quadric::Kind::Sphere);
+    q.radius = 0;
+    CHECK(q.Problem() == "the radius must be positive");
+    q.radius = 1, q.zmin = 2, q.zmax = 3;
+    CHECK(q.Problem() == "zmin..zmax does not cut the sphere");
+    q.zmin = -1, q.thetamax = 0;
+    CHECK(q.Problem() == "thetamax is 0: the surface is empty");
+    q.thetamax = std::numeric_limits<double>::infinity();
+    CHECK(q.Problem() == "its arguments must be finite");
+    q = Make(Quadric::Kind::Paraboloid);
+    q.zmin = -1;
+    CHECK(q.Problem() == "it needs 0 <= zmin < zmax");
+    q = Make(Quadric::Kind::Torus);
+    q.minorRadius = -1;
+    CHECK(q.Problem() == "the minor radius must be positive");
+}
