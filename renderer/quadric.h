@@ -8,6 +8,7 @@
 // rounding included).
 #pragma once
 
+#include <cmath>
 #include <numbers>
 #include <string>
 
@@ -86,6 +87,63 @@ vm::Vec3<T> QuadricPoint(const Quadric& q, const T& u, const T& v) {
         }
     }
     return {};
+}
+
+/// A point of a surface with its tangents ∂P/∂u and ∂P/∂v (the shader's dPdu and dPdv).
+template <class T>
+struct SurfaceFrame {
+    vm::Vec3<T> P, dPdu, dPdv;
+};
+
+/// QuadricPoint with its tangents, written out by hand rather than through Dual<T>: a T that is
+/// itself a Dual (a shade program) then gets the tangents' own derivatives for free.
+template <class T>
+SurfaceFrame<T> QuadricFrame(const Quadric& q, const T& u, const T& v) {
+    using quadric_detail::Radians;
+    const double turn = Radians(q.thetamax);  // dtheta/du
+    const T theta = u * turn;
+    const T c = cos(theta), s = sin(theta);
+    SurfaceFrame<T> f;
+    f.P = QuadricPoint(q, u, v);
+    // Every quadric is swept about z, so dP/du is the turn of P's (x, y).
+    f.dPdu = {-f.P.y * turn, f.P.x * turn, T(0.0)};
+    switch (q.kind) {
+        case Quadric::Kind::Sphere:
+        case Quadric::Kind::Torus: {
+            // phi = phiMin + v dphi: (ring cos, ring sin, r sin phi) with ring = R + r cos phi.
+            double phiMin, phiMax, r;
+            if (q.kind == Quadric::Kind::Sphere) {
+                r = q.radius;
+                phiMin = q.zmin > -r ? std::asin(q.zmin / r) : -std::numbers::pi / 2;
+                phiMax = q.zmax < r ? std::asin(q.zmax / r) : std::numbers::pi / 2;
+            } else {
+                r = q.minorRadius;
+                phiMin = Radians(q.phimin), phiMax = Radians(q.phimax);
+            }
+            const T phi = T(phiMin) + v * (phiMax - phiMin);
+            const T ringRate = sin(phi) * (-r * (phiMax - phiMin));  // d ring / dv
+            f.dPdv = {ringRate * c, ringRate * s, cos(phi) * (r * (phiMax - phiMin))};
+            break;
+        }
+        case Quadric::Kind::Cylinder: f.dPdv = {T(0.0), T(0.0), T(q.zmax - q.zmin)}; break;
+        case Quadric::Kind::Cone: f.dPdv = {c * -q.radius, s * -q.radius, T(q.height)}; break;
+        case Quadric::Kind::Disk: f.dPdv = {c * -q.radius, s * -q.radius, T(0.0)}; break;
+        case Quadric::Kind::Hyperboloid: {
+            const double dx = q.point2[0] - q.point1[0], dy = q.point2[1] - q.point1[1];
+            f.dPdv = {c * dx - s * dy, s * dx + c * dy, T(q.point2[2] - q.point1[2])};
+            break;
+        }
+        case Quadric::Kind::Paraboloid: {
+            // ring = rmax sqrt(z / zmax): d ring / dv = ring / (2 z) * dz/dv (infinite at z = 0).
+            const double dz = q.zmax - q.zmin;
+            const T z = T(q.zmin) + v * dz;
+            const T ring = sqrt(z * (1.0 / q.zmax)) * q.radius;
+            const T ringRate = ring / (z * 2.0) * dz;
+            f.dPdv = {ringRate * c, ringRate * s, T(dz)};
+            break;
+        }
+    }
+    return f;
 }
 
 }  // namespace affray::renderer

@@ -120,6 +120,8 @@ TEST_CASE("quadrics: Interval and Affine bounds contain every point of a region"
             const vm::Vec3<vm::Affine> a = renderer::QuadricPoint<vm::Affine>(
                 q, renderer::SurfaceParameter<vm::Affine>(u0, u1, 0), renderer::SurfaceParameter<vm::Affine>(v0, v1, 1));
             const vm::Vec3<vm::Interval> iv = renderer::QuadricPoint<vm::Interval>(q, vm::Interval(u0, u1), vm::Interval(v0, v1));
+            const renderer::SurfaceFrame<vm::Interval> frame =
+                renderer::QuadricFrame<vm::Interval>(q, vm::Interval(u0, u1), vm::Interval(v0, v1));
             for (int k = 0; k < 8; ++k) {
                 // The corners, and points inside.
                 const double u = k < 4 ? (k & 1 ? u1 : u0) : rng.uniform(u0, u1);
@@ -130,13 +132,16 @@ TEST_CASE("quadrics: Interval and Affine bounds contain every point of a region"
                                     << "), component " << c << " = " << p[c]);
                     CHECK(iv[c].contains(p[c]));
                     CHECK(RangeOf(a[c]).contains(p[c]));
+                    const renderer::SurfaceFrame<double> f = renderer::QuadricFrame<double>(q, u, v);
+                    CHECK((std::isnan(f.dPdv[c]) || frame.dPdv[c].contains(f.dPdv[c])));
+                    CHECK(frame.dPdu[c].contains(f.dPdu[c]));
                 }
             }
         }
     }
 }
 
-TEST_CASE("quadrics: dual tangents agree with finite differences", "[renderer][quadric]") {
+TEST_CASE("quadrics: tangents by hand, by duals and by finite differences agree", "[renderer][quadric]") {
     test::Rng rng(12);
     for (const Quadric& q : Examples()) {
         INFO(Quadric::Name(q.kind));
@@ -149,6 +154,11 @@ TEST_CASE("quadrics: dual tangents agree with finite differences", "[renderer][q
                 const double dv = (renderer::QuadricPoint<double>(q, u, v + h)[c] - renderer::QuadricPoint<double>(q, u, v - h)[c]) / (2 * h);
                 CHECK_THAT(p[c].du, WithinAbs(du, 1e-6 * std::max(1.0, std::abs(du))));
                 CHECK_THAT(p[c].dv, WithinAbs(dv, 1e-6 * std::max(1.0, std::abs(dv))));
+                // The hand-written tangents are the duals' (up to rounding).
+                const renderer::SurfaceFrame<double> f = renderer::QuadricFrame<double>(q, u, v);
+                CHECK_THAT(f.dPdu[c], WithinAbs(p[c].du, 1e-12 * std::max(1.0, std::abs(du))));
+                CHECK_THAT(f.dPdv[c], WithinAbs(p[c].dv, 1e-12 * std::max(1.0, std::abs(dv))));
+                CHECK(f.P[c] == p[c].v);
             }
         }
     }
