@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "renderer/quadric.h"
 #include "vm/interpreter.h"
 #include "vm/number.h"
 #include "vm/vec3.h"
@@ -88,6 +89,32 @@ struct BilinearPatch {
     glm::dvec3 flatNormal() const { return glm::normalize(glm::cross(a(), b())); }
 };
 
+/// Writes the globals of one surface evaluation that `interp`'s program reads: the parameters
+/// u, v (also s, t), the frame P, dPdu, dPdv, the normal (`flatNormal` if the surface has one
+/// normal everywhere: a constant keeps its bound exact; else dPdu ^ dPdv) and E, I from `eye`.
+template <class T>
+void SetFrameGlobals(vm::Interpreter<T>& interp, const T& u, const T& v, const SurfaceFrame<T>& frame,
+                     const glm::dvec3* flatNormal, const glm::dvec3& eye) {
+    using vm::Global;
+    const vm::Program& program = interp.program();
+    interp.SetGlobal(Global::P, frame.P);
+    interp.SetGlobal(Global::u, u);
+    interp.SetGlobal(Global::v, v);
+    interp.SetGlobal(Global::s, u);
+    interp.SetGlobal(Global::t, v);
+    interp.SetGlobal(Global::du, T(kParametricStep));
+    interp.SetGlobal(Global::dv, T(kParametricStep));
+    interp.SetGlobal(Global::dPdu, frame.dPdu);
+    interp.SetGlobal(Global::dPdv, frame.dPdv);
+    if (program.readsGlobal(Global::N) || program.readsGlobal(Global::Ng)) {
+        Vec3<T> N = flatNormal ? Constant<T>(*flatNormal) : vm::Normalize(vm::Cross(frame.dPdu, frame.dPdv));
+        interp.SetGlobal(Global::N, N);
+        interp.SetGlobal(Global::Ng, N);
+    }
+    if (program.readsGlobal(Global::E)) interp.SetGlobal(Global::E, Constant<T>(eye));
+    if (program.readsGlobal(Global::I)) interp.SetGlobal(Global::I, frame.P - Constant<T>(eye));
+}
+
 /// Starts a new evaluation for the interpreter `interp` over the patch region [u0,u1] x [v0,v1]
 /// (a point when the bounds are equal): writes the globals its program reads; `eye` is the
 /// camera position E. For affine types this restarts the fresh symbols, so the values of an
@@ -95,9 +122,7 @@ struct BilinearPatch {
 template <class T>
 void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, double u0, double u1, double v0,
                      double v1, const glm::dvec3& eye) {
-    using vm::Global;
     if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
-    const vm::Program& program = interp.program();
     T u = SurfaceParameter<T>(u0, u1, 0);
     T v = SurfaceParameter<T>(v0, v1, 1);
     // P = c0 + a*u + b*v + d*u*v, each coordinate a combination with double coefficients (zero
@@ -112,32 +137,46 @@ void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, dou
         if (kv != 0) r = r + y * kv;
         return r;
     };
-    Vec3<T> P, dPdu, dPdv;
+    SurfaceFrame<T> frame;
     for (int i = 0; i < 3; ++i) {
-        P[i] = combine(c0[i], a[i], u, b[i], v);
-        if (twisted && d[i] != 0) P[i] = P[i] + uv * d[i];
-        dPdu[i] = twisted ? combine(a[i], d[i], v, 0.0, v) : T(a[i]);
-        dPdv[i] = twisted ? combine(b[i], d[i], u, 0.0, u) : T(b[i]);
+        frame.P[i] = combine(c0[i], a[i], u, b[i], v);
+        if (twisted && d[i] != 0) frame.P[i] = frame.P[i] + uv * d[i];
+        frame.dPdu[i] = twisted ? combine(a[i], d[i], v, 0.0, v) : T(a[i]);
+        frame.dPdv[i] = twisted ? combine(b[i], d[i], u, 0.0, u) : T(b[i]);
     }
-    interp.SetGlobal(Global::P, P);
-    interp.SetGlobal(Global::u, u);
-    interp.SetGlobal(Global::v, v);
-    interp.SetGlobal(Global::s, u);
-    interp.SetGlobal(Global::t, v);
-    interp.SetGlobal(Global::du, T(kParametricStep));
-    interp.SetGlobal(Global::dv, T(kParametricStep));
-    interp.SetGlobal(Global::dPdu, dPdu);
-    interp.SetGlobal(Global::dPdv, dPdv);
-    if (program.readsGlobal(Global::N) || program.readsGlobal(Global::Ng)) {
-        // A flat patch has one normal: compute it in doubles and pass it as a constant, so its
-        // bound stays exact; only a twisted patch needs the normal per region.
-        Vec3<T> N = twisted ? vm::Normalize(vm::Cross(dPdu, dPdv))
-                            : Constant<T>(patch.flatNormal());
-        interp.SetGlobal(Global::N, N);
-        interp.SetGlobal(Global::Ng, N);
-    }
-    if (program.readsGlobal(Global::E)) interp.SetGlobal(Global::E, Constant<T>(eye));
-    if (program.readsGlobal(Global::I)) interp.SetGlobal(Global::I, P - Constant<T>(eye));
+    // A flat patch has one normal: computed in doubles, so its bound stays exact.
+    const glm::dvec3 flatNormal = patch.flatNormal();
+    SetFrameGlobals(interp, u, v, frame, twisted ? nullptr : &flatNormal, eye);
+}
+
+/// A quadric placed in the world by an affine object-to-world matrix (GLM's column-major).
+struct PlacedQuadric {
+    Quadric quadric;
+    glm::dmat4 objectToWorld{1.0};
+};
+
+/// SetPatchGlobals for a region of a quadric: its frame in object space, carried to the world.
+template <class T>
+void SetQuadricGlobals(vm::Interpreter<T>& interp, const PlacedQuadric& placed, double u0, double u1, double v0,
+                       double v1, const glm::dvec3& eye) {
+    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
+    const T u = SurfaceParameter<T>(u0, u1, 0);
+    const T v = SurfaceParameter<T>(v0, v1, 1);
+    const SurfaceFrame<T> local = QuadricFrame(placed.quadric, u, v);
+    const glm::dmat4& m = placed.objectToWorld;
+    // x -> M x, with w = 1 for the point and 0 for the tangents; zero entries skipped.
+    auto map = [&](const Vec3<T>& x, bool point) {
+        Vec3<T> out;
+        for (int row = 0; row < 3; ++row) {
+            T sum(point ? m[3][row] : 0.0);
+            for (int column = 0; column < 3; ++column)
+                if (m[column][row] != 0) sum = sum + x[column] * m[column][row];
+            out[row] = sum;
+        }
+        return out;
+    };
+    const SurfaceFrame<T> world{map(local.P, true), map(local.dPdu, false), map(local.dPdv, false)};
+    SetFrameGlobals(interp, u, v, world, nullptr, eye);
 }
 
 /// Runs `interp`'s program over the patch region [u0,u1] x [v0,v1] (see SetPatchGlobals) and

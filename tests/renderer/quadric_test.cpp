@@ -5,7 +5,10 @@
 
 #include <numbers>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "renderer/quadric.h"
+#include "tests/test_util.h"
 #include "renderer/surface.h"
 #include "tests/test_random.h"
 
@@ -181,4 +184,54 @@ TEST_CASE("quadrics: arguments that describe no surface are named", "[renderer][
     q = Make(Quadric::Kind::Torus);
     q.minorRadius = -1;
     CHECK(q.Problem() == "the minor radius must be positive");
+}
+
+TEST_CASE("quadrics: a displacement shader's bounds over a placed quadric contain its points",
+          "[renderer][quadric]") {
+    // P moves along N by a wave of s and t: reads P, N, s, t through SetQuadricGlobals.
+    const std::string source = "displacement d(float Km = 0.1) { P += Km * sin(10 * s) * cos(7 * t) * normalize(N); }";
+    const compiler::CompiledShader shader = test::CompileOrThrow(source);
+    const compiler::CompiledShader flat = test::CompileOrThrow(source, {{"Km", {0.0}}});
+    const vm::ProgramOutput& out = *shader.bound.findOutput("P");
+    renderer::PlacedQuadric placed;
+    placed.objectToWorld = glm::translate(glm::dmat4(1.0), glm::dvec3(1, -2, 3)) *
+                           glm::rotate(glm::dmat4(1.0), 0.4, glm::dvec3(1, 1, 0)) *
+                           glm::scale(glm::dmat4(1.0), glm::dvec3(2, 1, 0.5));
+    vm::Interpreter<double> point(shader.bound);
+    vm::Interpreter<vm::Affine> affine(shader.bound);
+    vm::Interpreter<vm::Interval> interval(shader.bound);
+    test::Rng rng(13);
+    for (const Quadric& q : Examples()) {
+        placed.quadric = q;
+        INFO(Quadric::Name(q.kind));
+        // Undisplaced, at a point: the world point is M times the object point.
+        vm::Interpreter<double> base(flat.bound);
+        renderer::SetQuadricGlobals(base, placed, 0.3, 0.3, 0.6, 0.6, glm::dvec3(0.0));
+        base.Run();
+        const vm::Vec3<double> local = renderer::QuadricPoint<double>(q, 0.3, 0.6);
+        const glm::dvec4 world = placed.objectToWorld * glm::dvec4(local.x, local.y, local.z, 1.0);
+        const vm::Vec3<double> P = base.OutputTriple(*flat.bound.findOutput("P"));
+        CheckPoint({P.x, P.y, P.z}, glm::dvec3(world));
+        for (int r = 0; r < 100; ++r) {
+            const double width = std::pow(10.0, -rng.uniform(0, 6));
+            const double u0 = rng.uniform(0, 1 - width), v0 = rng.uniform(0.01, 0.99 - width);
+            renderer::SetQuadricGlobals(affine, placed, u0, u0 + width, v0, v0 + width, glm::dvec3(0.0));
+            affine.Run();
+            const vm::Vec3<vm::Affine> a = affine.OutputTriple(out);
+            renderer::SetQuadricGlobals(interval, placed, u0, u0 + width, v0, v0 + width, glm::dvec3(0.0));
+            interval.Run();
+            const vm::Vec3<vm::Interval> iv = interval.OutputTriple(out);
+            for (int k = 0; k < 4; ++k) {
+                const double u = rng.uniform(u0, u0 + width), v = rng.uniform(v0, v0 + width);
+                renderer::SetQuadricGlobals(point, placed, u, u, v, v, glm::dvec3(0.0));
+                point.Run();
+                const vm::Vec3<double> p = point.OutputTriple(out);
+                for (int c = 0; c < 3; ++c) {
+                    INFO("region at (" << u0 << ", " << v0 << ") width " << width << ", component " << c);
+                    CHECK(RangeOf(a[c]).contains(p[c]));
+                    CHECK(iv[c].contains(p[c]));
+                }
+            }
+        }
+    }
 }
