@@ -10,6 +10,7 @@
 #include "vm/affine.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 
 namespace affray::vm {
@@ -18,30 +19,45 @@ namespace {
 
 thread_local Affine::SymbolId t_nextSymbol = Affine::kFirstFreshSymbol;
 
-// Error bounds of shared-term sums count at most this many roundings per term.
-constexpr double kTermSlack = 2.0 * Affine::kCapacity + 4.0;
-// The product's remainder is computed in about 5*kCapacity + 12 roundings (the sums of up to
-// kCapacity terms, then P - Q with Q <= P/2), which kSumSlack covers up to 256.
-static_assert(5 * Affine::kCapacity + 32 <= 256, "raise kSumSlack for this capacity");
+// The active capacity. Atomic only so that a bench changing it is not a data race on paper: a
+// relaxed load is a plain load on x86-64 and ARM, and each operation reads it once.
+std::atomic<int> g_capacity{Affine::kCapacity};
+
+// Error bounds of shared-term sums count at most this many roundings per term. Taken for the
+// largest capacity, so they hold whatever the active one (the slack is a few ulps either way).
+constexpr double kTermSlack = 2.0 * Affine::kMaxCapacity + 4.0;
+// The product's remainder is computed in about 5*capacity + 12 roundings (the sums of up to
+// capacity terms, then P - Q with Q <= P/2), which kSumSlack covers up to 256.
+static_assert(5 * Affine::kMaxCapacity + 32 <= 256, "raise kSumSlack for this capacity");
 
 }  // namespace
 
-// Where an operation writes its terms: straight into the result when they are sure to fit (no
-// copy), else into a scratch list long enough for a merge plus a fresh term, which finish()
-// folds down to kCapacity.
+int Affine::Capacity() { return g_capacity.load(std::memory_order_relaxed); }
+
+bool Affine::SetCapacity(int n) {
+    if (n < 2 || n > kMaxCapacity) return false;
+    g_capacity.store(n, std::memory_order_relaxed);
+    return true;
+}
+
+// Where an operation writes its terms: straight into the result when they are sure to fit the
+// active capacity (no copy), else into a scratch list long enough for a merge of two full forms
+// plus a fresh term, which finish() folds down to the capacity.
 struct Affine::Terms {
-    static constexpr int kMax = 2 * kCapacity + 2;
+    static constexpr int kMax = 2 * kMaxCapacity + 2;
     SymbolId* symbols;
     double* coefs;
     int count = 0;
+    int capacity;
     bool direct;
     SymbolId scratchSymbols[kMax];
     double scratchCoefs[kMax];
 
     Terms(Affine& result, int maxTerms)
-        : symbols(maxTerms <= kCapacity ? result.m_symbols : scratchSymbols),
-          coefs(maxTerms <= kCapacity ? result.m_coefs : scratchCoefs),
-          direct(maxTerms <= kCapacity) {}
+        : capacity(g_capacity.load(std::memory_order_relaxed)), direct(maxTerms <= capacity) {
+        symbols = direct ? result.m_symbols : scratchSymbols;
+        coefs = direct ? result.m_coefs : scratchCoefs;
+    }
     Terms(const Terms&) = delete;
 
     // Appends a term with a larger id than any so far; zero coefficients are dropped.
@@ -96,7 +112,7 @@ Affine Affine::FromInterval(const Interval& range) {
 bool Affine::finish(double center, double error, Terms& terms) {
     if (!terms.direct) {
         // Fold the smallest terms other than eps_u and eps_v into the error until the rest fit.
-        while (terms.count > kCapacity) {
+        while (terms.count > terms.capacity) {
             int smallest = -1;
             for (int i = 0; i < terms.count; ++i) {
                 if (terms.symbols[i] < kFirstFreshSymbol) continue;

@@ -10,8 +10,9 @@
 //    assignment lies in the result form, rounding of both computations included (vm/rounding.h).
 //  - Anything that can be NaN or infinite somewhere is the explicit Unbounded value, which
 //    propagates through every function.
-//  - Terms are kept sorted by symbol id with no zero coefficient; when they do not fit in
-//    kCapacity, the smallest terms other than eps_u and eps_v are folded into e.
+//  - Terms are kept sorted by symbol id with no zero coefficient; when they do not fit in the
+//    active capacity (Capacity(), kCapacity unless a bench or test changed it), the smallest
+//    terms other than eps_u and eps_v are folded into e.
 //  - Every result also carries an *enclosure*: the interval-arithmetic result of the operation on
 //    its operands' ranges (rounded outward). range() is the form's range intersected with it, so
 //    affine bounds are never wider than interval ones, and a value known to be >= 0 (a square, a
@@ -41,16 +42,43 @@ namespace affray::vm {
 class Affine {
   public:
     using SymbolId = uint32_t;
-    /// Term slots, eps_u and eps_v included. Change it here; nothing else depends on the value.
+    /// Term slots every form stores, eps_u and eps_v included: the largest capacity that
+    /// SetCapacity accepts. Storage is fixed (no allocation) whatever the active capacity.
+    static constexpr int kMaxCapacity = 32;
+    /// The default active capacity, chosen from the capacity study in docs/bounds.md
+    /// (affray_bench_bounds --capacity-study, every shader, regions of width 1/8 and 1/64): 12 is
+    /// the knee. Below it bounds widen fast (at 8: strata 1/8 +24%, stucco 1/64 +5.6%, against
+    /// capacity 32) for at most ~10% less time; at 12 the mean z width is within 0.5% of capacity
+    /// 32's (worst shader: strata at 1/8, +6.5%; every shader within 0.6% at 1/64); above it 12
+    /// of 17 shaders gain nothing, and those that do pay per term kept (strata at 1/8: +7% time
+    /// at 16 for -3.6% width, +19% at 32 for -6%).
     static constexpr int kCapacity = 12;
     static constexpr SymbolId kSymbolU = 0;
     static constexpr SymbolId kSymbolV = 1;
     /// BeginEvaluation() restarts fresh symbols here.
     static constexpr SymbolId kFirstFreshSymbol = 2;
-    static_assert(kCapacity >= 2, "eps_u and eps_v must always fit");
+    static_assert(2 <= kCapacity && kCapacity <= kMaxCapacity, "eps_u and eps_v must always fit");
+
+    /// The active capacity: how many terms (eps_u and eps_v included) a result keeps before its
+    /// smallest fresh terms are folded into e. Process-wide; kCapacity unless changed.
+    static int Capacity();
+    /// Sets the active capacity for every later operation in every thread, and returns true; or
+    /// returns false and changes nothing if n is outside [2, kMaxCapacity]. Only for benches and
+    /// tests that measure tightness against capacity: call it while no evaluation runs, since
+    /// forms of one evaluation are meant to share one capacity. (Forms made earlier keep their
+    /// terms, as do negation, scaling and adding a constant, until an operation that merges
+    /// terms folds them; every bound stays valid either way.)
+    static bool SetCapacity(int n);
 
     /// The exact constant 0.
     Affine() = default;
+    /// Copies copy only the terms in use: the storage is sized for kMaxCapacity, and the
+    /// interpreter copies a result into its register on every instruction.
+    Affine(const Affine& x) { copyFrom(x); }
+    Affine& operator=(const Affine& x) {
+        if (this != &x) copyFrom(x);
+        return *this;
+    }
     /// The exact constant c; NaN or infinite c gives Unbounded.
     Affine(double c) : m_center(c) {  // NOLINT: implicit by design (Number API)
         if (!std::isfinite(c)) *this = Unbounded();
@@ -172,6 +200,18 @@ class Affine {
     /// scalar values) and its range cached; an unbounded form with a bounded enclosure becomes
     /// the enclosure on a fresh symbol.
     static Affine Tighten(Affine r, const Interval& enclosure);
+    void copyFrom(const Affine& x) {
+        m_center = x.m_center;
+        m_error = x.m_error;
+        m_lo = x.m_lo;
+        m_hi = x.m_hi;
+        m_rangeCached = x.m_rangeCached;
+        m_count = x.m_count;
+        for (int i = 0; i < m_count; ++i) {
+            m_symbols[i] = x.m_symbols[i];
+            m_coefs[i] = x.m_coefs[i];
+        }
+    }
     /// Forgets the enclosure (after the form was changed in place).
     void resetEnclosure() {
         m_lo = -kInfinity;
@@ -195,7 +235,7 @@ class Affine {
 
     struct Terms;  // the term list an operation writes (affine.cpp)
 
-    /// Completes this result of an operation: the terms folded to kCapacity if they were
+    /// Completes this result of an operation: the terms folded to the capacity if they were
     /// written to scratch, then center and error (already rounded up). False if anything is
     /// not finite (the caller returns Unbounded).
     bool finish(double center, double error, Terms& terms);
@@ -236,8 +276,8 @@ class Affine {
     double m_hi = kInfinity;
     bool m_rangeCached = false;
     int m_count = 0;
-    SymbolId m_symbols[kCapacity];
-    double m_coefs[kCapacity];
+    SymbolId m_symbols[kMaxCapacity];
+    double m_coefs[kMaxCapacity];
 };
 
 }  // namespace affray::vm
