@@ -42,7 +42,13 @@ struct RenderCommand {
     lang::PreprocessOptions preprocess;
 };
 
+struct DiffCommand {
+    std::string reference, test;  // two OpenEXR images of the same size
+};
+
 int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err);
+/// Prints {"pixels":..,"rmse":..,"max":..} over the RGB channels of `test` against `reference`.
+int RunDiff(const DiffCommand& cmd, FILE* out, FILE* err);
 int RunEval(const EvalCommand& cmd, FILE* out, FILE* err);
 int RunRender(const RenderCommand& cmd, FILE* out, FILE* err);
 

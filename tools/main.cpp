@@ -20,6 +20,7 @@ const char* const kUsage =
     "  affray compile SHADER.sl [-o OUT.afb] [--disasm] [--stats] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
     "              [--mode scalar|affine|interval] [-I DIR] [-D NAME[=VALUE]]\n"
+    "  affray diff REFERENCE.exr TEST.exr   (RMSE and largest error of TEST's RGB, as JSON)\n"
     "  affray --help | --version\n";
 
 struct UsageError {
@@ -150,6 +151,16 @@ int Eval(Args& args) {
     return affray::tools::RunEval(cmd, stdout, stderr);
 }
 
+int Diff(Args& args) {
+    affray::tools::DiffCommand cmd;
+    std::vector<std::string> files;
+    while (!args.Done()) files.push_back(args.Next());
+    if (files.size() != 2) throw UsageError{"diff takes two images: REFERENCE.exr TEST.exr"};
+    cmd.reference = files[0];
+    cmd.test = files[1];
+    return affray::tools::RunDiff(cmd, stdout, stderr);
+}
+
 int Render(Args& args) {
     affray::tools::RenderCommand cmd;
     while (!args.Done()) {
@@ -195,6 +206,7 @@ int main(int argc, char** argv) {
         if (command == "compile") return Compile(args);
         if (command == "eval") return Eval(args);
         if (command == "render") return Render(args);
+        if (command == "diff") return Diff(args);
         throw UsageError{"unknown command '" + command + "'"};
     } catch (const UsageError& e) {
         std::fprintf(stderr, "affray: error: %s\n%s", e.message.c_str(), kUsage);

@@ -316,3 +316,32 @@ TEST_CASE("cli: every scene in scenes/ parses and its shaders compile", "[tools]
     CHECK(scenes >= 3);
     fs::remove_all(dir);
 }
+
+TEST_CASE("cli: diff reports the RMSE and largest RGB error of one image against another", "[tools]") {
+    fs::path dir = TempDir("diff");
+    // Two 2x1 images: the second differs by 0.5 in R of one pixel and 0.25 in B of the other.
+    renderer::ImageBuffer a{2, 1, {0.5f, 0.5f, 0.5f, 1, 0.25f, 0, 1, 1}, {}};
+    renderer::ImageBuffer b = a;
+    b.rgba[0] = 1.0f;
+    b.rgba[6] = 0.75f;
+    renderer::ImageBuffer wide{3, 1, std::vector<float>(12, 0.0f), {}};
+    REQUIRE(renderer::WriteExr((dir / "a.exr").string(), a, nullptr));
+    REQUIRE(renderer::WriteExr((dir / "b.exr").string(), b, nullptr));
+    REQUIRE(renderer::WriteExr((dir / "wide.exr").string(), wide, nullptr));
+    // RMSE over 6 values: sqrt((0.25 + 0.0625) / 6).
+    Output same = Run("diff " + (dir / "a.exr").string() + " " + (dir / "a.exr").string());
+    CHECK(same.status == 0);
+    CHECK(same.out == "{\"pixels\":2,\"rmse\":0,\"max\":0}\n");
+    Output d = Run("diff " + (dir / "a.exr").string() + " " + (dir / "b.exr").string());
+    CHECK(d.status == 0);
+    CHECK(d.out.find("\"max\":0.5}") != std::string::npos);
+    CHECK(d.out.find("\"rmse\":0.2282177322938192") != std::string::npos);
+    Output size = Run("diff " + (dir / "a.exr").string() + " " + (dir / "wide.exr").string(), true);
+    CHECK(size.status == 1);
+    CHECK(size.out.find("is 2x1 but") != std::string::npos);
+    Output missing = Run("diff " + (dir / "a.exr").string() + " " + (dir / "none.exr").string(), true);
+    CHECK(missing.status == 1);
+    CHECK(missing.out.find("cannot read") != std::string::npos);
+    CHECK(Run("diff " + (dir / "a.exr").string()).status == 2);
+    fs::remove_all(dir);
+}
