@@ -1,8 +1,10 @@
 // vm/noise.h: the RenderMan noise functions (noise, pnoise, cellnoise), written once as templates
 // over the number type, so that the double value a shader computes at a point and the bound an
 // Interval, Affine or Dual<...> evaluation computes over a (u,v) region come from the same code.
-// Owns Noise, PNoise and CellNoise, their lattice hash and gradient sets (vm/noise.cpp), and the
-// scale that keeps gradient noise inside [0, 1].
+// Owns Noise, PNoise and CellNoise, their lattice hash and gradient sets (vm/noise.cpp), the
+// scale that keeps gradient noise inside [0, 1], and LocalForm, the small affine arithmetic that
+// bounds one cell (see "Bounds"). This header is longer than 600 lines because the templates
+// and the proofs that keep them sound belong together.
 //
 // Semantics (double is the reference, as everywhere in the VM):
 //  - Noise(p, dims, seed): gradient ("Perlin") noise of dims = 1..4 coordinates. Lattice point c
@@ -25,23 +27,59 @@
 //  - CellNoise(p, dims, seed): constant on each cell floor(p): a hash of (floor(p), dims, seed)
 //    mapped to [0, 1) (53 bits). Derivatives 0.
 //
-// Bounds (Interval, Affine and Dual<...> of them; the same template code, only Number calls):
+// Bounds (Interval, Affine and Dual<...> of them; the same template code, CellPolynomial, on
+// every type):
 //  1. The range of each coordinate gives the cells it touches, floor(lo)..floor(hi). If at most
-//     kNoiseCellCap cells are touched in total, each touched cell's polynomial is evaluated in T
-//     arithmetic with t_i = clamp(p_i - k_i, 0, 1) (so, values at that cell's points only), and the
-//     results are Joined. Every point lies in one of these cells (floor is monotone), and for it
-//     the T evaluation of the same operations contains the double result, rounding included.
-//     Within one cell this is just the polynomial in affine arithmetic: tight bounds.
-//     A t_i whose range overhangs [0, 1] by at most kNoiseOverhang = 1/16 is left unclamped (the
-//     polynomial over a superset of the cell still contains its values): past a face, a cell's
-//     polynomial agrees with its neighbour's to third order (C2), so the Joined forms of a region
-//     straddling a face stay nearly equal, whereas Min/Max make them differ. Measured on regions
-//     straddling faces, about 0.025 wide: affine bounds 15-25 % narrower for d = 2..4 (6 % wider
-//     for d = 1); past overhangs of ~0.1 clamping wins.
+//     kNoiseCellCap cells are touched in total, each touched cell is bounded on its own and the
+//     results are Joined. Every point lies in one of these cells (floor is monotone), and each
+//     cell's bound contains the double value at every point of the region in that cell.
 //     kNoiseCellCap = 16 = 2^4: every region narrower than one cell in each coordinate (so
 //     touching at most 2 cells per coordinate) is bounded cell by cell in every dimension up to 4,
 //     which covers the regions a subdividing ray tracer spends its time on; a region a full cell
 //     wide or more sees noise through most of its range anyway, so the fallback loses little.
+//     A cell is bounded one of two ways (NoiseBoundMethod):
+//     a. Local (Affine's default): CellPolynomial (then * scale + 0.5) evaluated on LocalForms, a
+//        small affine arithmetic whose first symbols are the cell's local coordinates over the
+//        part B of the region inside the cell (t_i = c_i + reach_i sigma_i, c the centre of B)
+//        and whose further symbols are fresh, one per product. It keeps Affine's contract and
+//        error formulas (tested by Stolfi's aavalid method in tests/vm/noise_test.cpp), so the
+//        form contains the double value at every double t in B. The result z0 + sum_i z_i
+//        sigma_i +- rest is then mapped back to T by sigma_i = (t_i - c_i)/reach_i, with
+//        t_i = p_i - k_i, as sum_i a_i p_i + [constant +- rest] (a_i = z_i/reach_i; the
+//        rounding of a_i, of p_i - k_i and of the constant are added to rest; the Interval and
+//        Affine operations that form it enclose their exact results as well as the double ones):
+//        2 dims T operations instead of the ~50 (d = 3) to ~100 (d = 4) of method b. In Affine,
+//        [constant +- rest] is one fresh symbol, so a shader reusing the value keeps its
+//        correlation. This is a bound-only path (double and the Duals never take it), but the
+//        double value and the bound still come from the same CellPolynomial.
+//        Why it is cheaper: LocalForm is dense (at most dims + 31 slots, the products of one cell
+//        polynomial), inline, with no sorting, enclosure or capacity folding; Affine spends most
+//        of its time on those (range() alone was 29 % of a profile). Why it is as tight: the
+//        local coordinates are exactly the t_i, so the first-order part is exact as in Affine;
+//        the remainders are Affine's, but none is folded for lack of capacity, and B excludes
+//        the parts of a straddling region outside the cell (no overhang, no clamp).
+//        Measured (bench/noise_bench.cpp, regions 1/8, 1/64, 1/512 of a cell inside one cell or
+//        with one coordinate straddling a face, d = 1..4): Affine 2.1-4.0 times the calls per
+//        second, with mean widths 0.66-1.0 times the polynomial's (never wider: 0.87-0.94 at
+//        1/8, 0.97-0.99 at 1/64 and 1/512 inside a cell, 0.66-0.71 straddling at 1/8). A 96x72
+//        render of shaders/dented.sl: 2.2 times less CPU time, regions per ray 22.37 -> 22.03.
+//        Interval can take it too (NoiseBoundMethod::Local): 5 to 100 times narrower bounds, but
+//        up to 2.5 times the cost of the interval polynomial per call, and the same dented render
+//        with --bounds interval then takes 60 % more time for 2.4 times fewer regions per ray,
+//        so Interval keeps b by default.
+//        The mean-value form raw(c) + grad raw(B).(t - c), with the gradient over B enclosed by
+//        interval forward differentiation, was tried first and dropped: as slow (the interval
+//        gradient costs as much as the affine polynomial) and 1.2-8 times wider at 1/64 (the
+//        interval gradient's dependency overestimate enters the second-order term).
+//     b. Polynomial (every other type, and Affine on request): CellPolynomial in T arithmetic with
+//        t_i = clamp(p_i - k_i, 0, 1) (so, values at that cell's points only): the T evaluation
+//        of the same operations contains the double result, rounding included.
+//        A t_i whose range overhangs [0, 1] by at most kNoiseOverhang = 1/16 is left unclamped (the
+//        polynomial over a superset of the cell still contains its values): past a face, a cell's
+//        polynomial agrees with its neighbour's to third order (C2), so the Joined forms of a
+//        region straddling a face stay nearly equal, whereas Min/Max make them differ. Measured on
+//        regions straddling faces, about 0.025 wide: affine bounds 15-25 % narrower for d = 2..4
+//        (6 % wider for d = 1); past overhangs of ~0.1 clamping wins.
 //  2. Otherwise (or for a period whose range is not one point) a cell-independent evaluation: the
 //     same formula with t_i = clamp(p_i - floor(p_i), 0, 1) and every gradient component replaced
 //     by Join(T(-G), T(G)), G the largest |component| of the set (a separate Join per corner and
@@ -83,6 +121,8 @@
 // displacement shaders" (GI 1998) for bounding noise cell by cell in affine arithmetic.
 #pragma once
 
+#include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <limits>
 
@@ -94,6 +134,13 @@ namespace affray::vm {
 inline constexpr int kNoiseCellCap = 16;
 /// A cell's local coordinate is not clamped when its range overhangs [0, 1] by at most this.
 inline constexpr double kNoiseOverhang = 1.0 / 16;
+
+/// How GradientNoise bounds a region (the bench compares them; Noise and PNoise use Auto).
+enum class NoiseBoundMethod {
+    Auto,        ///< Local for Affine, Polynomial for every other type
+    Polynomial,  ///< each touched cell's polynomial evaluated in T arithmetic
+    Local,       ///< each touched cell's polynomial in a LocalForm (Interval and Affine only)
+};
 
 /// A gradient set: `count` vectors of `dims` components, row by row.
 struct NoiseGradientSet {
@@ -181,6 +228,258 @@ T CellPolynomial(const T* t, int dims, GradientOf&& gradient) {
     return v[0];
 }
 
+/// Whether T can bound cells by LocalForm (the bounded types without derivatives: a Dual's
+/// derivatives would need forms of their own; double is the reference and never bounds), and
+/// whether it does by default (NoiseBoundMethod::Auto): Affine only, see the head comment.
+template <class T>
+inline constexpr bool kLocalNoise = false;
+template <>
+inline constexpr bool kLocalNoise<Interval> = true;
+template <>
+inline constexpr bool kLocalNoise<Affine> = true;
+template <class T>
+inline constexpr bool kLocalNoiseByDefault = false;
+template <>
+inline constexpr bool kLocalNoiseByDefault<Affine> = true;
+
+/// An affine form over one cell's part of a region (see the head comment, "Bounds"):
+///     x = c0 + sum_k c[k]*sigma_k +- e,    every sigma_k in [-1, 1], e >= 0,
+/// where sigma_0..sigma_{dims-1} stand for the local coordinates (t_i = centre_i +
+/// reach_i*sigma_i) and the later slots for fresh symbols, one per product (a product's whole
+/// remainder, rounding included, goes on its own symbol, as in vm/affine.cpp). Dense storage of
+/// the first n slots (zeros where a symbol is absent): no sorting, no enclosure, no capacity
+/// folding (a cell polynomial makes at most 31 products, all of which fit), all inline, which is
+/// what makes it several times cheaper than Affine.
+/// Contract (Affine's): for every sigma, the double result of the same operation on any operand
+/// values the operand forms allow at sigma lies in the result form at sigma, rounding included.
+/// The error formulas are vm/affine.cpp's (LinearError, Scale, MulForms), with the term slack
+/// of kSlots terms.
+struct LocalForm {
+    static constexpr int kSlots = 4 + 32;
+    /// Roundings per term of a sum of kSlots terms, doubled (vm/affine.cpp's kTermSlack).
+    static constexpr double kTermSlack = 2.0 * kSlots + 4.0;
+
+    double c0 = 0;
+    double e = 0;
+    int n = 0;  // c[0..n) are set
+    double c[kSlots];
+
+    LocalForm() = default;
+    LocalForm(double x) : c0(x) {}  // NOLINT: implicit, as CellPolynomial's T(0.0) and mixed ops
+    /// Copies copy the slots in use only.
+    LocalForm(const LocalForm& x) { copyFrom(x); }
+    LocalForm& operator=(const LocalForm& x) {
+        if (this != &x) copyFrom(x);
+        return *this;
+    }
+    void copyFrom(const LocalForm& x) {
+        c0 = x.c0;
+        e = x.e;
+        n = x.n;
+        for (int k = 0; k < n; ++k) c[k] = x.c[k];
+    }
+
+    /// Restarts the fresh symbols after the `dims` coordinates' slots.
+    static void Begin(int dims) { NextFresh() = dims; }
+    /// centre + reach*sigma_i exactly (reach >= 0), i < the dims given to Begin.
+    static LocalForm Coordinate(double centre, double reach, int i) {
+        LocalForm r(centre);
+        r.n = i + 1;
+        for (int k = 0; k < i; ++k) r.c[k] = 0;
+        r.c[i] = reach;
+        return r;
+    }
+    /// The next fresh symbol's slot (kSlots when none is left). Every form's n is at most it.
+    static int& NextFresh() {
+        static thread_local int next = 0;
+        return next;
+    }
+
+    bool isConstant() const { return n == 0 && e == 0; }
+    /// sum |c[k]|, rounded to nearest (the callers' kSumSlack covers it).
+    double termSum() const {
+        double s = 0;
+        for (int k = 0; k < n; ++k) s += std::fabs(c[k]);
+        return s;
+    }
+    /// vm/affine.cpp's LinearError.
+    static double LinearError(double inputError, double absSum) {
+        return (inputError + (absSum + inputError) * kEpsilon) * kSumSlack;
+    }
+
+    friend LocalForm operator-(const LocalForm& x) {
+        LocalForm r;
+        r.c0 = -x.c0;
+        r.e = x.e;
+        r.n = x.n;
+        for (int k = 0; k < x.n; ++k) r.c[k] = -x.c[k];
+        return r;
+    }
+    template <bool kSubtract>
+    static LocalForm Add(const LocalForm& x, const LocalForm& y) {
+        LocalForm r(kSubtract ? x.c0 - y.c0 : x.c0 + y.c0);
+        if (x.isConstant() && y.isConstant()) return r;  // the double operation itself
+        const int common = std::min(x.n, y.n);
+        double absSum = std::fabs(r.c0);
+        for (int k = 0; k < common; ++k) {
+            r.c[k] = kSubtract ? x.c[k] - y.c[k] : x.c[k] + y.c[k];
+            absSum += std::fabs(r.c[k]);
+        }
+        for (int k = common; k < x.n; ++k) {
+            r.c[k] = x.c[k];
+            absSum += std::fabs(r.c[k]);
+        }
+        for (int k = common; k < y.n; ++k) {
+            r.c[k] = kSubtract ? -y.c[k] : y.c[k];
+            absSum += std::fabs(r.c[k]);
+        }
+        r.n = std::max(x.n, y.n);
+        r.e = LinearError(x.e + y.e, absSum);
+        return r;
+    }
+    friend LocalForm operator+(const LocalForm& x, const LocalForm& y) { return Add<false>(x, y); }
+    friend LocalForm operator-(const LocalForm& x, const LocalForm& y) { return Add<true>(x, y); }
+    friend LocalForm operator+(const LocalForm& x, double k) {
+        LocalForm r = x;
+        r.c0 = x.c0 + k;
+        if (x.isConstant()) return r;
+        r.e = LinearError(x.e, std::fabs(r.c0) + x.termSum());
+        return r;
+    }
+    friend LocalForm operator-(const LocalForm& x, double k) { return x + (-k); }
+    /// vm/affine.cpp's Scale.
+    friend LocalForm operator*(const LocalForm& x, double k) {
+        if (k == 0) return LocalForm(0.0);
+        if (k == 1) return x;
+        if (k == -1) return -x;
+        LocalForm r(x.c0 * k);
+        if (x.isConstant()) return r;
+        r.n = x.n;
+        double absSum = std::fabs(r.c0);
+        for (int i = 0; i < x.n; ++i) {
+            r.c[i] = x.c[i] * k;
+            absSum += std::fabs(r.c[i]);
+        }
+        r.e = LinearError(std::fabs(k) * x.e * (1 + kEpsilon), absSum) + kUnderflowSlack;
+        return r;
+    }
+    friend LocalForm operator*(double k, const LocalForm& x) { return x * k; }
+    /// vm/affine.cpp's MulForms: center x0*y0 + (1/2) sum xk*yk, coefficients x0*yk + y0*xk, and
+    /// the remainder (rx + ex)(ry + ey) - (1/2) sum |xk*yk| + |x0| ey + |y0| ex plus rounding on a
+    /// fresh symbol (in e when none is left).
+    friend LocalForm operator*(const LocalForm& x, const LocalForm& y) {
+        if (x.isConstant()) return y * x.c0;
+        if (y.isConstant()) return x * y.c0;
+        const double x0 = x.c0, y0 = y.c0;
+        LocalForm r;
+        const int common = std::min(x.n, y.n);
+        double rx = 0, ry = 0, diag = 0, absDiag = 0, absSum = 0;
+        for (int k = 0; k < common; ++k) {
+            const double xk = x.c[k], yk = y.c[k];
+            const double p = xk * yk;
+            diag += p;
+            absDiag += std::fabs(p);
+            rx += std::fabs(xk);
+            ry += std::fabs(yk);
+            r.c[k] = x0 * yk + y0 * xk;
+            absSum += std::fabs(r.c[k]);
+        }
+        for (int k = common; k < x.n; ++k) {
+            rx += std::fabs(x.c[k]);
+            r.c[k] = y0 * x.c[k];
+            absSum += std::fabs(r.c[k]);
+        }
+        for (int k = common; k < y.n; ++k) {
+            ry += std::fabs(y.c[k]);
+            r.c[k] = x0 * y.c[k];
+            absSum += std::fabs(r.c[k]);
+        }
+        r.n = std::max(x.n, y.n);
+        const double ex = x.e, ey = y.e;
+        const double p0 = x0 * y0;
+        r.c0 = p0 + 0.5 * diag;
+        absSum += std::fabs(r.c0);
+        const double quad = (rx + ex) * (ry + ey) - 0.5 * absDiag;
+        const double linear = std::fabs(x0) * ey + std::fabs(y0) * ex;
+        const double maxResult = (std::fabs(x0) + rx + ex) * (std::fabs(y0) + ry + ey);
+        const double rounding = (std::fabs(x0) * ry + std::fabs(y0) * rx + std::fabs(p0) +
+                                 kTermSlack * absDiag + absSum + maxResult) *
+                                kEpsilon;
+        const double delta = (quad + linear + rounding) * kSumSlack + kUnderflowSlack;
+        int& fresh = NextFresh();
+        if (fresh < kSlots) {
+            for (int k = r.n; k < fresh; ++k) r.c[k] = 0;
+            r.c[fresh] = delta;
+            r.n = ++fresh;
+        } else {
+            r.e = delta;
+        }
+        return r;
+    }
+};
+
+/// A T holding the range r (bounded): on a fresh symbol for Affine, so that the bound stays
+/// correlated with itself wherever a shader reuses it.
+template <class T>
+T SpreadOf(const Interval& r);
+template <>
+inline Interval SpreadOf<Interval>(const Interval& r) {
+    return r;
+}
+template <>
+inline Affine SpreadOf<Affine>(const Interval& r) {
+    return Affine::FromInterval(r);
+}
+
+/// One cell's noise value before the final clamp, raw * NoiseScale(dims) + 0.5, over a region by
+/// LocalForm (see the head comment): p the noise coordinates, k the cell, g[o] the gradients of
+/// its corners. Contains the double value at every double point of the region that lies in this
+/// cell (t_d = p - k in double, in [0, 1]^dims).
+template <class T>
+T LocalCell(const T* p, const double* k, int dims, const double (*g)[4]) {
+    // The part B of the region inside the cell, its centre c and a reach >= |t_i - c_i| on B.
+    // B holds every such t_d: Interval subtraction contains the double one.
+    double c[4], reach[4];
+    LocalForm t[4];
+    LocalForm::Begin(dims);
+    for (int i = 0; i < dims; ++i) {
+        const Interval r = RangeOf(p[i]) - k[i];
+        const double lo = std::clamp(r.lo(), 0.0, 1.0), hi = std::clamp(r.hi(), 0.0, 1.0);
+        c[i] = 0.5 * (lo + hi);  // between lo and hi: both are in [0, 1]
+        reach[i] = std::fmax(SubUp(c[i], lo), SubUp(hi, c[i]));
+        t[i] = LocalForm::Coordinate(c[i], reach[i], i);
+    }
+    // The noise value before its clamp, as the double computes it (GradientNoise's last step).
+    const LocalForm raw =
+        CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; }) * NoiseScale(dims) + 0.5;
+    // value(t_d) = z0 + sum_i z_i sigma_i + (fresh terms, e), sigma_i = (t_d,i - c_i)/reach_i,
+    // and t_d,i = p_i - k_i + (its rounding, <= u since t_d,i <= 1):
+    //   value(t_d) in sum_i a_i p_i + [z0 - sum_i a_i (k_i + c_i)] +- error
+    // with a_i = z_i/reach_i rounded (its rounding times |t_d,i - c_i| <= reach_i is
+    // <= 2u |z_i|), the subtraction's rounding |a_i| u, and the fresh terms and e.
+    UpperSum error;
+    error.add(raw.e);
+    Interval constant(raw.c0);
+    T linear(0.0);
+    bool any = false;
+    for (int s = 0; s < raw.n; ++s) {
+        const double z = raw.c[s];
+        if (z == 0) continue;
+        if (s >= dims) {
+            error.add(std::fabs(z));
+            continue;
+        }
+        const double a = z / reach[s];
+        error.add(MulUp(std::fabs(z), kEpsilon));
+        error.add(MulUp(std::fabs(a), kEpsilon));
+        constant = constant - Interval(a) * (Interval(k[s]) + Interval(c[s]));
+        AddTerm(linear, any, a, p[s]);
+    }
+    const double e = AddUp(error.value(), kUnderflowSlack);
+    const T rest = SpreadOf<T>(Interval(SubDown(constant.lo(), e), AddUp(constant.hi(), e)));
+    return any ? linear + rest : rest;
+}
+
 /// The lattice cells a box of inputs touches: floor(lo_i) .. floor(hi_i) in each coordinate.
 struct CellBox {
     double kLo[4] = {0, 0, 0, 0}, count[4] = {1, 1, 1, 1};
@@ -215,9 +514,10 @@ struct CellBox {
     }
 };
 
-/// Noise and PNoise (period == nullptr for Noise).
+/// Noise and PNoise (period == nullptr for Noise), bounding regions by `method`.
 template <class T>
-T GradientNoise(const T* p, const T* period, int dims, uint32_t seed) {
+T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
+                NoiseBoundMethod method = NoiseBoundMethod::Auto) {
     const T nan(std::numeric_limits<double>::quiet_NaN());
     CellBox box;
     if (!box.Of(p, dims)) return nan;
@@ -231,6 +531,10 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed) {
         else
             cellwise = false;
     }
+    bool local = false;
+    if constexpr (kLocalNoise<T>)
+        local = cellwise && (method == NoiseBoundMethod::Local ||
+                             (method == NoiseBoundMethod::Auto && kLocalNoiseByDefault<T>));
     T raw(0.0);
     if (cellwise) {
         bool first = true;
@@ -238,7 +542,7 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed) {
             T t[4];
             int64_t cell[4];
             for (int i = 0; i < dims; ++i) {
-                t[i] = ClampUnit(T(p[i] - k[i]), kNoiseOverhang);
+                if (!local) t[i] = ClampUnit(T(p[i] - k[i]), kNoiseOverhang);
                 cell[i] = CellIndex(k[i]);
             }
             double g[16][4];
@@ -250,7 +554,11 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed) {
                 }
                 LatticeGradient(c, dims, seed, g[o]);
             }
-            T v = CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; });
+            T v(0.0);
+            if constexpr (kLocalNoise<T>) {
+                if (local) v = LocalCell(p, k, dims, g);
+            }
+            if (!local) v = CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; });
             raw = first ? v : Join(raw, v);
             first = false;
         });
@@ -260,7 +568,8 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed) {
         const double bound = NoiseGradients(dims).componentBound;
         raw = CellPolynomial(t, dims, [&](int, int) { return Join(T(-bound), T(bound)); });
     }
-    return ClampUnit(T(raw * NoiseScale(dims) + 0.5));
+    // (LocalCell has scaled and offset its value already.)
+    return ClampUnit(local ? raw : T(raw * NoiseScale(dims) + 0.5));
 }
 
 }  // namespace noise_detail
