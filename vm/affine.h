@@ -33,6 +33,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 
 #include "vm/interval.h"
@@ -207,10 +208,10 @@ class Affine {
         m_hi = x.m_hi;
         m_rangeCached = x.m_rangeCached;
         m_count = x.m_count;
-        for (int i = 0; i < m_count; ++i) {
-            m_symbols[i] = x.m_symbols[i];
-            m_coefs[i] = x.m_coefs[i];
-        }
+        // memcpy of the used prefix: GCC 12 at -O1 cannot see that a loop over i < m_count reads
+        // only written slots and reports the rest as uninitialised.
+        std::memcpy(m_symbols, x.m_symbols, sizeof(SymbolId) * static_cast<size_t>(m_count));
+        std::memcpy(m_coefs, x.m_coefs, sizeof(double) * static_cast<size_t>(m_count));
     }
     /// Forgets the enclosure (after the form was changed in place).
     void resetEnclosure() {
