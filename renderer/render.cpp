@@ -115,6 +115,60 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
     return ShadeSurface(prim.surface, prim.color, sp, scene.lights, occluded);
 }
 
+/// The largest magnitude a bound of P may reach for the intersector to measure it: the ray-frame
+/// test squares widths, which overflow past about 1e154.
+constexpr double kMeasurableLimit = 1e150;
+
+/// Whether `program`, bounded with number type N, gives P a measurable bound (finite, within
+/// kMeasurableLimit) over at least one cell of an n x n grid of the patch.
+template <class N>
+bool MeasurableSomewhere(const Primitive& prim, const glm::dvec3& eye, int n) {
+    vm::Interpreter<N> interp(prim.bound);
+    const vm::ProgramOutput& output = *prim.bound.findOutput("P");
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            Vec3<N> p = EvaluateOnPatch(interp, prim.patch, double(i) / n, double(i + 1) / n, double(j) / n,
+                                        double(j + 1) / n, eye, output);
+            bool measurable = true;
+            for (int c = 0; c < 3; ++c) {
+                vm::Interval r = RangeOf(vm::ValueOf(p[c]));
+                measurable = measurable && !r.isUnbounded() && std::fabs(r.lo()) < kMeasurableLimit &&
+                             std::fabs(r.hi()) < kMeasurableLimit;
+            }
+            if (measurable) return true;
+        }
+    return false;
+}
+
+/// An error if no cell of a coarse grid of the patch has a measurable bound in either bounding
+/// mode: every region would then survive the ray test down to the depth limit, 4^depth regions
+/// per ray, a render that never ends. Names the instance's parameters that are large enough to
+/// be the cause. Empty if the surface can be bounded somewhere.
+std::string UnboundedEverywhere(const Primitive& prim, const ShaderRef& ref, const glm::dvec3& eye) {
+    const bool dual = prim.bound.usesDerivatives();
+    constexpr int kCells = 8;
+    bool affine = dual ? MeasurableSomewhere<vm::Dual<vm::Affine>>(prim, eye, kCells)
+                       : MeasurableSomewhere<vm::Affine>(prim, eye, kCells);
+    if (affine) return {};
+    bool interval = dual ? MeasurableSomewhere<vm::Dual<vm::Interval>>(prim, eye, kCells)
+                         : MeasurableSomewhere<vm::Interval>(prim, eye, kCells);
+    if (interval) return {};
+    std::string culprits;
+    for (const ParamValue& p : ref.params)
+        for (double x : p.numbers)
+            if (std::fabs(x) >= 1e100) {
+                char value[32];
+                std::snprintf(value, sizeof value, "%g", x);
+                culprits += std::string(culprits.empty() ? "" : ", ") + "'" + p.name + "' = " + value;
+                break;
+            }
+    std::string message = "the displaced surface of shader '" + ref.name +
+                          "' cannot be bounded over any part of the patch (NaN, infinity or values past 1e150 in "
+                          "every region), so no ray could finish";
+    if (!culprits.empty()) message += "; parameter " + culprits + " is too large";
+    return message;
+}
+
 compiler::Matrix4 RowMajor(const glm::dmat4& m) {
     compiler::Matrix4 out{};
     for (int row = 0; row < 4; ++row)
@@ -212,6 +266,13 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(prim.patch, eye);
         prim.bound = *compiler::Specialise(prim.bound, {}, &unused, constants);
         prim.shade = *compiler::Specialise(prim.shade, {}, &unused, constants);
+        if (patch.displacement) {
+            std::string problem = UnboundedEverywhere(prim, *patch.displacement, eye);
+            if (!problem.empty()) {
+                *error = desc.path + ":" + std::to_string(patch.displacement->line) + ": error: " + problem;
+                return false;
+            }
+        }
         out->primitives.push_back(std::move(prim));
     }
     out->shadersCompiled = cache.misses();

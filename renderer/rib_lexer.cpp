@@ -205,6 +205,21 @@ void RibRequestReader::Advance() {
     if (m_token.kind != RibToken::Kind::End) m_lastLine = m_token.line;
 }
 
+namespace {
+
+/// `message` about a bad number that follows a bare string in a request's arguments, with the
+/// parameter that string names ("Km" [1e400]): the number is then reported against the shader or
+/// light parameter it was meant for, not only by its line. Other messages are returned as they
+/// are (LexNumber's messages are the ones that quote a "number '...'").
+std::string InParameter(const RibRequest& request, std::string message) {
+    if (request.args.empty() || message.find("number '") == std::string::npos) return message;
+    const RibArg& last = request.args.back();
+    if (last.isArray || last.strings.size() != 1) return message;
+    return message + " (in the value of parameter \"" + last.strings[0] + "\" of " + request.name + ")";
+}
+
+}  // namespace
+
 RibRequestReader::Status RibRequestReader::Next(RibRequest* request, std::string* error,
                                                 int* errorLine) {
     using Kind = RibToken::Kind;
@@ -244,7 +259,7 @@ RibRequestReader::Status RibRequestReader::Next(RibRequest* request, std::string
             case Kind::End:
                 return Status::Ok;
             case Kind::Error:
-                return fail(m_token.line, m_token.text);
+                return fail(m_token.line, InParameter(*request, m_token.text));
             case Kind::ArrayEnd:
                 return fail(m_token.line, "']' without matching '['");
             case Kind::Number:
@@ -256,7 +271,10 @@ RibRequestReader::Status RibRequestReader::Next(RibRequest* request, std::string
                 Advance();
                 break;
             case Kind::ArrayBegin:
-                if (!ReadArray(&arg, error, errorLine)) return Status::Error;
+                if (!ReadArray(&arg, error, errorLine)) {
+                    *error = InParameter(*request, *error);
+                    return Status::Error;
+                }
                 break;
         }
         request->args.push_back(std::move(arg));
