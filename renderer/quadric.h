@@ -36,20 +36,25 @@ struct Quadric {
 
 namespace quadric_detail {
 inline double Radians(double degrees) { return degrees * (std::numbers::pi / 180.0); }
+/// The latitudes a sphere's zmin and zmax cut at (clamped to the poles), in radians.
+inline void SphereLatitudes(const Quadric& q, double* phiMin, double* phiMax) {
+    const double r = q.radius;
+    *phiMin = q.zmin > -r ? std::asin(q.zmin / r) : -std::numbers::pi / 2;
+    *phiMax = q.zmax < r ? std::asin(q.zmax / r) : std::numbers::pi / 2;
+}
 }  // namespace quadric_detail
 
 /// The point of `q` at (u, v) in its object space (u, v in [0, 1]).
 template <class T>
 vm::Vec3<T> QuadricPoint(const Quadric& q, const T& u, const T& v) {
     using quadric_detail::Radians;
-    using std::asin;
     const T theta = u * Radians(q.thetamax);
     switch (q.kind) {
         case Quadric::Kind::Sphere: {
             // phi runs from the latitude of zmin to that of zmax (clamped to the poles).
             const double r = q.radius;
-            const double phiMin = q.zmin > -r ? asin(q.zmin / r) : -std::numbers::pi / 2;
-            const double phiMax = q.zmax < r ? asin(q.zmax / r) : std::numbers::pi / 2;
+            double phiMin, phiMax;
+            quadric_detail::SphereLatitudes(q, &phiMin, &phiMax);
             const T phi = T(phiMin) + v * (phiMax - phiMin);
             const T ring = cos(phi) * r;
             return {ring * cos(theta), ring * sin(theta), sin(phi) * r};
@@ -114,8 +119,7 @@ SurfaceFrame<T> QuadricFrame(const Quadric& q, const T& u, const T& v) {
             double phiMin, phiMax, r;
             if (q.kind == Quadric::Kind::Sphere) {
                 r = q.radius;
-                phiMin = q.zmin > -r ? std::asin(q.zmin / r) : -std::numbers::pi / 2;
-                phiMax = q.zmax < r ? std::asin(q.zmax / r) : std::numbers::pi / 2;
+                quadric_detail::SphereLatitudes(q, &phiMin, &phiMax);
             } else {
                 r = q.minorRadius;
                 phiMin = Radians(q.phimin), phiMax = Radians(q.phimax);
