@@ -7,11 +7,21 @@
 // forms; a surface point on the ray needs d1 = d2 = 0, so if either range excludes 0 the region
 // is missed. Because the forms share the symbols of u and v, a smooth surface gives much tighter
 // d1, d2 than an axis-aligned box of P' would.
+//
+// Tape pruning (DESIGN.md, decision 3): each region on the stack names the program valid over it,
+// the one its children are bounded with: the program its parent used, or that program pruned by
+// what the region's own bound decided. Programs live in a pool of slots reused across rays, with
+// a count of the regions naming them; a region is a subset of its parent, so a program pruned for
+// it stays valid for all its descendants.
 #include "renderer/intersect.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <vector>
+
+#include "vm/prune.h"
 
 namespace affray::renderer {
 
@@ -21,6 +31,15 @@ void IntersectStats::Merge(const IntersectStats& o) {
     maxRegionsPerRay = std::max(maxRegionsPerRay, o.maxRegionsPerRay);
     depthLimitHits += o.depthLimitHits;
     maxHitError = std::max(maxHitError, o.maxHitError);
+    instructionsBounded += o.instructionsBounded;
+    programsPruned += o.programsPruned;
+}
+
+PruneOptions PruneOptions::FromEnvironment() {
+    PruneOptions options;
+    if (const char* on = std::getenv("AFFRAY_PRUNE")) options.enabled = std::strcmp(on, "0") != 0;
+    if (const char* depth = std::getenv("AFFRAY_PRUNE_DEPTH")) options.minDepth = std::atoi(depth);
+    return options;
 }
 
 namespace {
@@ -31,13 +50,24 @@ struct Region {
     int depth;
     double tLo, tHi;
     double size;  // diagonal of the bound in the ray frame; infinite if unbounded
+    int program;  // slot of the program valid over the region (kRootProgram: the full one)
 };
+
+constexpr int kRootProgram = -1;
+constexpr int kNoProgram = -2;
 
 template <class N>
 class PatchIntersectorT final : public PatchIntersector {
   public:
-    PatchIntersectorT(const BilinearPatch& patch, const vm::Program& program, const glm::dvec3& eye, int maxDepth)
-        : m_patch(patch), m_interp(program), m_output(program.findOutput("P")), m_eye(eye), m_maxDepth(maxDepth) {
+    PatchIntersectorT(const BilinearPatch& patch, const vm::Program& program, const glm::dvec3& eye, int maxDepth,
+                      const PruneOptions& prune)
+        : m_patch(patch),
+          m_root(&program),
+          m_interp(program),
+          m_output(program.findOutput("P") - program.outputs.data()),
+          m_eye(eye),
+          m_maxDepth(maxDepth),
+          m_prune(prune) {
         m_stack.reserve(4 * static_cast<size_t>(maxDepth) + 8);
     }
 
@@ -51,21 +81,83 @@ class PatchIntersectorT final : public PatchIntersector {
     /// the surface is undefined (not finite) there.
     bool PointAlongRay(double u, double v, double* t);
 
+    const vm::Program& ProgramOf(int slot) const { return slot == kRootProgram ? *m_root : m_pool[slot]->program; }
+    /// Makes the interpreter run the program in `slot`.
+    void Use(int slot);
+    /// The program for the children of `r`, just bounded by the program in `parent`: a new slot
+    /// pruned by the decisions of that bound if worthwhile, else `parent`; held once more.
+    int ProgramFor(const Region& r, int parent, const Tolerance& tolerance);
+    void Hold(int slot) {
+        if (slot != kRootProgram) ++m_pool[slot]->holders;
+    }
+    void Release(int slot) {
+        if (slot != kRootProgram && --m_pool[slot]->holders == 0) m_free.push_back(slot);
+    }
+
     BilinearPatch m_patch;
+    const vm::Program* m_root;
     vm::Interpreter<N> m_interp;
-    const vm::ProgramOutput* m_output;
+    ptrdiff_t m_output;  // index of P among the outputs, the same in every pruned program
     glm::dvec3 m_eye;
     int m_maxDepth;
     std::vector<Region> m_stack;
     // The current ray's frame.
     glm::dvec3 m_origin, m_dir, m_n1, m_n2;
     uint64_t m_bounded = 0;
+    // Tape pruning: the pool of pruned programs (kept across rays, so that their vectors keep
+    // their capacity), the free slots, the slot the interpreter runs.
+    struct Slot {
+        vm::Program program;
+        int holders = 0;
+    };
+    PruneOptions m_prune;
+    vm::Pruner m_pruner;
+    std::vector<std::unique_ptr<Slot>> m_pool;
+    std::vector<int> m_free;
+    int m_current = kRootProgram;
+    uint64_t m_instructions = 0, m_pruned = 0;
 };
+
+template <class N>
+void PatchIntersectorT<N>::Use(int slot) {
+    if (slot == m_current) return;
+    m_interp.SetProgram(ProgramOf(slot));
+    m_current = slot;
+}
+
+template <class N>
+int PatchIntersectorT<N>::ProgramFor(const Region& r, int parent, const Tolerance& tolerance) {
+    // A region that will not be split needs no program of its own.
+    const bool leaf = r.size <= tolerance.At(r.tLo) || r.depth >= m_maxDepth;
+    const vm::Program& from = ProgramOf(parent);
+    if (!m_prune.enabled || leaf || r.depth < m_prune.minDepth || m_interp.decisions().usefulCount(from) == 0) {
+        Hold(parent);
+        return parent;
+    }
+    if (m_free.empty()) {
+        m_pool.push_back(std::make_unique<Slot>());
+        m_free.push_back(static_cast<int>(m_pool.size()) - 1);
+    }
+    const int slot = m_free.back();
+    vm::Program& pruned = m_pool[slot]->program;
+    m_pruner.Prune(from, m_interp.decisions(), &pruned);
+    if (slot == m_current) m_current = kNoProgram;  // its program changed under the interpreter
+    if (static_cast<double>(pruned.code.size()) > m_prune.keepRatio * static_cast<double>(from.code.size())) {
+        Hold(parent);
+        return parent;
+    }
+    m_free.pop_back();
+    m_pool[slot]->holders = 1;
+    ++m_pruned;
+    return slot;
+}
 
 template <class N>
 bool PatchIntersectorT<N>::BoundRegion(Region& r, double tMin, double tMax) {
     ++m_bounded;
-    Vec3<N> p = EvaluateOnPatch(m_interp, m_patch, r.u0, r.u1, r.v0, r.v1, m_eye, *m_output);
+    m_instructions += m_interp.program().code.size();
+    m_interp.SetRecording(m_prune.enabled && r.depth >= m_prune.minDepth);
+    Vec3<N> p = EvaluateOnPatch(m_interp, m_patch, r.u0, r.u1, r.v0, r.v1, m_eye, m_interp.program().outputs[m_output]);
     using T = std::decay_t<decltype(vm::ValueOf(p.x))>;
     Vec3<T> rel{vm::ValueOf(p.x) - m_origin.x, vm::ValueOf(p.y) - m_origin.y, vm::ValueOf(p.z) - m_origin.z};
     // n.(P' - o), leaving out the components n does not weigh: an unbounded coordinate along
@@ -97,7 +189,9 @@ bool PatchIntersectorT<N>::BoundRegion(Region& r, double tMin, double tMax) {
 
 template <class N>
 bool PatchIntersectorT<N>::PointAlongRay(double u, double v, double* t) {
-    Vec3<N> p = EvaluateOnPatch(m_interp, m_patch, u, u, v, v, m_eye, *m_output);
+    // The full program, so that this fallback does not depend on pruning.
+    Use(kRootProgram);
+    Vec3<N> p = EvaluateOnPatch(m_interp, m_patch, u, u, v, v, m_eye, m_interp.program().outputs[m_output]);
     glm::dvec3 center;
     for (int i = 0; i < 3; ++i) {
         vm::Interval r = RangeOf(vm::ValueOf(p[i]));
@@ -118,21 +212,37 @@ bool PatchIntersectorT<N>::Intersect(const Ray& ray, double tMin, double tMax, c
     m_n1 = glm::normalize(glm::cross(m_dir, helper));
     m_n2 = glm::normalize(glm::cross(m_dir, m_n1));
     m_bounded = 0;
+    m_instructions = 0;
+    m_pruned = 0;
     m_stack.clear();
+    // Every program of the last ray is free again (an early exit leaves regions unreleased).
+    m_free.clear();
+    for (int i = static_cast<int>(m_pool.size()) - 1; i >= 0; --i) {
+        m_pool[i]->holders = 0;
+        m_free.push_back(i);
+    }
 
     double best = tMax;
     bool found = false;
-    Region root{0, 1, 0, 1, 0, 0, 0, 0};
-    if (BoundRegion(root, tMin, best)) m_stack.push_back(root);
+    Region root{0, 1, 0, 1, 0, 0, 0, 0, kRootProgram};
+    Use(kRootProgram);
+    if (BoundRegion(root, tMin, best)) {
+        root.program = ProgramFor(root, kRootProgram, tolerance);
+        m_stack.push_back(root);
+    }
 
     while (!m_stack.empty()) {
         Region r = m_stack.back();
         m_stack.pop_back();
-        if (r.tLo > best) continue;  // a nearer hit was found since this region was bounded
+        if (r.tLo > best) {  // a nearer hit was found since this region was bounded
+            Release(r.program);
+            continue;
+        }
 
         bool small = r.size <= tolerance.At(r.tLo);
         bool atLimit = r.depth >= m_maxDepth;
         if (small || atLimit) {
+            Release(r.program);
             double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
             double tHit, error;
             if (std::isfinite(r.size)) {
@@ -154,16 +264,24 @@ bool PatchIntersectorT<N>::Intersect(const Ray& ray, double tMin, double tMax, c
             continue;
         }
 
-        // Split in four, bound each child, push the survivors farthest first (popped nearest first).
+        // Split in four, bound each child with the region's program (each child's own program
+        // is chosen right after its bound, while the decisions are those of that bound), push the
+        // survivors farthest first (popped nearest first).
+        Use(r.program);
         double uMid = 0.5 * (r.u0 + r.u1), vMid = 0.5 * (r.v0 + r.v1);
-        Region children[4] = {{r.u0, uMid, r.v0, vMid, r.depth + 1, 0, 0, 0},
-                              {uMid, r.u1, r.v0, vMid, r.depth + 1, 0, 0, 0},
-                              {r.u0, uMid, vMid, r.v1, r.depth + 1, 0, 0, 0},
-                              {uMid, r.u1, vMid, r.v1, r.depth + 1, 0, 0, 0}};
+        const int d = r.depth + 1;
+        Region children[4] = {{r.u0, uMid, r.v0, vMid, d, 0, 0, 0, kRootProgram},
+                              {uMid, r.u1, r.v0, vMid, d, 0, 0, 0, kRootProgram},
+                              {r.u0, uMid, vMid, r.v1, d, 0, 0, 0, kRootProgram},
+                              {uMid, r.u1, vMid, r.v1, d, 0, 0, 0, kRootProgram}};
         Region kept[4];
         int nKept = 0;
         for (Region& c : children)
-            if (BoundRegion(c, tMin, best)) kept[nKept++] = c;
+            if (BoundRegion(c, tMin, best)) {
+                c.program = ProgramFor(c, r.program, tolerance);
+                kept[nKept++] = c;
+            }
+        Release(r.program);
         // Insertion sort, farthest first (four elements at most).
         for (int i = 1; i < nKept; ++i)
             for (int j = i; j > 0 && kept[j - 1].tLo < kept[j].tLo; --j) std::swap(kept[j - 1], kept[j]);
@@ -172,6 +290,8 @@ bool PatchIntersectorT<N>::Intersect(const Ray& ray, double tMin, double tMax, c
 
     ++stats.rays;
     stats.regionsBounded += m_bounded;
+    stats.instructionsBounded += m_instructions;
+    stats.programsPruned += m_pruned;
     stats.maxRegionsPerRay = std::max(stats.maxRegionsPerRay, m_bounded);
     if (found && std::isfinite(hit->error)) stats.maxHitError = std::max(stats.maxHitError, hit->error);
     return found;
@@ -180,14 +300,17 @@ bool PatchIntersectorT<N>::Intersect(const Ray& ray, double tMin, double tMax, c
 }  // namespace
 
 std::unique_ptr<PatchIntersector> MakePatchIntersector(const BilinearPatch& patch, const vm::Program& boundProgram,
-                                                       const glm::dvec3& eye, BoundMode mode, int maxDepth) {
+                                                       const glm::dvec3& eye, BoundMode mode, int maxDepth,
+                                                       const PruneOptions& prune) {
     bool dual = boundProgram.usesDerivatives();
     if (mode == BoundMode::Affine) {
-        if (dual) return std::make_unique<PatchIntersectorT<vm::Dual<vm::Affine>>>(patch, boundProgram, eye, maxDepth);
-        return std::make_unique<PatchIntersectorT<vm::Affine>>(patch, boundProgram, eye, maxDepth);
+        if (dual)
+            return std::make_unique<PatchIntersectorT<vm::Dual<vm::Affine>>>(patch, boundProgram, eye, maxDepth, prune);
+        return std::make_unique<PatchIntersectorT<vm::Affine>>(patch, boundProgram, eye, maxDepth, prune);
     }
-    if (dual) return std::make_unique<PatchIntersectorT<vm::Dual<vm::Interval>>>(patch, boundProgram, eye, maxDepth);
-    return std::make_unique<PatchIntersectorT<vm::Interval>>(patch, boundProgram, eye, maxDepth);
+    if (dual)
+        return std::make_unique<PatchIntersectorT<vm::Dual<vm::Interval>>>(patch, boundProgram, eye, maxDepth, prune);
+    return std::make_unique<PatchIntersectorT<vm::Interval>>(patch, boundProgram, eye, maxDepth, prune);
 }
 
 }  // namespace affray::renderer

@@ -8,6 +8,7 @@
 
 #include "vm/number.h"
 #include "vm/program.h"
+#include "vm/prune.h"
 #include "vm/vec3.h"
 
 namespace affray::vm {
@@ -19,6 +20,18 @@ class Interpreter {
     explicit Interpreter(const Program& program);
 
     const Program& program() const { return *m_program; }
+
+    /// Runs `program` from now on, which must have passed Verify() and outlive its use. It must
+    /// take the same parameters as the previous program (as a pruned program does): their values
+    /// carry over. Allocates only if the program needs more registers than any before.
+    void SetProgram(const Program& program);
+
+    /// While on, every Run() records in decisions() what it proved about each instruction over
+    /// the region of its inputs (see vm/prune.h), for Prune. Off by default; off, the loop runs
+    /// without any recording code (it is instantiated twice).
+    void SetRecording(bool on) { m_recording = on; }
+    /// The record of the last Run() made with recording on.
+    const Decisions& decisions() const { return m_record; }
 
     /// Sets a global the program reads; a global it does not read is ignored (cheaply), so
     /// callers may set everything or ask program().readsGlobal() first to skip computing it.
@@ -43,8 +56,15 @@ class Interpreter {
     const T& Register(int r) const { return m_registers[r]; }
 
   private:
-    /// One pass over the code, with the split decisions in m_decisions.
+    /// One pass over the code, with the split decisions in m_decisions; with kRecord, observing
+    /// every instruction into m_record.
+    template <bool kRecord>
     void RunOnce();
+    void RunPass() { m_recording ? RunOnce<true>() : RunOnce<false>(); }
+    /// Whether the choice instruction `in` (Select, Min, Max), about to run on the registers R, is
+    /// decided over the region: the operand it gives (as Decisions::Observe takes it) or 0, or
+    /// the constant in *constant (a Min or Max decided for its constant operand).
+    uint8_t Choice(const Instr* in, const T* R, double* constant) const;
     /// floor/ceil/round (`f` its scalar, `bounded` its T version) of x, split as Run() says.
     template <class F, class B>
     T Rounding(const T& x, F f, B bounded);
@@ -59,6 +79,8 @@ class Interpreter {
     std::vector<uint8_t> m_decisions;
     size_t m_decisionIndex = 0;
     std::vector<T> m_saved, m_joined;
+    bool m_recording = false;
+    Decisions m_record;
 };
 
 extern template class Interpreter<double>;

@@ -18,14 +18,101 @@
 
 namespace affray::vm {
 
+namespace detail {
+
+// Whether a < b at every point of the region (-1), a > b (1), or neither is proved (0), from the
+// ranges. Strict, so that fmin/fmax give that operand bit for bit (where a == b they may differ in
+// the sign of 0). An affine Min or Max decides from the form a - b, which also orders correlated
+// operands whose ranges overlap; recording does not, because that costs an affine subtraction per
+// Min or Max, and on the shaders in shaders/ it decided nothing more.
+inline int StrictOrder(const Interval& a, const Interval& b) {
+    if (a.isUnbounded() || b.isUnbounded()) return 0;
+    return a.hi() < b.lo() ? -1 : b.hi() < a.lo() ? 1 : 0;
+}
+
+// The one double every value of x stands for, if x is a bound that proves it; a point value
+// proves nothing about a region, and a dual's derivatives need not be constant where its value is.
+inline bool PointValue(double, double*) { return false; }
+inline bool PointValue(const Interval& x, double* c) {
+    if (x.isUnbounded() || !x.isPoint()) return false;
+    *c = x.lo();
+    return true;
+}
+inline bool PointValue(const Affine& x, double* c) {
+    if (!x.isConstant()) return false;  // no terms, no error: the form is its center exactly
+    *c = x.center();
+    return true;
+}
 template <class T>
-Interpreter<T>::Interpreter(const Program& program)
-    : m_program(&program), m_registers(program.registerCount, T(0.0)) {
+bool PointValue(const Dual<T>&, double*) {
+    return false;
+}
+
+// Opcodes whose scalar result is exactly 1.0 or +0.0.
+inline bool GivesTruthP(Op op) {
+    return (op >= Op::LtRR && op <= Op::OrRR) || op == Op::Not;
+}
+
+// The constant result `x` of `op` stands for at every point, or Decisions::kNone. The scalar
+// result lies in the bound [c, c], so it is c, except that -0.0 == 0.0: a zero is taken only
+// from an opcode whose zero is +0.0.
+template <class T>
+double ResultConstant(Op op, const T& x) {
+    double c;
+    if (op == Op::LoadK || !PointValue(x, &c)) return Decisions::kNone;
+    if (c != 0) return c;
+    return GivesTruthP(op) ? 0.0 : Decisions::kNone;
+}
+
+}  // namespace detail
+
+template <class T>
+Interpreter<T>::Interpreter(const Program& program) : m_program(&program) {
     for (const ProgramParam& p : program.params) m_paramValues.push_back(p.defaults);
+    SetProgram(program);
+}
+
+template <class T>
+void Interpreter<T>::SetProgram(const Program& program) {
+    if (program.params.size() != m_paramValues.size()) {
+        m_paramValues.clear();
+        for (const ProgramParam& p : program.params) m_paramValues.push_back(p.defaults);
+    }
+    m_program = &program;
+    m_registers.resize(program.registerCount, T(0.0));
     // A point type (double, Dual<double>) never straddles an integer: no need to save inputs.
     const bool pointType = std::is_same_v<T, double> || std::is_same_v<T, Dual<double>>;
+    m_splits = false;
     for (const Instr& in : program.code)
         if (in.op == Op::Floor || in.op == Op::Ceil || in.op == Op::Round) m_splits = !pointType;
+}
+
+template <class T>
+uint8_t Interpreter<T>::Choice(const Instr* in, const T* R, double* constant) const {
+    const double* K = m_program->constants.data();
+    // The operand numbers are format letters: 1 = B, 2 = C, 3 = the Ext word's A (Select's D).
+    switch (in->op) {
+        case Op::Select: {
+            const Truth t = TruthOf(R[in->b]);
+            return t == Truth::True ? 2 : t == Truth::False ? 3 : 0;
+        }
+        case Op::MinRR:
+        case Op::MaxRR: {
+            const int order = detail::StrictOrder(RangeOf(ValueOf(R[in->b])), RangeOf(ValueOf(R[in->c])));
+            if (order == 0) return 0;
+            return (order < 0) == (in->op == Op::MinRR) ? 1 : 2;
+        }
+        case Op::MinRK:
+        case Op::MaxRK: {
+            const int order = detail::StrictOrder(RangeOf(ValueOf(R[in->b])), Interval(K[in->c]));
+            if (order == 0) return 0;
+            if ((order < 0) == (in->op == Op::MinRK)) return 1;
+            *constant = K[in->c];
+            return 0;
+        }
+        default:
+            return 0;
+    }
 }
 
 template <class T>
@@ -45,8 +132,9 @@ T Interpreter<T>::Rounding(const T& x, F f, B bounded) {
 
 template <class T>
 void Interpreter<T>::Run() {
+    if (m_recording) m_record.Begin(m_program->code.size());
     if (!m_splits) {
-        RunOnce();
+        RunPass();
         return;
     }
     // Depth-first over the decisions: run, join the outputs, flip the last lower decision to
@@ -54,9 +142,11 @@ void Interpreter<T>::Run() {
     m_saved = m_registers;
     m_decisions.clear();
     m_joined.clear();
-    for (;;) {
+    for (bool first = true;; first = false) {
         m_decisionIndex = 0;
-        RunOnce();
+        // A choice decided differently by two cases is not decided over the region.
+        if (m_recording && !first) m_record.NextRun();
+        RunPass();
         size_t j = 0;
         for (const ProgramOutput& out : m_program->outputs)
             for (int c = 0; c < out.size; ++c, ++j) {
@@ -103,6 +193,7 @@ Vec3<T> Interpreter<T>::OutputTriple(const ProgramOutput& out) const {
 }
 
 template <class T>
+template <bool kRecord>
 void Interpreter<T>::RunOnce() {
     // For T = double the std functions are the scalar semantics; other types find theirs by ADL.
     using std::abs, std::cos, std::exp, std::log, std::pow, std::sin, std::sqrt;
@@ -124,6 +215,10 @@ void Interpreter<T>::RunOnce() {
         auto noiseArgs = [&](int count, T* args) {
             for (int i = 0; i < count; ++i) args[i] = R[OperandOf(&in, i + 1)];
         };
+        [[maybe_unused]] uint8_t operand = 0;
+        [[maybe_unused]] double constant = Decisions::kNone;
+        if constexpr (kRecord)
+            if (in.op == Op::Select || (in.op >= Op::MinRR && in.op <= Op::MaxRK)) operand = Choice(&in, R, &constant);
         switch (in.op) {
             case Op::LoadK: A = T(K[in.b]); break;
             case Op::Move: A = R[in.b]; break;
@@ -207,6 +302,10 @@ void Interpreter<T>::RunOnce() {
                 break;
             }
 
+        }
+        if constexpr (kRecord) {
+            if (std::isnan(constant)) constant = detail::ResultConstant(in.op, A);
+            m_record.Observe(pc, operand, constant);
         }
 #ifdef AFFRAY_TRACE_VM
         std::fprintf(stderr, "[%s] %-40s -> %s\n", NumberTraits<T>::kName,

@@ -1,0 +1,124 @@
+// vm/prune.h: tape pruning, after libfive's intervalAndPush and Fidget's simplify (Keeter,
+// "Massively Parallel Rendering of Complex Closed-Form Implicit Surfaces", SIGGRAPH 2020).
+// Owns Decisions, what one bound evaluation of a program (all its floor-split runs) proved about
+// its instructions over a region, and Prune, which turns a program and such a record into a
+// shorter program equal to it at every point of that region.
+// A fact may only be recorded if it holds for the *scalar* semantics at every point of the region:
+// Prune replaces instructions by what the facts say, so a fact that holds only for the bounds would
+// change results. To add a kind of fact: record it in Interpreter<T>::Choice or ResultConstant
+// (vm/interpreter.inl), argue there why every scalar result obeys it, use it in Pruner::Prune and
+// test it in tests/vm/prune_test.cpp.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "vm/program.h"
+
+namespace affray::vm {
+
+/// Per code word of the program that ran: whether the instruction's result is, at every point of
+/// the region, one of its operands (a decided Select, or a Min/Max whose operands' ranges are
+/// strictly ordered), and whether it is one exact double (a decided comparison, a floor over one
+/// integer cell, a cell noise within one cell...).
+class Decisions {
+  public:
+    /// Starts recording an evaluation of a program of `words` code words.
+    void Begin(size_t words) {
+        m_operand.assign(words, 0);
+        m_constant.assign(words, kNone);
+        m_merge = false;
+    }
+    /// Starts the next floor-split run of the same evaluation: from now on a fact survives only
+    /// if this run observes it too.
+    void NextRun() { m_merge = true; }
+    /// What the instruction at `pc` gave in the current run: its operand `operand` (1 = B, 2 = C,
+    /// 3 = the first Ext word's A) or 0, and the exact result `constant` or kNone.
+    void Observe(size_t pc, uint8_t operand, double constant) {
+        if (!m_merge) {
+            m_operand[pc] = operand;
+            m_constant[pc] = constant;
+            return;
+        }
+        if (m_operand[pc] != operand) m_operand[pc] = 0;
+        if (!SameBits(m_constant[pc], constant)) m_constant[pc] = kNone;
+    }
+
+    size_t size() const { return m_operand.size(); }
+    /// The operand the instruction at `pc` gives at every point of the region, or 0.
+    int operandAt(size_t pc) const { return m_operand[pc]; }
+    /// True, with *value, if the instruction at `pc` gives this double at every point.
+    bool constantAt(size_t pc, double* value) const {
+        if (SameBits(m_constant[pc], kNone)) return false;
+        *value = m_constant[pc];
+        return true;
+    }
+    /// Facts Prune can use on `program` (the one that ran): choices, and constants of
+    /// instructions other than LoadK. Zero means pruning would give the program back.
+    size_t usefulCount(const Program& program) const;
+    /// "pc: operand C" and "pc: = 3" lines, one per fact.
+    std::string ToString() const;
+
+    /// No constant: a NaN, which a bounded value never is.
+    static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+
+  private:
+    static bool SameBits(double a, double b) { return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b); }
+
+    std::vector<uint8_t> m_operand;
+    std::vector<double> m_constant;
+    bool m_merge = false;
+};
+
+/// Builds, into *out, the program equal to `program` at every point of the region `decisions`
+/// were recorded over, bit for bit in the scalar semantics: an instruction with a constant result
+/// becomes LoadK, one that gives an operand disappears (its readers read that operand), moves
+/// disappear the same way, a register operand known to be a constant becomes a constant operand
+/// where the opcode has such a form (AddRR -> AddRK), and whatever no output depends on any more
+/// is removed. Registers are renumbered compactly; globals and parameters no longer read get
+/// kNoRegister; the constant pool keeps only what the code reads. Its bounds over any sub-region
+/// contain its scalar results, as any program's do. `decisions` must come from running `program`
+/// (same code size). *out may be reused: its vectors keep their capacity.
+class Pruner {
+  public:
+    void Prune(const Program& program, const Decisions& decisions, Program* out);
+
+  private:
+    // One value of the pruned program (SSA): an input (global or parameter register) or the
+    // result of one kept node.
+    struct Value {
+        bool constant = false;  // defined by a LoadK of constant slot `slot`
+        int slot = -1;
+        int lastUse = -1;  // last live node reading it (INT_MAX for an output)
+        uint16_t reg = kNoRegister;
+    };
+    // One instruction of the pruned program.
+    struct Node {
+        Op op;
+        uint8_t flags;
+        int line;
+        int result;
+        int operands[8];  // per format letter after A: a value ('r'), a constant slot ('k'), or -1
+        bool live;
+    };
+
+    int NewValue();
+    int ConstantSlot(double k);
+
+    std::vector<Value> m_values;
+    std::vector<Node> m_nodes;
+    std::vector<int> m_regValue;  // the value each original register holds
+    std::vector<char> m_used;
+    std::vector<double> m_slots;  // the constants the nodes' 'k' operands name
+    std::vector<int> m_slotIndex;  // a slot's index in the output pool, -1 before its first use
+    std::vector<int> m_originalSlot;  // the slot of each original constant, -1 before its first use
+    std::vector<uint16_t> m_free;
+};
+
+/// Pruner().Prune, for callers that prune once.
+Program Prune(const Program& program, const Decisions& decisions);
+
+}  // namespace affray::vm
