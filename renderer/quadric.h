@@ -34,6 +34,9 @@ struct Quadric {
     std::string Problem() const;
 };
 
+/// The request with its arguments, as RIB would write it: "Sphere 1 -1 1 360".
+std::string ToString(const Quadric& q);
+
 namespace quadric_detail {
 inline double Radians(double degrees) { return degrees * (std::numbers::pi / 180.0); }
 /// The latitudes a sphere's zmin and zmax cut at (clamped to the poles), in radians.

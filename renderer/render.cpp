@@ -179,7 +179,7 @@ compiler::Matrix4 RowMajor(const glm::dmat4& m) {
 bool IsAffine(const compiler::Matrix4& m) { return m[12] == 0 && m[13] == 0 && m[14] == 0 && m[15] == 1; }
 
 /// The spaces a shader on `patch` sees. "current" is world space: P is computed there.
-compiler::Spaces SpacesOf(const CameraDesc& camera, const PatchDesc& patch) {
+compiler::Spaces SpacesOf(const CameraDesc& camera, const PrimitiveDesc& patch) {
     auto space = [](const glm::dmat4& toWorld) {
         return compiler::SpaceTransform{RowMajor(toWorld), RowMajor(glm::inverse(toWorld))};
     };
@@ -214,7 +214,11 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
     out->primitives.clear();
     const glm::dvec3 eye = Camera(desc.camera).Position();
     compiler::ShaderCache cache;
-    for (const PatchDesc& patch : desc.patches) {
+    for (const PrimitiveDesc& patch : desc.primitives) {
+        if (patch.shape != PrimitiveDesc::Shape::BilinearPatch) {
+            *error = desc.path + ":" + std::to_string(patch.line) + ": error: quadrics are not rendered yet";
+            return false;
+        }
         Primitive prim;
         prim.patch.corners = patch.corners;
         prim.surface = patch.surface;

@@ -168,7 +168,7 @@ bool RibParser::DoPatch(const RibRequest& r) {
     }
     if (!havePosition) return Fail(r.line, context + " needs a \"P\" parameter");
 
-    PatchDesc patch;
+    PrimitiveDesc patch;
     for (int i = 0; i < 4; ++i) {
         patch.corners[i] = TransformPoint(m_state.ctm, corners[i]);
         if (!FiniteP(patch.corners[i]))
@@ -180,7 +180,7 @@ bool RibParser::DoPatch(const RibRequest& r) {
     patch.displacement = m_state.displacement;
     patch.line = r.line;
     patch.objectToWorld = m_state.ctm;
-    m_scene.patches.push_back(std::move(patch));
+    m_scene.primitives.push_back(std::move(patch));
     return true;
 }
 

@@ -7,10 +7,13 @@
 
 #include <array>
 #include <glm/glm.hpp>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "renderer/quadric.h"
 
 namespace affray::renderer {
 
@@ -31,32 +34,56 @@ struct ShaderRef {
     glm::dmat4 shaderToWorld{1.0};
 };
 
-/// The built-in surface models. Defaults are those of RenderMan's "plastic"; "matte" sets Kd = 1.
+/// The built-in surface models of RI Spec 3.2 appendix A, with their defaults: "constant" (Cs),
+/// "matte" (Ka = 1, Kd = 1), "metal" (Ka = 1, Ks = 1, roughness = 0.1: specular only, tinted by
+/// Cs) and "plastic" (Ka = 1, Kd = 0.5, Ks = 0.5, roughness = 0.1, specularcolor = 1).
 struct SurfaceDesc {
-    enum class Model { Matte, Plastic } model = Model::Plastic;
+    enum class Model { Constant, Matte, Metal, Plastic } model = Model::Plastic;
     double Ka = 1, Kd = 0.5, Ks = 0.5, roughness = 0.1;
     glm::dvec3 specularColor{1.0};
 };
 
-/// A light source in world space ("ambientlight", "distantlight", "pointlight").
+/// A light source in world space ("ambientlight", "distantlight", "pointlight", "spotlight").
 struct LightDesc {
-    enum class Kind { Ambient, Distant, Point } kind = Kind::Point;
+    enum class Kind { Ambient, Distant, Point, Spot } kind = Kind::Point;
     double intensity = 1;
     glm::dvec3 color{1.0};
-    glm::dvec3 from{0.0}, to{0.0, 0.0, 1.0};  ///< World space; a distant light shines from -> to.
+    glm::dvec3 from{0.0}, to{0.0, 0.0, 1.0};  ///< World space; distant and spot lights shine from -> to.
+    /// Spotlight only, RI defaults: half-angle of the cone and width of its soft edge (radians),
+    /// and the exponent of the cosine fall-off across the beam.
+    double coneAngle = 0.5235987755982988, coneDeltaAngle = 0.08726646259971647, beamDistribution = 2;
     std::string handle;                       ///< The RIB light handle (number or string), as text.
     int line = 0;
 };
 
-/// A bilinear patch in world space with its shading attributes.
-struct PatchDesc {
-    std::array<glm::dvec3, 4> corners{};  ///< World space, RenderMan order u0v0, u1v0, u0v1, u1v1.
+/// One geometric primitive with its shading attributes: a bilinear patch (corners already in
+/// world space) or a quadric (in object space, placed by objectToWorld).
+struct PrimitiveDesc {
+    enum class Shape { BilinearPatch, Quadric } shape = Shape::BilinearPatch;
+    std::array<glm::dvec3, 4> corners{};  ///< Patch: world space, RenderMan order u0v0, u1v0, u0v1, u1v1.
+    Quadric quadric;                      ///< Quadric: its request's arguments (object space).
     glm::dvec3 color{1.0};                ///< The RIB Color (Cs) in effect.
     SurfaceDesc surface;
     std::optional<ShaderRef> displacement;
     int line = 0;
-    /// Object space: the current transform at the patch (object -> world, column vectors).
+    /// Object space: the current transform at the request (object -> world, column vectors).
     glm::dmat4 objectToWorld{1.0};
+    /// Sides: false for "Sides 1" (seen from behind, the surface is invisible).
+    bool twoSided = true;
+    /// Whether RenderMan's normal is the negation of dPdu x dPdv computed in world space. With M the
+    /// world-to-camera matrix, N computed in (left-handed) camera space maps back to world as
+    /// sign(det M) * (dPdu x dPdv); it is flipped again when the current orientation differs from
+    /// the handedness of the object's coordinate system (sign of det(M * objectToWorld) > 0 is
+    /// left-handed). The orientation starts "lh" (camera space's), ReverseOrientation toggles it,
+    /// Orientation "lh"/"rh" sets it, "outside"/"inside" set it to/against the current handedness.
+    /// So flipNormal = (det M < 0) XOR (orientation != handedness). Default: sphere normals point out.
+    bool flipNormal = false;
+};
+
+/// The pixel reconstruction filter (PixelFilter): "box" or "gaussian", with its widths in pixels.
+struct FilterDesc {
+    enum class Kind { Box, Gaussian } kind = Kind::Gaussian;
+    double xwidth = 2, ywidth = 2;  ///< RI default: gaussian 2 x 2
 };
 
 /// The camera options in effect at WorldBegin.
@@ -67,6 +94,16 @@ struct CameraDesc {
         true;  ///< The RIB reader sets false when no Projection is given (RI default).
     double fovDegrees = 90;  ///< Full angle across the shorter image axis (perspective only).
     glm::dmat4 worldToCamera{1.0};  ///< Column-vector convention: pCamera = worldToCamera * pWorld.
+    /// FrameAspectRatio, if given (else xres * pixelAspect / yres).
+    std::optional<double> frameAspectRatio;
+    /// ScreenWindow left, right, bottom, top, if given (else derived from the frame aspect ratio).
+    std::optional<glm::dvec4> screenWindow;
+    /// CropWindow xmin, xmax, ymin, ymax in NDC (0..1, y down); the whole frame by default.
+    glm::dvec4 cropWindow{0.0, 1.0, 0.0, 1.0};
+    double nearClip = 1e-10, farClip = 1e30;  ///< Clipping, camera-space depths (RI defaults)
+    int xsamples = 2, ysamples = 2;           ///< PixelSamples (RI default 2 x 2)
+    FilterDesc filter;
+    double exposureGain = 1, exposureGamma = 1;  ///< Exposure: out = (gain * color)^(1/gamma)
 };
 
 /// Everything a render needs from one RIB file.
@@ -75,10 +112,17 @@ struct SceneDesc {
     CameraDesc camera;
     std::string displayName = "out.exr";
     std::string displayType = "file";  ///< Display "name" "type" "mode", kept for tools.
+    /// Display mode: channel groups separated by commas, from "rgb", "rgba", "rgbz", "rgbaz" (or
+    /// their single letters r g b a z) and the AOVs "Z", "N", "P", "st", "cost", "err".
     std::string displayMode = "rgba";
     std::vector<LightDesc>
         lights;  ///< Empty if the scene defines none (the renderer adds a default).
-    std::vector<PatchDesc> patches;
+    std::vector<PrimitiveDesc> primitives;
+    /// Option "searchpath" "shader": directories in order, '&' already expanded to the previous
+    /// value and '@' to the default. Empty: the renderer's default search path.
+    std::vector<std::string> shaderSearchPath;
+    /// CoordinateSystem names, each the current transform at its request (object -> world).
+    std::map<std::string, glm::dmat4> coordinateSystems;
 };
 
 // Printing. Every value type prints itself on one line (the scene on several), for logs and tests.
@@ -115,25 +159,37 @@ inline std::string ToString(const ShaderRef& s) {
 }
 
 inline std::string ToString(const SurfaceDesc& s) {
+    static const char* const kNames[] = {"constant", "matte", "metal", "plastic"};
     std::ostringstream out;
-    out << (s.model == SurfaceDesc::Model::Matte ? "matte" : "plastic") << " Ka=" << s.Ka
+    out << kNames[static_cast<int>(s.model)] << " Ka=" << s.Ka
         << " Kd=" << s.Kd << " Ks=" << s.Ks << " roughness=" << s.roughness
         << " specularcolor=" << ToString(s.specularColor);
     return out.str();
 }
 
 inline std::string ToString(const LightDesc& l) {
-    static const char* const kNames[] = {"ambientlight", "distantlight", "pointlight"};
+    static const char* const kNames[] = {"ambientlight", "distantlight", "pointlight", "spotlight"};
     std::ostringstream out;
     out << kNames[static_cast<int>(l.kind)] << " handle=" << l.handle
         << " intensity=" << l.intensity << " color=" << ToString(l.color)
         << " from=" << ToString(l.from) << " to=" << ToString(l.to);
+    if (l.kind == LightDesc::Kind::Spot)
+        out << " coneangle=" << l.coneAngle << " conedeltaangle=" << l.coneDeltaAngle
+            << " beamdistribution=" << l.beamDistribution;
     return out.str();
 }
 
-inline std::string ToString(const PatchDesc& p) {
-    std::string text = "patch line " + std::to_string(p.line) + ":";
-    for (const glm::dvec3& c : p.corners) text += " " + ToString(c);
+inline std::string ToString(const PrimitiveDesc& p) {
+    std::string text;
+    if (p.shape == PrimitiveDesc::Shape::BilinearPatch) {
+        text = "patch line " + std::to_string(p.line) + ":";
+        for (const glm::dvec3& c : p.corners) text += " " + ToString(c);
+    } else {
+        text = std::string(Quadric::Name(p.quadric.kind)) + " line " + std::to_string(p.line) + ": " +
+               ToString(p.quadric) + " objectToWorld=" + ToString(p.objectToWorld);
+    }
+    if (!p.twoSided) text += " sides=1";
+    if (p.flipNormal) text += " flipnormal";
     text += " color=" + ToString(p.color) + " " + ToString(p.surface);
     if (p.displacement) text += " displacement " + ToString(*p.displacement);
     return text;
@@ -147,6 +203,13 @@ inline std::string ToString(const CameraDesc& c) {
     else
         out << " orthographic";
     out << " worldToCamera=" << ToString(c.worldToCamera);
+    if (c.frameAspectRatio) out << " frameaspectratio=" << *c.frameAspectRatio;
+    if (c.screenWindow) out << " screenwindow=[" << c.screenWindow->x << ' ' << c.screenWindow->y << ' '
+                            << c.screenWindow->z << ' ' << c.screenWindow->w << ']';
+    out << " cropwindow=[" << c.cropWindow.x << ' ' << c.cropWindow.y << ' ' << c.cropWindow.z << ' '
+        << c.cropWindow.w << "] clipping=" << c.nearClip << ' ' << c.farClip << " pixelsamples=" << c.xsamples
+        << ' ' << c.ysamples << " filter=" << (c.filter.kind == FilterDesc::Kind::Box ? "box " : "gaussian ")
+        << c.filter.xwidth << ' ' << c.filter.ywidth << " exposure=" << c.exposureGain << ' ' << c.exposureGamma;
     return out.str();
 }
 
@@ -154,7 +217,9 @@ inline std::string ToString(const SceneDesc& s) {
     std::string text = "scene " + s.path + "\n  camera " + ToString(s.camera) + "\n  display \"" +
                        s.displayName + "\" \"" + s.displayType + "\" \"" + s.displayMode + "\"\n";
     for (const LightDesc& l : s.lights) text += "  light " + ToString(l) + "\n";
-    for (const PatchDesc& p : s.patches) text += "  " + ToString(p) + "\n";
+    for (const auto& [name, m] : s.coordinateSystems) text += "  coordinatesystem " + name + " " + ToString(m) + "\n";
+    for (const std::string& dir : s.shaderSearchPath) text += "  searchpath shader " + dir + "\n";
+    for (const PrimitiveDesc& p : s.primitives) text += "  " + ToString(p) + "\n";
     return text;
 }
 

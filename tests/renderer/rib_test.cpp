@@ -109,8 +109,8 @@ TEST_CASE("A full RIB scene parses into world space", "[renderer]") {
     }
 
     SECTION("transforms apply last-given first") {
-        REQUIRE(scene->patches.size() == 3);
-        const PatchDesc& p = scene->patches[0];
+        REQUIRE(scene->primitives.size() == 3);
+        const PrimitiveDesc& p = scene->primitives[0];
         // Scale 2, then Rotate 90 about z (x -> y), then Translate (1,0,0).
         RequireVec(p.corners[0], {1, 0, 0});
         RequireVec(p.corners[1], {1, 2, 0});
@@ -120,14 +120,14 @@ TEST_CASE("A full RIB scene parses into world space", "[renderer]") {
     }
 
     SECTION("AttributeBegin/End scopes the transform, color, surface and displacement") {
-        const PatchDesc& inside = scene->patches[0];
+        const PrimitiveDesc& inside = scene->primitives[0];
         RequireVec(inside.color, {0, 1, 0});
         CHECK(inside.surface.model == SurfaceDesc::Model::Matte);
         CHECK(inside.surface.Ka == 1);
         CHECK(inside.surface.Kd == 0.25);
         REQUIRE(inside.displacement);
 
-        const PatchDesc& after = scene->patches[1];
+        const PrimitiveDesc& after = scene->primitives[1];
         RequireVec(after.corners[3], {1, 1, 0});
         RequireVec(after.color, {1, 0, 0});
         CHECK(after.surface.model == SurfaceDesc::Model::Plastic);
@@ -138,12 +138,12 @@ TEST_CASE("A full RIB scene parses into world space", "[renderer]") {
     }
 
     SECTION("ConcatTransform takes RIB's row-vector matrix order") {
-        RequireVec(scene->patches[2].corners[0], {3, 4, 5});
-        RequireVec(scene->patches[2].corners[3], {4, 5, 5});
+        RequireVec(scene->primitives[2].corners[0], {3, 4, 5});
+        RequireVec(scene->primitives[2].corners[3], {4, 5, 5});
     }
 
     SECTION("displacement parameters keep their raw values and drop inline declarations") {
-        const ShaderRef& d = *scene->patches[0].displacement;
+        const ShaderRef& d = *scene->primitives[0].displacement;
         CHECK(d.name == "wave");
         CHECK(d.line == 23);
         REQUIRE(d.params.size() == 3);
@@ -167,7 +167,7 @@ TEST_CASE("RIB transforms follow the RenderMan conventions", "[renderer]") {
                      "t.rib", &error, nullptr);
         INFO(error);
         REQUIRE(scene);
-        return scene->patches.at(0).corners[0];
+        return scene->primitives.at(0).corners[0];
     };
     RequireVec(corner("Translate 1 2 3"), {2, 2, 3});
     RequireVec(corner("Rotate 90 0 0 1"), {0, 1, 0});
@@ -203,8 +203,8 @@ TEST_CASE("RIB defaults and variants", "[renderer]") {
         "t.rib", &error, nullptr);
     INFO(error);
     REQUIRE(scene);
-    RequireVec(scene->patches[0].corners[0], {1, 0, 0});
-    RequireVec(scene->patches[1].corners[3], {1, 1, 4});
+    RequireVec(scene->primitives[0].corners[0], {1, 0, 0});
+    RequireVec(scene->primitives[1].corners[3], {1, 1, 4});
 }
 
 TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors", "[renderer]") {
@@ -343,7 +343,7 @@ TEST_CASE("ReadRib reports files it cannot read", "[renderer]") {
     std::filesystem::remove(file);
     REQUIRE(scene);
     CHECK(scene->path == file.string());
-    CHECK(scene->patches.size() == 3);
+    CHECK(scene->primitives.size() == 3);
 }
 
 TEST_CASE("The RIB reader survives random input", "[renderer]") {

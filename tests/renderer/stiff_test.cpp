@@ -542,9 +542,9 @@ TEST_CASE("stiff: the patch placed 1e6 units from the origin", "[renderer][stiff
     // The same scene moved back to the origin: the same rays hit at the same distances, within
     // the two certified errors.
     renderer::SceneDesc near = ReadStiffDesc("far-offset");
-    const glm::dvec3 offset = near.patches.at(0).corners[0];
+    const glm::dvec3 offset = near.primitives.at(0).corners[0];
     REQUIRE(glm::length(offset) >= 1e6);
-    for (glm::dvec3& c : near.patches[0].corners) c -= offset;
+    for (glm::dvec3& c : near.primitives[0].corners) c -= offset;
     near.camera.worldToCamera = near.camera.worldToCamera * glm::translate(glm::dmat4(1.0), offset);
     StiffScene moved = PrepareDesc(near, scene.options);
     CaseRunner runNear(moved, -0.06, 0.06);
