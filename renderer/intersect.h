@@ -30,7 +30,7 @@ struct Hit {
     double t = 0;
     double u = 0, v = 0;  // centre of the final region
     double error = 0;     // certified: every surface point of the region lies this close to the hit
-    bool depthLimited = false;
+    bool depthLimited = false;  // not certified: the depth limit or the region budget ended the search
 };
 
 struct IntersectStats {
@@ -38,6 +38,8 @@ struct IntersectStats {
     uint64_t regionsBounded = 0;
     uint64_t maxRegionsPerRay = 0;
     uint64_t depthLimitHits = 0;
+    /// Rays that ran out of their region budget (their result is an uncertified possible hit).
+    uint64_t budgetExhausted = 0;
     double maxHitError = 0;
     /// Instructions of the programs that bounded the regions (pruned ones counted as run), and
     /// the pruned programs built (see PruneOptions).
@@ -48,9 +50,9 @@ struct IntersectStats {
 };
 
 /// Intersects rays with one displaced patch. Holds an interpreter, so make one per thread.
-class PatchIntersector {
+class SurfaceIntersector {
   public:
-    virtual ~PatchIntersector() = default;
+    virtual ~SurfaceIntersector() = default;
 
     /// The nearest hit with t in [tMin, tMax], or false. With `anyHit`, stops at the first hit
     /// found (for shadow rays).
@@ -78,12 +80,18 @@ struct PruneOptions {
     static PruneOptions FromEnvironment();
 };
 
-/// An intersector for `patch` displaced by `boundProgram` (which outputs P), bounding regions in
+/// Regions one ray may bound before the search stops with an uncertified possible hit: a bound
+/// on the time of any ray (about a second in affine arithmetic for a short shader). The stiff
+/// scenes of docs/stiff.md need at most a few thousand.
+inline constexpr uint64_t kDefaultRegionBudget = 1u << 18;
+
+/// An intersector for `surface` displaced by `boundProgram` (which outputs P), bounding regions in
 /// `mode`. If the program takes derivatives, the dual of the mode's number type is used. The
 /// program must outlive the intersector. Subdivision stops at `maxDepth` levels (2^-maxDepth of
 /// the domain per side); regions that reach it are counted and taken as hits.
-std::unique_ptr<PatchIntersector> MakePatchIntersector(const BilinearPatch& patch, const vm::Program& boundProgram,
+std::unique_ptr<SurfaceIntersector> MakeSurfaceIntersector(const BaseSurface& surface, const vm::Program& boundProgram,
                                                        const glm::dvec3& eye, BoundMode mode, int maxDepth,
-                                                       const PruneOptions& prune = PruneOptions::FromEnvironment());
+                                                       const PruneOptions& prune = PruneOptions::FromEnvironment(),
+                                                       uint64_t regionBudget = kDefaultRegionBudget);
 
 }  // namespace affray::renderer

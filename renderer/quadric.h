@@ -101,7 +101,62 @@ vm::Vec3<T> QuadricPoint(const Quadric& q, const T& u, const T& v) {
 template <class T>
 struct SurfaceFrame {
     vm::Vec3<T> P, dPdu, dPdv;
+    /// A positive multiple of dPdu x dPdv that does not vanish where the tangents do (a sphere's
+    /// poles, a cone's apex), so the unit normal stays bounded there; left zero by frames that
+    /// have no such form (then the normal is dPdu x dPdv normalised).
+    vm::Vec3<T> normalDirection;
+    bool hasNormalDirection = false;
 };
+
+/// For the quadrics swept about z, P = (ring cos theta, ring sin theta, z(v)) and
+/// dPdu x dPdv = turn * ring * (cos theta z', sin theta z', -ring'): the factor turn * ring
+/// vanishes on the axis (poles, apex) but the rest does not, so its direction, times the sign
+/// of turn * ring, is a normal direction defined everywhere. Each case drops further positive
+/// factors (r dphi for the sphere) to keep the bound's arithmetic short.
+template <class T>
+void QuadricNormalDirection(const Quadric& q, const T& v, const T& c, const T& s, SurfaceFrame<T>* f) {
+    using quadric_detail::Radians;
+    const double turnSign = q.thetamax > 0 ? 1.0 : -1.0;
+    switch (q.kind) {
+        case Quadric::Kind::Sphere: {
+            double phiMin, phiMax;
+            quadric_detail::SphereLatitudes(q, &phiMin, &phiMax);
+            const T phi = T(phiMin) + v * (phiMax - phiMin);
+            const T ring = cos(phi) * turnSign;
+            f->normalDirection = {ring * c, ring * s, sin(phi) * turnSign};
+            break;
+        }
+        case Quadric::Kind::Torus: {
+            // ring = R + r cos phi keeps the sign of R only if |R| > r (else it crosses the axis).
+            if (!(std::fabs(q.majorRadius) > q.minorRadius)) return;
+            const double phiMin = Radians(q.phimin), phiMax = Radians(q.phimax);
+            const double sign = turnSign * (q.majorRadius > 0 ? 1.0 : -1.0) * (phiMax > phiMin ? 1.0 : -1.0);
+            const T phi = T(phiMin) + v * (phiMax - phiMin);
+            const T ring = cos(phi) * sign;
+            f->normalDirection = {ring * c, ring * s, sin(phi) * sign};
+            break;
+        }
+        case Quadric::Kind::Cylinder: {
+            const double sign = turnSign * (q.zmax > q.zmin ? 1.0 : -1.0);
+            f->normalDirection = {c * sign, s * sign, T(0.0)};
+            break;
+        }
+        case Quadric::Kind::Cone:
+            f->normalDirection = {c * (turnSign * q.height), s * (turnSign * q.height), T(turnSign * q.radius)};
+            break;
+        case Quadric::Kind::Disk: f->normalDirection = {T(0.0), T(0.0), T(turnSign)}; break;
+        case Quadric::Kind::Paraboloid: {
+            // z = ring^2 / k^2 with k^2 = rmax^2 / zmax: the gradient (2x/k^2, 2y/k^2, -1).
+            const double dz = q.zmax - q.zmin, k2 = q.radius * q.radius / q.zmax;
+            const T z = T(q.zmin) + v * dz;
+            const T ring = sqrt(z * (1.0 / q.zmax)) * (q.radius * 2.0 * turnSign / k2);
+            f->normalDirection = {ring * c, ring * s, T(-turnSign)};
+            break;
+        }
+        case Quadric::Kind::Hyperboloid: return;  // its line may cross the axis anywhere
+    }
+    f->hasNormalDirection = true;
+}
 
 /// QuadricPoint with its tangents, written out by hand rather than through Dual<T>: a T that is
 /// itself a Dual (a shade program) then gets the tangents' own derivatives for free.
@@ -150,6 +205,7 @@ SurfaceFrame<T> QuadricFrame(const Quadric& q, const T& u, const T& v) {
             break;
         }
     }
+    QuadricNormalDirection(q, v, c, s, &f);
     return f;
 }
 

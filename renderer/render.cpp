@@ -18,13 +18,16 @@ namespace affray::renderer {
 
 namespace {
 
-/// The globals that do not vary over `patch`, for specialising its programs.
-std::vector<compiler::ConstantGlobal> ConstantGlobals(const BilinearPatch& patch, const glm::dvec3& eye) {
+/// The globals that do not vary over `base`, for specialising its programs.
+std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, const glm::dvec3& eye) {
     using vm::Global;
     std::vector<compiler::ConstantGlobal> out = {{Global::E, {eye.x, eye.y, eye.z}},
                                                  {Global::du, {kParametricStep, 0, 0}},
                                                  {Global::dv, {kParametricStep, 0, 0}}};
+    if (base.kind != BaseSurface::Kind::BilinearPatch) return out;
+    const BilinearPatch& patch = base.patch;
     glm::dvec3 a = patch.a(), b = patch.b(), n = patch.flatNormal();
+    if (base.flipNormal) n = -n;
     if (patch.flat() && std::isfinite(glm::dot(n, n))) {
         // The same tangents and normal everywhere, the values SetPatchGlobals would give.
         out.push_back({Global::dPdu, {a.x, a.y, a.z}});
@@ -49,13 +52,14 @@ std::string FindShader(const std::string& name, const std::vector<std::string>& 
 
 /// Everything one thread needs: per primitive an intersector and a shading interpreter.
 struct ThreadState {
-    std::vector<std::unique_ptr<PatchIntersector>> intersectors;
+    std::vector<std::unique_ptr<SurfaceIntersector>> intersectors;
     std::vector<std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> shaders;
     IntersectStats cameraStats, shadowStats;
 
     ThreadState(const PreparedScene& scene, const RenderOptions& options, const glm::dvec3& eye) {
         for (const Primitive& prim : scene.primitives) {
-            intersectors.push_back(MakePatchIntersector(prim.patch, prim.bound, eye, options.bounds, options.maxDepth));
+            intersectors.push_back(MakeSurfaceIntersector(prim.base, prim.bound, eye, options.bounds, options.maxDepth,
+                                                          PruneOptions::FromEnvironment(), options.regionBudget));
             shaders.push_back(std::make_unique<vm::Interpreter<vm::Dual<double>>>(prim.shade));
         }
     }
@@ -66,51 +70,77 @@ struct NearestHit {
     int primitive = -1;
 };
 
-NearestHit TraceNearest(ThreadState& ts, const Ray& ray, double tMin, double tMax, const Tolerance& tol,
-                        IntersectStats& stats) {
-    NearestHit nearest;
-    for (size_t i = 0; i < ts.intersectors.size(); ++i) {
-        Hit hit;
-        if (ts.intersectors[i]->Intersect(ray, tMin, tMax, tol, false, &hit, stats)) {
-            tMax = hit.t;
-            nearest = {hit, static_cast<int>(i)};
-        }
-    }
-    return nearest;
-}
-
 glm::dvec3 ToGlm(const vm::Vec3<vm::Dual<double>>& v) { return {v.x.v, v.y.v, v.z.v}; }
 
-/// Shades the nearest hit of a camera ray: P and N from the shade program in dual numbers at
-/// the hit's (u,v), then the surface model with shadow rays through the same intersector.
-glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh,
-                    const Tolerance& tol, const glm::dvec3& eye) {
+/// The displaced point and its unit normal at a hit, from the shade program in dual numbers.
+struct HitPoint {
+    glm::dvec3 P, N;
+};
+
+HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh,
+                     const glm::dvec3& eye) {
     const Primitive& prim = scene.primitives[nh.primitive];
     vm::Interpreter<vm::Dual<double>>& interp = *ts.shaders[nh.primitive];
     const double u = nh.hit.u, v = nh.hit.v;
-    glm::dvec3 P = ToGlm(EvaluateOnPatch(interp, prim.patch, u, u, v, v, eye, *prim.shade.findOutput("P")));
-    glm::dvec3 N = ToGlm(interp.OutputTriple(*prim.shade.findOutput("N")));
-    if (!std::isfinite(glm::dot(P, P))) P = ray.origin + nh.hit.t * ray.dir;
-    double lengthN = glm::length(N);
-    N = lengthN > 0 && std::isfinite(lengthN) ? N / lengthN : -ray.dir;
+    HitPoint h;
+    h.P = ToGlm(EvaluateOnSurface(interp, prim.base, u, u, v, v, eye, *prim.shade.findOutput("P")));
+    h.N = ToGlm(interp.OutputTriple(*prim.shade.findOutput("N")));
+    if (!std::isfinite(glm::dot(h.P, h.P))) h.P = ray.origin + nh.hit.t * ray.dir;
+    double lengthN = glm::length(h.N);
+    h.N = lengthN > 0 && std::isfinite(lengthN) ? h.N / lengthN : -ray.dir;
+    return h;
+}
 
+/// The nearest hit along `ray` in [tMin, tMax] over the primitives the BVH offers. A one-sided
+/// primitive (Sides 1) seen from behind is not hit: the search goes on past it.
+NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& ray, double tMin, double tMax,
+                        const Tolerance& tol, IntersectStats& stats, const glm::dvec3& eye) {
+    constexpr int kMaxBackFaces = 16;
+    for (int attempt = 0; attempt <= kMaxBackFaces; ++attempt) {
+        NearestHit nearest;
+        double best = tMax;
+        scene.bvh->Traverse(ray, tMin, &best, [&](int i, double) {
+            Hit hit;
+            if (ts.intersectors[i]->Intersect(ray, tMin, best, tol, false, &hit, stats)) {
+                best = hit.t;
+                nearest = {hit, i};
+            }
+            return true;
+        });
+        if (nearest.primitive < 0 || scene.primitives[nearest.primitive].twoSided) return nearest;
+        if (glm::dot(EvaluateHit(scene, ts, ray, nearest, eye).N, ray.dir) < 0) return nearest;
+        // Seen from behind: look again beyond this hit's certified error.
+        const double error = std::isfinite(nearest.hit.error) ? nearest.hit.error : tol.At(nearest.hit.t);
+        tMin = nearest.hit.t + 2 * std::max(error, tol.At(nearest.hit.t));
+    }
+    return {};
+}
+
+/// Shades the nearest hit of a camera ray: the surface model at P, N (EvaluateHit) with shadow
+/// rays through the same intersector.
+glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh,
+                    const HitPoint& at, const Tolerance& tol) {
+    const Primitive& prim = scene.primitives[nh.primitive];
     ShadingPoint sp;
-    sp.P = P;
+    sp.P = at.P;
     sp.V = -ray.dir;
-    sp.Nf = glm::dot(N, sp.V) < 0 ? -N : N;  // faceforward
+    sp.Nf = glm::dot(at.N, sp.V) < 0 ? -at.N : at.N;  // faceforward
     // Shadow rays start above the surface by more than the hit's certified error and the
     // tolerance, so they cannot find the region they left (no acne).
     double footprint = tol.At(nh.hit.t);
-    double offset = 2.0 * std::max(std::isfinite(nh.hit.error) ? nh.hit.error : footprint, footprint) + 1e-9 * glm::length(P);
+    double offset = 2.0 * std::max(std::isfinite(nh.hit.error) ? nh.hit.error : footprint, footprint) +
+                    1e-9 * glm::length(at.P);
     Tolerance shadowTol{footprint, 0.0};
     auto occluded = [&](const glm::dvec3& toLight, double distance) {
         Ray shadowRay{sp.P + sp.Nf * offset, toLight};
         double tMax = std::isfinite(distance) ? distance - offset : INFINITY;
-        for (auto& intersector : ts.intersectors) {
+        bool blocked = false;
+        scene.bvh->Traverse(shadowRay, offset, &tMax, [&](int i, double) {
             Hit hit;
-            if (intersector->Intersect(shadowRay, offset, tMax, shadowTol, true, &hit, ts.shadowStats)) return true;
-        }
-        return false;
+            blocked = ts.intersectors[i]->Intersect(shadowRay, offset, tMax, shadowTol, true, &hit, ts.shadowStats);
+            return !blocked;
+        });
+        return blocked;
     };
     return ShadeSurface(prim.surface, prim.color, sp, scene.lights, occluded);
 }
@@ -127,8 +157,8 @@ bool MeasurableSomewhere(const Primitive& prim, const glm::dvec3& eye, int n) {
     const vm::ProgramOutput& output = *prim.bound.findOutput("P");
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
-            Vec3<N> p = EvaluateOnPatch(interp, prim.patch, double(i) / n, double(i + 1) / n, double(j) / n,
-                                        double(j + 1) / n, eye, output);
+            Vec3<N> p = EvaluateOnSurface(interp, prim.base, double(i) / n, double(i + 1) / n, double(j) / n,
+                                          double(j + 1) / n, eye, output);
             bool measurable = true;
             for (int c = 0; c < 3; ++c) {
                 vm::Interval r = RangeOf(vm::ValueOf(p[c]));
@@ -169,6 +199,32 @@ std::string UnboundedEverywhere(const Primitive& prim, const ShaderRef& ref, con
     return message;
 }
 
+/// The box of the displaced surface over its whole domain: the union of the interval bounds of
+/// an n x n grid of cells (tighter than one bound over everything). Infinite if any cell's bound
+/// is unbounded: the BVH then offers the primitive to every ray.
+template <class N>
+Box WholeDomainBox(const Primitive& prim, const glm::dvec3& eye, int n) {
+    vm::Interpreter<N> interp(prim.bound);
+    const vm::ProgramOutput& output = *prim.bound.findOutput("P");
+    Box box;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            Vec3<N> p = EvaluateOnSurface(interp, prim.base, double(i) / n, double(i + 1) / n, double(j) / n,
+                                          double(j + 1) / n, eye, output);
+            for (int c = 0; c < 3; ++c) {
+                vm::Interval r = RangeOf(vm::ValueOf(p[c]));
+                if (r.isUnbounded()) {
+                    box.lo[c] = -INFINITY;
+                    box.hi[c] = INFINITY;
+                } else {
+                    box.lo[c] = std::min(box.lo[c], r.lo());
+                    box.hi[c] = std::max(box.hi[c], r.hi());
+                }
+            }
+        }
+    return box;
+}
+
 compiler::Matrix4 RowMajor(const glm::dmat4& m) {
     compiler::Matrix4 out{};
     for (int row = 0; row < 4; ++row)
@@ -179,11 +235,13 @@ compiler::Matrix4 RowMajor(const glm::dmat4& m) {
 bool IsAffine(const compiler::Matrix4& m) { return m[12] == 0 && m[13] == 0 && m[14] == 0 && m[15] == 1; }
 
 /// The spaces a shader on `patch` sees. "current" is world space: P is computed there.
-compiler::Spaces SpacesOf(const CameraDesc& camera, const PrimitiveDesc& patch) {
+compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveDesc& patch) {
+    const CameraDesc& camera = scene.camera;
     auto space = [](const glm::dmat4& toWorld) {
         return compiler::SpaceTransform{RowMajor(toWorld), RowMajor(glm::inverse(toWorld))};
     };
     compiler::Spaces spaces;
+    for (const auto& [name, toWorld] : scene.coordinateSystems) spaces[name] = space(toWorld);
     spaces["world"] = compiler::SpaceTransform{};
     spaces["object"] = space(patch.objectToWorld);
     spaces["shader"] = space(patch.displacement ? patch.displacement->shaderToWorld : patch.objectToWorld);
@@ -200,11 +258,13 @@ std::string RenderStats::ToJson() const {
     std::snprintf(buf, sizeof buf,
                   "{\"wall_seconds\":%.3f,\"width\":%d,\"height\":%d,\"camera_rays\":%llu,"
                   "\"regions_per_ray_mean\":%.2f,\"regions_per_ray_max\":%llu,\"depth_limit_hits\":%llu,"
-                  "\"max_certified_error\":%.6g,\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f}",
+                  "\"max_certified_error\":%.6g,\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f,"
+                  "\"budget_exhausted_rays\":%llu}",
                   wallSeconds, width, height, static_cast<unsigned long long>(camera.rays), mean,
                   static_cast<unsigned long long>(camera.maxRegionsPerRay),
                   static_cast<unsigned long long>(camera.depthLimitHits + shadow.depthLimitHits),
-                  std::max(camera.maxHitError, 0.0), static_cast<unsigned long long>(shadow.rays), shadowMean);
+                  std::max(camera.maxHitError, 0.0), static_cast<unsigned long long>(shadow.rays), shadowMean,
+                  static_cast<unsigned long long>(camera.budgetExhausted + shadow.budgetExhausted));
     return buf;
 }
 
@@ -214,22 +274,29 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
     out->primitives.clear();
     const glm::dvec3 eye = Camera(desc.camera).Position();
     compiler::ShaderCache cache;
+    // The scene's search path first, relative directories taken from the RIB file's.
+    std::vector<std::string> searchPath;
+    const std::filesystem::path ribDir = std::filesystem::path(desc.path).parent_path();
+    for (const std::string& dir : desc.shaderSearchPath)
+        searchPath.push_back(std::filesystem::path(dir).is_absolute() ? dir : (ribDir / dir).string());
+    searchPath.insert(searchPath.end(), shaderPaths.begin(), shaderPaths.end());
     for (const PrimitiveDesc& patch : desc.primitives) {
-        if (patch.shape != PrimitiveDesc::Shape::BilinearPatch) {
-            *error = desc.path + ":" + std::to_string(patch.line) + ": error: quadrics are not rendered yet";
-            return false;
-        }
         Primitive prim;
-        prim.patch.corners = patch.corners;
+        if (patch.shape == PrimitiveDesc::Shape::BilinearPatch)
+            prim.base = BaseSurface(BilinearPatch{patch.corners}, patch.flipNormal);
+        else
+            prim.base = BaseSurface(PlacedQuadric{patch.quadric, patch.objectToWorld}, patch.flipNormal);
         prim.surface = patch.surface;
         prim.color = patch.color;
+        prim.twoSided = patch.twoSided;
+        prim.line = patch.line;
         if (patch.displacement) {
             const ShaderRef& ref = *patch.displacement;
             std::string where = desc.path + ":" + std::to_string(ref.line) + ": error: ";
-            std::string path = FindShader(ref.name, shaderPaths);
+            std::string path = FindShader(ref.name, searchPath);
             if (path.empty()) {
                 std::string searched;
-                for (const std::string& p : shaderPaths) searched += (searched.empty() ? "" : ", ") + p;
+                for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
                 *error = where + "shader '" + ref.name + "' not found (searched " + searched + ")";
                 return false;
             }
@@ -244,7 +311,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                 else
                     overrides.push_back(compiler::ParamOverride::String(p.name, p.strings[0]));
             }
-            const compiler::Spaces spaces = SpacesOf(desc.camera, patch);
+            const compiler::Spaces spaces = SpacesOf(desc, patch);
             compiler::CompileResult result = cache.Load(path, overrides, preprocess, &spaces);
             if (!result.ok()) {
                 *error = result.diagnostics;
@@ -267,7 +334,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
             prim.bound = prim.shade = vm::IdentityProgram();
         }
         std::vector<std::string> unused;  // no overrides here: nothing can go wrong
-        std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(prim.patch, eye);
+        std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(prim.base, eye);
         prim.bound = *compiler::Specialise(prim.bound, {}, &unused, constants);
         prim.shade = *compiler::Specialise(prim.shade, {}, &unused, constants);
         if (patch.displacement) {
@@ -277,8 +344,14 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                 return false;
             }
         }
+        constexpr int kBoxCells = 8;
+        prim.box = prim.bound.usesDerivatives() ? WholeDomainBox<vm::Dual<vm::Interval>>(prim, eye, kBoxCells)
+                                                : WholeDomainBox<vm::Interval>(prim, eye, kBoxCells);
         out->primitives.push_back(std::move(prim));
     }
+    std::vector<Box> boxes;
+    for (const Primitive& prim : out->primitives) boxes.push_back(prim.box);
+    out->bvh = std::make_unique<Bvh>(boxes);
     out->shadersCompiled = cache.misses();
     out->shadersReused = cache.hits();
     out->lights = desc.lights;
@@ -319,10 +392,10 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
         for (int y = nextRow++; y < cam.yres; y = nextRow++) {
             for (int x = 0; x < cam.xres; ++x) {
                 Ray ray = camera.GenerateRay(x + 0.5, y + 0.5);
-                NearestHit nh = TraceNearest(ts, ray, 0.0, INFINITY, tol, ts.cameraStats);
+                NearestHit nh = TraceNearest(scene, ts, ray, 0.0, INFINITY, tol, ts.cameraStats, eye);
                 float* px = &image->rgba[(static_cast<size_t>(y) * cam.xres + x) * 4];
                 if (nh.primitive < 0) continue;
-                glm::dvec3 c = ShadeHit(scene, ts, ray, nh, tol, eye);
+                glm::dvec3 c = ShadeHit(scene, ts, ray, nh, EvaluateHit(scene, ts, ray, nh, eye), tol);
                 px[0] = static_cast<float>(c.r);
                 px[1] = static_cast<float>(c.g);
                 px[2] = static_cast<float>(c.b);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "compiler/compile.h"
+#include "renderer/bvh.h"
 #include "renderer/exr_writer.h"
 #include "renderer/intersect.h"
 #include "renderer/scene.h"
@@ -18,6 +19,7 @@ struct RenderOptions {
     double tolerancePixels = 0.5;  // a region is a hit once its bound is smaller than this many pixels
     BoundMode bounds = BoundMode::Affine;
     int maxDepth = 24;
+    uint64_t regionBudget = kDefaultRegionBudget;  // per ray (renderer/intersect.h)
 };
 
 struct RenderStats {
@@ -30,9 +32,9 @@ struct RenderStats {
     std::string ToJson() const;
 };
 
-/// A patch ready to render: its base surface, its compiled shader instance and its looks.
+/// A primitive ready to render: its base surface, its compiled shader instance and its looks.
 struct Primitive {
-    BilinearPatch patch;
+    BaseSurface base;
     std::shared_ptr<const compiler::CompiledShader> shader;  // null: no displacement
     /// The shader instance's programs specialised further for this surface: globals that are
     /// constant on it (E, du, dv, and N, Ng, dPdu, dPdv of a flat patch) folded in.
@@ -40,11 +42,17 @@ struct Primitive {
     vm::Program shade;
     SurfaceDesc surface;
     glm::dvec3 color{1.0};
+    bool twoSided = true;
+    int line = 0;  // the RIB request
+    /// The displaced surface's bound over its whole (u,v) domain, for the BVH; infinite if the
+    /// bound overflows somewhere.
+    Box box;
 };
 
 struct PreparedScene {
     SceneDesc desc;
     std::vector<Primitive> primitives;
+    std::unique_ptr<Bvh> bvh;  // over the primitives' boxes
     std::vector<LightDesc> lights;  // the scene's, or a default key light if it has none
     /// Shader instances compiled, and those that reused a compilation (same file bytes, same
     /// parameter values: compiler/shader_cache.h).
@@ -53,7 +61,8 @@ struct PreparedScene {
 
 /// Compiles every displacement instance of `desc` (each with its own parameter values) and
 /// specialises it for its surface (an instance like an earlier one reuses its compilation).
-/// Shaders are found as NAME.sl or NAME.afb in `shaderPaths`;
+/// Shaders are found as NAME.sl or NAME.afb in the scene's Option "searchpath" "shader" (relative
+/// directories taken from the RIB file's directory), then in `shaderPaths`;
 /// `preprocess` gives the -I and -D of the C preprocessor. On error returns false with a message naming the RIB
 /// line and the shader's diagnostics.
 bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,

@@ -89,12 +89,19 @@ struct BilinearPatch {
     glm::dvec3 flatNormal() const { return glm::normalize(glm::cross(a(), b())); }
 };
 
+/// Whether `program` reads the normal (N or Ng), which is then worth computing.
+inline bool ReadsNormal(const vm::Program& program) {
+    return program.readsGlobal(vm::Global::N) || program.readsGlobal(vm::Global::Ng);
+}
+
 /// Writes the globals of one surface evaluation that `interp`'s program reads: the parameters
-/// u, v (also s, t), the frame P, dPdu, dPdv, the normal (`flatNormal` if the surface has one
-/// normal everywhere: a constant keeps its bound exact; else dPdu ^ dPdv) and E, I from `eye`.
+/// u, v (also s, t), the frame P, dPdu, dPdv, the normal and E, I from `eye`. The normal is
+/// `flatNormal` if the surface has one normal everywhere (a constant keeps its bound exact), else
+/// the frame's normal direction, else dPdu ^ dPdv, normalised; negated if `flipNormal`
+/// (RenderMan's Orientation and ReverseOrientation, scene.h).
 template <class T>
 void SetFrameGlobals(vm::Interpreter<T>& interp, const T& u, const T& v, const SurfaceFrame<T>& frame,
-                     const glm::dvec3* flatNormal, const glm::dvec3& eye) {
+                     const glm::dvec3* flatNormal, const glm::dvec3& eye, bool flipNormal = false) {
     using vm::Global;
     const vm::Program& program = interp.program();
     interp.SetGlobal(Global::P, frame.P);
@@ -106,8 +113,14 @@ void SetFrameGlobals(vm::Interpreter<T>& interp, const T& u, const T& v, const S
     interp.SetGlobal(Global::dv, T(kParametricStep));
     interp.SetGlobal(Global::dPdu, frame.dPdu);
     interp.SetGlobal(Global::dPdv, frame.dPdv);
-    if (program.readsGlobal(Global::N) || program.readsGlobal(Global::Ng)) {
-        Vec3<T> N = flatNormal ? Constant<T>(*flatNormal) : vm::Normalize(vm::Cross(frame.dPdu, frame.dPdv));
+    if (ReadsNormal(program)) {
+        Vec3<T> N;
+        if (flatNormal)
+            N = Constant<T>(flipNormal ? -*flatNormal : *flatNormal);
+        else {
+            N = vm::Normalize(frame.hasNormalDirection ? frame.normalDirection : vm::Cross(frame.dPdu, frame.dPdv));
+            if (flipNormal) N = Vec3<T>{-N.x, -N.y, -N.z};
+        }
         interp.SetGlobal(Global::N, N);
         interp.SetGlobal(Global::Ng, N);
     }
@@ -121,7 +134,7 @@ void SetFrameGlobals(vm::Interpreter<T>& interp, const T& u, const T& v, const S
 /// earlier evaluation must not be combined with this one's.
 template <class T>
 void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, double u0, double u1, double v0,
-                     double v1, const glm::dvec3& eye) {
+                     double v1, const glm::dvec3& eye, bool flipNormal = false) {
     if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
     T u = SurfaceParameter<T>(u0, u1, 0);
     T v = SurfaceParameter<T>(v0, v1, 1);
@@ -146,7 +159,7 @@ void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, dou
     }
     // A flat patch has one normal: computed in doubles, so its bound stays exact.
     const glm::dvec3 flatNormal = patch.flatNormal();
-    SetFrameGlobals(interp, u, v, frame, twisted ? nullptr : &flatNormal, eye);
+    SetFrameGlobals(interp, u, v, frame, twisted ? nullptr : &flatNormal, eye, flipNormal);
 }
 
 /// A quadric placed in the world by an affine object-to-world matrix (GLM's column-major).
@@ -155,10 +168,26 @@ struct PlacedQuadric {
     glm::dmat4 objectToWorld{1.0};
 };
 
+/// The matrix that carries a normal direction n of object space to world space so that it stays
+/// a positive multiple of the world dPdu ^ dPdv: (Ma) ^ (Mb) = cof(M) (a ^ b), with the cofactor
+/// matrix cof(M) = det(M) M^-T of the linear part (no division: exact for any invertible M).
+inline glm::dmat3 NormalToWorld(const glm::dmat4& objectToWorld) {
+    const glm::dmat3 m(objectToWorld);
+    glm::dmat3 cof;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) {
+            // Cofactor (r, c): the 2x2 minor without row r and column c, with its sign folded
+            // into the cyclic order of the remaining indices.
+            const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+            cof[c][r] = m[c1][r1] * m[c2][r2] - m[c2][r1] * m[c1][r2];
+        }
+    return cof;
+}
+
 /// SetPatchGlobals for a region of a quadric: its frame in object space, carried to the world.
 template <class T>
 void SetQuadricGlobals(vm::Interpreter<T>& interp, const PlacedQuadric& placed, double u0, double u1, double v0,
-                       double v1, const glm::dvec3& eye) {
+                       double v1, const glm::dvec3& eye, bool flipNormal = false) {
     if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
     const T u = SurfaceParameter<T>(u0, u1, 0);
     const T v = SurfaceParameter<T>(v0, v1, 1);
@@ -175,8 +204,52 @@ void SetQuadricGlobals(vm::Interpreter<T>& interp, const PlacedQuadric& placed, 
         }
         return out;
     };
-    const SurfaceFrame<T> world{map(local.P, true), map(local.dPdu, false), map(local.dPdv, false)};
-    SetFrameGlobals(interp, u, v, world, nullptr, eye);
+    SurfaceFrame<T> world{map(local.P, true), map(local.dPdu, false), map(local.dPdv, false), {}, false};
+    if (local.hasNormalDirection && ReadsNormal(interp.program())) {
+        const glm::dmat3 cof = NormalToWorld(m);
+        for (int row = 0; row < 3; ++row) {
+            T sum(0.0);
+            for (int column = 0; column < 3; ++column)
+                if (cof[column][row] != 0) sum = sum + local.normalDirection[column] * cof[column][row];
+            world.normalDirection[row] = sum;
+        }
+        world.hasNormalDirection = true;
+    }
+    SetFrameGlobals(interp, u, v, world, nullptr, eye, flipNormal);
+}
+
+/// A base surface for the intersector and the shading: a bilinear patch or a placed quadric,
+/// with the orientation of its normal.
+struct BaseSurface {
+    enum class Kind { BilinearPatch, Quadric } kind = Kind::BilinearPatch;
+    BilinearPatch patch{};
+    PlacedQuadric quadric{};
+    bool flipNormal = false;
+
+    BaseSurface() = default;
+    // Implicit on purpose: a patch is a base surface (as in every caller of the intersector).
+    BaseSurface(const BilinearPatch& p, bool flip = false) : kind(Kind::BilinearPatch), patch(p), flipNormal(flip) {}
+    BaseSurface(const PlacedQuadric& q, bool flip = false) : kind(Kind::Quadric), quadric(q), flipNormal(flip) {}
+};
+
+/// SetPatchGlobals or SetQuadricGlobals, as `surface` is.
+template <class T>
+void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, double u0, double u1, double v0,
+                       double v1, const glm::dvec3& eye) {
+    if (surface.kind == BaseSurface::Kind::BilinearPatch)
+        SetPatchGlobals(interp, surface.patch, u0, u1, v0, v1, eye, surface.flipNormal);
+    else
+        SetQuadricGlobals(interp, surface.quadric, u0, u1, v0, v1, eye, surface.flipNormal);
+}
+
+/// Runs `interp`'s program over the region [u0,u1] x [v0,v1] of `surface` and returns its triple
+/// output `output`.
+template <class T>
+Vec3<T> EvaluateOnSurface(vm::Interpreter<T>& interp, const BaseSurface& surface, double u0, double u1, double v0,
+                          double v1, const glm::dvec3& eye, const vm::ProgramOutput& output) {
+    SetSurfaceGlobals(interp, surface, u0, u1, v0, v1, eye);
+    interp.Run();
+    return interp.OutputTriple(output);
 }
 
 /// Runs `interp`'s program over the patch region [u0,u1] x [v0,v1] (see SetPatchGlobals) and

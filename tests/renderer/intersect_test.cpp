@@ -67,7 +67,7 @@ glm::dvec3 RandomDirectionAbove(std::mt19937_64& rng, double minElevationDeg) {
 }
 
 void RunAgainstReferences(const vm::Program& program, BoundMode mode, int nRays, uint64_t seed) {
-    auto intersector = renderer::MakePatchIntersector(kSquare, program, glm::dvec3(0, 0, 5), mode, 24);
+    auto intersector = renderer::MakeSurfaceIntersector(kSquare, program, glm::dvec3(0, 0, 5), mode, 24);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     IntersectStats stats;
@@ -117,7 +117,7 @@ void RunAgainstReferences(const vm::Program& program, BoundMode mode, int nRays,
 
 TEST_CASE("intersector: a flat patch is hit where the plane is", "[renderer][intersect]") {
     const vm::Program identity = vm::IdentityProgram();
-    auto intersector = renderer::MakePatchIntersector(kSquare, identity, glm::dvec3(0), BoundMode::Affine, 24);
+    auto intersector = renderer::MakeSurfaceIntersector(kSquare, identity, glm::dvec3(0), BoundMode::Affine, 24);
     Ray ray{{0.3, 0.6, 2.0}, glm::normalize(glm::dvec3(0.1, -0.2, -1.0))};
     Hit hit;
     IntersectStats stats;
@@ -156,7 +156,7 @@ TEST_CASE("intersector: a stiff wave (frequency 40, amplitude 0.05) is not misse
 TEST_CASE("intersector: the depth limit is counted and still yields hits", "[renderer][intersect]") {
     compiler::CompileResult r = compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl");
     REQUIRE(r.ok());
-    auto intersector = renderer::MakePatchIntersector(kSquare, r.shader->bound, glm::dvec3(0), BoundMode::Affine, 3);
+    auto intersector = renderer::MakeSurfaceIntersector(kSquare, r.shader->bound, glm::dvec3(0), BoundMode::Affine, 3);
     Ray ray{{0.5, 0.5, 2.0}, {0, 0, -1}};
     Hit hit;
     IntersectStats stats;
@@ -172,7 +172,7 @@ TEST_CASE("intersector: unbounded regions are subdivided, never dropped, and cou
     // z (x and y stay bounded: the shader moves P along z only).
     compiler::CompiledShader s =
         test::CompileOrThrow("displacement pole() { P += vector(0, 0, 0.001 / (u - 0.5)); }");
-    auto intersector = renderer::MakePatchIntersector(kSquare, s.bound, glm::dvec3(0), BoundMode::Affine, 10);
+    auto intersector = renderer::MakeSurfaceIntersector(kSquare, s.bound, glm::dvec3(0), BoundMode::Affine, 10);
     // A ray down the pole: only the unbounded regions there can hold a hit.
     Ray ray{{0.5, 0.3, 5.0}, {0, 0, -1}};
     Hit hit;

@@ -100,7 +100,7 @@ StiffScene LoadStiff(const std::string& name) {
 class HeightField {
   public:
     HeightField(const renderer::Primitive& prim, const glm::dvec3& eye)
-        : m_patch(prim.patch), m_program(prim.bound), m_eye(eye), m_output(*prim.bound.findOutput("P")) {
+        : m_patch(prim.base.patch), m_program(prim.bound), m_eye(eye), m_output(*prim.bound.findOutput("P")) {
         REQUIRE(m_patch.flat());
         m_normal = m_patch.flatNormal();
         m_toPlane = glm::inverse(glm::dmat3(m_patch.a(), m_patch.b(), m_normal));
@@ -232,7 +232,7 @@ class CaseRunner {
     /// `hLo`, `hHi`: a range the shader's height provably stays in (hLo may be -infinity).
     CaseRunner(const StiffScene& scene, double hLo, double hHi)
         : m_scene(scene), m_hLo(hLo), m_hHi(hHi), m_field(scene.primitive(), scene.camera->Position()),
-          m_intersector(renderer::MakePatchIntersector(scene.primitive().patch, scene.primitive().bound,
+          m_intersector(renderer::MakeSurfaceIntersector(scene.primitive().base, scene.primitive().bound,
                                                        scene.camera->Position(), scene.options.bounds,
                                                        scene.options.maxDepth)) {
         m_field.RequireNormalDisplacement(12);
@@ -271,7 +271,7 @@ class CaseRunner {
     /// (widened by `margin`), where the whole surface lies.
     bool ProvablyMisses(const Ray& ray, double margin) const {
         double t0, t1;
-        const renderer::BilinearPatch& patch = m_scene.primitive().patch;
+        const renderer::BilinearPatch& patch = m_scene.primitive().base.patch;
         double uvMargin = margin / std::min(glm::length(patch.a()), glm::length(patch.b()));
         if (!m_field.FootInside(ray, uvMargin, &t0, &t1)) return true;
         // The height above the plane is linear along the ray.
@@ -341,7 +341,7 @@ class CaseRunner {
     const StiffScene& m_scene;
     double m_hLo, m_hHi;
     HeightField m_field;
-    std::unique_ptr<renderer::PatchIntersector> m_intersector;
+    std::unique_ptr<renderer::SurfaceIntersector> m_intersector;
     CaseReport m_report;
 };
 
@@ -387,7 +387,7 @@ TEST_CASE("stiff: amplitude 1000 on a unit patch", "[renderer][stiff]") {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     run.AimedCameraRays(32, [&](int) { return std::pair(unit(rng), unit(rng)); });
     // Rays straight down and up the walls, with the camera's tolerance at 4000 units. (Oblique
-    // rays are the [!mayfail] case below.)
+    // rays are the case below.)
     const Tolerance tol{scene.CameraTolerance().At(4000), 0};
     for (int i = 0; i < 16; ++i) {
         double u = unit(rng), v = unit(rng);
@@ -397,19 +397,19 @@ TEST_CASE("stiff: amplitude 1000 on a unit patch", "[renderer][stiff]") {
     RequireSound(run.report(), 40, 2000);
 }
 
-TEST_CASE("stiff: amplitude 1000, an oblique ray needs few regions", "[renderer][stiff][!mayfail]") {
+TEST_CASE("stiff: amplitude 1000, an oblique ray needs few regions", "[renderer][stiff]") {
     // A ray at 60 degrees of elevation: across the ray, the bound of a region of these walls is a
     // long thin parallelogram (its height, 25000 times its width, seen sideways) that neither
-    // fixed plane through the ray separates from it until the regions are tiny, so ~1e6 regions
-    // survive per ray at the default depth (a hang for a whole image). Testing also the normals
-    // of the eps_u and eps_v generators in the plane across the ray (where a 2D zonotope's
-    // separating lines lie) brings this ray from 24689 regions to 1789 at depth 9.
+    // fixed plane through the ray separates from it until the regions are tiny: 24689 regions at
+    // depth 9 and ~1e6 at the default depth. The intersector also tests the normals of the eps_u
+    // and eps_v generators in the plane across the ray (where a 2D zonotope's separating lines
+    // lie), which this checks.
     StiffScene scene = LoadStiff("amp1000");
     HeightField field(scene.primitive(), glm::dvec3(0));
     const glm::dvec3 target = field.Surface(0.3, 0.6);
     const double e = M_PI / 3;
     const glm::dvec3 dir(std::cos(e) * 0.6, std::cos(e) * 0.8, std::sin(e));
-    auto intersector = renderer::MakePatchIntersector(scene.primitive().patch, scene.primitive().bound,
+    auto intersector = renderer::MakeSurfaceIntersector(scene.primitive().base, scene.primitive().bound,
                                                       glm::dvec3(0), renderer::BoundMode::Affine, 9);
     Ray ray{target + 3000.0 * dir, -dir};
     Hit hit;
@@ -472,8 +472,7 @@ TEST_CASE("stiff: sqrt whose argument reaches 0 inside a region", "[renderer][st
 }
 
 // log(r) and sin(x)/x are unbounded over every region that touches their singular point, down to
-// the depth limit. These two cases check for missed hits only; the false hits those regions cause
-// today are the [!mayfail] case below (docs/stiff.md, "Known problems").
+// the depth limit. These two cases check for missed hits only; false hits are the case below.
 TEST_CASE("stiff: log whose argument reaches 0 inside a region", "[renderer][stiff]") {
     RunSingular("singular-log", 45, false);
 }
@@ -483,10 +482,12 @@ TEST_CASE("stiff: division by a range containing 0", "[renderer][stiff]") {
 }
 
 TEST_CASE("stiff: unbounded regions at a singular point give no hit to rays that miss the surface",
-          "[renderer][stiff][!mayfail]") {
+          "[renderer][stiff]") {
     // The depth-limited unbounded region at the singular point is reported as a possible hit at
-    // the ray's closest approach to the surface point at its centre, however far the ray passes:
-    // camera rays that pass over the patch above every height the shader reaches still hit.
+    // the ray's closest approach to the surface point at its centre. It must only be reached by
+    // rays that cross the box of the region's bounded coordinates (x and y here: only z runs off
+    // to infinity); before that test, camera rays passing over the patch above every height the
+    // shader reaches still hit.
     for (const char* name : {"singular-log", "singular-div"}) {
         StiffScene scene = LoadStiff(name);
         auto [hLo, hHi] = SingularHeights(name);
@@ -507,10 +508,11 @@ TEST_CASE("stiff: unbounded regions at a singular point give no hit to rays that
     }
 }
 
-TEST_CASE("stiff: a singular line costs regions linear in the depth limit", "[renderer][stiff][!mayfail]") {
-    // log|s - 0.4375| is unbounded over every region touching the line s = 0.4375: all of them
-    // survive the ray test (their z is unbounded, so neither ray plane can exclude them), and
-    // the work per ray doubles with every level, which at the default depth of 24 is a hang.
+TEST_CASE("stiff: a singular line costs regions linear in the depth limit", "[renderer][stiff]") {
+    // log|s - 0.4375| is unbounded over every region touching the line s = 0.4375: their z is
+    // unbounded, so neither ray plane can exclude them. Unless the ray is tested against the box
+    // of their bounded x and y, all survive and the work per ray doubles with every level, which
+    // at the default depth of 24 is a hang.
     compiler::CompiledShader s =
         test::CompileOrThrow("displacement line() { P += 0.05 * log(abs(s - 0.4375)) * normalize(N); }");
     const renderer::BilinearPatch square = renderer::BilinearPatch::UnitSquare();
@@ -519,7 +521,7 @@ TEST_CASE("stiff: a singular line costs regions linear in the depth limit", "[re
     Ray ray{{0.2, 0.3, 2.0}, glm::normalize(glm::dvec3(0.3, 0.2, -1.0))};
     uint64_t regions[2];
     for (int i = 0; i < 2; ++i) {
-        auto intersector = renderer::MakePatchIntersector(square, bound, glm::dvec3(0), renderer::BoundMode::Affine,
+        auto intersector = renderer::MakeSurfaceIntersector(square, bound, glm::dvec3(0), renderer::BoundMode::Affine,
                                                           8 + 2 * i);
         Hit hit;
         IntersectStats stats;
@@ -548,7 +550,7 @@ TEST_CASE("stiff: the patch placed 1e6 units from the origin", "[renderer][stiff
     near.camera.worldToCamera = near.camera.worldToCamera * glm::translate(glm::dmat4(1.0), offset);
     StiffScene moved = PrepareDesc(near, scene.options);
     CaseRunner runNear(moved, -0.06, 0.06);
-    auto farIntersector = renderer::MakePatchIntersector(scene.primitive().patch, scene.primitive().bound,
+    auto farIntersector = renderer::MakeSurfaceIntersector(scene.primitive().base, scene.primitive().bound,
                                                          scene.camera->Position(), renderer::BoundMode::Affine, 24);
     int compared = 0;
     for (int j = 0; j < 8; ++j)
@@ -627,4 +629,25 @@ TEST_CASE("stiff: a bad number in a RIB parameter list names the parameter", "[r
           "\"from\" of LightSource)");
     // Without a parameter name before it, the message is the lexer's alone.
     CHECK(errorOf("Translate 0 0 1e999\n") == "t.rib:1: error: number '1e999' is out of range");
+}
+
+TEST_CASE("stiff: a ray stops at its region budget when every bound overflows", "[renderer][stiff]") {
+    // Heights near 1e140 over a unit patch: every bound is finite, but too large to measure in the
+    // ray frame (its widths squared overflow), so no region can be excluded or accepted and the
+    // search would visit 4^24 regions. The budget ends it with an uncertified possible hit.
+    compiler::CompiledShader s =
+        test::CompileOrThrow("displacement huge() { P += 1e140 * sin(40 * s) * normalize(N); }");
+    const renderer::BilinearPatch square = renderer::BilinearPatch::UnitSquare();
+    std::vector<std::string> errors;
+    const vm::Program bound = *compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
+    auto intersector = renderer::MakeSurfaceIntersector(square, bound, glm::dvec3(0), renderer::BoundMode::Affine,
+                                                        24, renderer::PruneOptions(), 5000);
+    Ray ray{{0.2, 0.3, 2.0}, glm::normalize(glm::dvec3(0.3, 0.2, -1.0))};
+    Hit hit;
+    IntersectStats stats;
+    const bool found = intersector->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats);
+    INFO("regions bounded: " << stats.regionsBounded);
+    CHECK(stats.budgetExhausted == 1);
+    CHECK(stats.regionsBounded <= 5000 + 4);
+    if (found) CHECK(hit.depthLimited);
 }

@@ -313,8 +313,8 @@ TEST_CASE("the intersector finds the same hits with pruning as without", "[vm][p
         compiler::CompileResult r = compiler::CompileFile(test::SourceDir() + "/shaders/" + name + ".sl");
         REQUIRE(r.ok());
         const vm::Program& program = r.shader->bound;
-        auto pruning = renderer::MakePatchIntersector(square, program, glm::dvec3(0, 0, 5), renderer::BoundMode::Affine, 24, on);
-        auto plain = renderer::MakePatchIntersector(square, program, glm::dvec3(0, 0, 5), renderer::BoundMode::Affine, 24, off);
+        auto pruning = renderer::MakeSurfaceIntersector(square, program, glm::dvec3(0, 0, 5), renderer::BoundMode::Affine, 24, on);
+        auto plain = renderer::MakeSurfaceIntersector(square, program, glm::dvec3(0, 0, 5), renderer::BoundMode::Affine, 24, off);
         renderer::IntersectStats withStats, withoutStats;
         for (int i = 0; i < 20; ++i) {
             // Aimed from above at a surface point, some rays steep, some grazing.
