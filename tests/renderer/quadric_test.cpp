@@ -235,3 +235,65 @@ TEST_CASE("quadrics: a displacement shader's bounds over a placed quadric contai
         }
     }
 }
+
+TEST_CASE("quadrics: the normal direction is along dPdu x dPdv and stays defined at poles and apexes",
+          "[renderer][quadric]") {
+    test::Rng rng(13);
+    for (const Quadric& q : Examples()) {
+        INFO(Quadric::Name(q.kind));
+        for (int i = 0; i < 100; ++i) {
+            const double u = rng.uniform(0, 1), v = rng.uniform(0.01, 0.99);
+            const renderer::SurfaceFrame<double> f = renderer::QuadricFrame<double>(q, u, v);
+            const vm::Vec3<double> cross = vm::Cross(f.dPdu, f.dPdv);
+            const glm::dvec3 c(cross.x, cross.y, cross.z);
+            if (!f.hasNormalDirection) {
+                CHECK(q.kind == Quadric::Kind::Hyperboloid);
+                continue;
+            }
+            const glm::dvec3 n(f.normalDirection.x, f.normalDirection.y, f.normalDirection.z);
+            // Parallel and with the same orientation: the unit vectors agree.
+            const glm::dvec3 a = glm::normalize(c), b = glm::normalize(n);
+            CHECK_THAT(glm::dot(a, b), WithinAbs(1.0, 1e-9));
+        }
+    }
+    // At the sphere's poles and the cone's apex the tangents' cross product vanishes; the normal
+    // direction is the pole's axis and the cone's (h, 0, r) turned.
+    Quadric sphere = Make(Quadric::Kind::Sphere);
+    for (double v : {0.0, 1.0}) {
+        const renderer::SurfaceFrame<double> f = renderer::QuadricFrame<double>(sphere, 0.3, v);
+        const glm::dvec3 n = glm::normalize(glm::dvec3(f.normalDirection.x, f.normalDirection.y, f.normalDirection.z));
+        CheckPoint(n, {0, 0, v == 0 ? -1 : 1});
+    }
+    Quadric cone = Make(Quadric::Kind::Cone);
+    cone.radius = 1, cone.height = 2;
+    const renderer::SurfaceFrame<double> apex = renderer::QuadricFrame<double>(cone, 0, 1.0);
+    CheckPoint({apex.normalDirection.x, apex.normalDirection.y, apex.normalDirection.z}, {2, 0, 1});
+    // Over a region that contains the north pole, the bounded unit normal of a shader is finite.
+    const compiler::CompiledShader shader =
+        test::CompileOrThrow("displacement d() { P += 0.1 * normalize(N); }");
+    vm::Interpreter<vm::Affine> interp(shader.bound);
+    const vm::Vec3<vm::Affine> p = renderer::EvaluateOnSurface(
+        interp, renderer::BaseSurface(renderer::PlacedQuadric{sphere, glm::dmat4(1.0)}), 0, 1, 0.99, 1,
+        glm::dvec3(0, 0, 5), *shader.bound.findOutput("P"));
+    for (int c = 0; c < 3; ++c) CHECK(!RangeOf(p[c]).isUnbounded());
+    CHECK(RangeOf(p.z).contains(1.1));
+}
+
+TEST_CASE("quadrics: normals follow the placed tangents' cross product, and flipNormal turns them",
+          "[renderer][quadric]") {
+    const compiler::CompiledShader shader = test::CompileOrThrow("displacement d() { P += 0.5 * normalize(N); }");
+    vm::Interpreter<double> interp(shader.bound);
+    const vm::ProgramOutput& out = *shader.bound.findOutput("P");
+    Quadric sphere = Make(Quadric::Kind::Sphere);
+    const glm::dmat4 mirror = glm::scale(glm::dmat4(1.0), glm::dvec3(-1, 1, 1));
+    for (bool flip : {false, true})
+        for (bool mirrored : {false, true}) {
+            renderer::BaseSurface base(renderer::PlacedQuadric{sphere, mirrored ? mirror : glm::dmat4(1.0)}, flip);
+            const vm::Vec3<double> p = renderer::EvaluateOnSurface(interp, base, 0.1, 0.1, 0.4, 0.4, glm::dvec3(0), out);
+            const double radius = glm::length(glm::dvec3(p.x, p.y, p.z));
+            // Outward, the point moves from radius 1 to 1.5; inward to 0.5. A mirror turns the
+            // world tangents' cross product in (the RIB reader's orientation rule then sets
+            // flipNormal, scene.h), and the normal follows it.
+            CHECK_THAT(radius, WithinAbs(flip != mirrored ? 0.5 : 1.5, 1e-12));
+        }
+}
