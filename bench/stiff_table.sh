@@ -40,6 +40,7 @@ cases=(
     "far-distance|stiff: the patch seen from 1e6 units away|camera 1e6 units away, field of view 7e-5 degree"
     "grazing|stiff: grazing rays within 0.1 degree of the surface|every camera ray meets the plane at 0 to 0.1 degree"
     "tolerance|stiff: tolerance 1e-4 pixel|wave.sl rendered with --tolerance 1e-4"
+    "sphere-poles|stiff: a displaced sphere seen at its poles|lumps of noise on a sphere seen at its north pole, where dPdu and dPdu x dPdv vanish"
 )
 
 field() {  # field NAME JSON
