@@ -9,9 +9,12 @@ namespace affray::renderer {
 Camera::Camera(const CameraDesc& desc) : m_desc(desc) {
     m_cameraToWorld = glm::inverse(desc.worldToCamera);
 
-    // Default screen window: the shorter image axis spans [-1, 1].
-    double aspect = desc.xres * desc.pixelAspect / desc.yres;
-    if (aspect >= 1) {
+    // Default screen window: the shorter axis of the frame spans [-1, 1].
+    double aspect = desc.frameAspectRatio.value_or(desc.xres * desc.pixelAspect / desc.yres);
+    if (desc.screenWindow) {
+        const glm::dvec4& w = *desc.screenWindow;
+        m_left = w.x, m_right = w.y, m_bottom = w.z, m_top = w.w;
+    } else if (aspect >= 1) {
         m_left = -aspect, m_right = aspect, m_bottom = -1, m_top = 1;
     } else {
         m_left = -1, m_right = 1, m_bottom = -1 / aspect, m_top = 1 / aspect;

@@ -1,9 +1,12 @@
 // renderer/camera.h: camera rays from raster positions, following RenderMan's camera model.
-// Owns the raster -> screen -> camera -> world mapping for the default screen window (RI Spec
-// 3.2): frame aspect a = xres * pixelAspect / yres; the screen window is [-a,a] x [-1,1] when
-// a >= 1, else [-1,1] x [-1/a,1/a]. Perspective: screen coordinate 1 lies at tan(fov/2) on the
-// plane z = 1 of camera space (so fov spans the shorter image axis). Orthographic: screen
-// coordinates are camera x, y and every ray runs along +z. Camera space is left-handed: +x right,
+// Owns the raster -> screen -> camera -> world mapping (RI Spec 3.2): the frame aspect a is
+// FrameAspectRatio if given, else xres * pixelAspect / yres; the screen window is ScreenWindow if
+// given, else [-a,a] x [-1,1] when a >= 1 and [-1,1] x [-1/a,1/a] otherwise. The screen window
+// always maps onto the whole raster (as PRMan does): a frame aspect that differs from the image's
+// stretches the picture rather than letterboxing it. CropWindow and Clipping are the renderer's.
+// Perspective: screen coordinate 1 lies at tan(fov/2) on the plane z = 1 of camera space (so with
+// the default window fov spans the shorter image axis). Orthographic: screen coordinates are
+// camera x, y and every ray runs along +z. Camera space is left-handed: +x right,
 // +y up, +z into the scene. Raster (0,0) is the top-left corner of the image.
 #pragma once
 
@@ -29,8 +32,8 @@ inline std::string ToString(const Ray& r) {
 /// threads.
 class Camera {
   public:
-    /// `desc.worldToCamera` must be invertible and xres, yres, pixelAspect positive (the RIB reader
-    /// guarantees all three).
+    /// `desc.worldToCamera` must be invertible, xres, yres, pixelAspect and frameAspectRatio
+    /// positive and the screen window not empty (the RIB reader guarantees all of these).
     explicit Camera(const CameraDesc& desc);
 
     /// The world-space ray through raster position (rasterX, rasterY): (0,0) is the top-left

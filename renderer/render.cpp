@@ -1,7 +1,8 @@
-// renderer/render.cpp: scene preparation and the pixel loop.
-// Each thread owns its intersectors and shading interpreters (they hold registers), takes rows
-// from a shared counter, and writes only its own pixels: the image does not depend on the
-// thread count, and the statistics are sums and maxima, which do not either.
+// renderer/render.cpp: scene preparation and the tile loop.
+// Each thread owns its intersectors and shading interpreters (they hold registers), takes tiles
+// from a shared counter, traces the samples the film asks for (renderer/film.h) and resolves
+// only its tile's pixels: the image does not depend on the thread count or the tile order, and
+// the statistics are sums and maxima, which do not either.
 #include "renderer/render.h"
 
 #include <atomic>
@@ -12,6 +13,8 @@
 
 #include "compiler/shader_cache.h"
 #include "renderer/camera.h"
+#include "renderer/film.h"
+#include "renderer/progress.h"
 #include "renderer/shade.h"
 
 namespace affray::renderer {
@@ -55,6 +58,7 @@ struct ThreadState {
     std::vector<std::unique_ptr<SurfaceIntersector>> intersectors;
     std::vector<std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> shaders;
     IntersectStats cameraStats, shadowStats;
+    uint64_t cameraRays = 0;
 
     ThreadState(const PreparedScene& scene, const RenderOptions& options, const glm::dvec3& eye) {
         for (const Primitive& prim : scene.primitives) {
@@ -252,7 +256,7 @@ compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveDesc& patch) {
 }  // namespace
 
 std::string RenderStats::ToJson() const {
-    double mean = camera.rays ? double(camera.regionsBounded) / double(camera.rays) : 0.0;
+    double mean = cameraRays ? double(camera.regionsBounded) / double(cameraRays) : 0.0;
     double shadowMean = shadow.rays ? double(shadow.regionsBounded) / double(shadow.rays) : 0.0;
     char buf[512];
     std::snprintf(buf, sizeof buf,
@@ -260,7 +264,7 @@ std::string RenderStats::ToJson() const {
                   "\"regions_per_ray_mean\":%.2f,\"regions_per_ray_max\":%llu,\"depth_limit_hits\":%llu,"
                   "\"max_certified_error\":%.6g,\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f,"
                   "\"budget_exhausted_rays\":%llu}",
-                  wallSeconds, width, height, static_cast<unsigned long long>(camera.rays), mean,
+                  wallSeconds, width, height, static_cast<unsigned long long>(cameraRays), mean,
                   static_cast<unsigned long long>(camera.maxRegionsPerRay),
                   static_cast<unsigned long long>(camera.depthLimitHits + shadow.depthLimitHits),
                   std::max(camera.maxHitError, 0.0), static_cast<unsigned long long>(shadow.rays), shadowMean,
@@ -373,47 +377,95 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
     return true;
 }
 
+namespace {
+
+/// The range of t over which a camera ray lies between the clipping planes (camera-space depths
+/// near and far); empty if the ray runs parallel to them outside.
+void ClipRange(const CameraDesc& camera, const Ray& ray, double* tMin, double* tMax) {
+    const double z0 = (camera.worldToCamera * glm::dvec4(ray.origin, 1.0)).z;
+    const double dz = (camera.worldToCamera * glm::dvec4(ray.dir, 0.0)).z;
+    if (dz > 0) {
+        *tMin = std::max(0.0, (camera.nearClip - z0) / dz);
+        *tMax = (camera.farClip - z0) / dz;
+    } else {
+        // Along the image plane (orthographic edge cases): all or nothing.
+        const bool inside = z0 >= camera.nearClip && z0 <= camera.farClip;
+        *tMin = 0;
+        *tMax = inside ? INFINITY : -1;
+    }
+}
+
+/// Traces and shades one camera sample.
+SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camera& camera, const glm::dvec2& raster,
+                        const Tolerance& tol, const glm::dvec3& eye) {
+    SampleValue value;
+    const Ray ray = camera.GenerateRay(raster.x, raster.y);
+    double tMin, tMax;
+    ClipRange(scene.desc.camera, ray, &tMin, &tMax);
+    ++ts.cameraRays;
+    if (!(tMin <= tMax)) return value;
+    const uint64_t before = ts.cameraStats.regionsBounded;
+    const NearestHit nh = TraceNearest(scene, ts, ray, tMin, tMax, tol, ts.cameraStats, eye);
+    value.cost = static_cast<int64_t>(ts.cameraStats.regionsBounded - before);
+    if (nh.primitive < 0) return value;
+    const HitPoint at = EvaluateHit(scene, ts, ray, nh, eye);
+    value.rgb = ShadeHit(scene, ts, ray, nh, at, tol);
+    value.alpha = 1;
+    value.z = (scene.desc.camera.worldToCamera * glm::dvec4(ray.origin + nh.hit.t * ray.dir, 1.0)).z;
+    value.N = at.N;
+    value.P = at.P;
+    value.st = {nh.hit.u, nh.hit.v};
+    value.err = nh.hit.error;
+    return value;
+}
+
+}  // namespace
+
 void RenderImage(const PreparedScene& scene, const RenderOptions& options, ImageBuffer* image, RenderStats* stats) {
     auto start = std::chrono::steady_clock::now();
     const CameraDesc& cam = scene.desc.camera;
-    Camera camera(cam);
+    const Camera camera(cam);
     const glm::dvec3 eye = camera.Position();
-    image->width = cam.xres;
-    image->height = cam.yres;
-    image->rgba.assign(static_cast<size_t>(cam.xres) * cam.yres * 4, 0.0f);
-    image->extraChannels.clear();
+    DisplayChannels channels;
+    std::string modeError;
+    ParseDisplayMode(scene.desc.displayMode, &channels, &modeError);  // checked by the RIB reader
+    const Film film(cam, channels);
+    *image = film.MakeImage();
     const Tolerance tol{options.tolerancePixels * camera.PixelWidth(), options.tolerancePixels * camera.PixelAngle()};
+    const std::vector<PixelRange> tiles = film.Tiles(std::max(1, options.tileSize));
+    Progress progress(static_cast<int>(tiles.size()), stderr, options.showProgress);
 
-    int nThreads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-    std::atomic<int> nextRow{0};
+    const int nThreads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    std::atomic<size_t> nextTile{0};
     std::vector<IntersectStats> cameraStats(nThreads), shadowStats(nThreads);
+    std::vector<uint64_t> cameraRays(nThreads);
     auto worker = [&](int index) {
         ThreadState ts(scene, options, eye);
-        for (int y = nextRow++; y < cam.yres; y = nextRow++) {
-            for (int x = 0; x < cam.xres; ++x) {
-                Ray ray = camera.GenerateRay(x + 0.5, y + 0.5);
-                NearestHit nh = TraceNearest(scene, ts, ray, 0.0, INFINITY, tol, ts.cameraStats, eye);
-                float* px = &image->rgba[(static_cast<size_t>(y) * cam.xres + x) * 4];
-                if (nh.primitive < 0) continue;
-                glm::dvec3 c = ShadeHit(scene, ts, ray, nh, EvaluateHit(scene, ts, ray, nh, eye), tol);
-                px[0] = static_cast<float>(c.r);
-                px[1] = static_cast<float>(c.g);
-                px[2] = static_cast<float>(c.b);
-                px[3] = 1.0f;
-            }
+        std::vector<Sample> samples;
+        std::vector<SampleValue> values;
+        for (size_t i = nextTile++; i < tiles.size(); i = nextTile++) {
+            film.TileSamples(tiles[i], &samples);
+            values.resize(samples.size());
+            for (size_t k = 0; k < samples.size(); ++k)
+                values[k] = TraceSample(scene, ts, camera, samples[k].raster, tol, eye);
+            film.ResolveTile(tiles[i], samples, values, image);
+            progress.TileDone();
         }
         cameraStats[index] = ts.cameraStats;
         shadowStats[index] = ts.shadowStats;
+        cameraRays[index] = ts.cameraRays;
     };
     std::vector<std::thread> threads;
     for (int i = 1; i < nThreads; ++i) threads.emplace_back(worker, i);
     worker(0);
     for (std::thread& t : threads) t.join();
+    progress.Finish();
 
     *stats = RenderStats();
     for (int i = 0; i < nThreads; ++i) {
         stats->camera.Merge(cameraStats[i]);
         stats->shadow.Merge(shadowStats[i]);
+        stats->cameraRays += cameraRays[i];
     }
     stats->width = cam.xres;
     stats->height = cam.yres;

@@ -20,11 +20,14 @@ struct RenderOptions {
     BoundMode bounds = BoundMode::Affine;
     int maxDepth = 24;
     uint64_t regionBudget = kDefaultRegionBudget;  // per ray (renderer/intersect.h)
+    int tileSize = 32;                             // pixels per side
+    bool showProgress = false;                     // a progress bar on stderr (renderer/progress.h)
 };
 
 struct RenderStats {
     double wallSeconds = 0;
-    IntersectStats camera;  // camera rays only
+    uint64_t cameraRays = 0;  // camera samples traced (a tile's filter margin is traced again)
+    IntersectStats camera;  // camera rays only; its `rays` counts ray-primitive tests
     IntersectStats shadow;  // shadow rays
     int width = 0, height = 0;
 
@@ -68,7 +71,8 @@ struct PreparedScene {
 bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,
                   const lang::PreprocessOptions& preprocess, PreparedScene* out, std::string* error);
 
-/// Renders the prepared scene into `image` (RGBA, row 0 at the top).
+/// Renders the prepared scene into `image`: full resolution, RGBA plus the AOVs the Display mode
+/// asks for, pixels outside the CropWindow zero (renderer/film.h), row 0 at the top.
 void RenderImage(const PreparedScene& scene, const RenderOptions& options, ImageBuffer* image, RenderStats* stats);
 
 }  // namespace affray::renderer

@@ -1,8 +1,10 @@
 // renderer/rib.cpp: the RIB request dispatcher; builds a SceneDesc from requests.
-// Owns the meaning of each request (RI Spec 3.2) and the graphics state: the current transform
-// (CTM), color, surface and displacement, saved and restored by the Begin/End blocks. To add a
-// request: write a handler, list it in Dispatch(), and take it out of kIgnored / kUnsupported.
-// Handlers return false after Fail(); the first error ends the parse.
+// Owns the meaning of each request (RI Spec 3.2), the options (here) and the graphics state: the
+// current transform (CTM), color, surface, displacement, sides and orientation, saved and
+// restored by the Begin/End blocks. To add a request: write a handler (attributes and lights in
+// rib_attributes.cpp, geometry in rib_geometry.cpp), list it in Dispatch(), and take it out of
+// kIgnored / kUnsupported. Handlers return false after Fail(); the first error ends the parse.
+// Longer than most files: the options are many small handlers that share the placement rules.
 //
 // Transform convention: RenderMan premultiplies row vectors, so "concatenate T" is, in GLM's
 // column-vector terms, CTM = CTM * T (the last transform given applies to the object first). A RIB
@@ -30,28 +32,30 @@ namespace {
 // RI 3.2 requests whose absence changes only appearance, sampling or bookkeeping: skipped with one
 // warning per name.
 constexpr std::string_view kIgnored[] = {
-    "ArchiveRecord", "AreaLightSource", "Atmosphere", "Attribute", "Basis", "Begin", "Bound",
-    "Clipping", "ClippingPlane", "ColorSamples", "CoordinateSystem", "CropWindow", "Declare",
-    "DepthOfField", "Detail", "DetailRange", "End", "ErrorHandler", "Exposure", "Exterior",
-    "FrameAspectRatio", "GeometricApproximation", "Hider", "Illuminate", "Imager", "Interior",
-    "MakeBump", "MakeCubeFaceEnvironment", "MakeLatLongEnvironment", "MakeShadow", "MakeTexture",
-    "Matte", "Opacity", "Option", "Orientation", "PixelFilter", "PixelSamples", "PixelVariance",
-    "Quantize", "RelativeDetail", "ReverseOrientation", "ScreenWindow", "ShadingInterpolation",
-    "ShadingRate", "Shutter", "Sides", "TextureCoordinates", "TransformPoints", "TrimCurve",
+    "ArchiveRecord", "AreaLightSource", "Atmosphere", "Basis", "Begin", "Bound", "ClippingPlane",
+    "ColorSamples", "Declare", "DepthOfField", "Detail", "DetailRange", "End", "ErrorHandler",
+    "Exterior", "GeometricApproximation", "Hider", "Illuminate", "Imager", "Interior", "MakeBump",
+    "MakeCubeFaceEnvironment", "MakeLatLongEnvironment", "MakeShadow", "MakeTexture", "Matte",
+    "PixelVariance", "Quantize", "RelativeDetail", "ShadingInterpolation", "ShadingRate",
+    "Shutter", "TextureCoordinates", "TransformPoints", "TrimCurve",
 };
 
 // RI 3.2 requests that create or move geometry: ignoring them would render the wrong scene, so
 // they are errors until implemented.
 constexpr std::string_view kUnsupported[] = {
-    "Blobby", "Cone", "CoordSysTransform", "Curves", "Cylinder", "Deformation", "Disk",
-    "GeneralPolygon", "Geometry", "Hyperboloid", "MotionBegin", "MotionEnd", "NuPatch",
-    "ObjectBegin", "ObjectEnd", "ObjectInstance", "Paraboloid", "PatchMesh", "Perspective",
-    "Points", "PointsGeneralPolygons", "PointsPolygons", "Polygon", "Procedural", "ReadArchive",
-    "Skew", "SolidBegin", "SolidEnd", "Sphere", "SubdivisionMesh", "Torus",
+    "Blobby", "CoordSysTransform", "Curves", "Deformation", "GeneralPolygon", "Geometry",
+    "MotionBegin", "MotionEnd", "NuPatch", "ObjectBegin", "ObjectEnd", "ObjectInstance",
+    "PatchMesh", "Perspective", "Points", "PointsGeneralPolygons", "PointsPolygons", "Polygon",
+    "Procedural", "ReadArchive", "Skew", "SolidBegin", "SolidEnd", "SubdivisionMesh",
 };
 // clang-format on
 
 constexpr int kMaxResolution = 65536;
+constexpr int kMaxPixelSamples = 64;  // per axis: 4096 rays a pixel is already far past useful
+
+// The channel groups a Display mode may list (see SceneDesc::displayMode).
+constexpr std::string_view kDisplayGroups[] = {
+    "rgb", "rgba", "rgbz", "rgbaz", "r", "g", "b", "a", "z", "Z", "N", "P", "st", "cost", "err"};
 
 bool ContainsP(const std::string_view* begin, const std::string_view* end, std::string_view name) {
     return std::find(begin, end, name) != end;
@@ -96,6 +100,14 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"Format", &RibParser::DoFormat},
         {"Projection", &RibParser::DoProjection},
         {"Display", &RibParser::DoDisplay},
+        {"FrameAspectRatio", &RibParser::DoFrameAspectRatio},
+        {"ScreenWindow", &RibParser::DoScreenWindow},
+        {"CropWindow", &RibParser::DoCropWindow},
+        {"Clipping", &RibParser::DoClipping},
+        {"PixelSamples", &RibParser::DoPixelSamples},
+        {"PixelFilter", &RibParser::DoPixelFilter},
+        {"Exposure", &RibParser::DoExposure},
+        {"Option", &RibParser::DoOption},
         {"FrameBegin", &RibParser::DoFrameBegin},
         {"FrameEnd", &RibParser::DoFrameEnd},
         {"WorldBegin", &RibParser::DoWorldBegin},
@@ -111,10 +123,23 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"Rotate", &RibParser::DoRotate},
         {"Scale", &RibParser::DoScale},
         {"Color", &RibParser::DoColor},
+        {"Opacity", &RibParser::DoOpacity},
+        {"Attribute", &RibParser::DoAttribute},
+        {"Sides", &RibParser::DoSides},
+        {"ReverseOrientation", &RibParser::DoReverseOrientation},
+        {"Orientation", &RibParser::DoOrientation},
+        {"CoordinateSystem", &RibParser::DoCoordinateSystem},
         {"Surface", &RibParser::DoSurface},
         {"Displacement", &RibParser::DoDisplacement},
         {"LightSource", &RibParser::DoLightSource},
         {"Patch", &RibParser::DoPatch},
+        {"Sphere", &RibParser::DoSphere},
+        {"Cylinder", &RibParser::DoCylinder},
+        {"Cone", &RibParser::DoCone},
+        {"Disk", &RibParser::DoDisk},
+        {"Torus", &RibParser::DoTorus},
+        {"Hyperboloid", &RibParser::DoHyperboloid},
+        {"Paraboloid", &RibParser::DoParaboloid},
         {"version", &RibParser::DoVersion},
     };
     if (auto it = kHandlers.find(r.name); it != kHandlers.end()) return (this->*(it->second))(r);
@@ -167,6 +192,12 @@ bool RibParser::FiniteP(const glm::dvec3& v) {
 bool RibParser::BeforeWorld(const RibRequest& r) {
     if (!m_worldSeen) return true;
     return Fail(r.line, Quote(r.name) + " is an option and must come before 'WorldBegin'");
+}
+
+glm::dmat4 RibParser::ObjectToCamera() const {
+    // After WorldEnd the CTM is the camera transform again, relative to camera space as before.
+    bool inWorld = m_worldSeen && !m_worldEnded;
+    return inWorld ? m_scene.camera.worldToCamera * m_state.ctm : m_state.ctm;
 }
 
 bool RibParser::InsideWorld(const RibRequest& r) {
@@ -272,12 +303,164 @@ bool RibParser::DoDisplay(const RibRequest& r) {
         return true;
     }
     if (name.empty()) return Fail(r.args[0].line, "'Display' name must not be empty");
+    // The mode is checked here so that a typo fails before a long render, not after it.
+    const std::string& mode = r.args[2].strings[0];
+    for (size_t begin = 0;;) {
+        size_t end = std::min(mode.find(',', begin), mode.size());
+        std::string_view group = std::string_view(mode).substr(begin, end - begin);
+        if (!ContainsP(std::begin(kDisplayGroups), std::end(kDisplayGroups), group))
+            return Fail(r.args[2].line,
+                        "'Display' mode " + Quote(mode) + " has an unknown channel group " +
+                            Quote(std::string(group)) +
+                            " (expected rgb, rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost "
+                            "or err, separated by commas)");
+        if (end == mode.size()) break;
+        begin = end + 1;
+    }
     m_scene.displayName = name;
     m_scene.displayType = r.args[1].strings[0];
-    m_scene.displayMode = r.args[2].strings[0];
+    m_scene.displayMode = mode;
     const std::string& type = m_scene.displayType;
     if (type != "file" && type != "openexr" && type != "exr")
         Warn(r.line, "display type " + Quote(type) + " is not supported; writing an OpenEXR file");
+    return true;
+}
+
+bool RibParser::DoFrameAspectRatio(const RibRequest& r) {
+    double a;
+    if (!BeforeWorld(r) || !Numbers(r, 1, "frameratio", &a)) return false;
+    if (!(a > 0))
+        return Fail(r.line, "'FrameAspectRatio' must be positive, got " + FormatNumber(a));
+    m_scene.camera.frameAspectRatio = a;
+    return true;
+}
+
+bool RibParser::DoScreenWindow(const RibRequest& r) {
+    double v[4];
+    if (!BeforeWorld(r) || !Numbers(r, 4, "left right bottom top", v)) return false;
+    // A reversed window mirrors the image, which RI allows; an empty one maps nothing.
+    if (v[0] == v[1] || v[2] == v[3])
+        return Fail(r.line, "'ScreenWindow' must have a nonzero width and height, got " +
+                                FormatNumber(v[0]) + " " + FormatNumber(v[1]) + " " +
+                                FormatNumber(v[2]) + " " + FormatNumber(v[3]));
+    m_scene.camera.screenWindow = glm::dvec4(v[0], v[1], v[2], v[3]);
+    return true;
+}
+
+bool RibParser::DoCropWindow(const RibRequest& r) {
+    double v[4];
+    if (!BeforeWorld(r) || !Numbers(r, 4, "xmin xmax ymin ymax", v)) return false;
+    const char* axes[2] = {"x", "y"};
+    for (int i = 0; i < 2; ++i) {
+        double lo = v[2 * i], hi = v[2 * i + 1];
+        if (!(lo >= 0 && lo < hi && hi <= 1))
+            return Fail(r.line, std::string("'CropWindow' needs 0 <= ") + axes[i] + "min < " +
+                                    axes[i] + "max <= 1, got " + FormatNumber(lo) + " " +
+                                    FormatNumber(hi));
+    }
+    m_scene.camera.cropWindow = glm::dvec4(v[0], v[1], v[2], v[3]);
+    return true;
+}
+
+bool RibParser::DoClipping(const RibRequest& r) {
+    double v[2];
+    if (!BeforeWorld(r) || !Numbers(r, 2, "near far", v)) return false;
+    if (!(v[0] > 0 && v[0] < v[1]))
+        return Fail(r.line, "'Clipping' needs 0 < near < far, got " + FormatNumber(v[0]) + " " +
+                                FormatNumber(v[1]));
+    m_scene.camera.nearClip = v[0];
+    m_scene.camera.farClip = v[1];
+    return true;
+}
+
+bool RibParser::DoPixelSamples(const RibRequest& r) {
+    double v[2];
+    if (!BeforeWorld(r) || !Numbers(r, 2, "xsamples ysamples", v)) return false;
+    const char* names[2] = {"xsamples", "ysamples"};
+    for (int i = 0; i < 2; ++i)
+        if (!(v[i] >= 1 && v[i] <= kMaxPixelSamples && v[i] == std::floor(v[i])))
+            return Fail(r.line, std::string("'PixelSamples' ") + names[i] +
+                                    " must be an integer from 1 to " +
+                                    std::to_string(kMaxPixelSamples) + ", got " +
+                                    FormatNumber(v[i]));
+    m_scene.camera.xsamples = static_cast<int>(v[0]);
+    m_scene.camera.ysamples = static_cast<int>(v[1]);
+    return true;
+}
+
+bool RibParser::DoPixelFilter(const RibRequest& r) {
+    std::string name;
+    if (!BeforeWorld(r) || !LeadingString(r, "a filter name", &name)) return false;
+    if (r.args.size() != 3 || r.args[1].isArray || !r.args[1].NumericP() || r.args[2].isArray ||
+        !r.args[2].NumericP())
+        return Fail(r.line, "'PixelFilter' expects a filter name and 2 numbers (xwidth ywidth)");
+    double xwidth = r.args[1].numbers[0], ywidth = r.args[2].numbers[0];
+    if (!(xwidth > 0 && ywidth > 0))
+        return Fail(r.line, "'PixelFilter' widths must be positive, got " + FormatNumber(xwidth) +
+                                " " + FormatNumber(ywidth));
+    FilterDesc& filter = m_scene.camera.filter;
+    if (name == "box") {
+        filter.kind = FilterDesc::Kind::Box;
+    } else {
+        // The other RI filters (triangle, catmull-rom, sinc) are all smooth low-pass filters too.
+        if (name != "gaussian")
+            Warn(r.line, "pixel filter " + Quote(name) + " is not supported; using \"gaussian\"");
+        filter.kind = FilterDesc::Kind::Gaussian;
+    }
+    filter.xwidth = xwidth;
+    filter.ywidth = ywidth;
+    return true;
+}
+
+bool RibParser::DoExposure(const RibRequest& r) {
+    double v[2];
+    if (!BeforeWorld(r) || !Numbers(r, 2, "gain gamma", v)) return false;
+    if (!(v[0] > 0 && v[1] > 0))
+        return Fail(r.line, "'Exposure' gain and gamma must be positive, got " +
+                                FormatNumber(v[0]) + " " + FormatNumber(v[1]));
+    m_scene.camera.exposureGain = v[0];
+    m_scene.camera.exposureGamma = v[1];
+    return true;
+}
+
+bool RibParser::DoOption(const RibRequest& r) {
+    std::string name;
+    std::vector<RibParam> params;
+    if (!BeforeWorld(r) || !LeadingString(r, "an option name", &name) || !ParamList(r, 1, &params))
+        return false;
+    for (const RibParam& p : params) {
+        if (name == "searchpath" && p.value.name == "shader") {
+            if (!SetShaderSearchPath(p)) return false;
+        } else {
+            Warn(r.line,
+                 "'Option \"" + name + "\" \"" + p.value.name + "\"' is not supported; ignored");
+        }
+    }
+    if (params.empty()) Warn(r.line, "'Option \"" + name + "\"' is not supported; ignored");
+    return true;
+}
+
+// Option "searchpath" "shader" "dir1:dir2": '&' is the previous path and '@' the default, which
+// is the empty list (the renderer's own default), so '@' adds nothing. Empty entries are
+// skipped. Relative directories are kept as written; the renderer resolves them against the RIB
+// file's directory.
+bool RibParser::SetShaderSearchPath(const RibParam& p) {
+    if (p.value.strings.size() != 1 || !p.value.numbers.empty())
+        return Fail(p.line, "'Option \"searchpath\"' parameter 'shader' expects 1 string");
+    const std::string& text = p.value.strings[0];
+    std::vector<std::string> path;
+    for (size_t begin = 0;;) {
+        size_t end = std::min(text.find(':', begin), text.size());
+        std::string dir = text.substr(begin, end - begin);
+        if (dir == "&")
+            path.insert(path.end(), m_scene.shaderSearchPath.begin(),
+                        m_scene.shaderSearchPath.end());
+        else if (!dir.empty() && dir != "@")
+            path.push_back(dir);
+        if (end == text.size()) break;
+        begin = end + 1;
+    }
+    m_scene.shaderSearchPath = std::move(path);
     return true;
 }
 
@@ -313,6 +496,9 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
         m_scene.lights.push_back(light);
     }
     m_cameraLights.clear();
+    for (const auto& [name, objectToCamera] : m_cameraCoordinateSystems)
+        m_scene.coordinateSystems[name] = cameraToWorld * objectToCamera;
+    m_cameraCoordinateSystems.clear();
     m_worldSeen = true;
     Begin(r, Block::World);
     m_state.ctm = glm::dmat4(1.0);

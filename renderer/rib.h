@@ -1,9 +1,14 @@
 // renderer/rib.h: reading a RIB file into a SceneDesc.
-// The reader follows the RenderMan Interface Specification 3.2 for the requests it implements
-// (camera, transforms, attribute scopes, lights, plastic/matte surfaces, displacement shaders,
-// bilinear patches). Other RI 3.2 requests are skipped with one warning per request name, unless
-// ignoring them would change the geometry (other primitives, Skew, Perspective, MotionBegin, ...),
-// which is an error. Messages are "file:line: error: message" / "file:line: warning: message".
+// The reader follows the RenderMan Interface Specification 3.2 for the requests it implements:
+// options (Format, Projection, FrameAspectRatio, ScreenWindow, CropWindow, Clipping, PixelSamples,
+// PixelFilter box/gaussian, Exposure, Display with its mode checked, Option "searchpath"
+// "shader"), transforms and Begin/End scopes, CoordinateSystem, attributes (Color, Opacity 1 1 1,
+// Surface constant/matte/metal/plastic, Displacement, Sides, ReverseOrientation, Orientation),
+// lights (ambientlight, distantlight, pointlight, spotlight) and geometry (bilinear Patch, Sphere,
+// Cylinder, Cone, Disk, Torus, Hyperboloid, Paraboloid). Other RI 3.2 requests, other Option and
+// Attribute names, and unknown shaders are skipped with one warning per name, unless ignoring them
+// would change the geometry (other primitives, Skew, Perspective, MotionBegin, ...), which is an
+// error. Messages are "file:line: error: message" / "file:line: warning: message".
 #pragma once
 
 #include <optional>

@@ -50,6 +50,36 @@ bool RibArgChecks::Numbers(const RibRequest& r, size_t count, const char* names,
     return true;
 }
 
+// Like Numbers, but a parameter list may follow: the numbers end at the first non-number.
+bool RibArgChecks::LeadingNumbers(const RibRequest& r, size_t count, const char* names, double* out,
+                                  size_t* next) {
+    std::vector<double> values;
+    const RibArg* bad = nullptr;
+    if (!r.args.empty() && r.args[0].isArray && r.args[0].NumericP()) {
+        values = r.args[0].numbers;
+        *next = 1;
+    } else {
+        size_t i = 0;
+        for (; i < r.args.size() && values.size() < count; ++i) {
+            const RibArg& arg = r.args[i];
+            if (arg.isArray || !arg.NumericP()) {
+                // A string ends the numbers early (a parameter list); an array is misplaced.
+                if (arg.isArray) bad = &arg;
+                break;
+            }
+            values.push_back(arg.numbers[0]);
+        }
+        *next = i;
+    }
+    if (bad || values.size() != count) {
+        std::string got = bad ? bad->Describe() : std::to_string(values.size());
+        return Fail(r.line, Quote(r.name) + " expects " + std::to_string(count) + " numbers (" +
+                                names + "), got " + got);
+    }
+    std::copy(values.begin(), values.end(), out);
+    return true;
+}
+
 bool RibArgChecks::LeadingString(const RibRequest& r, const char* what, std::string* out) {
     if (r.args.empty() || r.args[0].isArray || !r.args[0].StringsP())
         return Fail(r.args.empty() ? r.line : r.args[0].line,

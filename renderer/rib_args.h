@@ -31,6 +31,10 @@ class RibArgChecks {
     /// Exactly `count` numbers, bare or as one array (the RIB binding allows both). `names` lists
     /// them for the message ("dx dy dz").
     bool Numbers(const RibRequest& r, size_t count, const char* names, double* out);
+    /// `count` leading numbers, bare or as one array, that may be followed by a parameter list;
+    /// *next is set to the index of the first argument after them.
+    bool LeadingNumbers(const RibRequest& r, size_t count, const char* names, double* out,
+                        size_t* next);
     /// A bare string as the first argument; `what` describes it ("a light shader name").
     bool LeadingString(const RibRequest& r, const char* what, std::string* out);
     /// Token-value pairs from args[first] on. The last word of a token is the name, the words

@@ -1,7 +1,6 @@
-// renderer/rib_attributes.cpp: RIB requests for shading attributes, lights and geometry (Color,
-// Surface, Displacement, LightSource, Patch). Rules shared with rib.cpp are in rib_parser.h.
-// Positions are transformed to world space here, with the CTM current at the request.
-#include <array>
+// renderer/rib_attributes.cpp: RIB requests for attributes and lights (Color, Opacity, Surface,
+// Displacement, Attribute, Sides, ReverseOrientation, Orientation, LightSource). Rules shared with
+// rib.cpp are in rib_parser.h. Light positions are transformed with the CTM current at the request.
 #include <cmath>
 
 #include "renderer/rib_parser.h"
@@ -15,15 +14,82 @@ bool RibParser::DoColor(const RibRequest& r) {
     return true;
 }
 
+bool RibParser::DoOpacity(const RibRequest& r) {
+    double v[3];
+    if (!Numbers(r, 3, "r g b", v)) return false;
+    if (v[0] != 1 || v[1] != 1 || v[2] != 1)
+        Warn(r.line, "affray renders opaque surfaces only; Opacity ignored");
+    return true;
+}
+
+bool RibParser::DoAttribute(const RibRequest& r) {
+    std::string name;
+    std::vector<RibParam> params;
+    if (!LeadingString(r, "an attribute name", &name) || !ParamList(r, 1, &params)) return false;
+    // The intersector bounds displaced surfaces exactly, so no user bound is needed.
+    if (name == "displacementbound")
+        Warn(r.line,
+             "'Attribute \"displacementbound\"' is not needed: affray bounds displacement "
+             "exactly; ignored");
+    else
+        Warn(r.line, "'Attribute \"" + name + "\"' is not supported; ignored");
+    return true;
+}
+
+bool RibParser::DoSides(const RibRequest& r) {
+    double sides;
+    if (!Numbers(r, 1, "sides", &sides)) return false;
+    if (sides != 1 && sides != 2)
+        return Fail(r.line, "'Sides' must be 1 or 2, got " + FormatNumber(sides));
+    m_state.twoSided = sides == 2;
+    return true;
+}
+
+bool RibParser::DoReverseOrientation(const RibRequest& r) {
+    if (!NoArgs(r)) return false;
+    m_state.insideOut = !m_state.insideOut;
+    return true;
+}
+
+bool RibParser::DoOrientation(const RibRequest& r) {
+    std::string name;
+    if (!LeadingString(r, "an orientation", &name)) return false;
+    if (r.args.size() > 1) return Fail(r.line, "'Orientation' expects one string");
+    // "outside" and "inside" are relative to the handedness of the current coordinate system;
+    // "lh" and "rh" are absolute, so they are inside out where the system has the other one.
+    if (name == "lh")
+        m_state.insideOut = RightHandedP();
+    else if (name == "rh")
+        m_state.insideOut = !RightHandedP();
+    else if (name == "outside")
+        m_state.insideOut = false;
+    else if (name == "inside")
+        m_state.insideOut = true;
+    else
+        return Fail(r.args[0].line, "unknown orientation " + Quote(name) +
+                                        " (expected \"outside\", \"inside\", \"lh\" or \"rh\")");
+    return true;
+}
+
+// The built-in surfaces of RI 3.2 appendix A; an unknown name falls back to plastic.
 bool RibParser::DoSurface(const RibRequest& r) {
     std::string name;
     std::vector<RibParam> params;
     if (!LeadingString(r, "a surface shader name", &name) || !ParamList(r, 1, &params))
         return false;
     SurfaceDesc surface;  // plastic defaults
+    using Model = SurfaceDesc::Model;
     if (name == "matte") {
-        surface.model = SurfaceDesc::Model::Matte;
+        surface.model = Model::Matte;
         surface.Kd = 1;  // RI 3.2 matte: Ka = 1, Kd = 1
+        surface.Ks = 0;
+    } else if (name == "metal") {
+        surface.model = Model::Metal;
+        surface.Kd = 0;  // RI 3.2 metal: Ka = 1, Ks = 1, roughness = 0.1, no diffuse term
+        surface.Ks = 1;
+    } else if (name == "constant") {
+        surface.model = Model::Constant;  // Cs alone: no lighting terms
+        surface.Kd = 0;
         surface.Ks = 0;
     } else if (name != "plastic") {
         Warn(r.line, "surface shader " + Quote(name) + " is not supported yet; using \"plastic\"");
@@ -31,25 +97,28 @@ bool RibParser::DoSurface(const RibRequest& r) {
         return true;
     }
     const std::string context = "'Surface \"" + name + "\"'";
-    bool matte = surface.model == SurfaceDesc::Model::Matte;
+    const Model model = surface.model;
+    const bool lit = model != Model::Constant;
+    const bool diffuse = model == Model::Matte || model == Model::Plastic;
+    const bool specular = model == Model::Metal || model == Model::Plastic;
     for (const RibParam& p : params) {
         const std::string& n = p.value.name;
         bool ok = true;
-        if (n == "Ka")
+        if (n == "Ka" && lit)
             ok = ParamNumbers(p, context, 1, &surface.Ka);
-        else if (n == "Kd")
+        else if (n == "Kd" && diffuse)
             ok = ParamNumbers(p, context, 1, &surface.Kd);
-        else if (n == "Ks" && !matte)
+        else if (n == "Ks" && specular)
             ok = ParamNumbers(p, context, 1, &surface.Ks);
-        else if (n == "roughness" && !matte)
+        else if (n == "roughness" && specular)
             ok = ParamNumbers(p, context, 1, &surface.roughness);
-        else if (n == "specularcolor" && !matte)
+        else if (n == "specularcolor" && model == Model::Plastic)
             ok = ParamVector(p, context, &surface.specularColor);
         else
             Warn(p.line, context + " has no parameter " + Quote(n) + "; ignored");
         if (!ok) return false;
     }
-    if (!(surface.roughness > 0))  // plastic's highlight exponent is 1 / roughness
+    if (!(surface.roughness > 0))  // the highlight exponent is 1 / roughness
         return Fail(r.line, context + " roughness must be positive, got " +
                                 FormatNumber(surface.roughness));
     m_state.surface = surface;
@@ -93,31 +162,21 @@ bool RibParser::DoLightSource(const RibRequest& r) {
         light.kind = LightDesc::Kind::Distant;
     else if (name == "pointlight")
         light.kind = LightDesc::Kind::Point;
+    else if (name == "spotlight")
+        light.kind = LightDesc::Kind::Spot;
     else {
         Warn(r.line, "light source " + Quote(name) + " is not supported yet; ignored");
         return true;
     }
     const std::string context = "'LightSource \"" + name + "\"'";
-    for (const RibParam& p : params) {
-        const std::string& n = p.value.name;
-        bool ok = true;
-        if (n == "intensity")
-            ok = ParamNumbers(p, context, 1, &light.intensity);
-        else if (n == "lightcolor")
-            ok = ParamVector(p, context, &light.color);
-        else if (n == "from" && light.kind != LightDesc::Kind::Ambient)
-            ok = ParamVector(p, context, &light.from);
-        else if (n == "to" && light.kind == LightDesc::Kind::Distant)
-            ok = ParamVector(p, context, &light.to);
-        else
-            Warn(p.line, context + " has no parameter " + Quote(n) + "; ignored");
-        if (!ok) return false;
-    }
+    if (!LightParams(context, params, &light)) return false;
+    if (light.kind == LightDesc::Kind::Spot && !CheckSpotlight(r, context, light)) return false;
     // from/to are points in the current space; before WorldBegin that is camera space, which is
     // mapped to world space once the camera transform is known.
     light.from = TransformPoint(m_state.ctm, light.from);
     light.to = TransformPoint(m_state.ctm, light.to);
-    if (light.kind == LightDesc::Kind::Distant && light.from == light.to)
+    bool aimed = light.kind == LightDesc::Kind::Distant || light.kind == LightDesc::Kind::Spot;
+    if (aimed && light.from == light.to)
         return Fail(r.line, context + " 'from' and 'to' must differ");
     if (m_worldSeen)
         m_scene.lights.push_back(light);
@@ -126,61 +185,48 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     return true;
 }
 
-// ---- geometry ----
-
-bool RibParser::DoPatch(const RibRequest& r) {
-    std::string type;
-    if (!LeadingString(r, "a patch type", &type)) return false;
-    if (type == "bicubic") return Fail(r.line, "'Patch \"bicubic\"' is not supported yet");
-    if (type != "bilinear")
-        return Fail(r.args[0].line, "unknown patch type " + Quote(type) +
-                                        " (expected \"bilinear\" or \"bicubic\")");
-    std::vector<RibParam> params;
-    if (!ParamList(r, 1, &params) || !InsideWorld(r)) return false;
-
-    const std::string context = "'Patch \"bilinear\"'";
-    std::array<glm::dvec3, 4> corners{};
-    bool havePosition = false;
+// The parameters of the RI 3.2 light shaders; each light takes only its own.
+bool RibParser::LightParams(const std::string& context, const std::vector<RibParam>& params,
+                            LightDesc* light) {
+    using Kind = LightDesc::Kind;
+    const bool spot = light->kind == Kind::Spot;
     for (const RibParam& p : params) {
         const std::string& n = p.value.name;
-        if (n == "P") {
-            double v[12];
-            if (!ParamNumbers(p, context, 12, v)) return false;
-            for (int i = 0; i < 4; ++i)
-                corners[i] = glm::dvec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-        } else if (n == "Pw") {  // homogeneous points
-            double v[16];
-            if (!ParamNumbers(p, context, 16, v)) return false;
-            for (int i = 0; i < 4; ++i) {
-                if (v[4 * i + 3] == 0)
-                    return Fail(p.line, context + " parameter 'Pw' has a zero w");
-                corners[i] = glm::dvec3(v[4 * i], v[4 * i + 1], v[4 * i + 2]) / v[4 * i + 3];
-            }
-        } else if (n == "Pz") {  // heights over the unit square (x = u, y = v)
-            double z[4];
-            if (!ParamNumbers(p, context, 4, z)) return false;
-            for (int i = 0; i < 4; ++i) corners[i] = glm::dvec3(i & 1, i >> 1, z[i]);
-        } else {
-            Warn(p.line, context + " parameter " + Quote(n) + " is not supported yet; ignored");
-            continue;
-        }
-        havePosition = true;
+        bool ok = true;
+        if (n == "intensity")
+            ok = ParamNumbers(p, context, 1, &light->intensity);
+        else if (n == "lightcolor")
+            ok = ParamVector(p, context, &light->color);
+        else if (n == "from" && light->kind != Kind::Ambient)
+            ok = ParamVector(p, context, &light->from);
+        else if (n == "to" && (light->kind == Kind::Distant || spot))
+            ok = ParamVector(p, context, &light->to);
+        else if (n == "coneangle" && spot)
+            ok = ParamNumbers(p, context, 1, &light->coneAngle);
+        else if (n == "conedeltaangle" && spot)
+            ok = ParamNumbers(p, context, 1, &light->coneDeltaAngle);
+        else if (n == "beamdistribution" && spot)
+            ok = ParamNumbers(p, context, 1, &light->beamDistribution);
+        else
+            Warn(p.line, context + " has no parameter " + Quote(n) + "; ignored");
+        if (!ok) return false;
     }
-    if (!havePosition) return Fail(r.line, context + " needs a \"P\" parameter");
+    return true;
+}
 
-    PrimitiveDesc patch;
-    for (int i = 0; i < 4; ++i) {
-        patch.corners[i] = TransformPoint(m_state.ctm, corners[i]);
-        if (!FiniteP(patch.corners[i]))
-            return Fail(r.line,
-                        context + " corner " + std::to_string(i) + " overflows in world space");
-    }
-    patch.color = m_state.color;
-    patch.surface = m_state.surface;
-    patch.displacement = m_state.displacement;
-    patch.line = r.line;
-    patch.objectToWorld = m_state.ctm;
-    m_scene.primitives.push_back(std::move(patch));
+// The spotlight's cone (radians): a half-angle of up to a half turn, a soft edge inside it.
+bool RibParser::CheckSpotlight(const RibRequest& r, const std::string& context,
+                               const LightDesc& light) {
+    const double pi = 3.14159265358979323846;
+    if (!(light.coneAngle > 0 && light.coneAngle <= pi))
+        return Fail(r.line, context + " coneangle must be in (0, pi] radians, got " +
+                                FormatNumber(light.coneAngle));
+    if (!(light.coneDeltaAngle >= 0 && light.coneDeltaAngle <= light.coneAngle))
+        return Fail(r.line, context + " conedeltaangle must be from 0 to coneangle, got " +
+                                FormatNumber(light.coneDeltaAngle));
+    if (!(light.beamDistribution >= 0))
+        return Fail(r.line, context + " beamdistribution must not be negative, got " +
+                                FormatNumber(light.beamDistribution));
     return true;
 }
 

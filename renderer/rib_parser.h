@@ -1,10 +1,12 @@
 // renderer/rib_parser.h: the RIB reader's state machine, shared by its two source files.
 // Private to the reader: use renderer/rib.h. rib.cpp holds dispatch, the block structure, options
-// and transforms; rib_attributes.cpp the shading attributes, lights and geometry. The graphics
-// state (CTM, color, surface, displacement) is saved by every Begin and restored by its End.
+// and transforms; rib_attributes.cpp the shading attributes (with Sides and orientation) and
+// lights; rib_geometry.cpp the primitives and coordinate systems. The graphics state (CTM, color,
+// surface, displacement, sides, orientation) is saved by every Begin and restored by its End.
 #pragma once
 
 #include <glm/glm.hpp>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -35,6 +37,11 @@ class RibParser : private RibArgChecks {
         glm::dvec3 color{1.0};
         SurfaceDesc surface;
         std::optional<ShaderRef> displacement;
+        bool twoSided = true;      // Sides 2 (RI default)
+        /// The current orientation differs from the handedness of the current coordinate system
+        /// (RI 3.2 section 4.2: a transform that flips one flips the other, so only Orientation
+        /// and ReverseOrientation change this).
+        bool insideOut = false;
     };
     enum class Block { Frame, World, Attribute, Transform };
     struct OpenBlock {
@@ -58,12 +65,32 @@ class RibParser : private RibArgChecks {
     bool InsideWorld(const RibRequest& r);
     bool Begin(const RibRequest& r, Block kind);
     bool End(const RibRequest& r, Block kind);
+    /// The current object -> camera transform: before WorldBegin the CTM already maps to camera
+    /// space; inside the world it maps to world space and the camera transform follows.
+    glm::dmat4 ObjectToCamera() const;
+    /// Whether the current coordinate system is right-handed (camera space is left-handed).
+    bool RightHandedP() const { return glm::determinant(ObjectToCamera()) < 0; }
+    /// PrimitiveDesc::flipNormal for a primitive made now (see its comment in scene.h).
+    bool FlipNormalP() const;
+    /// Fills the attributes every primitive shares (color, shading, sides, orientation, line).
+    void SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) const;
+    /// A quadric request: positional numbers (bare or one array), then ignored parameters.
+    bool DoQuadric(const RibRequest& r, Quadric::Kind kind);
 
-    // Handlers, one per implemented request: options, blocks and transforms in rib.cpp; attributes,
-    // lights and geometry in rib_attributes.cpp.
+    // Handlers, one per implemented request: options, blocks and transforms in rib.cpp; attributes
+    // and lights in rib_attributes.cpp; geometry and coordinate systems in rib_geometry.cpp.
     bool DoFormat(const RibRequest& r);
     bool DoProjection(const RibRequest& r);
     bool DoDisplay(const RibRequest& r);
+    bool DoFrameAspectRatio(const RibRequest& r);
+    bool DoScreenWindow(const RibRequest& r);
+    bool DoCropWindow(const RibRequest& r);
+    bool DoClipping(const RibRequest& r);
+    bool DoPixelSamples(const RibRequest& r);
+    bool DoPixelFilter(const RibRequest& r);
+    bool DoExposure(const RibRequest& r);
+    bool DoOption(const RibRequest& r);
+    bool SetShaderSearchPath(const RibParam& p);
     bool DoFrameBegin(const RibRequest& r);
     bool DoFrameEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::Frame); }
     bool DoWorldBegin(const RibRequest& r);
@@ -79,10 +106,26 @@ class RibParser : private RibArgChecks {
     bool DoRotate(const RibRequest& r);
     bool DoScale(const RibRequest& r);
     bool DoColor(const RibRequest& r);
+    bool DoOpacity(const RibRequest& r);
+    bool DoAttribute(const RibRequest& r);
+    bool DoSides(const RibRequest& r);
+    bool DoReverseOrientation(const RibRequest& r);
+    bool DoOrientation(const RibRequest& r);
     bool DoSurface(const RibRequest& r);
     bool DoDisplacement(const RibRequest& r);
     bool DoLightSource(const RibRequest& r);
+    bool LightParams(const std::string& context, const std::vector<RibParam>& params,
+                     LightDesc* light);
+    bool CheckSpotlight(const RibRequest& r, const std::string& context, const LightDesc& light);
+    bool DoCoordinateSystem(const RibRequest& r);
     bool DoPatch(const RibRequest& r);
+    bool DoSphere(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Sphere); }
+    bool DoCylinder(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Cylinder); }
+    bool DoCone(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Cone); }
+    bool DoDisk(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Disk); }
+    bool DoTorus(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Torus); }
+    bool DoHyperboloid(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Hyperboloid); }
+    bool DoParaboloid(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Paraboloid); }
     bool DoVersion(const RibRequest&) { return true; }  // "version 3.03": nothing to check
 
     RibRequestReader m_reader;
@@ -96,6 +139,8 @@ class RibParser : private RibArgChecks {
     bool m_worldSeen = false;
     bool m_worldEnded = false;
     std::vector<LightDesc> m_cameraLights;  // lights given before WorldBegin, in camera space
+    // CoordinateSystem given before WorldBegin: object -> camera, mapped to world at WorldBegin.
+    std::map<std::string, glm::dmat4> m_cameraCoordinateSystems;
 };
 
 }  // namespace affray::renderer

@@ -70,13 +70,15 @@ struct PrimitiveDesc {
     glm::dmat4 objectToWorld{1.0};
     /// Sides: false for "Sides 1" (seen from behind, the surface is invisible).
     bool twoSided = true;
-    /// Whether RenderMan's normal is the negation of dPdu x dPdv computed in world space. With M the
-    /// world-to-camera matrix, N computed in (left-handed) camera space maps back to world as
-    /// sign(det M) * (dPdu x dPdv); it is flipped again when the current orientation differs from
-    /// the handedness of the object's coordinate system (sign of det(M * objectToWorld) > 0 is
-    /// left-handed). The orientation starts "lh" (camera space's), ReverseOrientation toggles it,
-    /// Orientation "lh"/"rh" sets it, "outside"/"inside" set it to/against the current handedness.
-    /// So flipNormal = (det M < 0) XOR (orientation != handedness). Default: sphere normals point out.
+    /// Whether RenderMan's normal is the negation of dPdu x dPdv computed in world space. A
+    /// primitive's natural normal is dPdu x dPdv in object space carried to world as a normal
+    /// (by the inverse transpose, which keeps a sphere's normals outward under any placement);
+    /// the world-space cross product of the placed tangents is that times sign(det objectToWorld).
+    /// RI 3.2 section 4.2 then turns the primitive inside out when the current orientation differs
+    /// from the handedness of the current coordinate system; a mirroring transform flips both, so
+    /// only Orientation ("inside"; "lh"/"rh" against the system's handedness at the request) and
+    /// ReverseOrientation make them differ. So flipNormal = (det objectToWorld < 0) XOR insideOut.
+    /// Default: a sphere's normals point out, whatever the camera and placement.
     bool flipNormal = false;
 };
 

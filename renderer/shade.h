@@ -22,7 +22,18 @@ struct ShadingPoint {
 using OcclusionTest = std::function<bool(const glm::dvec3& toLight, double distance)>;
 
 /// The colour of `sp` under `lights` for the surface model `surface` with colour Cs, following the
-/// RenderMan shaders "matte" and "plastic" (Ka*ambient + Kd*diffuse, plus Ks*specular for plastic).
+/// RenderMan shaders of RI Spec 3.2 appendix A:
+///   constant  Cs (no lights, so `occluded` is never called)
+///   matte     Cs * (Ka*ambient() + Kd*diffuse(Nf))
+///   metal     Cs * (Ka*ambient() + Ks*specular(Nf, V, roughness))
+///   plastic   Cs * (Ka*ambient() + Kd*diffuse(Nf)) + specularcolor * Ks*specular(Nf, V, roughness)
+/// specular() sums Cl * max(0, Nf.H)^(1/roughness) over the lights in front (none if roughness <= 0).
+/// Lights: ambientlight (intensity*lightcolor, unshadowed), distantlight (from -> to), pointlight
+/// (intensity*lightcolor / distance^2) and spotlight (the pointlight's colour times
+/// smoothstep(cos(coneangle), cos(coneangle - conedeltaangle), cosangle) * cosangle^beamdistribution,
+/// cosangle the cosine between from -> P and from -> to; nothing outside the cone).
+/// `occluded` is asked only about lights that would add something: in front of the surface and
+/// with a nonzero contribution to a term the model uses.
 glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const ShadingPoint& sp,
                         const std::vector<LightDesc>& lights, const OcclusionTest& occluded);
 

@@ -8,6 +8,7 @@
 #include "compiler/compile.h"
 #include "renderer/exr_writer.h"
 #include "renderer/png_writer.h"
+#include "renderer/progress.h"
 #include "renderer/render.h"
 #include "renderer/rib.h"
 #include "renderer/surface.h"
@@ -136,6 +137,8 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     std::filesystem::path ribDir = std::filesystem::path(cmd.scenePath).parent_path();
     if (ribDir.empty()) ribDir = ".";
     std::vector<std::string> shaderPaths = {ribDir.string(), (ribDir / ".." / "shaders").string(), "shaders"};
+    if (cmd.crop) scene->camera.cropWindow = glm::dvec4((*cmd.crop)[0], (*cmd.crop)[1], (*cmd.crop)[2], (*cmd.crop)[3]);
+    if (cmd.samples > 0) scene->camera.xsamples = scene->camera.ysamples = cmd.samples;
     renderer::PreparedScene prepared;
     if (!renderer::PrepareScene(*scene, shaderPaths, cmd.preprocess, &prepared, &error)) {
         std::fprintf(err, "%s\n", error.c_str());
@@ -146,6 +149,8 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     options.tolerancePixels = cmd.tolerance;
     options.bounds = cmd.bounds;
     options.maxDepth = cmd.maxDepth;
+    options.regionBudget = cmd.regionBudget;
+    options.showProgress = renderer::Progress::ShouldShow(cmd.quiet, stderr);
     renderer::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);

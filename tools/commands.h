@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,10 @@ struct RenderCommand {
     bool stats = false;
     std::string pngPath;  // empty: no preview
     lang::PreprocessOptions preprocess;
+    bool quiet = false;                           // no progress bar
+    std::optional<std::array<double, 4>> crop;    // --crop: replaces the scene's CropWindow
+    int samples = 0;                              // --samples N: N x N per pixel (0: the scene's)
+    uint64_t regionBudget = renderer::kDefaultRegionBudget;
 };
 
 struct DiffCommand {

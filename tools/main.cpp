@@ -16,7 +16,8 @@ namespace {
 const char* const kUsage =
     "usage:\n"
     "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS] [-I DIR] [-D NAME[=VALUE]]\n"
-    "                [--bounds affine|interval] [--max-depth N] [--stats] [--png PREVIEW.png]\n"
+    "                [--bounds affine|interval] [--max-depth N] [--stats] [--png PREVIEW.png] [--quiet]\n"
+    "                [--crop XMIN,XMAX,YMIN,YMAX] [--samples N] [--region-budget N]\n"
     "  affray compile SHADER.sl [-o OUT.afb] [--disasm] [--stats] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
     "              [--mode scalar|affine|interval] [-I DIR] [-D NAME[=VALUE]]\n"
@@ -178,6 +179,15 @@ int Render(Args& args) {
             else throw UsageError{"--bounds takes affine or interval, got '" + b + "'"};
         } else if (a == "--stats") cmd.stats = true;
         else if (a == "--png") cmd.pngPath = args.Value(a);
+        else if (a == "--quiet" || a == "-q") cmd.quiet = true;
+        else if (a == "--samples") cmd.samples = ParseInt(args.Value(a), a, 1, 64);
+        else if (a == "--region-budget") cmd.regionBudget = ParseInt(args.Value(a), a, 1, 1 << 30);
+        else if (a == "--crop") {
+            std::vector<double> c = ParseNumbers(args.Value(a), a);
+            if (c.size() != 4 || !(0 <= c[0] && c[0] < c[1] && c[1] <= 1 && 0 <= c[2] && c[2] < c[3] && c[3] <= 1))
+                throw UsageError{"--crop takes XMIN,XMAX,YMIN,YMAX with 0 <= min < max <= 1"};
+            cmd.crop = std::array<double, 4>{c[0], c[1], c[2], c[3]};
+        }
         else if (PreprocessorOption(a, args, &cmd.preprocess)) continue;
         else SetInput(&cmd.scenePath, a);
     }

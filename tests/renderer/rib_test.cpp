@@ -56,9 +56,44 @@ WorldBegin
 WorldEnd
 )";
 
+// The newer requests: options, quadrics, orientation and coordinate systems.
+const char* const kQuadricScene = R"(FrameAspectRatio 1.5
+ScreenWindow -1.5 1.5 -1 1
+CropWindow 0 1 0.25 0.75
+Clipping 0.1 1000
+PixelSamples 3 3
+PixelFilter "gaussian" 2 2
+Exposure 1.5 2.2
+Option "searchpath" "shader" ["shaders:&:@"]
+Display "q.exr" "file" "rgba,Z,N"
+Scale 1 1 -1
+CoordinateSystem "eye"
+LightSource "spotlight" 1 "from" [0 0 0] "to" [0 0 1] "coneangle" 0.4
+Translate 0 0 8
+WorldBegin
+  CoordinateSystem "world2"
+  Attribute "displacementbound" "sphere" [0.3]
+  Opacity 1 1 1
+  Surface "metal" "roughness" 0.2
+  AttributeBegin
+    Sides 1
+    Orientation "inside"
+    Sphere 1 -1 1 360
+    Cylinder [1 -1 1 180]
+    Cone 2 1 360 "Cs" [1 0 0]
+  AttributeEnd
+  ReverseOrientation
+  Surface "constant"
+  Disk 0 1 360
+  Torus 1 0.25 0 360 360
+  Hyperboloid 1 0 -1 0 1 1 360
+  Paraboloid 1 0 1 360
+WorldEnd
+)";
+
 }  // namespace
 
-TEST_CASE("A full RIB scene parses into world space", "[renderer]") {
+TEST_CASE("A full RIB scene parses into world space", "[renderer][rib]") {
     std::string error;
     std::vector<std::string> warnings;
     std::optional<SceneDesc> scene = ParseRib(kScene, "scene.rib", &error, &warnings);
@@ -158,7 +193,7 @@ TEST_CASE("A full RIB scene parses into world space", "[renderer]") {
     }
 }
 
-TEST_CASE("RIB transforms follow the RenderMan conventions", "[renderer]") {
+TEST_CASE("RIB transforms follow the RenderMan conventions", "[renderer][rib]") {
     auto corner = [](const std::string& transforms) {
         std::string error;
         auto scene =
@@ -181,7 +216,7 @@ TEST_CASE("RIB transforms follow the RenderMan conventions", "[renderer]") {
     RequireVec(corner("Color [0 0 1] Translate [0 1 0]"), {1, 1, 0});  // arrays for positional args
 }
 
-TEST_CASE("RIB defaults and variants", "[renderer]") {
+TEST_CASE("RIB defaults and variants", "[renderer][rib]") {
     std::string error;
     auto scene = ParseRib("WorldBegin WorldEnd", "t.rib", &error, nullptr);
     REQUIRE(scene);
@@ -207,22 +242,22 @@ TEST_CASE("RIB defaults and variants", "[renderer]") {
     RequireVec(scene->primitives[1].corners[3], {1, 1, 4});
 }
 
-TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors", "[renderer]") {
+TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors",
+          "[renderer][rib]") {
     std::string error;
     std::vector<std::string> warnings;
     auto scene = ParseRib(
-        "PixelSamples 4 4\nPixelSamples 2 2\nShadingRate 1\nWorldBegin\n"
-        "Attribute \"displacementbound\" \"sphere\" [0.5]\nWorldEnd\n",
+        "ShadingRate 4\nPixelSamples 2 2\nShadingRate 1\nWorldBegin\n"
+        "Attribute \"identifier\" \"name\" \"x\"\nWorldEnd\n",
         "t.rib", &error, &warnings);
     REQUIRE(scene);
-    REQUIRE(warnings.size() == 3);
-    CHECK(warnings[0] == "t.rib:1: warning: request 'PixelSamples' is not supported yet; ignored");
-    CHECK(warnings[1] == "t.rib:3: warning: request 'ShadingRate' is not supported yet; ignored");
-    CHECK(warnings[2] == "t.rib:5: warning: request 'Attribute' is not supported yet; ignored");
+    REQUIRE(warnings.size() == 2);
+    CHECK(warnings[0] == "t.rib:1: warning: request 'ShadingRate' is not supported yet; ignored");
+    CHECK(warnings[1] == "t.rib:5: warning: 'Attribute \"identifier\"' is not supported; ignored");
 
     CHECK(ErrorOf("Fooo 1 2\n") == "t.rib:1: error: unknown RIB request 'Fooo'");
-    CHECK(ErrorOf("WorldBegin\nSphere 1 -1 1 360\nWorldEnd\n") ==
-          "t.rib:2: error: 'Sphere' is not supported yet");
+    CHECK(ErrorOf("WorldBegin\nPolygon \"P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n") ==
+          "t.rib:2: error: 'Polygon' is not supported yet");
     CHECK(
         ErrorOf("WorldBegin\n\nPointsPolygons [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n") ==
         "t.rib:3: error: 'PointsPolygons' is not supported yet");
@@ -233,19 +268,19 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
     // Other ignored things: unknown shader parameters, light shaders and surface shaders.
     warnings.clear();
     scene = ParseRib(
-        "WorldBegin\nLightSource \"spotlight\" 1\nSurface \"metal\"\n"
+        "WorldBegin\nLightSource \"arealight\" 1\nSurface \"wood\"\n"
         "Surface \"plastic\" \"foo\" 1\nWorldEnd\n",
         "t.rib", &error, &warnings);
     REQUIRE(scene);
     REQUIRE(warnings.size() == 3);
     CHECK(warnings[0] ==
-          "t.rib:2: warning: light source 'spotlight' is not supported yet; ignored");
+          "t.rib:2: warning: light source 'arealight' is not supported yet; ignored");
     CHECK(warnings[1] ==
-          "t.rib:3: warning: surface shader 'metal' is not supported yet; using \"plastic\"");
+          "t.rib:3: warning: surface shader 'wood' is not supported yet; using \"plastic\"");
     CHECK(warnings[2] == "t.rib:4: warning: 'Surface \"plastic\"' has no parameter 'foo'; ignored");
 }
 
-TEST_CASE("Malformed RIB gives exact errors with the line", "[renderer]") {
+TEST_CASE("Malformed RIB gives exact errors with the line", "[renderer][rib]") {
     const std::string patch = "Patch \"bilinear\" \"P\" [0 0 0 1 0 0 0 1 0 1 1 0]\n";
     // Lexical errors.
     CHECK(ErrorOf("Display \"a.exr\" \"file\" \"rgba\nWorldBegin\nWorldEnd\n") ==
@@ -324,7 +359,7 @@ TEST_CASE("Malformed RIB gives exact errors with the line", "[renderer]") {
         "transforms are not supported yet");
 }
 
-TEST_CASE("ReadRib reports files it cannot read", "[renderer]") {
+TEST_CASE("ReadRib reports files it cannot read", "[renderer][rib]") {
     std::string error;
     CHECK_FALSE(ReadRib("/nonexistent/affray/scene.rib", &error, nullptr));
     CHECK(error ==
@@ -346,7 +381,7 @@ TEST_CASE("ReadRib reports files it cannot read", "[renderer]") {
     CHECK(scene->primitives.size() == 3);
 }
 
-TEST_CASE("The RIB reader survives random input", "[renderer]") {
+TEST_CASE("The RIB reader survives random input", "[renderer][rib]") {
     std::mt19937 rng(12345);
     auto check = [](const std::string& text) {
         std::string error;
@@ -418,7 +453,37 @@ TEST_CASE("The RIB reader survives random input", "[renderer]") {
                                                 "\"\"",
                                                 "#c\n",
                                                 "\n",
-                                                "Fooo"};
+                                                "Fooo",
+                                                "Cylinder",
+                                                "Cone",
+                                                "Disk",
+                                                "Torus",
+                                                "Hyperboloid",
+                                                "Paraboloid",
+                                                "Sides",
+                                                "ReverseOrientation",
+                                                "Orientation",
+                                                "\"inside\"",
+                                                "\"rh\"",
+                                                "CoordinateSystem",
+                                                "\"spotlight\"",
+                                                "\"coneangle\"",
+                                                "ScreenWindow",
+                                                "CropWindow",
+                                                "Clipping",
+                                                "PixelFilter",
+                                                "\"box\"",
+                                                "Exposure",
+                                                "FrameAspectRatio",
+                                                "Option",
+                                                "\"searchpath\"",
+                                                "\"shader\"",
+                                                "\"&:@:a\"",
+                                                "Attribute",
+                                                "\"displacementbound\"",
+                                                "Opacity",
+                                                "\"metal\"",
+                                                "\"constant\""};
         for (int i = 0; i < 3000; ++i) {
             std::string text;
             int n = static_cast<int>(rng() % 60);
@@ -428,8 +493,8 @@ TEST_CASE("The RIB reader survives random input", "[renderer]") {
     }
 
     SECTION("mutations of a valid scene") {
-        const std::string base = kScene;
-        for (int i = 0; i < 2000; ++i) {
+        for (int i = 0; i < 3000; ++i) {
+            const std::string base = i % 3 ? kScene : kQuadricScene;
             std::string text = base;
             int edits = 1 + static_cast<int>(rng() % 4);
             for (int k = 0; k < edits && !text.empty(); ++k) {
@@ -448,5 +513,534 @@ TEST_CASE("The RIB reader survives random input", "[renderer]") {
             }
             check(text);
         }
+    }
+}
+
+namespace {
+
+// The scene `text` parses into; fails the test with the error if it does not parse.
+SceneDesc Parsed(const std::string& text, std::vector<std::string>* warnings = nullptr) {
+    std::string error;
+    std::optional<SceneDesc> scene = ParseRib(text, "t.rib", &error, warnings);
+    INFO(error);
+    REQUIRE(scene);
+    return *scene;
+}
+
+// The one primitive of a world block holding `body`, after the options `options`.
+PrimitiveDesc OnlyPrimitive(const std::string& body, const std::string& options = "") {
+    SceneDesc scene = Parsed(options + "WorldBegin\n" + body + "\nWorldEnd\n");
+    REQUIRE(scene.primitives.size() == 1);
+    return scene.primitives[0];
+}
+
+glm::dvec3 Apply(const glm::dmat4& m, const glm::dvec3& p) {
+    return glm::dvec3(m * glm::dvec4(p, 1.0));
+}
+
+}  // namespace
+
+TEST_CASE("RIB camera options fill CameraDesc", "[renderer][rib]") {
+    SECTION("defaults are RenderMan's") {
+        const CameraDesc c = Parsed("WorldBegin WorldEnd").camera;
+        CHECK_FALSE(c.frameAspectRatio);
+        CHECK_FALSE(c.screenWindow);
+        CHECK(c.cropWindow == glm::dvec4(0, 1, 0, 1));
+        CHECK(c.nearClip == 1e-10);
+        CHECK(c.farClip == 1e30);
+        CHECK(c.xsamples == 2);
+        CHECK(c.ysamples == 2);
+        CHECK(c.filter.kind == FilterDesc::Kind::Gaussian);
+        CHECK(c.filter.xwidth == 2);
+        CHECK(c.exposureGain == 1);
+        CHECK(c.exposureGamma == 1);
+    }
+    SECTION("every option, bare arguments") {
+        const CameraDesc c =
+            Parsed(
+                "FrameAspectRatio 1.5\nScreenWindow -2 2 -1 1\nCropWindow 0.25 0.75 0 0.5\n"
+                "Clipping 0.1 100\nPixelSamples 4 3\nPixelFilter \"box\" 1 1.5\n"
+                "Exposure 2 2.2\nWorldBegin\nWorldEnd\n")
+                .camera;
+        REQUIRE(c.frameAspectRatio);
+        CHECK(*c.frameAspectRatio == 1.5);
+        REQUIRE(c.screenWindow);
+        CHECK(*c.screenWindow == glm::dvec4(-2, 2, -1, 1));
+        CHECK(c.cropWindow == glm::dvec4(0.25, 0.75, 0, 0.5));
+        CHECK(c.nearClip == 0.1);
+        CHECK(c.farClip == 100);
+        CHECK(c.xsamples == 4);
+        CHECK(c.ysamples == 3);
+        CHECK(c.filter.kind == FilterDesc::Kind::Box);
+        CHECK(c.filter.xwidth == 1);
+        CHECK(c.filter.ywidth == 1.5);
+        CHECK(c.exposureGain == 2);
+        CHECK(c.exposureGamma == 2.2);
+    }
+    SECTION("array arguments, and a gaussian after a box") {
+        const CameraDesc c = Parsed(
+                                 "ScreenWindow [0 1 0 2]\nCropWindow [0 1 0.5 1]\nClipping [1 2]\n"
+                                 "PixelFilter \"box\" 1 1\nPixelFilter \"gaussian\" 3 3\n"
+                                 "WorldBegin\nWorldEnd\n")
+                                 .camera;
+        CHECK(*c.screenWindow == glm::dvec4(0, 1, 0, 2));
+        CHECK(c.cropWindow == glm::dvec4(0, 1, 0.5, 1));
+        CHECK(c.farClip == 2);
+        CHECK(c.filter.kind == FilterDesc::Kind::Gaussian);
+        CHECK(c.filter.xwidth == 3);
+    }
+    SECTION("other filters fall back to gaussian with a warning") {
+        std::vector<std::string> warnings;
+        const CameraDesc c =
+            Parsed("PixelFilter \"catmull-rom\" 4 4\nWorldBegin\nWorldEnd\n", &warnings).camera;
+        CHECK(c.filter.kind == FilterDesc::Kind::Gaussian);
+        CHECK(c.filter.xwidth == 4);
+        REQUIRE(warnings.size() == 1);
+        CHECK(warnings[0] ==
+              "t.rib:1: warning: pixel filter 'catmull-rom' is not supported; using \"gaussian\"");
+    }
+}
+
+TEST_CASE("RIB camera options give exact errors", "[renderer][rib]") {
+    CHECK(ErrorOf("FrameAspectRatio 0\n") ==
+          "t.rib:1: error: 'FrameAspectRatio' must be positive, got 0");
+    CHECK(ErrorOf("ScreenWindow -1 -1 0 1\n") ==
+          "t.rib:1: error: 'ScreenWindow' must have a nonzero width and height, got -1 -1 0 1");
+    CHECK(ErrorOf("ScreenWindow -1 1 0\n") ==
+          "t.rib:1: error: 'ScreenWindow' expects 4 numbers (left right bottom top), got 3");
+    CHECK(ErrorOf("CropWindow -0.1 1 0 1\n") ==
+          "t.rib:1: error: 'CropWindow' needs 0 <= xmin < xmax <= 1, got -0.1 1");
+    CHECK(ErrorOf("CropWindow 0 1 0.5 0.5\n") ==
+          "t.rib:1: error: 'CropWindow' needs 0 <= ymin < ymax <= 1, got 0.5 0.5");
+    CHECK(ErrorOf("CropWindow 0 1 0 1.5\n") ==
+          "t.rib:1: error: 'CropWindow' needs 0 <= ymin < ymax <= 1, got 0 1.5");
+    CHECK(ErrorOf("Clipping 0 10\n") ==
+          "t.rib:1: error: 'Clipping' needs 0 < near < far, got 0 10");
+    CHECK(ErrorOf("Clipping 10 1\n") ==
+          "t.rib:1: error: 'Clipping' needs 0 < near < far, got 10 1");
+    CHECK(ErrorOf("PixelSamples 0 2\n") ==
+          "t.rib:1: error: 'PixelSamples' xsamples must be an integer from 1 to 64, got 0");
+    CHECK(ErrorOf("PixelSamples 2 2.5\n") ==
+          "t.rib:1: error: 'PixelSamples' ysamples must be an integer from 1 to 64, got 2.5");
+    CHECK(ErrorOf("PixelSamples 65 1\n") ==
+          "t.rib:1: error: 'PixelSamples' xsamples must be an integer from 1 to 64, got 65");
+    CHECK(ErrorOf("PixelFilter \"box\" 0 1\n") ==
+          "t.rib:1: error: 'PixelFilter' widths must be positive, got 0 1");
+    CHECK(ErrorOf("PixelFilter \"box\" 1\n") ==
+          "t.rib:1: error: 'PixelFilter' expects a filter name and 2 numbers (xwidth ywidth)");
+    CHECK(ErrorOf("PixelFilter 1 1\n") ==
+          "t.rib:1: error: 'PixelFilter' expects a filter name as its first argument, found number "
+          "1");
+    CHECK(ErrorOf("Exposure 1 0\n") ==
+          "t.rib:1: error: 'Exposure' gain and gamma must be positive, got 1 0");
+    CHECK(ErrorOf("Exposure -1 1\n") ==
+          "t.rib:1: error: 'Exposure' gain and gamma must be positive, got -1 1");
+    // Options are frozen at WorldBegin.
+    for (const char* option : {"FrameAspectRatio 1", "ScreenWindow -1 1 -1 1", "CropWindow 0 1 0 1",
+                               "Clipping 1 2", "PixelSamples 1 1", "PixelFilter \"box\" 1 1",
+                               "Exposure 1 1", "Option \"searchpath\" \"shader\" \"a\""}) {
+        std::string name = std::string(option).substr(0, std::string(option).find(' '));
+        CHECK(ErrorOf(std::string("WorldBegin\n") + option + "\nWorldEnd\n") ==
+              "t.rib:2: error: '" + name + "' is an option and must come before 'WorldBegin'");
+    }
+}
+
+TEST_CASE("RIB Display modes follow the channel grammar", "[renderer][rib]") {
+    for (const char* mode :
+         {"rgb", "rgba", "rgbz", "rgbaz", "r", "z", "rgba,Z,N,P,st,cost,err", "a,g"}) {
+        INFO(mode);
+        SceneDesc scene = Parsed(std::string("Display \"o.exr\" \"file\" \"") + mode +
+                                 "\"\nWorldBegin\nWorldEnd\n");
+        CHECK(scene.displayMode == mode);
+    }
+    CHECK(
+        ErrorOf("Display \"o.exr\" \"file\" \"rgba,Ci\"\n") ==
+        "t.rib:1: error: 'Display' mode 'rgba,Ci' has an unknown channel group 'Ci' (expected rgb, "
+        "rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost or err, separated by commas)");
+    CHECK(ErrorOf("Display \"o.exr\" \"file\" \"\"\n") ==
+          "t.rib:1: error: 'Display' mode '' has an unknown channel group '' (expected rgb, rgba, "
+          "rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost or err, separated by commas)");
+    CHECK(ErrorOf("Display \"o.exr\" \"file\" \"rgb,,N\"\n") ==
+          "t.rib:1: error: 'Display' mode 'rgb,,N' has an unknown channel group '' (expected rgb, "
+          "rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost or err, separated by commas)");
+    CHECK(ErrorOf("Display \"o.exr\" \"file\" \"RGB\"\n").find("unknown channel group 'RGB'") !=
+          std::string::npos);
+}
+
+TEST_CASE("RIB Option searchpath shader expands & and @", "[renderer][rib]") {
+    using Path = std::vector<std::string>;
+    CHECK(Parsed("WorldBegin WorldEnd").shaderSearchPath.empty());  // the renderer's default
+    CHECK(Parsed("Option \"searchpath\" \"shader\" [\"shaders:/opt/sl\"]\nWorldBegin WorldEnd")
+              .shaderSearchPath == Path{"shaders", "/opt/sl"});
+    // '&' is the previous value; '@' the default, the empty list; empty entries are skipped.
+    CHECK(Parsed("Option \"searchpath\" \"shader\" \"a:b\"\n"
+                 "Option \"searchpath\" \"string shader\" \"c:&:@::d\"\nWorldBegin WorldEnd")
+              .shaderSearchPath == Path{"c", "a", "b", "d"});
+    CHECK(Parsed("Option \"searchpath\" \"shader\" \"a\"\nOption \"searchpath\" \"shader\" \"@\"\n"
+                 "WorldBegin WorldEnd")
+              .shaderSearchPath.empty());
+    CHECK(Parsed(
+              "Option \"searchpath\" \"shader\" \"&:x\"\nOption \"searchpath\" \"shader\" \"&:&\"\n"
+              "WorldBegin WorldEnd")
+              .shaderSearchPath == Path{"x", "x"});
+    CHECK(ErrorOf("Option \"searchpath\" \"shader\" [1]\n") ==
+          "t.rib:1: error: 'Option \"searchpath\"' parameter 'shader' expects 1 string");
+
+    std::vector<std::string> warnings;
+    SceneDesc scene = Parsed(
+        "Option \"searchpath\" \"texture\" \"t\"\nOption \"searchpath\" \"texture\" \"u\"\n"
+        "Option \"limits\" \"bucketsize\" [16 16]\nOption \"statistics\"\nWorldBegin WorldEnd",
+        &warnings);
+    CHECK(scene.shaderSearchPath.empty());
+    REQUIRE(warnings.size() == 3);
+    CHECK(warnings[0] ==
+          "t.rib:1: warning: 'Option \"searchpath\" \"texture\"' is not supported; ignored");
+    CHECK(warnings[1] ==
+          "t.rib:3: warning: 'Option \"limits\" \"bucketsize\"' is not supported; ignored");
+    CHECK(warnings[2] == "t.rib:4: warning: 'Option \"statistics\"' is not supported; ignored");
+}
+
+TEST_CASE("RIB CoordinateSystem stores object to world", "[renderer][rib]") {
+    SceneDesc scene = Parsed(
+        "Translate 1 0 0\nCoordinateSystem \"beforeworld\"\nTranslate 0 0 5\n"
+        "WorldBegin\n"
+        "  AttributeBegin\n    Translate 1 2 3\n    Scale 2 2 2\n    CoordinateSystem \"inworld\"\n"
+        "  AttributeEnd\n  CoordinateSystem \"origin\"\nWorldEnd\n");
+    REQUIRE(scene.coordinateSystems.size() == 3);
+    // Before WorldBegin the CTM maps to camera space; world -> camera is Translate (1, 0, 5), so
+    // "beforeworld" (camera Translate (1, 0, 0)) is world Translate (0, 0, -5).
+    const glm::dmat4& before = scene.coordinateSystems.at("beforeworld");
+    RequireVec(Apply(before, {0, 0, 0}), {0, 0, -5});
+    RequireVec(Apply(before, {1, 2, 0}), {1, 2, -5});
+    const glm::dmat4& inWorld = scene.coordinateSystems.at("inworld");
+    RequireVec(Apply(inWorld, {0, 0, 0}), {1, 2, 3});
+    RequireVec(Apply(inWorld, {1, 0, 0}), {3, 2, 3});
+    CHECK(scene.coordinateSystems.at("origin") == glm::dmat4(1.0));
+
+    // A later definition replaces an earlier one.
+    scene = Parsed(
+        "WorldBegin\nCoordinateSystem \"a\"\nTranslate 0 1 0\nCoordinateSystem \"a\"\nWorldEnd\n");
+    RequireVec(Apply(scene.coordinateSystems.at("a"), {0, 0, 0}), {0, 1, 0});
+
+    CHECK(ErrorOf("WorldBegin\nCoordinateSystem \"world\"\nWorldEnd\n") ==
+          "t.rib:2: error: 'CoordinateSystem' cannot redefine the standard space 'world'");
+    CHECK(ErrorOf("WorldBegin\nCoordinateSystem 1\nWorldEnd\n") ==
+          "t.rib:2: error: 'CoordinateSystem' expects a coordinate system name as its first "
+          "argument, "
+          "found number 1");
+    CHECK(ErrorOf("WorldBegin\nWorldEnd\nCoordinateSystem \"late\"\n") ==
+          "t.rib:3: error: 'CoordinateSystem' after 'WorldEnd'");
+}
+
+TEST_CASE("RIB Attribute and Opacity warn once and are ignored", "[renderer][rib]") {
+    std::vector<std::string> warnings;
+    SceneDesc scene = Parsed(
+        "WorldBegin\nAttribute \"displacementbound\" \"sphere\" [0.5]\n"
+        "Attribute \"displacementbound\" \"float sphere\" [2] \"string coordinatesystem\" "
+        "\"object\"\n"
+        "Attribute \"visibility\" \"int camera\" [1]\nAttribute \"visibility\" \"int camera\" [0]\n"
+        "Opacity 1 1 1\nOpacity [0.5 0.5 0.5]\nOpacity 0 1 1\nWorldEnd\n",
+        &warnings);
+    REQUIRE(warnings.size() == 3);
+    CHECK(warnings[0] ==
+          "t.rib:2: warning: 'Attribute \"displacementbound\"' is not needed: affray bounds "
+          "displacement exactly; ignored");
+    CHECK(warnings[1] == "t.rib:4: warning: 'Attribute \"visibility\"' is not supported; ignored");
+    CHECK(warnings[2] == "t.rib:7: warning: affray renders opaque surfaces only; Opacity ignored");
+    CHECK(ErrorOf("WorldBegin\nOpacity 1 1\nWorldEnd\n") ==
+          "t.rib:2: error: 'Opacity' expects 3 numbers (r g b), got 2");
+    CHECK(ErrorOf("WorldBegin\nAttribute \"displacementbound\" \"sphere\"\nWorldEnd\n") ==
+          "t.rib:2: error: 'Attribute' parameter 'sphere' has no value");
+}
+
+TEST_CASE("RIB constant and metal surfaces", "[renderer][rib]") {
+    const std::string sphere = "\nSphere 1 -1 1 360";
+    SurfaceDesc s = OnlyPrimitive("Surface \"constant\"" + sphere).surface;
+    CHECK(s.model == SurfaceDesc::Model::Constant);
+
+    s = OnlyPrimitive("Surface \"metal\"" + sphere).surface;
+    CHECK(s.model == SurfaceDesc::Model::Metal);
+    CHECK(s.Ka == 1);
+    CHECK(s.Ks == 1);
+    CHECK(s.Kd == 0);
+    CHECK(s.roughness == 0.1);
+
+    s = OnlyPrimitive("Surface \"metal\" \"Ka\" 0.5 \"Ks\" [0.25] \"roughness\" 0.3" + sphere)
+            .surface;
+    CHECK(s.Ka == 0.5);
+    CHECK(s.Ks == 0.25);
+    CHECK(s.roughness == 0.3);
+
+    std::vector<std::string> warnings;
+    Parsed(
+        "WorldBegin\nSurface \"constant\" \"Ka\" 1\nSurface \"metal\" \"Kd\" 1\n"
+        "Surface \"metal\" \"specularcolor\" [1 1 1]\nWorldEnd\n",
+        &warnings);
+    REQUIRE(warnings.size() == 3);
+    CHECK(warnings[0] == "t.rib:2: warning: 'Surface \"constant\"' has no parameter 'Ka'; ignored");
+    CHECK(warnings[1] == "t.rib:3: warning: 'Surface \"metal\"' has no parameter 'Kd'; ignored");
+    CHECK(warnings[2] ==
+          "t.rib:4: warning: 'Surface \"metal\"' has no parameter 'specularcolor'; ignored");
+    CHECK(ErrorOf("Surface \"metal\" \"roughness\" [0]\n") ==
+          "t.rib:1: error: 'Surface \"metal\"' roughness must be positive, got 0");
+}
+
+TEST_CASE("RIB spotlight", "[renderer][rib]") {
+    std::vector<std::string> warnings;
+    SceneDesc scene = Parsed(
+        "Translate 0 0 5\nWorldBegin\nLightSource \"spotlight\" 1\n"
+        "Translate 1 0 0\nLightSource \"spotlight\" \"s\" \"intensity\" 3 \"lightcolor\" [1 0 0] "
+        "\"from\" [0 1 0] \"to\" [0 0 0] \"coneangle\" 0.25 \"conedeltaangle\" 0.05 "
+        "\"beamdistribution\" 4\nWorldEnd\n",
+        &warnings);
+    CHECK(warnings.empty());
+    REQUIRE(scene.lights.size() == 2);
+    const LightDesc& def = scene.lights[0];
+    CHECK(def.kind == LightDesc::Kind::Spot);
+    CHECK(def.intensity == 1);
+    RequireVec(def.from, {0, 0, 0});
+    RequireVec(def.to, {0, 0, 1});
+    CHECK(def.coneAngle == Approx(glm::radians(30.0)));
+    CHECK(def.coneDeltaAngle == Approx(glm::radians(5.0)));
+    CHECK(def.beamDistribution == 2);
+    const LightDesc& s = scene.lights[1];
+    CHECK(s.handle == "s");
+    CHECK(s.intensity == 3);
+    RequireVec(s.color, {1, 0, 0});
+    RequireVec(s.from, {1, 1, 0});
+    RequireVec(s.to, {1, 0, 0});
+    CHECK(s.coneAngle == 0.25);
+    CHECK(s.coneDeltaAngle == 0.05);
+    CHECK(s.beamDistribution == 4);
+
+    // Before WorldBegin: camera space, mapped at WorldBegin (the eye is at world z = -5).
+    scene = Parsed("LightSource \"spotlight\" 1\nTranslate 0 0 5\nWorldBegin\nWorldEnd\n");
+    RequireVec(scene.lights.at(0).from, {0, 0, -5});
+    RequireVec(scene.lights.at(0).to, {0, 0, -4});
+
+    const std::string ctx = "t.rib:2: error: 'LightSource \"spotlight\"' ";
+    auto light = [](const std::string& params) {
+        return ErrorOf("WorldBegin\nLightSource \"spotlight\" 1 " + params + "\nWorldEnd\n");
+    };
+    CHECK(light("\"from\" [1 1 1] \"to\" [1 1 1]") == ctx + "'from' and 'to' must differ");
+    CHECK(light("\"coneangle\" 0") == ctx + "coneangle must be in (0, pi] radians, got 0");
+    CHECK(light("\"coneangle\" 4") == ctx + "coneangle must be in (0, pi] radians, got 4");
+    CHECK(light("\"conedeltaangle\" -0.1") ==
+          ctx + "conedeltaangle must be from 0 to coneangle, got -0.1");
+    CHECK(light("\"coneangle\" 0.1 \"conedeltaangle\" 0.2") ==
+          ctx + "conedeltaangle must be from 0 to coneangle, got 0.2");
+    CHECK(light("\"beamdistribution\" -1") ==
+          ctx + "beamdistribution must not be negative, got -1");
+    CHECK(light("\"coneangle\" [1 2]") == ctx + "parameter 'coneangle' expects 1 number, got 2");
+}
+
+TEST_CASE("RIB quadrics take their arguments bare or as one array", "[renderer][rib]") {
+    auto both = [](const std::string& bare, const std::string& array) {
+        Quadric a = OnlyPrimitive(bare).quadric, b = OnlyPrimitive(array).quadric;
+        CHECK(ToString(a) == ToString(b));
+        CHECK(a.kind == b.kind);
+        return a;
+    };
+    Quadric q = both("Sphere 2 -1 1.5 270", "Sphere [2 -1 1.5 270]");
+    CHECK(q.kind == Quadric::Kind::Sphere);
+    CHECK(q.radius == 2);
+    CHECK(q.zmin == -1);
+    CHECK(q.zmax == 1.5);
+    CHECK(q.thetamax == 270);
+
+    q = both("Cylinder 0.5 -2 3 180", "Cylinder [0.5 -2 3 180]");
+    CHECK(q.kind == Quadric::Kind::Cylinder);
+    CHECK(q.radius == 0.5);
+    CHECK(q.zmin == -2);
+    CHECK(q.zmax == 3);
+    CHECK(q.thetamax == 180);
+
+    q = both("Cone 2 0.5 90", "Cone [2 0.5 90]");
+    CHECK(q.kind == Quadric::Kind::Cone);
+    CHECK(q.height == 2);
+    CHECK(q.radius == 0.5);
+    CHECK(q.thetamax == 90);
+
+    q = both("Disk -1 3 360", "Disk [-1 3 360]");
+    CHECK(q.kind == Quadric::Kind::Disk);
+    CHECK(q.height == -1);
+    CHECK(q.radius == 3);
+    CHECK(q.thetamax == 360);
+
+    q = both("Torus 2 0.5 -90 180 300", "Torus [2 0.5 -90 180 300]");
+    CHECK(q.kind == Quadric::Kind::Torus);
+    CHECK(q.majorRadius == 2);
+    CHECK(q.minorRadius == 0.5);
+    CHECK(q.phimin == -90);
+    CHECK(q.phimax == 180);
+    CHECK(q.thetamax == 300);
+
+    q = both("Hyperboloid 1 0 -1 0 1 1 360", "Hyperboloid [1 0 -1 0 1 1 360]");
+    CHECK(q.kind == Quadric::Kind::Hyperboloid);
+    CHECK(q.point1[0] == 1);
+    CHECK(q.point1[1] == 0);
+    CHECK(q.point1[2] == -1);
+    CHECK(q.point2[0] == 0);
+    CHECK(q.point2[1] == 1);
+    CHECK(q.point2[2] == 1);
+    CHECK(q.thetamax == 360);
+
+    q = both("Paraboloid 1.5 0.5 2 120", "Paraboloid [1.5 0.5 2 120]");
+    CHECK(q.kind == Quadric::Kind::Paraboloid);
+    CHECK(q.radius == 1.5);
+    CHECK(q.zmin == 0.5);
+    CHECK(q.zmax == 2);
+    CHECK(q.thetamax == 120);
+}
+
+TEST_CASE("RIB quadrics take the graphics state", "[renderer][rib]") {
+    std::vector<std::string> warnings;
+    SceneDesc scene = Parsed(
+        "WorldBegin\nColor 1 0 0\nSurface \"matte\"\nDisplacement \"bumps\" \"Km\" 0.1\n"
+        "Translate 0 0 3\nSphere 1 -1 1 360 \"Cs\" [0 1 0] \"st\" [0 0 1 1]\n"
+        "Disk [0 1 360] \"Cs\" [0 0 1]\nWorldEnd\n",
+        &warnings);
+    REQUIRE(scene.primitives.size() == 2);
+    const PrimitiveDesc& p = scene.primitives[0];
+    CHECK(p.shape == PrimitiveDesc::Shape::Quadric);
+    CHECK(p.line == 6);
+    RequireVec(p.color, {1, 0, 0});  // the Cs parameter is ignored
+    CHECK(p.surface.model == SurfaceDesc::Model::Matte);
+    REQUIRE(p.displacement);
+    CHECK(p.displacement->name == "bumps");
+    RequireVec(Apply(p.objectToWorld, {0, 0, 0}), {0, 0, 3});
+    CHECK(p.twoSided);
+    CHECK_FALSE(p.flipNormal);
+    CHECK(scene.primitives[1].quadric.kind == Quadric::Kind::Disk);
+    REQUIRE(warnings.size() == 3);
+    CHECK(warnings[0] == "t.rib:6: warning: 'Sphere' parameter 'Cs' is not supported yet; ignored");
+    CHECK(warnings[1] == "t.rib:6: warning: 'Sphere' parameter 'st' is not supported yet; ignored");
+    CHECK(warnings[2] == "t.rib:7: warning: 'Disk' parameter 'Cs' is not supported yet; ignored");
+}
+
+TEST_CASE("RIB quadric arguments give exact errors", "[renderer][rib]") {
+    auto error = [](const std::string& request) {
+        return ErrorOf("WorldBegin\n" + request + "\nWorldEnd\n");
+    };
+    CHECK(error("Sphere 1 -1 1") ==
+          "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 3");
+    CHECK(error("Sphere [1 -1 1]") ==
+          "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 3");
+    CHECK(error("Sphere 1 -1 [1] 360") ==
+          "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got array of 1 "
+          "number");
+    CHECK(error("Sphere 1 -1 1 360 5") ==
+          "t.rib:2: error: 'Sphere' expects a parameter name string, found number 5");
+    CHECK(error("Cone 1 1") ==
+          "t.rib:2: error: 'Cone' expects 3 numbers (height radius thetamax), got 2");
+    CHECK(
+        error("Torus 1 1 1 1") ==
+        "t.rib:2: error: 'Torus' expects 5 numbers (rmajor rminor phimin phimax thetamax), got 4");
+    CHECK(error("Hyperboloid [1 0 0 1 0]") ==
+          "t.rib:2: error: 'Hyperboloid' expects 7 numbers (x1 y1 z1 x2 y2 z2 thetamax), got 5");
+    CHECK(error("Sphere 0 -1 1 360") == "t.rib:2: error: 'Sphere' the radius must be positive");
+    CHECK(error("Sphere 1 2 3 360") ==
+          "t.rib:2: error: 'Sphere' zmin..zmax does not cut the sphere");
+    CHECK(error("Sphere 1 -1 1 0") ==
+          "t.rib:2: error: 'Sphere' thetamax is 0: the surface is empty");
+    CHECK(error("Cylinder 1 1 1 360") ==
+          "t.rib:2: error: 'Cylinder' zmin equals zmax: the surface is empty");
+    CHECK(error("Cone 1 -1 360") == "t.rib:2: error: 'Cone' the radius must be positive");
+    CHECK(error("Disk 0 0 360") == "t.rib:2: error: 'Disk' the radius must be positive");
+    CHECK(error("Torus 1 0 0 360 360") ==
+          "t.rib:2: error: 'Torus' the minor radius must be positive");
+    CHECK(error("Hyperboloid 1 0 0 1 0 0 360") ==
+          "t.rib:2: error: 'Hyperboloid' point1 equals point2: the surface is empty");
+    CHECK(error("Paraboloid 1 -1 1 360") ==
+          "t.rib:2: error: 'Paraboloid' it needs 0 <= zmin < zmax");
+    CHECK(ErrorOf("Sphere 1 -1 1 360\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:1: error: 'Sphere' must come between 'WorldBegin' and 'WorldEnd'");
+}
+
+TEST_CASE("RIB Sides and orientation set twoSided and flipNormal", "[renderer][rib]") {
+    const std::string sphere = "\nSphere 1 -1 1 360";
+    auto flip = [&](const std::string& body, const std::string& options = "") {
+        return OnlyPrimitive(body + sphere, options).flipNormal;
+    };
+    // flipNormal = (det objectToWorld < 0) XOR insideOut (scene.h).
+    CHECK_FALSE(flip(""));              // normals point out
+    CHECK(flip("ReverseOrientation"));  // inside out
+    CHECK_FALSE(flip("ReverseOrientation ReverseOrientation"));
+    CHECK_FALSE(flip("", "Scale 1 1 -1\n"));  // mirrored camera: still out
+    CHECK(flip("ReverseOrientation", "Scale 1 1 -1\n"));
+    CHECK(flip("Orientation \"inside\""));
+    CHECK_FALSE(flip("Orientation \"outside\""));
+    CHECK(flip("Orientation \"rh\""));
+    CHECK_FALSE(flip("Orientation \"rh\" Orientation \"lh\""));
+    CHECK(flip("Scale -1 1 1"));  // a mirror turns the world dPdu x dPdv in; flipped back out
+    CHECK(flip("Scale -1 1 1 Orientation \"outside\""));  // outside follows the space
+    CHECK_FALSE(flip("Scale -1 1 1 Orientation \"inside\"", "Scale 1 1 -1\n"));
+    CHECK(flip("Scale -1 1 1", "Scale 1 1 -1\n"));        // the camera's mirror does not matter
+    CHECK(flip("Orientation \"outside\" Scale -1 1 1"));  // orientation set before the mirror
+    // Orientation before WorldBegin, in a mirrored camera space: "outside" is still outside, and
+    // "lh" there (a right-handed space) is inside out.
+    CHECK_FALSE(flip("", "Scale 1 1 -1\nOrientation \"outside\"\n"));
+    CHECK(flip("", "Scale 1 1 -1\nOrientation \"lh\"\n"));
+    // Scoped by AttributeBegin/End, not by TransformBegin/End.
+    CHECK_FALSE(flip("AttributeBegin ReverseOrientation AttributeEnd"));
+    CHECK(flip("TransformBegin ReverseOrientation TransformEnd"));
+
+    CHECK(OnlyPrimitive("Sides 2" + sphere).twoSided);
+    CHECK_FALSE(OnlyPrimitive("Sides 1" + sphere).twoSided);
+    CHECK_FALSE(OnlyPrimitive("Sides [1]" + sphere).twoSided);
+    CHECK(OnlyPrimitive("AttributeBegin Sides 1 AttributeEnd" + sphere).twoSided);
+    CHECK_FALSE(OnlyPrimitive(sphere, "Sides 1\n").twoSided);  // attributes carry into the world
+
+    // Patches get them too.
+    PrimitiveDesc patch = OnlyPrimitive(
+        "Sides 1 ReverseOrientation\nPatch \"bilinear\" \"P\" [0 0 0 1 0 0 0 1 0 1 1 0]");
+    CHECK_FALSE(patch.twoSided);
+    CHECK(patch.flipNormal);
+
+    CHECK(ErrorOf("WorldBegin\nSides 3\nWorldEnd\n") ==
+          "t.rib:2: error: 'Sides' must be 1 or 2, got 3");
+    CHECK(ErrorOf("WorldBegin\nOrientation \"up\"\nWorldEnd\n") ==
+          "t.rib:2: error: unknown orientation 'up' (expected \"outside\", \"inside\", \"lh\" or "
+          "\"rh\")");
+    CHECK(ErrorOf("WorldBegin\nReverseOrientation 1\nWorldEnd\n") ==
+          "t.rib:2: error: 'ReverseOrientation' takes no arguments, found number 1");
+}
+
+TEST_CASE("A RIB scene with quadrics, options and a mirrored camera", "[renderer][rib]") {
+    std::vector<std::string> warnings;
+    SceneDesc scene = Parsed(kQuadricScene, &warnings);
+    REQUIRE(warnings.size() == 2);
+    CHECK(warnings[0] ==
+          "t.rib:16: warning: 'Attribute \"displacementbound\"' is not needed: affray bounds "
+          "displacement exactly; ignored");
+    CHECK(warnings[1] == "t.rib:24: warning: 'Cone' parameter 'Cs' is not supported yet; ignored");
+    CHECK(scene.shaderSearchPath == std::vector<std::string>{"shaders"});
+    CHECK(scene.displayMode == "rgba,Z,N");
+    CHECK(scene.camera.xsamples == 3);
+    // world -> camera = Scale(1, 1, -1) * Translate(0, 0, 8); "eye" -> camera is the Scale, so
+    // eye -> world is Translate(0, 0, -8): the right-handed world's axes at the eye.
+    RequireVec(Apply(scene.coordinateSystems.at("eye"), {0, 0, 0}), {0, 0, -8});
+    RequireVec(Apply(scene.coordinateSystems.at("eye"), {0, 0, 1}), {0, 0, -7});
+    CHECK(scene.coordinateSystems.at("world2") == glm::dmat4(1.0));
+    REQUIRE(scene.lights.size() == 1);
+    RequireVec(scene.lights[0].from, {0, 0, -8});
+    RequireVec(scene.lights[0].to, {0, 0, -7});  // given in "eye" space, toward the world origin
+
+    REQUIRE(scene.primitives.size() == 7);
+    const Quadric::Kind kinds[] = {Quadric::Kind::Sphere,    Quadric::Kind::Cylinder,
+                                   Quadric::Kind::Cone,      Quadric::Kind::Disk,
+                                   Quadric::Kind::Torus,     Quadric::Kind::Hyperboloid,
+                                   Quadric::Kind::Paraboloid};
+    for (size_t i = 0; i < 7; ++i) {
+        const PrimitiveDesc& p = scene.primitives[i];
+        INFO(ToString(p));
+        CHECK(p.quadric.kind == kinds[i]);
+        CHECK(p.line == static_cast<int>(i < 3 ? 22 + i : 25 + i));
+        // Inside the attribute block: one-sided and "inside"; after it ReverseOrientation: all
+        // inside out, whatever the mirrored camera.
+        CHECK(p.twoSided == (i >= 3));
+        CHECK(p.flipNormal);
+        CHECK(p.surface.model ==
+              (i < 3 ? SurfaceDesc::Model::Metal : SurfaceDesc::Model::Constant));
     }
 }

@@ -1,0 +1,248 @@
+// tests/renderer/shade_test.cpp: the surface models and lights (renderer/shade.*) against values
+// worked out by hand from RI Spec 3.2 appendix A, plastic and matte against the implementation
+// they had before metal, constant and spotlight were added, and shadow rays only where needed.
+#include "renderer/shade.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+using namespace affray::renderer;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// A point at the origin facing +z, seen from straight above.
+ShadingPoint Facing() { return {glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1)}; }
+
+LightDesc Point(const glm::dvec3& from, double intensity) {
+    LightDesc l;
+    l.kind = LightDesc::Kind::Point;
+    l.from = from;
+    l.intensity = intensity;
+    return l;
+}
+
+LightDesc Ambient(double intensity) {
+    LightDesc l;
+    l.kind = LightDesc::Kind::Ambient;
+    l.intensity = intensity;
+    return l;
+}
+
+/// A spotlight 2 above the origin shining straight down: coneangle 30 deg, delta 5 deg.
+LightDesc Spot(double intensity = 4) {
+    LightDesc l;
+    l.kind = LightDesc::Kind::Spot;
+    l.from = {0, 0, 2};
+    l.to = {0, 0, 0};
+    l.intensity = intensity;
+    l.coneAngle = 30 * kPi / 180;
+    l.coneDeltaAngle = 5 * kPi / 180;
+    l.beamDistribution = 2;
+    return l;
+}
+
+SurfaceDesc Model(SurfaceDesc::Model model, double Ka, double Kd, double Ks, double roughness = 0.1) {
+    SurfaceDesc s;
+    s.model = model;
+    s.Ka = Ka;
+    s.Kd = Kd;
+    s.Ks = Ks;
+    s.roughness = roughness;
+    return s;
+}
+
+/// An occlusion test that blocks nothing (or everything) and counts its calls.
+struct CountingOcclusion {
+    int calls = 0;
+    bool blocked = false;
+    OcclusionTest Test() {
+        return [this](const glm::dvec3&, double) {
+            ++calls;
+            return blocked;
+        };
+    }
+};
+
+/// The matte and plastic of shade.cpp as they were before metal, constant and spotlight: the
+/// reference that the refactored code must reproduce bit for bit.
+glm::dvec3 ShadeBefore(const SurfaceDesc& surface, const glm::dvec3& Cs, const ShadingPoint& sp,
+                       const std::vector<LightDesc>& lights, const OcclusionTest& occluded) {
+    glm::dvec3 ambient(0.0), diffuse(0.0), specular(0.0);
+    for (const LightDesc& light : lights) {
+        glm::dvec3 Cl = light.intensity * light.color;
+        if (light.kind == LightDesc::Kind::Ambient) {
+            ambient += Cl;
+            continue;
+        }
+        glm::dvec3 L;
+        double distance;
+        if (light.kind == LightDesc::Kind::Distant) {
+            L = glm::normalize(light.from - light.to);
+            distance = INFINITY;
+        } else {
+            glm::dvec3 toLight = light.from - sp.P;
+            distance = glm::length(toLight);
+            if (!(distance > 0)) continue;
+            L = toLight / distance;
+            Cl /= distance * distance;
+        }
+        double cosine = glm::dot(sp.Nf, L);
+        if (cosine <= 0) continue;
+        if (occluded(L, distance)) continue;
+        diffuse += Cl * cosine;
+        if (surface.model == SurfaceDesc::Model::Plastic && surface.roughness > 0) {
+            glm::dvec3 H = glm::normalize(L + sp.V);
+            specular += Cl * std::pow(std::max(0.0, glm::dot(sp.Nf, H)), 1.0 / surface.roughness);
+        }
+    }
+    glm::dvec3 color = Cs * (surface.Ka * ambient + surface.Kd * diffuse);
+    if (surface.model == SurfaceDesc::Model::Plastic) color += surface.specularColor * surface.Ks * specular;
+    return color;
+}
+
+void RequireNear(const glm::dvec3& got, const glm::dvec3& want) {
+    INFO("got [" << got.x << " " << got.y << " " << got.z << "], want [" << want.x << " " << want.y << " " << want.z
+                 << "]");
+    for (int c = 0; c < 3; ++c) REQUIRE(got[c] == Approx(want[c]).margin(1e-14));
+}
+
+}  // namespace
+
+TEST_CASE("Plastic by hand: ambient, diffuse and an off-axis highlight", "[shade]") {
+    const glm::dvec3 Cs(1, 0.5, 0.25);
+    const SurfaceDesc plastic = Model(SurfaceDesc::Model::Plastic, 1, 0.5, 0.5);
+    CountingOcclusion occ;
+    // Overhead, intensity 4 at distance 2: Cl = 1, N.L = 1, N.H = 1.
+    glm::dvec3 c = ShadeSurface(plastic, Cs, Facing(), {Point({0, 0, 2}, 4), Ambient(0.1)}, occ.Test());
+    RequireNear(c, Cs * (0.1 + 0.5) + glm::dvec3(0.5));
+    // At 45 degrees, distance sqrt(8): Cl = 1/8, N.L = cos 45, H halfway: N.H = cos 22.5.
+    c = ShadeSurface(plastic, Cs, Facing(), {Point({2, 0, 2}, 1)}, occ.Test());
+    const double Cl = 1.0 / 8, spec = std::pow(std::cos(kPi / 8), 10);
+    RequireNear(c, Cs * 0.5 * Cl * std::cos(kPi / 4) + glm::dvec3(0.5 * Cl * spec));
+    CHECK(occ.calls == 2);
+}
+
+TEST_CASE("Plastic and matte are unchanged bit for bit", "[shade]") {
+    const std::vector<LightDesc> lights = [] {
+        std::vector<LightDesc> l = {Point({0.3, -0.2, 2}, 3), Point({-4, 1, 0.5}, 20), Ambient(0.07),
+                                    Point({0, 0, -3}, 5)};  // the last is behind the surface
+        LightDesc distant;
+        distant.kind = LightDesc::Kind::Distant;
+        distant.from = {1, 2, 3};
+        distant.to = {0, 0, 0};
+        distant.color = {1, 0.9, 0.8};
+        l.push_back(distant);
+        return l;
+    }();
+    ShadingPoint sp{{0.1, 0.2, 0.05}, glm::normalize(glm::dvec3(0.1, -0.2, 1)),
+                    glm::normalize(glm::dvec3(-0.3, 0.4, 1))};
+    const glm::dvec3 Cs(0.8, 0.6, 0.3);
+    for (auto model : {SurfaceDesc::Model::Matte, SurfaceDesc::Model::Plastic})
+        for (double roughness : {0.05, 0.1, 0.3, 0.0})
+            for (bool blocked : {false, true}) {
+                SurfaceDesc s = Model(model, 0.9, 0.6, 0.4, roughness);
+                s.specularColor = {1, 0.5, 0.5};
+                CountingOcclusion occ;
+                occ.blocked = blocked;
+                const glm::dvec3 got = ShadeSurface(s, Cs, sp, lights, occ.Test());
+                const glm::dvec3 want = ShadeBefore(s, Cs, sp, lights, occ.Test());
+                INFO("model " << int(model) << " roughness " << roughness << " blocked " << blocked);
+                CHECK(got == want);
+            }
+}
+
+TEST_CASE("Constant is Cs and casts no shadow rays", "[shade]") {
+    CountingOcclusion occ;
+    const glm::dvec3 Cs(0.2, 0.4, 0.6);
+    SurfaceDesc constant;
+    constant.model = SurfaceDesc::Model::Constant;
+    CHECK(ShadeSurface(constant, Cs, Facing(), {Point({0, 0, 2}, 4), Ambient(1), Spot()}, occ.Test()) == Cs);
+    CHECK(ShadeSurface(constant, Cs, Facing(), {}, occ.Test()) == Cs);
+    CHECK(occ.calls == 0);
+}
+
+TEST_CASE("Metal is Cs times ambient and specular, without diffuse", "[shade]") {
+    const glm::dvec3 Cs(1, 0.5, 0.25);
+    SurfaceDesc metal = Model(SurfaceDesc::Model::Metal, 1, 0.5, 1, 0.1);
+    metal.specularColor = {0, 0, 0};  // metal tints its highlight with Cs, not specularcolor
+    CountingOcclusion occ;
+    // Off axis as in the plastic case: Cl = 1/8, N.H = cos 22.5.
+    glm::dvec3 c = ShadeSurface(metal, Cs, Facing(), {Point({2, 0, 2}, 1), Ambient(0.2)}, occ.Test());
+    RequireNear(c, Cs * (0.2 + std::pow(std::cos(kPi / 8), 10) / 8));
+    CHECK(occ.calls == 1);
+    // Ka and Ks scale their terms.
+    metal.Ka = 0.5;
+    metal.Ks = 2;
+    c = ShadeSurface(metal, Cs, Facing(), {Point({0, 0, 2}, 4), Ambient(0.2)}, occ.Test());
+    RequireNear(c, Cs * (0.5 * 0.2 + 2 * 1.0));
+    // No highlight without roughness: nothing a light could add, so no shadow ray.
+    metal.roughness = 0;
+    occ.calls = 0;
+    c = ShadeSurface(metal, Cs, Facing(), {Point({0, 0, 2}, 4), Ambient(0.2)}, occ.Test());
+    RequireNear(c, Cs * 0.1);
+    CHECK(occ.calls == 0);
+}
+
+TEST_CASE("Spotlight on the axis, inside, at the edge and outside its cone", "[shade]") {
+    const SurfaceDesc matte = Model(SurfaceDesc::Model::Matte, 0, 1, 0);
+    const glm::dvec3 white(1.0);
+    auto at = [&](double degreesOffAxis, CountingOcclusion* occ) {
+        // The point on the plane z = 0 that the spot sees at this angle from its axis.
+        ShadingPoint sp = Facing();
+        sp.P = {2 * std::tan(degreesOffAxis * kPi / 180), 0, 0};
+        return ShadeSurface(matte, white, sp, {Spot()}, occ->Test());
+    };
+    CountingOcclusion occ;
+    // On the axis: intensity 4 at distance 2, smoothstep 1, cos^2 = 1, N.L = 1.
+    RequireNear(at(0, &occ), glm::dvec3(1.0));
+    // 10 degrees off: inside the inner cone (25 deg); Cl = 4 c^2/4 (1/d^2 with d = 2/c) * c^2
+    // (beamdistribution 2) and N.L = c: c^5.
+    const double c10 = std::cos(10 * kPi / 180);
+    RequireNear(at(10, &occ), glm::dvec3(std::pow(c10, 5)));
+    CHECK(occ.calls == 2);
+    // Outside the cone: dark, and no shadow ray.
+    occ.calls = 0;
+    RequireNear(at(40, &occ), glm::dvec3(0.0));
+    RequireNear(at(30.5, &occ), glm::dvec3(0.0));
+    CHECK(occ.calls == 0);
+    // In the soft edge, a quarter of the way from cos 30 to cos 25: smoothstep = t^2 (3 - 2t) = 0.15625.
+    const double cosOut = std::cos(30 * kPi / 180), cosIn = std::cos(25 * kPi / 180);
+    const double c = cosOut + 0.25 * (cosIn - cosOut);
+    RequireNear(at(std::acos(c) * 180 / kPi, &occ), glm::dvec3(0.15625 * std::pow(c, 5)));
+    // Halfway: 0.5.
+    const double h = 0.5 * (cosOut + cosIn);
+    RequireNear(at(std::acos(h) * 180 / kPi, &occ), glm::dvec3(0.5 * std::pow(h, 5)));
+}
+
+TEST_CASE("Spotlight beam distribution and colour", "[shade]") {
+    LightDesc spot = Spot(8);
+    spot.beamDistribution = 5;
+    spot.color = {1, 0.5, 0};
+    ShadingPoint sp = Facing();
+    const double angle = 20 * kPi / 180, c = std::cos(angle);
+    sp.P = {0, 2 * std::tan(angle), 0};
+    CountingOcclusion occ;
+    glm::dvec3 got = ShadeSurface(Model(SurfaceDesc::Model::Matte, 0, 1, 0), glm::dvec3(1.0), sp, {spot}, occ.Test());
+    // 8 / d^2 = 2 c^2, beam c^5, N.L = c.
+    RequireNear(got, glm::dvec3(1, 0.5, 0) * (2 * std::pow(c, 8)));
+}
+
+TEST_CASE("Shadow rays only for lights that would add light", "[shade]") {
+    const SurfaceDesc plastic = Model(SurfaceDesc::Model::Plastic, 1, 0.5, 0.5);
+    CountingOcclusion occ;
+    // Behind the surface, and ambient: no shadow rays.
+    ShadeSurface(plastic, glm::dvec3(1.0), Facing(), {Point({0, 0, -2}, 4), Ambient(1)}, occ.Test());
+    CHECK(occ.calls == 0);
+    // A blocked light adds nothing; the ambient still shows.
+    occ.blocked = true;
+    glm::dvec3 c = ShadeSurface(plastic, glm::dvec3(1.0), Facing(), {Point({0, 0, 2}, 4), Ambient(0.25)}, occ.Test());
+    CHECK(occ.calls == 1);
+    RequireNear(c, glm::dvec3(0.25));
+    // A blocked spotlight likewise.
+    occ.calls = 0;
+    c = ShadeSurface(plastic, glm::dvec3(1.0), Facing(), {Spot()}, occ.Test());
+    CHECK(occ.calls == 1);
+    RequireNear(c, glm::dvec3(0.0));
+}
