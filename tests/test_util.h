@@ -4,7 +4,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstdio>
 #include <cstdlib>
+#include <sys/wait.h>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -43,6 +45,26 @@ class TempDir {
 };
 
 inline std::string SourceDir() { return AFFRAY_SOURCE_DIR; }
+
+/// What the `affray` program printed and its exit status (-1 if it did not exit normally).
+struct CliOutput {
+    int status;
+    std::string out;
+};
+
+/// Runs the `affray` program with `args` (shell-quoted by the caller); captures its stdout, and
+/// its stderr too when `withStderr`.
+inline CliOutput RunCli(const std::string& args, bool withStderr = false) {
+    std::string cmd = std::string(AFFRAY_CLI) + " " + args + (withStderr ? " 2>&1" : " 2>/dev/null");
+    FILE* pipe = popen(cmd.c_str(), "r");
+    REQUIRE(pipe);
+    std::string out;
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+    int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
 
 /// Requires `got` to equal `want` within 1e-12 per component, printing both on failure.
 inline void RequireVec(const glm::dvec3& got, const glm::dvec3& want) {

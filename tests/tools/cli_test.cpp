@@ -16,23 +16,9 @@ using namespace affray;
 
 namespace {
 
-struct Output {
-    int status;
-    std::string out;
-};
+using Output = test::CliOutput;
 
-/// Runs the CLI with `args` (shell-quoted by the caller); captures stdout, and stderr when asked.
-Output Run(const std::string& args, bool withStderr = false) {
-    std::string cmd = std::string(AFFRAY_CLI) + " " + args + (withStderr ? " 2>&1" : " 2>/dev/null");
-    FILE* pipe = popen(cmd.c_str(), "r");
-    REQUIRE(pipe);
-    std::string out;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-    int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+Output Run(const std::string& args, bool withStderr = false) { return test::RunCli(args, withStderr); }
 
 fs::path TempDir(const std::string& name) {
     fs::path dir = fs::temp_directory_path() / ("affray_cli_test_" + name + "_" + std::to_string(::getpid()));

@@ -17,22 +17,10 @@ using namespace affray;
 
 namespace {
 
-struct Output {
-    int status;
-    std::string out;  // stdout and stderr
-};
+using Output = test::CliOutput;
 
-Output Run(const std::string& args) {
-    std::string cmd = std::string(AFFRAY_CLI) + " " + args + " 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    REQUIRE(pipe);
-    std::string out;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-    int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+/// Runs the CLI, capturing stdout and stderr.
+Output Run(const std::string& args) { return test::RunCli(args, true); }
 
 std::string ReadText(const fs::path& path) {
     std::ifstream in(path);
