@@ -48,7 +48,9 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     lang::Diagnostics diags(file);
     lang::TranslationUnit unit = lang::PreprocessAndParse(diags, preprocess);
     std::optional<LoweredShader> lowered;
-    if (!diags.hasErrors()) lowered = Lower(unit, diags);
+    // The generic programs are lowered with the instance's spaces too, only so that a scene's
+    // CoordinateSystem names are known (their matrices are folded again into the instance).
+    if (!diags.hasErrors()) lowered = Lower(unit, diags, nullptr, nullptr, spaces);
     result.diagnostics = diags.format();
     if (!lowered) return result;
 

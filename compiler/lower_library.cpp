@@ -61,7 +61,9 @@ std::optional<std::string> Lowerer::SpaceName(const Value& v, lang::SourceLoc lo
         m_diags.error(loc, "coordinate space '" + *name + "' is projective and not supported");
         return std::nullopt;
     }
-    if (!IsKnownSpace(*name)) {
+    // A scene's CoordinateSystem names come with its spaces; without a scene only the standard
+    // names are known (so a typo is caught when a shader is compiled on its own).
+    if (!IsKnownSpace(*name) && !(m_spaces && m_spaces->count(*name))) {
         m_diags.error(loc, "unknown coordinate space '" + *name + "'");
         return std::nullopt;
     }

@@ -1,0 +1,153 @@
+// tests/renderer/render_test.cpp: scene preparation and the tile loop (renderer/render.*) on tiny
+// scenes whose answers are known by hand: clipping planes, one-sided surfaces, the shader search
+// path, named coordinate systems seen by shaders, quadrics in the BVH, and AOVs.
+#include "renderer/render.h"
+
+#include <catch2/catch.hpp>
+
+#include "../test_util.h"
+#include "renderer/film.h"
+#include "renderer/rib.h"
+
+using namespace affray;
+using namespace affray::renderer;
+
+namespace {
+
+/// Parses `rib` (the scene's path is `dir`/scene.rib, for the search path), prepares and renders
+/// it with one box-filtered sample per pixel; returns the image.
+ImageBuffer Render(const test::TempDir& dir, const std::string& rib, PreparedScene* keep = nullptr) {
+    std::string error;
+    std::optional<SceneDesc> desc = ParseRib(rib, dir.Path("scene.rib"), &error, nullptr);
+    INFO(error);
+    REQUIRE(desc);
+    desc->camera.xsamples = desc->camera.ysamples = 1;
+    desc->camera.filter = FilterDesc{FilterDesc::Kind::Box, 1, 1};
+    PreparedScene prepared;
+    const bool prepared_ok = PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error);
+    INFO(error);
+    REQUIRE(prepared_ok);
+    RenderOptions options;
+    options.threads = 2;
+    ImageBuffer image;
+    RenderStats stats;
+    RenderImage(prepared, options, &image, &stats);
+    if (keep) *keep = std::move(prepared);
+    return image;
+}
+
+float Alpha(const ImageBuffer& image, int x, int y) { return image.rgba[(size_t(y) * image.width + x) * 4 + 3]; }
+
+const std::vector<float>& Channel(const ImageBuffer& image, const std::string& name) {
+    for (const auto& [n, values] : image.extraChannels)
+        if (n == name) return values;
+    FAIL("no channel " << name);
+    static std::vector<float> none;
+    return none;
+}
+
+// An orthographic camera looking down -z at the unit square around the origin (camera z into the
+// scene): world (x, y, z) is seen at depth 5 - z.
+const char* const kCamera = R"(Format 8 8 1
+Projection "orthographic"
+ScreenWindow -1 1 -1 1
+Display "t.exr" "file" "rgba,Z,N,P,st,cost"
+Scale 1 1 -1
+Translate 0 0 -5
+)";
+
+int Covered(const ImageBuffer& image) {
+    int n = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) n += Alpha(image, x, y) == 1.0f;
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("render: clipping planes cut camera rays by camera depth", "[renderer][render]") {
+    test::TempDir dir;
+    const std::string world = "WorldBegin\nSphere 0.9 -0.9 0.9 360\nWorldEnd\n";
+    // The sphere spans depths 4.1 to 5.9: a near plane past its back, or a far plane before its
+    // front, leaves nothing; a near plane through its middle shows the back half's inside.
+    CHECK(Covered(Render(dir, std::string(kCamera) + world)) > 30);
+    CHECK(Covered(Render(dir, std::string(kCamera) + "Clipping 6 100\n" + world)) == 0);
+    CHECK(Covered(Render(dir, std::string(kCamera) + "Clipping 0.1 4\n" + world)) == 0);
+    const ImageBuffer cut = Render(dir, std::string(kCamera) + "Clipping 5 100\n" + world);
+    REQUIRE(Covered(cut) > 30);
+    const std::vector<float>& z = Channel(cut, "Z");
+    for (float depth : z)
+        if (depth < 1e29f) CHECK(depth >= 5.0f);
+}
+
+TEST_CASE("render: a one-sided surface seen from behind is invisible", "[renderer][render]") {
+    test::TempDir dir;
+    // The patch's dPdu x dPdv points to +z, towards the camera: seen from the front. Reversed, the
+    // camera sees its back: with Sides 1 it vanishes, and the sphere behind it shows through.
+    const std::string patch = "Patch \"bilinear\" \"P\" [-1 -1 1  1 -1 1  -1 1 1  1 1 1]\n";
+    const std::string sphere = "Sphere 0.5 -0.5 0.5 360\n";
+    auto render = [&](const std::string& attributes) {
+        return Render(dir, std::string(kCamera) + "WorldBegin\n" + attributes + patch + "Sides 2\n" + sphere +
+                               "WorldEnd\n");
+    };
+    const ImageBuffer front = render("Sides 1\n"), back = render("Sides 1\nReverseOrientation\n"),
+                      twoSided = render("ReverseOrientation\n");
+    CHECK(Covered(front) == 64);
+    CHECK(Covered(twoSided) == 64);
+    const int sphereOnly = Covered(back);
+    CHECK(sphereOnly > 4);
+    CHECK(sphereOnly < 40);
+    // Where the sphere shows through, its depth (at most 4.5 + 0.5) is behind the patch (4).
+    const std::vector<float>& z = Channel(back, "Z");
+    for (float depth : z)
+        if (depth < 1e29f) CHECK(depth > 4.4f);
+}
+
+TEST_CASE("render: shaders are found on the scene's search path and see its coordinate systems",
+          "[renderer][render]") {
+    test::TempDir dir;
+    // The shader lifts P by the height of "lift" space's origin above world's: 0.5. It lives in a
+    // directory only the scene's search path names.
+    dir.Write("mine/lifted.sl",
+              "displacement lifted() { P += vector(0, 0, zcomp(transform(\"lift\", \"world\", point(0, 0, 0)))); }");
+    const std::string world = "WorldBegin\nTransformBegin\nTranslate 0 0 0.5\nCoordinateSystem \"lift\"\n"
+                              "TransformEnd\nDisplacement \"lifted\"\n"
+                              "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n";
+    const ImageBuffer image = Render(dir, std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"mine:&\"]\n" + world);
+    REQUIRE(Covered(image) == 64);
+    for (float depth : Channel(image, "Z")) CHECK(depth == Approx(4.5).margin(0.02));
+    // Without the search path the shader is not found: an error naming the directories searched.
+    std::string error;
+    std::optional<SceneDesc> desc = ParseRib(std::string(kCamera) + world, dir.Path("scene.rib"), &error, nullptr);
+    REQUIRE(desc);
+    PreparedScene prepared;
+    CHECK_FALSE(PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error));
+    CHECK(error.find("shader 'lifted' not found") != std::string::npos);
+}
+
+TEST_CASE("render: quadrics and patches share the BVH, and AOVs describe the nearest hit", "[renderer][render]") {
+    test::TempDir dir;
+    // A unit sphere in front of a far patch. Near the image centre the sphere is hit near its
+    // north pole (v = 1), which faces the camera: P on the unit sphere, N = P, depth 5 - P.z.
+    PreparedScene prepared;
+    const ImageBuffer image = Render(dir,
+                                     std::string(kCamera) + "WorldBegin\nSphere 1 -1 1 360\n"
+                                                            "Patch \"bilinear\" \"P\" [-1 -1 -2  1 -1 -2  -1 1 -2  1 1 -2]\n"
+                                                            "WorldEnd\n",
+                                     &prepared);
+    CHECK(prepared.bvh->nodeCount() == 3);
+    CHECK(Covered(image) == 64);
+    const size_t centre = 4 * 8 + 4;  // pixel (4, 4), whose sample is jittered in [0, 0.25]^2
+    const glm::dvec3 P(Channel(image, "P.X")[centre], Channel(image, "P.Y")[centre], Channel(image, "P.Z")[centre]);
+    const glm::dvec3 N(Channel(image, "N.X")[centre], Channel(image, "N.Y")[centre], Channel(image, "N.Z")[centre]);
+    CHECK(glm::length(P) == Approx(1).margin(0.01));
+    CHECK(glm::length(N - P) < 0.02);
+    CHECK(P.x >= -0.01);
+    CHECK(P.x <= 0.26);
+    CHECK(Channel(image, "Z")[centre] == Approx(5 - P.z).margin(0.01));
+    CHECK(Channel(image, "st.t")[centre] > 0.9f);
+    CHECK(Channel(image, "cost")[centre] > 0);
+    // The corner pixel (0, 0) misses the sphere and sees the patch at depth 7.
+    CHECK(Channel(image, "Z")[0] == Approx(7).margin(1e-6));
+    CHECK(Channel(image, "N.Z")[0] == Approx(1).margin(1e-9));
+}
