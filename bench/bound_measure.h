@@ -22,6 +22,7 @@
 
 #include "bench/evals_per_second.h"
 #include "compiler/compile.h"
+#include "renderer/render.h"
 #include "renderer/surface.h"
 
 namespace affray::bench {
@@ -36,20 +37,15 @@ struct BenchShader {
 };
 
 /// Compiles `path` with default parameters and specialises its bound program for the unit square
-/// seen from the origin, as renderer/render.cpp's ConstantGlobals does for a flat patch; the
-/// diagnostics on failure.
+/// seen from the origin (renderer::ConstantGlobals); nullopt with the diagnostics on failure.
 inline std::optional<BenchShader> LoadBenchShader(const std::string& path, std::string* error) {
     compiler::CompileResult result = compiler::CompileFile(path);
     if (!result.ok()) {
         *error = result.diagnostics;
         return std::nullopt;
     }
-    using vm::Global;
-    const double step = renderer::kParametricStep;
-    std::vector<compiler::ConstantGlobal> constants = {
-        {Global::E, {0, 0, 0}},      {Global::du, {step, 0, 0}},  {Global::dv, {step, 0, 0}},
-        {Global::dPdu, {1, 0, 0}},   {Global::dPdv, {0, 1, 0}},   {Global::N, {0, 0, 1}},
-        {Global::Ng, {0, 0, 1}}};
+    const std::vector<compiler::ConstantGlobal> constants =
+        renderer::ConstantGlobals(renderer::BilinearPatch::UnitSquare(), glm::dvec3(0.0));
     std::vector<std::string> errors;
     std::optional<vm::Program> program = compiler::Specialise(result.shader->bound, {}, &errors, constants);
     if (!program) {

@@ -28,9 +28,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = {"wave": "scenes/wave.rib", "terrain": "scenes/terrain.rib", "needles": "scenes/needles.rib"}
 
 
-def render(affray, rib, out, tolerance, mode, threads):
+def render(affray, rib, out, tolerance, mode, threads, samples):
     """Renders `rib` to `out`; returns the --stats JSON (with the wall time measured here too)."""
-    cmd = [affray, "render", rib, "-o", out, "--tolerance", str(tolerance), "--bounds", mode, "--stats"]
+    cmd = [affray, "render", rib, "-o", out, "--tolerance", str(tolerance), "--bounds", mode, "--stats", "--quiet",
+           "--samples", str(samples)]
     if threads:
         cmd += ["--threads", str(threads)]
     start = time.monotonic()
@@ -106,6 +107,9 @@ def main():
     parser.add_argument("--tolerances", default="4,2,1,0.5,0.25,0.1", help="pixel tolerances to sweep")
     parser.add_argument("--reference-tolerance", type=float, default=0.02)
     parser.add_argument("--threads", type=int, default=0)
+    parser.add_argument("--samples", type=int, default=1,
+                        help="N x N samples per pixel, the same in the reference (default 1: the error "
+                             "measured is the tolerance's, not the sampling's)")
     parser.add_argument("--out", default=os.path.join(ROOT, "docs", "error_report"), help="writes OUT.csv and OUT.png")
     args = parser.parse_args()
 
@@ -119,13 +123,14 @@ def main():
         for scene in args.scenes.split(","):
             rib = sized_scene(SCENES[scene], width, height, tmp)
             reference = os.path.join(tmp, f"{scene}_reference.exr")
-            ref = render(affray, rib, reference, args.reference_tolerance, "affine", args.threads)
+            ref = render(affray, rib, reference, args.reference_tolerance, "affine", args.threads,
+                         args.samples)
             print(f"{scene}: reference (affine, tolerance {args.reference_tolerance:g} px) in {ref['wall_seconds']:.1f} s",
                   file=sys.stderr)
             for mode in args.modes.split(","):
                 for tolerance in tolerances:
                     image = os.path.join(tmp, f"{scene}_{mode}_{tolerance:g}.exr")
-                    stats = render(affray, rib, image, tolerance, mode, args.threads)
+                    stats = render(affray, rib, image, tolerance, mode, args.threads, args.samples)
                     error = diff(affray, reference, image)
                     row = {
                         "scene": scene,

@@ -19,9 +19,6 @@
 
 namespace affray::renderer {
 
-namespace {
-
-/// The globals that do not vary over `base`, for specialising its programs.
 std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, const glm::dvec3& eye) {
     using vm::Global;
     std::vector<compiler::ConstantGlobal> out = {{Global::E, {eye.x, eye.y, eye.z}},
@@ -40,6 +37,8 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, c
     }
     return out;
 }
+
+namespace {
 
 /// NAME.sl or, failing that, NAME.afb (compiled), in the first directory that has either.
 std::string FindShader(const std::string& name, const std::vector<std::string>& paths) {

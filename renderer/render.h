@@ -62,6 +62,10 @@ struct PreparedScene {
     int shadersCompiled = 0, shadersReused = 0;
 };
 
+/// The shader globals that do not vary over `base` seen from `eye`, for specialising its programs:
+/// E, du, dv, and for a flat patch N, Ng, dPdu and dPdv.
+std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, const glm::dvec3& eye);
+
 /// Compiles every displacement instance of `desc` (each with its own parameter values) and
 /// specialises it for its surface (an instance like an earlier one reuses its compilation).
 /// Shaders are found as NAME.sl or NAME.afb in the scene's Option "searchpath" "shader" (relative
