@@ -412,18 +412,10 @@ Affine Affine::MulForms(const Affine& x, const Affine& y) {
         push(y.m_symbols[j], c);
     }
     t.count = n;
-    const double ex = x.m_error, ey = y.m_error;
-    const double p0 = x0 * y0;
-    const double center = p0 + 0.5 * diag;
+    const double center = x0 * y0 + 0.5 * diag;
     absSum += std::fabs(center);
-    // The nonlinear remainder is >= half of (rx+ex)(ry+ey), so its relative rounding is small.
-    const double quad = (rx + ex) * (ry + ey) - 0.5 * absDiag;
-    const double linear = std::fabs(x0) * ey + std::fabs(y0) * ex;
-    const double maxResult = (std::fabs(x0) + rx + ex) * (std::fabs(y0) + ry + ey);
-    const double rounding = (std::fabs(x0) * ry + std::fabs(y0) * rx + std::fabs(p0) +
-                             kTermSlack * absDiag + absSum + maxResult) *
-                            kEpsilon;
-    const double delta = (quad + linear + rounding) * kSumSlack + kUnderflowSlack;
+    const double delta =
+        ProductRemainder({x0, y0, rx, ry, x.m_error, y.m_error, diag, absDiag, absSum}, kTermSlack);
     if (!(delta <= kMaxFinite)) return Affine::Unbounded();
     t.insert(Affine::NewSymbol(), delta);
     if (!r.finish(center, 0.0, t)) r = Affine::Unbounded();

@@ -395,17 +395,9 @@ struct LocalForm {
             absSum += std::fabs(r.c[k]);
         }
         r.n = std::max(x.n, y.n);
-        const double ex = x.e, ey = y.e;
-        const double p0 = x0 * y0;
-        r.c0 = p0 + 0.5 * diag;
+        r.c0 = x0 * y0 + 0.5 * diag;
         absSum += std::fabs(r.c0);
-        const double quad = (rx + ex) * (ry + ey) - 0.5 * absDiag;
-        const double linear = std::fabs(x0) * ey + std::fabs(y0) * ex;
-        const double maxResult = (std::fabs(x0) + rx + ex) * (std::fabs(y0) + ry + ey);
-        const double rounding = (std::fabs(x0) * ry + std::fabs(y0) * rx + std::fabs(p0) +
-                                 kTermSlack * absDiag + absSum + maxResult) *
-                                kEpsilon;
-        const double delta = (quad + linear + rounding) * kSumSlack + kUnderflowSlack;
+        const double delta = ProductRemainder({x0, y0, rx, ry, x.e, y.e, diag, absDiag, absSum}, kTermSlack);
         int& fresh = NextFresh();
         if (fresh < kSlots) {
             for (int k = r.n; k < fresh; ++k) r.c[k] = 0;

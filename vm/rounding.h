@@ -127,4 +127,31 @@ class UpperSum {
     double m_err = 0;
 };
 
+/// The sums an affine product x * y accumulates while it forms its terms (x0 + sum xi ei + ex) *
+/// (y0 + sum yi ei + ey), whatever the representation of the forms (Affine, noise's LocalForm).
+struct ProductSums {
+    double x0 = 0, y0 = 0;  // centres
+    double rx = 0, ry = 0;  // sum |xi|, sum |yi|
+    double ex = 0, ey = 0;  // independent errors
+    double diag = 0;        // sum xi yi over shared symbols (half of it goes to the centre)
+    double absDiag = 0;     // sum |xi yi|
+    double absSum = 0;      // sum of |terms| of the result, centre included, as rounded
+};
+
+/// The error term of the product: the quadratic remainder (X + ex)(Y + ey) less the part of the
+/// shared squares moved into the centre, the linear terms of the errors, and the rounding of
+/// every term, centre and remainder, for up to `termSlack` / 2 - 2 terms. (Stolfi & de
+/// Figueiredo's multiplication, with its rounding made explicit.)
+inline double ProductRemainder(const ProductSums& s, double termSlack) {
+    const double p0 = s.x0 * s.y0;
+    // The nonlinear remainder is >= half of (rx+ex)(ry+ey), so its relative rounding is small.
+    const double quad = (s.rx + s.ex) * (s.ry + s.ey) - 0.5 * s.absDiag;
+    const double linear = std::fabs(s.x0) * s.ey + std::fabs(s.y0) * s.ex;
+    const double maxResult = (std::fabs(s.x0) + s.rx + s.ex) * (std::fabs(s.y0) + s.ry + s.ey);
+    const double rounding = (std::fabs(s.x0) * s.ry + std::fabs(s.y0) * s.rx + std::fabs(p0) +
+                             termSlack * s.absDiag + s.absSum + maxResult) *
+                            kEpsilon;
+    return (quad + linear + rounding) * kSumSlack + kUnderflowSlack;
+}
+
 }  // namespace affray::vm
