@@ -433,10 +433,14 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     const Film film(cam, channels);
     *image = film.MakeImage();
     const Tolerance tol{options.tolerancePixels * camera.PixelWidth(), options.tolerancePixels * camera.PixelAngle()};
-    const std::vector<PixelRange> tiles = film.Tiles(std::max(1, options.tileSize));
+    const int nThreads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    // Smaller tiles for small images, so that every thread gets work (four tiles each at least),
+    // down to 8 pixels: below that the filter margins each tile traces again cost too much.
+    int tileSize = std::max(1, options.tileSize);
+    std::vector<PixelRange> tiles = film.Tiles(tileSize);
+    while (tileSize > 8 && static_cast<int>(tiles.size()) < 4 * nThreads) tiles = film.Tiles(tileSize /= 2);
     Progress progress(static_cast<int>(tiles.size()), stderr, options.showProgress);
 
-    const int nThreads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     std::atomic<size_t> nextTile{0};
     std::vector<IntersectStats> cameraStats(nThreads), shadowStats(nThreads);
     std::vector<uint64_t> cameraRays(nThreads);

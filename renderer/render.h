@@ -20,7 +20,7 @@ struct RenderOptions {
     BoundMode bounds = BoundMode::Affine;
     int maxDepth = 24;
     uint64_t regionBudget = kDefaultRegionBudget;  // per ray (renderer/intersect.h)
-    int tileSize = 32;                             // pixels per side
+    int tileSize = 32;                             // pixels per side (less for small images)
     bool showProgress = false;                     // a progress bar on stderr (renderer/progress.h)
 };
 
