@@ -4,11 +4,14 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <cstdio>
 #include <cstdlib>
 #include <sys/wait.h>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -64,6 +67,30 @@ inline CliOutput RunCli(const std::string& args, bool withStderr = false) {
     while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
     int status = pclose(pipe);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+/// The whole text of a file ("" if it cannot be read).
+inline std::string ReadText(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// Rewrites the RIB file's `Format` line with a resolution `divisor` times smaller (rounded up, at
+/// least minWidth x minHeight), so that a test can render a full scene cheaply. Returns the text.
+inline std::string ShrinkFormat(const std::filesystem::path& rib, int divisor, int minWidth = 1, int minHeight = 1) {
+    // (Parsed by hand: std::regex trips GCC 12's -Wmaybe-uninitialized in the -O1 ASan build.)
+    std::string text = ReadText(rib);
+    const size_t format = text.find("\nFormat ");
+    REQUIRE(format != std::string::npos);
+    const size_t end = text.find('\n', format + 1);
+    int w = 0, h = 0;
+    std::istringstream(text.substr(format + 8, end - format - 8)) >> w >> h;
+    REQUIRE((w > 0 && h > 0));
+    w = std::max(minWidth, (w + divisor - 1) / divisor);
+    h = std::max(minHeight, (h + divisor - 1) / divisor);
+    text.replace(format + 1, end - format - 1, "Format " + std::to_string(w) + " " + std::to_string(h) + " 1");
+    std::ofstream(rib, std::ios::binary) << text;
+    return text;
 }
 
 /// Requires `got` to equal `want` within 1e-12 per component, printing both on failure.

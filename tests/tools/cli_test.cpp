@@ -288,6 +288,10 @@ TEST_CASE("cli: every scene in scenes/ parses and its shaders compile", "[tools]
     // A full render of each takes minutes; a copy rendered at 2x2 pixels is the cheap check that
     // the scene parses and its shaders and their instances all compile and run.
     fs::path dir = TempDir("scenes");
+    fs::create_directories(dir / "scenes");
+    // Shaders that belong to one scene live beside it.
+    for (const auto& entry : fs::directory_iterator(test::SourceDir() + "/scenes"))
+        if (entry.path().extension() == ".sl") fs::copy_file(entry.path(), dir / "scenes" / entry.path().filename());
     int scenes = 0;
     for (const auto& entry : fs::directory_iterator(test::SourceDir() + "/scenes")) {
         if (entry.path().extension() != ".rib") continue;

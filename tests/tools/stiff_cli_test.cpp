@@ -22,10 +22,6 @@ using Output = test::CliOutput;
 /// Runs the CLI, capturing stdout and stderr.
 Output Run(const std::string& args) { return test::RunCli(args, true); }
 
-std::string ReadText(const fs::path& path) {
-    std::ifstream in(path);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 /// The small scene the parameter checks render: wave.sl on the unit patch, 8 x 8 pixels.
 std::string WaveScene(const std::string& displacement) {
@@ -47,17 +43,7 @@ TEST_CASE("stiff cli: every stiff scene renders, shrunk", "[tools][stiff]") {
     for (const auto& entry : fs::directory_iterator(dir.Path("scenes/stiff"))) {
         if (entry.path().extension() != ".rib") continue;
         ++scenes;
-        std::string text = ReadText(entry.path());
-        // (std::regex would do, but GCC 12 warns inside <regex> at -O1: tests/CMakeLists.txt.)
-        const size_t format = text.find("\nFormat ");
-        REQUIRE(format != std::string::npos);
-        const size_t end = text.find('\n', format + 1);
-        int w = 0, h = 0;
-        std::istringstream(text.substr(format + 8, end - format - 8)) >> w >> h;
-        REQUIRE((w > 0 && h > 0));
-        text.replace(format + 1, end - format - 1,
-                     "Format " + std::to_string((w + 7) / 8) + " " + std::to_string((h + 7) / 8) + " 1");
-        std::ofstream(entry.path()) << text;
+        const std::string text = test::ShrinkFormat(entry.path(), 8);
         std::string args;
         size_t at = text.find("##stiff-args:");
         if (at != std::string::npos) args = text.substr(at + 13, text.find('\n', at) - at - 13);
