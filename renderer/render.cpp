@@ -5,6 +5,7 @@
 // the statistics are sums and maxima, which do not either.
 #include "renderer/render.h"
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -154,40 +155,55 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
 /// test squares widths, which overflow past about 1e154.
 constexpr double kMeasurableLimit = 1e150;
 
-/// Whether `program`, bounded with number type N, gives P a measurable bound (finite, within
-/// kMeasurableLimit) over at least one cell of an n x n grid of the patch.
+/// The ranges of P's coordinates over the cells of an n x n grid of a primitive's domain.
+using CellRanges = std::vector<std::array<vm::Interval, 3>>;
+
+/// The cells bounded with number type N.
 template <class N>
-bool MeasurableSomewhere(const Primitive& prim, const glm::dvec3& eye, int n) {
+CellRanges BoundCells(const Primitive& prim, const glm::dvec3& eye, int n) {
     vm::Interpreter<N> interp(prim.bound);
     const vm::ProgramOutput& output = *prim.bound.findOutput("P");
+    CellRanges cells;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             Vec3<N> p = EvaluateOnSurface(interp, prim.base, double(i) / n, double(i + 1) / n, double(j) / n,
                                           double(j + 1) / n, eye, output);
-            bool measurable = true;
-            for (int c = 0; c < 3; ++c) {
-                vm::Interval r = RangeOf(vm::ValueOf(p[c]));
-                measurable = measurable && !r.isUnbounded() && std::fabs(r.lo()) < kMeasurableLimit &&
-                             std::fabs(r.hi()) < kMeasurableLimit;
-            }
-            if (measurable) return true;
+            cells.push_back({RangeOf(vm::ValueOf(p.x)), RangeOf(vm::ValueOf(p.y)), RangeOf(vm::ValueOf(p.z))});
         }
+    return cells;
+}
+
+/// The cells bounded with B (Affine or Interval), or its dual if the bound program takes
+/// derivatives.
+template <class B>
+CellRanges BoundCellsIn(const Primitive& prim, const glm::dvec3& eye, int n) {
+    return prim.bound.usesDerivatives() ? BoundCells<vm::Dual<B>>(prim, eye, n) : BoundCells<B>(prim, eye, n);
+}
+
+/// The grid the PrepareScene checks and the BVH boxes use.
+constexpr int kGridCells = 8;
+
+/// Whether P's bound is measurable (finite, within kMeasurableLimit) over at least one cell.
+bool MeasurableSomewhere(const CellRanges& cells) {
+    for (const auto& cell : cells) {
+        bool measurable = true;
+        for (const vm::Interval& r : cell)
+            measurable = measurable && !r.isUnbounded() && std::fabs(r.lo()) < kMeasurableLimit &&
+                         std::fabs(r.hi()) < kMeasurableLimit;
+        if (measurable) return true;
+    }
     return false;
 }
 
 /// An error if no cell of a coarse grid of the patch has a measurable bound in either bounding
-/// mode: every region would then survive the ray test down to the depth limit, 4^depth regions
-/// per ray, a render that never ends. Names the instance's parameters that are large enough to
-/// be the cause. Empty if the surface can be bounded somewhere.
-std::string UnboundedEverywhere(const Primitive& prim, const ShaderRef& ref, const glm::dvec3& eye) {
-    const bool dual = prim.bound.usesDerivatives();
-    constexpr int kCells = 8;
-    bool affine = dual ? MeasurableSomewhere<vm::Dual<vm::Affine>>(prim, eye, kCells)
-                       : MeasurableSomewhere<vm::Affine>(prim, eye, kCells);
-    if (affine) return {};
-    bool interval = dual ? MeasurableSomewhere<vm::Dual<vm::Interval>>(prim, eye, kCells)
-                         : MeasurableSomewhere<vm::Interval>(prim, eye, kCells);
-    if (interval) return {};
+/// mode (`intervalCells` are the interval bounds of that grid): every region would then survive
+/// the ray test down to the depth limit, 4^depth regions per ray, a render that never ends. Names
+/// the instance's parameters that are large enough to be the cause. Empty if the surface can be
+/// bounded somewhere.
+std::string UnboundedEverywhere(const Primitive& prim, const ShaderRef& ref, const glm::dvec3& eye,
+                                const CellRanges& intervalCells) {
+    if (MeasurableSomewhere(BoundCellsIn<vm::Affine>(prim, eye, kGridCells))) return {};
+    if (MeasurableSomewhere(intervalCells)) return {};
     std::string culprits;
     for (const ParamValue& p : ref.params)
         for (double x : p.numbers)
@@ -204,27 +220,20 @@ std::string UnboundedEverywhere(const Primitive& prim, const ShaderRef& ref, con
     return message;
 }
 
-/// The box of the displaced surface over its whole domain: the union of the interval bounds of
-/// an n x n grid of cells (tighter than one bound over everything). Infinite if any cell's bound
-/// is unbounded: the BVH then offers the primitive to every ray.
-template <class N>
-Box WholeDomainBox(const Primitive& prim, const glm::dvec3& eye, int n) {
-    vm::Interpreter<N> interp(prim.bound);
-    const vm::ProgramOutput& output = *prim.bound.findOutput("P");
+/// The box of the displaced surface over its whole domain: the union of the bounds of the cells
+/// of a grid (tighter than one bound over everything). Infinite if any cell's bound is unbounded:
+/// the BVH then offers the primitive to every ray.
+Box UnionBox(const CellRanges& cells) {
     Box box;
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            Vec3<N> p = EvaluateOnSurface(interp, prim.base, double(i) / n, double(i + 1) / n, double(j) / n,
-                                          double(j + 1) / n, eye, output);
-            for (int c = 0; c < 3; ++c) {
-                vm::Interval r = RangeOf(vm::ValueOf(p[c]));
-                if (r.isUnbounded()) {
-                    box.lo[c] = -INFINITY;
-                    box.hi[c] = INFINITY;
-                } else {
-                    box.lo[c] = std::min(box.lo[c], r.lo());
-                    box.hi[c] = std::max(box.hi[c], r.hi());
-                }
+    for (const auto& cell : cells)
+        for (int c = 0; c < 3; ++c) {
+            const vm::Interval& r = cell[c];
+            if (r.isUnbounded()) {
+                box.lo[c] = -INFINITY;
+                box.hi[c] = INFINITY;
+            } else {
+                box.lo[c] = std::min(box.lo[c], r.lo());
+                box.hi[c] = std::max(box.hi[c], r.hi());
             }
         }
     return box;
@@ -342,16 +351,15 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(prim.base, eye);
         prim.bound = *compiler::Specialise(prim.bound, {}, &unused, constants);
         prim.shade = *compiler::Specialise(prim.shade, {}, &unused, constants);
+        const CellRanges intervalCells = BoundCellsIn<vm::Interval>(prim, eye, kGridCells);
         if (patch.displacement) {
-            std::string problem = UnboundedEverywhere(prim, *patch.displacement, eye);
+            std::string problem = UnboundedEverywhere(prim, *patch.displacement, eye, intervalCells);
             if (!problem.empty()) {
                 *error = desc.path + ":" + std::to_string(patch.displacement->line) + ": error: " + problem;
                 return false;
             }
         }
-        constexpr int kBoxCells = 8;
-        prim.box = prim.bound.usesDerivatives() ? WholeDomainBox<vm::Dual<vm::Interval>>(prim, eye, kBoxCells)
-                                                : WholeDomainBox<vm::Interval>(prim, eye, kBoxCells);
+        prim.box = UnionBox(intervalCells);
         out->primitives.push_back(std::move(prim));
     }
     std::vector<Box> boxes;

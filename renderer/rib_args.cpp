@@ -26,6 +26,18 @@ bool RibArgChecks::NoArgs(const RibRequest& r) {
                 Quote(r.name) + " takes no arguments, found " + r.args[0].Describe());
 }
 
+// The end of Numbers and LeadingNumbers: `count` values, else an error naming what was found.
+bool RibArgChecks::TakeNumbers(const RibRequest& r, const std::vector<double>& values, const RibArg* bad,
+                               size_t count, const char* names, double* out) {
+    if (bad || values.size() != count) {
+        std::string got = bad ? bad->Describe() : std::to_string(values.size());
+        return Fail(r.line, Quote(r.name) + " expects " + std::to_string(count) + " numbers (" +
+                                names + "), got " + got);
+    }
+    std::copy(values.begin(), values.end(), out);
+    return true;
+}
+
 // Exactly `count` numbers, either bare or as one array (the RIB binding allows both).
 bool RibArgChecks::Numbers(const RibRequest& r, size_t count, const char* names, double* out) {
     std::vector<double> values;
@@ -41,13 +53,7 @@ bool RibArgChecks::Numbers(const RibRequest& r, size_t count, const char* names,
             values.push_back(arg.numbers[0]);
         }
     }
-    if (bad || values.size() != count) {
-        std::string got = bad ? bad->Describe() : std::to_string(values.size());
-        return Fail(r.line, Quote(r.name) + " expects " + std::to_string(count) + " numbers (" +
-                                names + "), got " + got);
-    }
-    std::copy(values.begin(), values.end(), out);
-    return true;
+    return TakeNumbers(r, values, bad, count, names, out);
 }
 
 // Like Numbers, but a parameter list may follow: the numbers end at the first non-number.
@@ -71,13 +77,7 @@ bool RibArgChecks::LeadingNumbers(const RibRequest& r, size_t count, const char*
         }
         *next = i;
     }
-    if (bad || values.size() != count) {
-        std::string got = bad ? bad->Describe() : std::to_string(values.size());
-        return Fail(r.line, Quote(r.name) + " expects " + std::to_string(count) + " numbers (" +
-                                names + "), got " + got);
-    }
-    std::copy(values.begin(), values.end(), out);
-    return true;
+    return TakeNumbers(r, values, bad, count, names, out);
 }
 
 bool RibArgChecks::LeadingString(const RibRequest& r, const char* what, std::string* out) {

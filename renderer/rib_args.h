@@ -35,6 +35,10 @@ class RibArgChecks {
     /// *next is set to the index of the first argument after them.
     bool LeadingNumbers(const RibRequest& r, size_t count, const char* names, double* out,
                         size_t* next);
+    /// Copies `values` to `out` if there are exactly `count` and no `bad` argument, else fails
+    /// naming what was found (the shared end of Numbers and LeadingNumbers).
+    bool TakeNumbers(const RibRequest& r, const std::vector<double>& values, const RibArg* bad, size_t count,
+                     const char* names, double* out);
     /// A bare string as the first argument; `what` describes it ("a light shader name").
     bool LeadingString(const RibRequest& r, const char* what, std::string* out);
     /// Token-value pairs from args[first] on. The last word of a token is the name, the words

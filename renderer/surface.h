@@ -252,14 +252,11 @@ Vec3<T> EvaluateOnSurface(vm::Interpreter<T>& interp, const BaseSurface& surface
     return interp.OutputTriple(output);
 }
 
-/// Runs `interp`'s program over the patch region [u0,u1] x [v0,v1] (see SetPatchGlobals) and
-/// returns its triple output `output`.
+/// EvaluateOnSurface for a patch (tests, benches and `affray eval`).
 template <class T>
 Vec3<T> EvaluateOnPatch(vm::Interpreter<T>& interp, const BilinearPatch& patch, double u0, double u1, double v0,
                         double v1, const glm::dvec3& eye, const vm::ProgramOutput& output) {
-    SetPatchGlobals(interp, patch, u0, u1, v0, v1, eye);
-    interp.Run();
-    return interp.OutputTriple(output);
+    return EvaluateOnSurface(interp, BaseSurface(patch), u0, u1, v0, v1, eye, output);
 }
 
 }  // namespace affray::renderer

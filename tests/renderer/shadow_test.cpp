@@ -105,6 +105,20 @@ std::string ObliqueCamera(double distance, double fov = 40) {
     return out.str();
 }
 
+/// The unit-square patch [-1, 1]^2 (z = 0), matte, seen obliquely at 48 x 36 and lit by one
+/// distant light from direction L, with `displacement` (a RIB line, or "") applied to it.
+std::string GrazingPatchScene(const glm::dvec3& L, const std::string& displacement) {
+    std::ostringstream rib;
+    rib.precision(17);
+    rib << "Format 48 36 1\n" << ObliqueCamera(3.1) << "WorldBegin\n"
+        << "LightSource \"distantlight\" 1 \"intensity\" [1] \"from\" [" << L.x << " " << L.y << " " << L.z
+        << "] \"to\" [0 0 0]\n"
+        << "Surface \"matte\"\n" << displacement
+        << "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n";
+    return rib.str();
+}
+
+
 }  // namespace
 
 TEST_CASE("shadow: a bumpy sphere lit by a distant light has no acne on its lit side", "[renderer][shadow]") {
@@ -153,13 +167,7 @@ TEST_CASE("shadow: a flat patch lit at a grazing 10 degrees is lit everywhere", 
     test::TempDir dir;
     const double elevation = 10 * kPi / 180;
     const glm::dvec3 L(std::cos(elevation), 0, std::sin(elevation));
-    std::ostringstream rib;
-    rib.precision(17);
-    rib << "Format 48 36 1\n" << ObliqueCamera(3.1) << "WorldBegin\n"
-        << "LightSource \"distantlight\" 1 \"intensity\" [1] \"from\" [" << L.x << " " << L.y << " " << L.z
-        << "] \"to\" [0 0 0]\n"
-        << "Surface \"matte\"\nPatch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n";
-    auto r = Render(rib.str(), dir);
+    auto r = Render(GrazingPatchScene(L, ""), dir);
     // Nothing but the plane itself: every hit is lit, at Kd cos = sin(10 degrees).
     int hits = 0, dark = 0;
     for (int y = 0; y < r->image.height; ++y)
@@ -181,14 +189,7 @@ TEST_CASE("shadow: shallow ripples lit at a grazing 10 degrees show no speckles"
     dir.Write("ripples.sl", kRipples);
     const double elevation = 10 * kPi / 180;
     const glm::dvec3 L(std::cos(elevation), 0, std::sin(elevation));
-    std::ostringstream rib;
-    rib.precision(17);
-    rib << "Format 48 36 1\n" << ObliqueCamera(3.1) << "WorldBegin\n"
-        << "LightSource \"distantlight\" 1 \"intensity\" [1] \"from\" [" << L.x << " " << L.y << " " << L.z
-        << "] \"to\" [0 0 0]\n"
-        << "Surface \"matte\"\nDisplacement \"ripples\" \"Km\" [0.01] \"frequency\" [4]\n"
-        << "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n";
-    auto r = Render(rib.str(), dir);
+    auto r = Render(GrazingPatchScene(L, "Displacement \"ripples\" \"Km\" [0.01] \"frequency\" [4]\n"), dir);
     // The height 0.01 sin(8 pi s), s = (x + 1) / 2, rises at most 0.01 * 4 pi = 0.126 per unit
     // of x, less than the light's tan(10 degrees) = 0.176: a ray toward the light climbs away from
     // the surface everywhere, so nothing is shadowed, and the normal tilts at most 7.2 degrees,
