@@ -62,8 +62,13 @@ struct ThreadState {
 
     ThreadState(const PreparedScene& scene, const RenderOptions& options, const glm::dvec3& eye) {
         for (const Primitive& prim : scene.primitives) {
-            intersectors.push_back(MakeSurfaceIntersector(prim.base, prim.bound, eye, options.bounds, options.maxDepth,
-                                                          PruneOptions::FromEnvironment(), options.regionBudget));
+            const int index = static_cast<int>(intersectors.size());
+            if (options.intersectorFactory)
+                intersectors.push_back(options.intersectorFactory(prim, index));
+            else
+                intersectors.push_back(MakeSurfaceIntersector(prim.base, prim.bound, eye, options.bounds,
+                                                              options.maxDepth, PruneOptions::FromEnvironment(),
+                                                              options.regionBudget));
             shaders.push_back(std::make_unique<vm::Interpreter<vm::Dual<double>>>(prim.shade));
         }
     }

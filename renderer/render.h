@@ -2,6 +2,7 @@
 // camera rays through the guaranteed intersector, shading with shadows, threads over rows.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +15,11 @@
 
 namespace affray::renderer {
 
+struct Primitive;
+
+/// Makes the intersector one thread uses for one primitive (`index` in PreparedScene::primitives).
+using IntersectorFactory = std::function<std::unique_ptr<SurfaceIntersector>(const Primitive& primitive, int index)>;
+
 struct RenderOptions {
     int threads = 0;               // 0: one per core
     double tolerancePixels = 0.5;  // a region is a hit once its bound is smaller than this many pixels
@@ -22,6 +28,10 @@ struct RenderOptions {
     uint64_t regionBudget = kDefaultRegionBudget;  // per ray (renderer/intersect.h)
     int tileSize = 32;                             // pixels per side (less for small images)
     bool showProgress = false;                     // a progress bar on stderr (renderer/progress.h)
+    /// Replaces the guaranteed intersector, for every primitive and thread: the benches' in-process
+    /// tessellation baseline (bench/) renders the same samples, shading and shadows through it.
+    /// Empty: affray's own.
+    IntersectorFactory intersectorFactory;
 };
 
 struct RenderStats {
