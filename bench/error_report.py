@@ -2,17 +2,34 @@
 """bench/error_report.py: how image error trades against run time.
 
 For each scene (smooth wave, noisy terrain, thin needles) and each bound mode (affine,
-interval), renders at a sweep of pixel tolerances and records wall time, regions bounded per
-ray, image RMSE and largest error against a converged reference (affine at a tolerance far
-below the sweep's), the largest certified geometric error and the depth-limit hits. Writes a
-CSV, a PNG plot (RMSE against time, one curve per scene and mode) and prints a Markdown table.
+interval), renders at a sweep of pixel tolerances and records wall time, peak memory, regions
+bounded per ray, image RMSE and largest error against a converged reference (affine at a
+tolerance far below the sweep's), the largest certified geometric error and the depth-limit
+hits. Beside them, the tessellation baseline (bench/tessellation_bench.cpp, docs/tessellation.md)
+renders the same scene, samples, shading and shadows through an Embree mesh of an N x N grid per
+primitive, at a sweep of N. Writes a CSV, a PNG plot (RMSE against time and against peak memory,
+one curve per scene and method), prints a Markdown table and, per scene, the crossover: for
+each affray setting, the coarsest tessellation with an equal or lower RMSE and what it costs.
 
     python3 bench/error_report.py [--build build] [--size 96x72] [--out docs/error_report]
+                                  [--grids 64,128,256,512,1024,2048]
 
 Needs a Release build of `affray` and, for the plot, python3-matplotlib
-(`sudo apt-get install python3-matplotlib`). Run from anywhere; renders go to a temporary
-directory. Every render of one scene uses the same image size, camera and lights (the scene's
-RIB with its Format line replaced), so the only variables are the tolerance and the mode.
+(`sudo apt-get install python3-matplotlib`); the tessellation series needs the build's
+`bench/affray_bench_tessellation` (built only where CMake found Embree 3) and is skipped with a
+note without it. Run from anywhere; renders go to a temporary directory. Every render of one
+scene uses the same image size, camera and lights (the scene's RIB with its Format line
+replaced), so the only variables are the tolerance and the mode, or the grid.
+
+Times: `wall_seconds` is the time to the image after the scene is read and its shaders compiled:
+affray's render (`--stats` wall_seconds), the baseline's tessellation + BVH build + render.
+`process_seconds` is the whole process as measured here. `peak_rss_mb` is the peak resident set
+of the process (its own rusage, from os.wait4).
+
+Shadows: RenderImage starts a shadow ray twice the hit's certified error or the tolerance's
+footprint above the hit, whichever is larger. The baseline's hits have no certified error, so its
+--tolerance sets that offset alone; by default it is the reference's (--tessellation-tolerance),
+so that the baseline's error is its mesh's and not its shadow offset's.
 """
 import argparse
 import csv
@@ -26,22 +43,61 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = {"wave": "scenes/wave.rib", "terrain": "scenes/terrain.rib", "needles": "scenes/needles.rib"}
+# The CSV's columns: the first nine as before; then peak memory and process time (every row) and
+# the tessellation baseline's (its rows only; affray's rows leave them empty, and the
+# tessellation rows leave regions_per_ray, max_certified_error and depth_limit_hits empty; their
+# tolerance_px is the baseline's --tolerance, which only sets its shadow rays' start).
+FIELDS = ["scene", "mode", "tolerance_px", "wall_seconds", "regions_per_ray", "rmse", "max_error",
+          "max_certified_error", "depth_limit_hits", "peak_rss_mb", "process_seconds", "grid", "triangles",
+          "tessellate_seconds", "bvh_seconds", "render_seconds", "mesh_bytes"]
+
+
+def run_measured(cmd):
+    """Runs `cmd` as a child; returns (exit code, stdout, stderr, seconds, peak RSS in MB). The peak
+    RSS is the child's own (os.wait4 returns its rusage; RUSAGE_CHILDREN's ru_maxrss would be the
+    largest of all children so far, not this one's)."""
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        start = time.monotonic()
+        child = subprocess.Popen(cmd, cwd=ROOT, stdout=out, stderr=err)
+        _, status, usage = os.wait4(child.pid, 0)
+        elapsed = time.monotonic() - start
+        child.returncode = os.waitstatus_to_exitcode(status)  # reaped here: Popen must not wait again
+        out.seek(0)
+        err.seek(0)
+        return (child.returncode, out.read().decode(errors="replace"), err.read().decode(errors="replace"), elapsed,
+                usage.ru_maxrss / 1024.0)  # Linux: kilobytes
+
+
+def run_stats(cmd):
+    """Runs a command that prints its --stats JSON last; returns that JSON with process_seconds
+    and peak_rss_mb (measured here) added."""
+    code, stdout, stderr, elapsed, peak = run_measured(cmd)
+    if code != 0:
+        sys.exit(f"failed ({' '.join(cmd)}):\n{stderr}")
+    stats = json.loads(stdout.strip().splitlines()[-1])
+    stats["process_seconds"] = elapsed
+    stats["peak_rss_mb"] = peak
+    return stats
 
 
 def render(affray, rib, out, tolerance, mode, threads, samples):
-    """Renders `rib` to `out`; returns the --stats JSON (with the wall time measured here too)."""
+    """Renders `rib` to `out`; returns the --stats JSON (with the process time and peak RSS
+    measured here too)."""
     cmd = [affray, "render", rib, "-o", out, "--tolerance", str(tolerance), "--bounds", mode, "--stats", "--quiet",
            "--samples", str(samples)]
     if threads:
         cmd += ["--threads", str(threads)]
-    start = time.monotonic()
-    done = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
-    elapsed = time.monotonic() - start
-    if done.returncode != 0:
-        sys.exit(f"render failed ({' '.join(cmd)}):\n{done.stderr}")
-    stats = json.loads(done.stdout.strip().splitlines()[-1])
-    stats["process_seconds"] = elapsed
-    return stats
+    return run_stats(cmd)
+
+
+def tessellate(bench, rib, out, grid, tolerance, threads, samples):
+    """Renders `rib` to `out` through the tessellation baseline at an N x N grid per primitive;
+    `tolerance` sets only where its shadow rays start (twice its footprint above the hit)."""
+    cmd = [bench, rib, "--grid", str(grid), "-o", out, "--tolerance", str(tolerance), "--stats", "--quiet",
+           "--samples", str(samples)]
+    if threads:
+        cmd += ["--threads", str(threads)]
+    return run_stats(cmd)
 
 
 def diff(affray, reference, test):
@@ -73,29 +129,57 @@ def plot(rows, path):
     except ImportError:
         print("no plot: python3-matplotlib is not installed (sudo apt-get install python3-matplotlib)", file=sys.stderr)
         return False
-    fig, ax = plt.subplots(figsize=(7.5, 5))
-    styles = {"affine": "-o", "interval": "--s"}
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.2))
+    styles = {"affine": "-o", "interval": "--s", "tessellation": ":^"}
     colours = {"wave": "tab:blue", "terrain": "tab:brown", "needles": "tab:green"}
-    for scene in dict.fromkeys(r["scene"] for r in rows):
-        for mode in dict.fromkeys(r["mode"] for r in rows):
-            curve = [r for r in rows if r["scene"] == scene and r["mode"] == mode]
-            if not curve:
-                continue
-            xs = [r["wall_seconds"] for r in curve]
-            ys = [max(r["rmse"], 1e-5) for r in curve]  # an exact match would vanish on a log axis
-            ax.plot(xs, ys, styles.get(mode, "-"), color=colours.get(scene), label=f"{scene}, {mode}")
-            for r, x, y in zip(curve, xs, ys):
-                ax.annotate(f"{r['tolerance_px']:g}", (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("wall time (s)")
-    ax.set_ylabel("image RMSE against the converged reference")
-    ax.set_title("Error against run time (labels: pixel tolerance)")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    panels = [(axes[0], "wall_seconds", "time to image (s)", "Error against run time"),
+              (axes[1], "peak_rss_mb", "peak memory, process RSS (MB)", "Error against peak memory")]
+    for ax, xkey, xlabel, title in panels:
+        for scene in dict.fromkeys(r["scene"] for r in rows):
+            for mode in dict.fromkeys(r["mode"] for r in rows):
+                curve = [r for r in rows if r["scene"] == scene and r["mode"] == mode]
+                if not curve:
+                    continue
+                xs = [r[xkey] for r in curve]
+                ys = [max(r["rmse"], 1e-5) for r in curve]  # an exact match would vanish on a log axis
+                ax.plot(xs, ys, styles.get(mode, "-"), color=colours.get(scene), label=f"{scene}, {mode}")
+                for r, x, y in zip(curve, xs, ys):
+                    label = f"N{r['grid']}" if mode == "tessellation" else f"{r['tolerance_px']:g}"
+                    ax.annotate(label, (x, y), textcoords="offset points", xytext=(4, 3), fontsize=6)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel("image RMSE against the converged reference")
+        ax.set_title(f"{title}\n(labels: pixel tolerance, or N of an N x N tessellation)", fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     return True
+
+
+def crossover(rows, scene):
+    """Lines saying, for each affray setting on `scene`, the coarsest tessellation whose RMSE is
+    equal or lower, with its time and memory as multiples of affray's."""
+    tess = sorted((r for r in rows if r["scene"] == scene and r["mode"] == "tessellation"), key=lambda r: r["grid"])
+    lines = []
+    for r in rows:
+        if r["scene"] != scene or r["mode"] == "tessellation":
+            continue
+        head = (f"  {r['mode']} {r['tolerance_px']:g} px: RMSE {r['rmse']:.4f} in {r['wall_seconds']:.2f} s, "
+                f"{r['peak_rss_mb']:.0f} MB -> ")
+        match = [t for t in tess if t["rmse"] <= r["rmse"]]
+        if not match:
+            best = min(tess, key=lambda t: t["rmse"])
+            lines.append(head + f"no tessellation up to N={tess[-1]['grid']} (best: N={best['grid']}, "
+                         f"RMSE {best['rmse']:.4f}, {best['wall_seconds']:.2f} s, {best['peak_rss_mb']:.0f} MB)")
+            continue
+        t = min(match, key=lambda t: t["wall_seconds"])
+        time_ratio = t["wall_seconds"] / r["wall_seconds"] if r["wall_seconds"] > 0 else float("inf")
+        memory_ratio = t["peak_rss_mb"] / r["peak_rss_mb"] if r["peak_rss_mb"] > 0 else float("inf")
+        lines.append(head + f"tessellation N={t['grid']}: RMSE {t['rmse']:.4f} in {t['wall_seconds']:.2f} s "
+                     f"({time_ratio:.2g}x the time), {t['peak_rss_mb']:.0f} MB ({memory_ratio:.2g}x the memory)")
+    return lines
 
 
 def main():
@@ -110,14 +194,33 @@ def main():
     parser.add_argument("--samples", type=int, default=1,
                         help="N x N samples per pixel, the same in the reference (default 1: the error "
                              "measured is the tolerance's, not the sampling's)")
+    parser.add_argument("--grids", default="64,128,256,512,1024,2048",
+                        help="N of the N x N tessellations of the baseline (empty: no tessellation series)")
+    parser.add_argument("--tessellation-tolerance", type=float, default=None,
+                        help="the baseline's --tolerance, which only sets how far above a hit its shadow rays "
+                             "start (default: --reference-tolerance, the reference's offset, so that its error is "
+                             "the mesh's; at 0.5 the offset alone gave wave an RMSE of 0.021 at any N)")
     parser.add_argument("--out", default=os.path.join(ROOT, "docs", "error_report"), help="writes OUT.csv and OUT.png")
     args = parser.parse_args()
+    if args.tessellation_tolerance is None:
+        args.tessellation_tolerance = args.reference_tolerance
 
     affray = os.path.join(args.build, "tools", "affray")
     if not os.access(affray, os.X_OK):
         sys.exit(f"{affray} not found: build first (cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build)")
     width, height = (int(x) for x in args.size.lower().split("x"))
     tolerances = [float(t) for t in args.tolerances.split(",")]
+    grids = [int(n) for n in args.grids.split(",") if n.strip()]
+    bench = os.path.join(args.build, "bench", "affray_bench_tessellation")
+    skipped = None
+    if not grids:
+        skipped = "tessellation series skipped: --grids is empty"
+    elif not os.access(bench, os.X_OK):
+        skipped = (f"tessellation series skipped: {bench} was not built (it needs Embree 3: "
+                   "sudo apt-get install libembree-dev, then configure and build again)")
+        grids = []
+    if skipped:
+        print(f"note: {skipped}", file=sys.stderr)
     rows = []
     with tempfile.TemporaryDirectory(prefix="affray_report_") as tmp:
         for scene in args.scenes.split(","):
@@ -132,7 +235,8 @@ def main():
                     image = os.path.join(tmp, f"{scene}_{mode}_{tolerance:g}.exr")
                     stats = render(affray, rib, image, tolerance, mode, args.threads, args.samples)
                     error = diff(affray, reference, image)
-                    row = {
+                    row = dict.fromkeys(FIELDS, "")
+                    row.update({
                         "scene": scene,
                         "mode": mode,
                         "tolerance_px": tolerance,
@@ -142,22 +246,64 @@ def main():
                         "max_error": error["max"],
                         "max_certified_error": stats["max_certified_error"],
                         "depth_limit_hits": stats["depth_limit_hits"],
-                    }
+                        "peak_rss_mb": round(stats["peak_rss_mb"], 1),
+                        "process_seconds": round(stats["process_seconds"], 3),
+                    })
                     rows.append(row)
-                    print(f"  {mode} {tolerance:g} px: {row['wall_seconds']:.2f} s, rmse {row['rmse']:.4g}", file=sys.stderr)
+                    print(f"  {mode} {tolerance:g} px: {row['wall_seconds']:.2f} s, {row['peak_rss_mb']:.0f} MB, "
+                          f"rmse {row['rmse']:.4g}", file=sys.stderr)
+            for grid in grids:
+                image = os.path.join(tmp, f"{scene}_tessellation_{grid}.exr")
+                stats = tessellate(bench, rib, image, grid, args.tessellation_tolerance, args.threads, args.samples)
+                error = diff(affray, reference, image)
+                row = dict.fromkeys(FIELDS, "")
+                row.update({
+                    "scene": scene,
+                    "mode": "tessellation",
+                    "tolerance_px": args.tessellation_tolerance,
+                    # The time to the image, as affray's wall_seconds: all that follows reading the scene.
+                    "wall_seconds": round(stats["tessellate_seconds"] + stats["bvh_seconds"] + stats["render_seconds"], 4),
+                    "rmse": error["rmse"],
+                    "max_error": error["max"],
+                    "peak_rss_mb": round(stats["peak_rss_mb"], 1),
+                    "process_seconds": round(stats["process_seconds"], 3),
+                    "grid": grid,
+                    "triangles": stats["triangles"],
+                    "tessellate_seconds": stats["tessellate_seconds"],
+                    "bvh_seconds": stats["bvh_seconds"],
+                    "render_seconds": stats["render_seconds"],
+                    "mesh_bytes": stats["mesh_bytes"],
+                })
+                rows.append(row)
+                print(f"  tessellation N={grid}: {row['wall_seconds']:.2f} s (tessellate {stats['tessellate_seconds']:.2f}, "
+                      f"bvh {stats['bvh_seconds']:.2f}, render {stats['render_seconds']:.2f}), "
+                      f"{row['peak_rss_mb']:.0f} MB, rmse {row['rmse']:.4g}", file=sys.stderr)
 
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
     with open(args.out + ".csv", "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        writer = csv.DictWriter(f, fieldnames=FIELDS)
         writer.writeheader()
         writer.writerows(rows)
     plotted = plot(rows, args.out + ".png")
 
-    print(f"| scene | mode | tolerance (px) | time (s) | regions/ray | RMSE | max error | max certified error | depth-limit hits |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print(f"| scene | mode | tolerance (px) | time (s) | peak memory (MB) | regions/ray | RMSE | max error | "
+          f"max certified error | depth-limit hits |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
-        print(f"| {r['scene']} | {r['mode']} | {r['tolerance_px']:g} | {r['wall_seconds']:.2f} | {r['regions_per_ray']:.1f} | "
-              f"{r['rmse']:.4f} | {r['max_error']:.3f} | {r['max_certified_error']:.3g} | {r['depth_limit_hits']} |")
+        if r["mode"] == "tessellation":
+            print(f"| {r['scene']} | tessellation N={r['grid']} | {r['tolerance_px']:g} | {r['wall_seconds']:.2f} | {r['peak_rss_mb']:.0f} | - | "
+                  f"{r['rmse']:.4f} | {r['max_error']:.3f} | - | - |")
+        else:
+            print(f"| {r['scene']} | {r['mode']} | {r['tolerance_px']:g} | {r['wall_seconds']:.2f} | {r['peak_rss_mb']:.0f} | "
+                  f"{r['regions_per_ray']:.1f} | {r['rmse']:.4f} | {r['max_error']:.3f} | {r['max_certified_error']:.3g} | "
+                  f"{r['depth_limit_hits']} |")
+    if any(r["mode"] == "tessellation" for r in rows):
+        print("\nCrossover: for each affray setting, the coarsest tessellation (least time) with an equal or lower RMSE")
+        for scene in dict.fromkeys(r["scene"] for r in rows):
+            print(f"{scene}:")
+            print("\n".join(crossover(rows, scene)))
+    elif skipped:
+        print(f"\n({skipped})")
     print(f"\nwrote {args.out}.csv" + (f" and {args.out}.png" if plotted else ""), file=sys.stderr)
 
 

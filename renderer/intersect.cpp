@@ -1,370 +1,374 @@
-// renderer/intersect.cpp: region subdivision, the bound-versus-ray test and the nearest-first
-// traversal, written once for every bounding number type.
+// renderer/intersect.cpp: the ray test of a cached region bound and the nearest-first walk of the
+// bound hierarchy.
 //
-// The test (DESIGN.md, decision 5): pick two unit normals n1, n2 perpendicular to the ray and to
-// each other; the planes through the ray origin with these normals both contain the ray. For the
-// displaced point P' over a region, d1 = n1.(P'-o), d2 = n2.(P'-o) and t = d.(P'-o) are affine
-// forms; a surface point on the ray needs d1 = d2 = 0, so if either range excludes 0 the region
-// is missed. Because the forms share the symbols of u and v, a smooth surface gives much tighter
-// d1, d2 than an axis-aligned box of P' would.
-//
-// Tape pruning (DESIGN.md, decision 3): each region on the stack names the program valid over it,
-// the one its children are bounded with: the program its parent used, or that program pruned by
-// what the region's own bound decided. Programs live in a pool of slots reused across rays, with
-// a count of the regions naming them; a region is a subset of its parent, so a program pruned for
-// it stays valid for all its descendants.
+// The test (design decision 5): pick two unit normals n1, n2 perpendicular to the ray and to each
+// other; the planes through the ray origin with these normals both contain the ray. Over a region,
+// d1 = n1.(P'-o), d2 = n2.(P'-o) and t = dir.(P'-o) are affine in (eps_u, eps_v) up to a radius
+// (Measure, from the node's RegionBound); a surface point on the ray needs d1 = d2 = 0, so if either
+// range excludes 0 the region is missed. Beyond that:
+//  - zonotope edges: in the plane across the ray, (d1, d2) spans a zonotope whose longest edges are
+//    the generators of eps_u, eps_v (and the segment eps_w); a line along one of them may separate
+//    it from the origin (steep walls seen obliquely: docs/stiff.md, amplitude 1000 at 60 degrees);
+//  - the parallelogram: where the (d1, d2) part of (eps_u, eps_v) is invertible, the parameters at
+//    which the thickened parallelogram can meet the ray lie in a small box E around the solution
+//    of d1 = d2 = 0. The region's bound restricted to E is what the ray can reach: if it is empty
+//    the region is missed, and if it is smaller than the tolerance the region is a hit there,
+//    certified by that size, without subdividing further ("affine leaves": a smooth surface stops
+//    levels earlier, since the parallelogram's thickness shrinks quadratically with the region).
+// Every quantity carries its rounding (kSlack): a region is discarded only when its bound provably
+// misses the ray.
 #include "renderer/intersect.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
 #include <vector>
-
-#include "vm/prune.h"
 
 namespace affray::renderer {
 
 void IntersectStats::Merge(const IntersectStats& o) {
     rays += o.rays;
     regionsBounded += o.regionsBounded;
+    regionsEvaluated += o.regionsEvaluated;
     maxRegionsPerRay = std::max(maxRegionsPerRay, o.maxRegionsPerRay);
     depthLimitHits += o.depthLimitHits;
     budgetExhausted += o.budgetExhausted;
+    parallelogramHits += o.parallelogramHits;
     maxHitError = std::max(maxHitError, o.maxHitError);
-    instructionsBounded += o.instructionsBounded;
-    programsPruned += o.programsPruned;
-}
-
-PruneOptions PruneOptions::FromEnvironment() {
-    PruneOptions options;
-    if (const char* on = std::getenv("AFFRAY_PRUNE")) options.enabled = std::strcmp(on, "0") != 0;
-    if (const char* depth = std::getenv("AFFRAY_PRUNE_DEPTH")) options.minDepth = std::atoi(depth);
-    return options;
 }
 
 namespace {
 
-/// A region with its bound, measured in the ray's frame.
-struct Region {
+constexpr double kUlp = 0x1p-53;
+/// The relative rounding slack of the few-term sums and products below: an eight-fold margin over
+/// the gamma_n bounds of their error (n <= 6 operations in a chain).
+constexpr double kSlack = 4e-15;
+
+/// A measure of the region's bound along a unit direction n: c + u eps_u + v eps_v + w eps_w, plus
+/// or minus rad. It contains n.(P' - o) for every displaced point of the region, rounding included.
+struct Measure {
+    double c = 0, u = 0, v = 0, w = 0, rad = 0;
+    bool bounded = true;
+};
+
+Measure Along(const RegionBound& b, const glm::dvec3& o, const glm::dvec3& n) {
+    Measure m;
+    double magnitude = 0;
+    for (int i = 0; i < 3; ++i) {
+        // A coordinate n does not weigh cannot make the measure unbounded.
+        if (n[i] == 0) continue;
+        if (!(b.boundedMask & (1u << i))) {
+            m.bounded = false;
+            return m;
+        }
+        const double rel = b.c[i] - o[i];
+        m.c += n[i] * rel;
+        m.u += n[i] * b.a[i];
+        m.v += n[i] * b.b[i];
+        m.w += n[i] * b.g[i];
+        const double an = std::fabs(n[i]);
+        m.rad += an * b.r[i];
+        magnitude += an * (std::fabs(b.c[i]) + std::fabs(o[i]) + std::fabs(b.a[i]) + std::fabs(b.b[i]) +
+                           std::fabs(b.g[i]) + b.r[i]);
+    }
+    m.rad += kSlack * magnitude + 1e-300;
+    if (!std::isfinite(m.rad) || !std::isfinite(m.c)) m.bounded = false;
+    return m;
+}
+
+/// A closed range [lo, hi].
+struct Range {
+    double lo, hi;
+    bool excludesZero() const { return lo > 0 || hi < 0; }
+    double width() const { return hi - lo; }
+};
+
+/// The range of a measure with eps_u in cu +- ru and eps_v in cv +- rv (eps_w free).
+Range Over(const Measure& m, double cu, double ru, double cv, double rv) {
+    const double mid = m.c + m.u * cu + m.v * cv;
+    double rad = std::fabs(m.u) * ru + std::fabs(m.v) * rv + std::fabs(m.w) + m.rad;
+    rad += kSlack * (std::fabs(m.c) + std::fabs(m.u * cu) + std::fabs(m.v * cv) + rad);
+    return {mid - rad, mid + rad};
+}
+
+/// Whether a line along the generator (p1, p2) of the (d1, d2) zonotope separates it from the
+/// origin: the combination -p2 d1 + p1 d2 cancels that generator.
+bool EdgeSeparates(const Measure& d1, const Measure& d2, double p1, double p2) {
+    if (p1 == 0 && p2 == 0) return false;
+    Measure l;
+    l.c = -p2 * d1.c + p1 * d2.c;
+    // The generator cancels exactly: -p2 * p1 + p1 * p2 == 0 in floating point too.
+    const double gu = -p2 * d1.u + p1 * d2.u, gv = -p2 * d1.v + p1 * d2.v, gw = -p2 * d1.w + p1 * d2.w;
+    const double a2 = std::fabs(p2), a1 = std::fabs(p1);
+    const double rad = a2 * d1.rad + a1 * d2.rad;
+    const double magnitude = a2 * (std::fabs(d1.c) + std::fabs(d1.u) + std::fabs(d1.v) + std::fabs(d1.w) + d1.rad) +
+                             a1 * (std::fabs(d2.c) + std::fabs(d2.u) + std::fabs(d2.v) + std::fabs(d2.w) + d2.rad);
+    const double spread = std::fabs(gu) + std::fabs(gv) + std::fabs(gw);
+    const double total = spread + rad + 2 * kSlack * magnitude + 1e-300;
+    return std::isfinite(total) && (l.c - total > 0 || l.c + total < 0);
+}
+
+/// The part [lo, hi] of [-1, 1] where eps can be; false if empty.
+bool Clip(double centre, double radius, double* lo, double* hi) {
+    *lo = std::max(-1.0, centre - radius);
+    *hi = std::min(1.0, centre + radius);
+    return *lo <= *hi;
+}
+
+/// The entry of the walk: a node with its region and its measure against the current ray.
+struct Entry {
+    BoundNode* node;
     double u0, u1, v0, v1;
     int depth;
     double tLo, tHi;
-    double size;  // diagonal of the bound in the ray frame; infinite if unbounded
-    int program;  // slot of the program valid over the region (kRootProgram: the full one)
+    double size;    // diagonal of the bound's reachable part in the ray frame; infinite if unbounded
+    double hu, hv;  // where the ray meets the bound (parameters)
+    bool narrowed;  // the parallelogram narrowed the reachable part below the whole region
 };
 
-constexpr int kRootProgram = -1;
-constexpr int kNoProgram = -2;
-
-template <class N>
-class SurfaceIntersectorT final : public SurfaceIntersector {
+class TreeIntersector final : public SurfaceIntersector {
   public:
-    SurfaceIntersectorT(const BaseSurface& surface, const vm::Program& program, const glm::dvec3& eye, int maxDepth,
-                        const PruneOptions& prune, uint64_t budget)
-        : m_surface(surface),
-          m_root(&program),
-          m_interp(program),
-          m_output(program.findOutput("P") - program.outputs.data()),
-          m_eye(eye),
-          m_maxDepth(maxDepth),
-          m_budget(budget),
-          m_prune(prune) {
-        m_stack.reserve(4 * static_cast<size_t>(maxDepth) + 8);
+    TreeIntersector(BoundTree& tree, uint64_t budget, std::unique_ptr<BoundTree> owned = nullptr)
+        : m_owned(std::move(owned)),
+          m_tree(tree),
+          m_walker(tree),
+          m_evaluator(tree.MakeEvaluator()),
+          m_budget(budget) {
+        m_stack.reserve(4 * static_cast<size_t>(tree.maxDepth()) + 8);
     }
 
     bool Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit, Hit* hit,
                    IntersectStats& stats) override;
 
   private:
-    /// Bounds the region and measures it against the ray; false if it provably misses.
-    bool BoundRegion(Region& r, double tMin, double tMax);
-    /// The ray parameter of the point of the ray nearest to the surface point at (u, v); false if
-    /// the surface is undefined (not finite) there.
-    bool PointAlongRay(double u, double v, double* t);
+    /// Measures the entry's bound against the ray; false if it provably misses.
+    bool Test(Entry& e, double tMin, double tMax);
+    /// The ray's t range through the box of the bound's bounded coordinates, within [lo, hi]
+    /// (narrowed); false if it misses.
+    bool BoxRange(const RegionBound& b, double* lo, double* hi) const;
 
-    const vm::Program& ProgramOf(int slot) const { return slot == kRootProgram ? *m_root : m_pool[slot]->program; }
-    /// Makes the interpreter run the program in `slot`.
-    void Use(int slot);
-    /// The program for the children of `r`, just bounded by the program in `parent`: a new slot
-    /// pruned by the decisions of that bound if worthwhile, else `parent`; held once more.
-    int ProgramFor(const Region& r, int parent, const Tolerance& tolerance);
-    void Hold(int slot) {
-        if (slot != kRootProgram) ++m_pool[slot]->holders;
-    }
-    void Release(int slot) {
-        if (slot != kRootProgram && --m_pool[slot]->holders == 0) m_free.push_back(slot);
-    }
-
-    BaseSurface m_surface;
-    const vm::Program* m_root;
-    vm::Interpreter<N> m_interp;
-    ptrdiff_t m_output;  // index of P among the outputs, the same in every pruned program
-    glm::dvec3 m_eye;
-    int m_maxDepth;
+    std::unique_ptr<BoundTree> m_owned;  // the tree, when this intersector has one of its own
+    BoundTree& m_tree;
+    BoundTree::Walker m_walker;
+    std::unique_ptr<RegionEvaluator> m_evaluator;
     uint64_t m_budget;
-    std::vector<Region> m_stack;
+    std::vector<Entry> m_stack;
     // The current ray's frame.
     glm::dvec3 m_origin, m_dir, m_n1, m_n2;
-    uint64_t m_bounded = 0;
-    // Tape pruning: the pool of pruned programs (kept across rays, so that their vectors keep
-    // their capacity), the free slots, the slot the interpreter runs.
-    struct Slot {
-        vm::Program program;
-        int holders = 0;
-    };
-    PruneOptions m_prune;
-    vm::Pruner m_pruner;
-    std::vector<std::unique_ptr<Slot>> m_pool;
-    std::vector<int> m_free;
-    int m_current = kRootProgram;
-    uint64_t m_instructions = 0, m_pruned = 0;
+    uint64_t m_tested = 0, m_evaluated = 0;
 };
 
-template <class N>
-void SurfaceIntersectorT<N>::Use(int slot) {
-    if (slot == m_current) return;
-    m_interp.SetProgram(ProgramOf(slot));
-    m_current = slot;
-}
-
-template <class N>
-int SurfaceIntersectorT<N>::ProgramFor(const Region& r, int parent, const Tolerance& tolerance) {
-    // A region that will not be split needs no program of its own.
-    const bool leaf = r.size <= tolerance.At(r.tLo) || r.depth >= m_maxDepth;
-    const vm::Program& from = ProgramOf(parent);
-    if (!m_prune.enabled || leaf || r.depth < m_prune.minDepth || m_interp.decisions().usefulCount(from) == 0) {
-        Hold(parent);
-        return parent;
-    }
-    if (m_free.empty()) {
-        m_pool.push_back(std::make_unique<Slot>());
-        m_free.push_back(static_cast<int>(m_pool.size()) - 1);
-    }
-    const int slot = m_free.back();
-    vm::Program& pruned = m_pool[slot]->program;
-    m_pruner.Prune(from, m_interp.decisions(), &pruned);
-    if (slot == m_current) m_current = kNoProgram;  // its program changed under the interpreter
-    if (static_cast<double>(pruned.code.size()) > m_prune.keepRatio * static_cast<double>(from.code.size())) {
-        Hold(parent);
-        return parent;
-    }
-    m_free.pop_back();
-    m_pool[slot]->holders = 1;
-    ++m_pruned;
-    return slot;
-}
-
-template <class N>
-bool SurfaceIntersectorT<N>::BoundRegion(Region& r, double tMin, double tMax) {
-    ++m_bounded;
-    m_instructions += m_interp.program().code.size();
-    m_interp.SetRecording(m_prune.enabled && r.depth >= m_prune.minDepth);
-    Vec3<N> p = EvaluateOnSurface(m_interp, m_surface, r.u0, r.u1, r.v0, r.v1, m_eye, m_interp.program().outputs[m_output]);
-    using T = std::decay_t<decltype(vm::ValueOf(p.x))>;
-    Vec3<T> rel{vm::ValueOf(p.x) - m_origin.x, vm::ValueOf(p.y) - m_origin.y, vm::ValueOf(p.z) - m_origin.z};
-    // n.(P' - o), leaving out the components n does not weigh: an unbounded coordinate along
-    // which the ray frame does not measure must not make the others unmeasurable.
-    auto along = [&](const glm::dvec3& n) {
-        T sum(0.0);
-        for (int i = 0; i < 3; ++i)
-            if (n[i] != 0) sum = sum + rel[i] * n[i];
-        return sum;
-    };
-    const T d1Form = along(m_n1), d2Form = along(m_n2);
-    vm::Interval d1 = RangeOf(d1Form), d2 = RangeOf(d2Form), t = RangeOf(along(m_dir));
-    // Each bounded measure may rule the region out on its own, even if another is unbounded.
-    auto excludesZero = [](const vm::Interval& d) { return !d.isUnbounded() && (d.lo() > 0 || d.hi() < 0); };
-    if (excludesZero(d1) || excludesZero(d2)) return false;
-    if constexpr (std::is_same_v<T, vm::Affine>) {
-        // In the plane across the ray, (d1, d2) spans a zonotope whose longest edges are the
-        // generators of eps_u and eps_v; the ray misses the region if a line along one of them
-        // separates the zonotope from the origin. Steep walls seen obliquely give long thin
-        // zonotopes that the two fixed axes d1, d2 cannot separate until the regions are tiny
-        // (docs/stiff.md: amplitude 1000 at 60 degrees, 24689 regions per ray without this).
-        if (!d1.isUnbounded() && !d2.isUnbounded())
-            for (vm::Affine::SymbolId symbol : {vm::Affine::kSymbolU, vm::Affine::kSymbolV}) {
-                const double a = d1Form.coefficientOf(symbol), b = d2Form.coefficientOf(symbol);
-                if (a == 0 && b == 0) continue;
-                if (excludesZero(RangeOf(d1Form * (-b) + d2Form * a))) return false;
-            }
-    }
-    if (!t.isUnbounded() && (t.hi() < tMin || t.lo() > tMax)) return false;
-    if (d1.isUnbounded() || d2.isUnbounded() || t.isUnbounded()) {
-        // Not ruled out by the ray frame. The coordinates of P' that are still bounded give a
-        // box (unbounded along the others), which the ray crosses over a range of t or misses:
-        // around a singular point of the shader (log(0), 1/0) this keeps the regions that can
-        // still reach the ray to the few it passes, instead of all of them.
-        double lo = t.isUnbounded() ? tMin : std::max(t.lo(), tMin);
-        double hi = t.isUnbounded() ? tMax : std::min(t.hi(), tMax);
-        for (int i = 0; i < 3; ++i) {
-            vm::Interval c = RangeOf(rel[i]);  // the coordinate relative to the ray's origin
-            if (c.isUnbounded()) continue;
-            if (m_dir[i] == 0) {
-                if (c.lo() > 0 || c.hi() < 0) return false;
-                continue;
-            }
-            double t0 = c.lo() / m_dir[i], t1 = c.hi() / m_dir[i];
-            if (t0 > t1) std::swap(t0, t1);
-            // Widened by a few ulps: the divisions round.
-            lo = std::max(lo, t0 - 4e-16 * std::fabs(t0));
-            hi = std::min(hi, t1 + 4e-16 * std::fabs(t1));
+bool TreeIntersector::BoxRange(const RegionBound& b, double* lo, double* hi) const {
+    for (int i = 0; i < 3; ++i) {
+        if (!(b.boundedMask & (1u << i))) continue;
+        const double c0 = b.lo[i] - m_origin[i], c1 = b.hi[i] - m_origin[i];
+        // The subtractions round: widen by an ulp of each operand.
+        const double slack = 2 * kUlp * (std::fabs(b.lo[i]) + std::fabs(b.hi[i]) + std::fabs(m_origin[i]));
+        if (m_dir[i] == 0) {
+            if (c0 - slack > 0 || c1 + slack < 0) return false;
+            continue;
         }
+        double t0 = (c0 - slack) / m_dir[i], t1 = (c1 + slack) / m_dir[i];
+        if (t0 > t1) std::swap(t0, t1);
+        // Widened by a few ulps: the divisions round.
+        *lo = std::max(*lo, t0 - 4 * kUlp * std::fabs(t0));
+        *hi = std::min(*hi, t1 + 4 * kUlp * std::fabs(t1));
+    }
+    return *lo <= *hi;
+}
+
+bool TreeIntersector::Test(Entry& e, double tMin, double tMax) {
+    ++m_tested;
+    const RegionBound& b = e.node->bound;
+    e.hu = 0.5 * (e.u0 + e.u1);
+    e.hv = 0.5 * (e.v0 + e.v1);
+    e.narrowed = false;
+    double lo = tMin, hi = tMax;
+    // The box first: cheap, and it may be tighter than the forms (it holds the bound's enclosure).
+    if (!BoxRange(b, &lo, &hi)) return false;
+    const Measure d1 = Along(b, m_origin, m_n1), d2 = Along(b, m_origin, m_n2), t = Along(b, m_origin, m_dir);
+    const Range r1 = Over(d1, 0, 1, 0, 1), r2 = Over(d2, 0, 1, 0, 1), rt = Over(t, 0, 1, 0, 1);
+    // Each bounded measure may rule the region out on its own, even if another is unbounded.
+    if ((d1.bounded && r1.excludesZero()) || (d2.bounded && r2.excludesZero())) return false;
+    if (t.bounded && (rt.hi < tMin || rt.lo > tMax)) return false;
+    if (!d1.bounded || !d2.bounded || !t.bounded) {
+        // Not ruled out by the ray frame: the coordinates that are still bounded give a box
+        // (unbounded along the others), which the ray crosses over [lo, hi]: around a singular
+        // point of the shader (log(0), 1/0) this keeps the regions that can still reach the ray
+        // to the few it passes, instead of all of them.
+        if (t.bounded) lo = std::max(lo, rt.lo), hi = std::min(hi, rt.hi);
         if (lo > hi) return false;
-        r.tLo = lo;
-        r.tHi = hi;
-        r.size = INFINITY;
+        e.tLo = lo;
+        e.tHi = hi;
+        e.size = INFINITY;
         return true;
     }
-    r.tLo = t.lo();
-    r.tHi = t.hi();
-    double w1 = d1.hi() - d1.lo(), w2 = d2.hi() - d2.lo(), wt = t.hi() - t.lo();
-    r.size = std::sqrt(w1 * w1 + w2 * w2 + wt * wt) * (1 + 1e-15);
+    for (auto [p1, p2] : {std::pair{d1.u, d2.u}, {d1.v, d2.v}, {d1.w, d2.w}})
+        if (EdgeSeparates(d1, d2, p1, p2)) return false;
+
+    // The parallelogram: eps with |d1(eps)| <= R1 and |d2(eps)| <= R2 (eps_w and rad as radius).
+    double cu = 0, ru = 1, cv = 0, rv = 1;
+    double hitU = 0, hitV = 0;  // where the ray meets the parallelogram itself, within E
+    const double det = d1.u * d2.v - d1.v * d2.u;
+    const double scale = std::fabs(d1.u * d2.v) + std::fabs(d1.v * d2.u);
+    if (std::fabs(det) > 1e-6 * scale && std::isfinite(scale)) {
+        const double R1 = std::fabs(d1.w) + d1.rad, R2 = std::fabs(d2.w) + d2.rad;
+        const double ad = std::fabs(det);
+        const double su = -d1.c * d2.v + d2.c * d1.v, sv = -d2.c * d1.u + d1.c * d2.u;
+        const double eu = su / det, ev = sv / det;
+        // The solution rounds (numerator, determinant, division): first-order bounds, doubled.
+        const double errU = 2 * (2 * kUlp * (std::fabs(d1.c * d2.v) + std::fabs(d2.c * d1.v) + std::fabs(eu) * scale) / ad +
+                                 kUlp * std::fabs(eu));
+        const double errV = 2 * (2 * kUlp * (std::fabs(d2.c * d1.u) + std::fabs(d1.c * d2.u) + std::fabs(ev) * scale) / ad +
+                                 kUlp * std::fabs(ev));
+        const double du = (std::fabs(d2.v) * R1 + std::fabs(d1.v) * R2) / ad * (1 + 1e-9) + errU + 1e-300;
+        const double dv = (std::fabs(d2.u) * R1 + std::fabs(d1.u) * R2) / ad * (1 + 1e-9) + errV + 1e-300;
+        double uLo, uHi, vLo, vHi;
+        if (std::isfinite(du) && std::isfinite(dv) && std::isfinite(eu) && std::isfinite(ev)) {
+            if (!Clip(eu, du, &uLo, &uHi) || !Clip(ev, dv, &vLo, &vHi)) return false;
+            cu = 0.5 * (uLo + uHi);
+            ru = (std::max(uHi - cu, cu - uLo)) * (1 + 4 * kUlp);
+            cv = 0.5 * (vLo + vHi);
+            rv = (std::max(vHi - cv, cv - vLo)) * (1 + 4 * kUlp);
+            e.narrowed = ru < 1 || rv < 1;
+            hitU = std::clamp(eu, uLo, uHi);
+            hitV = std::clamp(ev, vLo, vHi);
+        }
+    }
+    Range e1 = r1, e2 = r2, et = rt;
+    if (e.narrowed) {
+        e1 = Over(d1, cu, ru, cv, rv);
+        e2 = Over(d2, cu, ru, cv, rv);
+        et = Over(t, cu, ru, cv, rv);
+        if (e1.excludesZero() || e2.excludesZero() || et.hi < tMin || et.lo > tMax) return false;
+    } else {
+        // The ray runs along the parallelogram (a silhouette) or it is degenerate: should the
+        // region be a hit, its point nearest along the ray stands for it, since at a silhouette
+        // the side facing the ray comes first (the centre could lie on the far side).
+        hitU = t.u > 0 ? -1 : t.u < 0 ? 1 : 0;
+        hitV = t.v > 0 ? -1 : t.v < 0 ? 1 : 0;
+    }
+    double pu, pr, pv, prv;
+    RegionParameter(e.u0, e.u1, &pu, &pr);
+    RegionParameter(e.v0, e.v1, &pv, &prv);
+    e.hu = std::clamp(pu + pr * hitU, e.u0, e.u1);
+    e.hv = std::clamp(pv + prv * hitV, e.v0, e.v1);
+    e.tLo = std::max(et.lo, lo);
+    e.tHi = std::min(et.hi, hi);
+    if (e.tLo > e.tHi) return false;
+    const double w1 = e1.width(), w2 = e2.width(), wt = et.width();
+    e.size = std::sqrt(w1 * w1 + w2 * w2 + wt * wt) * (1 + 1e-15);
     return true;
 }
 
-template <class N>
-bool SurfaceIntersectorT<N>::PointAlongRay(double u, double v, double* t) {
-    // The full program, so that this fallback does not depend on pruning.
-    Use(kRootProgram);
-    Vec3<N> p = EvaluateOnSurface(m_interp, m_surface, u, u, v, v, m_eye, m_interp.program().outputs[m_output]);
-    glm::dvec3 center;
-    for (int i = 0; i < 3; ++i) {
-        vm::Interval r = RangeOf(vm::ValueOf(p[i]));
-        if (r.isUnbounded()) return false;
-        center[i] = r.mid();
-    }
-    *t = glm::dot(center - m_origin, m_dir);
-    return std::isfinite(*t);
-}
-
-template <class N>
-bool SurfaceIntersectorT<N>::Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance,
-                                     bool anyHit, Hit* hit, IntersectStats& stats) {
+bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit,
+                                Hit* hit, IntersectStats& stats) {
     m_origin = ray.origin;
     m_dir = ray.dir;
     // Any unit vector perpendicular to the ray, then a third completing the frame.
-    glm::dvec3 helper = std::abs(m_dir.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 helper = std::abs(m_dir.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     m_n1 = glm::normalize(glm::cross(m_dir, helper));
     m_n2 = glm::normalize(glm::cross(m_dir, m_n1));
-    m_bounded = 0;
-    m_instructions = 0;
-    m_pruned = 0;
+    m_tested = 0;
+    m_evaluated = 0;
     m_stack.clear();
-    // Every program of the last ray is free again (an early exit leaves regions unreleased).
-    m_free.clear();
-    for (int i = static_cast<int>(m_pool.size()) - 1; i >= 0; --i) {
-        m_pool[i]->holders = 0;
-        m_free.push_back(i);
-    }
+    m_walker.Enter();
 
     double best = tMax;
     bool found = false;
-    Region root{0, 1, 0, 1, 0, 0, 0, 0, kRootProgram};
-    Use(kRootProgram);
-    if (BoundRegion(root, tMin, best)) {
-        root.program = ProgramFor(root, kRootProgram, tolerance);
-        m_stack.push_back(root);
-    }
+    const int maxDepth = m_tree.maxDepth();
+    Entry root{&m_tree.root(), 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, false};
+    if (Test(root, tMin, best)) m_stack.push_back(root);
 
     while (!m_stack.empty()) {
-        if (m_bounded >= m_budget) {
+        if (m_tested >= m_budget) {
             // Out of budget (a shader too stiff to resolve at this tolerance, or bounds that
             // overflow everywhere): the nearest region left is a possible hit, uncertified, unless
             // a hit already found is nearer. Better a counted, visible approximation than a hang.
             ++stats.budgetExhausted;
-            const Region* nearest = nullptr;
-            for (const Region& r : m_stack)
+            const Entry* nearest = nullptr;
+            for (const Entry& r : m_stack)
                 if (r.tLo <= best && (!nearest || r.tLo < nearest->tLo)) nearest = &r;
             if (nearest) {
                 best = std::max(nearest->tLo, tMin);
                 found = true;
-                *hit = Hit{best, 0.5 * (nearest->u0 + nearest->u1), 0.5 * (nearest->v0 + nearest->v1), nearest->size,
-                           true};
+                *hit = Hit{best, nearest->hu, nearest->hv, nearest->size, true};
             }
             break;
         }
-        Region r = m_stack.back();
+        const Entry r = m_stack.back();
         m_stack.pop_back();
-        if (r.tLo > best) {  // a nearer hit was found since this region was bounded
-            Release(r.program);
-            continue;
-        }
+        if (r.tLo > best) continue;  // a nearer hit was found since this region was measured
 
-        bool small = r.size <= tolerance.At(r.tLo);
-        bool atLimit = r.depth >= m_maxDepth;
+        const bool small = r.size <= tolerance.At(r.tLo);
+        const bool atLimit = r.depth >= maxDepth;
         if (small || atLimit) {
-            Release(r.program);
-            double uc = 0.5 * (r.u0 + r.u1), vc = 0.5 * (r.v0 + r.v1);
-            double tHit, error;
+            double tHit = 0, error = 0;
             if (std::isfinite(r.size)) {
-                // The bound's t range meets [tMin, best] (checked when bounded and popped).
+                // The bound's t range meets [tMin, best] (checked when measured and popped).
                 tHit = std::clamp(0.5 * (r.tLo + r.tHi), std::max(r.tLo, tMin), std::min(r.tHi, best));
                 error = r.size;
             } else {
                 // Unbounded down to the depth limit: nothing rules a hit out, so this is a possible
                 // hit (counted, with no certificate), placed where the ray passes the surface
                 // point at the region's centre. Only rays that cross the box of the region's
-                // bounded coordinates get here (BoundRegion), so around a singular point (log(0))
-                // these are the rays through its column, not every ray.
-                if (!PointAlongRay(uc, vc, &tHit) || tHit < tMin || tHit > best) continue;
+                // bounded coordinates get here (Test), so around a singular point (log(0)) these
+                // are the rays through its column, not every ray.
+                glm::dvec3 p;
+                if (!m_evaluator->PointAt(r.hu, r.hv, &p)) continue;
+                ++m_evaluated;
+                tHit = glm::dot(p - m_origin, m_dir);
+                if (!std::isfinite(tHit) || tHit < tMin || tHit > best) continue;
                 error = INFINITY;
             }
             if (atLimit && !small) ++stats.depthLimitHits;
+            if (small && r.narrowed) ++stats.parallelogramHits;
             best = tHit;
             found = true;
-            *hit = Hit{tHit, uc, vc, error, atLimit && !small};
+            *hit = Hit{tHit, r.hu, r.hv, error, atLimit && !small};
             if (anyHit) break;
             continue;
         }
 
-        // Split in four, bound each child with the region's program (each child's own program
-        // is chosen right after its bound, while the decisions are those of that bound), push the
-        // survivors farthest first (popped nearest first).
-        Use(r.program);
-        double uMid = 0.5 * (r.u0 + r.u1), vMid = 0.5 * (r.v0 + r.v1);
+        // The children (built now if no ray needed them before), measured against the ray; the
+        // survivors pushed farthest first (popped nearest first).
+        BoundNode* kids = m_walker.Children(*r.node, r.u0, r.u1, r.v0, r.v1, *m_evaluator, &m_evaluated);
+        const double uMid = 0.5 * (r.u0 + r.u1), vMid = 0.5 * (r.v0 + r.v1);
         const int d = r.depth + 1;
-        Region children[4] = {{r.u0, uMid, r.v0, vMid, d, 0, 0, 0, kRootProgram},
-                              {uMid, r.u1, r.v0, vMid, d, 0, 0, 0, kRootProgram},
-                              {r.u0, uMid, vMid, r.v1, d, 0, 0, 0, kRootProgram},
-                              {uMid, r.u1, vMid, r.v1, d, 0, 0, 0, kRootProgram}};
-        Region kept[4];
+        Entry kept[4];
         int nKept = 0;
-        for (Region& c : children)
-            if (BoundRegion(c, tMin, best)) {
-                c.program = ProgramFor(c, r.program, tolerance);
-                kept[nKept++] = c;
-            }
-        Release(r.program);
+        const double regions[4][4] = {
+            {r.u0, uMid, r.v0, vMid}, {uMid, r.u1, r.v0, vMid}, {r.u0, uMid, vMid, r.v1}, {uMid, r.u1, vMid, r.v1}};
+        for (int i = 0; i < 4; ++i) {
+            Entry c{&kids[i], regions[i][0], regions[i][1], regions[i][2], regions[i][3], d, 0, 0, 0, 0, 0, false};
+            if (Test(c, tMin, best)) kept[nKept++] = c;
+        }
         // Insertion sort, farthest first (four elements at most).
         for (int i = 1; i < nKept; ++i)
             for (int j = i; j > 0 && kept[j - 1].tLo < kept[j].tLo; --j) std::swap(kept[j - 1], kept[j]);
         for (int i = 0; i < nKept; ++i) m_stack.push_back(kept[i]);
     }
+    m_walker.Leave();
 
     ++stats.rays;
-    stats.regionsBounded += m_bounded;
-    stats.instructionsBounded += m_instructions;
-    stats.programsPruned += m_pruned;
-    stats.maxRegionsPerRay = std::max(stats.maxRegionsPerRay, m_bounded);
+    stats.regionsBounded += m_tested;
+    stats.regionsEvaluated += m_evaluated;
+    stats.maxRegionsPerRay = std::max(stats.maxRegionsPerRay, m_tested);
     if (found && std::isfinite(hit->error)) stats.maxHitError = std::max(stats.maxHitError, hit->error);
     return found;
 }
 
 }  // namespace
 
-std::unique_ptr<SurfaceIntersector> MakeSurfaceIntersector(const BaseSurface& patch, const vm::Program& boundProgram,
-                                                       const glm::dvec3& eye, BoundMode mode, int maxDepth,
-                                                       const PruneOptions& prune, uint64_t regionBudget) {
-    bool dual = boundProgram.usesDerivatives();
-    if (mode == BoundMode::Affine) {
-        if (dual)
-            return std::make_unique<SurfaceIntersectorT<vm::Dual<vm::Affine>>>(patch, boundProgram, eye, maxDepth, prune, regionBudget);
-        return std::make_unique<SurfaceIntersectorT<vm::Affine>>(patch, boundProgram, eye, maxDepth, prune, regionBudget);
-    }
-    if (dual)
-        return std::make_unique<SurfaceIntersectorT<vm::Dual<vm::Interval>>>(patch, boundProgram, eye, maxDepth, prune, regionBudget);
-    return std::make_unique<SurfaceIntersectorT<vm::Interval>>(patch, boundProgram, eye, maxDepth, prune, regionBudget);
+std::unique_ptr<SurfaceIntersector> MakeSurfaceIntersector(BoundTree& tree, uint64_t regionBudget) {
+    return std::make_unique<TreeIntersector>(tree, regionBudget);
+}
+
+std::unique_ptr<SurfaceIntersector> MakeSurfaceIntersector(const BaseSurface& surface, const vm::Program& boundProgram,
+                                                           const glm::dvec3& eye, BoundMode mode, int maxDepth,
+                                                           uint64_t regionBudget) {
+    auto tree = std::make_unique<BoundTree>(surface, boundProgram, eye, mode, maxDepth);
+    BoundTree& ref = *tree;
+    return std::make_unique<TreeIntersector>(ref, regionBudget, std::move(tree));
 }
 
 }  // namespace affray::renderer

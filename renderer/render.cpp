@@ -53,22 +53,22 @@ std::string FindShader(const std::string& name, const std::vector<std::string>& 
     return {};
 }
 
-/// Everything one thread needs: per primitive an intersector and a shading interpreter.
+/// Everything one thread needs: per primitive an intersector (a walker over the primitive's shared
+/// bound hierarchy) and a shading interpreter.
 struct ThreadState {
     std::vector<std::unique_ptr<SurfaceIntersector>> intersectors;
     std::vector<std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> shaders;
     IntersectStats cameraStats, shadowStats;
     uint64_t cameraRays = 0;
 
-    ThreadState(const PreparedScene& scene, const RenderOptions& options, const glm::dvec3& eye) {
-        for (const Primitive& prim : scene.primitives) {
-            const int index = static_cast<int>(intersectors.size());
+    ThreadState(const PreparedScene& scene, const RenderOptions& options,
+                const std::vector<std::unique_ptr<BoundTree>>& trees) {
+        for (size_t i = 0; i < scene.primitives.size(); ++i) {
+            const Primitive& prim = scene.primitives[i];
             if (options.intersectorFactory)
-                intersectors.push_back(options.intersectorFactory(prim, index));
+                intersectors.push_back(options.intersectorFactory(prim, static_cast<int>(i)));
             else
-                intersectors.push_back(MakeSurfaceIntersector(prim.base, prim.bound, eye, options.bounds,
-                                                              options.maxDepth, PruneOptions::FromEnvironment(),
-                                                              options.regionBudget));
+                intersectors.push_back(MakeSurfaceIntersector(*trees[i], options.regionBudget));
             shaders.push_back(std::make_unique<vm::Interpreter<vm::Dual<double>>>(prim.shade));
         }
     }
@@ -271,19 +271,34 @@ compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveDesc& patch) {
 }  // namespace
 
 std::string RenderStats::ToJson() const {
-    double mean = cameraRays ? double(camera.regionsBounded) / double(cameraRays) : 0.0;
-    double shadowMean = shadow.rays ? double(shadow.regionsBounded) / double(shadow.rays) : 0.0;
-    char buf[512];
+    auto perRay = [](uint64_t n, uint64_t rays) { return rays ? double(n) / double(rays) : 0.0; };
+    // A lookup that had to evaluate the children (or lost the race to publish them) is a miss.
+    const double hitRate = cache.lookups ? 1.0 - double(cache.blocksBuilt) / double(cache.lookups) : 0.0;
+    char buf[1024];
     std::snprintf(buf, sizeof buf,
                   "{\"wall_seconds\":%.3f,\"width\":%d,\"height\":%d,\"camera_rays\":%llu,"
-                  "\"regions_per_ray_mean\":%.2f,\"regions_per_ray_max\":%llu,\"depth_limit_hits\":%llu,"
-                  "\"max_certified_error\":%.6g,\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f,"
-                  "\"budget_exhausted_rays\":%llu}",
-                  wallSeconds, width, height, static_cast<unsigned long long>(cameraRays), mean,
-                  static_cast<unsigned long long>(camera.maxRegionsPerRay),
+                  "\"regions_per_ray_mean\":%.2f,\"regions_per_ray_max\":%llu,\"evaluations_per_ray_mean\":%.3f,"
+                  "\"depth_limit_hits\":%llu,\"max_certified_error\":%.6g,\"parallelogram_hits\":%llu,"
+                  "\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f,\"shadow_evaluations_per_ray_mean\":%.3f,"
+                  "\"budget_exhausted_rays\":%llu,"
+                  "\"cache\":{\"budget_mb\":%.1f,\"peak_mb\":%.2f,\"final_mb\":%.2f,\"nodes\":%llu,"
+                  "\"lookups\":%llu,\"hit_rate\":%.4f,\"blocks_built\":%llu,\"races_lost\":%llu,"
+                  "\"evictions\":%llu,\"eviction_passes\":%llu,\"build_thread_seconds\":%.3f}}",
+                  wallSeconds, width, height, static_cast<unsigned long long>(cameraRays),
+                  perRay(camera.regionsBounded, cameraRays), static_cast<unsigned long long>(camera.maxRegionsPerRay),
+                  perRay(camera.regionsEvaluated, cameraRays),
                   static_cast<unsigned long long>(camera.depthLimitHits + shadow.depthLimitHits),
-                  std::max(camera.maxHitError, 0.0), static_cast<unsigned long long>(shadow.rays), shadowMean,
-                  static_cast<unsigned long long>(camera.budgetExhausted + shadow.budgetExhausted));
+                  std::max(camera.maxHitError, 0.0),
+                  static_cast<unsigned long long>(camera.parallelogramHits + shadow.parallelogramHits),
+                  static_cast<unsigned long long>(shadow.rays), perRay(shadow.regionsBounded, shadow.rays),
+                  perRay(shadow.regionsEvaluated, shadow.rays),
+                  static_cast<unsigned long long>(camera.budgetExhausted + shadow.budgetExhausted),
+                  double(cacheBudgetBytes) / (1 << 20), double(cachePeakBytes) / (1 << 20),
+                  double(cache.bytes) / (1 << 20), static_cast<unsigned long long>(cache.nodes),
+                  static_cast<unsigned long long>(cache.lookups), hitRate,
+                  static_cast<unsigned long long>(cache.blocksBuilt), static_cast<unsigned long long>(cache.blocksLost),
+                  static_cast<unsigned long long>(cache.evictions), static_cast<unsigned long long>(cache.evictionPasses),
+                  cache.buildSeconds);
     return buf;
 }
 
@@ -457,8 +472,15 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     std::atomic<size_t> nextTile{0};
     std::vector<IntersectStats> cameraStats(nThreads), shadowStats(nThreads);
     std::vector<uint64_t> cameraRays(nThreads);
+    // One bound hierarchy per primitive, shared by every thread and ray of this render.
+    CacheBudget budget(options.cacheBytes);
+    std::vector<std::unique_ptr<BoundTree>> trees;
+    if (!options.intersectorFactory)
+        for (const Primitive& prim : scene.primitives)
+            trees.push_back(std::make_unique<BoundTree>(prim.base, prim.bound, eye, options.bounds, options.maxDepth,
+                                                        &budget));
     auto worker = [&](int index) {
-        ThreadState ts(scene, options, eye);
+        ThreadState ts(scene, options, trees);
         std::vector<Sample> samples;
         std::vector<SampleValue> values;
         for (size_t i = nextTile++; i < tiles.size(); i = nextTile++) {
@@ -480,6 +502,20 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     progress.Finish();
 
     *stats = RenderStats();
+    for (const auto& tree : trees) {
+        const BoundTreeStats t = tree->stats();
+        stats->cache.nodes += t.nodes;
+        stats->cache.bytes += t.bytes;
+        stats->cache.peakBytes += t.peakBytes;
+        stats->cache.blocksBuilt += t.blocksBuilt;
+        stats->cache.blocksLost += t.blocksLost;
+        stats->cache.lookups += t.lookups;
+        stats->cache.evictions += t.evictions;
+        stats->cache.evictionPasses += t.evictionPasses;
+        stats->cache.buildSeconds += t.buildSeconds;
+    }
+    stats->cacheBudgetBytes = options.cacheBytes;
+    stats->cachePeakBytes = budget.peakBytes.load();
     for (int i = 0; i < nThreads; ++i) {
         stats->camera.Merge(cameraStats[i]);
         stats->shadow.Merge(shadowStats[i]);

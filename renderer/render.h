@@ -25,6 +25,7 @@ struct RenderOptions {
     double tolerancePixels = 0.5;  // a region is a hit once its bound is smaller than this many pixels
     BoundMode bounds = BoundMode::Affine;
     int maxDepth = 24;
+    size_t cacheBytes = kDefaultCacheBytes;        // the bound hierarchies' memory budget (renderer/bound_tree.h)
     uint64_t regionBudget = kDefaultRegionBudget;  // per ray (renderer/intersect.h)
     int tileSize = 32;                             // pixels per side (less for small images)
     bool showProgress = false;                     // a progress bar on stderr (renderer/progress.h)
@@ -39,6 +40,9 @@ struct RenderStats {
     uint64_t cameraRays = 0;  // camera samples traced (a tile's filter margin is traced again)
     IntersectStats camera;  // camera rays only; its `rays` counts ray-primitive tests
     IntersectStats shadow;  // shadow rays
+    BoundTreeStats cache;   // the bound hierarchies, summed over the primitives
+    size_t cacheBudgetBytes = 0;
+    uint64_t cachePeakBytes = 0;  // the most the hierarchies held together
     int width = 0, height = 0;
 
     /// The one-line JSON of `affray render --stats`.

@@ -42,13 +42,20 @@ struct SurfaceParameterOf<Interval> {
     static Interval Make(double lo, double hi, int) { return Interval(lo, hi); }
 };
 
+/// The centre c and radius r with which a region's parameter [lo, hi] becomes c + r * eps: both
+/// rounded, the radius widened until [c - r, c + r] covers [lo, hi]. Every affine type and the
+/// intersector (which maps eps back to u and v) share it.
+inline void RegionParameter(double lo, double hi, double* c, double* r) {
+    *c = 0.5 * lo + 0.5 * hi;
+    *r = std::max(hi - *c, *c - lo);
+    while (*c - *r > lo || *c + *r < hi) *r = std::nextafter(*r, INFINITY);
+}
+
 template <>
 struct SurfaceParameterOf<Affine> {
     static Affine Make(double lo, double hi, int axis) {
-        // The centre and radius are rounded; widen the radius until [c - r, c + r] covers [lo, hi].
-        double c = 0.5 * lo + 0.5 * hi;
-        double r = std::max(hi - c, c - lo);
-        while (c - r > lo || c + r < hi) r = std::nextafter(r, INFINITY);
+        double c, r;
+        RegionParameter(lo, hi, &c, &r);
         return Affine::FromSymbol(c, r, axis == 0 ? Affine::kSymbolU : Affine::kSymbolV);
     }
 };

@@ -150,6 +150,7 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     options.bounds = cmd.bounds;
     options.maxDepth = cmd.maxDepth;
     options.regionBudget = cmd.regionBudget;
+    options.cacheBytes = cmd.cacheBytes;
     options.showProgress = renderer::Progress::ShouldShow(cmd.quiet, stderr);
     renderer::ImageBuffer image;
     renderer::RenderStats stats;

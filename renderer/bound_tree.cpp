@@ -1,0 +1,365 @@
+// renderer/bound_tree.cpp: region bounds reduced to what a ray test needs, and the shared, lazily
+// built, memory-budgeted quadtree of them (see the header).
+#include "renderer/bound_tree.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "vm/interpreter.h"
+
+namespace affray::renderer {
+
+namespace {
+
+constexpr double kUlp = 0x1p-53;  // unit roundoff of round-to-nearest doubles
+
+/// x rounded up by a relative margin covering the rounding of a sum of n terms of the same sign.
+double RoundedUpSum(double x, int n) { return x * (1 + 2 * (n + 2) * kUlp) + 1e-300; }
+
+/// The bound of one coordinate by an interval: its middle and radius.
+void FromRange(const vm::Interval& range, int i, RegionBound* out) {
+    out->lo[i] = range.lo();
+    out->hi[i] = range.hi();
+    if (range.isUnbounded()) {
+        out->lo[i] = -INFINITY;
+        out->hi[i] = INFINITY;
+        return;
+    }
+    const double c = 0.5 * range.lo() + 0.5 * range.hi();
+    double r = std::max(range.hi() - c, c - range.lo());
+    r = r * (1 + 4 * kUlp) + 1e-300;  // each difference rounds by half an ulp at most
+    if (!std::isfinite(c) || !std::isfinite(r)) return;
+    out->c[i] = c;
+    out->r[i] = r;
+    out->boundedMask |= uint8_t(1u << i);
+}
+
+RegionBound Reduce(const vm::Vec3<vm::Interval>& p) {
+    RegionBound out;
+    for (int i = 0; i < 3; ++i) FromRange(p[i], i, &out);
+    return out;
+}
+
+/// An affine P' reduced to c + a eps_u + b eps_v + g eps_w + [-r, r]: the terms of the other
+/// symbols form a 3 x K matrix whose columns are mostly parallel for a displacement along one
+/// direction; the columns close to the largest one's direction w go into the segment g (as
+/// alpha_k * w, exact for any alpha_k, with the residual G_k - alpha_k w into r), the others into r.
+RegionBound Reduce(const vm::Vec3<vm::Affine>& p) {
+    using vm::Affine;
+    RegionBound out;
+    for (int i = 0; i < 3; ++i) {
+        const vm::Interval range = p[i].range();
+        out.lo[i] = range.isUnbounded() ? -INFINITY : range.lo();
+        out.hi[i] = range.isUnbounded() ? INFINITY : range.hi();
+    }
+    // Gather the columns of the other symbols, merging the three sorted term lists.
+    constexpr int kMax = 3 * Affine::kMaxCapacity;
+    double cols[kMax][3];
+    int k = 0;
+    int next[3] = {0, 0, 0};
+    for (;;) {
+        Affine::SymbolId lowest = ~Affine::SymbolId(0);
+        for (int i = 0; i < 3; ++i)
+            if (!p[i].isUnbounded() && next[i] < p[i].termCount())
+                lowest = std::min(lowest, p[i].termSymbol(next[i]));
+        if (lowest == ~Affine::SymbolId(0)) break;
+        double col[3] = {0, 0, 0};
+        for (int i = 0; i < 3; ++i)
+            if (!p[i].isUnbounded() && next[i] < p[i].termCount() && p[i].termSymbol(next[i]) == lowest)
+                col[i] = p[i].termCoef(next[i]++);
+        if (lowest == Affine::kSymbolU || lowest == Affine::kSymbolV) {
+            for (int i = 0; i < 3; ++i) (lowest == Affine::kSymbolU ? out.a : out.b)[i] = col[i];
+            continue;
+        }
+        for (int i = 0; i < 3; ++i) cols[k][i] = col[i];
+        ++k;
+    }
+    // The direction of the largest column (by L1 norm) among the bounded coordinates.
+    int largest = -1;
+    double largestNorm = 0;
+    for (int j = 0; j < k; ++j) {
+        const double n = std::fabs(cols[j][0]) + std::fabs(cols[j][1]) + std::fabs(cols[j][2]);
+        if (n > largestNorm) largestNorm = n, largest = j;
+    }
+    double r[3] = {0, 0, 0};
+    double segment = 0;  // sum |alpha_k|
+    glm::dvec3 w(0.0);
+    if (largest >= 0) w = glm::dvec3(cols[largest][0], cols[largest][1], cols[largest][2]);
+    const double ww = glm::dot(w, w);
+    for (int j = 0; j < k; ++j) {
+        const double* col = cols[j];
+        const double norm = std::fabs(col[0]) + std::fabs(col[1]) + std::fabs(col[2]);
+        double alpha = ww > 0 && std::isfinite(ww) ? (col[0] * w.x + col[1] * w.y + col[2] * w.z) / ww : 0;
+        double res[3], resNorm = 0;
+        for (int i = 0; i < 3; ++i) {
+            res[i] = col[i] - alpha * w[i];
+            resNorm += std::fabs(res[i]);
+        }
+        if (!std::isfinite(alpha) || !(resNorm <= 0.5 * norm)) {
+            for (int i = 0; i < 3; ++i) r[i] += std::fabs(col[i]);
+            continue;
+        }
+        // col = alpha w + res exactly up to the rounding of res, bounded by an ulp of each part.
+        segment += std::fabs(alpha);
+        for (int i = 0; i < 3; ++i) r[i] += std::fabs(res[i]) + 2 * kUlp * (std::fabs(alpha * w[i]) + std::fabs(res[i]));
+    }
+    segment = RoundedUpSum(segment, k);
+    for (int i = 0; i < 3; ++i) {
+        if (p[i].isUnbounded()) continue;
+        const double g = w[i] * segment;
+        const double ri = RoundedUpSum(r[i] + p[i].error() + 2 * kUlp * std::fabs(g), k + 2);
+        if (!std::isfinite(g) || !std::isfinite(ri) || !std::isfinite(p[i].center())) continue;
+        out.c[i] = p[i].center();
+        out.g[i] = g;
+        out.r[i] = ri;
+        out.boundedMask |= uint8_t(1u << i);
+    }
+    for (int i = 0; i < 3; ++i)
+        if (!(out.boundedMask & (1u << i))) out.a[i] = out.b[i] = out.g[i] = 0;
+    return out;
+}
+
+template <class T>
+RegionBound Reduce(const vm::Vec3<vm::Dual<T>>& p) {
+    return Reduce(vm::Vec3<T>{p.x.v, p.y.v, p.z.v});
+}
+
+template <class N>
+class RegionEvaluatorT final : public RegionEvaluator {
+  public:
+    RegionEvaluatorT(const BaseSurface& surface, const vm::Program& program, const glm::dvec3& eye)
+        : m_surface(surface), m_interp(program), m_output(*program.findOutput("P")), m_eye(eye) {}
+
+    RegionBound Bound(double u0, double u1, double v0, double v1) override {
+        return Reduce(EvaluateOnSurface(m_interp, m_surface, u0, u1, v0, v1, m_eye, m_output));
+    }
+
+    bool PointAt(double u, double v, glm::dvec3* p) override {
+        const Vec3<N> x = EvaluateOnSurface(m_interp, m_surface, u, u, v, v, m_eye, m_output);
+        for (int i = 0; i < 3; ++i) {
+            const vm::Interval r = RangeOf(vm::ValueOf(x[i]));
+            if (r.isUnbounded()) return false;
+            (*p)[i] = r.mid();
+        }
+        return true;
+    }
+
+  private:
+    const BaseSurface& m_surface;
+    vm::Interpreter<N> m_interp;
+    const vm::ProgramOutput& m_output;
+    glm::dvec3 m_eye;
+};
+
+}  // namespace
+
+void CacheBudget::Add(uint64_t n) {
+    const uint64_t now = bytes.fetch_add(n, std::memory_order_relaxed) + n;
+    uint64_t peak = peakBytes.load(std::memory_order_relaxed);
+    while (now > peak && !peakBytes.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {
+    }
+}
+
+BoundTree::BoundTree(const BaseSurface& surface, const vm::Program& boundProgram, const glm::dvec3& eye,
+                     BoundMode mode, int maxDepth, CacheBudget* budget)
+    : m_surface(surface), m_program(&boundProgram), m_eye(eye), m_mode(mode), m_maxDepth(maxDepth) {
+    if (!budget) m_ownBudget = std::make_unique<CacheBudget>(kDefaultCacheBytes);
+    m_budget = budget ? budget : m_ownBudget.get();
+    m_root.bound = MakeEvaluator()->Bound(0, 1, 0, 1);
+}
+
+BoundTree::~BoundTree() {
+    uint64_t freed = 0;
+    if (BoundNode* kids = m_root.children.load()) freed += FreeSubtree(kids);
+    for (const Retired& r : m_retired) freed += FreeSubtree(r.block);
+    m_budget->Sub(freed / 4 * kBlockBytes);
+    for (Slot* s = m_slots.load(); s;) {
+        Slot* next = s->next;
+        delete s;
+        s = next;
+    }
+}
+
+std::unique_ptr<RegionEvaluator> BoundTree::MakeEvaluator() const {
+    const bool dual = m_program->usesDerivatives();
+    if (m_mode == BoundMode::Affine) {
+        if (dual) return std::make_unique<RegionEvaluatorT<vm::Dual<vm::Affine>>>(m_surface, *m_program, m_eye);
+        return std::make_unique<RegionEvaluatorT<vm::Affine>>(m_surface, *m_program, m_eye);
+    }
+    if (dual) return std::make_unique<RegionEvaluatorT<vm::Dual<vm::Interval>>>(m_surface, *m_program, m_eye);
+    return std::make_unique<RegionEvaluatorT<vm::Interval>>(m_surface, *m_program, m_eye);
+}
+
+BoundTree::Slot* BoundTree::RegisterWalker() {
+    for (Slot* s = m_slots.load(); s; s = s->next) {
+        bool expected = false;
+        if (s->used.compare_exchange_strong(expected, true)) return s;
+    }
+    Slot* s = new Slot;
+    s->used.store(true);
+    Slot* head = m_slots.load();
+    do s->next = head;
+    while (!m_slots.compare_exchange_weak(head, s));
+    return s;
+}
+
+bool BoundTree::Publish(BoundNode& node, BoundNode* block) {
+    BoundNode* expected = nullptr;
+    return node.children.compare_exchange_strong(expected, block, std::memory_order_acq_rel, std::memory_order_acquire);
+}
+
+uint64_t BoundTree::FreeSubtree(BoundNode* block) {
+    uint64_t nodes = 4;
+    for (int i = 0; i < 4; ++i)
+        if (BoundNode* kids = block[i].children.load(std::memory_order_relaxed)) nodes += FreeSubtree(kids);
+    delete[] block;
+    return nodes;
+}
+
+void BoundTree::Reclaim() {
+    // The oldest epoch a walker still in a ray may have seen.
+    uint64_t oldest = UINT64_MAX;
+    for (Slot* s = m_slots.load(); s; s = s->next) {
+        const uint64_t e = s->epoch.load();
+        if (e != 0) oldest = std::min(oldest, e);
+    }
+    uint64_t freed = 0;
+    auto kept = std::remove_if(m_retired.begin(), m_retired.end(), [&](const Retired& r) {
+        if (r.epoch >= oldest) return false;
+        freed += FreeSubtree(r.block);
+        return true;
+    });
+    m_retired.erase(kept, m_retired.end());
+    m_nodes.fetch_sub(freed, std::memory_order_relaxed);
+    m_bytes.fetch_sub(freed / 4 * kBlockBytes, std::memory_order_relaxed);
+    m_budget->Sub(freed / 4 * kBlockBytes);
+}
+
+void BoundTree::Evict() {
+    std::unique_lock<std::mutex> lock(m_evictMutex, std::try_to_lock);
+    if (!lock.owns_lock()) return;  // another thread is at it
+    const uint64_t total = m_budget->bytes.load(std::memory_order_relaxed);
+    if (total <= m_budget->limit) return;
+    ++m_passes;
+    // Down to half the budget overall, from this tree's least recently expanded subtrees.
+    const uint64_t excess = total - m_budget->limit / 2;
+    // The stamps of the expanded nodes reachable now.
+    std::vector<uint32_t> stamps;
+    std::vector<BoundNode*> stack{&m_root};
+    while (!stack.empty()) {
+        BoundNode* n = stack.back();
+        stack.pop_back();
+        BoundNode* kids = n->children.load(std::memory_order_acquire);
+        if (!kids) continue;
+        stamps.push_back(n->stamp.load(std::memory_order_relaxed));
+        for (int i = 0; i < 4; ++i) stack.push_back(&kids[i]);
+    }
+    if (stamps.empty()) return;
+    // Evict blocks expanded before `threshold`: as many blocks as the excess needs.
+    const size_t wanted = std::min(stamps.size(), size_t((excess + kBlockBytes - 1) / kBlockBytes));
+    std::nth_element(stamps.begin(), stamps.begin() + long(wanted - 1), stamps.end());
+    const uint32_t threshold = stamps[wanted - 1];
+    const uint64_t epoch = m_epoch.load();
+    uint64_t evicted = 0;
+    stack.assign(1, &m_root);
+    while (!stack.empty()) {
+        BoundNode* n = stack.back();
+        stack.pop_back();
+        std::atomic<BoundNode*>& children = n->children;
+        BoundNode* kids = children.load(std::memory_order_acquire);
+        if (!kids) continue;
+        if (n->stamp.load(std::memory_order_relaxed) <= threshold && n != &m_root) {
+            // Unlink: rays that start from now on cannot reach the block; rays under way may
+            // still hold it, so it is freed once they have all finished (Reclaim).
+            kids = children.exchange(nullptr);
+            if (kids) {
+                m_retired.push_back({kids, epoch});
+                ++evicted;
+            }
+            continue;
+        }
+        for (int i = 0; i < 4; ++i) stack.push_back(&kids[i]);
+    }
+    m_evictions.fetch_add(evicted, std::memory_order_relaxed);
+    m_epoch.fetch_add(1);
+    Reclaim();
+}
+
+BoundTreeStats BoundTree::stats() const {
+    BoundTreeStats s;
+    s.nodes = m_nodes.load();
+    s.bytes = m_bytes.load();
+    s.peakBytes = m_peakBytes.load();
+    s.blocksBuilt = m_blocksBuilt.load();
+    s.blocksLost = m_blocksLost.load();
+    s.lookups = m_lookups.load();
+    s.evictions = m_evictions.load();
+    s.evictionPasses = m_passes.load();
+    s.buildSeconds = m_buildSeconds.load();
+    return s;
+}
+
+BoundTree::Walker::Walker(BoundTree& tree) : m_tree(tree), m_slot(tree.RegisterWalker()) {}
+
+BoundTree::Walker::~Walker() {
+    m_slot->epoch.store(0);
+    m_slot->used.store(false);
+    m_tree.m_lookups.fetch_add(m_lookups, std::memory_order_relaxed);
+    m_tree.m_blocksBuilt.fetch_add(m_built, std::memory_order_relaxed);
+    m_tree.m_blocksLost.fetch_add(m_lost, std::memory_order_relaxed);
+    double seconds = m_tree.m_buildSeconds.load();
+    while (!m_tree.m_buildSeconds.compare_exchange_weak(seconds, seconds + m_buildSeconds)) {
+    }
+}
+
+void BoundTree::Walker::Enter() {
+    // Announce the epoch before reaching any node (sequentially consistent, against Evict's
+    // unlink-then-advance).
+    m_slot->epoch.store(m_tree.m_epoch.load());
+    // The clock ticks every 64 rays of each walker: coarse, but enough to tell old from recent.
+    if (++m_raysSinceTick >= 64) {
+        m_raysSinceTick = 0;
+        m_tree.m_clock.fetch_add(1, std::memory_order_relaxed);
+    }
+    m_clock = m_tree.m_clock.load(std::memory_order_relaxed);
+}
+
+void BoundTree::Walker::Leave() { m_slot->epoch.store(0, std::memory_order_release); }
+
+BoundNode* BoundTree::Walker::Children(BoundNode& node, double u0, double u1, double v0, double v1,
+                                       RegionEvaluator& evaluator, uint64_t* evaluated) {
+    ++m_lookups;
+    if (node.stamp.load(std::memory_order_relaxed) < m_clock) node.stamp.store(m_clock, std::memory_order_relaxed);
+    for (;;) {
+        if (BoundNode* kids = node.children.load(std::memory_order_acquire)) return kids;
+        const auto start = std::chrono::steady_clock::now();
+        BoundNode* block = new BoundNode[4];
+        const double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
+        block[0].bound = evaluator.Bound(u0, um, v0, vm);
+        block[1].bound = evaluator.Bound(um, u1, v0, vm);
+        block[2].bound = evaluator.Bound(u0, um, vm, v1);
+        block[3].bound = evaluator.Bound(um, u1, vm, v1);
+        for (int i = 0; i < 4; ++i) block[i].stamp.store(m_clock, std::memory_order_relaxed);
+        m_buildSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        *evaluated += 4;
+        ++m_built;
+        if (!m_tree.Publish(node, block)) {
+            // Another thread published the same bounds first (or they were evicted since: then
+            // this thread builds them again).
+            delete[] block;
+            ++m_lost;
+            continue;
+        }
+        m_tree.m_nodes.fetch_add(4, std::memory_order_relaxed);
+        const uint64_t bytes = m_tree.m_bytes.fetch_add(kBlockBytes, std::memory_order_relaxed) + kBlockBytes;
+        uint64_t peak = m_tree.m_peakBytes.load(std::memory_order_relaxed);
+        while (bytes > peak && !m_tree.m_peakBytes.compare_exchange_weak(peak, bytes, std::memory_order_relaxed)) {
+        }
+        m_tree.m_budget->Add(kBlockBytes);
+        if (m_tree.m_budget->bytes.load(std::memory_order_relaxed) > m_tree.m_budget->limit) m_tree.Evict();
+        return block;
+    }
+}
+
+}  // namespace affray::renderer
