@@ -154,6 +154,20 @@ class RegionEvaluatorT final : public RegionEvaluator {
 
 }  // namespace
 
+int SplitAxis(const RegionBound& b, int levelU, int levelV, int maxDepth) {
+    if (levelU >= maxDepth) return kSplitV;
+    if (levelV >= maxDepth) return kSplitU;
+    const int balanced = levelU == levelV ? kSplitBoth : levelU < levelV ? kSplitU : kSplitV;
+    // The first two levels split both ways: a region spanning half a turn or more of a periodic
+    // parameter (a sphere's u) has a linear part near 0 along it however far it stretches.
+    if (!b.bounded() || std::abs(levelU - levelV) >= kMaxImbalance || std::min(levelU, levelV) < 2) return balanced;
+    const double a = glm::length(b.a), bv = glm::length(b.b);
+    if (!std::isfinite(a + bv)) return balanced;
+    if (a > 2 * bv) return kSplitU;
+    if (bv > 2 * a) return kSplitV;
+    return balanced;
+}
+
 void CacheBudget::Add(uint64_t n) {
     const uint64_t now = bytes.fetch_add(n, std::memory_order_relaxed) + n;
     uint64_t peak = peakBytes.load(std::memory_order_relaxed);
@@ -167,13 +181,14 @@ BoundTree::BoundTree(const BaseSurface& surface, const vm::Program& boundProgram
     if (!budget) m_ownBudget = std::make_unique<CacheBudget>(kDefaultCacheBytes);
     m_budget = budget ? budget : m_ownBudget.get();
     m_root.bound = MakeEvaluator()->Bound(0, 1, 0, 1);
+    m_root.state.store(BoundNode::kReady);
 }
 
 BoundTree::~BoundTree() {
     uint64_t freed = 0;
     if (BoundNode* kids = m_root.children.load()) freed += FreeSubtree(kids);
     for (const Retired& r : m_retired) freed += FreeSubtree(r.block);
-    m_budget->Sub(freed / 4 * kBlockBytes);
+    m_budget->Sub(freed / kBlockNodes * kBlockBytes);
     for (Slot* s = m_slots.load(); s;) {
         Slot* next = s->next;
         delete s;
@@ -210,8 +225,8 @@ bool BoundTree::Publish(BoundNode& node, BoundNode* block) {
 }
 
 uint64_t BoundTree::FreeSubtree(BoundNode* block) {
-    uint64_t nodes = 4;
-    for (int i = 0; i < 4; ++i)
+    uint64_t nodes = kBlockNodes;
+    for (int i = 0; i < kBlockNodes; ++i)
         if (BoundNode* kids = block[i].children.load(std::memory_order_relaxed)) nodes += FreeSubtree(kids);
     delete[] block;
     return nodes;
@@ -232,8 +247,8 @@ void BoundTree::Reclaim() {
     });
     m_retired.erase(kept, m_retired.end());
     m_nodes.fetch_sub(freed, std::memory_order_relaxed);
-    m_bytes.fetch_sub(freed / 4 * kBlockBytes, std::memory_order_relaxed);
-    m_budget->Sub(freed / 4 * kBlockBytes);
+    m_bytes.fetch_sub(freed / kBlockNodes * kBlockBytes, std::memory_order_relaxed);
+    m_budget->Sub(freed / kBlockNodes * kBlockBytes);
 }
 
 void BoundTree::Evict() {
@@ -253,7 +268,7 @@ void BoundTree::Evict() {
         BoundNode* kids = n->children.load(std::memory_order_acquire);
         if (!kids) continue;
         stamps.push_back(n->stamp.load(std::memory_order_relaxed));
-        for (int i = 0; i < 4; ++i) stack.push_back(&kids[i]);
+        for (int i = 0; i < kBlockNodes; ++i) stack.push_back(&kids[i]);
     }
     if (stamps.empty()) return;
     // Evict blocks expanded before `threshold`: as many blocks as the excess needs.
@@ -279,7 +294,7 @@ void BoundTree::Evict() {
             }
             continue;
         }
-        for (int i = 0; i < 4; ++i) stack.push_back(&kids[i]);
+        for (int i = 0; i < kBlockNodes; ++i) stack.push_back(&kids[i]);
     }
     m_evictions.fetch_add(evicted, std::memory_order_relaxed);
     m_epoch.fetch_add(1);
@@ -292,7 +307,8 @@ BoundTreeStats BoundTree::stats() const {
     s.bytes = m_bytes.load();
     s.peakBytes = m_peakBytes.load();
     s.blocksBuilt = m_blocksBuilt.load();
-    s.blocksLost = m_blocksLost.load();
+    s.evaluations = m_evaluations.load();
+    s.privateCopies = m_private.load();
     s.lookups = m_lookups.load();
     s.evictions = m_evictions.load();
     s.evictionPasses = m_passes.load();
@@ -307,7 +323,8 @@ BoundTree::Walker::~Walker() {
     m_slot->used.store(false);
     m_tree.m_lookups.fetch_add(m_lookups, std::memory_order_relaxed);
     m_tree.m_blocksBuilt.fetch_add(m_built, std::memory_order_relaxed);
-    m_tree.m_blocksLost.fetch_add(m_lost, std::memory_order_relaxed);
+    m_tree.m_evaluations.fetch_add(m_evaluations, std::memory_order_relaxed);
+    m_tree.m_private.fetch_add(m_private, std::memory_order_relaxed);
     double seconds = m_tree.m_buildSeconds.load();
     while (!m_tree.m_buildSeconds.compare_exchange_weak(seconds, seconds + m_buildSeconds)) {
     }
@@ -327,31 +344,19 @@ void BoundTree::Walker::Enter() {
 
 void BoundTree::Walker::Leave() { m_slot->epoch.store(0, std::memory_order_release); }
 
-BoundNode* BoundTree::Walker::Children(BoundNode& node, double u0, double u1, double v0, double v1,
-                                       RegionEvaluator& evaluator, uint64_t* evaluated) {
-    ++m_lookups;
+BoundNode* BoundTree::Walker::Children(BoundNode& node) {
     if (node.stamp.load(std::memory_order_relaxed) < m_clock) node.stamp.store(m_clock, std::memory_order_relaxed);
     for (;;) {
         if (BoundNode* kids = node.children.load(std::memory_order_acquire)) return kids;
-        const auto start = std::chrono::steady_clock::now();
-        BoundNode* block = new BoundNode[4];
-        const double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
-        block[0].bound = evaluator.Bound(u0, um, v0, vm);
-        block[1].bound = evaluator.Bound(um, u1, v0, vm);
-        block[2].bound = evaluator.Bound(u0, um, vm, v1);
-        block[3].bound = evaluator.Bound(um, u1, vm, v1);
-        for (int i = 0; i < 4; ++i) block[i].stamp.store(m_clock, std::memory_order_relaxed);
-        m_buildSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        *evaluated += 4;
-        ++m_built;
+        BoundNode* block = new BoundNode[kBlockNodes];
+        for (int i = 0; i < kBlockNodes; ++i) block[i].stamp.store(m_clock, std::memory_order_relaxed);
         if (!m_tree.Publish(node, block)) {
-            // Another thread published the same bounds first (or they were evicted since: then
-            // this thread builds them again).
+            // Another thread allocated them first (or they were evicted since: then try again).
             delete[] block;
-            ++m_lost;
             continue;
         }
-        m_tree.m_nodes.fetch_add(4, std::memory_order_relaxed);
+        ++m_built;
+        m_tree.m_nodes.fetch_add(kBlockNodes, std::memory_order_relaxed);
         const uint64_t bytes = m_tree.m_bytes.fetch_add(kBlockBytes, std::memory_order_relaxed) + kBlockBytes;
         uint64_t peak = m_tree.m_peakBytes.load(std::memory_order_relaxed);
         while (bytes > peak && !m_tree.m_peakBytes.compare_exchange_weak(peak, bytes, std::memory_order_relaxed)) {
@@ -360,6 +365,29 @@ BoundNode* BoundTree::Walker::Children(BoundNode& node, double u0, double u1, do
         if (m_tree.m_budget->bytes.load(std::memory_order_relaxed) > m_tree.m_budget->limit) m_tree.Evict();
         return block;
     }
+}
+
+const RegionBound& BoundTree::Walker::Bound(BoundNode& child, double u0, double u1, double v0, double v1,
+                                            RegionEvaluator& evaluator, uint64_t* evaluated) {
+    ++m_lookups;
+    uint8_t state = child.state.load(std::memory_order_acquire);
+    if (state == BoundNode::kReady) return child.bound;
+    const auto start = std::chrono::steady_clock::now();
+    ++m_evaluations;
+    ++*evaluated;
+    const bool claimed = state == BoundNode::kEmpty &&
+                         child.state.compare_exchange_strong(state, BoundNode::kClaimed, std::memory_order_acquire);
+    RegionBound bound = evaluator.Bound(u0, u1, v0, v1);
+    m_buildSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (claimed) {
+        child.bound = bound;
+        child.state.store(BoundNode::kReady, std::memory_order_release);
+        return child.bound;
+    }
+    // Claimed by another thread that has not finished: use a private copy rather than wait.
+    ++m_private;
+    m_private_bound = bound;
+    return m_private_bound;
 }
 
 }  // namespace affray::renderer

@@ -3,11 +3,14 @@
 //
 // The bound of a region of the (u,v) domain does not depend on the ray, so it is computed once: a
 // quadtree over (u,v) whose nodes keep what a ray test needs (RegionBound). A ray walks the cached
-// nodes (renderer/intersect.cpp); the shader runs only when a ray reaches a node whose children do
-// not exist yet, and the thread that reaches it first publishes them with one compare-and-swap
-// (a thread that loses the race drops its copy: the bounds are the same, since a node's bound is a
-// function of its region alone). So the image does not depend on the thread count, the tile order
-// or what the cache held.
+// nodes (renderer/intersect.cpp); the shader runs only when a ray reaches a node whose bound has
+// not been computed yet. A node's four children are allocated together when a ray first needs to
+// look below it (published with one compare-and-swap), but each child's bound is evaluated only
+// when a ray can reach that child: one whose region the ray provably cannot meet (outside the
+// parent's parallelogram test) costs nothing. The first thread to claim a child publishes its bound;
+// a thread that finds it claimed but not ready computes a private copy instead of waiting. The
+// bounds are the same either way, since a node's bound is a function of its region alone; so the
+// image does not depend on the thread count, the tile order or what the cache held.
 //
 // Memory: the tree keeps within a budget. When a new block of children takes it past the budget,
 // one thread evicts the subtrees no ray has entered for the longest time (each node keeps the
@@ -60,15 +63,33 @@ class RegionEvaluator {
     virtual bool PointAt(double u, double v, glm::dvec3* p) = 0;
 };
 
-/// A node of the hierarchy: the bound of its region and, once some ray needed them, its four
-/// children (quadrants in the order (u low, v low), (u high, v low), (u low, v high), (u high,
-/// v high)).
+/// A node of the hierarchy: the bound of its region and, once some ray needed them, its children
+/// (a block of kBlockNodes): the quadrants of its region, in the order (u low, v low), (u high,
+/// v low), (u low, v high), (u high, v high); or the two halves across u or across v, low half
+/// first, in the first two nodes of the block (SplitAxis).
 struct BoundNode {
-    RegionBound bound;
+    RegionBound bound;  // valid once state is kReady
     std::atomic<BoundNode*> children{nullptr};
+    static constexpr uint8_t kEmpty = 0, kClaimed = 1, kReady = 2;
+    std::atomic<uint8_t> state{kEmpty};
     /// The tree's clock when a ray last expanded this node (for eviction).
     std::atomic<uint32_t> stamp{0};
 };
+
+/// Nodes allocated together as the children of one node.
+inline constexpr int kBlockNodes = 4;
+/// How a node's region is split: across u, across v, or both (quadrants).
+inline constexpr int kSplitU = 0, kSplitV = 1, kSplitBoth = 2;
+/// Halvings along one parameter, at most, beyond those along the other.
+inline constexpr int kMaxImbalance = 24;
+
+/// How a node is split, from its bound and the times its region was halved along u and along v
+/// (`maxDepth` at most): across the parameter along which the surface stretches most over the
+/// region (by the parallelogram's generators), when it clearly does (twice as far) and the
+/// generators are not dwarfed by the rest of the bound; else into quadrants, or across the
+/// parameter halved fewer times until they are even again. A steep wall along v gets split across u only, down to its width,
+/// instead of into 4^depth squares. A function of the bound alone, so every thread agrees.
+int SplitAxis(const RegionBound& b, int levelU, int levelV, int maxDepth);
 
 /// The memory budget that the hierarchies of one render share (`affray render --cache-mb`).
 struct CacheBudget {
@@ -84,9 +105,10 @@ struct BoundTreeStats {
     uint64_t nodes = 0;           // nodes held now (root included)
     uint64_t bytes = 0;           // bytes held now by blocks of children
     uint64_t peakBytes = 0;       // the most this tree held
-    uint64_t blocksBuilt = 0;     // blocks of four children evaluated (races lost included)
-    uint64_t blocksLost = 0;      // blocks evaluated by a thread that lost the race to publish
-    uint64_t lookups = 0;         // a ray asking for the children of a node
+    uint64_t blocksBuilt = 0;     // blocks of children allocated
+    uint64_t evaluations = 0;     // bounds evaluated (private copies included)
+    uint64_t privateCopies = 0;   // bounds evaluated by a thread that found them claimed, not ready
+    uint64_t lookups = 0;         // a ray asking for the bound of a child
     uint64_t evictions = 0;       // blocks evicted
     uint64_t evictionPasses = 0;  // times the budget was enforced
     double buildSeconds = 0;      // thread-seconds spent evaluating bounds (the price of a cold cache)
@@ -133,16 +155,20 @@ class BoundTree {
         Walker& operator=(const Walker&) = delete;
         void Enter();
         void Leave();
-        /// The children of `node`, whose region is [u0,u1] x [v0,v1], built with `evaluator` if
-        /// absent. Counts the lookup and, if this thread built them, `*evaluated` += 4.
-        BoundNode* Children(BoundNode& node, double u0, double u1, double v0, double v1,
-                                  RegionEvaluator& evaluator, uint64_t* evaluated);
+        /// The block of children of `node` (allocated now if absent; their bounds not yet evaluated).
+        BoundNode* Children(BoundNode& node);
+        /// The bound of `child` (one of a node's children) over its region [u0,u1] x [v0,v1],
+        /// evaluated with `evaluator` if no thread published it yet (then `*evaluated` grows).
+        /// Valid until the next call or Leave().
+        const RegionBound& Bound(BoundNode& child, double u0, double u1, double v0, double v1,
+                                 RegionEvaluator& evaluator, uint64_t* evaluated);
 
       private:
         BoundTree& m_tree;
         Slot* m_slot;
         uint32_t m_clock = 0;
-        uint64_t m_lookups = 0, m_built = 0, m_lost = 0;
+        uint64_t m_lookups = 0, m_built = 0, m_evaluations = 0, m_private = 0;
+        RegionBound m_private_bound;  // a private copy (see Bound)
         double m_buildSeconds = 0;
         uint32_t m_raysSinceTick = 0;
     };
@@ -152,7 +178,7 @@ class BoundTree {
 
   private:
     friend class Walker;
-    static constexpr size_t kBlockBytes = 4 * sizeof(BoundNode);
+    static constexpr size_t kBlockBytes = kBlockNodes * sizeof(BoundNode);
 
     Slot* RegisterWalker();
     /// Publishes `block` as the children of `node`; false if another thread did first.
@@ -175,7 +201,7 @@ class BoundTree {
     BoundNode m_root;
 
     std::atomic<uint64_t> m_bytes{0}, m_nodes{1}, m_peakBytes{0};
-    std::atomic<uint64_t> m_lookups{0}, m_blocksBuilt{0}, m_blocksLost{0}, m_evictions{0}, m_passes{0};
+    std::atomic<uint64_t> m_lookups{0}, m_blocksBuilt{0}, m_evaluations{0}, m_private{0}, m_evictions{0}, m_passes{0};
     std::atomic<double> m_buildSeconds{0};
     std::atomic<uint32_t> m_clock{1};
     std::atomic<uint64_t> m_epoch{1};

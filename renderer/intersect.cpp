@@ -118,11 +118,15 @@ bool Clip(double centre, double radius, double* lo, double* hi) {
 struct Entry {
     BoundNode* node;
     double u0, u1, v0, v1;
-    int depth;
+    int levelU, levelV;  // times the region was halved along u and along v
+    int axis;            // across which its children split it (SplitAxis of its bound)
     double tLo, tHi;
     double size;    // diagonal of the bound's reachable part in the ray frame; infinite if unbounded
     double hu, hv;  // where the ray meets the bound (parameters)
     bool narrowed;  // the parallelogram narrowed the reachable part below the whole region
+    // The parameters where the ray can meet the surface within the region (the region itself
+    // unless narrowed), widened by their rounding: children outside it are not looked at.
+    double ru0, ru1, rv0, rv1;
 };
 
 class TreeIntersector final : public SurfaceIntersector {
@@ -133,15 +137,15 @@ class TreeIntersector final : public SurfaceIntersector {
           m_walker(tree),
           m_evaluator(tree.MakeEvaluator()),
           m_budget(budget) {
-        m_stack.reserve(4 * static_cast<size_t>(tree.maxDepth()) + 8);
+        m_stack.reserve(4 * static_cast<size_t>(tree.maxDepth()) + 16);
     }
 
     bool Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit, Hit* hit,
                    IntersectStats& stats) override;
 
   private:
-    /// Measures the entry's bound against the ray; false if it provably misses.
-    bool Test(Entry& e, double tMin, double tMax);
+    /// Measures the entry's bound `b` against the ray; false if it provably misses.
+    bool Test(Entry& e, const RegionBound& b, double tMin, double tMax);
     /// The ray's t range through the box of the bound's bounded coordinates, within [lo, hi]
     /// (narrowed); false if it misses.
     bool BoxRange(const RegionBound& b, double* lo, double* hi) const;
@@ -176,12 +180,15 @@ bool TreeIntersector::BoxRange(const RegionBound& b, double* lo, double* hi) con
     return *lo <= *hi;
 }
 
-bool TreeIntersector::Test(Entry& e, double tMin, double tMax) {
+bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double tMax) {
     ++m_tested;
-    const RegionBound& b = e.node->bound;
     e.hu = 0.5 * (e.u0 + e.u1);
     e.hv = 0.5 * (e.v0 + e.v1);
     e.narrowed = false;
+    e.ru0 = e.u0;
+    e.ru1 = e.u1;
+    e.rv0 = e.v0;
+    e.rv1 = e.v1;
     double lo = tMin, hi = tMax;
     // The box first: cheap, and it may be tighter than the forms (it holds the bound's enclosure).
     if (!BoxRange(b, &lo, &hi)) return false;
@@ -240,6 +247,15 @@ bool TreeIntersector::Test(Entry& e, double tMin, double tMax) {
         e2 = Over(d2, cu, ru, cv, rv);
         et = Over(t, cu, ru, cv, rv);
         if (e1.excludesZero() || e2.excludesZero() || et.hi < tMin || et.lo > tMax) return false;
+        // The reachable parameters: eps in [lo, hi] is u in pu + pr * [lo, hi], rounded outward.
+        double pu, pr, pv, prv;
+        RegionParameter(e.u0, e.u1, &pu, &pr);
+        RegionParameter(e.v0, e.v1, &pv, &prv);
+        const double su = 4 * kUlp * (std::fabs(pu) + pr), sv = 4 * kUlp * (std::fabs(pv) + prv);
+        e.ru0 = std::max(e.u0, pu + pr * (cu - ru) - su);
+        e.ru1 = std::min(e.u1, pu + pr * (cu + ru) + su);
+        e.rv0 = std::max(e.v0, pv + prv * (cv - rv) - sv);
+        e.rv1 = std::min(e.v1, pv + prv * (cv + rv) + sv);
     } else {
         // The ray runs along the parallelogram (a silhouette) or it is degenerate: should the
         // region be a hit, its point nearest along the ray stands for it, since at a silhouette
@@ -276,8 +292,9 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
     double best = tMax;
     bool found = false;
     const int maxDepth = m_tree.maxDepth();
-    Entry root{&m_tree.root(), 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, false};
-    if (Test(root, tMin, best)) m_stack.push_back(root);
+    Entry root{&m_tree.root(), 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, false, 0, 1, 0, 1};
+    root.axis = SplitAxis(m_tree.root().bound, 0, 0, maxDepth);
+    if (Test(root, m_tree.root().bound, tMin, best)) m_stack.push_back(root);
 
     while (!m_stack.empty()) {
         if (m_tested >= m_budget) {
@@ -300,7 +317,7 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
         if (r.tLo > best) continue;  // a nearer hit was found since this region was measured
 
         const bool small = r.size <= tolerance.At(r.tLo);
-        const bool atLimit = r.depth >= maxDepth;
+        const bool atLimit = r.levelU >= maxDepth && r.levelV >= maxDepth;
         if (small || atLimit) {
             double tHit = 0, error = 0;
             if (std::isfinite(r.size)) {
@@ -329,20 +346,30 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
             continue;
         }
 
-        // The children (built now if no ray needed them before), measured against the ray; the
-        // survivors pushed farthest first (popped nearest first).
-        BoundNode* kids = m_walker.Children(*r.node, r.u0, r.u1, r.v0, r.v1, *m_evaluator, &m_evaluated);
+        // The children that the ray can reach (their bounds evaluated now if no ray needed them
+        // before), measured against the ray; the survivors pushed farthest first (popped nearest
+        // first). A child outside the parameters where the parent's parallelogram meets the ray
+        // is missed without being looked at.
+        BoundNode* kids = m_walker.Children(*r.node);
         const double uMid = 0.5 * (r.u0 + r.u1), vMid = 0.5 * (r.v0 + r.v1);
-        const int d = r.depth + 1;
+        const bool splitU = r.axis != kSplitV, splitV = r.axis != kSplitU;
+        const int count = splitU && splitV ? 4 : 2;
         Entry kept[4];
         int nKept = 0;
-        const double regions[4][4] = {
-            {r.u0, uMid, r.v0, vMid}, {uMid, r.u1, r.v0, vMid}, {r.u0, uMid, vMid, r.v1}, {uMid, r.u1, vMid, r.v1}};
-        for (int i = 0; i < 4; ++i) {
-            Entry c{&kids[i], regions[i][0], regions[i][1], regions[i][2], regions[i][3], d, 0, 0, 0, 0, 0, false};
-            if (Test(c, tMin, best)) kept[nKept++] = c;
+        for (int i = 0; i < count; ++i) {
+            // Child i: bit 0 the high half across the split parameter (u first), bit 1 high in v.
+            const bool highU = splitU && (i & 1), highV = splitV && (splitU ? (i & 2) : (i & 1));
+            Entry c{&kids[i], r.u0, r.u1, r.v0, r.v1, r.levelU + splitU, r.levelV + splitV, 0, 0, 0, 0, 0, 0, false,
+                    0, 0, 0, 0};
+            if (splitU) (highU ? c.u0 : c.u1) = uMid;
+            if (splitV) (highV ? c.v0 : c.v1) = vMid;
+            if (c.u1 < r.ru0 || c.u0 > r.ru1 || c.v1 < r.rv0 || c.v0 > r.rv1) continue;
+            const RegionBound& bound = m_walker.Bound(kids[i], c.u0, c.u1, c.v0, c.v1, *m_evaluator, &m_evaluated);
+            if (!Test(c, bound, tMin, best)) continue;
+            c.axis = SplitAxis(bound, c.levelU, c.levelV, maxDepth);
+            kept[nKept++] = c;
         }
-        // Insertion sort, farthest first (four elements at most).
+        // Insertion sort, farthest first.
         for (int i = 1; i < nKept; ++i)
             for (int j = i; j > 0 && kept[j - 1].tLo < kept[j].tLo; --j) std::swap(kept[j - 1], kept[j]);
         for (int i = 0; i < nKept; ++i) m_stack.push_back(kept[i]);

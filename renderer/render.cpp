@@ -272,8 +272,8 @@ compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveDesc& patch) {
 
 std::string RenderStats::ToJson() const {
     auto perRay = [](uint64_t n, uint64_t rays) { return rays ? double(n) / double(rays) : 0.0; };
-    // A lookup that had to evaluate the children (or lost the race to publish them) is a miss.
-    const double hitRate = cache.lookups ? 1.0 - double(cache.blocksBuilt) / double(cache.lookups) : 0.0;
+    // A lookup that had to evaluate the bound is a miss.
+    const double hitRate = cache.lookups ? 1.0 - double(cache.evaluations) / double(cache.lookups) : 0.0;
     char buf[1024];
     std::snprintf(buf, sizeof buf,
                   "{\"wall_seconds\":%.3f,\"width\":%d,\"height\":%d,\"camera_rays\":%llu,"
@@ -282,7 +282,7 @@ std::string RenderStats::ToJson() const {
                   "\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f,\"shadow_evaluations_per_ray_mean\":%.3f,"
                   "\"budget_exhausted_rays\":%llu,"
                   "\"cache\":{\"budget_mb\":%.1f,\"peak_mb\":%.2f,\"final_mb\":%.2f,\"nodes\":%llu,"
-                  "\"lookups\":%llu,\"hit_rate\":%.4f,\"blocks_built\":%llu,\"races_lost\":%llu,"
+                  "\"lookups\":%llu,\"hit_rate\":%.4f,\"evaluations\":%llu,\"private_copies\":%llu,"
                   "\"evictions\":%llu,\"eviction_passes\":%llu,\"build_thread_seconds\":%.3f}}",
                   wallSeconds, width, height, static_cast<unsigned long long>(cameraRays),
                   perRay(camera.regionsBounded, cameraRays), static_cast<unsigned long long>(camera.maxRegionsPerRay),
@@ -296,7 +296,7 @@ std::string RenderStats::ToJson() const {
                   double(cacheBudgetBytes) / (1 << 20), double(cachePeakBytes) / (1 << 20),
                   double(cache.bytes) / (1 << 20), static_cast<unsigned long long>(cache.nodes),
                   static_cast<unsigned long long>(cache.lookups), hitRate,
-                  static_cast<unsigned long long>(cache.blocksBuilt), static_cast<unsigned long long>(cache.blocksLost),
+                  static_cast<unsigned long long>(cache.evaluations), static_cast<unsigned long long>(cache.privateCopies),
                   static_cast<unsigned long long>(cache.evictions), static_cast<unsigned long long>(cache.evictionPasses),
                   cache.buildSeconds);
     return buf;
@@ -508,7 +508,8 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
         stats->cache.bytes += t.bytes;
         stats->cache.peakBytes += t.peakBytes;
         stats->cache.blocksBuilt += t.blocksBuilt;
-        stats->cache.blocksLost += t.blocksLost;
+        stats->cache.evaluations += t.evaluations;
+        stats->cache.privateCopies += t.privateCopies;
         stats->cache.lookups += t.lookups;
         stats->cache.evictions += t.evictions;
         stats->cache.evictionPasses += t.evictionPasses;
