@@ -1,0 +1,177 @@
+// tests/renderer/bound_tree_test.cpp: the shared bound hierarchy (renderer/bound_tree.h): the
+// image does not depend on the thread count or on what the cache held (a tiny budget that evicts
+// all the time gives the identical image), threads refining one tree concurrently find exactly the
+// hits of a lone walker, evictions keep the tree within its budget, and the split rule.
+#include "renderer/bound_tree.h"
+
+#include <catch2/catch.hpp>
+#include <thread>
+
+#include "../test_random.h"
+#include "../test_util.h"
+#include "renderer/intersect.h"
+#include "renderer/render.h"
+#include "renderer/rib.h"
+
+using namespace affray;
+using namespace affray::renderer;
+
+namespace {
+
+/// A displaced sphere (noise: many distinct bounds), a rippled floor and a distant light, so that
+/// camera and shadow rays both walk the hierarchies.
+const char* const kScene = R"(Format 40 30 1
+PixelSamples 1 1
+Projection "perspective" "fov" [35]
+Display "t.exr" "file" "rgba,Z,N,st,err"
+Translate 0 0 4
+Rotate -115 1 0 0
+WorldBegin
+LightSource "distantlight" 1 "from" [-2 1 3] "to" [0 0 0]
+Surface "matte"
+AttributeBegin
+Displacement "bumps" "Km" [0.02] "frequency" [6]
+Patch "bilinear" "P" [-2 -2 -1  2 -2 -1  -2 2 -1  2 2 -1]
+AttributeEnd
+AttributeBegin
+Displacement "turbulence" "Km" [0.4] "octaves" [3]
+Sphere 0.8 -0.8 0.8 360
+AttributeEnd
+WorldEnd
+)";
+
+struct Result {
+    ImageBuffer image;
+    RenderStats stats;
+};
+
+Result RenderWith(int threads, size_t cacheBytes) {
+    std::string error;
+    std::optional<SceneDesc> desc = ParseRib(kScene, "t.rib", &error, nullptr);
+    INFO(error);
+    REQUIRE(desc);
+    PreparedScene prepared;
+    const bool ok = PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error);
+    INFO(error);
+    REQUIRE(ok);
+    RenderOptions options;
+    options.threads = threads;
+    options.cacheBytes = cacheBytes;
+    Result r;
+    RenderImage(prepared, options, &r.image, &r.stats);
+    return r;
+}
+
+bool SameImage(const ImageBuffer& a, const ImageBuffer& b) {
+    if (a.rgba != b.rgba || a.extraChannels.size() != b.extraChannels.size()) return false;
+    for (size_t i = 0; i < a.extraChannels.size(); ++i)
+        if (a.extraChannels[i].second != b.extraChannels[i].second) return false;
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("bound tree: the image is the same with any thread count and any cache budget", "[renderer][cache]") {
+    const Result one = RenderWith(1, kDefaultCacheBytes);
+    REQUIRE(one.stats.camera.regionsEvaluated > 0);
+    CHECK(one.stats.cache.evictions == 0);
+    const Result four = RenderWith(4, kDefaultCacheBytes);
+    CHECK(SameImage(one.image, four.image));
+    // A budget of a few blocks: evicted over and over, rebuilt on demand, the same pixels.
+    const size_t tiny = 64 * 1024;
+    const Result starved = RenderWith(3, tiny);
+    CHECK(SameImage(one.image, starved.image));
+    CHECK(starved.stats.cache.evictions > 0);
+    CHECK(starved.stats.cache.evaluations > one.stats.cache.evaluations);
+    // Near the budget: blocks still held by rays under way are freed once those rays end.
+    INFO("peak " << starved.stats.cachePeakBytes << " bytes");
+    CHECK(starved.stats.cachePeakBytes <= 4 * tiny);
+    // Figures that do not depend on the cache: the regions tested per ray (same thread count, so
+    // the same tiles and margins).
+    const Result three = RenderWith(3, kDefaultCacheBytes);
+    CHECK(starved.stats.camera.regionsBounded == three.stats.camera.regionsBounded);
+    CHECK(starved.stats.shadow.regionsBounded == three.stats.shadow.regionsBounded);
+}
+
+TEST_CASE("bound tree: threads refining one tree at once find the hits of a lone walker", "[renderer][cache]") {
+    compiler::CompiledShader s = test::CompileOrThrow(
+        "displacement d() { P += 0.1 * (noise(P * 7) - 0.5) * normalize(N); }");
+    std::vector<std::string> errors;
+    const vm::Program bound = *compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
+    const BilinearPatch square = BilinearPatch::UnitSquare();
+    // Rays from above at many angles, the same list for every walker.
+    std::vector<Ray> rays;
+    test::Rng rng(5);
+    for (int i = 0; i < 400; ++i) {
+        const glm::dvec3 target(rng.uniform(0, 1), rng.uniform(0, 1), 0);
+        const glm::dvec3 from = target + glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(0.3, 2));
+        rays.push_back({from, glm::normalize(target - from)});
+    }
+    auto trace = [&](SurfaceIntersector& it, std::vector<Hit>* hits, std::vector<int>* found) {
+        IntersectStats stats;
+        for (const Ray& ray : rays) {
+            Hit hit;
+            found->push_back(it.Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats));
+            hits->push_back(hit);
+        }
+    };
+    std::vector<Hit> lone;
+    std::vector<int> loneFound;
+    {
+        auto it = MakeSurfaceIntersector(square, bound, glm::dvec3(0), BoundMode::Affine, 24);
+        trace(*it, &lone, &loneFound);
+    }
+    BoundTree tree(square, bound, glm::dvec3(0), BoundMode::Affine, 24);
+    constexpr int kThreads = 4;
+    std::vector<std::vector<Hit>> hits(kThreads);
+    std::vector<std::vector<int>> found(kThreads);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t)
+        threads.emplace_back([&, t] {
+            auto it = MakeSurfaceIntersector(tree);
+            trace(*it, &hits[t], &found[t]);
+        });
+    for (std::thread& t : threads) t.join();
+    for (int t = 0; t < kThreads; ++t) {
+        REQUIRE(found[t] == loneFound);
+        for (size_t i = 0; i < rays.size(); ++i) {
+            INFO("thread " << t << " ray " << i);
+            CHECK(hits[t][i].t == lone[i].t);
+            CHECK(hits[t][i].u == lone[i].u);
+            CHECK(hits[t][i].v == lone[i].v);
+            CHECK(hits[t][i].error == lone[i].error);
+        }
+    }
+    const BoundTreeStats stats = tree.stats();
+    CHECK(stats.nodes == 1 + kBlockNodes * stats.blocksBuilt);
+    CHECK(stats.bytes == stats.blocksBuilt * kBlockNodes * sizeof(BoundNode));
+    // Four walkers over the same rays evaluate each bound about once between them.
+    CHECK(stats.evaluations < 2 * (stats.lookups / kThreads));
+    CHECK(stats.lookups > stats.evaluations);
+}
+
+TEST_CASE("bound tree: a region is split across the parameter the surface stretches along", "[renderer][cache]") {
+    RegionBound b;
+    b.boundedMask = 7;
+    // Even levels and comparable generators: quadrants.
+    b.a = glm::dvec3(1, 0, 0);
+    b.b = glm::dvec3(0, 1.5, 0);
+    CHECK(SplitAxis(b, 3, 3, 24) == kSplitBoth);
+    // A wall across u (stretched along u by its height): split across u only.
+    b.a = glm::dvec3(0, 0, 10);
+    CHECK(SplitAxis(b, 3, 3, 24) == kSplitU);
+    CHECK(SplitAxis(b, 9, 3, 24) == kSplitU);
+    b.b = glm::dvec3(0, 30, 0);
+    CHECK(SplitAxis(b, 3, 3, 24) == kSplitV);
+    // The first two levels always split both ways (a full turn has no linear part along it).
+    CHECK(SplitAxis(b, 0, 0, 24) == kSplitBoth);
+    CHECK(SplitAxis(b, 1, 3, 24) == kSplitU);
+    // At the depth limit along one parameter, only the other is split.
+    CHECK(SplitAxis(b, 24, 10, 24) == kSplitV);
+    CHECK(SplitAxis(b, 10, 24, 24) == kSplitU);
+    // Interval bounds have no generators: quadrants, evening out the levels.
+    RegionBound box;
+    box.boundedMask = 7;
+    CHECK(SplitAxis(box, 4, 4, 24) == kSplitBoth);
+    CHECK(SplitAxis(box, 5, 4, 24) == kSplitV);
+}
