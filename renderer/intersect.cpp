@@ -209,15 +209,18 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
         e.size = INFINITY;
         return true;
     }
-    for (auto [p1, p2] : {std::pair{d1.u, d2.u}, {d1.v, d2.v}, {d1.w, d2.w}})
-        if (EdgeSeparates(d1, d2, p1, p2)) return false;
-
     // The parallelogram: eps with |d1(eps)| <= R1 and |d2(eps)| <= R2 (eps_w and rad as radius).
     double cu = 0, ru = 1, cv = 0, rv = 1;
     double hitU = 0, hitV = 0;  // where the ray meets the parallelogram itself, within E
     const double det = d1.u * d2.v - d1.v * d2.u;
     const double scale = std::fabs(d1.u * d2.v) + std::fabs(d1.v * d2.u);
-    if (std::fabs(det) > 1e-6 * scale && std::isfinite(scale)) {
+    const bool invertible = std::fabs(det) > 1e-6 * scale && std::isfinite(scale);
+    // Where the parallelogram is not invertible across the ray, its zonotope edges may still
+    // separate it (where it is, the parameter box below is the sharper test).
+    if (!invertible)
+        for (auto [p1, p2] : {std::pair{d1.u, d2.u}, {d1.v, d2.v}, {d1.w, d2.w}})
+            if (EdgeSeparates(d1, d2, p1, p2)) return false;
+    if (invertible) {
         const double R1 = std::fabs(d1.w) + d1.rad, R2 = std::fabs(d2.w) + d2.rad;
         const double ad = std::fabs(det);
         const double su = -d1.c * d2.v + d2.c * d1.v, sv = -d2.c * d1.u + d1.c * d2.u;
