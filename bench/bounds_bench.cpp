@@ -1,12 +1,13 @@
-// bench/bounds_bench.cpp: how tight affine and interval bounds of every shader in shaders/ are,
-// and what they cost, as Markdown tables (docs/bounds.md is this program's output).
-//  - The main table: for each shader and region width, the mean widths of the affine and of the
-//    interval bound of P' over random square regions, their ratios, and the cost of one bounded
-//    evaluation relative to one scalar evaluation of the same program at a point.
+// bench/bounds_bench.cpp: how tight affine, reduced affine and interval bounds of every shader in
+// shaders/ are, and what they cost, as Markdown tables (docs/bounds.md is this program's output).
+//  - The main table: for each shader and region width, the mean widths of the affine, reduced
+//    affine and interval bounds of P' over random square regions, their ratios, and the cost of
+//    one bounded evaluation relative to one scalar evaluation of the same program at a point.
 //  - --capacity-study: the same affine widths and costs under different Affine capacities, to pick
 //    Affine::kCapacity from.
-// Usage: affray_bench_bounds [--seconds S] [--regions N] [--shader NAME]
+// Usage: affray_bench_bounds [--seconds S] [--regions N] [--shader NAME] [--widths 1,8,64,512]
 //                            [--capacity-study [--capacities 4,6,8,...]]      (Release builds only)
+// (--widths: the region widths of the main table, as denominators: 8 is 1/8.)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,6 +31,7 @@ struct Options {
     std::string shader;  // empty: every shader
     bool capacityStudy = false;
     std::vector<int> capacities = {4, 6, 8, 10, 12, 16, 24, 32};
+    std::vector<int> widths = {1, 8, 64, 512};  // main table region widths, as denominators
 };
 
 // Points of the sampled reference range, per side of a region.
@@ -62,14 +64,15 @@ double Median(std::vector<double> v) {
 struct Row {
     std::string shader;
     double width = 0;
-    int regions = 0, unboundedA = 0, unboundedI = 0, compared = 0;
-    // Means over the regions both modes bound.
-    double boxA = 0, boxI = 0, zA = 0, zI = 0, diagA = 0, diagI = 0, zSampled = 0;
-    double costA = 0, costI = 0;  // bounded evaluation time / scalar evaluation time
+    int regions = 0, unboundedA = 0, unboundedI = 0, unboundedR = 0, compared = 0;
+    // Means over the regions every mode bounds (R: reduced affine).
+    double boxA = 0, boxI = 0, boxR = 0, zA = 0, zI = 0, zR = 0, diagA = 0, diagI = 0, diagR = 0, zSampled = 0;
+    double costA = 0, costI = 0, costR = 0;  // bounded evaluation time / scalar evaluation time
 };
 
-/// S, A, I: the scalar, affine and interval types the renderer would use for this program.
-template <class S, class A, class I>
+/// S, A, I, R: the scalar, affine, interval and reduced affine types the renderer would use for
+/// this program.
+template <class S, class A, class I, class R>
 Row MeasureRow(const BenchShader& s, double width, const Corners& corners, const Corners& points, double seconds) {
     Row row;
     row.shader = s.name;
@@ -77,36 +80,40 @@ Row MeasureRow(const BenchShader& s, double width, const Corners& corners, const
     row.regions = static_cast<int>(corners.size());
     std::vector<bench::RegionWidths> a = bench::BoundWidths<A>(s, corners, width);
     std::vector<bench::RegionWidths> i = bench::BoundWidths<I>(s, corners, width);
+    std::vector<bench::RegionWidths> r = bench::BoundWidths<R>(s, corners, width);
     std::vector<double> sampled = bench::SampledZWidths<S>(s, corners, width, kSampleGrid);
     for (size_t k = 0; k < corners.size(); ++k) {
         row.unboundedA += !a[k].bounded;
         row.unboundedI += !i[k].bounded;
+        row.unboundedR += !r[k].bounded;
         // Unbounded regions are counted, never averaged in: the means compare like with like.
-        if (!a[k].bounded || !i[k].bounded) continue;
+        if (!a[k].bounded || !i[k].bounded || !r[k].bounded) continue;
         row.compared++;
-        row.boxA += a[k].box, row.boxI += i[k].box;
-        row.zA += a[k].z, row.zI += i[k].z;
-        row.diagA += a[k].diag, row.diagI += i[k].diag;
+        row.boxA += a[k].box, row.boxI += i[k].box, row.boxR += r[k].box;
+        row.zA += a[k].z, row.zI += i[k].z, row.zR += r[k].z;
+        row.diagA += a[k].diag, row.diagI += i[k].diag, row.diagR += r[k].diag;
         row.zSampled += sampled[k];
     }
-    for (double* m : {&row.boxA, &row.boxI, &row.zA, &row.zI, &row.diagA, &row.diagI, &row.zSampled})
+    for (double* m : {&row.boxA, &row.boxI, &row.boxR, &row.zA, &row.zI, &row.zR, &row.diagA, &row.diagI,
+                      &row.diagR, &row.zSampled})
         *m = row.compared ? *m / row.compared : NAN;
     std::vector<double> rates = bench::InterleavedRates(
         seconds, {bench::Evaluator<S>(s, points, 0.0), bench::Evaluator<A>(s, corners, width),
-                  bench::Evaluator<I>(s, corners, width)});
+                  bench::Evaluator<I>(s, corners, width), bench::Evaluator<R>(s, corners, width)});
     row.costA = rates[0] / rates[1];
     row.costI = rates[0] / rates[2];
+    row.costR = rates[0] / rates[3];
     return row;
 }
 
 Row Measure(const BenchShader& s, double width, const Corners& corners, const Corners& points, double seconds) {
-    using vm::Affine, vm::Dual, vm::Interval;
+    using vm::Affine, vm::Dual, vm::Interval, vm::ReducedAffine;
     if (s.derivatives)
-        return MeasureRow<Dual<double>, Dual<Affine>, Dual<Interval>>(s, width, corners, points, seconds);
-    return MeasureRow<double, Affine, Interval>(s, width, corners, points, seconds);
+        return MeasureRow<Dual<double>, Dual<Affine>, Dual<Interval>, Dual<ReducedAffine>>(s, width, corners, points,
+                                                                                          seconds);
+    return MeasureRow<double, Affine, Interval, ReducedAffine>(s, width, corners, points, seconds);
 }
 
-const double kWidths[] = {1.0, 1.0 / 8, 1.0 / 64, 1.0 / 512};
 
 Corners CornersFor(double width, int count) {
     // One seed per width, the same for every shader and mode.
@@ -119,51 +126,63 @@ void PrintMainTable(const std::vector<BenchShader>& shaders, const Options& opt)
         "P = (u, v, 0), N = (0, 0, 1): *box* is the mean over x, y, z of each component's width, *z* the "
         "width of z alone (the displacement along N), *diag* the width of (x + y + z)/sqrt(3) computed in "
         "the bound's own arithmetic (as the intersector's ray-frame measures are). Each figure is the mean "
-        "over %d regions at random positions (the same for every shader and mode) that both modes bound; "
-        "*unb A/I* counts the regions whose affine/interval bound is unbounded (left out of the means). "
-        "*I/A* is interval width / affine width (> 1: affine tighter). *A/smp* is the affine z width over "
+        "over %d regions at random positions (the same for every shader and mode) that every mode bounds; "
+        "*unb A/I/R* counts the regions whose affine/interval/reduced affine bound is unbounded (left out of "
+        "the means). *I/A* is interval width / affine width (> 1: affine tighter), *R/A* reduced affine width "
+        "/ affine width (> 1: reduced looser). *A/smp* is the affine z width over "
         "the z range sampled at %dx%d points per region (a lower bound of the true range). *cost* is the "
         "time of one bounded evaluation over the time of one scalar (double) evaluation at a point, "
         "measured interleaved in this process for %.2f s each.\n\n",
         opt.regions, kSampleGrid, kSampleGrid, opt.seconds);
-    std::printf("| shader | width | unb A/I | box A | box I | box I/A | z A | z I | z I/A | diag I/A | z A/smp | "
-                "cost A | cost I |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf("| shader | width | unb A/I/R | box A | box I | box I/A | z A | z I | z R | z I/A | z R/A | diag I/A | "
+                "diag R/A | z A/smp | cost A | cost I | cost R |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     const Corners points = bench::RegionCorners(0.0, kScalarPoints, 1);
+    std::vector<double> widths;
+    for (int d : opt.widths) widths.push_back(1.0 / d);
     std::vector<Row> rows;
     for (const BenchShader& s : shaders)
-        for (double w : kWidths) {
+        for (double w : widths) {
             Row r = Measure(s, w, CornersFor(w, opt.regions), points, opt.seconds);
-            std::printf("| %s | %s | %d/%d | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.1f | %.1f |\n",
-                        r.shader.c_str(), WidthLabel(w).c_str(), r.unboundedA, r.unboundedI, r.boxA, r.boxI,
-                        Ratio(r.boxA, r.boxI), r.zA, r.zI, Ratio(r.zA, r.zI), Ratio(r.diagA, r.diagI),
-                        Ratio(r.zSampled, r.zA), r.costA, r.costI);
+            std::printf("| %s | %s | %d/%d/%d | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | "
+                        "%.3g | %.1f | %.1f | %.1f |\n",
+                        r.shader.c_str(), WidthLabel(w).c_str(), r.unboundedA, r.unboundedI, r.unboundedR, r.boxA,
+                        r.boxI, Ratio(r.boxA, r.boxI), r.zA, r.zI, r.zR, Ratio(r.zA, r.zI), Ratio(r.zA, r.zR),
+                        Ratio(r.diagA, r.diagI), Ratio(r.diagA, r.diagR), Ratio(r.zSampled, r.zA), r.costA,
+                        r.costI, r.costR);
             std::fflush(stdout);
             rows.push_back(r);
         }
 
     std::printf("\nBy width, over the shaders (geometric means of the ratios; medians of the costs):\n\n");
-    std::printf("| width | box I/A | z I/A | z I/A min..max | diag I/A | z A/smp | cost A | cost I | cost A/I | "
-                "unb A/I |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
-    for (double w : kWidths) {
-        std::vector<double> box, z, diag, smp, costA, costI, costAI;
-        int unbA = 0, unbI = 0, total = 0;
+    std::printf("| width | box I/A | z I/A | z I/A min..max | z R/A | z R/A min..max | diag I/A | diag R/A | z A/smp | "
+                "cost A | cost I | cost R | cost A/I | cost R/I | unb A/I/R |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (double w : widths) {
+        std::vector<double> box, z, zR, diag, diagR, smp, costA, costI, costR, costAI, costRI;
+        int unbA = 0, unbI = 0, unbR = 0, total = 0;
         for (const Row& r : rows) {
             if (r.width != w) continue;
             box.push_back(Ratio(r.boxA, r.boxI));
             z.push_back(Ratio(r.zA, r.zI));
+            zR.push_back(Ratio(r.zA, r.zR));
             diag.push_back(Ratio(r.diagA, r.diagI));
+            diagR.push_back(Ratio(r.diagA, r.diagR));
             smp.push_back(Ratio(r.zSampled, r.zA));
             costA.push_back(r.costA);
             costI.push_back(r.costI);
+            costR.push_back(r.costR);
             costAI.push_back(r.costA / r.costI);
-            unbA += r.unboundedA, unbI += r.unboundedI, total += r.regions;
+            costRI.push_back(r.costR / r.costI);
+            unbA += r.unboundedA, unbI += r.unboundedI, unbR += r.unboundedR, total += r.regions;
         }
         auto [zMin, zMax] = std::minmax_element(z.begin(), z.end());
-        std::printf("| %s | %.3g | %.3g | %.3g..%.3g | %.3g | %.3g | %.1f | %.1f | %.1f | %d/%d of %d |\n",
-                    WidthLabel(w).c_str(), GeoMean(box), GeoMean(z), *zMin, *zMax, GeoMean(diag), GeoMean(smp),
-                    Median(costA), Median(costI), Median(costAI), unbA, unbI, total);
+        auto [zRMin, zRMax] = std::minmax_element(zR.begin(), zR.end());
+        std::printf("| %s | %.3g | %.3g | %.3g..%.3g | %.3g | %.3g..%.3g | %.3g | %.3g | %.3g | %.1f | %.1f | %.1f | "
+                    "%.1f | %.1f | %d/%d/%d of %d |\n",
+                    WidthLabel(w).c_str(), GeoMean(box), GeoMean(z), *zMin, *zMax, GeoMean(zR), *zRMin, *zRMax,
+                    GeoMean(diag), GeoMean(diagR), GeoMean(smp), Median(costA), Median(costI), Median(costR),
+                    Median(costAI), Median(costRI), unbA, unbI, unbR, total);
     }
 }
 
@@ -302,11 +321,12 @@ int main(int argc, char** argv) {
         else if (arg("--regions")) opt.regions = std::max(1, std::atoi(argv[++i]));
         else if (arg("--shader")) opt.shader = argv[++i];
         else if (arg("--capacities")) opt.capacities = ParseList(argv[++i]);
+        else if (arg("--widths")) opt.widths = ParseList(argv[++i]);
         else if (!std::strcmp(argv[i], "--capacity-study")) opt.capacityStudy = true;
         else {
             std::fprintf(stderr,
-                         "usage: %s [--seconds S] [--regions N] [--shader NAME] [--capacity-study "
-                         "[--capacities 4,6,8,...]]\n",
+                         "usage: %s [--seconds S] [--regions N] [--shader NAME] [--widths 1,8,64,512] "
+                         "[--capacity-study [--capacities 4,6,8,...]]\n",
                          argv[0]);
             return 2;
         }
@@ -316,6 +336,15 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "capacity %d outside [2, %d]\n", c, vm::Affine::kMaxCapacity);
             return 2;
         }
+    for (int d : opt.widths)
+        if (d < 1) {
+            std::fprintf(stderr, "--widths: %d is not a width denominator >= 1\n", d);
+            return 2;
+        }
+    if (opt.widths.empty()) {
+        std::fprintf(stderr, "--widths: no width given\n");
+        return 2;
+    }
     if (opt.capacities.empty()) {
         std::fprintf(stderr, "--capacities: no capacity given\n");
         return 2;

@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
     });
     double affineRate = RegionEvalsPerSecond<vm::Affine>(bound, 1.0 / 64, seconds);
     double intervalRate = RegionEvalsPerSecond<vm::Interval>(bound, 1.0 / 64, seconds);
+    double reducedRate = RegionEvalsPerSecond<vm::ReducedAffine>(bound, 1.0 / 64, seconds);
 
     std::printf("%-44s %14s %18s\n", "mode", "evals/s", "time vs native C++");
     auto row = [&](const char* name, double rate) {
@@ -86,8 +87,9 @@ int main(int argc, char** argv) {
     row("vm scalar (double)", scalarRate);
     row("vm affine (region 1/64)", affineRate);
     row("vm interval (region 1/64)", intervalRate);
-    std::printf("affine / scalar cost: %.1fx   interval / scalar cost: %.1fx\n", scalarRate / affineRate,
-                scalarRate / intervalRate);
+    row("vm reduced affine (region 1/64)", reducedRate);
+    std::printf("affine / scalar cost: %.1fx   interval / scalar cost: %.1fx   reduced / scalar cost: %.1fx\n",
+                scalarRate / affineRate, scalarRate / intervalRate, scalarRate / reducedRate);
 
     // What the renderer runs on a flat patch: the program specialised on the globals that are
     // constant over the surface (N, Ng, dPdu, dPdv; see renderer/render.cpp).
@@ -98,5 +100,7 @@ int main(int argc, char** argv) {
     std::printf("bound program on a flat patch: %zu instructions\n", flat.code.size());
     row("vm affine, flat patch (region 1/64)", RegionEvalsPerSecond<vm::Affine>(flat, 1.0 / 64, seconds));
     row("vm interval, flat patch (region 1/64)", RegionEvalsPerSecond<vm::Interval>(flat, 1.0 / 64, seconds));
+    row("vm reduced affine, flat patch (region 1/64)",
+        RegionEvalsPerSecond<vm::ReducedAffine>(flat, 1.0 / 64, seconds));
     return 0;
 }

@@ -120,6 +120,25 @@ RegionBound Reduce(const vm::Vec3<vm::Affine>& p) {
     return out;
 }
 
+/// A reduced affine P': its eps_u and eps_v coefficients, everything else in its error.
+RegionBound Reduce(const vm::Vec3<vm::ReducedAffine>& p) {
+    RegionBound out;
+    for (int i = 0; i < 3; ++i) {
+        const vm::Interval range = p[i].range();
+        out.lo[i] = range.isUnbounded() ? -INFINITY : range.lo();
+        out.hi[i] = range.isUnbounded() ? INFINITY : range.hi();
+        if (p[i].isUnbounded() || range.isUnbounded()) continue;
+        const double c = p[i].center(), a = p[i].coefficientU(), b = p[i].coefficientV(), r = p[i].error();
+        if (!std::isfinite(c + a + b + r)) continue;
+        out.c[i] = c;
+        out.a[i] = a;
+        out.b[i] = b;
+        out.r[i] = r;
+        out.boundedMask |= uint8_t(1u << i);
+    }
+    return out;
+}
+
 template <class T>
 RegionBound Reduce(const vm::Vec3<vm::Dual<T>>& p) {
     return Reduce(vm::Vec3<T>{p.x.v, p.y.v, p.z.v});
@@ -201,6 +220,10 @@ std::unique_ptr<RegionEvaluator> BoundTree::MakeEvaluator() const {
     if (m_mode == BoundMode::Affine) {
         if (dual) return std::make_unique<RegionEvaluatorT<vm::Dual<vm::Affine>>>(m_surface, *m_program, m_eye);
         return std::make_unique<RegionEvaluatorT<vm::Affine>>(m_surface, *m_program, m_eye);
+    }
+    if (m_mode == BoundMode::Reduced) {
+        if (dual) return std::make_unique<RegionEvaluatorT<vm::Dual<vm::ReducedAffine>>>(m_surface, *m_program, m_eye);
+        return std::make_unique<RegionEvaluatorT<vm::ReducedAffine>>(m_surface, *m_program, m_eye);
     }
     if (dual) return std::make_unique<RegionEvaluatorT<vm::Dual<vm::Interval>>>(m_surface, *m_program, m_eye);
     return std::make_unique<RegionEvaluatorT<vm::Interval>>(m_surface, *m_program, m_eye);

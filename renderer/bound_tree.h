@@ -33,7 +33,9 @@
 
 namespace affray::renderer {
 
-enum class BoundMode { Affine, Interval };
+/// The arithmetic that bounds regions: full affine forms (every symbol kept, up to the capacity),
+/// reduced affine forms (centre, eps_u, eps_v and one error term: vm/reduced_affine.h) or intervals.
+enum class BoundMode { Affine, Reduced, Interval };
 
 /// What a ray needs of the displaced surface over one region, reduced from the shader's bound.
 /// With (eps_u, eps_v) in [-1, 1]^2 the region's (u, v) (u = uc + ru * eps_u, RegionParameter),

@@ -50,29 +50,35 @@ struct Measure {
     bool bounded = true;
 };
 
-Measure Along(const RegionBound& b, const glm::dvec3& o, const glm::dvec3& n) {
-    Measure m;
-    double magnitude = 0;
+/// The measures of the bound along the ray frame's three directions n[0..2], in one pass.
+void AlongFrame(const RegionBound& b, const glm::dvec3& o, const glm::dvec3 (&n)[3], Measure (&m)[3]) {
+    double magnitude[3] = {0, 0, 0};
     for (int i = 0; i < 3; ++i) {
-        // A coordinate n does not weigh cannot make the measure unbounded.
-        if (n[i] == 0) continue;
-        if (!(b.boundedMask & (1u << i))) {
-            m.bounded = false;
-            return m;
-        }
+        const bool bounded = b.boundedMask & (1u << i);
         const double rel = b.c[i] - o[i];
-        m.c += n[i] * rel;
-        m.u += n[i] * b.a[i];
-        m.v += n[i] * b.b[i];
-        m.w += n[i] * b.g[i];
-        const double an = std::fabs(n[i]);
-        m.rad += an * b.r[i];
-        magnitude += an * (std::fabs(b.c[i]) + std::fabs(o[i]) + std::fabs(b.a[i]) + std::fabs(b.b[i]) +
-                           std::fabs(b.g[i]) + b.r[i]);
+        const double size = std::fabs(b.c[i]) + std::fabs(o[i]) + std::fabs(b.a[i]) + std::fabs(b.b[i]) +
+                            std::fabs(b.g[i]) + b.r[i];
+        for (int k = 0; k < 3; ++k) {
+            const double nk = n[k][i];
+            // A coordinate n does not weigh cannot make the measure unbounded.
+            if (nk == 0) continue;
+            if (!bounded) {
+                m[k].bounded = false;
+                continue;
+            }
+            m[k].c += nk * rel;
+            m[k].u += nk * b.a[i];
+            m[k].v += nk * b.b[i];
+            m[k].w += nk * b.g[i];
+            const double an = std::fabs(nk);
+            m[k].rad += an * b.r[i];
+            magnitude[k] += an * size;
+        }
     }
-    m.rad += kSlack * magnitude + 1e-300;
-    if (!std::isfinite(m.rad) || !std::isfinite(m.c)) m.bounded = false;
-    return m;
+    for (int k = 0; k < 3; ++k) {
+        m[k].rad += kSlack * magnitude[k] + 1e-300;
+        if (!std::isfinite(m[k].rad) || !std::isfinite(m[k].c)) m[k].bounded = false;
+    }
 }
 
 /// A closed range [lo, hi].
@@ -157,7 +163,8 @@ class TreeIntersector final : public SurfaceIntersector {
     uint64_t m_budget;
     std::vector<Entry> m_stack;
     // The current ray's frame.
-    glm::dvec3 m_origin, m_dir, m_n1, m_n2;
+    glm::dvec3 m_origin, m_dir, m_n1, m_n2, m_invDir;
+    glm::dvec3 m_frame[3];  // n1, n2, dir
     uint64_t m_tested = 0, m_evaluated = 0;
 };
 
@@ -171,9 +178,9 @@ bool TreeIntersector::BoxRange(const RegionBound& b, double* lo, double* hi) con
             if (c0 - slack > 0 || c1 + slack < 0) return false;
             continue;
         }
-        double t0 = (c0 - slack) / m_dir[i], t1 = (c1 + slack) / m_dir[i];
+        double t0 = (c0 - slack) * m_invDir[i], t1 = (c1 + slack) * m_invDir[i];
         if (t0 > t1) std::swap(t0, t1);
-        // Widened by a few ulps: the divisions round.
+        // Widened by a few ulps: the reciprocal and the products round (1.5 ulp at most).
         *lo = std::max(*lo, t0 - 4 * kUlp * std::fabs(t0));
         *hi = std::min(*hi, t1 + 4 * kUlp * std::fabs(t1));
     }
@@ -192,7 +199,9 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
     double lo = tMin, hi = tMax;
     // The box first: cheap, and it may be tighter than the forms (it holds the bound's enclosure).
     if (!BoxRange(b, &lo, &hi)) return false;
-    const Measure d1 = Along(b, m_origin, m_n1), d2 = Along(b, m_origin, m_n2), t = Along(b, m_origin, m_dir);
+    Measure m[3];
+    AlongFrame(b, m_origin, m_frame, m);
+    const Measure &d1 = m[0], &d2 = m[1], &t = m[2];
     const Range r1 = Over(d1, 0, 1, 0, 1), r2 = Over(d2, 0, 1, 0, 1), rt = Over(t, 0, 1, 0, 1);
     // Each bounded measure may rule the region out on its own, even if another is unbounded.
     if ((d1.bounded && r1.excludesZero()) || (d2.bounded && r2.excludesZero())) return false;
@@ -287,6 +296,10 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
     const glm::dvec3 helper = std::abs(m_dir.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     m_n1 = glm::normalize(glm::cross(m_dir, helper));
     m_n2 = glm::normalize(glm::cross(m_dir, m_n1));
+    m_frame[0] = m_n1;
+    m_frame[1] = m_n2;
+    m_frame[2] = m_dir;
+    for (int i = 0; i < 3; ++i) m_invDir[i] = m_dir[i] != 0 ? 1.0 / m_dir[i] : 0.0;
     m_tested = 0;
     m_evaluated = 0;
     m_stack.clear();

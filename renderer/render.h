@@ -23,7 +23,7 @@ using IntersectorFactory = std::function<std::unique_ptr<SurfaceIntersector>(con
 struct RenderOptions {
     int threads = 0;               // 0: one per core
     double tolerancePixels = 0.5;  // a region is a hit once its bound is smaller than this many pixels
-    BoundMode bounds = BoundMode::Affine;
+    BoundMode bounds = BoundMode::Reduced;
     int maxDepth = 24;
     size_t cacheBytes = kDefaultCacheBytes;        // the bound hierarchies' memory budget (renderer/bound_tree.h)
     uint64_t regionBudget = kDefaultRegionBudget;  // per ray (renderer/intersect.h)

@@ -60,6 +60,16 @@ struct SurfaceParameterOf<Affine> {
     }
 };
 
+template <>
+struct SurfaceParameterOf<vm::ReducedAffine> {
+    static vm::ReducedAffine Make(double lo, double hi, int axis) {
+        double c, r;
+        RegionParameter(lo, hi, &c, &r);
+        using vm::ReducedAffine;
+        return ReducedAffine::FromSymbol(c, r, axis == 0 ? ReducedAffine::kSymbolU : ReducedAffine::kSymbolV);
+    }
+};
+
 template <class T>
 struct SurfaceParameterOf<Dual<T>> {
     static Dual<T> Make(double lo, double hi, int axis) {

@@ -36,7 +36,7 @@ struct RenderCommand {
     std::string outputPath;  // empty: the scene's Display name
     int threads = 0;
     double tolerance = 0.5;
-    renderer::BoundMode bounds = renderer::BoundMode::Affine;
+    renderer::BoundMode bounds = renderer::BoundMode::Reduced;
     int maxDepth = 24;
     bool stats = false;
     std::string pngPath;  // empty: no preview

@@ -16,7 +16,7 @@ namespace {
 const char* const kUsage =
     "usage:\n"
     "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS] [-I DIR] [-D NAME[=VALUE]]\n"
-    "                [--bounds affine|interval] [--max-depth N] [--stats] [--png PREVIEW.png] [--quiet]\n"
+    "                [--bounds affine|reduced|interval] [--max-depth N] [--stats] [--png PREVIEW.png] [--quiet]\n"
     "                [--crop XMIN,XMAX,YMIN,YMAX] [--samples N] [--region-budget N] [--cache-mb MB]\n"
     "  affray compile SHADER.sl [-o OUT.afb] [--disasm] [--stats] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
@@ -175,8 +175,9 @@ int Render(Args& args) {
         else if (a == "--bounds") {
             std::string b = args.Value(a);
             if (b == "affine") cmd.bounds = affray::renderer::BoundMode::Affine;
+            else if (b == "reduced") cmd.bounds = affray::renderer::BoundMode::Reduced;
             else if (b == "interval") cmd.bounds = affray::renderer::BoundMode::Interval;
-            else throw UsageError{"--bounds takes affine or interval, got '" + b + "'"};
+            else throw UsageError{"--bounds takes affine, reduced or interval, got '" + b + "'"};
         } else if (a == "--stats") cmd.stats = true;
         else if (a == "--png") cmd.pngPath = args.Value(a);
         else if (a == "--quiet" || a == "-q") cmd.quiet = true;

@@ -230,16 +230,6 @@ Affine operator-(const Affine& x) {
     return r;
 }
 
-namespace {
-
-// Error of a linear operation: the operands' errors E, plus the rounding of every coefficient
-// (<= u*A, A = |z0| + sum|zi|) and of the scalar operation (<= u*max|result| <= u*(A + E)).
-double LinearError(double inputError, double absSum) {
-    return (inputError + (absSum + inputError) * kEpsilon) * kSumSlack;
-}
-
-}  // namespace
-
 template <bool kSubtract>
 Affine Affine::AddForms(const Affine& x, const Affine& y) {
     if (x.isUnbounded() || y.isUnbounded()) return Affine::Unbounded();
@@ -444,18 +434,10 @@ Affine Affine::SqrForm(const Affine& x) {
         n += (c != 0);
     }
     t.count = n;
-    const double e = x.m_error;
-    const double q = (r + e) * (r + e);
-    const double p0 = x0 * x0;
-    const double center = p0 + 0.5 * q;
-    absSum += std::fabs(center);
-    const double linear = std::fabs(twoX0) * e;
-    const double maxResult = (std::fabs(x0) + r + e) * (std::fabs(x0) + r + e);
-    const double rounding = (p0 + kTermSlack * q + absSum + maxResult) * kEpsilon;
-    const double delta = (0.5 * q + linear + rounding) * kSumSlack + kUnderflowSlack;
-    if (!(delta <= kMaxFinite)) return Affine::Unbounded();
-    t.insert(Affine::NewSymbol(), delta);
-    if (!result.finish(center, 0.0, t)) result = Affine::Unbounded();
+    const SquareParts sq = SquareRemainder(x0, r, x.m_error, absSum, kTermSlack);
+    if (!(sq.error <= kMaxFinite)) return Affine::Unbounded();
+    t.insert(Affine::NewSymbol(), sq.error);
+    if (!result.finish(sq.center, 0.0, t)) result = Affine::Unbounded();
     return result;
 }
 

@@ -22,9 +22,9 @@
 // Symbols are numbered per thread: BeginEvaluation() restarts the fresh ids, so forms from
 // different evaluations (or threads) must never be combined.
 // Linear operations and products live in affine.cpp, the nonlinear unary functions (Chebyshev
-// and min-range approximations) and atan2 in affine_functions.cpp, the piecewise-constant and
-// branching ones (floor/ceil/round, Min/Max, comparisons, logic, TruthOf, Join) in
-// affine_logic.cpp. Comparisons return the exact constant 1 or 0 where decided, decided from the
+// and min-range approximations, whose math vm/affine_fit.cpp shares with vm::ReducedAffine) and
+// atan2 in affine_functions.cpp, the piecewise-constant and branching ones (floor/ceil/round,
+// Min/Max, comparisons, logic, TruthOf, Join) in affine_logic.cpp. Comparisons return the exact constant 1 or 0 where decided, decided from the
 // range of the affine difference a - b (so correlations cancel), else 0.5 +- 0.5 on a fresh symbol.
 // Sources: Stolfi & de Figueiredo, "Self-Validated Numerical Methods and Applications" (1997) and
 // "Affine arithmetic: concepts and applications" (Numerical Algorithms, 2004); Heidrich & Seidel,
@@ -39,6 +39,8 @@
 #include "vm/interval.h"
 
 namespace affray::vm {
+
+struct AffineFit;
 
 class Affine {
   public:
@@ -130,7 +132,7 @@ class Affine {
     /// x*x by the square rule: center x0^2 + r^2/2, coefficients 2*x0*xi, error r^2/2.
     friend Affine sqr(const Affine& x);
 
-    // Division and nonlinear functions (affine_functions.cpp); each is explained there.
+    // Division and nonlinear functions (affine_functions.cpp; the fits in affine_fit.cpp).
     /// x * (1/y) by a Chebyshev 1/y; Unbounded when the divisor's range contains 0.
     friend Affine operator/(const Affine& x, const Affine& y);
     friend Affine operator/(const Affine& x, double c);
@@ -243,6 +245,9 @@ class Affine {
     /// alpha*x + zeta +- delta on a fresh symbol, where g(t) = f(t) - alpha*t lies in [gLo, gHi]
     /// for every t in x's range (f's glibc rounding included): the result of any unary f.
     static Affine ApplyFit(const Affine& x, double alpha, double gLo, double gHi);
+    /// The form of a shared fit of a unary function over x's range (vm/affine_fit.h): ApplyFit,
+    /// FromInterval, x, -x or Unbounded (affine_functions.cpp).
+    static Affine FromFit(const Affine& x, const AffineFit& fit);
     /// x + y or x - y by a sorted merge of the terms (affine.cpp).
     template <bool kSubtract>
     static Affine AddForms(const Affine& x, const Affine& y);
@@ -257,7 +262,7 @@ class Affine {
     static Affine SinOrCos(const Affine& x, bool isCos);
     /// x^n for an integer 1 <= n by repeated squaring.
     static Affine IntegerPower(const Affine& x, int n);
-    /// x^p for a constant p that is not a small integer (or x constant).
+    /// x^p for a constant p that is not a small integer (or x constant): PowConstantFit.
     static Affine PowConstant(const Affine& x, double p);
     /// asin (0), acos (1) or atan (2) (affine_functions.cpp).
     static Affine InverseTrigForm(const Affine& x, int which);

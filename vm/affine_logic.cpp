@@ -9,14 +9,9 @@
 // Sources: Stolfi & de Figueiredo (1997), sec. 3.10 (mixed affine-interval evaluation);
 // AFFINE-NOTES.md ("Conditionals").
 #include "vm/affine.h"
+#include "vm/affine_fit.h"
 
 namespace affray::vm {
-
-namespace {
-
-double MaxAbsOf(const Interval& r) { return std::fmax(std::fabs(r.lo()), std::fabs(r.hi())); }
-
-}  // namespace
 
 Affine Affine::FromTruth(Truth t) {
     if (t == Truth::True) return Affine(1.0);
@@ -26,18 +21,11 @@ Affine Affine::FromTruth(Truth t) {
 
 // --- floor, ceil, round -------------------------------------------------------------------------
 
-// f is monotone, so where f(lo) == f(hi) every value of the range maps to that one double. Past
-// 2^52 every double is an integer and f(t) = t: x itself. Otherwise f(t) = t + g with g in
-// [gLo, gHi] exactly (floor: [-1, 0], ceil: [0, 1], round: [-1/2, 1/2]); ApplyFit with alpha = 1
-// keeps every symbol of x, puts the jump on a fresh symbol and adds the rounding of the form's
-// coefficients (the scalar f is exact, so there is no libm slack).
+// StepFit (vm/affine_fit.cpp): the exact constant where the range lies in one integer cell, x
+// itself past 2^52, else x plus the jump on a fresh symbol.
 Affine Affine::StepForm(const Affine& x, double (*f)(double), double gLo, double gHi) {
     if (x.isUnbounded()) return x;
-    Interval range = x.range();
-    const double fa = f(range.lo()), fb = f(range.hi());
-    if (fa == fb) return Affine(fa);
-    if (range.lo() >= 0x1p52 || range.hi() <= -0x1p52) return x;
-    return ApplyFit(x, 1.0, gLo, gHi);
+    return FromFit(x, StepFit(x.range(), f, gLo, gHi));
 }
 
 Affine floor(const Affine& x) {
@@ -115,11 +103,8 @@ Affine Not(const Affine& a) { return Affine::FromTruth(TruthNot(TruthOf(a))); }
 
 // --- Min, Max -----------------------------------------------------------------------------------
 
-// min/max(a, b) = (a + b)/2 -+ |a - b|/2 exactly in reals; the forms contain the scalar value
-// of that formula, C = fl(fl(fl(a + b)*0.5) -+ fl(|fl(a - b)|*0.5)), not std::fmin's exact
-// result M. With R >= |a|, |b|: the two halved roundings are <= u*R each, the last <= u*|C| <=
-// u*R(1 + 2u), and halving may lose 2^-1075 twice below 2^-1022: |C - M| <= 3.01*u*R + 2^-1074,
-// covered by 2*kEpsilon*R = 4u*R plus kUnderflowSlack.
+// min/max(a, b) = (a + b)/2 -+ |a - b|/2 exactly in reals, plus the difference between that
+// formula's scalar value and std::fmin's (MinMaxSlack, vm/affine_fit.h).
 Affine Affine::MinMaxForm(const Affine& a, const Affine& b, bool isMax) {
     if (a.isUnbounded() || b.isUnbounded()) return Affine::Unbounded();
     // a <= b for every pair: fmin is a (or b, if equal: the same value), fmax is b; and so on.
@@ -131,8 +116,7 @@ Affine Affine::MinMaxForm(const Affine& a, const Affine& b, bool isMax) {
     Affine mid = (a + b) * 0.5;
     Affine half = abs(a - b) * 0.5;
     Affine r = isMax ? mid + half : mid - half;
-    const double bound = std::fmax(MaxAbsOf(a.range()), MaxAbsOf(b.range()));
-    const double extra = AddUp(MulUp(bound, 2 * kEpsilon), kUnderflowSlack);
+    const double extra = MinMaxSlack(a.range(), b.range());
     if (r.isUnbounded() || !(extra <= kMaxFinite)) return Affine::Unbounded();
     return r.withExtraError(extra);
 }
@@ -152,19 +136,15 @@ Affine Max(const Affine& a, const Affine& b) {
 // --- Join ---------------------------------------------------------------------------------------
 
 // With m = (a + b)/2 and h = (a - b)/2 as forms, every scalar a = (a + b)/2 + (a - b)/2 lies within
-// D = max|h| (over h's whole range) of (a + b)/2, b likewise. The form m contains the scalar
-// fl(fl(a + b)*0.5), within u*|a + b|/2 + 2^-1075 of (a + b)/2, and h's range the scalar
-// fl(fl(a - b)*0.5), so |(a - b)/2| <= D(1 + u) + 2^-1075: m plus the independent error
-// D + kEpsilon*(M + D) (M = max|m|), slack included, contains both.
+// D = max|h| (over h's whole range) of (a + b)/2, b likewise: m plus the independent error
+// JoinSlack (vm/affine_fit.h) contains both.
 Affine Join(const Affine& a, const Affine& b) {
     if (a.isUnbounded() || b.isUnbounded()) return Affine::Unbounded();
     Interval hull = Hull(a.range(), b.range());
     Affine m = (a + b) * 0.5;
     Affine h = (a - b) * 0.5;
     if (m.isUnbounded() || h.isUnbounded()) return Affine::FromInterval(hull);
-    const double dMax = MaxAbsOf(h.range()), mMax = MaxAbsOf(m.range());
-    const double extra =
-        AddUp(MulUp(AddUp(dMax, MulUp(AddUp(mMax, dMax), kEpsilon)), kSumSlack), kUnderflowSlack);
+    const double extra = JoinSlack(MaxAbs(h.range()), MaxAbs(m.range()));
     if (!(extra <= kMaxFinite)) return Affine::FromInterval(hull);
     return Affine::Tighten(m.withExtraError(extra), hull);
 }

@@ -1,11 +1,11 @@
 // vm/dual.h: dual numbers, for exact derivatives of shader outputs with respect to the surface
 // parameters u and v (forward-mode automatic differentiation).
 // Owns the template Dual<T>: a value and its two partial derivatives, composed with any number
-// type T (Dual<double> for shading normals, Dual<Affine> and Dual<Interval> for bounds on
-// derivatives). Every operation applies the chain rule once, in unqualified calls on T, so it is
-// written once for all T (as OSL's dual.h does); the derivatives are then bounded (or not) exactly
-// as T bounds the same expressions. Nothing here may special-case a T: type differences go in
-// T's own functions.
+// type T (Dual<double> for shading normals, Dual<Affine>, Dual<ReducedAffine> and Dual<Interval>
+// for bounds on derivatives). Every operation applies the chain rule once, in unqualified calls on
+// T, so it is written once for all T (as OSL's dual.h does); the derivatives are then bounded (or
+// not) exactly as T bounds the same expressions. Nothing here may special-case a T: type
+// differences go in T's own functions.
 // A chain-rule factor times an exactly zero derivative is exactly zero (ChainScale), even where
 // the factor is infinite at the edge of a domain (sqrt at 0), instead of IEEE's inf*0 = NaN.
 // Piecewise-constant functions (floor, ceil, round, comparisons, logic) have zero derivatives, the

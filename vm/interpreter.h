@@ -1,7 +1,7 @@
 // vm/interpreter.h: the one interpreter, templated on the number type.
-// The same program runs as plain doubles (a point), Interval or Affine (a bound over a region of
-// the surface) and Dual (exact derivatives for normals): only the number type differs, never the
-// loop. Explicit instantiations live in interpreter_<type>.cpp, all from interpreter.inl.
+// The same program runs as plain doubles (a point), Interval, Affine or ReducedAffine (a bound
+// over a region of the surface) and Dual (exact derivatives for normals): only the number type
+// differs, never the loop. Explicit instantiations live in interpreter_<type>.cpp, all from interpreter.inl.
 #pragma once
 
 #include <vector>
@@ -86,8 +86,10 @@ class Interpreter {
 extern template class Interpreter<double>;
 extern template class Interpreter<Interval>;
 extern template class Interpreter<Affine>;
+extern template class Interpreter<ReducedAffine>;
 extern template class Interpreter<Dual<double>>;
 extern template class Interpreter<Dual<Affine>>;
+extern template class Interpreter<Dual<ReducedAffine>>;
 extern template class Interpreter<Dual<Interval>>;
 
 }  // namespace affray::vm

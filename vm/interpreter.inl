@@ -43,6 +43,11 @@ inline bool PointValue(const Affine& x, double* c) {
     *c = x.center();
     return true;
 }
+inline bool PointValue(const ReducedAffine& x, double* c) {
+    if (!x.isConstant()) return false;  // no terms, no error: the form is its center exactly
+    *c = x.center();
+    return true;
+}
 template <class T>
 bool PointValue(const Dual<T>&, double*) {
     return false;

@@ -95,6 +95,14 @@ Interval operator/(const Interval& a, const Interval& b) {
     if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
     // x/0 is +-inf or NaN in the scalar semantics.
     if (b.m_lo <= 0 && b.m_hi >= 0) return Interval::Unbounded();
+    // x/y is monotone in x and in y on each side of 0, so the extremes are the corners that the
+    // signs pick (Moore's table): two directed quotients. A bound that is a zero keeps the scan of
+    // all four corners below, whose choice among equal +0 and -0 quotients is its own.
+    const double al = a.m_lo, ah = a.m_hi, bl = b.m_lo, bh = b.m_hi;
+    if (al != 0 && ah != 0) {
+        if (bl > 0) return Interval(DivDown(al, al > 0 ? bh : bl), DivUp(ah, ah > 0 ? bl : bh));
+        return Interval(DivDown(ah, ah > 0 ? bh : bl), DivUp(al, al > 0 ? bl : bh));
+    }
     double lo = std::min({DivDown(a.m_lo, b.m_lo), DivDown(a.m_lo, b.m_hi), DivDown(a.m_hi, b.m_lo),
                           DivDown(a.m_hi, b.m_hi)});
     double hi = std::max({DivUp(a.m_lo, b.m_lo), DivUp(a.m_lo, b.m_hi), DivUp(a.m_hi, b.m_lo),
@@ -136,6 +144,10 @@ Interval sin(const Interval& x) {
 Interval cos(const Interval& x) {
     if (x.isUnbounded()) return x;
     return TrigRange(x.m_lo, x.m_hi, std::cos(x.m_lo), std::cos(x.m_hi), 0.0);
+}
+
+Interval SinCosFromEnds(double a, double b, double fa, double fb, bool isCos) {
+    return TrigRange(a, b, fa, fb, isCos ? 0.0 : 0.5);
 }
 
 Interval abs(const Interval& x) {

@@ -170,4 +170,9 @@ class Interval {
     double m_hi = 0;
 };
 
+/// sin (isCos false) or cos over [a, b] (finite, a <= b) from glibc's values fa and fb at its
+/// ends: exactly what sin and cos of Interval(a, b) give, for callers that have those values
+/// already (the affine fits, vm/affine_fit.cpp).
+Interval SinCosFromEnds(double a, double b, double fa, double fb, bool isCos);
+
 }  // namespace affray::vm

@@ -38,7 +38,7 @@
 //     which covers the regions a subdividing ray tracer spends its time on; a region a full cell
 //     wide or more sees noise through most of its range anyway, so the fallback loses little.
 //     A cell is bounded one of two ways (NoiseBoundMethod):
-//     a. Local (Affine's default): CellPolynomial (then * scale + 0.5) evaluated on LocalForms, a
+//     a. Local (Affine's and ReducedAffine's default): CellPolynomial (then * scale + 0.5) evaluated on LocalForms, a
 //        small affine arithmetic whose first symbols are the cell's local coordinates over the
 //        part B of the region inside the cell (t_i = c_i + reach_i sigma_i, c the centre of B)
 //        and whose further symbols are fresh, one per product. It keeps Affine's contract and
@@ -66,12 +66,17 @@
 //        Interval can take it too (NoiseBoundMethod::Local): 5 to 100 times narrower bounds, but
 //        up to 2.5 times the cost of the interval polynomial per call, and the same dented render
 //        with --bounds interval then takes 60 % more time for 2.4 times fewer regions per ray,
-//        so Interval keeps b by default.
+//        so Interval keeps b by default. ReducedAffine takes it by default: in its polynomial
+//        every product's remainder lands in the one error term and the correlations between
+//        them are lost, whereas here only [constant +- rest] does (bench/bounds_bench.cpp, 100
+//        regions, mean z widths of Local over Polynomial at 1/8, 1/64, 1/512: dented 0.91, 0.62,
+//        0.88; stucco 1.0, 0.70, 0.96; ridged 0.97, 0.84, 0.93; strata 0.87, 0.91, 0.99; cost
+//        per evaluation between 0.65 and 1.3 times Polynomial's).
 //        The mean-value form raw(c) + grad raw(B).(t - c), with the gradient over B enclosed by
 //        interval forward differentiation, was tried first and dropped: as slow (the interval
 //        gradient costs as much as the affine polynomial) and 1.2-8 times wider at 1/64 (the
 //        interval gradient's dependency overestimate enters the second-order term).
-//     b. Polynomial (every other type, and Affine on request): CellPolynomial in T arithmetic with
+//     b. Polynomial (every other type, and Affine or ReducedAffine on request): CellPolynomial in T arithmetic with
 //        t_i = clamp(p_i - k_i, 0, 1) (so, values at that cell's points only): the T evaluation
 //        of the same operations contains the double result, rounding included.
 //        A t_i whose range overhangs [0, 1] by at most kNoiseOverhang = 1/16 is left unclamped (the
@@ -137,9 +142,9 @@ inline constexpr double kNoiseOverhang = 1.0 / 16;
 
 /// How GradientNoise bounds a region (the bench compares them; Noise and PNoise use Auto).
 enum class NoiseBoundMethod {
-    Auto,        ///< Local for Affine, Polynomial for every other type
+    Auto,        ///< Local for Affine and ReducedAffine, Polynomial for every other type
     Polynomial,  ///< each touched cell's polynomial evaluated in T arithmetic
-    Local,       ///< each touched cell's polynomial in a LocalForm (Interval and Affine only)
+    Local,       ///< each touched cell's polynomial in a LocalForm (Interval, Affine, ReducedAffine)
 };
 
 /// A gradient set: `count` vectors of `dims` components, row by row.
@@ -230,17 +235,22 @@ T CellPolynomial(const T* t, int dims, GradientOf&& gradient) {
 
 /// Whether T can bound cells by LocalForm (the bounded types without derivatives: a Dual's
 /// derivatives would need forms of their own; double is the reference and never bounds), and
-/// whether it does by default (NoiseBoundMethod::Auto): Affine only, see the head comment.
+/// whether it does by default (NoiseBoundMethod::Auto): Affine and ReducedAffine, see the head
+/// comment.
 template <class T>
 inline constexpr bool kLocalNoise = false;
 template <>
 inline constexpr bool kLocalNoise<Interval> = true;
 template <>
 inline constexpr bool kLocalNoise<Affine> = true;
+template <>
+inline constexpr bool kLocalNoise<ReducedAffine> = true;
 template <class T>
 inline constexpr bool kLocalNoiseByDefault = false;
 template <>
 inline constexpr bool kLocalNoiseByDefault<Affine> = true;
+template <>
+inline constexpr bool kLocalNoiseByDefault<ReducedAffine> = true;
 
 /// An affine form over one cell's part of a region (see the head comment, "Bounds"):
 ///     x = c0 + sum_k c[k]*sigma_k +- e,    every sigma_k in [-1, 1], e >= 0,
@@ -252,8 +262,8 @@ inline constexpr bool kLocalNoiseByDefault<Affine> = true;
 /// what makes it several times cheaper than Affine.
 /// Contract (Affine's): for every sigma, the double result of the same operation on any operand
 /// values the operand forms allow at sigma lies in the result form at sigma, rounding included.
-/// The error formulas are vm/affine.cpp's (LinearError, Scale, MulForms), with the term slack
-/// of kSlots terms.
+/// The error formulas are vm/affine.cpp's (vm/rounding.h's LinearError, Scale, MulForms), with
+/// the term slack of kSlots terms.
 struct LocalForm {
     static constexpr int kSlots = 4 + 32;
     /// Roundings per term of a sum of kSlots terms, doubled (vm/affine.cpp's kTermSlack).
@@ -301,10 +311,6 @@ struct LocalForm {
         double s = 0;
         for (int k = 0; k < n; ++k) s += std::fabs(c[k]);
         return s;
-    }
-    /// vm/affine.cpp's LinearError.
-    static double LinearError(double inputError, double absSum) {
-        return (inputError + (absSum + inputError) * kEpsilon) * kSumSlack;
     }
 
     friend LocalForm operator-(const LocalForm& x) {
@@ -411,7 +417,7 @@ struct LocalForm {
 };
 
 /// A T holding the range r (bounded): on a fresh symbol for Affine, so that the bound stays
-/// correlated with itself wherever a shader reuses it.
+/// correlated with itself wherever a shader reuses it; in the error term for ReducedAffine.
 template <class T>
 T SpreadOf(const Interval& r);
 template <>
@@ -421,6 +427,10 @@ inline Interval SpreadOf<Interval>(const Interval& r) {
 template <>
 inline Affine SpreadOf<Affine>(const Interval& r) {
     return Affine::FromInterval(r);
+}
+template <>
+inline ReducedAffine SpreadOf<ReducedAffine>(const Interval& r) {
+    return ReducedAffine::FromInterval(r);
 }
 
 /// One cell's noise value before the final clamp, raw * NoiseScale(dims) + 0.5, over a region by

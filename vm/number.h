@@ -24,11 +24,12 @@
 
 #include "vm/affine.h"
 #include "vm/interval.h"
+#include "vm/reduced_affine.h"
 
 namespace affray::vm {
 
 // The scalar semantics of double are std's: make them visible to unqualified calls made inside
-// affray::vm, where the Interval/Affine/Dual overloads would otherwise hide them.
+// affray::vm, where the Interval/Affine/ReducedAffine/Dual overloads would otherwise hide them.
 using std::abs;
 using std::acos;
 using std::asin;
@@ -109,6 +110,11 @@ struct NumberTraits<Affine> {
     static constexpr bool kHasDerivatives = false;
 };
 template <>
+struct NumberTraits<ReducedAffine> {
+    static constexpr const char* kName = "reduced";
+    static constexpr bool kHasDerivatives = false;
+};
+template <>
 struct NumberTraits<Dual<double>> {
     static constexpr const char* kName = "dual";
     static constexpr bool kHasDerivatives = true;
@@ -116,6 +122,11 @@ struct NumberTraits<Dual<double>> {
 template <>
 struct NumberTraits<Dual<Affine>> {
     static constexpr const char* kName = "dual-affine";
+    static constexpr bool kHasDerivatives = true;
+};
+template <>
+struct NumberTraits<Dual<ReducedAffine>> {
+    static constexpr const char* kName = "dual-reduced";
     static constexpr bool kHasDerivatives = true;
 };
 template <>
@@ -200,8 +211,10 @@ concept Number = std::copyable<T> && std::convertible_to<double, T> &&
 static_assert(Number<double>);
 static_assert(Number<Interval>);
 static_assert(Number<Affine>);
+static_assert(Number<ReducedAffine>);
 static_assert(Number<Dual<double>>);
 static_assert(Number<Dual<Affine>>);
+static_assert(Number<Dual<ReducedAffine>>);
 static_assert(Number<Dual<Interval>>);
 
 /// The value part of a number: the number itself, or a dual number's value (its derivatives

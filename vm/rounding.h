@@ -1,4 +1,5 @@
-// vm/rounding.h: outward rounding and error bounds for the bounded number types (Interval, Affine).
+// vm/rounding.h: outward rounding and error bounds for the bounded number types (Interval, Affine,
+// ReducedAffine).
 // Owns the error model; every constant that a containment proof relies on is defined here, once.
 //
 // Error model (round-to-nearest-even doubles, the default; nothing here calls fesetround):
@@ -33,7 +34,8 @@ inline constexpr double kEpsilon = 0x1p-52;
 inline constexpr double kMinSubnormal = 0x1p-1074;
 /// Below this, products and quotients may lose absolute (not relative) accuracy.
 inline constexpr double kUnderflowLimit = 0x1p-960;
-/// Absolute slack that covers every underflow of one Affine operation (<= 2^14 products).
+/// Absolute slack that covers every underflow of one Affine or ReducedAffine operation (<= 2^14
+/// products).
 inline constexpr double kUnderflowSlack = 0x1p-1060;
 /// Relative slack for a glibc transcendental: 4 ulps (see the head comment).
 inline constexpr double kLibmRel = 0x1p-50;
@@ -127,8 +129,17 @@ class UpperSum {
     double m_err = 0;
 };
 
+/// The error of a linear operation on affine forms (a sum, a difference, a scaling, a constant
+/// added): the operands' errors `inputError`, plus the rounding of every coefficient (<= u*A, with
+/// A = `absSum` = |z0| + sum |zi| of the result) and of the scalar operation (<= u*max|result| <=
+/// u*(A + E)), rounded up.
+inline double LinearError(double inputError, double absSum) {
+    return (inputError + (absSum + inputError) * kEpsilon) * kSumSlack;
+}
+
 /// The sums an affine product x * y accumulates while it forms its terms (x0 + sum xi ei + ex) *
-/// (y0 + sum yi ei + ey), whatever the representation of the forms (Affine, noise's LocalForm).
+/// (y0 + sum yi ei + ey), whatever the representation of the forms (Affine, ReducedAffine, noise's
+/// LocalForm).
 struct ProductSums {
     double x0 = 0, y0 = 0;  // centres
     double rx = 0, ry = 0;  // sum |xi|, sum |yi|
@@ -152,6 +163,25 @@ inline double ProductRemainder(const ProductSums& s, double termSlack) {
                              termSlack * s.absDiag + s.absSum + maxResult) *
                             kEpsilon;
     return (quad + linear + rounding) * kSumSlack + kUnderflowSlack;
+}
+
+/// The centre and error term of the square of an affine form x0 + X + E (X = sum xi ei with
+/// r = sum |xi|, |E| <= e): (x0 + X + E)^2 = x0^2 + 2*x0*X + 2*x0*E + (X + E)^2 with (X + E)^2 in
+/// [0, q], q = (r + e)^2, so the centre is x0^2 + q/2 and the error q/2 + |2*x0|*e plus the
+/// rounding of everything (`coefAbsSum` = sum |2*x0*xi| as rounded, `termSlack` as in
+/// ProductRemainder).
+struct SquareParts {
+    double center, error;
+};
+inline SquareParts SquareRemainder(double x0, double r, double e, double coefAbsSum, double termSlack) {
+    const double q = (r + e) * (r + e);
+    const double p0 = x0 * x0;
+    const double center = p0 + 0.5 * q;
+    const double absSum = coefAbsSum + std::fabs(center);
+    const double linear = std::fabs(2 * x0) * e;
+    const double maxResult = (std::fabs(x0) + r + e) * (std::fabs(x0) + r + e);
+    const double rounding = (p0 + termSlack * q + absSum + maxResult) * kEpsilon;
+    return {center, (0.5 * q + linear + rounding) * kSumSlack + kUnderflowSlack};
 }
 
 }  // namespace affray::vm

@@ -1,7 +1,7 @@
 // tests/vm/dual_test.cpp: dual numbers. Dual<double> derivatives agree with central finite
-// differences for every function at smooth points; Dual<Affine> and Dual<Interval> contain the
-// Dual<double> value and derivatives at every point of the region (the same template code runs
-// on both, so this is the containment invariant applied to derivative expressions, branches and
+// differences for every function at smooth points; Dual<Affine>, Dual<ReducedAffine> and
+// Dual<Interval> contain the Dual<double> value and derivatives at every point of the region (the
+// same template code runs on all, so this is the containment invariant applied to derivative expressions, branches and
 // steps included: ShaderD); and the
 // Number API pieces (DerivU/DerivV, traits, IsExactlyZero) behave as documented.
 #include <catch2/catch.hpp>
@@ -257,8 +257,8 @@ namespace {
 template <class T>
 bool Contains(const T& bound, double d, double eu, double ev) {
     if (!std::isfinite(d)) return IsUnbounded(bound);
-    if constexpr (std::is_same_v<T, Affine>)
-        return bound.isUnbounded() || bound.evaluateAt(eu, ev).contains(d);
+    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, ReducedAffine>)
+        return bound.isUnbounded() || (bound.evaluateAt(eu, ev).contains(d) && bound.range().contains(d));
     else
         return bound.contains(d);
 }
@@ -268,7 +268,7 @@ bool Contains(const T& bound, double d, double eu, double ev) {
 TEST_CASE("dual affine and dual interval contain dual double", "[vm][dual]") {
     std::mt19937_64 rng(3);
     std::uniform_real_distribution<> unit(-1, 1);
-    int failures = 0, bounded = 0, checked = 0;
+    int failures = 0, bounded = 0, boundedReduced = 0, checked = 0;
     for (int region = 0; region < Samples(20000) / 10; ++region) {
         // Dyadic centers, radii and points keep u and v exact.
         double uc = std::ldexp(std::round(std::ldexp(unit(rng), 20)), -20);
@@ -282,7 +282,11 @@ TEST_CASE("dual affine and dual interval contain dual double", "[vm][dual]") {
         Dual<Affine> ra = Shader(which, ua, va);
         Dual<Interval> ri = Shader(which, Dual<Interval>(Interval(uc - ur, uc + ur), 1.0, 0.0),
                                    Dual<Interval>(Interval(vc - vr, vc + vr), 0.0, 1.0));
+        Dual<ReducedAffine> rr =
+            Shader(which, Dual<ReducedAffine>(ReducedAffine::FromSymbol(uc, ur, ReducedAffine::kSymbolU), 1.0, 0.0),
+                   Dual<ReducedAffine>(ReducedAffine::FromSymbol(vc, vr, ReducedAffine::kSymbolV), 0.0, 1.0));
         bounded += !IsUnbounded(ra);
+        boundedReduced += !IsUnbounded(rr);
         for (int p = 0; p < 10; ++p) {
             double eu = std::ldexp(std::round(std::ldexp(unit(rng), 10)), -10);
             double ev = std::ldexp(std::round(std::ldexp(unit(rng), 10)), -10);
@@ -292,11 +296,13 @@ TEST_CASE("dual affine and dual interval contain dual double", "[vm][dual]") {
             checked++;
             bool ok = Contains(ra.v, rd.v, eu, ev) && Contains(ra.du, rd.du, eu, ev) &&
                       Contains(ra.dv, rd.dv, eu, ev) && Contains(ri.v, rd.v, eu, ev) &&
-                      Contains(ri.du, rd.du, eu, ev) && Contains(ri.dv, rd.dv, eu, ev);
+                      Contains(ri.du, rd.du, eu, ev) && Contains(ri.dv, rd.dv, eu, ev) &&
+                      Contains(rr.v, rd.v, eu, ev) && Contains(rr.du, rd.du, eu, ev) &&
+                      Contains(rr.dv, rd.dv, eu, ev);
             if (!ok && failures++ < 4)
                 WARN("shader " << which << " eps " << eu << ", " << ev << "\n  double "
                                << ToString(rd) << "\n  affine " << ToString(ra) << "\n  interval "
-                               << ToString(ri));
+                               << ToString(ri) << "\n  reduced " << ToString(rr));
         }
     }
     if (std::getenv("AFFRAY_VERBOSE"))
@@ -304,4 +310,5 @@ TEST_CASE("dual affine and dual interval contain dual double", "[vm][dual]") {
                     Samples(20000) / 10);
     CHECK(failures == 0);
     CHECK(bounded > Samples(20000) / 40);
+    CHECK(boundedReduced > Samples(20000) / 40);
 }

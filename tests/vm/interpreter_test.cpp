@@ -7,73 +7,18 @@
 #include <random>
 
 #include "../test_util.h"
+#include "shader_containment.h"
 #include "vm/verify.h"
 
 using namespace affray;
-
-namespace {
-
-template <class N>
-std::array<vm::Interval, 3> BoundOnSquare(const vm::Program& program, double u0, double u1, double v0, double v1) {
-    std::array<vm::Interval, 3> out;
-    if (program.usesDerivatives()) {
-        auto p = test::EvalOnSquare<vm::Dual<N>>(program, u0, u1, v0, v1);
-        for (int i = 0; i < 3; ++i) out[i] = RangeOf(p[i].v);
-    } else {
-        auto p = test::EvalOnSquare<N>(program, u0, u1, v0, v1);
-        for (int i = 0; i < 3; ++i) out[i] = RangeOf(p[i]);
-    }
-    return out;
-}
-
-/// Checks containment for `program` on `regions` random regions, each with `points` points.
-void CheckContainment(const std::string& name, const vm::Program& program, int regions, int points, uint64_t seed) {
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    int failures = 0, unbounded = 0;
-    for (int r = 0; r < regions; ++r) {
-        // Widths from the whole domain down to 1e-9, log-uniform.
-        double width = std::pow(10.0, -9.0 * unit(rng));
-        double wu = r == 0 ? 1.0 : width, wv = r == 0 ? 1.0 : width * (0.5 + unit(rng));
-        wv = std::min(wv, 1.0);
-        double u0 = (1 - wu) * unit(rng), v0 = (1 - wv) * unit(rng);
-        double u1 = u0 + wu, v1 = v0 + wv;
-        auto affine = BoundOnSquare<vm::Affine>(program, u0, u1, v0, v1);
-        auto interval = BoundOnSquare<vm::Interval>(program, u0, u1, v0, v1);
-        for (int i = 0; i < 3; ++i) unbounded += affine[i].isUnbounded() || interval[i].isUnbounded();
-        for (int k = 0; k < points; ++k) {
-            // Corners and centre on purpose, then uniform points.
-            double fu = k < 4 ? (k & 1) : k == 4 ? 0.5 : unit(rng);
-            double fv = k < 4 ? (k >> 1) : k == 4 ? 0.5 : unit(rng);
-            double u = std::min(u1, u0 + fu * (u1 - u0)), v = std::min(v1, v0 + fv * (v1 - v0));
-            glm::dvec3 p = test::PointOnSquare(program, u, v);
-            for (int i = 0; i < 3; ++i) {
-                bool inAffine = affine[i].contains(p[i]);
-                bool inInterval = interval[i].contains(p[i]);
-                if ((!inAffine || !inInterval) && failures++ < 5) {
-                    UNSCOPED_INFO(name << ": P[" << i << "] = " << p[i] << " at (" << u << ", " << v
-                                       << ") region [" << u0 << "," << u1 << "]x[" << v0 << "," << v1
-                                       << "] affine " << affine[i].toString() << " interval "
-                                       << interval[i].toString());
-                }
-            }
-        }
-    }
-    CHECK(failures == 0);
-    // Containment in an unbounded value is trivially true: the shaders here are finite everywhere
-    // on the domain, so their bounds must be too.
-    CHECK(unbounded == 0);
-}
-
-}  // namespace
 
 TEST_CASE("containment: every shader's scalar P lies in its affine and interval bounds", "[vm][containment]") {
     for (const std::string& path : test::AllShaders()) {
         compiler::CompileResult r = compiler::CompileFile(path);
         INFO(path << "\n" << r.diagnostics);
         REQUIRE(r.ok());
-        CheckContainment(path, r.shader->bound, 2000, 24, 42);
-        CheckContainment(path + " (shade)", r.shader->shade, 60, 12, 43);
+        test::CheckContainment<vm::Affine, vm::Interval>(path, r.shader->bound, 2000, 24, 42);
+        test::CheckContainment<vm::Affine, vm::Interval>(path + " (shade)", r.shader->shade, 60, 12, 43);
     }
 }
 
@@ -88,7 +33,7 @@ TEST_CASE("containment: stiff parameters of wave.sl", "[vm][containment]") {
     for (const auto& params : cases) {
         compiler::CompileResult r = compiler::CompileFile(path, params);
         REQUIRE(r.ok());
-        CheckContainment(path + " " + params[0].name, r.shader->bound, 200, 16, 7);
+        test::CheckContainment<vm::Affine, vm::Interval>(path + " " + params[0].name, r.shader->bound, 200, 16, 7);
     }
 }
 
@@ -115,7 +60,7 @@ TEST_CASE("dual derivatives agree with finite differences", "[vm][dual]") {
 }
 
 TEMPLATE_TEST_CASE("every opcode runs under every number type", "[vm]", double, vm::Interval, vm::Affine,
-                   vm::Dual<double>, vm::Dual<vm::Affine>) {
+                   vm::Dual<double>, vm::Dual<vm::Affine>, vm::ReducedAffine, vm::Dual<vm::ReducedAffine>) {
     // One expression per opcode family; the scalar value is known, every type must contain it.
     compiler::CompiledShader s = test::CompileOrThrow(R"(
         displacement all(float k = 3) {
@@ -143,7 +88,7 @@ TEMPLATE_TEST_CASE("every opcode runs under every number type", "[vm]", double, 
     if constexpr (std::is_same_v<TestType, double>) {
         // Without derivatives Du and Dv are unknown: NaN, never a silently wrong number.
         CHECK(std::isnan(p.z));
-    } else if constexpr (std::is_same_v<TestType, vm::Interval> || std::is_same_v<TestType, vm::Affine>) {
+    } else if constexpr (!vm::NumberTraits<TestType>::kHasDerivatives) {
         CHECK(IsUnbounded(p.z));
     } else {
         vm::Interval range = RangeOf(p.z.v);

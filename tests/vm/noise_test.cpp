@@ -1,7 +1,7 @@
 // tests/vm/noise_test.cpp: vm/noise.h. The double functions against their RenderMan semantics
 // (range, mean, spread, continuity, derivatives, cellnoise cells, pnoise periods, golden values);
 // the proof of the scale (an interval branch and bound); and the bounded evaluations: Interval,
-// Affine, Dual<Affine> and Dual<Interval> contain the double (and Dual<double>) result at every
+// Affine, ReducedAffine and the Duals of each contain the double (and Dual<double>) result at every
 // point of random regions from one cell to many, never exceed [0, 1], and are tight inside one
 // cell. AFFRAY_SAMPLES=N raises the number of random regions.
 #include <catch2/catch.hpp>
@@ -436,6 +436,9 @@ bool Contains(const Interval& bound, double x, double, double) { return bound.co
 bool Contains(const Affine& bound, double x, double eu, double ev) {
     return bound.evaluateAt(eu, ev).contains(x) && bound.range().contains(x);
 }
+bool Contains(const ReducedAffine& bound, double x, double eu, double ev) {
+    return bound.evaluateAt(eu, ev).contains(x) && bound.range().contains(x);
+}
 template <class T>
 bool Contains(const Dual<T>& bound, const Dual<double>& x, double eu, double ev) {
     return Contains(bound.v, x.v, eu, ev) && Contains(bound.du, x.du, eu, ev) &&
@@ -454,6 +457,10 @@ void MakeUV(const NoiseRegion& g, Interval* u, Interval* v) {
 void MakeUV(const NoiseRegion& g, Affine* u, Affine* v) {
     *u = Affine::FromSymbol(g.uc, g.r, Affine::kSymbolU);
     *v = Affine::FromSymbol(g.vc, g.r, Affine::kSymbolV);
+}
+void MakeUV(const NoiseRegion& g, ReducedAffine* u, ReducedAffine* v) {
+    *u = ReducedAffine::FromSymbol(g.uc, g.r, ReducedAffine::kSymbolU);
+    *v = ReducedAffine::FromSymbol(g.vc, g.r, ReducedAffine::kSymbolV);
 }
 template <class T>
 void MakeUV(const NoiseRegion& g, Dual<T>* u, Dual<T>* v) {
@@ -565,11 +572,18 @@ TEST_CASE("noise bounds contain the Dual<double> value and derivatives: Dual<Aff
 TEST_CASE("noise bounds contain the Dual<double> value and derivatives: Dual<Interval>", "[vm][noise]") {
     CheckContainment<Dual<Interval>>("dual-interval", Samples(25));
 }
+TEST_CASE("noise bounds contain the double value: ReducedAffine", "[vm][noise][reduced]") {
+    CheckContainment<ReducedAffine>("reduced", Samples(40));
+}
+TEST_CASE("noise bounds contain the Dual<double> value and derivatives: Dual<ReducedAffine>",
+          "[vm][noise][reduced]") {
+    CheckContainment<Dual<ReducedAffine>>("dual-reduced", Samples(25));
+}
 
 TEST_CASE("noise bounds contain the double value far from the origin, near 0 and across faces", "[vm][noise]") {
-    // Every way of bounding: LocalForm (Affine's default, Interval on request) and the cell
-    // polynomial in T arithmetic (Interval's and the Duals' default, Affine on request), over
-    // widths from 1e-9 to several cells.
+    // Every way of bounding: LocalForm (Affine's and ReducedAffine's default, Interval on
+    // request) and the cell polynomial in T arithmetic (Interval's and the Duals' default, Affine
+    // and ReducedAffine on request), over widths from 1e-9 to several cells.
     const double widths[] = {1e-9, 1e-6, 1e-3, 1.0 / 512, 1.0 / 64, 1.0 / 8, 0.5, 1.5, 4};
     const int regions = Samples(2);
     ContainmentReport rep;
@@ -589,6 +603,8 @@ TEST_CASE("noise bounds contain the double value far from the origin, near 0 and
                 run(Interval(), NoiseBoundMethod::Auto, dims, f, where);
                 run(Interval(), NoiseBoundMethod::Local, dims, f, where);
                 run(Dual<Affine>(), NoiseBoundMethod::Auto, dims, f, where);
+                run(ReducedAffine(), NoiseBoundMethod::Auto, dims, f, where);
+                run(ReducedAffine(), NoiseBoundMethod::Polynomial, dims, f, where);
             }
         }
     }
