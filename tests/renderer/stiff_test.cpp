@@ -663,3 +663,54 @@ TEST_CASE("stiff: a ray stops at its region budget when every bound overflows", 
     CHECK(stats.regionsBounded <= 40 + 4);
     if (found) CHECK(hit.depthLimited);
 }
+
+TEST_CASE("stiff: a wall 1e-4 thick covers every pixel of its projected rectangle", "[renderer][stiff]") {
+    // scenes/stiff/wall.rib at a quarter of its size: the wall stands on x = 0 (s = 0.5), 1e-4
+    // thick, |y| <= 0.5, 0 <= z <= 1. Every pixel-centre ray that crosses the plane x = 0 inside
+    // that rectangle (a pixel's footprint away from its edges) passes through the wall, so must hit.
+    std::ifstream file(test::SourceDir() + "/scenes/stiff/wall.rib");
+    std::stringstream text;
+    text << file.rdbuf();
+    std::string rib = text.str();
+    const std::string format = "Format 320 384 1";
+    REQUIRE(rib.find(format) != std::string::npos);
+    rib.replace(rib.find(format), format.size(), "Format 80 96 1");
+    std::string error;
+    std::optional<renderer::SceneDesc> desc =
+        renderer::ParseRib(rib, test::SourceDir() + "/scenes/stiff/wall.rib", &error, nullptr);
+    INFO(error);
+    REQUIRE(desc);
+    desc->camera.filter = renderer::FilterDesc{renderer::FilterDesc::Kind::Box, 1, 1};
+    renderer::PreparedScene prepared;
+    const bool ok = renderer::PrepareScene(*desc, {test::SourceDir() + "/scenes/stiff"}, {}, &prepared, &error);
+    INFO(error);
+    REQUIRE(ok);
+    renderer::RenderOptions options;
+    options.threads = 2;
+    renderer::ImageBuffer image;
+    renderer::RenderStats stats;
+    renderer::RenderImage(prepared, options, &image, &stats);
+    const renderer::Camera camera(desc->camera);
+    const double margin = 2 * camera.PixelWidth();
+    int inside = 0, missed = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            // One jittered sample per pixel: test the rays through the pixel's corners too.
+            bool through = true;
+            for (double dx : {0.0, 1.0})
+                for (double dy : {0.0, 1.0}) {
+                    const Ray ray = camera.GenerateRay(x + dx, y + dy);
+                    if (ray.dir.x == 0) through = false;
+                    const double t = -ray.origin.x / ray.dir.x;
+                    const glm::dvec3 p = ray.origin + t * ray.dir;
+                    through = through && std::fabs(p.y) < 0.5 - margin && p.z > margin && p.z < 1 - margin;
+                }
+            if (!through) continue;
+            ++inside;
+            if (image.rgba[(size_t(y) * image.width + x) * 4 + 3] != 1.0f) ++missed;
+        }
+    INFO(inside << " pixels inside the wall's rectangle");
+    CHECK(inside > 500);
+    CHECK(missed == 0);
+    CHECK(stats.camera.depthLimitHits == 0);
+}
