@@ -2,7 +2,7 @@
 """bench/error_report.py: how image error trades against run time.
 
 For each scene (smooth wave, noisy terrain, thin needles) and each bound mode (affine,
-interval), renders at a sweep of pixel tolerances and records wall time, peak memory, regions
+interval, reduced affine), renders at a sweep of pixel tolerances and records wall time, peak memory, regions
 bounded per ray, image RMSE and largest error against a converged reference (affine at a
 tolerance far below the sweep's), the largest certified geometric error and the depth-limit
 hits. Beside them, the tessellation baseline (bench/tessellation_bench.cpp, docs/tessellation.md)
@@ -130,7 +130,7 @@ def plot(rows, path):
         print("no plot: python3-matplotlib is not installed (sudo apt-get install python3-matplotlib)", file=sys.stderr)
         return False
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.2))
-    styles = {"affine": "-o", "interval": "--s", "tessellation": ":^"}
+    styles = {"affine": "-o", "reduced": "-.d", "interval": "--s", "tessellation": ":^"}
     colours = {"wave": "tab:blue", "terrain": "tab:brown", "needles": "tab:green"}
     panels = [(axes[0], "wall_seconds", "time to image (s)", "Error against run time"),
               (axes[1], "peak_rss_mb", "peak memory, process RSS (MB)", "Error against peak memory")]
@@ -187,7 +187,7 @@ def main():
     parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="CMake build directory (Release)")
     parser.add_argument("--size", default="96x72", help="image size WxH (default 96x72)")
     parser.add_argument("--scenes", default="wave,terrain,needles")
-    parser.add_argument("--modes", default="affine,interval")
+    parser.add_argument("--modes", default="reduced,affine,interval")
     parser.add_argument("--tolerances", default="4,2,1,0.5,0.25,0.1", help="pixel tolerances to sweep")
     parser.add_argument("--reference-tolerance", type=float, default=0.02)
     parser.add_argument("--threads", type=int, default=0)
