@@ -180,10 +180,11 @@ int SplitAxis(const RegionBound& b, int levelU, int levelV, int maxDepth) {
     // The first two levels split both ways: a region spanning half a turn or more of a periodic
     // parameter (a sphere's u) has a linear part near 0 along it however far it stretches.
     if (!b.bounded() || std::abs(levelU - levelV) >= kMaxImbalance || std::min(levelU, levelV) < 2) return balanced;
-    const double a = glm::length(b.a), bv = glm::length(b.b);
-    if (!std::isfinite(a + bv)) return balanced;
-    if (a > 2 * bv) return kSplitU;
-    if (bv > 2 * a) return kSplitV;
+    // Twice as long: four times the squared length.
+    const double a2 = glm::dot(b.a, b.a), b2 = glm::dot(b.b, b.b);
+    if (!std::isfinite(a2 + b2)) return balanced;
+    if (a2 > 4 * b2) return kSplitU;
+    if (b2 > 4 * a2) return kSplitV;
     return balanced;
 }
 

@@ -92,6 +92,21 @@ AffineFit StepFit(const Interval& range, double (*f)(double), double gLo, double
 
 /// Integer exponents of pow up to this magnitude go by repeated squaring.
 inline constexpr int kMaxIntegerPower = 64;
+/// x^n for an integer 1 <= n by repeated squaring, in any affine type F (its product and sqr).
+template <class F>
+F PowerBySquaring(const F& x, int n) {
+    F result, base = x;
+    bool have = false;
+    while (n > 0) {
+        if (n & 1) {
+            result = have ? result * base : base;
+            have = true;
+        }
+        n >>= 1;
+        if (n > 0) base = sqr(base);
+    }
+    return result;
+}
 /// The error to add to a form of radius `radius` and centre `center` that composes pow (repeated
 /// squaring, exp(y*log(x))): glibc's rounding of pow itself.
 inline double PowSlack(double radius, double center) {

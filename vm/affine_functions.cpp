@@ -105,19 +105,7 @@ Affine Affine::SignForm(const Affine& x) {
 
 // --- pow ----------------------------------------------------------------------------------------
 
-Affine Affine::IntegerPower(const Affine& x, int n) {
-    Affine result, base = x;
-    bool have = false;
-    while (n > 0) {
-        if (n & 1) {
-            result = have ? result * base : base;
-            have = true;
-        }
-        n >>= 1;
-        if (n > 0) base = sqr(base);
-    }
-    return result;
-}
+Affine Affine::IntegerPower(const Affine& x, int n) { return PowerBySquaring(x, n); }
 
 Affine Affine::PowConstant(const Affine& x, double p) { return FromFit(x, PowConstantFit(x.range(), p)); }
 

@@ -221,19 +221,7 @@ ReducedAffine atan(const ReducedAffine& x) {
 
 // --- pow ----------------------------------------------------------------------------------------
 
-ReducedAffine ReducedAffine::IntegerPower(const ReducedAffine& x, int n) {
-    ReducedAffine result, base = x;
-    bool have = false;
-    while (n > 0) {
-        if (n & 1) {
-            result = have ? result * base : base;
-            have = true;
-        }
-        n >>= 1;
-        if (n > 0) base = sqr(base);
-    }
-    return result;
-}
+ReducedAffine ReducedAffine::IntegerPower(const ReducedAffine& x, int n) { return PowerBySquaring(x, n); }
 
 // vm::Affine's PowForms: a constant integer exponent |n| <= 64 by repeated squaring (of 1/x for
 // n < 0) plus glibc's rounding of pow; another constant by PowConstantFit; a varying exponent on
