@@ -17,15 +17,16 @@ constexpr double kUlp = 0x1p-53;  // unit roundoff of round-to-nearest doubles
 /// x rounded up by a relative margin covering the rounding of a sum of n terms of the same sign.
 double RoundedUpSum(double x, int n) { return x * (1 + 2 * (n + 2) * kUlp) + 1e-300; }
 
+/// Coordinate i of the bound's box: `range`, or the whole line if it is unbounded.
+void SetBox(const vm::Interval& range, int i, RegionBound* out) {
+    out->lo[i] = range.isUnbounded() ? -INFINITY : range.lo();
+    out->hi[i] = range.isUnbounded() ? INFINITY : range.hi();
+}
+
 /// The bound of one coordinate by an interval: its middle and radius.
 void FromRange(const vm::Interval& range, int i, RegionBound* out) {
-    out->lo[i] = range.lo();
-    out->hi[i] = range.hi();
-    if (range.isUnbounded()) {
-        out->lo[i] = -INFINITY;
-        out->hi[i] = INFINITY;
-        return;
-    }
+    SetBox(range, i, out);
+    if (range.isUnbounded()) return;
     const double c = 0.5 * range.lo() + 0.5 * range.hi();
     double r = std::max(range.hi() - c, c - range.lo());
     r = r * (1 + 4 * kUlp) + 1e-300;  // each difference rounds by half an ulp at most
@@ -48,11 +49,7 @@ RegionBound Reduce(const vm::Vec3<vm::Interval>& p) {
 RegionBound Reduce(const vm::Vec3<vm::Affine>& p) {
     using vm::Affine;
     RegionBound out;
-    for (int i = 0; i < 3; ++i) {
-        const vm::Interval range = p[i].range();
-        out.lo[i] = range.isUnbounded() ? -INFINITY : range.lo();
-        out.hi[i] = range.isUnbounded() ? INFINITY : range.hi();
-    }
+    for (int i = 0; i < 3; ++i) SetBox(p[i].range(), i, &out);
     // Gather the columns of the other symbols, merging the three sorted term lists.
     constexpr int kMax = 3 * Affine::kMaxCapacity;
     double cols[kMax][3];
@@ -125,8 +122,7 @@ RegionBound Reduce(const vm::Vec3<vm::ReducedAffine>& p) {
     RegionBound out;
     for (int i = 0; i < 3; ++i) {
         const vm::Interval range = p[i].range();
-        out.lo[i] = range.isUnbounded() ? -INFINITY : range.lo();
-        out.hi[i] = range.isUnbounded() ? INFINITY : range.hi();
+        SetBox(range, i, &out);
         if (p[i].isUnbounded() || range.isUnbounded()) continue;
         const double c = p[i].center(), a = p[i].coefficientU(), b = p[i].coefficientV(), r = p[i].error();
         if (!std::isfinite(c + a + b + r)) continue;
@@ -271,7 +267,6 @@ void BoundTree::Reclaim() {
     });
     m_retired.erase(kept, m_retired.end());
     m_nodes.fetch_sub(freed, std::memory_order_relaxed);
-    m_bytes.fetch_sub(freed / kBlockNodes * kBlockBytes, std::memory_order_relaxed);
     m_budget->Sub(freed / kBlockNodes * kBlockBytes);
 }
 
@@ -328,8 +323,7 @@ void BoundTree::Evict() {
 BoundTreeStats BoundTree::stats() const {
     BoundTreeStats s;
     s.nodes = m_nodes.load();
-    s.bytes = m_bytes.load();
-    s.peakBytes = m_peakBytes.load();
+    s.bytes = (s.nodes - 1) / kBlockNodes * kBlockBytes;
     s.blocksBuilt = m_blocksBuilt.load();
     s.evaluations = m_evaluations.load();
     s.privateCopies = m_private.load();
@@ -338,6 +332,18 @@ BoundTreeStats BoundTree::stats() const {
     s.evictionPasses = m_passes.load();
     s.buildSeconds = m_buildSeconds.load();
     return s;
+}
+
+void BoundTreeStats::Merge(const BoundTreeStats& o) {
+    nodes += o.nodes;
+    bytes += o.bytes;
+    blocksBuilt += o.blocksBuilt;
+    evaluations += o.evaluations;
+    privateCopies += o.privateCopies;
+    lookups += o.lookups;
+    evictions += o.evictions;
+    evictionPasses += o.evictionPasses;
+    buildSeconds += o.buildSeconds;
 }
 
 BoundTree::Walker::Walker(BoundTree& tree) : m_tree(tree), m_slot(tree.RegisterWalker()) {}
@@ -381,10 +387,6 @@ BoundNode* BoundTree::Walker::Children(BoundNode& node) {
         }
         ++m_built;
         m_tree.m_nodes.fetch_add(kBlockNodes, std::memory_order_relaxed);
-        const uint64_t bytes = m_tree.m_bytes.fetch_add(kBlockBytes, std::memory_order_relaxed) + kBlockBytes;
-        uint64_t peak = m_tree.m_peakBytes.load(std::memory_order_relaxed);
-        while (bytes > peak && !m_tree.m_peakBytes.compare_exchange_weak(peak, bytes, std::memory_order_relaxed)) {
-        }
         m_tree.m_budget->Add(kBlockBytes);
         if (m_tree.m_budget->bytes.load(std::memory_order_relaxed) > m_tree.m_budget->limit) m_tree.Evict();
         return block;
@@ -410,8 +412,8 @@ const RegionBound& BoundTree::Walker::Bound(BoundNode& child, double u0, double 
     }
     // Claimed by another thread that has not finished: use a private copy rather than wait.
     ++m_private;
-    m_private_bound = bound;
-    return m_private_bound;
+    m_privateBound = bound;
+    return m_privateBound;
 }
 
 }  // namespace affray::renderer

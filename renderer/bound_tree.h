@@ -106,7 +106,6 @@ struct CacheBudget {
 struct BoundTreeStats {
     uint64_t nodes = 0;           // nodes held now (root included)
     uint64_t bytes = 0;           // bytes held now by blocks of children
-    uint64_t peakBytes = 0;       // the most this tree held
     uint64_t blocksBuilt = 0;     // blocks of children allocated
     uint64_t evaluations = 0;     // bounds evaluated (private copies included)
     uint64_t privateCopies = 0;   // bounds evaluated by a thread that found them claimed, not ready
@@ -114,6 +113,9 @@ struct BoundTreeStats {
     uint64_t evictions = 0;       // blocks evicted
     uint64_t evictionPasses = 0;  // times the budget was enforced
     double buildSeconds = 0;      // thread-seconds spent evaluating bounds (the price of a cold cache)
+
+    /// Sums (the figures of several trees).
+    void Merge(const BoundTreeStats& o);
 };
 
 /// The default memory budget of a hierarchy (`affray render --cache-mb`), shared by all the
@@ -170,7 +172,7 @@ class BoundTree {
         Slot* m_slot;
         uint32_t m_clock = 0;
         uint64_t m_lookups = 0, m_built = 0, m_evaluations = 0, m_private = 0;
-        RegionBound m_private_bound;  // a private copy (see Bound)
+        RegionBound m_privateBound;  // a private copy (see Bound)
         double m_buildSeconds = 0;
         uint32_t m_raysSinceTick = 0;
     };
@@ -202,7 +204,7 @@ class BoundTree {
     CacheBudget* m_budget;
     BoundNode m_root;
 
-    std::atomic<uint64_t> m_bytes{0}, m_nodes{1}, m_peakBytes{0};
+    std::atomic<uint64_t> m_nodes{1};  // the root and every block's nodes
     std::atomic<uint64_t> m_lookups{0}, m_blocksBuilt{0}, m_evaluations{0}, m_private{0}, m_evictions{0}, m_passes{0};
     std::atomic<double> m_buildSeconds{0};
     std::atomic<uint32_t> m_clock{1};

@@ -100,8 +100,7 @@ Range Over(const Measure& m, double cu, double ru, double cv, double rv) {
 /// origin: the combination -p2 d1 + p1 d2 cancels that generator.
 bool EdgeSeparates(const Measure& d1, const Measure& d2, double p1, double p2) {
     if (p1 == 0 && p2 == 0) return false;
-    Measure l;
-    l.c = -p2 * d1.c + p1 * d2.c;
+    const double centre = -p2 * d1.c + p1 * d2.c;
     // The generator cancels exactly: -p2 * p1 + p1 * p2 == 0 in floating point too.
     const double gu = -p2 * d1.u + p1 * d2.u, gv = -p2 * d1.v + p1 * d2.v, gw = -p2 * d1.w + p1 * d2.w;
     const double a2 = std::fabs(p2), a1 = std::fabs(p1);
@@ -110,7 +109,7 @@ bool EdgeSeparates(const Measure& d1, const Measure& d2, double p1, double p2) {
                              a1 * (std::fabs(d2.c) + std::fabs(d2.u) + std::fabs(d2.v) + std::fabs(d2.w) + d2.rad);
     const double spread = std::fabs(gu) + std::fabs(gv) + std::fabs(gw);
     const double total = spread + rad + 2 * kSlack * magnitude + 1e-300;
-    return std::isfinite(total) && (l.c - total > 0 || l.c + total < 0);
+    return std::isfinite(total) && (centre - total > 0 || centre + total < 0);
 }
 
 /// The part [lo, hi] of [-1, 1] where eps can be; false if empty.
@@ -226,10 +225,10 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
     const bool invertible = std::fabs(det) > 1e-6 * scale && std::isfinite(scale);
     // Where the parallelogram is not invertible across the ray, its zonotope edges may still
     // separate it (where it is, the parameter box below is the sharper test).
-    if (!invertible)
+    if (!invertible) {
         for (auto [p1, p2] : {std::pair{d1.u, d2.u}, {d1.v, d2.v}, {d1.w, d2.w}})
             if (EdgeSeparates(d1, d2, p1, p2)) return false;
-    if (invertible) {
+    } else {
         const double R1 = std::fabs(d1.w) + d1.rad, R2 = std::fabs(d2.w) + d2.rad;
         const double ad = std::fabs(det);
         const double su = -d1.c * d2.v + d2.c * d1.v, sv = -d2.c * d1.u + d1.c * d2.u;
@@ -253,6 +252,10 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
             hitV = std::clamp(ev, vLo, vHi);
         }
     }
+    // eps_u = +-1 is u = pu +- pr (the evaluation's own mapping, surface.h).
+    double pu, pr, pv, prv;
+    RegionParameter(e.u0, e.u1, &pu, &pr);
+    RegionParameter(e.v0, e.v1, &pv, &prv);
     Range e1 = r1, e2 = r2, et = rt;
     if (e.narrowed) {
         e1 = Over(d1, cu, ru, cv, rv);
@@ -260,24 +263,19 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
         et = Over(t, cu, ru, cv, rv);
         if (e1.excludesZero() || e2.excludesZero() || et.hi < tMin || et.lo > tMax) return false;
         // The reachable parameters: eps in [lo, hi] is u in pu + pr * [lo, hi], rounded outward.
-        double pu, pr, pv, prv;
-        RegionParameter(e.u0, e.u1, &pu, &pr);
-        RegionParameter(e.v0, e.v1, &pv, &prv);
         const double su = 4 * kUlp * (std::fabs(pu) + pr), sv = 4 * kUlp * (std::fabs(pv) + prv);
         e.ru0 = std::max(e.u0, pu + pr * (cu - ru) - su);
         e.ru1 = std::min(e.u1, pu + pr * (cu + ru) + su);
         e.rv0 = std::max(e.v0, pv + prv * (cv - rv) - sv);
         e.rv1 = std::min(e.v1, pv + prv * (cv + rv) + sv);
     } else {
-        // The ray runs along the parallelogram (a silhouette) or it is degenerate: should the
-        // region be a hit, its point nearest along the ray stands for it, since at a silhouette
+        // The ray runs along the parallelogram (a silhouette), it is degenerate, or the ray can
+        // reach all of it: should the region be a hit, its point nearest along the ray stands for
+        // it, since at a silhouette
         // the side facing the ray comes first (the centre could lie on the far side).
         hitU = t.u > 0 ? -1 : t.u < 0 ? 1 : 0;
         hitV = t.v > 0 ? -1 : t.v < 0 ? 1 : 0;
     }
-    double pu, pr, pv, prv;
-    RegionParameter(e.u0, e.u1, &pu, &pr);
-    RegionParameter(e.v0, e.v1, &pv, &prv);
     e.hu = std::clamp(pu + pr * hitU, e.u0, e.u1);
     e.hv = std::clamp(pv + prv * hitV, e.v0, e.v1);
     e.tLo = std::max(et.lo, lo);

@@ -502,19 +502,7 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     progress.Finish();
 
     *stats = RenderStats();
-    for (const auto& tree : trees) {
-        const BoundTreeStats t = tree->stats();
-        stats->cache.nodes += t.nodes;
-        stats->cache.bytes += t.bytes;
-        stats->cache.peakBytes += t.peakBytes;
-        stats->cache.blocksBuilt += t.blocksBuilt;
-        stats->cache.evaluations += t.evaluations;
-        stats->cache.privateCopies += t.privateCopies;
-        stats->cache.lookups += t.lookups;
-        stats->cache.evictions += t.evictions;
-        stats->cache.evictionPasses += t.evictionPasses;
-        stats->cache.buildSeconds += t.buildSeconds;
-    }
+    for (const auto& tree : trees) stats->cache.Merge(tree->stats());
     stats->cacheBudgetBytes = options.cacheBytes;
     stats->cachePeakBytes = budget.peakBytes.load();
     for (int i = 0; i < nThreads; ++i) {
