@@ -266,7 +266,7 @@ class MeshIntersector final : public renderer::SurfaceIntersector {
     explicit MeshIntersector(const Mesh& mesh) : m_mesh(mesh) {}
 
     bool Intersect(const renderer::Ray& ray, double tMin, double tMax, const renderer::Tolerance&, bool anyHit,
-                   renderer::Hit* hit, renderer::IntersectStats& stats) override {
+                   renderer::Hit* hit, renderer::IntersectStats& stats, const renderer::RayGroup*) override {
         ++stats.rays;
         if (!m_mesh.scene || !(tMin <= tMax)) return false;
         const float tnear = FloatUp(std::max(tMin, 0.0)), tfar = FloatDown(tMax);

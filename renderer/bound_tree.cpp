@@ -363,7 +363,8 @@ BoundTree::Walker::~Walker() {
 void BoundTree::Walker::Enter() {
     // Announce the epoch before reaching any node (sequentially consistent, against Evict's
     // unlink-then-advance).
-    m_slot->epoch.store(m_tree.m_epoch.load());
+    m_epoch = m_tree.m_epoch.load();
+    m_slot->epoch.store(m_epoch);
     // The clock ticks every 64 rays of each walker: coarse, but enough to tell old from recent.
     if (++m_raysSinceTick >= 64) {
         m_raysSinceTick = 0;

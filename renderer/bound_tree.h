@@ -159,6 +159,10 @@ class BoundTree {
         Walker& operator=(const Walker&) = delete;
         void Enter();
         void Leave();
+        /// The epoch announced by the last Enter(). Nodes reached in an earlier ray stay valid in
+        /// this one if the epoch is the same: no eviction has finished unlinking in between, and
+        /// blocks an eviction is unlinking now are not freed before this ray leaves.
+        uint64_t epoch() const { return m_epoch; }
         /// The block of children of `node` (allocated now if absent; their bounds not yet evaluated).
         BoundNode* Children(BoundNode& node);
         /// The bound of `child` (one of a node's children) over its region [u0,u1] x [v0,v1],
@@ -175,6 +179,7 @@ class BoundTree {
         RegionBound m_privateBound;  // a private copy (see Bound)
         double m_buildSeconds = 0;
         uint32_t m_raysSinceTick = 0;
+        uint64_t m_epoch = 0;
     };
 
     /// The figures so far (exact once no walker is active).

@@ -34,6 +34,47 @@ void IntersectStats::Merge(const IntersectStats& o) {
     budgetExhausted += o.budgetExhausted;
     parallelogramHits += o.parallelogramHits;
     maxHitError = std::max(maxHitError, o.maxHitError);
+    frontiers += o.frontiers;
+    frontierRegions += o.frontierRegions;
+}
+
+RayGroup RayGroup::FromCorners(const Ray (&corners)[4], uint64_t id) {
+    RayGroup g;
+    g.id = id;
+    glm::dvec3 inside(0.0);
+    for (const Ray& c : corners) {
+        g.origin += 0.25 * c.origin;
+        inside += 0.25 * (c.origin + c.dir);
+    }
+    g.spread0 = std::max(glm::length(corners[0].origin - corners[2].origin),
+                         glm::length(corners[1].origin - corners[3].origin));
+    g.spreadSlope = std::max(glm::length(corners[0].dir - corners[2].dir), glm::length(corners[1].dir - corners[3].dir));
+    for (int i = 0; i < 4; ++i) {
+        const Ray &a = corners[i], &b = corners[(i + 1) % 4];
+        // The plane holding both rays: through a common origin (perspective) or along a common
+        // direction (orthographic). Rays that share neither are skew: no plane, no culling.
+        glm::dvec3 n(0.0);
+        if (a.origin == b.origin)
+            n = glm::cross(a.dir, b.dir);
+        else if (a.dir == b.dir)
+            n = glm::cross(a.dir, b.origin - a.origin);
+        const double length = glm::length(n);
+        if (!(length > 0) || !std::isfinite(length)) {
+            for (int k = 0; k < 4; ++k) g.normal[k] = glm::dvec3(0.0), g.offset[k] = -INFINITY;
+            return g;
+        }
+        n /= length;
+        if (glm::dot(n, inside) < glm::dot(n, a.origin)) n = -n;
+        g.normal[i] = n;
+        g.offset[i] = glm::dot(n, a.origin);
+    }
+    return g;
+}
+
+bool RayGroup::Contains(const glm::dvec3& p, double slack) const {
+    for (int i = 0; i < 4; ++i)
+        if (glm::dot(normal[i], p) < offset[i] - slack) return false;
+    return true;
 }
 
 namespace {
@@ -134,6 +175,61 @@ struct Entry {
     double ru0, ru1, rv0, rv1;
 };
 
+/// The entry of the whole domain (not yet measured).
+Entry RootEntry(BoundNode& root) { return Entry{&root, 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, false, 0, 1, 0, 1}; }
+
+/// How many children the split of `r` gives (2 across one parameter, 4 across both).
+int ChildCount(const Entry& r) { return r.axis == kSplitBoth ? 4 : 2; }
+
+/// Sets `c` to child i of `r`: its node in `kids`, its region and levels (the rest is set when it
+/// is measured). Child i: bit 0 the high half across the split parameter (u first), bit 1 high in v.
+void SetChild(const Entry& r, BoundNode* kids, int i, Entry* c) {
+    const double uMid = 0.5 * (r.u0 + r.u1), vMid = 0.5 * (r.v0 + r.v1);
+    const bool splitU = r.axis != kSplitV, splitV = r.axis != kSplitU;
+    const bool highU = splitU && (i & 1), highV = splitV && (splitU ? (i & 2) : (i & 1));
+    c->node = &kids[i];
+    c->u0 = splitU && highU ? uMid : r.u0;
+    c->u1 = splitU && !highU ? uMid : r.u1;
+    c->v0 = splitV && highV ? vMid : r.v0;
+    c->v1 = splitV && !highV ? vMid : r.v1;
+    c->levelU = r.levelU + splitU;
+    c->levelV = r.levelV + splitV;
+}
+
+/// Whether the bound lies wholly on the outer side of one of the group's planes: then no ray of
+/// the group can meet it. Rounding makes it answer false, never a wrong true.
+bool OutsideGroup(const RegionBound& b, const RayGroup& g) {
+    for (int k = 0; k < 4; ++k) {
+        const glm::dvec3& n = g.normal[k];
+        if (!std::isfinite(g.offset[k])) return false;
+        double boxHi = 0, centre = 0, rad = 0, nu = 0, nv = 0, nw = 0, magnitude = std::fabs(g.offset[k]);
+        bool bounded = true;
+        for (int i = 0; i < 3; ++i) {
+            if (n[i] == 0) continue;
+            if (!(b.boundedMask & (1u << i))) {
+                bounded = false;
+                break;
+            }
+            boxHi += n[i] > 0 ? n[i] * b.hi[i] : n[i] * b.lo[i];
+            centre += n[i] * b.c[i];
+            nu += n[i] * b.a[i];
+            nv += n[i] * b.b[i];
+            nw += n[i] * b.g[i];
+            rad += std::fabs(n[i]) * b.r[i];
+            magnitude += std::fabs(n[i]) * (std::fabs(b.lo[i]) + std::fabs(b.hi[i]) + std::fabs(b.c[i]) +
+                                            std::fabs(b.a[i]) + std::fabs(b.b[i]) + std::fabs(b.g[i]) + b.r[i]);
+        }
+        if (!bounded) continue;
+        const double formHi = centre + std::fabs(nu) + std::fabs(nv) + std::fabs(nw) + rad;
+        const double most = std::min(boxHi, formHi) + kSlack * magnitude + 1e-300;
+        if (std::isfinite(most) && most < g.offset[k]) return true;
+    }
+    return false;
+}
+
+/// The most nodes a group's frontier keeps: each of the group's rays tests all of them.
+constexpr size_t kMaxFrontier = 32;
+
 class TreeIntersector final : public SurfaceIntersector {
   public:
     TreeIntersector(BoundTree& tree, uint64_t budget, std::unique_ptr<BoundTree> owned = nullptr)
@@ -142,13 +238,28 @@ class TreeIntersector final : public SurfaceIntersector {
           m_walker(tree),
           m_evaluator(tree.MakeEvaluator()),
           m_budget(budget) {
-        m_stack.reserve(4 * static_cast<size_t>(tree.maxDepth()) + 16);
+        // Each of the at most 2 * maxDepth splits on a ray's path leaves at most 3 siblings behind.
+        m_stack.resize(kMaxFrontier + 6 * static_cast<size_t>(std::max(tree.maxDepth(), 0)) + 8);
     }
 
     bool Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit, Hit* hit,
-                   IntersectStats& stats) override;
+                   IntersectStats& stats, const RayGroup* group) override;
 
   private:
+    /// A node of a group's frontier: its entry (region, split) and its bound (a copy: the node's
+    /// own may be another thread's to publish).
+    struct FrontierNode {
+        Entry entry;
+        RegionBound bound;
+    };
+
+    /// The frontier of `group`: the nodes, at most kMaxFrontier, whose regions hold every point
+    /// of the surface that a ray of the group can meet, found by splitting from the root while the
+    /// group's planes cull children. A function of the group and the node bounds alone (whatever
+    /// the cache held), so every ray's result is too. Built within a ray (the walker entered);
+    /// its nodes stay valid for the group's later rays while the walker's epoch is the same, and
+    /// it is built again otherwise.
+    void BuildFrontier(const RayGroup& group, IntersectStats& stats);
     /// Measures the entry's bound `b` against the ray; false if it provably misses.
     bool Test(Entry& e, const RegionBound& b, double tMin, double tMax);
     /// The ray's t range through the box of the bound's bounded coordinates, within [lo, hi]
@@ -160,12 +271,62 @@ class TreeIntersector final : public SurfaceIntersector {
     BoundTree::Walker m_walker;
     std::unique_ptr<RegionEvaluator> m_evaluator;
     uint64_t m_budget;
-    std::vector<Entry> m_stack;
+    std::vector<Entry> m_stack;  // the walk's, [0, m_top) (sized once: entries are not initialised)
+    size_t m_top = 0;
     // The current ray's frame.
     glm::dvec3 m_origin, m_dir, m_n1, m_n2, m_invDir;
     glm::dvec3 m_frame[3];  // n1, n2, dir
     uint64_t m_tested = 0, m_evaluated = 0;
+    // The current group's frontier.
+    uint64_t m_groupId = 0, m_groupEpoch = 0;
+    std::vector<FrontierNode> m_frontier, m_queue;
 };
+
+void TreeIntersector::BuildFrontier(const RayGroup& group, IntersectStats& stats) {
+    m_groupId = group.id;
+    m_groupEpoch = m_walker.epoch();
+    m_frontier.clear();
+    m_queue.clear();
+    ++stats.frontiers;
+    const int maxDepth = m_tree.maxDepth();
+    Entry root = RootEntry(m_tree.root());
+    const RegionBound& rootBound = m_tree.root().bound;
+    root.axis = SplitAxis(rootBound, 0, 0, maxDepth);
+    if (!OutsideGroup(rootBound, group)) m_queue.push_back({root, rootBound});
+    // Breadth first: a node is split while its children fit in the frontier and it is wider than
+    // the group where it lies (smaller nodes overlap the group's edges and cull little).
+    for (size_t head = 0; head < m_queue.size(); ++head) {
+        const FrontierNode n = m_queue[head];
+        const Entry& e = n.entry;
+        bool split = e.levelU < maxDepth || e.levelV < maxDepth;
+        if (split && n.bound.bounded()) {
+            const glm::dvec3 nearest = glm::clamp(group.origin, n.bound.lo, n.bound.hi);
+            const double distance = glm::length(nearest - group.origin);
+            const glm::dvec3 extent = n.bound.hi - n.bound.lo;
+            const double width = std::max({extent.x, extent.y, extent.z});
+            split = width > group.spread0 + group.spreadSlope * distance;
+        }
+        if (split) {
+            BoundNode* kids = m_walker.Children(*e.node);
+            FrontierNode kept[4];
+            int nKept = 0;
+            for (int i = 0; i < ChildCount(e); ++i) {
+                Entry c = e;
+                SetChild(e, kids, i, &c);
+                const RegionBound& b = m_walker.Bound(kids[i], c.u0, c.u1, c.v0, c.v1, *m_evaluator, &m_evaluated);
+                ++stats.frontierRegions;
+                if (OutsideGroup(b, group)) continue;
+                c.axis = SplitAxis(b, c.levelU, c.levelV, maxDepth);
+                kept[nKept++] = {c, b};
+            }
+            if (m_frontier.size() + (m_queue.size() - head - 1) + size_t(nKept) <= kMaxFrontier) {
+                for (int i = 0; i < nKept; ++i) m_queue.push_back(kept[i]);
+                continue;
+            }
+        }
+        m_frontier.push_back(n);
+    }
+}
 
 bool TreeIntersector::BoxRange(const RegionBound& b, double* lo, double* hi) const {
     for (int i = 0; i < 3; ++i) {
@@ -287,7 +448,7 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
 }
 
 bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit,
-                                Hit* hit, IntersectStats& stats) {
+                                Hit* hit, IntersectStats& stats, const RayGroup* group) {
     m_origin = ray.origin;
     m_dir = ray.dir;
     // Any unit vector perpendicular to the ray, then a third completing the frame.
@@ -300,25 +461,47 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
     for (int i = 0; i < 3; ++i) m_invDir[i] = m_dir[i] != 0 ? 1.0 / m_dir[i] : 0.0;
     m_tested = 0;
     m_evaluated = 0;
-    m_stack.clear();
+    m_top = 0;
     m_walker.Enter();
+    if (group && (group->id != m_groupId || m_walker.epoch() != m_groupEpoch)) BuildFrontier(*group, stats);
 
     double best = tMax;
     bool found = false;
     const int maxDepth = m_tree.maxDepth();
-    Entry root{&m_tree.root(), 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, false, 0, 1, 0, 1};
-    root.axis = SplitAxis(m_tree.root().bound, 0, 0, maxDepth);
-    if (Test(root, m_tree.root().bound, tMin, best)) m_stack.push_back(root);
+    // Measures the entry in the stack's next slot against the ray, with its bound `b`: it stays
+    // on the stack if the ray can meet it.
+    auto measure = [&](const RegionBound& b) {
+        Entry& e = m_stack[m_top];
+        if (!Test(e, b, tMin, best)) return;
+        e.axis = SplitAxis(b, e.levelU, e.levelV, maxDepth);
+        ++m_top;
+    };
+    // Orders the entries from `first` up farthest first, so that they pop nearest first.
+    auto sortFrom = [&](size_t first) {
+        for (size_t i = first + 1; i < m_top; ++i)
+            for (size_t j = i; j > first && m_stack[j - 1].tLo < m_stack[j].tLo; --j) std::swap(m_stack[j - 1], m_stack[j]);
+    };
+    if (group) {
+        // A coherent ray starts from its group's frontier instead of the root.
+        for (const FrontierNode& f : m_frontier) {
+            m_stack[m_top] = f.entry;
+            measure(f.bound);
+        }
+        sortFrom(0);
+    } else {
+        m_stack[m_top] = RootEntry(m_tree.root());
+        measure(m_tree.root().bound);
+    }
 
-    while (!m_stack.empty()) {
+    while (m_top > 0) {
         if (m_tested >= m_budget) {
             // Out of budget (a shader too stiff to resolve at this tolerance, or bounds that
             // overflow everywhere): the nearest region left is a possible hit, uncertified, unless
             // a hit already found is nearer. Better a counted, visible approximation than a hang.
             ++stats.budgetExhausted;
             const Entry* nearest = nullptr;
-            for (const Entry& r : m_stack)
-                if (r.tLo <= best && (!nearest || r.tLo < nearest->tLo)) nearest = &r;
+            for (size_t i = 0; i < m_top; ++i)
+                if (const Entry& r = m_stack[i]; r.tLo <= best && (!nearest || r.tLo < nearest->tLo)) nearest = &r;
             if (nearest) {
                 best = std::max(nearest->tLo, tMin);
                 found = true;
@@ -326,8 +509,7 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
             }
             break;
         }
-        const Entry r = m_stack.back();
-        m_stack.pop_back();
+        const Entry r = m_stack[--m_top];
         if (r.tLo > best) continue;  // a nearer hit was found since this region was measured
 
         const bool small = r.size <= tolerance.At(r.tLo);
@@ -365,28 +547,14 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
         // first). A child outside the parameters where the parent's parallelogram meets the ray
         // is missed without being looked at.
         BoundNode* kids = m_walker.Children(*r.node);
-        const double uMid = 0.5 * (r.u0 + r.u1), vMid = 0.5 * (r.v0 + r.v1);
-        const bool splitU = r.axis != kSplitV, splitV = r.axis != kSplitU;
-        const int count = splitU && splitV ? 4 : 2;
-        Entry kept[4];
-        int nKept = 0;
-        for (int i = 0; i < count; ++i) {
-            // Child i: bit 0 the high half across the split parameter (u first), bit 1 high in v.
-            const bool highU = splitU && (i & 1), highV = splitV && (splitU ? (i & 2) : (i & 1));
-            Entry c{&kids[i], r.u0, r.u1, r.v0, r.v1, r.levelU + splitU, r.levelV + splitV, 0, 0, 0, 0, 0, 0, false,
-                    0, 0, 0, 0};
-            if (splitU) (highU ? c.u0 : c.u1) = uMid;
-            if (splitV) (highV ? c.v0 : c.v1) = vMid;
+        const size_t first = m_top;
+        for (int i = 0; i < ChildCount(r); ++i) {
+            Entry& c = m_stack[m_top];
+            SetChild(r, kids, i, &c);
             if (c.u1 < r.ru0 || c.u0 > r.ru1 || c.v1 < r.rv0 || c.v0 > r.rv1) continue;
-            const RegionBound& bound = m_walker.Bound(kids[i], c.u0, c.u1, c.v0, c.v1, *m_evaluator, &m_evaluated);
-            if (!Test(c, bound, tMin, best)) continue;
-            c.axis = SplitAxis(bound, c.levelU, c.levelV, maxDepth);
-            kept[nKept++] = c;
+            measure(m_walker.Bound(kids[i], c.u0, c.u1, c.v0, c.v1, *m_evaluator, &m_evaluated));
         }
-        // Insertion sort, farthest first.
-        for (int i = 1; i < nKept; ++i)
-            for (int j = i; j > 0 && kept[j - 1].tLo < kept[j].tLo; --j) std::swap(kept[j - 1], kept[j]);
-        for (int i = 0; i < nKept; ++i) m_stack.push_back(kept[i]);
+        sortFrom(first);
     }
     m_walker.Leave();
 

@@ -46,8 +46,32 @@ struct IntersectStats {
     /// Hits resolved by the parallelogram of a node's affine bound before its box was small.
     uint64_t parallelogramHits = 0;
     double maxHitError = 0;
+    /// Coherent rays (RayGroup): frontiers built, and the region bounds tested to build them
+    /// (shared by the group's rays, so not in regionsBounded).
+    uint64_t frontiers = 0;
+    uint64_t frontierRegions = 0;
 
     void Merge(const IntersectStats& o);
+};
+
+/// A convex set that holds every ray of a group (the camera rays through one block of pixels,
+/// bounded by the four planes through its corner rays), so that the walk of the hierarchy's top
+/// levels is done once for all of them: a node whose bound lies wholly outside one plane cannot
+/// meet any of the rays. `id` names the group within a render: equal ids, equal groups.
+struct RayGroup {
+    uint64_t id = 0;
+    glm::dvec3 normal[4];  // a point x is inside when dot(normal[i], x) >= offset[i] for all i
+    double offset[4] = {0, 0, 0, 0};
+    glm::dvec3 origin{0.0};  // the centre ray's origin
+    /// The group's width at distance t from its origin: at most spread0 + spreadSlope * t.
+    double spread0 = 0, spreadSlope = 0;
+
+    /// The group of the rays between four corner rays, given in order around the block (the rays
+    /// through a convex quadrilateral of the image: all of one perspective or orthographic
+    /// camera). Every ray through the quadrilateral lies inside.
+    static RayGroup FromCorners(const Ray (&corners)[4], uint64_t id);
+    /// Whether the point p lies inside, within `slack` (a distance along the normals).
+    bool Contains(const glm::dvec3& p, double slack = 0) const;
 };
 
 /// Intersects rays with one displaced surface. Holds an interpreter, so make one per thread.
@@ -56,9 +80,11 @@ class SurfaceIntersector {
     virtual ~SurfaceIntersector() = default;
 
     /// The nearest hit with t in [tMin, tMax], or false. With `anyHit`, stops at the first hit
-    /// found (for shadow rays).
+    /// found (for shadow rays). A ray of a `group` (it must lie inside it) shares the walk of the
+    /// top levels with the group's other rays; its result is a function of the ray and the group,
+    /// whichever rays came before.
     virtual bool Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit,
-                           Hit* hit, IntersectStats& stats) = 0;
+                           Hit* hit, IntersectStats& stats, const RayGroup* group = nullptr) = 0;
 };
 
 /// Regions one ray may test before the search stops with an uncertified possible hit: a bound

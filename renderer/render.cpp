@@ -103,14 +103,14 @@ HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray
 /// The nearest hit along `ray` in [tMin, tMax] over the primitives the BVH offers. A one-sided
 /// primitive (Sides 1) seen from behind is not hit: the search goes on past it.
 NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& ray, double tMin, double tMax,
-                        const Tolerance& tol, IntersectStats& stats, const glm::dvec3& eye) {
+                        const Tolerance& tol, IntersectStats& stats, const glm::dvec3& eye, const RayGroup* group) {
     constexpr int kMaxBackFaces = 16;
     for (int attempt = 0; attempt <= kMaxBackFaces; ++attempt) {
         NearestHit nearest;
         double best = tMax;
         scene.bvh->Traverse(ray, tMin, &best, [&](int i, double) {
             Hit hit;
-            if (ts.intersectors[i]->Intersect(ray, tMin, best, tol, false, &hit, stats)) {
+            if (ts.intersectors[i]->Intersect(ray, tMin, best, tol, false, &hit, stats, group)) {
                 best = hit.t;
                 nearest = {hit, i};
             }
@@ -280,7 +280,7 @@ std::string RenderStats::ToJson() const {
                   "\"regions_per_ray_mean\":%.2f,\"regions_per_ray_max\":%llu,\"evaluations_per_ray_mean\":%.3f,"
                   "\"depth_limit_hits\":%llu,\"max_certified_error\":%.6g,\"parallelogram_hits\":%llu,"
                   "\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f,\"shadow_evaluations_per_ray_mean\":%.3f,"
-                  "\"budget_exhausted_rays\":%llu,"
+                  "\"budget_exhausted_rays\":%llu,\"frontiers\":%llu,\"frontier_regions_mean\":%.2f,"
                   "\"cache\":{\"budget_mb\":%.1f,\"peak_mb\":%.2f,\"final_mb\":%.2f,\"nodes\":%llu,"
                   "\"lookups\":%llu,\"hit_rate\":%.4f,\"evaluations\":%llu,\"private_copies\":%llu,"
                   "\"evictions\":%llu,\"eviction_passes\":%llu,\"build_thread_seconds\":%.3f}}",
@@ -293,6 +293,7 @@ std::string RenderStats::ToJson() const {
                   static_cast<unsigned long long>(shadow.rays), perRay(shadow.regionsBounded, shadow.rays),
                   perRay(shadow.regionsEvaluated, shadow.rays),
                   static_cast<unsigned long long>(camera.budgetExhausted + shadow.budgetExhausted),
+                  static_cast<unsigned long long>(camera.frontiers), perRay(camera.frontierRegions, camera.frontiers),
                   double(cacheBudgetBytes) / (1 << 20), double(cachePeakBytes) / (1 << 20),
                   double(cache.bytes) / (1 << 20), static_cast<unsigned long long>(cache.nodes),
                   static_cast<unsigned long long>(cache.lookups), hitRate,
@@ -425,8 +426,20 @@ void ClipRange(const CameraDesc& camera, const Ray& ray, double* tMin, double* t
 }
 
 /// Traces and shades one camera sample.
+/// The group of the camera rays through the pixels of block (bx, by) of side `side` (a block of
+/// the whole image's pixel grid, whatever the tile), grown by a quarter pixel so that rounding
+/// cannot put a ray of the block outside.
+RayGroup BlockGroup(const Camera& camera, int side, int bx, int by, int blocksX) {
+    constexpr double kMargin = 0.25;
+    const double x0 = bx * side - kMargin, x1 = (bx + 1) * side + kMargin;
+    const double y0 = by * side - kMargin, y1 = (by + 1) * side + kMargin;
+    const Ray corners[4] = {camera.GenerateRay(x0, y0), camera.GenerateRay(x1, y0), camera.GenerateRay(x1, y1),
+                            camera.GenerateRay(x0, y1)};
+    return RayGroup::FromCorners(corners, 1 + uint64_t(by) * uint64_t(blocksX) + uint64_t(bx));
+}
+
 SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camera& camera, const glm::dvec2& raster,
-                        const Tolerance& tol, const glm::dvec3& eye) {
+                        const Tolerance& tol, const glm::dvec3& eye, const RayGroup* group) {
     SampleValue value;
     const Ray ray = camera.GenerateRay(raster.x, raster.y);
     double tMin, tMax;
@@ -434,7 +447,7 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
     ++ts.cameraRays;
     if (!(tMin <= tMax)) return value;
     const uint64_t before = ts.cameraStats.regionsBounded;
-    const NearestHit nh = TraceNearest(scene, ts, ray, tMin, tMax, tol, ts.cameraStats, eye);
+    const NearestHit nh = TraceNearest(scene, ts, ray, tMin, tMax, tol, ts.cameraStats, eye, group);
     value.cost = static_cast<int64_t>(ts.cameraStats.regionsBounded - before);
     if (nh.primitive < 0) return value;
     const HitPoint at = EvaluateHit(scene, ts, ray, nh, eye);
@@ -479,15 +492,36 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
         for (const Primitive& prim : scene.primitives)
             trees.push_back(std::make_unique<BoundTree>(prim.base, prim.bound, eye, options.bounds, options.maxDepth,
                                                         &budget));
+    const int side = options.rayGroupPixels;
+    const int blocksX = side > 0 ? (cam.xres + side - 1) / side : 0;
     auto worker = [&](int index) {
         ThreadState ts(scene, options, trees);
         std::vector<Sample> samples;
         std::vector<SampleValue> values;
+        std::vector<std::pair<int64_t, uint32_t>> order;  // (block, sample index)
+        RayGroup group;
         for (size_t i = nextTile++; i < tiles.size(); i = nextTile++) {
             film.TileSamples(tiles[i], &samples);
             values.resize(samples.size());
-            for (size_t k = 0; k < samples.size(); ++k)
-                values[k] = TraceSample(scene, ts, camera, samples[k].raster, tol, eye);
+            if (side <= 0) {
+                for (size_t k = 0; k < samples.size(); ++k)
+                    values[k] = TraceSample(scene, ts, camera, samples[k].raster, tol, eye, nullptr);
+            } else {
+                // Block by block (the tile's margin reaches into its neighbours' blocks).
+                order.clear();
+                for (size_t k = 0; k < samples.size(); ++k)
+                    order.emplace_back(int64_t(samples[k].py / side) * blocksX + samples[k].px / side, uint32_t(k));
+                std::sort(order.begin(), order.end());
+                for (const auto& [block, k] : order) {
+                    const int bx = int(block % blocksX), by = int(block / blocksX);
+                    if (group.id != uint64_t(block) + 1) group = BlockGroup(camera, side, bx, by, blocksX);
+                    // A sample outside its pixel (never, with the film's stratified samples) goes alone.
+                    const glm::dvec2 p = samples[k].raster;
+                    const bool inBlock =
+                        p.x >= bx * side && p.x <= (bx + 1) * side && p.y >= by * side && p.y <= (by + 1) * side;
+                    values[k] = TraceSample(scene, ts, camera, p, tol, eye, inBlock ? &group : nullptr);
+                }
+            }
             film.ResolveTile(tiles[i], samples, values, image);
             progress.TileDone();
         }

@@ -20,6 +20,9 @@ struct Primitive;
 /// Makes the intersector one thread uses for one primitive (`index` in PreparedScene::primitives).
 using IntersectorFactory = std::function<std::unique_ptr<SurfaceIntersector>(const Primitive& primitive, int index)>;
 
+/// The side of a block of pixels whose camera rays are traced as a group (`--ray-groups`).
+inline constexpr int kDefaultRayGroupPixels = 8;
+
 struct RenderOptions {
     int threads = 0;               // 0: one per core
     double tolerancePixels = 0.5;  // a region is a hit once its bound is smaller than this many pixels
@@ -28,6 +31,10 @@ struct RenderOptions {
     size_t cacheBytes = kDefaultCacheBytes;        // the bound hierarchies' memory budget (renderer/bound_tree.h)
     uint64_t regionBudget = kDefaultRegionBudget;  // per ray (renderer/intersect.h)
     int tileSize = 32;                             // pixels per side (less for small images)
+    /// Camera rays are traced in groups of this many pixels per side, which share the walk of the
+    /// bound hierarchies' top levels (RayGroup); blocks of the whole image, so the image does not
+    /// depend on the tiles. 0: every ray alone.
+    int rayGroupPixels = kDefaultRayGroupPixels;
     bool showProgress = false;                     // a progress bar on stderr (renderer/progress.h)
     /// Replaces the guaranteed intersector, for every primitive and thread: the benches' in-process
     /// tessellation baseline (bench/) renders the same samples, shading and shadows through it.

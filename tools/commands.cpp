@@ -151,6 +151,7 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     options.maxDepth = cmd.maxDepth;
     options.regionBudget = cmd.regionBudget;
     options.cacheBytes = cmd.cacheBytes;
+    options.rayGroupPixels = cmd.rayGroupPixels;
     options.showProgress = renderer::Progress::ShouldShow(cmd.quiet, stderr);
     renderer::ImageBuffer image;
     renderer::RenderStats stats;

@@ -10,6 +10,7 @@
 #include "compiler/specialise.h"
 #include "lang/preprocess.h"
 #include "renderer/intersect.h"
+#include "renderer/render.h"
 
 namespace affray::tools {
 
@@ -46,6 +47,7 @@ struct RenderCommand {
     int samples = 0;                              // --samples N: N x N per pixel (0: the scene's)
     uint64_t regionBudget = renderer::kDefaultRegionBudget;
     size_t cacheBytes = renderer::kDefaultCacheBytes;
+    int rayGroupPixels = renderer::kDefaultRayGroupPixels;
 };
 
 struct DiffCommand {

@@ -1,7 +1,9 @@
 // tests/renderer/bound_tree_test.cpp: the shared bound hierarchy (renderer/bound_tree.h): the
 // image does not depend on the thread count or on what the cache held (a tiny budget that evicts
 // all the time gives the identical image), threads refining one tree concurrently find exactly the
-// hits of a lone walker, evictions keep the tree within its budget, and the split rule.
+// hits of a lone walker, evictions keep the tree within its budget, and the split rule. Ray
+// groups (coherent camera rays): every ray of a pixel block lies in its group, a group's rays find
+// the hits of lone rays, and the image does not depend on the tile size.
 #include "renderer/bound_tree.h"
 
 #include <catch2/catch.hpp>
@@ -45,7 +47,7 @@ struct Result {
     RenderStats stats;
 };
 
-Result RenderWith(int threads, size_t cacheBytes) {
+Result RenderWith(int threads, size_t cacheBytes, int tileSize = 32, int rayGroupPixels = kDefaultRayGroupPixels) {
     std::string error;
     std::optional<SceneDesc> desc = ParseRib(kScene, "t.rib", &error, nullptr);
     INFO(error);
@@ -57,6 +59,8 @@ Result RenderWith(int threads, size_t cacheBytes) {
     RenderOptions options;
     options.threads = threads;
     options.cacheBytes = cacheBytes;
+    options.tileSize = tileSize;
+    options.rayGroupPixels = rayGroupPixels;
     Result r;
     RenderImage(prepared, options, &r.image, &r.stats);
     return r;
@@ -174,4 +178,101 @@ TEST_CASE("bound tree: a region is split across the parameter the surface stretc
     box.boundedMask = 7;
     CHECK(SplitAxis(box, 4, 4, 24) == kSplitBoth);
     CHECK(SplitAxis(box, 5, 4, 24) == kSplitV);
+}
+
+namespace {
+
+/// A camera looking down at the unit square from above, slightly oblique.
+CameraDesc DownCamera(bool perspective) {
+    CameraDesc cam;
+    cam.xres = 64;
+    cam.yres = 48;
+    cam.perspective = perspective;
+    cam.fovDegrees = 40;
+    cam.worldToCamera = glm::dmat4(1.0);
+    // Camera at (0.5, 0.3, 2) looking along -z, tilted a little: world to camera.
+    const glm::dmat4 cameraToWorld = glm::dmat4(glm::dvec4(1, 0, 0, 0), glm::dvec4(0, -0.96, -0.28, 0),
+                                                glm::dvec4(0, 0.28, -0.96, 0), glm::dvec4(0.5, 0.3, 2, 1));
+    cam.worldToCamera = glm::inverse(cameraToWorld);
+    if (!perspective) cam.screenWindow = glm::dvec4(-0.8, 0.8, -0.6, 0.6);
+    return cam;
+}
+
+RayGroup GroupOf(const Camera& camera, double x0, double y0, double x1, double y1, uint64_t id) {
+    const Ray corners[4] = {camera.GenerateRay(x0, y0), camera.GenerateRay(x1, y0), camera.GenerateRay(x1, y1),
+                            camera.GenerateRay(x0, y1)};
+    return RayGroup::FromCorners(corners, id);
+}
+
+}  // namespace
+
+TEST_CASE("ray groups: every ray through a block lies in its group, and rays beside it do not", "[renderer][groups]") {
+    for (bool perspective : {true, false}) {
+        INFO((perspective ? "perspective" : "orthographic"));
+        const Camera camera(DownCamera(perspective));
+        const RayGroup g = GroupOf(camera, 16, 8, 24, 16, 1);
+        test::Rng rng(11);
+        for (int i = 0; i < 500; ++i) {
+            const Ray inside = camera.GenerateRay(rng.uniform(16, 24), rng.uniform(8, 16));
+            for (double t : {0.0, 0.5, 2.0, 40.0}) CHECK(g.Contains(inside.origin + t * inside.dir, 1e-12));
+        }
+        // A ray half a pixel beside the block leaves the group (past its origin, for perspective).
+        for (auto [x, y] : {std::pair{15.5, 12.0}, {24.5, 12.0}, {20.0, 7.5}, {20.0, 16.5}}) {
+            const Ray beside = camera.GenerateRay(x, y);
+            CHECK_FALSE(g.Contains(beside.origin + 2.0 * beside.dir));
+        }
+    }
+}
+
+TEST_CASE("ray groups: a group's rays find the hits of lone rays", "[renderer][groups]") {
+    compiler::CompiledShader s = test::CompileOrThrow(
+        "displacement d() { P += 0.15 * (noise(P * 9) - 0.5) * normalize(N); }");
+    std::vector<std::string> errors;
+    const vm::Program bound = *compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
+    const BilinearPatch square = BilinearPatch::UnitSquare();
+    for (bool perspective : {true, false}) {
+        INFO((perspective ? "perspective" : "orthographic"));
+        const Camera camera(DownCamera(perspective));
+        const glm::dvec3 eye = camera.Position();
+        BoundTree tree(square, bound, eye, BoundMode::Reduced, 24);
+        auto grouped = MakeSurfaceIntersector(tree);
+        auto lone = MakeSurfaceIntersector(tree);
+        IntersectStats groupStats, loneStats;
+        const Tolerance tol{1e-3, 1e-3};
+        test::Rng rng(3);
+        int hits = 0;
+        uint64_t id = 0;
+        for (int by = 0; by < 48; by += 8)
+            for (int bx = 0; bx < 64; bx += 8) {
+                const RayGroup g = GroupOf(camera, bx - 0.25, by - 0.25, bx + 8.25, by + 8.25, ++id);
+                for (int i = 0; i < 12; ++i) {
+                    const Ray ray = camera.GenerateRay(rng.uniform(bx, bx + 8), rng.uniform(by, by + 8));
+                    Hit a, b;
+                    const bool foundA = grouped->Intersect(ray, 0, INFINITY, tol, false, &a, groupStats, &g);
+                    const bool foundB = lone->Intersect(ray, 0, INFINITY, tol, false, &b, loneStats);
+                    INFO("block " << bx << "," << by << " ray " << i);
+                    REQUIRE(foundA == foundB);
+                    if (!foundA) continue;
+                    ++hits;
+                    CHECK(std::fabs(a.t - b.t) <= a.error + b.error + 1e-12);
+                }
+            }
+        CHECK(hits > 100);
+        // The groups culled the top levels: fewer regions per ray than alone.
+        CHECK(groupStats.frontiers == id);
+        CHECK(groupStats.regionsBounded < loneStats.regionsBounded);
+    }
+}
+
+TEST_CASE("ray groups: the image does not depend on the tile size", "[renderer][groups]") {
+    const Result base = RenderWith(2, kDefaultCacheBytes, 32);
+    CHECK(base.stats.camera.frontiers > 0);
+    for (int tile : {5, 8, 13}) {
+        INFO("tile " << tile);
+        CHECK(SameImage(base.image, RenderWith(2, kDefaultCacheBytes, tile).image));
+    }
+    // Without groups every ray walks from the root: more regions per camera ray.
+    const Result alone = RenderWith(2, kDefaultCacheBytes, 32, 0);
+    CHECK(alone.stats.camera.frontiers == 0);
+    CHECK(alone.stats.camera.regionsBounded > base.stats.camera.regionsBounded);
 }
