@@ -8,7 +8,7 @@ and prints two Markdown tables:
   1. per scene: wall time of the render, peak memory of the process (its own rusage), regions
      tested and shader evaluations per camera ray, shadow regions per ray, the bound cache's peak
      size and hit rate, and the thread-seconds spent evaluating bounds (what a cold cache costs);
-  2. the wave at frequencies 8 to 128 (160x120, one sample): time, regions tested and shader
+  2. the wave at frequencies 8 to 1024 (160x120, one sample): time, regions tested and shader
      evaluations per camera ray.
 With --base, each scene is also rendered by another build (for example the commit before the bound
 hierarchy) and the ratio of wall times is printed. Times are this machine's; run nothing else.
@@ -87,7 +87,7 @@ def main():
     print()
     print("| wave frequency | wall | regions / camera ray | evaluations / camera ray | cache peak |")
     print("|---|---|---|---|---|")
-    for freq in (8, 16, 32, 64, 128):
+    for freq in (8, 16, 32, 64, 128, 256, 512, 1024):
         text = re.sub(r'"frequency" \[[^]]*\]', '"frequency" [%d]' % freq, wave)
         text = re.sub(r"^Format .*$", "Format 160 120 1", text, flags=re.M)
         path = os.path.join(ROOT, "scenes", ".perf_wave_%d.rib" % freq)

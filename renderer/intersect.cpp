@@ -17,6 +17,11 @@
 //    levels earlier, since the parallelogram's thickness shrinks quadratically with the region).
 // Every quantity carries its rounding (kSlack): a region is discarded only when its bound provably
 // misses the ray.
+//
+// Coherent rays (RayGroup): the camera rays of a block of pixels lie between four planes. A node
+// whose bound lies wholly outside one of them meets none of those rays, so the walk of the top
+// levels is done once per block and primitive (BuildFrontier) and each ray of the block starts
+// from the frontier it leaves, instead of from the root.
 #include "renderer/intersect.h"
 
 #include <algorithm>
