@@ -42,8 +42,13 @@ Value Lowerer::StringValue(const std::string& text) {
 
 std::optional<std::string> Lowerer::StringOf(const Value& v) const {
     std::optional<double> k = m_out.ir.ConstValue(v.c[0]);
-    if (v.type != Type::String || !k) return std::nullopt;
+    if (v.type != Type::String || !k || !(*k >= 0 && *k < static_cast<double>(m_strings.size()))) return std::nullopt;
     return m_strings[static_cast<size_t>(*k)];
+}
+
+const std::string& Lowerer::UnknownString() {
+    static const std::string unknown = std::string(1, '\0') + "(a string parameter)";
+    return unknown;
 }
 
 std::string Article(Type t) {

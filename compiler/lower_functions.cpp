@@ -251,7 +251,8 @@ void Lowerer::CheckUncalledFunctions() {
         for (const lang::VarDecl& p : f->params) {
             Variable param;
             param.type = FromTypeName(p.type);
-            param.value = m_ops.Promote(m_ops.Constant(0.0), param.type);
+            param.value = param.type == Type::String ? StringValue(UnknownString())
+                                                     : m_ops.Promote(m_ops.Constant(0.0), param.type);
             param.assigned = param.used = true;
             param.arraySize = p.arraySize;
             param.elements.assign(static_cast<size_t>(std::max(p.arraySize, 1)), param.value);

@@ -57,6 +57,8 @@ std::optional<std::string> Lowerer::SpaceName(const Value& v, lang::SourceLoc lo
                                                   : "expected the name of a coordinate space, got " + Article(v.type));
         return std::nullopt;
     }
+    // A space named by a parameter of a function nobody calls: any will do for checking it.
+    if (Unknown(*name)) return std::string("current");
     if (IsProjectiveSpace(*name)) {
         m_diags.error(loc, "coordinate space '" + *name + "' is projective and not supported");
         return std::nullopt;
@@ -161,7 +163,7 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
                 return std::nullopt;
             }
             if (*param == "width") widthScale = *v;
-            else if (*param != "filter") {
+            else if (*param != "filter" && !Unknown(*param)) {
                 m_diags.error(argLoc(i), "unknown filterstep parameter '" + *param + "'");
                 return std::nullopt;
             }
@@ -203,7 +205,7 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
             m_diags.error(argLoc(0), "the spline basis must be known when the shader is compiled");
             return std::nullopt;
         }
-        basis = *b;
+        basis = Unknown(*b) ? "catmull-rom" : *b;
         first = 1;
     }
     const SplineBasis* b = FindSplineBasis(basis);

@@ -174,6 +174,13 @@ class Lowerer {
     Value StringValue(const std::string& text);
     /// The text of a string value, if it is one constant string.
     std::optional<std::string> StringOf(const Value& v) const;
+    /// The string a parameter of a function nobody calls holds while the function is checked
+    /// (CheckUncalledFunctions): unknown, so a space name, spline basis or filterstep parameter
+    /// taken from it is accepted there and checked at each call instead. No source string equals
+    /// it (it holds a NUL).
+    static const std::string& UnknownString();
+    /// Whether `name` is UnknownString() while checking an uncalled function.
+    bool Unknown(const std::string& name) const { return m_checkingOnly && name == UnknownString(); }
 
     LoweredShader& m_out;
     lang::Diagnostics& m_diags;

@@ -753,3 +753,28 @@ TEST_CASE("an array argument of the wrong size says which sizes", "[compiler][di
     CHECK(message.find('2') != std::string::npos);
     CHECK(message.find('3') != std::string::npos);
 }
+
+TEST_CASE("a string parameter of an uncalled function names a space, a basis or a filter parameter",
+          "[compiler][diagnostics]") {
+    // Regression test (issue 14): checking a function nobody calls gave its string parameters the
+    // string with index 0, of a table that could be empty: a segmentation fault, nothing printed.
+    // Such a parameter is now unknown while the function is checked; the names are checked at
+    // each call instead.
+    CHECK(Warnings("float D (string space) { return xcomp(vtransform(space, N)); }\n"
+                   "displacement r() { P += 0.1 * N; }\n") == "");
+    CHECK(Warnings("point D (string space) { return transform(space, P); }\n"
+                   "displacement r() { P += 0.1 * N; }\n") == "");
+    CHECK(Warnings("normal D (string a; string b) { return ntransform(a, b, N); }\n"
+                   "float S (string basis) { return spline(basis, u, 0, 1, 2, 3); }\n"
+                   "float F (string p) { return filterstep(0.5, u, p, 1); }\n"
+                   "displacement r() { P += 0.1 * N; }\n") == "");
+    // Called, the name is the caller's: a known space works, an unknown one is an error at the
+    // call's own use of it, as for a literal.
+    CHECK(Warnings("float D (string space) { return zcomp(vtransform(space, N)); }\n"
+                   "displacement r() { P += D(\"object\") * 0.1 * N; }\n") == "");
+    CHECK(Diagnose("float D (string space) { return zcomp(vtransform(space, N)); }\n"
+                   "displacement r() { P += D(\"nowhere\") * 0.1 * N; }\n") ==
+          "test.sl:1:50: error: unknown coordinate space 'nowhere'\n"
+          "    float D (string space) { return zcomp(vtransform(space, N)); }\n"
+          "                                                     ^\n");
+}

@@ -343,3 +343,27 @@ TEST_CASE("cli: diff reports the RMSE and largest RGB error of one image against
     CHECK(Run("diff " + (dir / "a.exr").string()).status == 2);
     fs::remove_all(dir);
 }
+
+TEST_CASE("cli: an uncalled function passing a string parameter as a space compiles, evaluates and renders",
+          "[tools][render]") {
+    // Regression test (issue 14): compile, eval and render all died with a segmentation fault
+    // (exit 139, nothing printed) on this shader.
+    fs::path dir = TempDir("uncalled");
+    WriteFile(dir / "r.sl",
+              "float D (string space) { return xcomp(vtransform(space, N)); }\n"
+              "point T (string space) { return transform(space, P); }\n"
+              "displacement r() { P += 0.05 * sin(10 * u) * normalize(N); }\n");
+    const std::string sl = (dir / "r.sl").string();
+    CHECK(Run("compile " + sl).status == 0);
+    Output eval = Run("eval " + sl + " --at 0.25,0.5");
+    CHECK(eval.status == 0);
+    CHECK(eval.out.rfind("{\"P\":[0.25,0.5,", 0) == 0);
+    WriteFile(dir / "r.rib", "Format 16 12 1\nProjection \"perspective\" \"fov\" [40]\nDisplay \"r.exr\" \"file\" "
+                             "\"rgba\"\nTranslate 0 0 3\nWorldBegin\nDisplacement \"r\"\n"
+                             "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n");
+    Output render = Run("render " + (dir / "r.rib").string() + " -o " + (dir / "r.exr").string() + " --quiet", true);
+    INFO(render.out);
+    CHECK(render.status == 0);
+    CHECK(fs::exists(dir / "r.exr"));
+    fs::remove_all(dir);
+}
