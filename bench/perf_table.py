@@ -9,7 +9,9 @@ and prints two Markdown tables:
      tested and shader evaluations per camera ray, shadow regions per ray, the bound cache's peak
      size and hit rate, and the thread-seconds spent evaluating bounds (what a cold cache costs);
   2. the wave at frequencies 8 to 1024 (160x120, one sample): time, regions tested and shader
-     evaluations per camera ray.
+     evaluations per camera ray;
+  3. the showcase and the turbulence sphere at --cache-mb 256, 32, 8 and 2: time, peak memory,
+     the hierarchies' peak, evictions and bound evaluations (what a smaller budget costs).
 With --base, each scene is also rendered by another build (for example the commit before the bound
 hierarchy) and the ratio of wall times is printed. Times are this machine's; run nothing else.
 """
@@ -35,6 +37,13 @@ SCENES = [
     ("amplitude 1000, 1 sample", "scenes/stiff/amp1000.rib", ["--samples", "1"]),
     ("frequency 1000, 1 sample", "scenes/stiff/freq1000.rib", ["--samples", "1"]),
 ]
+
+# The memory-budget table: these scenes at these --cache-mb values.
+BUDGET_SCENES = [
+    ("showcase 640x480, 2x2 samples", "scenes/showcase.rib", []),
+    ("turbulence sphere 320x240, 1 sample", "scenes/turbulence.rib", []),
+]
+BUDGETS_MB = (256, 32, 8, 2)
 
 
 def render(build, scene, extra, threads, outdir):
@@ -100,6 +109,20 @@ def main():
         print("| %d | %.2f s | %.2f | %.3f | %.1f MB |" % (freq, s["wall_seconds"], s["regions_per_ray_mean"],
                                                           s.get("evaluations_per_ray_mean", 0),
                                                           s.get("cache", {}).get("peak_mb", 0)), flush=True)
+
+
+    # The memory budget: the hierarchies' share of the peak memory, and what evicting costs.
+    print()
+    print("| render | --cache-mb | wall | peak memory | cache peak | evictions | bound evaluations | "
+          "bound evaluation (thread-s) |")
+    print("|---|---|---|---|---|---|---|---|")
+    for label, scene, extra in BUDGET_SCENES:
+        for mb in BUDGETS_MB:
+            s, rss = render(args.build, scene, extra + ["--cache-mb", str(mb)], args.threads, outdir)
+            c = s.get("cache", {})
+            print("| %s | %g | %.2f s | %.0f MB | %.1f MB | %d | %d | %.2f |" % (
+                label, mb, s["wall_seconds"], rss, c.get("peak_mb", 0), c.get("evictions", 0),
+                c.get("evaluations", 0), c.get("build_thread_seconds", 0)), flush=True)
 
 
 if __name__ == "__main__":
