@@ -1,67 +1,34 @@
 // compiler/fold.cpp: the rewrite rules applied as each IR node is created.
-// A rule may fire only if its result is the same for every number type the VM runs (double,
-// interval, affine, dual), and a constant whose value is NaN or infinite is never folded (the
-// run-time operation reports it instead). One deliberate exception: x * 0 => 0, which differs
-// from IEEE only where x is infinite or NaN. Displacing along a constant axis (N = (0,0,1) on a
+// Constant operands: the operation runs in the scalar VM (vm::RunScalarOpcode), so the folded
+// constant is the run-time value bit for bit (tests/compiler/fold_test.cpp checks every foldable
+// opcode on edge values); a constant whose value is NaN or infinite is never folded (the run-time
+// operation reports it instead). The algebraic rules below (x + 0 => x, x * 1 => x, ...) may fire
+// only if their result is the same for every number type the VM runs (double, interval, affine,
+// dual), as a value: they may give the other zero where IEEE gives a signed one (-0 + 0 is +0).
+// One deliberate exception: x * 0 => 0, which also differs from IEEE where x is infinite or NaN. Displacing along a constant axis (N = (0,0,1) on a
 // flat patch) multiplies two components by 0 everywhere, and keeping those products would keep
 // every singularity of the displacement in all three coordinates; since every number type then
-// runs the same folded program, containment is unaffected. Constants fold with the scalar semantics (std:: functions),
-// exactly what the scalar VM would compute.
+// runs the same folded program, containment is unaffected. Constants fold by running the opcode in
+// the scalar VM (vm::RunScalarOpcode): a folded value is the run-time value, bit for bit.
 #include <cmath>
 
 #include "compiler/ir.h"
-#include "vm/noise.h"
+#include "vm/interpreter.h"
 
 namespace affray::compiler {
 
 namespace {
 
+/// The value of `n` on the constant operands `x`: the scalar VM's own (vm::RunScalarOpcode), so
+/// that a folded constant equals the run-time value bit for bit. The derivative of a constant is
+/// 0 (it does not vary over the surface), where the scalar VM, which has no derivatives, gives NaN.
 std::optional<double> Evaluate(const IrNode& n, const double* x) {
-    const double a = x[0], b = x[1];
-    auto truth = [](double v) { return v != 0; };  // NaN counts as true, as in the VM
-    switch (n.op) {
-        case IrOp::Neg: return -a;
-        case IrOp::Sqr: return a * a;
-        case IrOp::Sqrt: return std::sqrt(a);
-        case IrOp::Exp: return std::exp(a);
-        case IrOp::Log: return std::log(a);
-        case IrOp::Sin: return std::sin(a);
-        case IrOp::Cos: return std::cos(a);
-        case IrOp::Abs: return std::fabs(a);
-        case IrOp::Sign: return double((a > 0) - (a < 0));
-        case IrOp::DerivU:
-        case IrOp::DerivV: return 0.0;  // a constant does not vary over the surface
-        case IrOp::Floor: return std::floor(a);
-        case IrOp::Ceil: return std::ceil(a);
-        case IrOp::Round: return std::round(a);
-        case IrOp::Asin: return std::asin(a);
-        case IrOp::Acos: return std::acos(a);
-        case IrOp::Atan: return std::atan(a);
-        case IrOp::Not: return double(!truth(a));
-        case IrOp::Add: return a + b;
-        case IrOp::Sub: return a - b;
-        case IrOp::Mul: return a * b;
-        case IrOp::Div: return a / b;
-        case IrOp::Pow: return std::pow(a, b);
-        case IrOp::Min: return std::fmin(a, b);
-        case IrOp::Max: return std::fmax(a, b);
-        case IrOp::Atan2: return std::atan2(a, b);
-        case IrOp::Lt: return double(a < b);
-        case IrOp::Le: return double(a <= b);
-        case IrOp::Eq: return double(a == b);
-        case IrOp::Ne: return double(a != b);
-        case IrOp::And: return double(truth(a) && truth(b));
-        case IrOp::Or: return double(truth(a) || truth(b));
-        case IrOp::Select: return truth(a) ? b : x[2];
-        case IrOp::Noise: return vm::Noise(x, n.count, n.channel);
-        case IrOp::PNoise: return vm::PNoise(x, x + n.count / 2, n.count / 2, n.channel);
-        case IrOp::CellNoise: return vm::CellNoise(x, n.count, n.channel);
-
-        case IrOp::Const:
-        case IrOp::Global:
-        case IrOp::Param: break;
-    }
-    return std::nullopt;
+    const vm::Operation f = OperationOf(n.op);
+    if (vm::Has(f, vm::kDerivative)) return 0.0;
+    if (!vm::Has(f, vm::kFoldable)) return std::nullopt;
+    const vm::Op op = vm::OpcodeFor(f, n.count, vm::OperandForm::RR);
+    if (op == vm::Op::Ext) return std::nullopt;
+    return vm::RunScalarOpcode(op, x, n.channel);
 }
 
 bool IsPowerOfTwo(double k) {

@@ -6,47 +6,13 @@
 
 namespace affray::compiler {
 
-namespace {
-struct IrOpInfo {
-    const char* name;
-    int arity;
-};
-constexpr IrOpInfo kIrOps[] = {
-#define AFFRAY_IR_INFO(name, arity) {#name, arity},
-    AFFRAY_IR_OPS(AFFRAY_IR_INFO)
-#undef AFFRAY_IR_INFO
-};
-}  // namespace
-
-const char* ToString(IrOp op) { return kIrOps[static_cast<int>(op)].name; }
-int Arity(IrOp op) { return kIrOps[static_cast<int>(op)].arity; }
-
-bool IsCommutative(IrOp op) {
-    switch (op) {
-        case IrOp::Add:
-        case IrOp::Mul:
-        case IrOp::Min:
-        case IrOp::Max:
-        case IrOp::Eq:
-        case IrOp::Ne:
-        case IrOp::And:
-        case IrOp::Or: return true;
-        default: return false;
-    }
+const char* ToString(IrOp op) {
+    static constexpr const char* kLeaves[] = {"Const", "Global", "Param"};
+    const int i = static_cast<int>(op);
+    return i < kIrLeaves ? kLeaves[i] : vm::Info(OperationOf(op)).name;
 }
 
-bool IsBooleanOp(IrOp op) {
-    switch (op) {
-        case IrOp::Lt:
-        case IrOp::Le:
-        case IrOp::Eq:
-        case IrOp::Ne:
-        case IrOp::And:
-        case IrOp::Or:
-        case IrOp::Not: return true;
-        default: return false;
-    }
-}
+int Arity(IrOp op) { return static_cast<int>(op) < kIrLeaves ? 0 : vm::Info(OperationOf(op)).operands; }
 
 size_t IrBuilder::KeyHash::operator()(const Key& k) const {
     uint64_t h = (static_cast<uint64_t>(k.op) << 16 | static_cast<uint64_t>(k.count) << 8 | k.channel) *

@@ -20,31 +20,35 @@
 
 namespace affray::compiler {
 
-//  X(name, operand count: 0 a leaf, 1, 2, 3, or -1 a variable number)
-#define AFFRAY_IR_OPS(X)                                                                         \
-    X(Const, 0) X(Global, 0) X(Param, 0)                                                         \
-    X(Neg, 1) X(Sqr, 1) X(Sqrt, 1) X(Exp, 1) X(Log, 1) X(Sin, 1) X(Cos, 1) X(Abs, 1) X(Sign, 1)  \
-    X(DerivU, 1) X(DerivV, 1) X(Floor, 1) X(Ceil, 1) X(Round, 1) X(Asin, 1) X(Acos, 1)           \
-    X(Atan, 1) X(Not, 1)                                                                         \
-    X(Add, 2) X(Sub, 2) X(Mul, 2) X(Div, 2) X(Pow, 2) X(Min, 2) X(Max, 2) X(Atan2, 2) X(Lt, 2)   \
-    X(Le, 2) X(Eq, 2) X(Ne, 2) X(And, 2) X(Or, 2)                                                \
-    X(Select, 3)                                                                                 \
-    X(Noise, -1) X(PNoise, -1) X(CellNoise, -1)
-
+// The IR operations: three leaves (a constant, a shader global, a parameter), then the VM's
+// operations in their order (vm/opcodes.h, AFFRAY_OPERATIONS), whose facts the compiler reads from
+// that one table.
 enum class IrOp : uint8_t {
-#define AFFRAY_IR_ENUM(name, arity) name,
-    AFFRAY_IR_OPS(AFFRAY_IR_ENUM)
+    Const,
+    Global,
+    Param,
+#define AFFRAY_IR_ENUM(name, operands, flags, rsl) name,
+    AFFRAY_OPERATIONS(AFFRAY_IR_ENUM)
 #undef AFFRAY_IR_ENUM
 };
+inline constexpr int kIrLeaves = 3;
+/// The VM operation of an IR operation (None for the leaves), and back.
+constexpr vm::Operation OperationOf(IrOp op) {
+    return static_cast<int>(op) < kIrLeaves ? vm::Operation::None
+                                            : static_cast<vm::Operation>(static_cast<int>(op) - kIrLeaves + 1);
+}
+constexpr IrOp IrOpOf(vm::Operation f) { return static_cast<IrOp>(static_cast<int>(f) - 1 + kIrLeaves); }
+static_assert(OperationOf(IrOp::Neg) == vm::Operation::Neg && OperationOf(IrOp::CellNoise) == vm::Operation::CellNoise);
+
 const char* ToString(IrOp op);
 /// 0 for leaves, else the operand count; -1 for the noise functions (1 to 8 operands).
 int Arity(IrOp op);
 inline bool IsUnary(IrOp op) { return Arity(op) == 1; }
 inline bool IsBinary(IrOp op) { return Arity(op) == 2; }
 /// a op b == b op a, so the builder orders the operands canonically.
-bool IsCommutative(IrOp op);
+inline bool IsCommutative(IrOp op) { return vm::Has(OperationOf(op), vm::kCommutative); }
 /// Gives only 1 or 0 (comparisons and logic).
-bool IsBooleanOp(IrOp op);
+inline bool IsBooleanOp(IrOp op) { return vm::Has(OperationOf(op), vm::kTruth); }
 
 using ValueId = uint32_t;
 inline constexpr ValueId kNoValue = 0xffffffffu;

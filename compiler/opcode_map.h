@@ -1,8 +1,9 @@
-// compiler/opcode_map.h: the one table between IR operations and VM opcodes.
-// An IR operation has one VM opcode per operand form: all registers (RR), a constant second
-// operand (RK) or a constant first operand (KR); the noise functions have one opcode per operand
-// count. Emission picks a form (compiler/emit.cpp); specialisation lifts each opcode back to its
-// IR operation (compiler/specialise.cpp). Both read this table, so they cannot disagree.
+// compiler/opcode_map.h: between IR operations and VM opcodes, derived from the one opcode table
+// (vm/opcodes.h). An IR operation has one VM opcode per operand form: all registers (RR), a
+// constant second operand (RK) or a constant first operand (KR); the noise functions have one
+// opcode per operand count. Emission picks a form (compiler/emit.cpp); specialisation lifts each
+// opcode back to its IR operation (compiler/specialise.cpp). Both read the same table, so they
+// cannot disagree.
 #pragma once
 
 #include <optional>
@@ -12,7 +13,7 @@
 
 namespace affray::compiler {
 
-enum class OperandForm { RR, RK, KR };
+using OperandForm = vm::OperandForm;
 
 struct OpcodeRow {
     IrOp ir;

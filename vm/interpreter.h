@@ -83,6 +83,12 @@ class Interpreter {
     Decisions m_record;
 };
 
+/// The scalar VM's result of the all-register opcode `op` (OperandForm::RR) on `operands`
+/// (OperandCount(op) doubles), with `flags` its flags (a noise channel): the opcode run by
+/// Interpreter<double> in a program of its own. The constant folder computes with it
+/// (compiler/fold.cpp), so a folded constant is what the VM computes at run time, bit for bit.
+double RunScalarOpcode(Op op, const double* operands, uint8_t flags = 0);
+
 extern template class Interpreter<double>;
 extern template class Interpreter<Interval>;
 extern template class Interpreter<Affine>;

@@ -53,11 +53,6 @@ bool PointValue(const Dual<T>&, double*) {
     return false;
 }
 
-// Opcodes whose scalar result is exactly 1.0 or +0.0.
-inline bool GivesTruthP(Op op) {
-    return (op >= Op::LtRR && op <= Op::OrRR) || op == Op::Not;
-}
-
 // The constant result `x` of `op` stands for at every point, or Decisions::kNone. The scalar
 // result lies in the bound [c, c], so it is c, except that -0.0 == 0.0: a zero is taken only
 // from an opcode whose zero is +0.0.
@@ -66,7 +61,7 @@ double ResultConstant(Op op, const T& x) {
     double c;
     if (op == Op::LoadK || !PointValue(x, &c)) return Decisions::kNone;
     if (c != 0) return c;
-    return GivesTruthP(op) ? 0.0 : Decisions::kNone;
+    return GivesTruth(op) ? 0.0 : Decisions::kNone;  // (vm/opcodes.h: kTruth)
 }
 
 }  // namespace detail

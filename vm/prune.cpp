@@ -46,32 +46,6 @@ std::string Decisions::ToString() const {
     return s;
 }
 
-namespace {
-
-// The form of `op` that takes operand `i` (1 = B, 2 = C) as a constant, or Op::Ext if there is
-// none. The new form takes the register and the constant in the order of its format: for a
-// constant B that swaps them, allowed where the double operation is commutative bit for bit
-// (IEEE + * == != are; fmin and fmax are not, on signed zeros).
-Op ConstantFormOf(Op op, int i) {
-    const bool c = i == 2;
-    switch (op) {
-        case Op::AddRR: return Op::AddRK;
-        case Op::MulRR: return Op::MulRK;
-        case Op::EqRR: return Op::EqRK;
-        case Op::NeRR: return Op::NeRK;
-        case Op::SubRR: return c ? Op::SubRK : Op::SubKR;
-        case Op::DivRR: return c ? Op::DivRK : Op::DivKR;
-        case Op::LtRR: return c ? Op::LtRK : Op::LtKR;
-        case Op::LeRR: return c ? Op::LeRK : Op::LeKR;
-        case Op::PowRR: return c ? Op::PowRK : Op::Ext;
-        case Op::MinRR: return c ? Op::MinRK : Op::Ext;
-        case Op::MaxRR: return c ? Op::MaxRK : Op::Ext;
-        default: return Op::Ext;
-    }
-}
-
-}  // namespace
-
 int Pruner::NewValue() {
     m_values.push_back(Value{});
     return static_cast<int>(m_values.size()) - 1;
