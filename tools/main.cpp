@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tools/commands.h"
+#include "vm/disasm.h"
 
 namespace {
 
@@ -23,6 +24,7 @@ const char* const kUsage =
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
     "              [--mode scalar|affine|interval] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray diff REFERENCE.exr TEST.exr   (RMSE and largest error of TEST's RGB, as JSON)\n"
+    "  affray opcodes   (the VM's instruction set, as a Markdown table)\n"
     "  affray --help | --version\n";
 
 struct UsageError {
@@ -225,6 +227,11 @@ int main(int argc, char** argv) {
         if (command == "eval") return Eval(args);
         if (command == "render") return Render(args);
         if (command == "diff") return Diff(args);
+        if (command == "opcodes") {
+            if (!args.Done()) throw UsageError{"opcodes takes no arguments"};
+            std::fputs(affray::vm::OpcodeTable().c_str(), stdout);
+            return 0;
+        }
         throw UsageError{"unknown command '" + command + "'"};
     } catch (const UsageError& e) {
         std::fprintf(stderr, "affray: error: %s\n%s", e.message.c_str(), kUsage);

@@ -89,4 +89,33 @@ std::string Disassemble(const Program& program, const std::string& sourceText) {
     return out.str();
 }
 
+std::string OpcodeTable() {
+    std::string out =
+        "| # | opcode | operands (A B C, Ext...) | operation | facts | RSL | meaning |\n"
+        "|---|---|---|---|---|---|---|\n";
+    for (int i = 0; i < kOpCount; ++i) {
+        const Op op = static_cast<Op>(i);
+        const OpInfo& info = Info(op);
+        const Operation f = OperationOf(op);
+        std::string facts;
+        auto fact = [&](OperationFlag flag, const char* name) {
+            if (!Has(f, flag)) return;
+            if (!facts.empty()) facts += ", ";
+            facts += name;
+        };
+        fact(kFoldable, "foldable");
+        fact(kTruth, "truth value");
+        fact(kCommutative, "commutative");
+        fact(kSwapsExactly, "swaps exactly");
+        fact(kDerivative, "derivative");
+        std::string meaning = info.meaning;
+        for (size_t at = meaning.find('|'); at != std::string::npos; at = meaning.find('|', at + 2))
+            meaning.replace(at, 1, "\\|");
+        out += "| " + std::to_string(i) + " | " + info.name + " | `" + info.format + "` | " +
+               (f == Operation::None ? std::string("-") : Info(f).name) + " | " + facts + " | " +
+               (f == Operation::None ? std::string() : "`" + std::string(Info(f).rsl) + "`") + " | " + meaning + " |\n";
+    }
+    return out;
+}
+
 }  // namespace affray::vm

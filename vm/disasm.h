@@ -16,4 +16,9 @@ std::string DisassembleInstr(const Program& program, const Instr* in, size_t ava
 /// `sourceText` is the shader's source (may be empty: then line numbers only).
 std::string Disassemble(const Program& program, const std::string& sourceText);
 
+/// The instruction set as a Markdown table, read off the opcode table (vm/opcodes.h): number,
+/// name, operand format, the operation with its facts and RSL spelling, and the meaning. What
+/// `affray opcodes` prints and docs/opcodes.md holds.
+std::string OpcodeTable();
+
 }  // namespace affray::vm
