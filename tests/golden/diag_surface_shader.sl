@@ -1,0 +1,5 @@
+// golden: compile
+// Only displacement shaders render.
+surface t() {
+    P += N;
+}

@@ -1,0 +1,6 @@
+// golden: compile
+// void is a return type only.
+displacement t() {
+    void nothing;
+    P += N;
+}

@@ -1,0 +1,5 @@
+// golden: compile
+#warn this is no directive
+displacement t() {
+    P += N;
+}

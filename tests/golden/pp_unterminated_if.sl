@@ -1,0 +1,5 @@
+// golden: compile
+#if 1
+displacement t() {
+    P += N;
+}
