@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "vm/assemble.h"
 #include "vm/program.h"
 
 namespace affray::vm {
@@ -78,8 +79,9 @@ class Decisions {
 /// becomes LoadK, one that gives an operand disappears (its readers read that operand), moves
 /// disappear the same way, a register operand known to be a constant becomes a constant operand
 /// where the opcode has such a form (AddRR -> AddRK), and whatever no output depends on any more
-/// is removed. Registers are renumbered compactly; globals and parameters no longer read get
-/// kNoRegister; the constant pool keeps only what the code reads. Its bounds over any sub-region
+/// is removed: the value numbering is the pruner's own, the rest (liveness, registers, the
+/// constant pool; vm/assemble.h) the back end it shares with the compiler's emitter. Globals and
+/// parameters no longer read get kNoRegister; the constant pool keeps only what the code reads. Its bounds over any sub-region
 /// contain its scalar results, as any program's do. `decisions` must come from running `program`
 /// (same code size). *out may be reused: its vectors keep their capacity.
 class Pruner {
@@ -87,35 +89,9 @@ class Pruner {
     void Prune(const Program& program, const Decisions& decisions, Program* out);
 
   private:
-    // One value of the pruned program (SSA): an input (global or parameter register) or the
-    // result of one kept node.
-    struct Value {
-        bool constant = false;  // defined by a LoadK of constant slot `slot`
-        int slot = -1;
-        int lastUse = -1;  // last live node reading it (INT_MAX for an output)
-        uint16_t reg = kNoRegister;
-    };
-    // One instruction of the pruned program.
-    struct Node {
-        Op op;
-        uint8_t flags;
-        int line;
-        int result;
-        int operands[8];  // per format letter after A: a value ('r'), a constant slot ('k'), or -1
-        bool live;
-    };
-
-    int NewValue();
-    int ConstantSlot(double k);
-
-    std::vector<Value> m_values;
-    std::vector<Node> m_nodes;
-    std::vector<int> m_regValue;  // the value each original register holds
-    std::vector<char> m_used;
-    std::vector<double> m_slots;  // the constants the nodes' 'k' operands name
-    std::vector<int> m_slotIndex;  // a slot's index in the output pool, -1 before its first use
-    std::vector<int> m_originalSlot;  // the slot of each original constant, -1 before its first use
-    std::vector<uint16_t> m_free;
+    Assembler m_assembler;  // the back end it shares with the compiler's emitter
+    std::vector<int> m_regValue;   // the value each original register holds
+    std::vector<double> m_valueConstant;  // per value: the constant it is loaded with, or kNone
 };
 
 /// Pruner().Prune, for callers that prune once.
