@@ -32,10 +32,10 @@ SCENES = [
     ("wave 640x480, 1 sample, interval bounds", "scenes/wave.rib", ["--samples", "1", "--bounds", "interval"]),
     ("showcase 640x480, 2x2 samples", "scenes/showcase.rib", []),
     ("turbulence (dented) sphere 320x240, 1 sample", "scenes/turbulence.rib", []),
-    ("wall 1e-4 thick, 320x384 orthographic, 1 sample", "scenes/stiff/wall.rib", []),
-    ("needles 1e-4, 1 sample", "scenes/stiff/needles.rib", ["--samples", "1"]),
-    ("amplitude 1000, 1 sample", "scenes/stiff/amp1000.rib", ["--samples", "1"]),
-    ("frequency 1000, 1 sample", "scenes/stiff/freq1000.rib", ["--samples", "1"]),
+    ("wall 1e-4 thick, 320x384 orthographic, 1 sample", "tests/scenes/stiff/wall.rib", []),
+    ("needles 1e-4, 1 sample", "tests/scenes/stiff/needles.rib", ["--samples", "1"]),
+    ("amplitude 1000, 1 sample", "tests/scenes/stiff/amp1000.rib", ["--samples", "1"]),
+    ("frequency 1000, 1 sample", "tests/scenes/stiff/freq1000.rib", ["--samples", "1"]),
 ]
 
 # The memory-budget table: these scenes at these --cache-mb values.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # bench/stiff_table.sh: regenerates the table of docs/stiff.md. Renders every scene of the stiff
-# suite (scenes/stiff/) with `affray render --stats` and the options on its `##stiff-args:` line,
+# suite (tests/scenes/stiff/) with `affray render --stats` and the options on its `##stiff-args:` line,
 # runs the scene's brute-force test case (tests/renderer/stiff_test.cpp), and prints one Markdown
 # row per case. Use a Release build:
 #
@@ -51,7 +51,7 @@ echo "| case | what is stiff | image | evaluations (regions) per ray, mean | eva
 echo "|---|---|---|---|---|---|---|---|---|"
 for entry in "${cases[@]}"; do
     IFS='|' read -r scene test what <<<"$entry"
-    rib="scenes/stiff/$scene.rib"
+    rib="tests/scenes/stiff/$scene.rib"
     args=$(sed -n 's/^##stiff-args: *//p' "$rib")
     # shellcheck disable=SC2086  # the options are words
     json=$("$affray" render "$rib" -o "$out/$scene.exr" --stats --threads "$threads" $args 2>/dev/null | tail -n 1)

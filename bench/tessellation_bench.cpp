@@ -32,7 +32,7 @@
 #include "renderer/exr_writer.h"
 #include "renderer/progress.h"
 #include "renderer/render.h"
-#include "renderer/rib.h"
+#include "rib/rib.h"
 #include "renderer/surface.h"
 
 using namespace affray;

@@ -1,5 +1,5 @@
 // renderer/scene.h: the parsed scene description, as plain structs in world space.
-// The RIB reader (renderer/rib.*) fills these; the renderer consumes them. Nothing here knows about
+// The RIB reader (rib/) fills these; the renderer consumes them. Nothing here knows about
 // RIB syntax: every transform has already been applied, so positions are world space and the camera
 // carries one world->camera matrix. Add a field only with a default that matches RenderMan's
 // default for it (RI Spec 3.2), and print it in the matching ToString below.

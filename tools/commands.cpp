@@ -10,7 +10,7 @@
 #include "renderer/png_writer.h"
 #include "renderer/progress.h"
 #include "renderer/render.h"
-#include "renderer/rib.h"
+#include "rib/rib.h"
 #include "renderer/surface.h"
 #include "vm/bytecode_file.h"
 #include "vm/disasm.h"

@@ -13,7 +13,7 @@
 #include "../test_util.h"
 #include "renderer/intersect.h"
 #include "renderer/render.h"
-#include "renderer/rib.h"
+#include "rib/rib.h"
 
 using namespace affray;
 using namespace affray::renderer;

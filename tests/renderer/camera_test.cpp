@@ -6,7 +6,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/rib.h"
+#include "rib/rib.h"
 
 #include "../test_util.h"
 

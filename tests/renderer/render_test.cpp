@@ -7,7 +7,7 @@
 
 #include "../test_util.h"
 #include "renderer/film.h"
-#include "renderer/rib.h"
+#include "rib/rib.h"
 
 using namespace affray;
 using namespace affray::renderer;

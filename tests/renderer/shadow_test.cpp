@@ -15,7 +15,7 @@
 #include "renderer/camera.h"
 #include "renderer/film.h"
 #include "renderer/render.h"
-#include "renderer/rib.h"
+#include "rib/rib.h"
 
 using namespace affray;
 

@@ -4,7 +4,7 @@
 // direction (renderer/quadric.h) must keep every region's bound finite there, so rays aimed at
 // the poles are hit with certified errors, with no region left unbounded to the depth limit.
 //
-// The reference: scenes/stiff/lumpy.sl moves P along the sphere's radial normal by noise of P,
+// The reference: tests/scenes/stiff/lumpy.sl moves P along the sphere's radial normal by noise of P,
 // so the displaced sphere is star-shaped, rho(d) = |P'(u(d), v(d))| along each direction d from
 // the centre, with rho continuous. g(x) = |x| - rho(x / |x|) changes sign where a ray crosses the
 // surface, and a ray aimed at a surface point P'(u,v) meets the surface no farther than P'.
@@ -17,7 +17,7 @@
 #include "renderer/camera.h"
 #include "renderer/intersect.h"
 #include "renderer/render.h"
-#include "renderer/rib.h"
+#include "rib/rib.h"
 
 using namespace affray;
 using renderer::Hit;
@@ -36,7 +36,7 @@ struct SphereCase {
 SphereCase LoadSphere() {
     SphereCase c;
     std::string error;
-    const std::string dir = test::SourceDir() + "/scenes/stiff";
+    const std::string dir = test::SourceDir() + "/tests/scenes/stiff";
     std::optional<renderer::SceneDesc> desc = renderer::ReadRib(dir + "/sphere-poles.rib", &error, nullptr);
     INFO(error);
     REQUIRE(desc);

@@ -1,5 +1,5 @@
 // tests/renderer/stiff_test.cpp: the stiff and extreme cases of issue 4 (docs/stiff.md), one
-// TEST_CASE per case, each on its scene in scenes/stiff/ and through the library API.
+// TEST_CASE per case, each on its scene in tests/scenes/stiff/ and through the library API.
 //
 // Every case checks "no missed hit" one-sidedly, so that the reference itself can never invent a
 // miss. All the stiff shaders move P along the normal of a flat patch only (checked), so the
@@ -25,7 +25,7 @@
 #include "renderer/camera.h"
 #include "renderer/intersect.h"
 #include "renderer/render.h"
-#include "renderer/rib.h"
+#include "rib/rib.h"
 
 using namespace affray;
 using renderer::Hit;
@@ -35,7 +35,7 @@ using renderer::Tolerance;
 
 namespace {
 
-/// A scene of scenes/stiff/ ready to intersect, with the options its `##stiff-args:` line gives
+/// A scene of tests/scenes/stiff/ ready to intersect, with the options its `##stiff-args:` line gives
 /// (the same line bench/stiff_table.sh passes to `affray render`).
 struct StiffScene {
     renderer::PreparedScene prepared;
@@ -48,7 +48,7 @@ struct StiffScene {
     }
 };
 
-std::string StiffDir() { return test::SourceDir() + "/scenes/stiff"; }
+std::string StiffDir() { return test::SourceDir() + "/tests/scenes/stiff"; }
 
 renderer::RenderOptions OptionsFromArgs(const std::string& ribPath) {
     renderer::RenderOptions options;
@@ -439,7 +439,7 @@ TEST_CASE("stiff: needles with sigma 1e-4", "[renderer][stiff]") {
 
 namespace {
 
-/// The singular point of scenes/stiff/singular.sl, and points near it from 1e-12 to 1e-2 away.
+/// The singular point of tests/scenes/stiff/singular.sl, and points near it from 1e-12 to 1e-2 away.
 constexpr double kSingularS = 0.4375, kSingularT = 0.5625;
 
 std::pair<double, double> NearSingularPoint(std::mt19937_64& rng) {
@@ -665,10 +665,10 @@ TEST_CASE("stiff: a ray stops at its region budget when every bound overflows", 
 }
 
 TEST_CASE("stiff: a wall 1e-4 thick covers every pixel of its projected rectangle", "[renderer][stiff]") {
-    // scenes/stiff/wall.rib at a quarter of its size: the wall stands on x = 0 (s = 0.5), 1e-4
+    // tests/scenes/stiff/wall.rib at a quarter of its size: the wall stands on x = 0 (s = 0.5), 1e-4
     // thick, |y| <= 0.5, 0 <= z <= 1. Every pixel-centre ray that crosses the plane x = 0 inside
     // that rectangle (a pixel's footprint away from its edges) passes through the wall, so must hit.
-    std::ifstream file(test::SourceDir() + "/scenes/stiff/wall.rib");
+    std::ifstream file(test::SourceDir() + "/tests/scenes/stiff/wall.rib");
     std::stringstream text;
     text << file.rdbuf();
     std::string rib = text.str();
@@ -677,12 +677,12 @@ TEST_CASE("stiff: a wall 1e-4 thick covers every pixel of its projected rectangl
     rib.replace(rib.find(format), format.size(), "Format 80 96 1");
     std::string error;
     std::optional<renderer::SceneDesc> desc =
-        renderer::ParseRib(rib, test::SourceDir() + "/scenes/stiff/wall.rib", &error, nullptr);
+        renderer::ParseRib(rib, test::SourceDir() + "/tests/scenes/stiff/wall.rib", &error, nullptr);
     INFO(error);
     REQUIRE(desc);
     desc->camera.filter = renderer::FilterDesc{renderer::FilterDesc::Kind::Box, 1, 1};
     renderer::PreparedScene prepared;
-    const bool ok = renderer::PrepareScene(*desc, {test::SourceDir() + "/scenes/stiff"}, {}, &prepared, &error);
+    const bool ok = renderer::PrepareScene(*desc, {test::SourceDir() + "/tests/scenes/stiff"}, {}, &prepared, &error);
     INFO(error);
     REQUIRE(ok);
     renderer::RenderOptions options;

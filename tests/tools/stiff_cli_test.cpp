@@ -1,5 +1,5 @@
 // tests/tools/stiff_cli_test.cpp: the stiff suite (docs/stiff.md) through the `affray` program:
-// every scene of scenes/stiff/ renders (shrunk, so that this stays cheap; the full-size figures
+// every scene of tests/scenes/stiff/ renders (shrunk, so that this stays cheap; the full-size figures
 // are bench/stiff_table.sh's), and NaN, infinite or overflowing parameter values are errors that
 // name the parameter, exit non-zero and leave no image.
 #include <catch2/catch.hpp>
@@ -33,14 +33,14 @@ std::string WaveScene(const std::string& displacement) {
 }  // namespace
 
 TEST_CASE("stiff cli: every stiff scene renders, shrunk", "[tools][stiff]") {
-    // A copy of scenes/stiff/ and shaders/ side by side, as in the source tree (the stiff scenes'
-    // wave.sl includes ../../shaders/wave.sl), with each image shrunk eightfold.
+    // A copy of tests/scenes/stiff/ and shaders/ side by side, as in the source tree (the stiff scenes'
+    // wave.sl includes ../../../shaders/wave.sl), with each image shrunk eightfold.
     test::TempDir dir;
-    fs::create_directories(dir.Path("scenes"));
-    fs::copy(test::SourceDir() + "/scenes/stiff", dir.Path("scenes/stiff"), fs::copy_options::recursive);
+    fs::create_directories(dir.Path("tests/scenes"));
+    fs::copy(test::SourceDir() + "/tests/scenes/stiff", dir.Path("tests/scenes/stiff"), fs::copy_options::recursive);
     fs::copy(test::SourceDir() + "/shaders", dir.Path("shaders"), fs::copy_options::recursive);
     int scenes = 0;
-    for (const auto& entry : fs::directory_iterator(dir.Path("scenes/stiff"))) {
+    for (const auto& entry : fs::directory_iterator(dir.Path("tests/scenes/stiff"))) {
         if (entry.path().extension() != ".rib") continue;
         ++scenes;
         const std::string text = test::ShrinkFormat(entry.path(), 8);
@@ -109,7 +109,7 @@ TEST_CASE("stiff cli: NaN and infinite values for eval --param name the paramete
         CHECK(r.out.find("affray: error: --param Km: '" + std::string(value) + "' is not finite") != std::string::npos);
         CHECK(r.out.find("\"P\"") == std::string::npos);
     }
-    Output other = Run("eval " + test::SourceDir() + "/scenes/stiff/singular.sl --param centerS=nan --at 0.5,0.5");
+    Output other = Run("eval " + test::SourceDir() + "/tests/scenes/stiff/singular.sl --param centerS=nan --at 0.5,0.5");
     CHECK(other.status == 2);
     CHECK(other.out.find("--param centerS: 'nan' is not finite") != std::string::npos);
     // A finite value is taken, however large: the scalar result is what it is.

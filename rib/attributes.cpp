@@ -1,9 +1,9 @@
-// renderer/rib_attributes.cpp: RIB requests for attributes and lights (Color, Opacity, Surface,
+// rib/attributes.cpp: RIB requests for attributes and lights (Color, Opacity, Surface,
 // Displacement, Attribute, Sides, ReverseOrientation, Orientation, LightSource). Rules shared with
 // rib.cpp are in rib_parser.h. Light positions are transformed with the CTM current at the request.
 #include <cmath>
 
-#include "renderer/rib_parser.h"
+#include "rib/parser.h"
 
 namespace affray::renderer {
 

@@ -1,4 +1,4 @@
-// renderer/rib.cpp: the RIB request dispatcher; builds a SceneDesc from requests.
+// rib/rib.cpp: the RIB request dispatcher; builds a SceneDesc from requests.
 // Owns the meaning of each request (RI Spec 3.2), the options (here) and the graphics state: the
 // current transform (CTM), color, surface, displacement, sides and orientation, saved and
 // restored by the Begin/End blocks. To add a request: write a handler (attributes and lights in
@@ -10,7 +10,7 @@
 // column-vector terms, CTM = CTM * T (the last transform given applies to the object first). A RIB
 // matrix is 16 numbers row-major for row vectors; loaded column-major into a glm::dmat4 it is
 // already the transposed, column-vector matrix. The CTM at WorldBegin is world->camera.
-#include "renderer/rib.h"
+#include "rib/rib.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -23,7 +23,7 @@
 #include <system_error>
 #include <unordered_map>
 
-#include "renderer/rib_parser.h"
+#include "rib/parser.h"
 
 namespace affray::renderer {
 namespace {

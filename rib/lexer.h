@@ -1,7 +1,7 @@
-// renderer/rib_lexer.h: the RIB ASCII tokenizer and the grouping of tokens into requests.
+// rib/lexer.h: the RIB ASCII tokenizer and the grouping of tokens into requests.
 // Owns the syntax of RIB (RI Spec 3.2, Appendix C): request names, numbers, "strings" with C
 // escapes, [ arrays ] and # comments. It knows nothing about what a request means; that is
-// renderer/rib.cpp. Rules: every token carries the line it starts on; lexing always advances, so
+// rib/rib.cpp. Rules: every token carries the line it starts on; lexing always advances, so
 // no input can make it loop; a bad token is an Error token with a message, never an exception.
 #pragma once
 

@@ -1,5 +1,5 @@
-// renderer/rib_lexer.cpp: RIB ASCII tokens and requests (see rib_lexer.h for the rules).
-#include "renderer/rib_lexer.h"
+// rib/lexer.cpp: RIB ASCII tokens and requests (see rib_lexer.h for the rules).
+#include "rib/lexer.h"
 
 #include <cfloat>
 #include <charconv>

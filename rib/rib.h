@@ -1,4 +1,4 @@
-// renderer/rib.h: reading a RIB file into a SceneDesc.
+// rib/rib.h: reading a RIB file into a SceneDesc.
 // The reader follows the RenderMan Interface Specification 3.2 for the requests it implements:
 // options (Format, Projection, FrameAspectRatio, ScreenWindow, CropWindow, Clipping, PixelSamples,
 // PixelFilter box/gaussian, Exposure, Display with its mode checked, Option "searchpath"

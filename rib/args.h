@@ -1,7 +1,7 @@
-// renderer/rib_args.h: checks on the shape of a RIB request's arguments.
+// rib/args.h: checks on the shape of a RIB request's arguments.
 // Owns the rules every request shares: positional numbers given bare or as one array, a leading
 // name string, token-value parameter lists with inline declarations ("uniform float Km"), and
-// 4x4 matrices. It knows no request's meaning (that is renderer/rib.cpp). Each check returns
+// 4x4 matrices. It knows no request's meaning (that is rib/rib.cpp). Each check returns
 // false after Fail() has recorded the message and the line of the offending token.
 #pragma once
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/rib_lexer.h"
+#include "rib/lexer.h"
 #include "renderer/scene.h"
 
 namespace affray::renderer {

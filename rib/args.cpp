@@ -1,5 +1,5 @@
-// renderer/rib_args.cpp: argument shape checks shared by all RIB requests (see rib_args.h).
-#include "renderer/rib_args.h"
+// rib/args.cpp: argument shape checks shared by all RIB requests (see rib_args.h).
+#include "rib/args.h"
 
 #include <algorithm>
 #include <glm/gtc/type_ptr.hpp>

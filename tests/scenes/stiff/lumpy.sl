@@ -1,5 +1,5 @@
 /*
- * scenes/stiff/lumpy.sl: lumps of 3D noise of the surface point along the normal. The noise is of
+ * tests/scenes/stiff/lumpy.sl: lumps of 3D noise of the surface point along the normal. The noise is of
  * P, not of (s, t), so the displaced sphere stays closed at its poles, where every s meets; there
  * the tangent dPdu vanishes and the normal must come from elsewhere (renderer/quadric.h).
  *

@@ -1,5 +1,5 @@
-// renderer/rib_parser.h: the RIB reader's state machine, shared by its two source files.
-// Private to the reader: use renderer/rib.h. rib.cpp holds dispatch, the block structure, options
+// rib/parser.h: the RIB reader's state machine, shared by its two source files.
+// Private to the reader: use rib/rib.h. rib.cpp holds dispatch, the block structure, options
 // and transforms; rib_attributes.cpp the shading attributes (with Sides and orientation) and
 // lights; rib_geometry.cpp the primitives and coordinate systems. The graphics state (CTM, color,
 // surface, displacement, sides, orientation) is saved by every Begin and restored by its End.
@@ -13,8 +13,8 @@
 #include <string_view>
 #include <vector>
 
-#include "renderer/rib_args.h"
-#include "renderer/rib_lexer.h"
+#include "rib/args.h"
+#include "rib/lexer.h"
 #include "renderer/scene.h"
 
 namespace affray::renderer {

@@ -1,7 +1,7 @@
-// tests/renderer/rib_test.cpp: the RIB reader (renderer/rib.*, rib_lexer.*, rib_args.*).
+// tests/rib/rib_test.cpp: the RIB reader (rib/: rib.*, lexer.*, args.*).
 // A full scene with hand-computed world-space answers, the exact text of the errors and warnings,
 // and fuzzing with random bytes, random token soup and mutations of a valid scene.
-#include "renderer/rib.h"
+#include "rib/rib.h"
 
 #include <catch2/catch.hpp>
 #include <filesystem>

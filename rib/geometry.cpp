@@ -1,4 +1,4 @@
-// renderer/rib_geometry.cpp: RIB requests that place geometry: Patch, the quadrics (Sphere,
+// rib/geometry.cpp: RIB requests that place geometry: Patch, the quadrics (Sphere,
 // Cylinder, Cone, Disk, Torus, Hyperboloid, Paraboloid) and CoordinateSystem. Rules shared with
 // rib.cpp are in rib_parser.h. Every primitive takes the graphics state current at its request;
 // its orientation is resolved here into PrimitiveDesc::flipNormal, since the camera transform it
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "renderer/rib_parser.h"
+#include "rib/parser.h"
 
 namespace affray::renderer {
 
