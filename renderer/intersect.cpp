@@ -1,7 +1,7 @@
 // renderer/intersect.cpp: the ray test of a cached region bound and the nearest-first walk of the
 // bound hierarchy.
 //
-// The test (design decision 5): pick two unit normals n1, n2 perpendicular to the ray and to each
+// The test (docs/design.md, decision 5): pick two unit normals n1, n2 perpendicular to the ray and to each
 // other; the planes through the ray origin with these normals both contain the ray. Over a region,
 // d1 = n1.(P'-o), d2 = n2.(P'-o) and t = dir.(P'-o) are affine in (eps_u, eps_v) up to a radius
 // (Measure, from the node's RegionBound); a surface point on the ray needs d1 = d2 = 0, so if either
