@@ -30,7 +30,6 @@
 
 #include "renderer/camera.h"
 #include "renderer/exr_writer.h"
-#include "renderer/progress.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
 #include "renderer/surface.h"
@@ -108,7 +107,7 @@ Options ParseArgs(int argc, char** argv) {
                 std::exit(2);
             }
         } else if (a == "--stats") o.stats = true;
-        else if (a == "--quiet") o.quiet = true;
+        else if (a == "--quiet") o.quiet = true;  // no progress bar any more; kept for the scripts that pass it
         else if (a == "-h" || a == "--help") {
             std::fputs(kUsage, stdout);
             std::exit(0);
@@ -376,7 +375,6 @@ int main(int argc, char** argv) {
     renderer::RenderOptions options;
     options.threads = threads;
     options.tolerancePixels = opt.tolerance;
-    options.showProgress = renderer::Progress::ShouldShow(opt.quiet, stderr);
     options.intersectorFactory = [&meshes](const renderer::Primitive&, int index) {
         return std::unique_ptr<renderer::SurfaceIntersector>(new MeshIntersector(meshes[static_cast<size_t>(index)]));
     };

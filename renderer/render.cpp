@@ -15,7 +15,6 @@
 #include "compiler/shader_cache.h"
 #include "renderer/camera.h"
 #include "renderer/film.h"
-#include "renderer/progress.h"
 #include "renderer/shade.h"
 
 namespace affray::renderer {
@@ -480,7 +479,7 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     int tileSize = std::max(1, options.tileSize);
     std::vector<PixelRange> tiles = film.Tiles(tileSize);
     while (tileSize > 8 && static_cast<int>(tiles.size()) < 4 * nThreads) tiles = film.Tiles(tileSize /= 2);
-    Progress progress(static_cast<int>(tiles.size()), stderr, options.showProgress);
+    if (options.progress) options.progress->Begin(static_cast<int>(tiles.size()));
 
     std::atomic<size_t> nextTile{0};
     std::vector<IntersectStats> cameraStats(nThreads), shadowStats(nThreads);
@@ -523,7 +522,7 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
                 }
             }
             film.ResolveTile(tiles[i], samples, values, image);
-            progress.TileDone();
+            if (options.progress) options.progress->TileDone();
         }
         cameraStats[index] = ts.cameraStats;
         shadowStats[index] = ts.shadowStats;
@@ -533,7 +532,7 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     for (int i = 1; i < nThreads; ++i) threads.emplace_back(worker, i);
     worker(0);
     for (std::thread& t : threads) t.join();
-    progress.Finish();
+    if (options.progress) options.progress->Finish();
 
     *stats = RenderStats();
     for (const auto& tree : trees) stats->cache.Merge(tree->stats());

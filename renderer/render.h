@@ -20,6 +20,16 @@ struct Primitive;
 /// Makes the intersector one thread uses for one primitive (`index` in PreparedScene::primitives).
 using IntersectorFactory = std::function<std::unique_ptr<SurfaceIntersector>(const Primitive& primitive, int index)>;
 
+/// Told how a render advances: Begin(tiles) before the first tile, TileDone() from the worker
+/// threads as each tile is finished (so it must be thread-safe), Finish() after the last.
+class RenderProgress {
+  public:
+    virtual ~RenderProgress() = default;
+    virtual void Begin(int tiles) = 0;
+    virtual void TileDone() = 0;
+    virtual void Finish() = 0;
+};
+
 /// The side of a block of pixels whose camera rays are traced as a group (`--ray-groups`).
 inline constexpr int kDefaultRayGroupPixels = 8;
 
@@ -35,7 +45,8 @@ struct RenderOptions {
     /// bound hierarchies' top levels (RayGroup); blocks of the whole image, so the image does not
     /// depend on the tiles. 0: every ray alone.
     int rayGroupPixels = kDefaultRayGroupPixels;
-    bool showProgress = false;                     // a progress bar on stderr (renderer/progress.h)
+    /// Told how the render advances (the command line draws its progress bar with it); null: no one.
+    class RenderProgress* progress = nullptr;
     /// Replaces the guaranteed intersector, for every primitive and thread: the benches' in-process
     /// tessellation baseline (bench/) renders the same samples, shading and shadows through it.
     /// Empty: affray's own.

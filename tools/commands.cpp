@@ -3,21 +3,35 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 
 #include "compiler/compile.h"
 #include "renderer/exr_writer.h"
 #include "renderer/png_writer.h"
-#include "renderer/progress.h"
 #include "renderer/render.h"
-#include "rib/rib.h"
 #include "renderer/surface.h"
+#include "rib/rib.h"
+#include "tools/progress.h"
 #include "vm/bytecode_file.h"
 #include "vm/disasm.h"
 
 namespace affray::tools {
 
 namespace {
+
+/// The progress bar on stderr, fed by the render (shown only on a terminal, unless --quiet).
+class ProgressBar final : public renderer::RenderProgress {
+  public:
+    explicit ProgressBar(bool enabled) : m_enabled(enabled) {}
+    void Begin(int tiles) override { m_bar = std::make_unique<Progress>(tiles, stderr, m_enabled); }
+    void TileDone() override { m_bar->TileDone(); }
+    void Finish() override { m_bar->Finish(); }
+
+  private:
+    bool m_enabled;
+    std::unique_ptr<Progress> m_bar;
+};
 
 /// A number with round-trip precision, or null if it is not finite (JSON has no NaN).
 std::string Json(double x) {
@@ -152,7 +166,8 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     options.regionBudget = cmd.regionBudget;
     options.cacheBytes = cmd.cacheBytes;
     options.rayGroupPixels = cmd.rayGroupPixels;
-    options.showProgress = renderer::Progress::ShouldShow(cmd.quiet, stderr);
+    ProgressBar bar(Progress::ShouldShow(cmd.quiet, stderr));
+    options.progress = &bar;
     renderer::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);

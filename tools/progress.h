@@ -1,4 +1,4 @@
-// renderer/progress.h: a one-line progress bar for tiled renders, safe to feed from many threads.
+// tools/progress.h: a one-line progress bar for tiled renders, safe to feed from many threads.
 //
 // A render calls TileDone() from its worker threads and Finish() once at the end; the bar is
 // redrawn in place ("\r...") at most once per redraw interval (0.1 s), plus once when the last
@@ -13,7 +13,7 @@
 #include <mutex>
 #include <string>
 
-namespace affray::renderer {
+namespace affray::tools {
 
 class Progress {
   public:
@@ -57,4 +57,4 @@ class Progress {
     bool m_finished = false;
 };
 
-}  // namespace affray::renderer
+}  // namespace affray::tools

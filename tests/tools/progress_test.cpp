@@ -1,12 +1,12 @@
-// tests/renderer/progress_test.cpp: the progress line (renderer/progress.*): its text, the redraw
+// tests/tools/progress_test.cpp: the progress line (tools/progress.*): its text, the redraw
 // throttle under a fake clock, silence when disabled, and counting from many threads.
-#include "renderer/progress.h"
+#include "tools/progress.h"
 
 #include <catch2/catch.hpp>
 #include <thread>
 #include <vector>
 
-using namespace affray::renderer;
+using namespace affray::tools;
 
 namespace {
 

@@ -1,12 +1,12 @@
-// renderer/progress.cpp: the throttled progress line (see progress.h).
-#include "renderer/progress.h"
+// tools/progress.cpp: the throttled progress line (see progress.h).
+#include "tools/progress.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <unistd.h>
 
-namespace affray::renderer {
+namespace affray::tools {
 
 namespace {
 
@@ -78,4 +78,4 @@ void Progress::Draw(int done, double now) {
     m_lastDraw = now;
 }
 
-}  // namespace affray::renderer
+}  // namespace affray::tools
