@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # tools/format.sh [--check]: formats every C++ source of the repository with clang-format-14 and
 # the style in .clang-format; with --check changes nothing and fails (exit 1) listing the files
-# that differ, as CI runs it. The Flex and Bison sources (lang/*.l, lang/*.y) are left as written.
+# that differ, as CI runs it. The Flex and Bison sources (lang/*.l, lang/*.y) are left as written,
+# and so are the shading-language headers (shaders/, tests/golden/): they are .h files but not C++.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 format=clang-format-14
 command -v "$format" >/dev/null || { echo "format.sh: $format is not installed (tools/setup.sh installs it)" >&2; exit 2; }
-mapfile -t files < <(git ls-files '*.cpp' '*.h' '*.inl')
+mapfile -t files < <(git ls-files '*.cpp' '*.h' '*.inl' ':!:shaders/' ':!:tests/golden/include/')
 if [[ ${1:-} == --check ]]; then
     bad=()
     for f in "${files[@]}"; do
