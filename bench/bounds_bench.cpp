@@ -94,8 +94,8 @@ Row MeasureRow(const BenchShader& s, double width, const Corners& corners, const
         row.diagA += a[k].diag, row.diagI += i[k].diag, row.diagR += r[k].diag;
         row.zSampled += sampled[k];
     }
-    for (double* m : {&row.boxA, &row.boxI, &row.boxR, &row.zA, &row.zI, &row.zR, &row.diagA, &row.diagI,
-                      &row.diagR, &row.zSampled})
+    for (double* m : {&row.boxA, &row.boxI, &row.boxR, &row.zA, &row.zI, &row.zR, &row.diagA, &row.diagI, &row.diagR,
+                      &row.zSampled})
         *m = row.compared ? *m / row.compared : NAN;
     std::vector<double> rates = bench::InterleavedRates(
         seconds, {bench::Evaluator<S>(s, points, 0.0), bench::Evaluator<A>(s, corners, width),
@@ -110,10 +110,9 @@ Row Measure(const BenchShader& s, double width, const Corners& corners, const Co
     using vm::Affine, vm::Dual, vm::Interval, vm::ReducedAffine;
     if (s.derivatives)
         return MeasureRow<Dual<double>, Dual<Affine>, Dual<Interval>, Dual<ReducedAffine>>(s, width, corners, points,
-                                                                                          seconds);
+                                                                                           seconds);
     return MeasureRow<double, Affine, Interval, ReducedAffine>(s, width, corners, points, seconds);
 }
-
 
 Corners CornersFor(double width, int count) {
     // One seed per width, the same for every shader and mode.
@@ -134,8 +133,9 @@ void PrintMainTable(const std::vector<BenchShader>& shaders, const Options& opt)
         "time of one bounded evaluation over the time of one scalar (double) evaluation at a point, "
         "measured interleaved in this process for %.2f s each.\n\n",
         opt.regions, kSampleGrid, kSampleGrid, opt.seconds);
-    std::printf("| shader | width | unb A/I/R | box A | box I | box I/A | z A | z I | z R | z I/A | z R/A | diag I/A | "
-                "diag R/A | z A/smp | cost A | cost I | cost R |\n");
+    std::printf(
+        "| shader | width | unb A/I/R | box A | box I | box I/A | z A | z I | z R | z I/A | z R/A | diag I/A | "
+        "diag R/A | z A/smp | cost A | cost I | cost R |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     const Corners points = bench::RegionCorners(0.0, kScalarPoints, 1);
     std::vector<double> widths;
@@ -144,19 +144,20 @@ void PrintMainTable(const std::vector<BenchShader>& shaders, const Options& opt)
     for (const BenchShader& s : shaders)
         for (double w : widths) {
             Row r = Measure(s, w, CornersFor(w, opt.regions), points, opt.seconds);
-            std::printf("| %s | %s | %d/%d/%d | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | "
-                        "%.3g | %.1f | %.1f | %.1f |\n",
-                        r.shader.c_str(), WidthLabel(w).c_str(), r.unboundedA, r.unboundedI, r.unboundedR, r.boxA,
-                        r.boxI, Ratio(r.boxA, r.boxI), r.zA, r.zI, r.zR, Ratio(r.zA, r.zI), Ratio(r.zA, r.zR),
-                        Ratio(r.diagA, r.diagI), Ratio(r.diagA, r.diagR), Ratio(r.zSampled, r.zA), r.costA,
-                        r.costI, r.costR);
+            std::printf(
+                "| %s | %s | %d/%d/%d | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | %.3g | "
+                "%.3g | %.1f | %.1f | %.1f |\n",
+                r.shader.c_str(), WidthLabel(w).c_str(), r.unboundedA, r.unboundedI, r.unboundedR, r.boxA, r.boxI,
+                Ratio(r.boxA, r.boxI), r.zA, r.zI, r.zR, Ratio(r.zA, r.zI), Ratio(r.zA, r.zR), Ratio(r.diagA, r.diagI),
+                Ratio(r.diagA, r.diagR), Ratio(r.zSampled, r.zA), r.costA, r.costI, r.costR);
             std::fflush(stdout);
             rows.push_back(r);
         }
 
     std::printf("\nBy width, over the shaders (geometric means of the ratios; medians of the costs):\n\n");
-    std::printf("| width | box I/A | z I/A | z I/A min..max | z R/A | z R/A min..max | diag I/A | diag R/A | z A/smp | "
-                "cost A | cost I | cost R | cost A/I | cost R/I | unb A/I/R |\n");
+    std::printf(
+        "| width | box I/A | z I/A | z I/A min..max | z R/A | z R/A min..max | diag I/A | diag R/A | z A/smp | "
+        "cost A | cost I | cost R | cost A/I | cost R/I | unb A/I/R |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (double w : widths) {
         std::vector<double> box, z, zR, diag, diagR, smp, costA, costI, costR, costAI, costRI;
@@ -178,11 +179,12 @@ void PrintMainTable(const std::vector<BenchShader>& shaders, const Options& opt)
         }
         auto [zMin, zMax] = std::minmax_element(z.begin(), z.end());
         auto [zRMin, zRMax] = std::minmax_element(zR.begin(), zR.end());
-        std::printf("| %s | %.3g | %.3g | %.3g..%.3g | %.3g | %.3g..%.3g | %.3g | %.3g | %.3g | %.1f | %.1f | %.1f | "
-                    "%.1f | %.1f | %d/%d/%d of %d |\n",
-                    WidthLabel(w).c_str(), GeoMean(box), GeoMean(z), *zMin, *zMax, GeoMean(zR), *zRMin, *zRMax,
-                    GeoMean(diag), GeoMean(diagR), GeoMean(smp), Median(costA), Median(costI), Median(costR),
-                    Median(costAI), Median(costRI), unbA, unbI, unbR, total);
+        std::printf(
+            "| %s | %.3g | %.3g | %.3g..%.3g | %.3g | %.3g..%.3g | %.3g | %.3g | %.3g | %.1f | %.1f | %.1f | "
+            "%.1f | %.1f | %d/%d/%d of %d |\n",
+            WidthLabel(w).c_str(), GeoMean(box), GeoMean(z), *zMin, *zMax, GeoMean(zR), *zRMin, *zRMax, GeoMean(diag),
+            GeoMean(diagR), GeoMean(smp), Median(costA), Median(costI), Median(costR), Median(costAI), Median(costRI),
+            unbA, unbI, unbR, total);
     }
 }
 
@@ -234,10 +236,10 @@ void PrintCapacityStudy(const std::vector<BenchShader>& shaders, const Options& 
     for (int k = 0; k < 2; ++k)
         for (const BenchShader& s : shaders) {
             const Corners corners = CornersFor(widths[k], opt.regions);
-            rows[k].push_back(s.derivatives
-                                  ? MeasureCapacities<vm::Dual<double>, vm::Dual<vm::Affine>>(s, widths[k], corners,
-                                                                                             points, opt)
-                                  : MeasureCapacities<double, vm::Affine>(s, widths[k], corners, points, opt));
+            rows[k].push_back(
+                s.derivatives
+                    ? MeasureCapacities<vm::Dual<double>, vm::Dual<vm::Affine>>(s, widths[k], corners, points, opt)
+                    : MeasureCapacities<double, vm::Affine>(s, widths[k], corners, points, opt));
         }
     std::printf("| capacity | width | rel z | worst rel z | rel diag | cost | cost/default | unbounded |\n");
     std::printf("|---|---|---|---|---|---|---|---|\n");
@@ -317,12 +319,18 @@ int main(int argc, char** argv) {
     Options opt;
     for (int i = 1; i < argc; ++i) {
         auto arg = [&](const char* name) { return !std::strcmp(argv[i], name) && i + 1 < argc; };
-        if (arg("--seconds")) opt.seconds = std::atof(argv[++i]);
-        else if (arg("--regions")) opt.regions = std::max(1, std::atoi(argv[++i]));
-        else if (arg("--shader")) opt.shader = argv[++i];
-        else if (arg("--capacities")) opt.capacities = ParseList(argv[++i]);
-        else if (arg("--widths")) opt.widths = ParseList(argv[++i]);
-        else if (!std::strcmp(argv[i], "--capacity-study")) opt.capacityStudy = true;
+        if (arg("--seconds"))
+            opt.seconds = std::atof(argv[++i]);
+        else if (arg("--regions"))
+            opt.regions = std::max(1, std::atoi(argv[++i]));
+        else if (arg("--shader"))
+            opt.shader = argv[++i];
+        else if (arg("--capacities"))
+            opt.capacities = ParseList(argv[++i]);
+        else if (arg("--widths"))
+            opt.widths = ParseList(argv[++i]);
+        else if (!std::strcmp(argv[i], "--capacity-study"))
+            opt.capacityStudy = true;
         else {
             std::fprintf(stderr,
                          "usage: %s [--seconds S] [--regions N] [--shader NAME] [--widths 1,8,64,512] "
@@ -351,7 +359,9 @@ int main(int argc, char** argv) {
     }
     std::vector<BenchShader> shaders;
     if (!LoadShaders(opt.shader, &shaders)) return 1;
-    if (opt.capacityStudy) PrintCapacityStudy(shaders, opt);
-    else PrintMainTable(shaders, opt);
+    if (opt.capacityStudy)
+        PrintCapacityStudy(shaders, opt);
+    else
+        PrintMainTable(shaders, opt);
     return 0;
 }

@@ -51,8 +51,10 @@ int main(int argc, char** argv) {
     std::string shaderPath = std::string(AFFRAY_SOURCE_DIR) + "/shaders/wave.sl";
     double seconds = 1.0;
     for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc) seconds = std::atof(argv[++i]);
-        else shaderPath = argv[i];
+        if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc)
+            seconds = std::atof(argv[++i]);
+        else
+            shaderPath = argv[i];
     }
     compiler::CompileResult result = compiler::CompileFile(shaderPath);
     if (!result.ok()) {
@@ -60,8 +62,8 @@ int main(int argc, char** argv) {
         return 1;
     }
     const vm::Program& bound = result.shader->bound;
-    std::printf("shader %s: bound program %zu instructions (%d operations before optimisation)\n",
-                shaderPath.c_str(), bound.code.size(), result.shader->opsBeforeOptimisation);
+    std::printf("shader %s: bound program %zu instructions (%d operations before optimisation)\n", shaderPath.c_str(),
+                bound.code.size(), result.shader->opsBeforeOptimisation);
 
     std::mt19937_64 rng(1);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -80,9 +82,7 @@ int main(int argc, char** argv) {
     double reducedRate = RegionEvalsPerSecond<vm::ReducedAffine>(bound, 1.0 / 64, seconds);
 
     std::printf("%-44s %14s %18s\n", "mode", "evals/s", "time vs native C++");
-    auto row = [&](const char* name, double rate) {
-        std::printf("%-44s %14.0f %17.1fx\n", name, rate, native / rate);
-    };
+    auto row = [&](const char* name, double rate) { std::printf("%-44s %14.0f %17.1fx\n", name, rate, native / rate); };
     row("native C++ (hand-written)", native);
     row("vm scalar (double)", scalarRate);
     row("vm affine (region 1/64)", affineRate);
@@ -95,8 +95,10 @@ int main(int argc, char** argv) {
     // constant over the surface (N, Ng, dPdu, dPdv; see renderer/render.cpp).
     std::vector<std::string> errors;
     vm::Program flat = *compiler::Specialise(bound, {}, &errors,
-                                             {{vm::Global::N, {0, 0, 1}}, {vm::Global::Ng, {0, 0, 1}},
-                                              {vm::Global::dPdu, {1, 0, 0}}, {vm::Global::dPdv, {0, 1, 0}}});
+                                             {{vm::Global::N, {0, 0, 1}},
+                                              {vm::Global::Ng, {0, 0, 1}},
+                                              {vm::Global::dPdu, {1, 0, 0}},
+                                              {vm::Global::dPdv, {0, 1, 0}}});
     std::printf("bound program on a flat patch: %zu instructions\n", flat.code.size());
     row("vm affine, flat patch (region 1/64)", RegionEvalsPerSecond<vm::Affine>(flat, 1.0 / 64, seconds));
     row("vm interval, flat patch (region 1/64)", RegionEvalsPerSecond<vm::Interval>(flat, 1.0 / 64, seconds));

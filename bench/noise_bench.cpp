@@ -142,15 +142,14 @@ int main(int argc, char** argv) {
         std::snprintf(name, sizeof name, "affine, width %g", width);
         row(name, [&](int d) { return Measure<Affine>(d, width, Placement::Anywhere, kAuto, seconds); });
         std::snprintf(name, sizeof name, "dual-affine, width %g", width);
-        row(name, [&](int d) {
-            return Measure<Dual<Affine>>(d, width, Placement::Anywhere, kAuto, seconds);
-        });
+        row(name, [&](int d) { return Measure<Dual<Affine>>(d, width, Placement::Anywhere, kAuto, seconds); });
     }
 
-    std::printf("\nPolynomial -> Local (Affine's default; Interval's default stays Polynomial):\n"
-                "thousands of calls per second and mean bound width\n");
-    std::printf("%-24s %4s %9s %9s %6s %11s %11s %7s\n", "region", "dims", "poly k/s", "local k/s",
-                "speed", "poly width", "local width", "ratio");
+    std::printf(
+        "\nPolynomial -> Local (Affine's default; Interval's default stays Polynomial):\n"
+        "thousands of calls per second and mean bound width\n");
+    std::printf("%-24s %4s %9s %9s %6s %11s %11s %7s\n", "region", "dims", "poly k/s", "local k/s", "speed",
+                "poly width", "local width", "ratio");
     for (Placement where : {Placement::InsideCell, Placement::StraddlingFace}) {
         for (double width : {1.0 / 8, 1.0 / 64, 1.0 / 512}) {
             for (int type = 0; type < 2; ++type) {
@@ -161,13 +160,11 @@ int main(int argc, char** argv) {
                     else
                         Compare<Affine>(dims, width, where, seconds, &old, &now);
                     char name[64];
-                    std::snprintf(name, sizeof name, "%s %s 1/%.0f",
-                                  type == 0 ? "interval" : "affine",
-                                  where == Placement::InsideCell ? "inside" : "straddle",
-                                  1 / width);
-                    std::printf("%-24s %4d %9.0f %9.0f %5.1fx %11.3g %11.3g %7.3f\n", name, dims,
-                                old.rate / 1e3, now.rate / 1e3, now.rate / old.rate,
-                                old.meanWidth, now.meanWidth, now.meanWidth / old.meanWidth);
+                    std::snprintf(name, sizeof name, "%s %s 1/%.0f", type == 0 ? "interval" : "affine",
+                                  where == Placement::InsideCell ? "inside" : "straddle", 1 / width);
+                    std::printf("%-24s %4d %9.0f %9.0f %5.1fx %11.3g %11.3g %7.3f\n", name, dims, old.rate / 1e3,
+                                now.rate / 1e3, now.rate / old.rate, old.meanWidth, now.meanWidth,
+                                now.meanWidth / old.meanWidth);
                 }
             }
         }

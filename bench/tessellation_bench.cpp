@@ -31,8 +31,8 @@
 #include "renderer/camera.h"
 #include "renderer/exr_writer.h"
 #include "renderer/render.h"
-#include "rib/rib.h"
 #include "renderer/surface.h"
+#include "rib/rib.h"
 
 using namespace affray;
 
@@ -67,8 +67,8 @@ int ParseCount(const char* text, const char* flag, int lo, int hi) {
     char* end = nullptr;
     long value = std::strtol(text, &end, 10);
     if (end == text || *end != '\0' || value < lo || value > hi) {
-        std::fprintf(stderr, "affray_bench_tessellation: %s takes a whole number in [%d, %d], got '%s'\n", flag, lo,
-                     hi, text);
+        std::fprintf(stderr, "affray_bench_tessellation: %s takes a whole number in [%d, %d], got '%s'\n", flag, lo, hi,
+                     text);
         std::exit(2);
     }
     return static_cast<int>(value);
@@ -85,36 +85,46 @@ Options ParseArgs(int argc, char** argv) {
             }
             return argv[++i];
         };
-        if (a == "--grid") o.grid = ParseCount(value(), "--grid", 1, 16384);
-        else if (a == "-o") o.outputPath = value();
-        else if (a == "--threads") o.threads = ParseCount(value(), "--threads", 1, 1024);
-        else if (a == "--samples") o.samples = ParseCount(value(), "--samples", 1, 64);
+        if (a == "--grid")
+            o.grid = ParseCount(value(), "--grid", 1, 16384);
+        else if (a == "-o")
+            o.outputPath = value();
+        else if (a == "--threads")
+            o.threads = ParseCount(value(), "--threads", 1, 1024);
+        else if (a == "--samples")
+            o.samples = ParseCount(value(), "--samples", 1, 64);
         else if (a == "--tolerance") {
             const char* text = value();
             char* end = nullptr;
             o.tolerance = std::strtod(text, &end);
             if (end == text || *end != '\0' || !(o.tolerance > 0) || !std::isfinite(o.tolerance)) {
-                std::fprintf(stderr, "affray_bench_tessellation: --tolerance takes a positive number, got '%s'\n", text);
+                std::fprintf(stderr, "affray_bench_tessellation: --tolerance takes a positive number, got '%s'\n",
+                             text);
                 std::exit(2);
             }
-        }
-        else if (a == "--quality") {
+        } else if (a == "--quality") {
             const std::string q = value();
-            if (q == "high") o.quality = RTC_BUILD_QUALITY_HIGH;
-            else if (q == "medium") o.quality = RTC_BUILD_QUALITY_MEDIUM;
+            if (q == "high")
+                o.quality = RTC_BUILD_QUALITY_HIGH;
+            else if (q == "medium")
+                o.quality = RTC_BUILD_QUALITY_MEDIUM;
             else {
-                std::fprintf(stderr, "affray_bench_tessellation: --quality takes high or medium, got '%s'\n", q.c_str());
+                std::fprintf(stderr, "affray_bench_tessellation: --quality takes high or medium, got '%s'\n",
+                             q.c_str());
                 std::exit(2);
             }
-        } else if (a == "--stats") o.stats = true;
-        else if (a == "--quiet") o.quiet = true;  // no progress bar any more; kept for the scripts that pass it
+        } else if (a == "--stats")
+            o.stats = true;
+        else if (a == "--quiet")
+            o.quiet = true;  // no progress bar any more; kept for the scripts that pass it
         else if (a == "-h" || a == "--help") {
             std::fputs(kUsage, stdout);
             std::exit(0);
         } else if (!a.empty() && a[0] == '-') {
             std::fprintf(stderr, "affray_bench_tessellation: unknown option '%s'\n%s", a.c_str(), kUsage);
             std::exit(2);
-        } else if (o.scenePath.empty()) o.scenePath = a;
+        } else if (o.scenePath.empty())
+            o.scenePath = a;
         else {
             std::fprintf(stderr, "affray_bench_tessellation: more than one scene given\n%s", kUsage);
             std::exit(2);
@@ -139,8 +149,7 @@ struct EmbreeMemory {
         auto* m = static_cast<EmbreeMemory*>(self);
         const int64_t now = m->current += bytes;
         int64_t seen = m->peak.load();
-        while (now > seen && !m->peak.compare_exchange_weak(seen, now)) {
-        }
+        while (now > seen && !m->peak.compare_exchange_weak(seen, now)) {}
         return true;
     }
 };
@@ -154,10 +163,10 @@ void ReportEmbreeError(void*, RTCError code, const char* message) {
 /// v = j/N), two triangles per cell whose corners are all finite, and its Embree scene.
 struct Mesh {
     int n = 0;
-    std::vector<float> vertices;     // x, y, z per grid point, then one float of padding (Embree
-                                     // reads the last vertex with a 16-byte load)
-    std::vector<uint32_t> indices;   // three grid points per triangle
-    RTCScene scene = nullptr;        // null if no triangle is left
+    std::vector<float> vertices;    // x, y, z per grid point, then one float of padding (Embree
+                                    // reads the last vertex with a 16-byte load)
+    std::vector<uint32_t> indices;  // three grid points per triangle
+    RTCScene scene = nullptr;       // null if no triangle is left
 
     size_t triangles() const { return indices.size() / 3; }
     size_t bytes() const { return vertices.size() * sizeof(float) + indices.size() * sizeof(uint32_t); }
@@ -346,7 +355,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s\n", error.c_str());
         return 1;
     }
-    const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads =
+        opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     const glm::dvec3 eye = renderer::Camera(prepared.desc.camera).Position();
 
     // Tessellate: the bound program's P at every grid point.
@@ -398,14 +408,14 @@ int main(int argc, char** argv) {
     }
     rtcReleaseDevice(device);
     if (opt.stats)
-        std::printf("{\"grid\":%d,\"triangles\":%zu,\"tessellate_seconds\":%.4f,\"bvh_seconds\":%.4f,"
-                    "\"render_seconds\":%.4f,\"wall_seconds\":%.4f,\"mesh_bytes\":%zu,\"bvh_bytes\":%lld,"
-                    "\"peak_rss_mb\":%.1f,\"build_quality\":\"%s\",\"threads\":%d,\"camera_rays\":%llu,"
-                    "\"shadow_rays\":%llu}\n",
-                    opt.grid, triangles, tessellateSeconds, bvhSeconds, renderSeconds, SecondsSince(start), meshBytes,
-                    static_cast<long long>(embreeMemory.peak.load()), PeakRssMegabytes(),
-                    opt.quality == RTC_BUILD_QUALITY_HIGH ? "high" : "medium", threads,
-                    static_cast<unsigned long long>(stats.cameraRays),
-                    static_cast<unsigned long long>(stats.shadow.rays));
+        std::printf(
+            "{\"grid\":%d,\"triangles\":%zu,\"tessellate_seconds\":%.4f,\"bvh_seconds\":%.4f,"
+            "\"render_seconds\":%.4f,\"wall_seconds\":%.4f,\"mesh_bytes\":%zu,\"bvh_bytes\":%lld,"
+            "\"peak_rss_mb\":%.1f,\"build_quality\":\"%s\",\"threads\":%d,\"camera_rays\":%llu,"
+            "\"shadow_rays\":%llu}\n",
+            opt.grid, triangles, tessellateSeconds, bvhSeconds, renderSeconds, SecondsSince(start), meshBytes,
+            static_cast<long long>(embreeMemory.peak.load()), PeakRssMegabytes(),
+            opt.quality == RTC_BUILD_QUALITY_HIGH ? "high" : "medium", threads,
+            static_cast<unsigned long long>(stats.cameraRays), static_cast<unsigned long long>(stats.shadow.rays));
     return 0;
 }

@@ -28,14 +28,10 @@ const std::vector<Builtin>& Table() {
     static const std::vector<Builtin> kBuiltins = {
         {"sin", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Sin, a[0]); }},
         {"cos", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Cos, a[0]); }},
-        {"tan", "f", [](ValueOps& o, A a) {
-             return o.Div(Scalar(o, IrOp::Sin, a[0]), Scalar(o, IrOp::Cos, a[0]));
-         }},
+        {"tan", "f", [](ValueOps& o, A a) { return o.Div(Scalar(o, IrOp::Sin, a[0]), Scalar(o, IrOp::Cos, a[0])); }},
         {"exp", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Exp, a[0]); }},
         {"log", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Log, a[0]); }},
-        {"log", "ff", [](ValueOps& o, A a) {
-             return o.Div(Scalar(o, IrOp::Log, a[0]), Scalar(o, IrOp::Log, a[1]));
-         }},
+        {"log", "ff", [](ValueOps& o, A a) { return o.Div(Scalar(o, IrOp::Log, a[0]), Scalar(o, IrOp::Log, a[1])); }},
         {"sqrt", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Sqrt, a[0]); }},
         {"inversesqrt", "f", [](ValueOps& o, A a) { return o.Div(o.Constant(1.0), Scalar(o, IrOp::Sqrt, a[0])); }},
         {"abs", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Abs, a[0]); }},
@@ -51,23 +47,27 @@ const std::vector<Builtin>& Table() {
         {"zcomp", "t", [](ValueOps& o, A a) { return o.Component(a[0], 2); }},
         {"Du", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::DerivU, a[0]); }},
         {"Dv", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::DerivV, a[0]); }},
-        {"reflect", "tt", [](ValueOps& o, A a) {
+        {"reflect", "tt",
+         [](ValueOps& o, A a) {
              // reflect(I, N) = I - 2 (I.N) N
              return o.Promote(o.Sub(a[0], o.Mul(o.Mul(o.Constant(2.0), o.Dot(a[0], a[1])), a[1])), Type::Vector);
          }},
-        {"area", "t", [](ValueOps& o, A a) {
+        {"area", "t",
+         [](ValueOps& o, A a) {
              // area(P) = length(Du(P)*du ^ Dv(P)*dv)
              Value du = o.Float(o.ir().Global(vm::Global::du, 0)), dv = o.Float(o.ir().Global(vm::Global::dv, 0));
              Value sideU = o.Mul(Scalar(o, IrOp::DerivU, a[0]), du), sideV = o.Mul(Scalar(o, IrOp::DerivV, a[0]), dv);
              return o.Length(o.Cross(sideU, sideV));
          }},
-        {"Deriv", "af", [](ValueOps& o, A a) {
+        {"Deriv", "af",
+         [](ValueOps& o, A a) {
              // Deriv(num, den) = Du(num)/Du(den) + Dv(num)/Dv(den)
              Value byU = o.Div(Scalar(o, IrOp::DerivU, a[0]), Scalar(o, IrOp::DerivU, a[1]));
              Value byV = o.Div(Scalar(o, IrOp::DerivV, a[0]), Scalar(o, IrOp::DerivV, a[1]));
              return o.Add(byU, byV);
          }},
-        {"calculatenormal", "t", [](ValueOps& o, A a) {
+        {"calculatenormal", "t",
+         [](ValueOps& o, A a) {
              // RenderMan: calculatenormal(P) = Du(P) ^ Dv(P)
              Value du = Scalar(o, IrOp::DerivU, a[0]), dv = Scalar(o, IrOp::DerivV, a[0]);
              return o.Promote(o.Cross(du, dv), Type::Normal);
@@ -79,7 +79,8 @@ const std::vector<Builtin>& Table() {
         {"acos", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Acos, a[0]); }},
         {"atan", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Atan, a[0]); }},
         {"atan", "ff", [](ValueOps& o, A a) { return o.Binary(IrOp::Atan2, a[0], a[1]); }},
-        {"mod", "aa", [](ValueOps& o, A a) {
+        {"mod", "aa",
+         [](ValueOps& o, A a) {
              // RenderMan's mod has the sign of the divisor: a - b*floor(a/b)
              return o.Sub(a[0], o.Mul(a[1], o.Map(IrOp::Floor, o.Div(a[0], a[1]))));
          }},
@@ -88,30 +89,37 @@ const std::vector<Builtin>& Table() {
         {"max", "aa", [](ValueOps& o, A a) { return o.Binary(IrOp::Max, a[0], a[1]); }},
         {"max", "aaa", [](ValueOps& o, A a) { return o.Binary(IrOp::Max, o.Binary(IrOp::Max, a[0], a[1]), a[2]); }},
         {"clamp", "aaa", [](ValueOps& o, A a) { return o.Clamp(a[0], a[1], a[2]); }},
-        {"step", "ff", [](ValueOps& o, A a) {
+        {"step", "ff",
+         [](ValueOps& o, A a) {
              // step(edge, x) = x < edge ? 0 : 1, i.e. edge <= x
              return o.Binary(IrOp::Le, a[0], a[1]);
          }},
-        {"smoothstep", "fff", [](ValueOps& o, A a) {
+        {"smoothstep", "fff",
+         [](ValueOps& o, A a) {
              // 0 below e0, 1 above e1, the cubic Hermite 3t^2 - 2t^3 between
              Value t = o.Clamp(o.Div(o.Sub(a[2], a[0]), o.Sub(a[1], a[0])), o.Constant(0.0), o.Constant(1.0));
              return o.Mul(o.Map(IrOp::Sqr, t), o.Sub(o.Constant(3.0), o.Mul(o.Constant(2.0), t)));
          }},
-        {"faceforward", "tt", [](ValueOps& o, A a) {
+        {"faceforward", "tt",
+         [](ValueOps& o, A a) {
              // faceforward(N, I) = I.Ng > 0 ? -N : N
              Value ng = o.Triple(Type::Normal, o.ir().Global(vm::Global::Ng, 0), o.ir().Global(vm::Global::Ng, 1),
                                  o.ir().Global(vm::Global::Ng, 2));
-             return o.Promote(o.SelectValue(o.Binary(IrOp::Lt, o.Constant(0.0), o.Dot(a[1], ng)), o.Neg(a[0]), a[0]), Type::Vector);
+             return o.Promote(o.SelectValue(o.Binary(IrOp::Lt, o.Constant(0.0), o.Dot(a[1], ng)), o.Neg(a[0]), a[0]),
+                              Type::Vector);
          }},
-        {"faceforward", "ttt", [](ValueOps& o, A a) {
+        {"faceforward", "ttt",
+         [](ValueOps& o, A a) {
              // faceforward(N, I, Nref) = I.Nref > 0 ? -N : N
-             return o.Promote(o.SelectValue(o.Binary(IrOp::Lt, o.Constant(0.0), o.Dot(a[1], a[2])), o.Neg(a[0]), a[0]), Type::Vector);
+             return o.Promote(o.SelectValue(o.Binary(IrOp::Lt, o.Constant(0.0), o.Dot(a[1], a[2])), o.Neg(a[0]), a[0]),
+                              Type::Vector);
          }},
         {"determinant", "m", [](ValueOps& o, A a) { return o.Float(o.Determinant(a[0])); }},
         {"translate", "mt", [](ValueOps& o, A a) { return o.Translate(a[0], a[1]); }},
         {"rotate", "mft", [](ValueOps& o, A a) { return o.Rotate(a[0], a[1], a[2]); }},
         {"scale", "mt", [](ValueOps& o, A a) { return o.Scale(a[0], a[1]); }},
-        {"rotate", "tftt", [](ValueOps& o, A a) {
+        {"rotate", "tftt",
+         [](ValueOps& o, A a) {
              // rotate(Q, angle, P0, P1): Q turned by angle about the line through P0 and P1 (move
              // P0 to the origin, rotate about P1 - P0, move back).
              const Value toLine = o.Translate(o.Promote(o.Constant(1.0), Type::Matrix), a[2]);
@@ -119,7 +127,8 @@ const std::vector<Builtin>& Table() {
              const Value m = o.Translate(turn, o.Neg(a[2]));
              return o.Promote(o.TransformBy(m, a[0], Type::Point), a[0].type);
          }},
-        {"mix", "aaf", [](ValueOps& o, A a) {
+        {"mix", "aaf",
+         [](ValueOps& o, A a) {
              // mix(x, y, t) = x*(1-t) + y*t
              Value oneMinusT = o.Sub(o.Constant(1.0), a[2]);
              return o.Add(o.Mul(a[0], oneMinusT), o.Mul(a[1], a[2]));
@@ -131,8 +140,8 @@ const std::vector<Builtin>& Table() {
 // Functions of RenderMan's library that affray does not implement yet: a clear error, not
 // "unknown function".
 const char* const kNotYet[] = {
-    "texture", "environment", "shadow", "random", "illuminance", "specular", "diffuse", "ambient",
-    "printf", "format", "concat", "match", "bump", "trace", "fresnel", "refract", "ptlined", "depth",
+    "texture", "environment", "shadow", "random", "illuminance", "specular", "diffuse", "ambient", "printf",
+    "format",  "concat",      "match",  "bump",   "trace",       "fresnel",  "refract", "ptlined", "depth",
 };
 
 bool ArgMatches(char pattern, Type type) {
@@ -150,7 +159,11 @@ std::string DescribePattern(const char* pattern) {
     std::string out = "(";
     for (const char* p = pattern; *p; ++p) {
         if (p != pattern) out += ", ";
-        out += *p == 'f' ? "float" : *p == 't' ? "point" : *p == 'c' ? "color" : *p == 'm' ? "matrix" : "float or triple";
+        out += *p == 'f'   ? "float"
+               : *p == 't' ? "point"
+               : *p == 'c' ? "color"
+               : *p == 'm' ? "matrix"
+                           : "float or triple";
     }
     return out + ")";
 }
@@ -198,8 +211,8 @@ std::optional<Value> LowerBuiltin(ValueOps& ops, const lang::Expr& call, const s
     const Builtin* first = candidates.front();
     if (candidates.size() == 1 && std::char_traits<char>::length(first->pattern) != args.size()) {
         size_t n = std::char_traits<char>::length(first->pattern);
-        diags.error(call.loc, "'" + call.name + "' expects " + std::to_string(n) + " argument" +
-                                  (n == 1 ? "" : "s") + ", got " + std::to_string(args.size()));
+        diags.error(call.loc, "'" + call.name + "' expects " + std::to_string(n) + " argument" + (n == 1 ? "" : "s") +
+                                  ", got " + std::to_string(args.size()));
         return std::nullopt;
     }
     std::string got = "(";

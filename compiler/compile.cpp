@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "compiler/emit.h"
-#include "vm/bytecode_file.h"
 #include "lang/parse.h"
+#include "vm/bytecode_file.h"
 #include "vm/verify.h"
 
 namespace affray::compiler {
@@ -62,8 +62,8 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     shader.opsBeforeOptimisation = lowered->ir.requestedOps();
     std::vector<vm::ProgramParam> params;
     for (const ParamInfo& p : lowered->params)
-        params.push_back({p.name, ParamTypeName(p), ScalarCount(p.type) * std::max(p.arraySize, 1), vm::kNoRegister,
-                          p.defaults});
+        params.push_back(
+            {p.name, ParamTypeName(p), ScalarCount(p.type) * std::max(p.arraySize, 1), vm::kNoRegister, p.defaults});
     try {
         shader.genericBound = Emit(lowered->ir, {{"P", lowered->finalP}}, params);
         shader.genericShade = Emit(lowered->ir, {{"P", lowered->finalP}, {"N", lowered->finalN}}, params);
@@ -79,7 +79,8 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         std::map<std::string, std::string> strings;
         bool stringsOk = true;
         for (const ParamOverride& o : overrides) {
-            const bool isStringParam = std::count(lowered->stringParams.begin(), lowered->stringParams.end(), o.name) > 0;
+            const bool isStringParam =
+                std::count(lowered->stringParams.begin(), lowered->stringParams.end(), o.name) > 0;
             if (o.text && !isStringParam) {
                 const bool known = std::any_of(params.begin(), params.end(), [&](auto& p) { return p.name == o.name; });
                 result.paramErrors.push_back(known ? "parameter '" + o.name + "' of shader '" + shader.name +
@@ -127,7 +128,6 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     return result;
 }
 
-
 CompileResult LoadCompiledShader(const std::string& path, const std::vector<ParamOverride>& overrides,
                                  const Spaces* spaces) {
     CompileResult result;
@@ -142,8 +142,7 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
     shader.sourcePath = file.sourcePath;
     shader.genericBound = std::move(file.bound);
     shader.genericShade = std::move(file.shade);
-    for (const vm::ProgramParam& p : shader.genericShade.params)
-        shader.params.push_back(ParamFromProgram(p));
+    for (const vm::ProgramParam& p : shader.genericShade.params) shader.params.push_back(ParamFromProgram(p));
     shader.opsBeforeOptimisation = static_cast<int>(shader.genericShade.code.size());
     for (const std::string& space : shader.genericBound.spaces) {
         if (spaces && spaces->count(space) && spaces->at(space).toCurrent != kIdentity4) {

@@ -65,7 +65,9 @@ vm::Program Emit(const IrBuilder& ir, const std::vector<NamedValue>& outputs,
         const IrNode& n = ir.node(v);
         switch (n.op) {
             case IrOp::Const: break;  // a K operand, or loaded where a register is needed
-            case IrOp::Global: value[v] = as.Global(static_cast<vm::Global>(n.in[0])) + static_cast<int>(n.in[1]); break;
+            case IrOp::Global:
+                value[v] = as.Global(static_cast<vm::Global>(n.in[0])) + static_cast<int>(n.in[1]);
+                break;
             case IrOp::Param: value[v] = as.Param(n.in[0], params.at(n.in[0]).size) + static_cast<int>(n.in[1]); break;
             default: {
                 const Selection sel = Select(ir, n);

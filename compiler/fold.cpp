@@ -149,8 +149,7 @@ std::optional<ValueId> Fold(IrBuilder& ir, const IrNode& n) {
             if (ir.node(a).op == IrOp::Not) return ir.Select(ir.node(a).in[0], y, x, line);
             break;
         }
-        default:
-            break;
+        default: break;
     }
     return std::nullopt;
 }

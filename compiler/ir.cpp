@@ -15,8 +15,8 @@ const char* ToString(IrOp op) {
 int Arity(IrOp op) { return static_cast<int>(op) < kIrLeaves ? 0 : vm::Info(OperationOf(op)).operands; }
 
 size_t IrBuilder::KeyHash::operator()(const Key& k) const {
-    uint64_t h = (static_cast<uint64_t>(k.op) << 16 | static_cast<uint64_t>(k.count) << 8 | k.channel) *
-                 0x9E3779B97F4A7C15ull;
+    uint64_t h =
+        (static_cast<uint64_t>(k.op) << 16 | static_cast<uint64_t>(k.count) << 8 | k.channel) * 0x9E3779B97F4A7C15ull;
     for (int i = 0; i < k.count || (i < 2 && k.count == 0); ++i)
         h ^= k.in[i] + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
     h ^= k.kBits + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
@@ -29,7 +29,7 @@ ValueId IrBuilder::Intern(const IrNode& n) {
     if (inserted) {
         m_nodes.push_back(n);
         IrNode& added = m_nodes.back();
-        added.boolean = n.op == IrOp::Const ? (n.k == 0.0 || n.k == 1.0)
+        added.boolean = n.op == IrOp::Const    ? (n.k == 0.0 || n.k == 1.0)
                         : n.op == IrOp::Select ? m_nodes[n.in[1]].boolean && m_nodes[n.in[2]].boolean
                                                : IsBooleanOp(n.op);
     }

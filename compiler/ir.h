@@ -115,7 +115,9 @@ class IrBuilder {
 /// condition depends on a parameter: a quiet NaN with a payload of its own, so that specialising
 /// such a generic program for parameter values that need more iterations is an error, not NaN.
 inline const double kParameterLoopPoison = std::bit_cast<double>(uint64_t{0x7ff8'0000'0afa'1009});
-inline bool IsParameterLoopPoison(double k) { return std::bit_cast<uint64_t>(k) == std::bit_cast<uint64_t>(kParameterLoopPoison); }
+inline bool IsParameterLoopPoison(double k) {
+    return std::bit_cast<uint64_t>(k) == std::bit_cast<uint64_t>(kParameterLoopPoison);
+}
 
 /// Tries the rewrite rules of compiler/fold.cpp on node `n` (operands set, not yet created);
 /// returns the folded value or nothing.

@@ -53,7 +53,8 @@ const std::string& Lowerer::UnknownString() {
 
 std::string Article(Type t) {
     std::string name = ToString(t);
-    return (name[0] == 'a' || name[0] == 'e' || name[0] == 'i' || name[0] == 'o' || name[0] == 'u' ? "an " : "a ") + name;
+    return (name[0] == 'a' || name[0] == 'e' || name[0] == 'i' || name[0] == 'o' || name[0] == 'u' ? "an " : "a ") +
+           name;
 }
 
 Variable* Lowerer::Find(const std::string& name) {
@@ -67,7 +68,8 @@ Variable* Lowerer::Find(const std::string& name) {
 void Lowerer::PopScope() {
     // After an error, "unused" is more often a consequence than a finding: stay quiet.
     for (const auto& [name, var] : m_state.scopes.back())
-        if (!var.used && !var.isGlobal && !m_diags.hasErrors()) m_diags.warning(var.loc, "unused variable '" + name + "'");
+        if (!var.used && !var.isGlobal && !m_diags.hasErrors())
+            m_diags.warning(var.loc, "unused variable '" + name + "'");
     m_state.scopes.pop_back();
     // Functions defined in the scope go with it.
     while (!m_functions.empty() && m_functions.back().first > m_state.scopes.size()) m_functions.pop_back();
@@ -128,7 +130,8 @@ std::optional<Value> Lowerer::LowerComponentCall(const Expr& e) {
             if (!i) return std::nullopt;
             std::optional<double> k = i->type == Type::Float ? m_out.ir.ConstValue(i->c[0]) : std::nullopt;
             if (!k || *k < 0 || *k > limit || *k != std::floor(*k)) {
-                m_diags.error(e.args[a]->loc, "the " + std::string(ofMatrix ? (a == 1 ? "row" : "column") : "component") +
+                m_diags.error(e.args[a]->loc, "the " +
+                                                  std::string(ofMatrix ? (a == 1 ? "row" : "column") : "component") +
                                                   " index of '" + e.name + "' must be the constant 0, 1" +
                                                   (ofMatrix ? ", 2 or 3" : " or 2"));
                 return std::nullopt;
@@ -146,7 +149,8 @@ std::optional<Value> Lowerer::LowerComponentCall(const Expr& e) {
     if (!isSet) return m_ops.Component(target, index);
     if (x->type == Type::Bool) x->type = Type::Float;
     if (x->type != Type::Float) {
-        m_diags.error(e.args.back()->loc, "the new component of '" + e.name + "' must be a float, got " + Article(x->type));
+        m_diags.error(e.args.back()->loc,
+                      "the new component of '" + e.name + "' must be a float, got " + Article(x->type));
         return std::nullopt;
     }
     Variable* var = e.args[0]->kind == ExprKind::Ident ? Find(e.args[0]->name) : nullptr;
@@ -186,8 +190,8 @@ std::optional<Value> Lowerer::LowerBinary(const Expr& e) {
     if (b->type == Type::Bool) b->type = Type::Float;
     const char* opName = lang::ToString(e.binaryOp);
     auto bad = [&](const std::string& why) {
-        m_diags.error(e.loc, "invalid operands to '" + std::string(opName) + "' (" + ToString(a->type) +
-                                 " and " + ToString(b->type) + ")" + why);
+        m_diags.error(e.loc, "invalid operands to '" + std::string(opName) + "' (" + ToString(a->type) + " and " +
+                                 ToString(b->type) + ")" + why);
         return std::nullopt;
     };
     if (!IsNumeric(a->type) || !IsNumeric(b->type)) return bad("");
@@ -205,8 +209,8 @@ std::optional<Value> Lowerer::LowerBinary(const Expr& e) {
         case BinaryOp::Sub:
         case BinaryOp::Mul:
         case BinaryOp::Div: {
-            bool mixesColor = (a->type == Type::Color && IsSpatial(b->type)) ||
-                              (b->type == Type::Color && IsSpatial(a->type));
+            bool mixesColor =
+                (a->type == Type::Color && IsSpatial(b->type)) || (b->type == Type::Color && IsSpatial(a->type));
             if (mixesColor) return bad(": a color does not combine with a point, vector or normal");
             if (e.binaryOp == BinaryOp::Add) return m_ops.Add(*a, *b);
             if (e.binaryOp == BinaryOp::Sub) return m_ops.Sub(*a, *b);
@@ -235,17 +239,19 @@ std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
         return std::nullopt;
     }
     if (!var->writable) {
-        m_diags.error(e.loc, "cannot assign to '" + e.name + "': it is " +
-                                 (var->isGlobal ? "a read-only global" : "read-only"));
+        m_diags.error(
+            e.loc, "cannot assign to '" + e.name + "': it is " + (var->isGlobal ? "a read-only global" : "read-only"));
         return std::nullopt;
     }
     if (isElement != (var->arraySize >= 0)) {
-        m_diags.error(e.loc, isElement ? "'" + e.name + "' is not an array" : "cannot assign to the whole array '" + e.name + "'");
+        m_diags.error(e.loc, isElement ? "'" + e.name + "' is not an array"
+                                       : "cannot assign to the whole array '" + e.name + "'");
         return std::nullopt;
     }
     if (!rhs || (isElement && !index)) return std::nullopt;
     m_ops.SetLine(e.loc.line);
-    const std::string what = std::string(ToString(var->type)) + (isElement ? " element of '" : " variable '") + e.name + "'";
+    const std::string what =
+        std::string(ToString(var->type)) + (isElement ? " element of '" : " variable '") + e.name + "'";
     std::optional<Value> current = isElement ? Element(*var, *index, e.args[1]->loc) : var->value;
     if (!current) return std::nullopt;
     Value value = *rhs;
@@ -255,8 +261,8 @@ std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
             m_diags.error(e.loc, "variable '" + e.name + "' is used before it is assigned a value");
             return std::nullopt;
         }
-        const bool matrixOp = var->type == Type::Matrix && (e.assignOp == lang::AssignOp::MulAssign ||
-                                                             e.assignOp == lang::AssignOp::DivAssign);
+        const bool matrixOp = var->type == Type::Matrix &&
+                              (e.assignOp == lang::AssignOp::MulAssign || e.assignOp == lang::AssignOp::DivAssign);
         if ((!IsTriple(var->type) && var->type != Type::Float && !matrixOp) ||
             (var->type == Type::Matrix && value.type != Type::Float && value.type != Type::Matrix) ||
             (value.type == Type::Matrix && var->type != Type::Matrix)) {
@@ -268,7 +274,8 @@ std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
             m_diags.error(e.loc, "cannot assign " + Article(value.type) + " to " + what);
             return std::nullopt;
         }
-        if ((var->type == Type::Color && IsSpatial(value.type)) || (IsSpatial(var->type) && value.type == Type::Color)) {
+        if ((var->type == Type::Color && IsSpatial(value.type)) ||
+            (IsSpatial(var->type) && value.type == Type::Color)) {
             m_diags.error(e.loc, "cannot assign " + Article(value.type) + " to " + what);
             return std::nullopt;
         }
@@ -327,8 +334,7 @@ std::optional<Value> Lowerer::LowerCast(const Expr& e) {
 std::optional<Value> Lowerer::LowerCall(const Expr& e, Type expected) {
     // A user function wins over a built-in of the same name.
     if (const lang::FunctionDef* f = FindFunction(e.name)) return LowerUserCall(e, *f);
-    if (e.name == "comp" || e.name == "setcomp" || e.name == "setxcomp" || e.name == "setycomp" ||
-        e.name == "setzcomp")
+    if (e.name == "comp" || e.name == "setcomp" || e.name == "setxcomp" || e.name == "setycomp" || e.name == "setzcomp")
         return LowerComponentCall(e);
     std::vector<Value> args;
     bool ok = true;
@@ -457,9 +463,9 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
         auto global = static_cast<vm::Global>(g);
         Variable var;
         std::string name = vm::GlobalName(global);
-        var.type = vm::GlobalSize(global) == 1 ? Type::Float
+        var.type = vm::GlobalSize(global) == 1   ? Type::Float
                    : name == "N" || name == "Ng" ? Type::Normal
-                   : name == "P" || name == "E" ? Type::Point
+                   : name == "P" || name == "E"  ? Type::Point
                                                  : Type::Vector;
         var.isGlobal = true;
         var.assigned = true;

@@ -95,8 +95,10 @@ void Lowerer::Merge(ValueId cond, const FlowState& thenState) {
         e.skipped = ir().Select(cond, t.skipped, e.skipped, Line());
         // A value returned on one arm only is the value on the paths that returned; the other
         // paths have not returned yet, and a later return overwrites it there (Guard).
-        if (e.returned.type == Type::Void) e.returned = t.returned;
-        else if (t.returned.type != Type::Void && t.returned.c != e.returned.c) e.returned = select(t.returned, e.returned);
+        if (e.returned.type == Type::Void)
+            e.returned = t.returned;
+        else if (t.returned.type != Type::Void && t.returned.c != e.returned.c)
+            e.returned = select(t.returned, e.returned);
     }
 }
 
@@ -147,7 +149,7 @@ void Lowerer::LowerIf(const Stmt& s) {
         // A constant condition: the live arm's state is the result; the dead arm only adds the
         // variables it read (for the unused-variable warnings).
         if (*k == 0.0) std::swap(m_state, thenState);  // now thenState is the live arm's
-        KeepUsedFlags(thenState);                        // ...plus what the dead arm used
+        KeepUsedFlags(thenState);                      // ...plus what the dead arm used
         m_state = std::move(thenState);
         return;
     }
@@ -253,7 +255,8 @@ void Lowerer::LowerJump(const Stmt& s) {
         if (s.expr) {
             std::optional<Value> v = LowerExpecting(*s.expr, returnType);
             if (returnType == Type::Void) {
-                m_diags.error(s.loc, isShader ? "a shader does not return a value" : "a void function does not return a value");
+                m_diags.error(
+                    s.loc, isShader ? "a shader does not return a value" : "a void function does not return a value");
             } else if (v) {
                 std::optional<Value> converted = Convert(*v, returnType, s.expr->loc, "the return value");
                 Value& returned = m_state.contexts[functionIndex].returned;
@@ -275,9 +278,10 @@ void Lowerer::LowerJump(const Stmt& s) {
         ++loops;
     }
     if (s.level < 1 || loops < s.level) {
-        m_diags.error(s.loc, loops == 0 ? "'" + std::string(word) + "' outside of a loop"
-                                        : "'" + std::string(word) + " " + std::to_string(s.level) + "' is inside only " +
-                                              std::to_string(loops) + (loops == 1 ? " loop" : " loops"));
+        m_diags.error(s.loc, loops == 0
+                                 ? "'" + std::string(word) + "' outside of a loop"
+                                 : "'" + std::string(word) + " " + std::to_string(s.level) + "' is inside only " +
+                                       std::to_string(loops) + (loops == 1 ? " loop" : " loops"));
         return;
     }
     // The loops passed through are left; the target loop is left (break) or skips to its next

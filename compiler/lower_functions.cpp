@@ -84,7 +84,8 @@ std::optional<Value> Lowerer::LowerUserCall(const Expr& call, const lang::Functi
         if (wantsArray || p.isOutput) {
             const Variable* source = arg.kind == ExprKind::Ident ? Find(arg.name) : nullptr;
             if (!source) {
-                m_diags.error(arg.loc, std::string("argument ") + std::to_string(i + 1) + " of '" + f.name + "' must be " +
+                m_diags.error(arg.loc, std::string("argument ") + std::to_string(i + 1) + " of '" + f.name +
+                                           "' must be " +
                                            (wantsArray ? "an array variable" : "a variable (its parameter is output)"));
                 ok = false;
                 continue;
@@ -93,7 +94,9 @@ std::optional<Value> Lowerer::LowerUserCall(const Expr& call, const lang::Functi
                 (wantsArray && p.arraySize > 0 && p.arraySize != source->arraySize) ||
                 (p.isOutput && source->type != param.type && !(IsSpatial(source->type) && IsSpatial(param.type)))) {
                 auto arrayText = [](int size) {
-                    return size < 0 ? std::string() : size == 0 ? std::string(" array") : " array of " + std::to_string(size);
+                    return size < 0    ? std::string()
+                           : size == 0 ? std::string(" array")
+                                       : " array of " + std::to_string(size);
                 };
                 m_diags.error(arg.loc, "argument " + std::to_string(i + 1) + " of '" + f.name + "' is " +
                                            Article(source->type) + arrayText(source->arraySize) + "; the parameter '" +
@@ -123,7 +126,8 @@ std::optional<Value> Lowerer::LowerUserCall(const Expr& call, const lang::Functi
                 continue;
             }
             if (v->type == Type::Bool) v->type = Type::Float;
-            std::optional<Value> converted = Convert(*v, param.type, arg.loc, "parameter '" + p.name + "' of '" + f.name + "'");
+            std::optional<Value> converted =
+                Convert(*v, param.type, arg.loc, "parameter '" + p.name + "' of '" + f.name + "'");
             if (!converted) {
                 ok = false;
                 continue;
@@ -216,7 +220,8 @@ void Lowerer::DeclareExtern(const lang::VarDecl& d) {
         if (it != scope->end()) outer = &it->second;
     }
     if (!outer) {
-        if (!m_checkingOnly) m_diags.error(d.loc, "extern variable '" + d.name + "' is not declared in an enclosing scope");
+        if (!m_checkingOnly)
+            m_diags.error(d.loc, "extern variable '" + d.name + "' is not declared in an enclosing scope");
         DeclarePlaceholder(d, FromTypeName(d.type));
         return;
     }
@@ -327,7 +332,7 @@ std::optional<Value> Lowerer::LowerIndex(const Expr& e) {
     Variable* var = target.kind == ExprKind::Ident ? Find(target.name) : nullptr;
     if (!var || var->arraySize < 0) {
         m_diags.error(target.loc, target.kind == ExprKind::Ident && !var ? "unknown identifier '" + target.name + "'"
-                                                                          : "only an array can be indexed");
+                                                                         : "only an array can be indexed");
         return std::nullopt;
     }
     var->used = true;

@@ -35,7 +35,9 @@ const SplineBasis* FindSplineBasis(const std::string& name) {
     static const SplineBasis kBases[] = {
         {"catmull-rom", {{-0.5, 1.5, -1.5, 0.5}, {1, -2.5, 2, -0.5}, {-0.5, 0, 0.5, 0}, {0, 1, 0, 0}}, 1},
         {"bezier", {{-1, 3, -3, 1}, {3, -6, 3, 0}, {-3, 3, 0, 0}, {1, 0, 0, 0}}, 3},
-        {"bspline", {{-1.0 / 6, 0.5, -0.5, 1.0 / 6}, {0.5, -1, 0.5, 0}, {-0.5, 0, 0.5, 0}, {1.0 / 6, 4.0 / 6, 1.0 / 6, 0}}, 1},
+        {"bspline",
+         {{-1.0 / 6, 0.5, -0.5, 1.0 / 6}, {0.5, -1, 0.5, 0}, {-0.5, 0, 0.5, 0}, {1.0 / 6, 4.0 / 6, 1.0 / 6, 0}},
+         1},
         {"hermite", {{2, 1, -2, 1}, {-3, -2, 3, -1}, {0, 1, 0, 0}, {1, 0, 0, 0}}, 2},
         {"power", {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}, 4},
         {"linear", {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, -1, 1, 0}, {0, 1, 0, 0}}, 1},
@@ -94,7 +96,8 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
         if (!to) return std::nullopt;
         const Value& x = args.back();
         if (!IsSpatial(x.type) && x.type != Type::Float) {
-            m_diags.error(argLoc(args.size() - 1), "'" + name + "' transforms a point, vector or normal, not " + Article(x.type));
+            m_diags.error(argLoc(args.size() - 1),
+                          "'" + name + "' transforms a point, vector or normal, not " + Article(x.type));
             return std::nullopt;
         }
         const Type kind = name == "transform" ? Type::Point : name == "vtransform" ? Type::Vector : Type::Normal;
@@ -132,9 +135,10 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
         if (!ok) {
             std::string got;
             for (const Value& a : args) got += (got.empty() ? "" : ", ") + std::string(ToString(a.type));
-            m_diags.error(e.loc, "no version of '" + name + "' takes (" + got + "); expected " +
-                                     (periodic ? "(x, period) with x a float, two floats, a point, or a point and a float"
-                                               : "a float, two floats, a point, or a point and a float"));
+            m_diags.error(e.loc,
+                          "no version of '" + name + "' takes (" + got + "); expected " +
+                              (periodic ? "(x, period) with x a float, two floats, a point, or a point and a float"
+                                        : "a float, two floats, a point, or a point and a float"));
             return std::nullopt;
         }
         operands.insert(operands.end(), periods.begin(), periods.end());
@@ -162,7 +166,8 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
                 m_diags.error(argLoc(i), "filterstep's optional arguments are pairs of a name and a constant float");
                 return std::nullopt;
             }
-            if (*param == "width") widthScale = *v;
+            if (*param == "width")
+                widthScale = *v;
             else if (*param != "filter" && !Unknown(*param)) {
                 m_diags.error(argLoc(i), "unknown filterstep parameter '" + *param + "'");
                 return std::nullopt;
@@ -228,7 +233,8 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
     for (size_t i = first + 1; i < args.size(); ++i) {
         const bool fits = args[i].type == knotType || (IsSpatial(args[i].type) && IsSpatial(knotType)) ||
                           (args[i].type == Type::Float && IsTriple(knotType));
-        if (!fits && IsTriple(args[i].type) && knotType == Type::Float) knotType = args[i].type;
+        if (!fits && IsTriple(args[i].type) && knotType == Type::Float)
+            knotType = args[i].type;
         else if (!fits) {
             m_diags.error(argLoc(i), "spline knots must all be floats or all triples");
             return std::nullopt;
@@ -247,7 +253,8 @@ Value Lowerer::MapBy(const Matrix4& m, const Matrix4& inverse, const Value& x, T
         auto coefficient = [&](int j) { return kind == Type::Normal ? inverse[4 * j + i] : m[4 * i + j]; };
         ValueId sum = kind == Type::Point ? ir().Const(m[4 * i + 3]) : ir().Const(0.0);
         for (int j = 0; j < 3; ++j)
-            sum = ir().Binary(IrOp::Add, sum, ir().Binary(IrOp::Mul, ir().Const(coefficient(j)), x.c[j], Line()), Line());
+            sum =
+                ir().Binary(IrOp::Add, sum, ir().Binary(IrOp::Mul, ir().Const(coefficient(j)), x.c[j], Line()), Line());
         out.c[i] = sum;
     }
     return out;
@@ -269,7 +276,8 @@ Value Lowerer::ToCurrent(const std::string& space, const Value& x, Type kind) {
 
 Value Lowerer::CurrentTo(const std::string& space) {
     if (space != "current") NoteSpace(space);
-    if (space == "current" || !m_spaces || !m_spaces->count(space)) return m_ops.Promote(m_ops.Constant(1.0), Type::Matrix);
+    if (space == "current" || !m_spaces || !m_spaces->count(space))
+        return m_ops.Promote(m_ops.Constant(1.0), Type::Matrix);
     return m_ops.MatrixConstant(m_spaces->at(space).fromCurrent);
 }
 

@@ -52,7 +52,8 @@ std::optional<Value> Lowerer::LowerComparison(const Expr& e, const Value& a, con
     // a > b is b < a, a >= b is b <= a.
     const bool swap = op == BinaryOp::Greater || op == BinaryOp::GreaterEq;
     const IrOp irOp = op == BinaryOp::Less || op == BinaryOp::Greater ? IrOp::Lt : IrOp::Le;
-    return boolean(swap ? ir().Binary(irOp, y.c[0], x.c[0], e.loc.line) : ir().Binary(irOp, x.c[0], y.c[0], e.loc.line));
+    return boolean(swap ? ir().Binary(irOp, y.c[0], x.c[0], e.loc.line)
+                        : ir().Binary(irOp, x.c[0], y.c[0], e.loc.line));
 }
 
 std::optional<ValueId> Lowerer::LowerCondition(const Expr& e) {
@@ -82,8 +83,10 @@ std::optional<Value> Lowerer::LowerTernary(const Expr& e) {
         return Value{Type::String, {id, id, id}};
     }
     const bool numeric = IsNumeric(x.type) && IsNumeric(y.type);
-    const bool mixesColor = (x.type == Type::Color && IsSpatial(y.type)) || (y.type == Type::Color && IsSpatial(x.type));
-    const bool mixesMatrix = (x.type == Type::Matrix && IsTriple(y.type)) || (y.type == Type::Matrix && IsTriple(x.type));
+    const bool mixesColor =
+        (x.type == Type::Color && IsSpatial(y.type)) || (y.type == Type::Color && IsSpatial(x.type));
+    const bool mixesMatrix =
+        (x.type == Type::Matrix && IsTriple(y.type)) || (y.type == Type::Matrix && IsTriple(x.type));
     if (!numeric || mixesColor || mixesMatrix) {
         m_diags.error(e.loc, "the two results of '?:' have incompatible types (" + std::string(ToString(x.type)) +
                                  " and " + ToString(y.type) + ")");

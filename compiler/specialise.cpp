@@ -54,8 +54,8 @@ bool BindValues(const vm::Program& program, const std::vector<ParamOverride>& ov
 }  // namespace
 
 std::optional<std::vector<std::vector<double>>> BindParameters(const vm::Program& program,
-                                                              const std::vector<ParamOverride>& overrides,
-                                                              std::vector<std::string>* errors) {
+                                                               const std::vector<ParamOverride>& overrides,
+                                                               std::vector<std::string>* errors) {
     std::vector<std::vector<double>> values;
     if (!BindValues(program, overrides, &values, errors)) return std::nullopt;
     return values;
@@ -125,7 +125,8 @@ std::optional<vm::Program> Specialise(const vm::Program& program, const std::vec
     vm::Program out = Emit(ir, outputs);
     for (double k : out.constants) {
         if (IsParameterLoopPoison(k)) {
-            errors->push_back("shader '" + program.shaderName + "': with these parameter values a loop runs longer "
+            errors->push_back("shader '" + program.shaderName +
+                              "': with these parameter values a loop runs longer "
                               "than the compiled program was unrolled for; use the shader's source (.sl), which is "
                               "unrolled for each instance's values");
             return std::nullopt;

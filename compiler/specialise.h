@@ -17,7 +17,8 @@ namespace affray::compiler {
 /// A value given to a shader parameter by the scene (or `affray eval --param`).
 struct ParamOverride {
     ParamOverride() = default;
-    ParamOverride(std::string name_, std::vector<double> numbers_) : name(std::move(name_)), numbers(std::move(numbers_)) {}
+    ParamOverride(std::string name_, std::vector<double> numbers_)
+        : name(std::move(name_)), numbers(std::move(numbers_)) {}
     /// A string parameter's value.
     static ParamOverride String(std::string name, std::string text) {
         ParamOverride o;
@@ -41,8 +42,8 @@ struct ConstantGlobal {
 /// The value of every parameter of `program`: its override, else its default. Problems with the
 /// overrides are appended to *errors as sentences, and the result is empty.
 std::optional<std::vector<std::vector<double>>> BindParameters(const vm::Program& program,
-                                                              const std::vector<ParamOverride>& overrides,
-                                                              std::vector<std::string>* errors);
+                                                               const std::vector<ParamOverride>& overrides,
+                                                               std::vector<std::string>* errors);
 
 /// `program` with every parameter bound to its override, else its default, and every global in
 /// `constantGlobals` bound to its value, then folded, shared and pruned again. Problems with the

@@ -13,9 +13,7 @@ const char* ToString(Type t);
 Type FromTypeName(lang::TypeName t);
 
 /// Point, vector, normal and color are triples: three scalars in the VM.
-inline bool IsTriple(Type t) {
-    return t == Type::Point || t == Type::Vector || t == Type::Normal || t == Type::Color;
-}
+inline bool IsTriple(Type t) { return t == Type::Point || t == Type::Vector || t == Type::Normal || t == Type::Color; }
 /// Point, vector and normal mix freely in arithmetic (RenderMan allows it); color does not mix
 /// with them.
 inline bool IsSpatial(Type t) { return t == Type::Point || t == Type::Vector || t == Type::Normal; }

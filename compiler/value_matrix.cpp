@@ -26,7 +26,8 @@ Value ValueOps::MatrixProduct(const Value& a, const Value& b) {
     for (int row = 0; row < 4; ++row)
         for (int column = 0; column < 4; ++column) {
             ValueId sum = Scalar(IrOp::Mul, At(a, row, 0), At(b, 0, column));
-            for (int k = 1; k < 4; ++k) sum = Scalar(IrOp::Add, sum, Scalar(IrOp::Mul, At(a, row, k), At(b, k, column)));
+            for (int k = 1; k < 4; ++k)
+                sum = Scalar(IrOp::Add, sum, Scalar(IrOp::Mul, At(a, row, k), At(b, k, column)));
             r.c[4 * row + column] = sum;
         }
     return r;

@@ -38,8 +38,7 @@ Value ValueOps::Div(const Value& a, const Value& b) {
         for (ValueId& e : r.c) e = Scalar(IrOp::Div, e, b.c[0]);
         return r;
     }
-    if (a.type == Type::Matrix || b.type == Type::Matrix)
-        return MatrixProduct(Promote(a, Type::Matrix), Inverse(b));
+    if (a.type == Type::Matrix || b.type == Type::Matrix) return MatrixProduct(Promote(a, Type::Matrix), Inverse(b));
     return Componentwise(IrOp::Div, a, b);
 }
 

@@ -34,64 +34,64 @@ namespace affray::lang {
 
 const char* ToString(TypeName t) {
     switch (t) {
-    case TypeName::Float: return "float";
-    case TypeName::Point: return "point";
-    case TypeName::Vector: return "vector";
-    case TypeName::Normal: return "normal";
-    case TypeName::Color: return "color";
-    case TypeName::String: return "string";
-    case TypeName::Void: return "void";
-    case TypeName::Matrix: return "matrix";
+        case TypeName::Float: return "float";
+        case TypeName::Point: return "point";
+        case TypeName::Vector: return "vector";
+        case TypeName::Normal: return "normal";
+        case TypeName::Color: return "color";
+        case TypeName::String: return "string";
+        case TypeName::Void: return "void";
+        case TypeName::Matrix: return "matrix";
     }
     return "?";
 }
 
 const char* ToString(UnaryOp op) {
     switch (op) {
-    case UnaryOp::Negate: return "-";
-    case UnaryOp::Not: return "!";
+        case UnaryOp::Negate: return "-";
+        case UnaryOp::Not: return "!";
     }
     return "?";
 }
 
 const char* ToString(BinaryOp op) {
     switch (op) {
-    case BinaryOp::Add: return "+";
-    case BinaryOp::Sub: return "-";
-    case BinaryOp::Mul: return "*";
-    case BinaryOp::Div: return "/";
-    case BinaryOp::Dot: return ".";
-    case BinaryOp::Cross: return "^";
-    case BinaryOp::Less: return "<";
-    case BinaryOp::LessEq: return "<=";
-    case BinaryOp::Greater: return ">";
-    case BinaryOp::GreaterEq: return ">=";
-    case BinaryOp::Equal: return "==";
-    case BinaryOp::NotEqual: return "!=";
-    case BinaryOp::And: return "&&";
-    case BinaryOp::Or: return "||";
+        case BinaryOp::Add: return "+";
+        case BinaryOp::Sub: return "-";
+        case BinaryOp::Mul: return "*";
+        case BinaryOp::Div: return "/";
+        case BinaryOp::Dot: return ".";
+        case BinaryOp::Cross: return "^";
+        case BinaryOp::Less: return "<";
+        case BinaryOp::LessEq: return "<=";
+        case BinaryOp::Greater: return ">";
+        case BinaryOp::GreaterEq: return ">=";
+        case BinaryOp::Equal: return "==";
+        case BinaryOp::NotEqual: return "!=";
+        case BinaryOp::And: return "&&";
+        case BinaryOp::Or: return "||";
     }
     return "?";
 }
 
 const char* ToString(AssignOp op) {
     switch (op) {
-    case AssignOp::Assign: return "=";
-    case AssignOp::AddAssign: return "+=";
-    case AssignOp::SubAssign: return "-=";
-    case AssignOp::MulAssign: return "*=";
-    case AssignOp::DivAssign: return "/=";
+        case AssignOp::Assign: return "=";
+        case AssignOp::AddAssign: return "+=";
+        case AssignOp::SubAssign: return "-=";
+        case AssignOp::MulAssign: return "*=";
+        case AssignOp::DivAssign: return "/=";
     }
     return "?";
 }
 
 const char* ToString(ShaderKind k) {
     switch (k) {
-    case ShaderKind::Displacement: return "displacement";
-    case ShaderKind::Surface: return "surface";
-    case ShaderKind::Light: return "light";
-    case ShaderKind::Volume: return "volume";
-    case ShaderKind::Imager: return "imager";
+        case ShaderKind::Displacement: return "displacement";
+        case ShaderKind::Surface: return "surface";
+        case ShaderKind::Light: return "light";
+        case ShaderKind::Volume: return "volume";
+        case ShaderKind::Imager: return "imager";
     }
     return "?";
 }
@@ -174,30 +174,28 @@ std::string ToString(const Expr& e) {
     std::vector<std::string> args;
     for (const ExprPtr& a : e.args) args.push_back(Maybe(a));
     switch (e.kind) {
-    case ExprKind::Number: {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%g", e.number);
-        return buf;
-    }
-    case ExprKind::String: return Quoted(e.text);
-    case ExprKind::Ident: return e.name;
-    case ExprKind::Unary: return List(ToString(e.unaryOp), args);
-    case ExprKind::Binary: return List(ToString(e.binaryOp), args);
-    case ExprKind::Assign: {
-        std::string target = e.name;
-        if (args.size() == 2) target = List("[]", {target, args[1]});
-        return List(ToString(e.assignOp), {target, args.empty() ? "()" : args[0]});
-    }
-    case ExprKind::Call:
-        args.insert(args.begin(), e.name);
-        return List("call", args);
-    case ExprKind::Triple: return List("triple", args);
-    case ExprKind::Tuple16: return List("tuple16", args);
-    case ExprKind::Cast:
-        if (!e.castSpace.empty()) args.insert(args.begin(), Quoted(e.castSpace));
-        return List(std::string("cast ") + ToString(e.castType), args);
-    case ExprKind::Ternary: return List("?", args);
-    case ExprKind::Index: return List("[]", args);
+        case ExprKind::Number: {
+            char buf[32];
+            std::snprintf(buf, sizeof buf, "%g", e.number);
+            return buf;
+        }
+        case ExprKind::String: return Quoted(e.text);
+        case ExprKind::Ident: return e.name;
+        case ExprKind::Unary: return List(ToString(e.unaryOp), args);
+        case ExprKind::Binary: return List(ToString(e.binaryOp), args);
+        case ExprKind::Assign: {
+            std::string target = e.name;
+            if (args.size() == 2) target = List("[]", {target, args[1]});
+            return List(ToString(e.assignOp), {target, args.empty() ? "()" : args[0]});
+        }
+        case ExprKind::Call: args.insert(args.begin(), e.name); return List("call", args);
+        case ExprKind::Triple: return List("triple", args);
+        case ExprKind::Tuple16: return List("tuple16", args);
+        case ExprKind::Cast:
+            if (!e.castSpace.empty()) args.insert(args.begin(), Quoted(e.castSpace));
+            return List(std::string("cast ") + ToString(e.castType), args);
+        case ExprKind::Ternary: return List("?", args);
+        case ExprKind::Index: return List("[]", args);
     }
     return "(?)";
 }
@@ -206,30 +204,26 @@ std::string ToString(const Stmt& s) {
     std::vector<std::string> body;
     for (const StmtPtr& b : s.body) body.push_back(Maybe(b));
     switch (s.kind) {
-    case StmtKind::Expr: return Maybe(s.expr);
-    case StmtKind::Decl: {
-        std::vector<std::string> decls;
-        for (const VarDecl& v : s.decls) decls.push_back(ToString(v));
-        return List("decl", decls);
-    }
-    case StmtKind::Block: return List("block", body);
-    case StmtKind::Empty: return "(empty)";
-    case StmtKind::If:
-        body.insert(body.begin(), Maybe(s.expr));
-        return List("if", body);
-    case StmtKind::For:
-        body.insert(body.begin(), {Maybe(s.init), Maybe(s.expr), Maybe(s.step)});
-        return List("for", body);
-    case StmtKind::While:
-        body.insert(body.begin(), Maybe(s.expr));
-        return List("while", body);
-    case StmtKind::Return: return s.expr ? List("return", {ToString(*s.expr)}) : "(return)";
-    case StmtKind::Break:
-    case StmtKind::Continue: {
-        std::string head = s.kind == StmtKind::Break ? "break" : "continue";
-        return s.level == 1 ? "(" + head + ")" : List(head, {std::to_string(s.level)});
-    }
-    case StmtKind::FunctionDef: return s.function ? ToString(*s.function) : "(function)";
+        case StmtKind::Expr: return Maybe(s.expr);
+        case StmtKind::Decl: {
+            std::vector<std::string> decls;
+            for (const VarDecl& v : s.decls) decls.push_back(ToString(v));
+            return List("decl", decls);
+        }
+        case StmtKind::Block: return List("block", body);
+        case StmtKind::Empty: return "(empty)";
+        case StmtKind::If: body.insert(body.begin(), Maybe(s.expr)); return List("if", body);
+        case StmtKind::For:
+            body.insert(body.begin(), {Maybe(s.init), Maybe(s.expr), Maybe(s.step)});
+            return List("for", body);
+        case StmtKind::While: body.insert(body.begin(), Maybe(s.expr)); return List("while", body);
+        case StmtKind::Return: return s.expr ? List("return", {ToString(*s.expr)}) : "(return)";
+        case StmtKind::Break:
+        case StmtKind::Continue: {
+            std::string head = s.kind == StmtKind::Break ? "break" : "continue";
+            return s.level == 1 ? "(" + head + ")" : List(head, {std::to_string(s.level)});
+        }
+        case StmtKind::FunctionDef: return s.function ? ToString(*s.function) : "(function)";
     }
     return "(?)";
 }
@@ -239,8 +233,7 @@ std::string ToString(const ShaderDef& s) {
 }
 
 std::string ToString(const FunctionDef& f) {
-    return List(std::string("function ") + ToString(f.returnType) + " " + f.name,
-                {Params(f.params), Body(f.body)});
+    return List(std::string("function ") + ToString(f.returnType) + " " + f.name, {Params(f.params), Body(f.body)});
 }
 
 }  // namespace affray::lang

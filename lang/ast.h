@@ -73,12 +73,12 @@ struct VarDecl {
     TypeName type = TypeName::Float;
     Detail detail = Detail::Default;
     bool isOutput = false;
-    bool isExtern = false;        // `extern type name`: a variable of an enclosing scope
+    bool isExtern = false;  // `extern type name`: a variable of an enclosing scope
     std::string name;
-    SourceLoc loc;                // of the name
-    int arraySize = -1;           // -1: not an array; 0: unsized `name[]`; N: `name[N]`
-    ExprPtr init;                 // `= expr`; may be null (always null if hasInitList)
-    bool hasInitList = false;     // `= {a, b, ...}`
+    SourceLoc loc;             // of the name
+    int arraySize = -1;        // -1: not an array; 0: unsized `name[]`; N: `name[N]`
+    ExprPtr init;              // `= expr`; may be null (always null if hasInitList)
+    bool hasInitList = false;  // `= {a, b, ...}`
     std::vector<ExprPtr> initList;
 };
 
@@ -87,16 +87,16 @@ using StmtPtr = std::unique_ptr<Stmt>;
 struct FunctionDef;
 
 enum class StmtKind {
-    Expr,   // expr
-    Decl,   // decls (all share one type, `float a = 1, b;`)
-    Block,     // body
-    Empty,     // a lone ';'
-    If,        // expr (condition), body[0] (then), body[1] (else, optional)
-    For,       // init, expr (condition), step, body[0]; init/expr/step may be null
-    While,     // expr (condition), body[0]
-    Return,    // expr (may be null)
-    Break,     // level (1 unless written `break 2`)
-    Continue,  // level
+    Expr,         // expr
+    Decl,         // decls (all share one type, `float a = 1, b;`)
+    Block,        // body
+    Empty,        // a lone ';'
+    If,           // expr (condition), body[0] (then), body[1] (else, optional)
+    For,          // init, expr (condition), step, body[0]; init/expr/step may be null
+    While,        // expr (condition), body[0]
+    Return,       // expr (may be null)
+    Break,        // level (1 unless written `break 2`)
+    Continue,     // level
     FunctionDef,  // function: defined inside a shader's or a function's body; loc is its type
 };
 

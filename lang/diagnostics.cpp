@@ -3,15 +3,9 @@
 
 namespace affray::lang {
 
-void Diagnostics::error(SourceLoc loc, std::string message) {
-    add(Severity::Error, loc, std::move(message));
-}
-void Diagnostics::warning(SourceLoc loc, std::string message) {
-    add(Severity::Warning, loc, std::move(message));
-}
-void Diagnostics::note(SourceLoc loc, std::string message) {
-    add(Severity::Note, loc, std::move(message));
-}
+void Diagnostics::error(SourceLoc loc, std::string message) { add(Severity::Error, loc, std::move(message)); }
+void Diagnostics::warning(SourceLoc loc, std::string message) { add(Severity::Warning, loc, std::move(message)); }
+void Diagnostics::note(SourceLoc loc, std::string message) { add(Severity::Note, loc, std::move(message)); }
 
 void Diagnostics::add(Severity severity, SourceLoc loc, std::string message) {
     // The same error or warning at the same place again (an unrolled loop body or an inlined
@@ -84,8 +78,8 @@ std::string Diagnostics::format() const {
     std::string out;
     for (const Diagnostic& d : m_list) out += format(d);
     if (m_errorCount > kMaxErrors)
-        out += m_file->path() + ": error: too many errors (" + std::to_string(m_errorCount) +
-               "), stopping after " + std::to_string(kMaxErrors) + "\n";
+        out += m_file->path() + ": error: too many errors (" + std::to_string(m_errorCount) + "), stopping after " +
+               std::to_string(kMaxErrors) + "\n";
     return out;
 }
 

@@ -34,8 +34,7 @@ void ParseContext::Error(SourceLoc loc, std::string message) {
 ExprNode ParseContext::Finish(ExprPtr e, int depth) {
     if (depth > kMaxDepth) {
         if (!m_reportedExprDepth)
-            Error(e->loc, "expression too complex (nested more than " +
-                              std::to_string(kMaxDepth) + " levels deep)");
+            Error(e->loc, "expression too complex (nested more than " + std::to_string(kMaxDepth) + " levels deep)");
         m_reportedExprDepth = true;
         // Replace the subtree by a leaf so that nothing deeper is ever built.
         e = std::make_unique<Expr>(ExprKind::Number, e->loc);
@@ -47,8 +46,7 @@ ExprNode ParseContext::Finish(ExprPtr e, int depth) {
 StmtNode ParseContext::Finish(StmtPtr s, int depth) {
     if (depth > kMaxDepth) {
         if (!m_reportedStmtDepth)
-            Error(s->loc, "statements nested more than " + std::to_string(kMaxDepth) +
-                              " levels deep");
+            Error(s->loc, "statements nested more than " + std::to_string(kMaxDepth) + " levels deep");
         m_reportedStmtDepth = true;
         s = std::make_unique<Stmt>(StmtKind::Empty, s->loc);
         depth = 1;
@@ -184,8 +182,7 @@ StmtNode ParseContext::If(SourceLoc loc, ExprNode cond, StmtNode yes, StmtNode n
     return Finish(std::move(s), 1 + std::max(yes.depth, no.depth));
 }
 
-StmtNode ParseContext::For(SourceLoc loc, ExprNode init, ExprNode cond, ExprNode step,
-                           StmtNode body) {
+StmtNode ParseContext::For(SourceLoc loc, ExprNode init, ExprNode cond, ExprNode step, StmtNode body) {
     auto s = std::make_unique<Stmt>(StmtKind::For, loc);
     s->init = std::move(init.expr);
     s->expr = std::move(cond.expr);
@@ -213,8 +210,7 @@ void ParseContext::Append(StmtList& list, StmtNode s) {
 }
 
 int ParseContext::JumpLevel(SourceLoc loc, double value) {
-    if (value >= 1 && value <= 1000000 && value == std::floor(value))
-        return static_cast<int>(value);
+    if (value >= 1 && value <= 1000000 && value == std::floor(value)) return static_cast<int>(value);
     Error(loc, "the loop level must be a positive integer");
     return 1;
 }
@@ -222,8 +218,7 @@ int ParseContext::JumpLevel(SourceLoc loc, double value) {
 // --- Declarations, shaders and functions ----------------------------------------------------
 
 int ParseContext::ArraySize(SourceLoc loc, double value) {
-    if (value >= 1 && value <= 1000000 && value == std::floor(value))
-        return static_cast<int>(value);
+    if (value >= 1 && value <= 1000000 && value == std::floor(value)) return static_cast<int>(value);
     Error(loc, "the array size must be a positive integer");
     return 1;
 }
@@ -244,8 +239,7 @@ Init ParseContext::ListInit(SourceLoc loc, ExprList list, bool bad) {
     return init;
 }
 
-void ParseContext::AddVar(std::vector<VarDecl>& list, SourceLoc loc, std::string name,
-                          int arraySize, Init init) {
+void ParseContext::AddVar(std::vector<VarDecl>& list, SourceLoc loc, std::string name, int arraySize, Init init) {
     VarDecl v;
     v.name = std::move(name);
     v.loc = loc;
@@ -256,20 +250,17 @@ void ParseContext::AddVar(std::vector<VarDecl>& list, SourceLoc loc, std::string
     // A bad list was reported where it went wrong; its (partial) contents say nothing more.
     if (v.hasInitList && !init.bad) {
         if (v.arraySize < 0)
-            Error(init.loc,
-                  "'" + v.name + "' is not an array; only an array takes a list in braces");
+            Error(init.loc, "'" + v.name + "' is not an array; only an array takes a list in braces");
         else if (v.arraySize > 0 && v.initList.size() != static_cast<size_t>(v.arraySize))
-            Error(init.loc, "array '" + v.name + "' of size " + std::to_string(v.arraySize) +
-                                " has " + std::to_string(v.initList.size()) + " initial values");
+            Error(init.loc, "array '" + v.name + "' of size " + std::to_string(v.arraySize) + " has " +
+                                std::to_string(v.initList.size()) + " initial values");
     } else if (v.init && v.arraySize >= 0) {
-        Error(init.loc, "the initial values of array '" + v.name +
-                            "' must be a list in braces, as in {1, 2, 3}");
+        Error(init.loc, "the initial values of array '" + v.name + "' must be a list in braces, as in {1, 2, 3}");
     }
     list.push_back(std::move(v));
 }
 
-std::vector<VarDecl> ParseContext::Typed(std::vector<VarDecl> list, TypeName type, Detail detail,
-                                         bool output) {
+std::vector<VarDecl> ParseContext::Typed(std::vector<VarDecl> list, TypeName type, Detail detail, bool output) {
     for (VarDecl& v : list) {
         v.type = type;
         v.detail = detail;
@@ -294,8 +285,7 @@ std::vector<VarDecl> ParseContext::Extern(std::vector<VarDecl> list) {
 void ParseContext::RequireSizes(const std::vector<VarDecl>& decls) {
     for (const VarDecl& v : decls)
         if (v.arraySize == 0 && !v.isExtern)
-            Error(v.loc, "array '" + v.name +
-                             "' needs a size (only function parameters and externs may omit it)");
+            Error(v.loc, "array '" + v.name + "' needs a size (only function parameters and externs may omit it)");
 }
 
 std::vector<VarDecl> ParseContext::ShaderParams(std::vector<VarDecl> params) {
@@ -303,8 +293,8 @@ std::vector<VarDecl> ParseContext::ShaderParams(std::vector<VarDecl> params) {
     return params;
 }
 
-void ParseContext::AddShader(ShaderKind kind, SourceLoc loc, std::string name,
-                             std::vector<VarDecl> params, StmtList body) {
+void ParseContext::AddShader(ShaderKind kind, SourceLoc loc, std::string name, std::vector<VarDecl> params,
+                             StmtList body) {
     ShaderDef def;
     def.kind = kind;
     def.name = std::move(name);
@@ -314,8 +304,7 @@ void ParseContext::AddShader(ShaderKind kind, SourceLoc loc, std::string name,
     m_unit.shaders.push_back(std::move(def));
 }
 
-std::shared_ptr<FunctionDef> ParseContext::FunctionHead(TypeName type, SourceLoc loc,
-                                                        std::string name,
+std::shared_ptr<FunctionDef> ParseContext::FunctionHead(TypeName type, SourceLoc loc, std::string name,
                                                         std::vector<VarDecl> params) {
     auto def = std::make_shared<FunctionDef>();
     def->returnType = type;
@@ -323,8 +312,7 @@ std::shared_ptr<FunctionDef> ParseContext::FunctionHead(TypeName type, SourceLoc
     def->loc = loc;
     for (VarDecl& v : params) {
         if (v.init || v.hasInitList) {
-            Error(v.loc, "parameter '" + v.name + "' of function '" + def->name +
-                             "' cannot have a default value");
+            Error(v.loc, "parameter '" + v.name + "' of function '" + def->name + "' cannot have a default value");
             v.init = nullptr;
             v.hasInitList = false;
             v.initList.clear();
@@ -355,8 +343,7 @@ namespace {
 TranslationUnit ParseText(Diagnostics& diags, const std::string& text, bool markerFiles) {
     int errorsBefore = diags.errorCount();
     if (text.size() > kMaxSourceBytes) {
-        diags.error({}, "file too large to parse (more than " + std::to_string(kMaxSourceBytes) +
-                            " bytes)");
+        diags.error({}, "file too large to parse (more than " + std::to_string(kMaxSourceBytes) + " bytes)");
         return {};
     }
 
@@ -365,8 +352,7 @@ TranslationUnit ParseText(Diagnostics& diags, const std::string& text, bool mark
         std::unique_ptr<void, void (*)(void*)> scanner(NewScanner(ctx, text), DeleteScanner);
         Parser parser(ctx);
         // Every way to fail reports first; this is a net under that rule, not a message users see.
-        if (parser.parse() != 0 && diags.errorCount() == errorsBefore)
-            diags.error(ctx.lex().lastEnd, "syntax error");
+        if (parser.parse() != 0 && diags.errorCount() == errorsBefore) diags.error(ctx.lex().lastEnd, "syntax error");
     } catch (const std::bad_alloc&) {
         diags.error(ctx.lex().Here(), "out of memory while parsing");
     } catch (const std::exception& e) {
@@ -389,9 +375,9 @@ TranslationUnit PreprocessAndParse(Diagnostics& diags, const PreprocessOptions& 
     for (Diagnostic& d : pre.errors) {
         d.loc.file = fileIndex.at(static_cast<size_t>(d.loc.file));
         switch (d.severity) {
-        case Severity::Error: diags.error(d.loc, std::move(d.message)); break;
-        case Severity::Warning: diags.warning(d.loc, std::move(d.message)); break;
-        case Severity::Note: diags.note(d.loc, std::move(d.message)); break;
+            case Severity::Error: diags.error(d.loc, std::move(d.message)); break;
+            case Severity::Warning: diags.warning(d.loc, std::move(d.message)); break;
+            case Severity::Note: diags.note(d.loc, std::move(d.message)); break;
         }
     }
     if (!pre.ok) return {};

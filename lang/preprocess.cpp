@@ -41,8 +41,8 @@ constexpr size_t kMaxMessageBytes = size_t{1} << 20;
 
 // Target-CPU macros the compiler-independent mcpp predefines even with -N (it shows __x86_64__
 // and __amd64__ on amd64); undefining a name that is not defined is harmless.
-constexpr const char* kUndefined[] = {"__MCPP",    "__STDC_HOSTED__", "__x86_64__", "__amd64__",
-                                      "__i386__",  "__aarch64__",     "__arm__",    "__ppc__",
+constexpr const char* kUndefined[] = {"__MCPP",    "__STDC_HOSTED__", "__x86_64__",   "__amd64__",
+                                      "__i386__",  "__aarch64__",     "__arm__",      "__ppc__",
                                       "__ppc64__", "__powerpc__",     "__powerpc64__"};
 
 // --- Capturing mcpp's output ------------------------------------------------------------------
@@ -50,8 +50,8 @@ constexpr const char* kUndefined[] = {"__MCPP",    "__STDC_HOSTED__", "__x86_64_
 struct Capture {
     std::string out;
     std::string err;
-    bool overflow = false;      // output hit kMaxOutputBytes, or memory ran out
-    std::vector<FILE*> files;  // that mcpp opened and has not closed
+    bool overflow = false;             // output hit kMaxOutputBytes, or memory ran out
+    std::vector<FILE*> files;          // that mcpp opened and has not closed
     std::unordered_set<void*> blocks;  // that mcpp allocated and has not freed
 };
 
@@ -90,9 +90,7 @@ int CaptureFputc(int c, OUTDEST od) {
     return Put(&ch, 1, od) == EOF ? EOF : c;
 }
 
-int CaptureFputs(const char* s, OUTDEST od) {
-    return Put(s, std::char_traits<char>::length(s), od);
-}
+int CaptureFputs(const char* s, OUTDEST od) { return Put(s, std::char_traits<char>::length(s), od); }
 
 int CaptureFprintf(OUTDEST od, const char* format, ...) {
     char small[1024];
@@ -187,8 +185,7 @@ class TempCopy {
 /// The files of one Preprocess call: result.files, and their text for placing carets.
 class FileTable {
   public:
-    FileTable(PreprocessResult& result, const std::string& path, const std::string& text,
-              std::string tempPath)
+    FileTable(PreprocessResult& result, const std::string& path, const std::string& text, std::string tempPath)
         : m_result(result), m_tempPath(std::move(tempPath)) {
         m_result.files = {path};
         m_texts.emplace(0, SourceFile(path, text));
@@ -251,16 +248,14 @@ std::string RewriteMarkers(const std::string& out, const FileTable& files) {
                 stack.push_back({printed, Normal(printed)});
             } else if (number == 1) {
                 fs::path name(printed);
-                std::string absolute =
-                    name.is_absolute()
-                        ? Normal(printed)
-                        : Normal((fs::path(stack.back().absolute).parent_path() / name).string());
+                std::string absolute = name.is_absolute()
+                                           ? Normal(printed)
+                                           : Normal((fs::path(stack.back().absolute).parent_path() / name).string());
                 stack.push_back({printed, absolute});
             } else {
                 while (stack.size() > 1 && stack.back().printed != printed) stack.pop_back();
             }
-            result += "#line " + std::to_string(number) + " \"" +
-                      files.Shown(stack.back().absolute) + "\"";
+            result += "#line " + std::to_string(number) + " \"" + files.Shown(stack.back().absolute) + "\"";
         } else {
             result += line;
         }
@@ -275,9 +270,8 @@ void AddMessages(const Capture& capture, FileTable& files, PreprocessResult& res
     static constexpr struct {
         std::string_view tag;
         Severity severity;
-    } kKinds[] = {{": fatal error: ", Severity::Error},
-                  {": error: ", Severity::Error},
-                  {": warning: ", Severity::Warning}};
+    } kKinds[] = {
+        {": fatal error: ", Severity::Error}, {": error: ", Severity::Error}, {": warning: ", Severity::Warning}};
     size_t pos = 0;
     const std::string& err = capture.err;
     while (pos < err.size()) {
@@ -297,8 +291,7 @@ void AddMessages(const Capture& capture, FileTable& files, PreprocessResult& res
             // not know (C.UTF-8); the encoding does not matter to RSL.
             if (message.rfind("Unknown encoding", 0) == 0) break;
             if (capture.overflow && message == "File write error")
-                message = "preprocessed text too long (over " +
-                          std::to_string(kMaxOutputBytes >> 20) +
+                message = "preprocessed text too long (over " + std::to_string(kMaxOutputBytes >> 20) +
                           " MiB): is a macro or #include expanding without end?";
             Diagnostic d;
             d.severity = kind.severity;
@@ -367,8 +360,7 @@ extern "C" void AffrayMcppFree(void* p) {
     free(p);
 }
 
-PreprocessResult Preprocess(const std::string& path, const std::string& text,
-                            const PreprocessOptions& options) {
+PreprocessResult Preprocess(const std::string& path, const std::string& text, const PreprocessOptions& options) {
     PreprocessResult result;
     result.files = {path};
     auto fail = [&](std::string message) {

@@ -34,7 +34,6 @@ struct PreprocessResult {
 /// `path` first). Never prints, never crashes or hangs on bad input: unterminated #if, a missing
 /// or recursive #include and garbage all become errors. Thread-safe: mcpp has global state, so
 /// calls from several threads take turns.
-PreprocessResult Preprocess(const std::string& path, const std::string& text,
-                            const PreprocessOptions& options);
+PreprocessResult Preprocess(const std::string& path, const std::string& text, const PreprocessOptions& options);
 
 }  // namespace affray::lang

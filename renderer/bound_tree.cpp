@@ -58,8 +58,7 @@ RegionBound Reduce(const vm::Vec3<vm::Affine>& p) {
     for (;;) {
         Affine::SymbolId lowest = ~Affine::SymbolId(0);
         for (int i = 0; i < 3; ++i)
-            if (!p[i].isUnbounded() && next[i] < p[i].termCount())
-                lowest = std::min(lowest, p[i].termSymbol(next[i]));
+            if (!p[i].isUnbounded() && next[i] < p[i].termCount()) lowest = std::min(lowest, p[i].termSymbol(next[i]));
         if (lowest == ~Affine::SymbolId(0)) break;
         double col[3] = {0, 0, 0};
         for (int i = 0; i < 3; ++i)
@@ -99,7 +98,8 @@ RegionBound Reduce(const vm::Vec3<vm::Affine>& p) {
         }
         // col = alpha w + res exactly up to the rounding of res, bounded by an ulp of each part.
         segment += std::fabs(alpha);
-        for (int i = 0; i < 3; ++i) r[i] += std::fabs(res[i]) + 2 * kUlp * (std::fabs(alpha * w[i]) + std::fabs(res[i]));
+        for (int i = 0; i < 3; ++i)
+            r[i] += std::fabs(res[i]) + 2 * kUlp * (std::fabs(alpha * w[i]) + std::fabs(res[i]));
     }
     segment = RoundedUpSum(segment, k);
     for (int i = 0; i < 3; ++i) {
@@ -187,12 +187,11 @@ int SplitAxis(const RegionBound& b, int levelU, int levelV, int maxDepth) {
 void CacheBudget::Add(uint64_t n) {
     const uint64_t now = bytes.fetch_add(n, std::memory_order_relaxed) + n;
     uint64_t peak = peakBytes.load(std::memory_order_relaxed);
-    while (now > peak && !peakBytes.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {
-    }
+    while (now > peak && !peakBytes.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {}
 }
 
-BoundTree::BoundTree(const BaseSurface& surface, const vm::Program& boundProgram, const glm::dvec3& eye,
-                     BoundMode mode, int maxDepth, CacheBudget* budget)
+BoundTree::BoundTree(const BaseSurface& surface, const vm::Program& boundProgram, const glm::dvec3& eye, BoundMode mode,
+                     int maxDepth, CacheBudget* budget)
     : m_surface(surface), m_program(&boundProgram), m_eye(eye), m_mode(mode), m_maxDepth(maxDepth) {
     if (!budget) m_ownBudget = std::make_unique<CacheBudget>(kDefaultCacheBytes);
     m_budget = budget ? budget : m_ownBudget.get();
@@ -356,8 +355,7 @@ BoundTree::Walker::~Walker() {
     m_tree.m_evaluations.fetch_add(m_evaluations, std::memory_order_relaxed);
     m_tree.m_private.fetch_add(m_private, std::memory_order_relaxed);
     double seconds = m_tree.m_buildSeconds.load();
-    while (!m_tree.m_buildSeconds.compare_exchange_weak(seconds, seconds + m_buildSeconds)) {
-    }
+    while (!m_tree.m_buildSeconds.compare_exchange_weak(seconds, seconds + m_buildSeconds)) {}
 }
 
 void BoundTree::Walker::Enter() {

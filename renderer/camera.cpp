@@ -33,13 +33,11 @@ Camera::Camera(const CameraDesc& desc) : m_desc(desc) {
         };
         m_pixelAngle = std::max(angle(left.dir, right.dir), angle(top.dir, bottom.dir));
     } else {
-        m_pixelWidth = std::max(glm::length(right.origin - left.origin),
-                                glm::length(bottom.origin - top.origin));
+        m_pixelWidth = std::max(glm::length(right.origin - left.origin), glm::length(bottom.origin - top.origin));
     }
 }
 
-void Camera::CameraSpaceRay(double rasterX, double rasterY, glm::dvec3* origin,
-                            glm::dvec3* dir) const {
+void Camera::CameraSpaceRay(double rasterX, double rasterY, glm::dvec3* origin, glm::dvec3* dir) const {
     // Raster y grows downward; screen y grows upward.
     double sx = m_left + (m_right - m_left) * (rasterX / m_desc.xres);
     double sy = m_top - (m_top - m_bottom) * (rasterY / m_desc.yres);

@@ -24,9 +24,7 @@ struct Ray {
     glm::dvec3 dir{0.0, 0.0, 1.0};  ///< Unit length.
 };
 
-inline std::string ToString(const Ray& r) {
-    return "ray origin=" + ToString(r.origin) + " dir=" + ToString(r.dir);
-}
+inline std::string ToString(const Ray& r) { return "ray origin=" + ToString(r.origin) + " dir=" + ToString(r.dir); }
 
 /// Generates primary rays for a CameraDesc. Immutable after construction; safe to share between
 /// threads.

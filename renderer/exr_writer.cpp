@@ -36,8 +36,7 @@ std::string TemporaryPath(const std::string& path) {
 // Checks sizes and channel names before any file is touched; returns "" if the image is valid.
 std::string ValidateImage(const ImageBuffer& image) {
     if (image.width <= 0 || image.height <= 0)
-        return "image size " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-               " is empty";
+        return "image size " + std::to_string(image.width) + "x" + std::to_string(image.height) + " is empty";
     int64_t pixels = int64_t(image.width) * image.height;
     if (pixels > kMaxPixels) return "image is too large";
     if (image.rgba.size() != size_t(pixels) * 4)
@@ -48,8 +47,8 @@ std::string ValidateImage(const ImageBuffer& image) {
         if (name.empty()) return "extra channel with an empty name";
         if (!names.insert(name).second) return "channel '" + name + "' is given twice";
         if (values.size() != size_t(pixels))
-            return "channel '" + name + "' holds " + std::to_string(values.size()) +
-                   " values, expected " + std::to_string(pixels);
+            return "channel '" + name + "' holds " + std::to_string(values.size()) + " values, expected " +
+                   std::to_string(pixels);
     }
     return "";
 }
@@ -66,8 +65,7 @@ void SyncFile(const std::string& path) {
 void WriteExrFile(const std::string& file, const ImageBuffer& image) {
     Imf::Header header(image.width, image.height);
     for (const char* name : kRgbaNames) header.channels().insert(name, Imf::Channel(Imf::HALF));
-    for (const auto& channel : image.extraChannels)
-        header.channels().insert(channel.first, Imf::Channel(Imf::FLOAT));
+    for (const auto& channel : image.extraChannels) header.channels().insert(channel.first, Imf::Channel(Imf::FLOAT));
 
     // RGBA goes to disk as half; convert once into an interleaved buffer.
     std::vector<Imath::half> rgba(image.rgba.size());
@@ -76,13 +74,11 @@ void WriteExrFile(const std::string& file, const ImageBuffer& image) {
     Imf::FrameBuffer frameBuffer;
     const size_t halfPixel = 4 * sizeof(Imath::half);
     for (int c = 0; c < 4; ++c)
-        frameBuffer.insert(kRgbaNames[c],
-                           Imf::Slice(Imf::HALF, reinterpret_cast<char*>(rgba.data() + c),
-                                      halfPixel, halfPixel * image.width));
+        frameBuffer.insert(kRgbaNames[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(rgba.data() + c), halfPixel,
+                                                     halfPixel * image.width));
     for (const auto& [name, values] : image.extraChannels)
-        frameBuffer.insert(
-            name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(values.data())),
-                             sizeof(float), sizeof(float) * image.width));
+        frameBuffer.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(values.data())),
+                                            sizeof(float), sizeof(float) * image.width));
 
     Imf::OutputFile out(file.c_str(), header);
     out.setFrameBuffer(frameBuffer);
@@ -134,8 +130,7 @@ bool ReadExrRgba(const std::string& path, ImageBuffer* out, std::string* error) 
         int64_t width = int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
         int64_t height = int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
         if (width <= 0 || height <= 0 || width * height > kMaxPixels)
-            throw std::runtime_error("unsupported data window " + std::to_string(width) + "x" +
-                                     std::to_string(height));
+            throw std::runtime_error("unsupported data window " + std::to_string(width) + "x" + std::to_string(height));
 
         ImageBuffer image;
         image.width = static_cast<int>(width);
@@ -143,10 +138,9 @@ bool ReadExrRgba(const std::string& path, ImageBuffer* out, std::string* error) 
         image.rgba.assign(size_t(width * height) * 4, 0.0f);
         Imf::FrameBuffer frameBuffer;
         for (int c = 0; c < 4; ++c)
-            frameBuffer.insert(
-                kRgbaNames[c],
-                Imf::Slice::Make(Imf::FLOAT, image.rgba.data() + c, dataWindow, 4 * sizeof(float),
-                                 4 * sizeof(float) * width, 1, 1, c == 3 ? 1.0 : 0.0));
+            frameBuffer.insert(kRgbaNames[c],
+                               Imf::Slice::Make(Imf::FLOAT, image.rgba.data() + c, dataWindow, 4 * sizeof(float),
+                                                4 * sizeof(float) * width, 1, 1, c == 3 ? 1.0 : 0.0));
         const Imf::ChannelList& channels = file.header().channels();
         for (auto it = channels.begin(); it != channels.end(); ++it) {
             std::string name = it.name();
@@ -156,8 +150,8 @@ bool ReadExrRgba(const std::string& path, ImageBuffer* out, std::string* error) 
             image.extraChannels.emplace_back(name, std::vector<float>(size_t(width * height)));
         }
         for (auto& [name, values] : image.extraChannels)
-            frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, values.data(), dataWindow,
-                                                      sizeof(float), sizeof(float) * width));
+            frameBuffer.insert(
+                name, Imf::Slice::Make(Imf::FLOAT, values.data(), dataWindow, sizeof(float), sizeof(float) * width));
         file.setFrameBuffer(frameBuffer);
         file.readPixels(dataWindow.min.y, dataWindow.max.y);
         *out = std::move(image);

@@ -43,8 +43,8 @@ ChannelPointers FindChannels(ImageBuffer* image) {
     const struct {
         const char* name;
         float** slot;
-    } table[] = {{"Z", &c.z},       {"N.X", &c.n[0]},   {"N.Y", &c.n[1]},   {"N.Z", &c.n[2]},
-                 {"P.X", &c.p[0]},  {"P.Y", &c.p[1]},   {"P.Z", &c.p[2]},   {"st.s", &c.st[0]},
+    } table[] = {{"Z", &c.z},        {"N.X", &c.n[0]},  {"N.Y", &c.n[1]}, {"N.Z", &c.n[2]},
+                 {"P.X", &c.p[0]},   {"P.Y", &c.p[1]},  {"P.Z", &c.p[2]}, {"st.s", &c.st[0]},
                  {"st.t", &c.st[1]}, {"cost", &c.cost}, {"err", &c.err}};
     const size_t pixels = static_cast<size_t>(image->width) * image->height;
     for (auto& [name, values] : image->extraChannels)
@@ -311,8 +311,8 @@ bool PasteCrop(const ImageBuffer& crop, const PixelRange& range, ImageBuffer* wh
         }
     if (crop.rgba.size() != pixels * 4) {
         if (error)
-            *error = "crop RGBA holds " + std::to_string(crop.rgba.size()) + " values, not " +
-                     std::to_string(pixels * 4);
+            *error =
+                "crop RGBA holds " + std::to_string(crop.rgba.size()) + " values, not " + std::to_string(pixels * 4);
         return false;
     }
     const PixelRange r{std::max(range.x0, 0), std::min(range.x1, crop.width), std::max(range.y0, 0),

@@ -136,8 +136,8 @@ class Film {
     /// (one per sample) into `image` (from MakeImage), applying exposure. Writes only the tile's
     /// pixels, so threads may resolve disjoint tiles into one image concurrently. Channels the
     /// image lacks are skipped.
-    void ResolveTile(const PixelRange& tile, const std::vector<Sample>& samples,
-                     const std::vector<SampleValue>& values, ImageBuffer* image) const;
+    void ResolveTile(const PixelRange& tile, const std::vector<Sample>& samples, const std::vector<SampleValue>& values,
+                     ImageBuffer* image) const;
 
     /// RI Exposure: (gain * c)^(1/gamma) per component; negative components become 0 unless
     /// gamma is 1 (a power of a negative number is undefined).

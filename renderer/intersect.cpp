@@ -53,7 +53,8 @@ RayGroup RayGroup::FromCorners(const Ray (&corners)[4], uint64_t id) {
     }
     g.spread0 = std::max(glm::length(corners[0].origin - corners[2].origin),
                          glm::length(corners[1].origin - corners[3].origin));
-    g.spreadSlope = std::max(glm::length(corners[0].dir - corners[2].dir), glm::length(corners[1].dir - corners[3].dir));
+    g.spreadSlope =
+        std::max(glm::length(corners[0].dir - corners[2].dir), glm::length(corners[1].dir - corners[3].dir));
     for (int i = 0; i < 4; ++i) {
         const Ray &a = corners[i], &b = corners[(i + 1) % 4];
         // The plane holding both rays: through a common origin (perspective) or along a common
@@ -102,8 +103,8 @@ void AlongFrame(const RegionBound& b, const glm::dvec3& o, const glm::dvec3 (&n)
     for (int i = 0; i < 3; ++i) {
         const bool bounded = b.boundedMask & (1u << i);
         const double rel = b.c[i] - o[i];
-        const double size = std::fabs(b.c[i]) + std::fabs(o[i]) + std::fabs(b.a[i]) + std::fabs(b.b[i]) +
-                            std::fabs(b.g[i]) + b.r[i];
+        const double size =
+            std::fabs(b.c[i]) + std::fabs(o[i]) + std::fabs(b.a[i]) + std::fabs(b.b[i]) + std::fabs(b.g[i]) + b.r[i];
         for (int k = 0; k < 3; ++k) {
             const double nk = n[k][i];
             // A coordinate n does not weigh cannot make the measure unbounded.
@@ -238,11 +239,7 @@ constexpr size_t kMaxFrontier = 32;
 class TreeIntersector final : public SurfaceIntersector {
   public:
     TreeIntersector(BoundTree& tree, uint64_t budget, std::unique_ptr<BoundTree> owned = nullptr)
-        : m_owned(std::move(owned)),
-          m_tree(tree),
-          m_walker(tree),
-          m_evaluator(tree.MakeEvaluator()),
-          m_budget(budget) {
+        : m_owned(std::move(owned)), m_tree(tree), m_walker(tree), m_evaluator(tree.MakeEvaluator()), m_budget(budget) {
         // Each of the at most 2 * maxDepth splits on a ray's path leaves at most 3 siblings behind.
         m_stack.resize(kMaxFrontier + 6 * static_cast<size_t>(std::max(tree.maxDepth(), 0)) + 8);
     }
@@ -400,10 +397,12 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
         const double su = -d1.c * d2.v + d2.c * d1.v, sv = -d2.c * d1.u + d1.c * d2.u;
         const double eu = su / det, ev = sv / det;
         // The solution rounds (numerator, determinant, division): first-order bounds, doubled.
-        const double errU = 2 * (2 * kUlp * (std::fabs(d1.c * d2.v) + std::fabs(d2.c * d1.v) + std::fabs(eu) * scale) / ad +
-                                 kUlp * std::fabs(eu));
-        const double errV = 2 * (2 * kUlp * (std::fabs(d2.c * d1.u) + std::fabs(d1.c * d2.u) + std::fabs(ev) * scale) / ad +
-                                 kUlp * std::fabs(ev));
+        const double errU =
+            2 * (2 * kUlp * (std::fabs(d1.c * d2.v) + std::fabs(d2.c * d1.v) + std::fabs(eu) * scale) / ad +
+                 kUlp * std::fabs(eu));
+        const double errV =
+            2 * (2 * kUlp * (std::fabs(d2.c * d1.u) + std::fabs(d1.c * d2.u) + std::fabs(ev) * scale) / ad +
+                 kUlp * std::fabs(ev));
         const double du = (std::fabs(d2.v) * R1 + std::fabs(d1.v) * R2) / ad * (1 + 1e-9) + errU + 1e-300;
         const double dv = (std::fabs(d2.u) * R1 + std::fabs(d1.u) * R2) / ad * (1 + 1e-9) + errV + 1e-300;
         double uLo, uHi, vLo, vHi;
@@ -484,7 +483,8 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
     // Orders the entries from `first` up farthest first, so that they pop nearest first.
     auto sortFrom = [&](size_t first) {
         for (size_t i = first + 1; i < m_top; ++i)
-            for (size_t j = i; j > first && m_stack[j - 1].tLo < m_stack[j].tLo; --j) std::swap(m_stack[j - 1], m_stack[j]);
+            for (size_t j = i; j > first && m_stack[j - 1].tLo < m_stack[j].tLo; --j)
+                std::swap(m_stack[j - 1], m_stack[j]);
     };
     if (group) {
         // A coherent ray starts from its group's frontier instead of the root.

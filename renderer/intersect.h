@@ -28,8 +28,8 @@ struct Tolerance {
 
 struct Hit {
     double t = 0;
-    double u = 0, v = 0;  // where the ray meets the bound of the final region (its centre if unknown)
-    double error = 0;     // certified: every surface point of the region lies this close to the hit
+    double u = 0, v = 0;        // where the ray meets the bound of the final region (its centre if unknown)
+    double error = 0;           // certified: every surface point of the region lies this close to the hit
     bool depthLimited = false;  // not certified: the depth limit or the region budget ended the search
 };
 
@@ -83,8 +83,8 @@ class SurfaceIntersector {
     /// found (for shadow rays). A ray of a `group` (it must lie inside it) shares the walk of the
     /// top levels with the group's other rays; its result is a function of the ray and the group,
     /// whichever rays came before.
-    virtual bool Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit,
-                           Hit* hit, IntersectStats& stats, const RayGroup* group = nullptr) = 0;
+    virtual bool Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit, Hit* hit,
+                           IntersectStats& stats, const RayGroup* group = nullptr) = 0;
 };
 
 /// Regions one ray may test before the search stops with an uncertified possible hit: a bound

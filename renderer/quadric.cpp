@@ -41,8 +41,8 @@ const char* Quadric::Name(Kind kind) {
 }
 
 std::string Quadric::Problem() const {
-    const double all[] = {radius, zmin, zmax, height, majorRadius, minorRadius, phimin, phimax, thetamax,
-                          point1[0], point1[1], point1[2], point2[0], point2[1], point2[2]};
+    const double all[] = {radius,   zmin,      zmax,      height,    majorRadius, minorRadius, phimin,   phimax,
+                          thetamax, point1[0], point1[1], point1[2], point2[0],   point2[1],   point2[2]};
     for (double x : all)
         if (!std::isfinite(x)) return "its arguments must be finite";
     if (thetamax == 0) return "thetamax is 0: the surface is empty";

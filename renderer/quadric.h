@@ -21,11 +21,11 @@ struct Quadric {
     enum class Kind { Sphere, Cylinder, Cone, Disk, Torus, Hyperboloid, Paraboloid };
     Kind kind = Kind::Sphere;
     // The request's arguments (only those of `kind` are used); angles in degrees.
-    double radius = 1;         // Sphere, Cylinder, Cone, Disk; Paraboloid's rmax
+    double radius = 1;           // Sphere, Cylinder, Cone, Disk; Paraboloid's rmax
     double zmin = -1, zmax = 1;  // Sphere, Cylinder, Paraboloid
-    double height = 0;         // Cone (apex height), Disk (its z)
+    double height = 0;           // Cone (apex height), Disk (its z)
     double majorRadius = 1, minorRadius = 0.25, phimin = 0, phimax = 360;  // Torus
-    double point1[3] = {1, 0, -1}, point2[3] = {1, 0, 1};                   // Hyperboloid
+    double point1[3] = {1, 0, -1}, point2[3] = {1, 0, 1};                  // Hyperboloid
     double thetamax = 360;
 
     /// The RIB request's name, "Sphere" etc.

@@ -136,8 +136,8 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
     // Shadow rays start above the surface by more than the hit's certified error and the
     // tolerance, so they cannot find the region they left (no acne).
     double footprint = tol.At(nh.hit.t);
-    double offset = 2.0 * std::max(std::isfinite(nh.hit.error) ? nh.hit.error : footprint, footprint) +
-                    1e-9 * glm::length(at.P);
+    double offset =
+        2.0 * std::max(std::isfinite(nh.hit.error) ? nh.hit.error : footprint, footprint) + 1e-9 * glm::length(at.P);
     // A cone: as wide as the camera ray's footprint where it left, widening at the pixel's angle,
     // so an occluder is resolved no finer than the pixel that sees its shadow needs.
     Tolerance shadowTol{footprint, tol.slope};
@@ -274,31 +274,31 @@ std::string RenderStats::ToJson() const {
     // A lookup that had to evaluate the bound is a miss.
     const double hitRate = cache.lookups ? 1.0 - double(cache.evaluations) / double(cache.lookups) : 0.0;
     char buf[1024];
-    std::snprintf(buf, sizeof buf,
-                  "{\"wall_seconds\":%.3f,\"width\":%d,\"height\":%d,\"camera_rays\":%llu,"
-                  "\"regions_per_ray_mean\":%.2f,\"regions_per_ray_max\":%llu,\"evaluations_per_ray_mean\":%.3f,"
-                  "\"depth_limit_hits\":%llu,\"max_certified_error\":%.6g,\"parallelogram_hits\":%llu,"
-                  "\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f,\"shadow_evaluations_per_ray_mean\":%.3f,"
-                  "\"budget_exhausted_rays\":%llu,\"frontiers\":%llu,\"frontier_regions_mean\":%.2f,"
-                  "\"cache\":{\"budget_mb\":%.1f,\"peak_mb\":%.2f,\"final_mb\":%.2f,\"nodes\":%llu,"
-                  "\"lookups\":%llu,\"hit_rate\":%.4f,\"evaluations\":%llu,\"private_copies\":%llu,"
-                  "\"evictions\":%llu,\"eviction_passes\":%llu,\"build_thread_seconds\":%.3f}}",
-                  wallSeconds, width, height, static_cast<unsigned long long>(cameraRays),
-                  perRay(camera.regionsBounded, cameraRays), static_cast<unsigned long long>(camera.maxRegionsPerRay),
-                  perRay(camera.regionsEvaluated, cameraRays),
-                  static_cast<unsigned long long>(camera.depthLimitHits + shadow.depthLimitHits),
-                  std::max(camera.maxHitError, 0.0),
-                  static_cast<unsigned long long>(camera.parallelogramHits + shadow.parallelogramHits),
-                  static_cast<unsigned long long>(shadow.rays), perRay(shadow.regionsBounded, shadow.rays),
-                  perRay(shadow.regionsEvaluated, shadow.rays),
-                  static_cast<unsigned long long>(camera.budgetExhausted + shadow.budgetExhausted),
-                  static_cast<unsigned long long>(camera.frontiers), perRay(camera.frontierRegions, camera.frontiers),
-                  double(cacheBudgetBytes) / (1 << 20), double(cachePeakBytes) / (1 << 20),
-                  double(cache.bytes) / (1 << 20), static_cast<unsigned long long>(cache.nodes),
-                  static_cast<unsigned long long>(cache.lookups), hitRate,
-                  static_cast<unsigned long long>(cache.evaluations), static_cast<unsigned long long>(cache.privateCopies),
-                  static_cast<unsigned long long>(cache.evictions), static_cast<unsigned long long>(cache.evictionPasses),
-                  cache.buildSeconds);
+    std::snprintf(
+        buf, sizeof buf,
+        "{\"wall_seconds\":%.3f,\"width\":%d,\"height\":%d,\"camera_rays\":%llu,"
+        "\"regions_per_ray_mean\":%.2f,\"regions_per_ray_max\":%llu,\"evaluations_per_ray_mean\":%.3f,"
+        "\"depth_limit_hits\":%llu,\"max_certified_error\":%.6g,\"parallelogram_hits\":%llu,"
+        "\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f,\"shadow_evaluations_per_ray_mean\":%.3f,"
+        "\"budget_exhausted_rays\":%llu,\"frontiers\":%llu,\"frontier_regions_mean\":%.2f,"
+        "\"cache\":{\"budget_mb\":%.1f,\"peak_mb\":%.2f,\"final_mb\":%.2f,\"nodes\":%llu,"
+        "\"lookups\":%llu,\"hit_rate\":%.4f,\"evaluations\":%llu,\"private_copies\":%llu,"
+        "\"evictions\":%llu,\"eviction_passes\":%llu,\"build_thread_seconds\":%.3f}}",
+        wallSeconds, width, height, static_cast<unsigned long long>(cameraRays),
+        perRay(camera.regionsBounded, cameraRays), static_cast<unsigned long long>(camera.maxRegionsPerRay),
+        perRay(camera.regionsEvaluated, cameraRays),
+        static_cast<unsigned long long>(camera.depthLimitHits + shadow.depthLimitHits),
+        std::max(camera.maxHitError, 0.0),
+        static_cast<unsigned long long>(camera.parallelogramHits + shadow.parallelogramHits),
+        static_cast<unsigned long long>(shadow.rays), perRay(shadow.regionsBounded, shadow.rays),
+        perRay(shadow.regionsEvaluated, shadow.rays),
+        static_cast<unsigned long long>(camera.budgetExhausted + shadow.budgetExhausted),
+        static_cast<unsigned long long>(camera.frontiers), perRay(camera.frontierRegions, camera.frontiers),
+        double(cacheBudgetBytes) / (1 << 20), double(cachePeakBytes) / (1 << 20), double(cache.bytes) / (1 << 20),
+        static_cast<unsigned long long>(cache.nodes), static_cast<unsigned long long>(cache.lookups), hitRate,
+        static_cast<unsigned long long>(cache.evaluations), static_cast<unsigned long long>(cache.privateCopies),
+        static_cast<unsigned long long>(cache.evictions), static_cast<unsigned long long>(cache.evictionPasses),
+        cache.buildSeconds);
     return buf;
 }
 
@@ -337,7 +337,8 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
             std::vector<compiler::ParamOverride> overrides;
             for (const ParamValue& p : ref.params) {
                 if (p.strings.size() > 1) {
-                    *error = where + "parameter '" + p.name + "' takes one string, got " + std::to_string(p.strings.size());
+                    *error =
+                        where + "parameter '" + p.name + "' takes one string, got " + std::to_string(p.strings.size());
                     return false;
                 }
                 if (p.strings.empty())
@@ -489,8 +490,8 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     std::vector<std::unique_ptr<BoundTree>> trees;
     if (!options.intersectorFactory)
         for (const Primitive& prim : scene.primitives)
-            trees.push_back(std::make_unique<BoundTree>(prim.base, prim.bound, eye, options.bounds, options.maxDepth,
-                                                        &budget));
+            trees.push_back(
+                std::make_unique<BoundTree>(prim.base, prim.bound, eye, options.bounds, options.maxDepth, &budget));
     const int side = options.rayGroupPixels;
     const int blocksX = side > 0 ? (cam.xres + side - 1) / side : 0;
     auto worker = [&](int index) {

@@ -56,9 +56,9 @@ struct RenderOptions {
 struct RenderStats {
     double wallSeconds = 0;
     uint64_t cameraRays = 0;  // camera samples traced (a tile's filter margin is traced again)
-    IntersectStats camera;  // camera rays only; its `rays` counts ray-primitive tests
-    IntersectStats shadow;  // shadow rays
-    BoundTreeStats cache;   // the bound hierarchies, summed over the primitives
+    IntersectStats camera;    // camera rays only; its `rays` counts ray-primitive tests
+    IntersectStats shadow;    // shadow rays
+    BoundTreeStats cache;     // the bound hierarchies, summed over the primitives
     size_t cacheBudgetBytes = 0;
     uint64_t cachePeakBytes = 0;  // the most the hierarchies held together
     int width = 0, height = 0;
@@ -87,7 +87,7 @@ struct Primitive {
 struct PreparedScene {
     SceneDesc desc;
     std::vector<Primitive> primitives;
-    std::unique_ptr<Bvh> bvh;  // over the primitives' boxes
+    std::unique_ptr<Bvh> bvh;       // over the primitives' boxes
     std::vector<LightDesc> lights;  // the scene's, or a default key light if it has none
     /// Shader instances compiled, and those that reused a compilation (same file bytes, same
     /// parameter values: compiler/shader_cache.h).

@@ -22,7 +22,7 @@ struct ParamValue {
     std::string name;                  ///< The final word of the token: "uniform float Km" -> "Km".
     std::vector<double> numbers;       ///< The values if numeric (a bare number gives one value).
     std::vector<std::string> strings;  ///< The values if strings.
-    std::string declaration;  ///< Inline declaration before the name ("uniform float"), or "".
+    std::string declaration;           ///< Inline declaration before the name ("uniform float"), or "".
 };
 
 /// A reference to a shader by name with its instance parameters: Displacement "wave" "Km" [0.2].
@@ -52,7 +52,7 @@ struct LightDesc {
     /// Spotlight only, RI defaults: half-angle of the cone and width of its soft edge (radians),
     /// and the exponent of the cosine fall-off across the beam.
     double coneAngle = 0.5235987755982988, coneDeltaAngle = 0.08726646259971647, beamDistribution = 2;
-    std::string handle;                       ///< The RIB light handle (number or string), as text.
+    std::string handle;  ///< The RIB light handle (number or string), as text.
     int line = 0;
 };
 
@@ -92,9 +92,8 @@ struct FilterDesc {
 struct CameraDesc {
     int xres = 640, yres = 480;
     double pixelAspect = 1;
-    bool perspective =
-        true;  ///< The RIB reader sets false when no Projection is given (RI default).
-    double fovDegrees = 90;  ///< Full angle across the shorter image axis (perspective only).
+    bool perspective = true;        ///< The RIB reader sets false when no Projection is given (RI default).
+    double fovDegrees = 90;         ///< Full angle across the shorter image axis (perspective only).
     glm::dmat4 worldToCamera{1.0};  ///< Column-vector convention: pCamera = worldToCamera * pWorld.
     /// FrameAspectRatio, if given (else xres * pixelAspect / yres).
     std::optional<double> frameAspectRatio;
@@ -117,8 +116,7 @@ struct SceneDesc {
     /// Display mode: channel groups separated by commas, from "rgb", "rgba", "rgbz", "rgbaz" (or
     /// their single letters r g b a z) and the AOVs "Z", "N", "P", "st", "cost", "err".
     std::string displayMode = "rgba";
-    std::vector<LightDesc>
-        lights;  ///< Empty if the scene defines none (the renderer adds a default).
+    std::vector<LightDesc> lights;  ///< Empty if the scene defines none (the renderer adds a default).
     std::vector<PrimitiveDesc> primitives;
     /// Option "searchpath" "shader": directories in order, '&' already expanded to the previous
     /// value and '@' to the default. Empty: the renderer's default search path.
@@ -163,18 +161,16 @@ inline std::string ToString(const ShaderRef& s) {
 inline std::string ToString(const SurfaceDesc& s) {
     static const char* const kNames[] = {"constant", "matte", "metal", "plastic"};
     std::ostringstream out;
-    out << kNames[static_cast<int>(s.model)] << " Ka=" << s.Ka
-        << " Kd=" << s.Kd << " Ks=" << s.Ks << " roughness=" << s.roughness
-        << " specularcolor=" << ToString(s.specularColor);
+    out << kNames[static_cast<int>(s.model)] << " Ka=" << s.Ka << " Kd=" << s.Kd << " Ks=" << s.Ks
+        << " roughness=" << s.roughness << " specularcolor=" << ToString(s.specularColor);
     return out.str();
 }
 
 inline std::string ToString(const LightDesc& l) {
     static const char* const kNames[] = {"ambientlight", "distantlight", "pointlight", "spotlight"};
     std::ostringstream out;
-    out << kNames[static_cast<int>(l.kind)] << " handle=" << l.handle
-        << " intensity=" << l.intensity << " color=" << ToString(l.color)
-        << " from=" << ToString(l.from) << " to=" << ToString(l.to);
+    out << kNames[static_cast<int>(l.kind)] << " handle=" << l.handle << " intensity=" << l.intensity
+        << " color=" << ToString(l.color) << " from=" << ToString(l.from) << " to=" << ToString(l.to);
     if (l.kind == LightDesc::Kind::Spot)
         out << " coneangle=" << l.coneAngle << " conedeltaangle=" << l.coneDeltaAngle
             << " beamdistribution=" << l.beamDistribution;
@@ -206,18 +202,19 @@ inline std::string ToString(const CameraDesc& c) {
         out << " orthographic";
     out << " worldToCamera=" << ToString(c.worldToCamera);
     if (c.frameAspectRatio) out << " frameaspectratio=" << *c.frameAspectRatio;
-    if (c.screenWindow) out << " screenwindow=[" << c.screenWindow->x << ' ' << c.screenWindow->y << ' '
-                            << c.screenWindow->z << ' ' << c.screenWindow->w << ']';
-    out << " cropwindow=[" << c.cropWindow.x << ' ' << c.cropWindow.y << ' ' << c.cropWindow.z << ' '
-        << c.cropWindow.w << "] clipping=" << c.nearClip << ' ' << c.farClip << " pixelsamples=" << c.xsamples
-        << ' ' << c.ysamples << " filter=" << (c.filter.kind == FilterDesc::Kind::Box ? "box " : "gaussian ")
-        << c.filter.xwidth << ' ' << c.filter.ywidth << " exposure=" << c.exposureGain << ' ' << c.exposureGamma;
+    if (c.screenWindow)
+        out << " screenwindow=[" << c.screenWindow->x << ' ' << c.screenWindow->y << ' ' << c.screenWindow->z << ' '
+            << c.screenWindow->w << ']';
+    out << " cropwindow=[" << c.cropWindow.x << ' ' << c.cropWindow.y << ' ' << c.cropWindow.z << ' ' << c.cropWindow.w
+        << "] clipping=" << c.nearClip << ' ' << c.farClip << " pixelsamples=" << c.xsamples << ' ' << c.ysamples
+        << " filter=" << (c.filter.kind == FilterDesc::Kind::Box ? "box " : "gaussian ") << c.filter.xwidth << ' '
+        << c.filter.ywidth << " exposure=" << c.exposureGain << ' ' << c.exposureGamma;
     return out.str();
 }
 
 inline std::string ToString(const SceneDesc& s) {
-    std::string text = "scene " + s.path + "\n  camera " + ToString(s.camera) + "\n  display \"" +
-                       s.displayName + "\" \"" + s.displayType + "\" \"" + s.displayMode + "\"\n";
+    std::string text = "scene " + s.path + "\n  camera " + ToString(s.camera) + "\n  display \"" + s.displayName +
+                       "\" \"" + s.displayType + "\" \"" + s.displayMode + "\"\n";
     for (const LightDesc& l : s.lights) text += "  light " + ToString(l) + "\n";
     for (const auto& [name, m] : s.coordinateSystems) text += "  coordinatesystem " + name + " " + ToString(m) + "\n";
     for (const std::string& dir : s.shaderSearchPath) text += "  searchpath shader " + dir + "\n";

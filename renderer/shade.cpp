@@ -81,8 +81,8 @@ glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const 
         const double cosine = glm::dot(sp.Nf, in->L);
         if (cosine <= 0) continue;  // the light is behind the surface: no need for a shadow ray
         const glm::dvec3 d = wantsDiffuse ? in->Cl * cosine : glm::dvec3(0.0);
-        const glm::dvec3 s = wantsSpecular ? in->Cl * SpecularWeight(sp.Nf, in->L, sp.V, surface.roughness)
-                                           : glm::dvec3(0.0);
+        const glm::dvec3 s =
+            wantsSpecular ? in->Cl * SpecularWeight(sp.Nf, in->L, sp.V, surface.roughness) : glm::dvec3(0.0);
         if (d == glm::dvec3(0.0) && s == glm::dvec3(0.0)) continue;  // adds nothing: skip the shadow ray
         if (occluded(in->L, in->distance)) continue;
         diffuse += d;

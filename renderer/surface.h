@@ -150,8 +150,8 @@ void SetFrameGlobals(vm::Interpreter<T>& interp, const T& u, const T& v, const S
 /// camera position E. For affine types this restarts the fresh symbols, so the values of an
 /// earlier evaluation must not be combined with this one's.
 template <class T>
-void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, double u0, double u1, double v0,
-                     double v1, const glm::dvec3& eye, bool flipNormal = false) {
+void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, double u0, double u1, double v0, double v1,
+                     const glm::dvec3& eye, bool flipNormal = false) {
     if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
     T u = SurfaceParameter<T>(u0, u1, 0);
     T v = SurfaceParameter<T>(v0, v1, 1);

@@ -22,17 +22,16 @@ std::string RibArgChecks::FormatNumber(double v) {
 
 bool RibArgChecks::NoArgs(const RibRequest& r) {
     if (r.args.empty()) return true;
-    return Fail(r.args[0].line,
-                Quote(r.name) + " takes no arguments, found " + r.args[0].Describe());
+    return Fail(r.args[0].line, Quote(r.name) + " takes no arguments, found " + r.args[0].Describe());
 }
 
 // The end of Numbers and LeadingNumbers: `count` values, else an error naming what was found.
-bool RibArgChecks::TakeNumbers(const RibRequest& r, const std::vector<double>& values, const RibArg* bad,
-                               size_t count, const char* names, double* out) {
+bool RibArgChecks::TakeNumbers(const RibRequest& r, const std::vector<double>& values, const RibArg* bad, size_t count,
+                               const char* names, double* out) {
     if (bad || values.size() != count) {
         std::string got = bad ? bad->Describe() : std::to_string(values.size());
-        return Fail(r.line, Quote(r.name) + " expects " + std::to_string(count) + " numbers (" +
-                                names + "), got " + got);
+        return Fail(r.line,
+                    Quote(r.name) + " expects " + std::to_string(count) + " numbers (" + names + "), got " + got);
     }
     std::copy(values.begin(), values.end(), out);
     return true;
@@ -57,8 +56,7 @@ bool RibArgChecks::Numbers(const RibRequest& r, size_t count, const char* names,
 }
 
 // Like Numbers, but a parameter list may follow: the numbers end at the first non-number.
-bool RibArgChecks::LeadingNumbers(const RibRequest& r, size_t count, const char* names, double* out,
-                                  size_t* next) {
+bool RibArgChecks::LeadingNumbers(const RibRequest& r, size_t count, const char* names, double* out, size_t* next) {
     std::vector<double> values;
     const RibArg* bad = nullptr;
     if (!r.args.empty() && r.args[0].isArray && r.args[0].NumericP()) {
@@ -97,12 +95,10 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
     for (size_t i = first; i < r.args.size(); i += 2) {
         const RibArg& token = r.args[i];
         if (token.isArray || !token.StringsP())
-            return Fail(token.line, Quote(r.name) + " expects a parameter name string, found " +
-                                        token.Describe());
+            return Fail(token.line, Quote(r.name) + " expects a parameter name string, found " + token.Describe());
         const std::string& text = token.strings[0];
         size_t last = text.find_last_not_of(" \t\n\r");
-        if (last == std::string::npos)
-            return Fail(token.line, Quote(r.name) + " has an empty parameter name");
+        if (last == std::string::npos) return Fail(token.line, Quote(r.name) + " has an empty parameter name");
         size_t space = text.find_last_of(" \t\n\r", last);
         size_t start = space == std::string::npos ? 0 : space + 1;
         RibParam p;
@@ -110,12 +106,10 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
         if (start > 0) {
             size_t declBegin = text.find_first_not_of(" \t\n\r");
             size_t declEnd = text.find_last_not_of(" \t\n\r", start - 1);
-            if (declBegin <= declEnd)
-                p.value.declaration = text.substr(declBegin, declEnd + 1 - declBegin);
+            if (declBegin <= declEnd) p.value.declaration = text.substr(declBegin, declEnd + 1 - declBegin);
         }
         if (i + 1 >= r.args.size())
-            return Fail(token.line,
-                        Quote(r.name) + " parameter " + Quote(p.value.name) + " has no value");
+            return Fail(token.line, Quote(r.name) + " parameter " + Quote(p.value.name) + " has no value");
         const RibArg& value = r.args[i + 1];
         p.value.numbers = value.numbers;
         p.value.strings = value.strings;
@@ -130,14 +124,11 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
     return true;
 }
 
-bool RibArgChecks::ParamNumbers(const RibParam& p, const std::string& context, size_t count,
-                                double* out) {
+bool RibArgChecks::ParamNumbers(const RibParam& p, const std::string& context, size_t count, double* out) {
     if (!p.value.strings.empty() || p.value.numbers.size() != count) {
-        std::string got =
-            !p.value.strings.empty() ? "a string" : std::to_string(p.value.numbers.size());
-        return Fail(p.line, context + " parameter " + Quote(p.value.name) + " expects " +
-                                std::to_string(count) + (count == 1 ? " number" : " numbers") +
-                                ", got " + got);
+        std::string got = !p.value.strings.empty() ? "a string" : std::to_string(p.value.numbers.size());
+        return Fail(p.line, context + " parameter " + Quote(p.value.name) + " expects " + std::to_string(count) +
+                                (count == 1 ? " number" : " numbers") + ", got " + got);
     }
     std::copy(p.value.numbers.begin(), p.value.numbers.end(), out);
     return true;
@@ -156,10 +147,9 @@ bool RibArgChecks::Matrix(const RibRequest& r, glm::dmat4* out) {
     double m[16];
     if (!Numbers(r, 16, "a 4x4 matrix", m)) return false;
     if (m[3] != 0 || m[7] != 0 || m[11] != 0 || m[15] == 0)
-        return Fail(r.line,
-                    Quote(r.name) +
-                        " matrix must be affine (last column 0 0 0 1); projective transforms "
-                        "are not supported yet");
+        return Fail(r.line, Quote(r.name) +
+                                " matrix must be affine (last column 0 0 0 1); projective transforms "
+                                "are not supported yet");
     *out = glm::make_mat4(m) / m[15];
     return true;
 }

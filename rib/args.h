@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "rib/lexer.h"
 #include "renderer/scene.h"
+#include "rib/lexer.h"
 
 namespace affray::renderer {
 
@@ -33,8 +33,7 @@ class RibArgChecks {
     bool Numbers(const RibRequest& r, size_t count, const char* names, double* out);
     /// `count` leading numbers, bare or as one array, that may be followed by a parameter list;
     /// *next is set to the index of the first argument after them.
-    bool LeadingNumbers(const RibRequest& r, size_t count, const char* names, double* out,
-                        size_t* next);
+    bool LeadingNumbers(const RibRequest& r, size_t count, const char* names, double* out, size_t* next);
     /// Copies `values` to `out` if there are exactly `count` and no `bad` argument, else fails
     /// naming what was found (the shared end of Numbers and LeadingNumbers).
     bool TakeNumbers(const RibRequest& r, const std::vector<double>& values, const RibArg* bad, size_t count,

@@ -17,8 +17,7 @@ bool RibParser::DoColor(const RibRequest& r) {
 bool RibParser::DoOpacity(const RibRequest& r) {
     double v[3];
     if (!Numbers(r, 3, "r g b", v)) return false;
-    if (v[0] != 1 || v[1] != 1 || v[2] != 1)
-        Warn(r.line, "affray renders opaque surfaces only; Opacity ignored");
+    if (v[0] != 1 || v[1] != 1 || v[2] != 1) Warn(r.line, "affray renders opaque surfaces only; Opacity ignored");
     return true;
 }
 
@@ -39,8 +38,7 @@ bool RibParser::DoAttribute(const RibRequest& r) {
 bool RibParser::DoSides(const RibRequest& r) {
     double sides;
     if (!Numbers(r, 1, "sides", &sides)) return false;
-    if (sides != 1 && sides != 2)
-        return Fail(r.line, "'Sides' must be 1 or 2, got " + FormatNumber(sides));
+    if (sides != 1 && sides != 2) return Fail(r.line, "'Sides' must be 1 or 2, got " + FormatNumber(sides));
     m_state.twoSided = sides == 2;
     return true;
 }
@@ -66,8 +64,8 @@ bool RibParser::DoOrientation(const RibRequest& r) {
     else if (name == "inside")
         m_state.insideOut = true;
     else
-        return Fail(r.args[0].line, "unknown orientation " + Quote(name) +
-                                        " (expected \"outside\", \"inside\", \"lh\" or \"rh\")");
+        return Fail(r.args[0].line,
+                    "unknown orientation " + Quote(name) + " (expected \"outside\", \"inside\", \"lh\" or \"rh\")");
     return true;
 }
 
@@ -75,8 +73,7 @@ bool RibParser::DoOrientation(const RibRequest& r) {
 bool RibParser::DoSurface(const RibRequest& r) {
     std::string name;
     std::vector<RibParam> params;
-    if (!LeadingString(r, "a surface shader name", &name) || !ParamList(r, 1, &params))
-        return false;
+    if (!LeadingString(r, "a surface shader name", &name) || !ParamList(r, 1, &params)) return false;
     SurfaceDesc surface;  // plastic defaults
     using Model = SurfaceDesc::Model;
     if (name == "matte") {
@@ -119,8 +116,7 @@ bool RibParser::DoSurface(const RibRequest& r) {
         if (!ok) return false;
     }
     if (!(surface.roughness > 0))  // the highlight exponent is 1 / roughness
-        return Fail(r.line, context + " roughness must be positive, got " +
-                                FormatNumber(surface.roughness));
+        return Fail(r.line, context + " roughness must be positive, got " + FormatNumber(surface.roughness));
     m_state.surface = surface;
     return true;
 }
@@ -128,8 +124,7 @@ bool RibParser::DoSurface(const RibRequest& r) {
 bool RibParser::DoDisplacement(const RibRequest& r) {
     ShaderRef shader;
     std::vector<RibParam> params;
-    if (!LeadingString(r, "a displacement shader name", &shader.name) || !ParamList(r, 1, &params))
-        return false;
+    if (!LeadingString(r, "a displacement shader name", &shader.name) || !ParamList(r, 1, &params)) return false;
     if (shader.name.empty()) {  // Displacement "" removes the shader
         m_state.displacement.reset();
         return true;
@@ -145,9 +140,7 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     std::string name;
     if (!LeadingString(r, "a light shader name", &name)) return false;
     if (r.args.size() < 2 || r.args[1].isArray)
-        return Fail(
-            r.line,
-            "'LightSource' expects a light handle (a number or a string) after the shader name");
+        return Fail(r.line, "'LightSource' expects a light handle (a number or a string) after the shader name");
     std::vector<RibParam> params;
     if (!ParamList(r, 2, &params)) return false;
     if (m_worldEnded) return Fail(r.line, "'LightSource' after 'WorldEnd'");
@@ -176,8 +169,7 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     light.from = TransformPoint(m_state.ctm, light.from);
     light.to = TransformPoint(m_state.ctm, light.to);
     bool aimed = light.kind == LightDesc::Kind::Distant || light.kind == LightDesc::Kind::Spot;
-    if (aimed && light.from == light.to)
-        return Fail(r.line, context + " 'from' and 'to' must differ");
+    if (aimed && light.from == light.to) return Fail(r.line, context + " 'from' and 'to' must differ");
     if (m_worldSeen)
         m_scene.lights.push_back(light);
     else
@@ -186,8 +178,7 @@ bool RibParser::DoLightSource(const RibRequest& r) {
 }
 
 // The parameters of the RI 3.2 light shaders; each light takes only its own.
-bool RibParser::LightParams(const std::string& context, const std::vector<RibParam>& params,
-                            LightDesc* light) {
+bool RibParser::LightParams(const std::string& context, const std::vector<RibParam>& params, LightDesc* light) {
     using Kind = LightDesc::Kind;
     const bool spot = light->kind == Kind::Spot;
     for (const RibParam& p : params) {
@@ -215,18 +206,16 @@ bool RibParser::LightParams(const std::string& context, const std::vector<RibPar
 }
 
 // The spotlight's cone (radians): a half-angle of up to a half turn, a soft edge inside it.
-bool RibParser::CheckSpotlight(const RibRequest& r, const std::string& context,
-                               const LightDesc& light) {
+bool RibParser::CheckSpotlight(const RibRequest& r, const std::string& context, const LightDesc& light) {
     const double pi = 3.14159265358979323846;
     if (!(light.coneAngle > 0 && light.coneAngle <= pi))
-        return Fail(r.line, context + " coneangle must be in (0, pi] radians, got " +
-                                FormatNumber(light.coneAngle));
+        return Fail(r.line, context + " coneangle must be in (0, pi] radians, got " + FormatNumber(light.coneAngle));
     if (!(light.coneDeltaAngle >= 0 && light.coneDeltaAngle <= light.coneAngle))
-        return Fail(r.line, context + " conedeltaangle must be from 0 to coneangle, got " +
-                                FormatNumber(light.coneDeltaAngle));
+        return Fail(r.line,
+                    context + " conedeltaangle must be from 0 to coneangle, got " + FormatNumber(light.coneDeltaAngle));
     if (!(light.beamDistribution >= 0))
-        return Fail(r.line, context + " beamdistribution must not be negative, got " +
-                                FormatNumber(light.beamDistribution));
+        return Fail(r.line,
+                    context + " beamdistribution must not be negative, got " + FormatNumber(light.beamDistribution));
     return true;
 }
 

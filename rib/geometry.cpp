@@ -34,8 +34,7 @@ bool RibParser::DoPatch(const RibRequest& r) {
     if (!LeadingString(r, "a patch type", &type)) return false;
     if (type == "bicubic") return Fail(r.line, "'Patch \"bicubic\"' is not supported yet");
     if (type != "bilinear")
-        return Fail(r.args[0].line, "unknown patch type " + Quote(type) +
-                                        " (expected \"bilinear\" or \"bicubic\")");
+        return Fail(r.args[0].line, "unknown patch type " + Quote(type) + " (expected \"bilinear\" or \"bicubic\")");
     std::vector<RibParam> params;
     if (!ParamList(r, 1, &params) || !InsideWorld(r)) return false;
 
@@ -47,14 +46,12 @@ bool RibParser::DoPatch(const RibRequest& r) {
         if (n == "P") {
             double v[12];
             if (!ParamNumbers(p, context, 12, v)) return false;
-            for (int i = 0; i < 4; ++i)
-                corners[i] = glm::dvec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+            for (int i = 0; i < 4; ++i) corners[i] = glm::dvec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
         } else if (n == "Pw") {  // homogeneous points
             double v[16];
             if (!ParamNumbers(p, context, 16, v)) return false;
             for (int i = 0; i < 4; ++i) {
-                if (v[4 * i + 3] == 0)
-                    return Fail(p.line, context + " parameter 'Pw' has a zero w");
+                if (v[4 * i + 3] == 0) return Fail(p.line, context + " parameter 'Pw' has a zero w");
                 corners[i] = glm::dvec3(v[4 * i], v[4 * i + 1], v[4 * i + 2]) / v[4 * i + 3];
             }
         } else if (n == "Pz") {  // heights over the unit square (x = u, y = v)
@@ -73,8 +70,7 @@ bool RibParser::DoPatch(const RibRequest& r) {
     for (int i = 0; i < 4; ++i) {
         patch.corners[i] = TransformPoint(m_state.ctm, corners[i]);
         if (!FiniteP(patch.corners[i]))
-            return Fail(r.line,
-                        context + " corner " + std::to_string(i) + " overflows in world space");
+            return Fail(r.line, context + " corner " + std::to_string(i) + " overflows in world space");
     }
     SetPrimitiveAttributes(r, &patch);
     m_scene.primitives.push_back(std::move(patch));
@@ -87,17 +83,12 @@ namespace {
 const char* QuadricArgNames(Quadric::Kind kind) {
     switch (kind) {
         case Quadric::Kind::Sphere:
-        case Quadric::Kind::Cylinder:
-            return "radius zmin zmax thetamax";
+        case Quadric::Kind::Cylinder: return "radius zmin zmax thetamax";
         case Quadric::Kind::Cone:
-        case Quadric::Kind::Disk:
-            return "height radius thetamax";
-        case Quadric::Kind::Torus:
-            return "rmajor rminor phimin phimax thetamax";
-        case Quadric::Kind::Hyperboloid:
-            return "x1 y1 z1 x2 y2 z2 thetamax";
-        case Quadric::Kind::Paraboloid:
-            return "rmax zmin zmax thetamax";
+        case Quadric::Kind::Disk: return "height radius thetamax";
+        case Quadric::Kind::Torus: return "rmajor rminor phimin phimax thetamax";
+        case Quadric::Kind::Hyperboloid: return "x1 y1 z1 x2 y2 z2 thetamax";
+        case Quadric::Kind::Paraboloid: return "rmax zmin zmax thetamax";
     }
     return "";
 }
@@ -109,13 +100,9 @@ Quadric MakeQuadric(Quadric::Kind kind, const double* v) {
     switch (kind) {
         case Quadric::Kind::Sphere:
         case Quadric::Kind::Cylinder:
-        case Quadric::Kind::Paraboloid:
-            q.radius = v[0], q.zmin = v[1], q.zmax = v[2], q.thetamax = v[3];
-            break;
+        case Quadric::Kind::Paraboloid: q.radius = v[0], q.zmin = v[1], q.zmax = v[2], q.thetamax = v[3]; break;
         case Quadric::Kind::Cone:
-        case Quadric::Kind::Disk:
-            q.height = v[0], q.radius = v[1], q.thetamax = v[2];
-            break;
+        case Quadric::Kind::Disk: q.height = v[0], q.radius = v[1], q.thetamax = v[2]; break;
         case Quadric::Kind::Torus:
             q.majorRadius = v[0], q.minorRadius = v[1], q.phimin = v[2], q.phimax = v[3];
             q.thetamax = v[4];
@@ -136,13 +123,10 @@ bool RibParser::DoQuadric(const RibRequest& r, Quadric::Kind kind) {
     double v[7];
     size_t next = 0;
     std::vector<RibParam> params;
-    if (!LeadingNumbers(r, count, names, v, &next) || !ParamList(r, next, &params) ||
-        !InsideWorld(r))
-        return false;
+    if (!LeadingNumbers(r, count, names, v, &next) || !ParamList(r, next, &params) || !InsideWorld(r)) return false;
     // Primitive variables (Cs, st, N, ...) would vary over the surface; none is used yet.
     for (const RibParam& p : params)
-        Warn(p.line, Quote(r.name) + " parameter " + Quote(p.value.name) +
-                         " is not supported yet; ignored");
+        Warn(p.line, Quote(r.name) + " parameter " + Quote(p.value.name) + " is not supported yet; ignored");
 
     PrimitiveDesc prim;
     prim.shape = PrimitiveDesc::Shape::Quadric;
@@ -165,8 +149,7 @@ bool RibParser::DoCoordinateSystem(const RibRequest& r) {
                                             "screen", "shader",  "world",  "NDC"};
     for (const char* standard : kStandard)
         if (name == standard)
-            return Fail(r.line,
-                        "'CoordinateSystem' cannot redefine the standard space " + Quote(name));
+            return Fail(r.line, "'CoordinateSystem' cannot redefine the standard space " + Quote(name));
     if (m_worldSeen)
         m_scene.coordinateSystems[name] = m_state.ctm;
     else

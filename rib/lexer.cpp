@@ -10,9 +10,7 @@
 namespace affray::renderer {
 namespace {
 
-bool SpaceP(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
-}
+bool SpaceP(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
 bool AlphaP(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
 bool DigitP(char c) { return c >= '0' && c <= '9'; }
 
@@ -32,16 +30,14 @@ bool EqualsNoCaseP(std::string_view a, std::string_view b) {
 
 bool NonFiniteWordP(std::string_view word) {
     if (!word.empty() && (word[0] == '+' || word[0] == '-')) word.remove_prefix(1);
-    return EqualsNoCaseP(word, "nan") || EqualsNoCaseP(word, "inf") ||
-           EqualsNoCaseP(word, "infinity");
+    return EqualsNoCaseP(word, "nan") || EqualsNoCaseP(word, "inf") || EqualsNoCaseP(word, "infinity");
 }
 
 std::string DescribeChar(char c) {
     auto byte = static_cast<unsigned char>(c);
     if (byte >= 0x21 && byte < 0x7f) return std::string("character '") + c + "'";
     char buffer[48];
-    std::snprintf(buffer, sizeof buffer, "byte 0x%02x%s", byte,
-                  byte >= 0x80 ? " (binary RIB is not supported)" : "");
+    std::snprintf(buffer, sizeof buffer, "byte 0x%02x%s", byte, byte >= 0x80 ? " (binary RIB is not supported)" : "");
     return buffer;
 }
 
@@ -108,31 +104,17 @@ RibToken RibLexer::LexString() {
         if (m_pos >= m_text.size()) break;
         char e = m_text[m_pos++];
         switch (e) {
-            case 'n':
-                value += '\n';
-                break;
-            case 'r':
-                value += '\r';
-                break;
-            case 't':
-                value += '\t';
-                break;
-            case 'b':
-                value += '\b';
-                break;
-            case 'f':
-                value += '\f';
-                break;
-            case '\n':
-                ++m_line;
-                break;  // backslash-newline continues the string
+            case 'n': value += '\n'; break;
+            case 'r': value += '\r'; break;
+            case 't': value += '\t'; break;
+            case 'b': value += '\b'; break;
+            case 'f': value += '\f'; break;
+            case '\n': ++m_line; break;  // backslash-newline continues the string
             default:
                 if (e >= '0' && e <= '7') {
                     // Up to three octal digits, as in C.
                     int code = e - '0';
-                    for (int i = 0; i < 2 && m_pos < m_text.size() && m_text[m_pos] >= '0' &&
-                                    m_text[m_pos] <= '7';
-                         ++i)
+                    for (int i = 0; i < 2 && m_pos < m_text.size() && m_text[m_pos] >= '0' && m_text[m_pos] <= '7'; ++i)
                         code = code * 8 + (m_text[m_pos++] - '0');
                     value += static_cast<char>(code & 0xff);
                 } else {
@@ -148,14 +130,12 @@ RibToken RibLexer::LexNumber() {
     while (m_pos < m_text.size() && NumberCharP(m_text[m_pos])) ++m_pos;
     std::string_view word = m_text.substr(start, m_pos - start);
     if (NonFiniteWordP(word))
-        return Error(
-            m_line, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
+        return Error(m_line, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
 
     // from_chars accepts no leading '+'; parse in long double so that overflow past double's
     // range is detected here rather than silently becoming infinity.
     std::string_view digits = word;
-    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-' && digits[1] != '+')
-        digits.remove_prefix(1);
+    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-' && digits[1] != '+') digits.remove_prefix(1);
     long double value = 0;
     auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
     if (ec == std::errc::result_out_of_range ||
@@ -164,8 +144,7 @@ RibToken RibLexer::LexNumber() {
     if (ec != std::errc() || end != digits.data() + digits.size())
         return Error(m_line, "malformed number '" + std::string(word) + "'");
     if (!std::isfinite(value))
-        return Error(
-            m_line, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
+        return Error(m_line, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
     RibToken token;
     token.kind = RibToken::Kind::Number;
     token.number = static_cast<double>(value);  // values below double's range round to 0
@@ -179,8 +158,7 @@ RibToken RibLexer::LexName() {
     while (m_pos < m_text.size() && (AlphaP(m_text[m_pos]) || DigitP(m_text[m_pos]))) ++m_pos;
     std::string_view word = m_text.substr(start, m_pos - start);
     if (NonFiniteWordP(word))
-        return Error(
-            m_line, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
+        return Error(m_line, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
     RibToken token;
     token.kind = RibToken::Kind::Name;
     token.text = std::string(word);
@@ -196,8 +174,7 @@ std::string RibArg::Describe() const {
         return text.str();
     }
     size_t n = numbers.size() + strings.size();
-    return "array of " + std::to_string(n) + (strings.empty() ? " number" : " string") +
-           (n == 1 ? "" : "s");
+    return "array of " + std::to_string(n) + (strings.empty() ? " number" : " string") + (n == 1 ? "" : "s");
 }
 
 void RibRequestReader::Advance() {
@@ -220,8 +197,7 @@ std::string InParameter(const RibRequest& request, std::string message) {
 
 }  // namespace
 
-RibRequestReader::Status RibRequestReader::Next(RibRequest* request, std::string* error,
-                                                int* errorLine) {
+RibRequestReader::Status RibRequestReader::Next(RibRequest* request, std::string* error, int* errorLine) {
     using Kind = RibToken::Kind;
     auto fail = [&](int line, std::string message) {
         *error = std::move(message);
@@ -230,21 +206,13 @@ RibRequestReader::Status RibRequestReader::Next(RibRequest* request, std::string
     };
     request->args.clear();
     switch (m_token.kind) {
-        case Kind::End:
-            return Status::End;
-        case Kind::Error:
-            return fail(m_token.line, m_token.text);
-        case Kind::Name:
-            break;
-        case Kind::Number:
-            return fail(m_token.line, "expected a request name, found number " + m_token.text);
-        case Kind::String:
-            return fail(m_token.line,
-                        "expected a request name, found string \"" + m_token.text + "\"");
-        case Kind::ArrayBegin:
-            return fail(m_token.line, "expected a request name, found '['");
-        case Kind::ArrayEnd:
-            return fail(m_token.line, "']' without matching '['");
+        case Kind::End: return Status::End;
+        case Kind::Error: return fail(m_token.line, m_token.text);
+        case Kind::Name: break;
+        case Kind::Number: return fail(m_token.line, "expected a request name, found number " + m_token.text);
+        case Kind::String: return fail(m_token.line, "expected a request name, found string \"" + m_token.text + "\"");
+        case Kind::ArrayBegin: return fail(m_token.line, "expected a request name, found '['");
+        case Kind::ArrayEnd: return fail(m_token.line, "']' without matching '['");
     }
     request->name = m_token.text;
     request->line = m_token.line;
@@ -256,12 +224,9 @@ RibRequestReader::Status RibRequestReader::Next(RibRequest* request, std::string
         arg.line = m_token.line;
         switch (m_token.kind) {
             case Kind::Name:
-            case Kind::End:
-                return Status::Ok;
-            case Kind::Error:
-                return fail(m_token.line, InParameter(*request, m_token.text));
-            case Kind::ArrayEnd:
-                return fail(m_token.line, "']' without matching '['");
+            case Kind::End: return Status::Ok;
+            case Kind::Error: return fail(m_token.line, InParameter(*request, m_token.text));
+            case Kind::ArrayEnd: return fail(m_token.line, "']' without matching '['");
             case Kind::Number:
                 arg.numbers.push_back(m_token.number);
                 Advance();
@@ -294,27 +259,19 @@ bool RibRequestReader::ReadArray(RibArg* arg, std::string* error, int* errorLine
     Advance();  // '['
     for (;;) {
         switch (m_token.kind) {
-            case Kind::ArrayEnd:
-                Advance();
-                return true;
-            case Kind::End:
-                return fail(openLine, "unterminated array: '[' has no matching ']'");
-            case Kind::Error:
-                return fail(m_token.line, m_token.text);
-            case Kind::ArrayBegin:
-                return fail(m_token.line, "nested arrays are not allowed");
+            case Kind::ArrayEnd: Advance(); return true;
+            case Kind::End: return fail(openLine, "unterminated array: '[' has no matching ']'");
+            case Kind::Error: return fail(m_token.line, m_token.text);
+            case Kind::ArrayBegin: return fail(m_token.line, "nested arrays are not allowed");
             case Kind::Name:
-                return fail(m_token.line,
-                            "expected a number, a string or ']' in the array opened on line " +
-                                std::to_string(openLine) + ", found '" + m_token.text + "'");
+                return fail(m_token.line, "expected a number, a string or ']' in the array opened on line " +
+                                              std::to_string(openLine) + ", found '" + m_token.text + "'");
             case Kind::Number:
-                if (!arg->strings.empty())
-                    return fail(m_token.line, "array mixes strings and numbers");
+                if (!arg->strings.empty()) return fail(m_token.line, "array mixes strings and numbers");
                 arg->numbers.push_back(m_token.number);
                 break;
             case Kind::String:
-                if (!arg->numbers.empty())
-                    return fail(m_token.line, "array mixes numbers and strings");
+                if (!arg->numbers.empty()) return fail(m_token.line, "array mixes numbers and strings");
                 arg->strings.push_back(std::move(m_token.text));
                 break;
         }

@@ -13,9 +13,9 @@
 #include <string_view>
 #include <vector>
 
+#include "renderer/scene.h"
 #include "rib/args.h"
 #include "rib/lexer.h"
-#include "renderer/scene.h"
 
 namespace affray::renderer {
 
@@ -37,7 +37,7 @@ class RibParser : private RibArgChecks {
         glm::dvec3 color{1.0};
         SurfaceDesc surface;
         std::optional<ShaderRef> displacement;
-        bool twoSided = true;      // Sides 2 (RI default)
+        bool twoSided = true;  // Sides 2 (RI default)
         /// The current orientation differs from the handedness of the current coordinate system
         /// (RI 3.2 section 4.2: a transform that flips one flips the other, so only Orientation
         /// and ReverseOrientation change this).
@@ -114,8 +114,7 @@ class RibParser : private RibArgChecks {
     bool DoSurface(const RibRequest& r);
     bool DoDisplacement(const RibRequest& r);
     bool DoLightSource(const RibRequest& r);
-    bool LightParams(const std::string& context, const std::vector<RibParam>& params,
-                     LightDesc* light);
+    bool LightParams(const std::string& context, const std::vector<RibParam>& params, LightDesc* light);
     bool CheckSpotlight(const RibRequest& r, const std::string& context, const LightDesc& light);
     bool DoCoordinateSystem(const RibRequest& r);
     bool DoPatch(const RibRequest& r);

@@ -54,8 +54,8 @@ constexpr int kMaxResolution = 65536;
 constexpr int kMaxPixelSamples = 64;  // per axis: 4096 rays a pixel is already far past useful
 
 // The channel groups a Display mode may list (see SceneDesc::displayMode).
-constexpr std::string_view kDisplayGroups[] = {
-    "rgb", "rgba", "rgbz", "rgbaz", "r", "g", "b", "a", "z", "Z", "N", "P", "st", "cost", "err"};
+constexpr std::string_view kDisplayGroups[] = {"rgb", "rgba", "rgbz", "rgbaz", "r",  "g",    "b",  "a",
+                                               "z",   "Z",    "N",    "P",     "st", "cost", "err"};
 
 bool ContainsP(const std::string_view* begin, const std::string_view* end, std::string_view name) {
     return std::find(begin, end, name) != end;
@@ -82,14 +82,12 @@ std::optional<SceneDesc> RibParser::Run(std::string* error) {
     }
     if (ok && !m_blocks.empty()) {
         const OpenBlock& open = m_blocks.back();
-        ok = Fail(open.line, Quote(BlockName(open.kind, false)) + " has no matching " +
-                                 Quote(BlockName(open.kind, true)));
+        ok = Fail(open.line,
+                  Quote(BlockName(open.kind, false)) + " has no matching " + Quote(BlockName(open.kind, true)));
     }
-    if (ok && !m_worldSeen)
-        ok = Fail(m_reader.LastLine(), "no 'WorldBegin': the file describes no scene");
+    if (ok && !m_worldSeen) ok = Fail(m_reader.LastLine(), "no 'WorldBegin': the file describes no scene");
     if (!ok) {
-        if (error)
-            *error = m_path + ":" + std::to_string(m_errorLine) + ": error: " + m_errorMessage;
+        if (error) *error = m_path + ":" + std::to_string(m_errorLine) + ": error: " + m_errorMessage;
         return std::nullopt;
     }
     return std::move(m_scene);
@@ -154,20 +152,15 @@ bool RibParser::Dispatch(const RibRequest& r) {
 
 void RibParser::Warn(int line, const std::string& message) {
     if (!m_warned.insert(message).second) return;
-    if (m_warnings)
-        m_warnings->push_back(m_path + ":" + std::to_string(line) + ": warning: " + message);
+    if (m_warnings) m_warnings->push_back(m_path + ":" + std::to_string(line) + ": warning: " + message);
 }
 
 const char* RibParser::BlockName(Block kind, bool end) {
     switch (kind) {
-        case Block::Frame:
-            return end ? "FrameEnd" : "FrameBegin";
-        case Block::World:
-            return end ? "WorldEnd" : "WorldBegin";
-        case Block::Attribute:
-            return end ? "AttributeEnd" : "AttributeBegin";
-        case Block::Transform:
-            return end ? "TransformEnd" : "TransformBegin";
+        case Block::Frame: return end ? "FrameEnd" : "FrameBegin";
+        case Block::World: return end ? "WorldEnd" : "WorldBegin";
+        case Block::Attribute: return end ? "AttributeEnd" : "AttributeBegin";
+        case Block::Transform: return end ? "TransformEnd" : "TransformBegin";
     }
     return "?";
 }
@@ -185,9 +178,7 @@ bool RibParser::FiniteP(const glm::dmat4& m) {
     return true;
 }
 
-bool RibParser::FiniteP(const glm::dvec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
+bool RibParser::FiniteP(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 bool RibParser::BeforeWorld(const RibRequest& r) {
     if (!m_worldSeen) return true;
@@ -212,14 +203,11 @@ bool RibParser::Begin(const RibRequest& r, Block kind) {
 }
 
 bool RibParser::End(const RibRequest& r, Block kind) {
-    bool anyOpen = std::any_of(m_blocks.begin(), m_blocks.end(),
-                               [&](const OpenBlock& b) { return b.kind == kind; });
-    if (!anyOpen)
-        return Fail(r.line, Quote(r.name) + " without matching " + Quote(BlockName(kind, false)));
+    bool anyOpen = std::any_of(m_blocks.begin(), m_blocks.end(), [&](const OpenBlock& b) { return b.kind == kind; });
+    if (!anyOpen) return Fail(r.line, Quote(r.name) + " without matching " + Quote(BlockName(kind, false)));
     const OpenBlock& open = m_blocks.back();
     if (open.kind != kind)
-        return Fail(r.line, Quote(r.name) + " does not match " +
-                                Quote(BlockName(open.kind, false)) + " on line " +
+        return Fail(r.line, Quote(r.name) + " does not match " + Quote(BlockName(open.kind, false)) + " on line " +
                                 std::to_string(open.line));
     // TransformEnd restores only the transform; every other block restores all attributes.
     if (kind == Block::Transform)
@@ -235,17 +223,13 @@ bool RibParser::End(const RibRequest& r, Block kind) {
 
 bool RibParser::DoFormat(const RibRequest& r) {
     double v[3];
-    if (!BeforeWorld(r) || !Numbers(r, 3, "xresolution yresolution pixelaspectratio", v))
-        return false;
+    if (!BeforeWorld(r) || !Numbers(r, 3, "xresolution yresolution pixelaspectratio", v)) return false;
     const char* names[2] = {"xresolution", "yresolution"};
     for (int i = 0; i < 2; ++i)
         if (!(v[i] >= 1 && v[i] <= kMaxResolution && v[i] == std::floor(v[i])))
-            return Fail(r.line, std::string("'Format' ") + names[i] +
-                                    " must be an integer from 1 to " +
+            return Fail(r.line, std::string("'Format' ") + names[i] + " must be an integer from 1 to " +
                                     std::to_string(kMaxResolution) + ", got " + FormatNumber(v[i]));
-    if (!(v[2] > 0))
-        return Fail(r.line,
-                    "'Format' pixelaspectratio must be positive, got " + FormatNumber(v[2]));
+    if (!(v[2] > 0)) return Fail(r.line, "'Format' pixelaspectratio must be positive, got " + FormatNumber(v[2]));
     m_scene.camera.xres = static_cast<int>(v[0]);
     m_scene.camera.yres = static_cast<int>(v[1]);
     m_scene.camera.pixelAspect = v[2];
@@ -255,17 +239,14 @@ bool RibParser::DoFormat(const RibRequest& r) {
 bool RibParser::DoProjection(const RibRequest& r) {
     std::string name;
     std::vector<RibParam> params;
-    if (!BeforeWorld(r) || !LeadingString(r, "a projection name", &name) ||
-        !ParamList(r, 1, &params))
-        return false;
+    if (!BeforeWorld(r) || !LeadingString(r, "a projection name", &name) || !ParamList(r, 1, &params)) return false;
     CameraDesc& camera = m_scene.camera;
     if (name == "perspective") {
         camera.perspective = true;
         camera.fovDegrees = 90;
         for (const RibParam& p : params) {
             if (p.value.name != "fov") {
-                Warn(p.line, "'Projection' parameter " + Quote(p.value.name) +
-                                 " is not supported; ignored");
+                Warn(p.line, "'Projection' parameter " + Quote(p.value.name) + " is not supported; ignored");
                 continue;
             }
             if (!ParamNumbers(p, "'Projection'", 1, &camera.fovDegrees)) return false;
@@ -276,16 +257,14 @@ bool RibParser::DoProjection(const RibRequest& r) {
     } else if (name == "orthographic") {
         camera.perspective = false;
         for (const RibParam& p : params)
-            Warn(p.line,
-                 "'Projection' parameter " + Quote(p.value.name) + " is not supported; ignored");
+            Warn(p.line, "'Projection' parameter " + Quote(p.value.name) + " is not supported; ignored");
     } else {
         return Fail(r.line, "projection " + Quote(name) + " is not supported yet");
     }
     // RI 3.2: transforms before Projection form the screen transform; Projection then resets the
     // CTM to identity and what follows is the camera transform.
     if (m_state.ctm != glm::dmat4(1.0))
-        Warn(r.line,
-             "transforms before 'Projection' (screen transforms) are not supported; ignored");
+        Warn(r.line, "transforms before 'Projection' (screen transforms) are not supported; ignored");
     m_state.ctm = glm::dmat4(1.0);
     return true;
 }
@@ -309,11 +288,10 @@ bool RibParser::DoDisplay(const RibRequest& r) {
         size_t end = std::min(mode.find(',', begin), mode.size());
         std::string_view group = std::string_view(mode).substr(begin, end - begin);
         if (!ContainsP(std::begin(kDisplayGroups), std::end(kDisplayGroups), group))
-            return Fail(r.args[2].line,
-                        "'Display' mode " + Quote(mode) + " has an unknown channel group " +
-                            Quote(std::string(group)) +
-                            " (expected rgb, rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost "
-                            "or err, separated by commas)");
+            return Fail(r.args[2].line, "'Display' mode " + Quote(mode) + " has an unknown channel group " +
+                                            Quote(std::string(group)) +
+                                            " (expected rgb, rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost "
+                                            "or err, separated by commas)");
         if (end == mode.size()) break;
         begin = end + 1;
     }
@@ -329,8 +307,7 @@ bool RibParser::DoDisplay(const RibRequest& r) {
 bool RibParser::DoFrameAspectRatio(const RibRequest& r) {
     double a;
     if (!BeforeWorld(r) || !Numbers(r, 1, "frameratio", &a)) return false;
-    if (!(a > 0))
-        return Fail(r.line, "'FrameAspectRatio' must be positive, got " + FormatNumber(a));
+    if (!(a > 0)) return Fail(r.line, "'FrameAspectRatio' must be positive, got " + FormatNumber(a));
     m_scene.camera.frameAspectRatio = a;
     return true;
 }
@@ -340,9 +317,8 @@ bool RibParser::DoScreenWindow(const RibRequest& r) {
     if (!BeforeWorld(r) || !Numbers(r, 4, "left right bottom top", v)) return false;
     // A reversed window mirrors the image, which RI allows; an empty one maps nothing.
     if (v[0] == v[1] || v[2] == v[3])
-        return Fail(r.line, "'ScreenWindow' must have a nonzero width and height, got " +
-                                FormatNumber(v[0]) + " " + FormatNumber(v[1]) + " " +
-                                FormatNumber(v[2]) + " " + FormatNumber(v[3]));
+        return Fail(r.line, "'ScreenWindow' must have a nonzero width and height, got " + FormatNumber(v[0]) + " " +
+                                FormatNumber(v[1]) + " " + FormatNumber(v[2]) + " " + FormatNumber(v[3]));
     m_scene.camera.screenWindow = glm::dvec4(v[0], v[1], v[2], v[3]);
     return true;
 }
@@ -354,9 +330,8 @@ bool RibParser::DoCropWindow(const RibRequest& r) {
     for (int i = 0; i < 2; ++i) {
         double lo = v[2 * i], hi = v[2 * i + 1];
         if (!(lo >= 0 && lo < hi && hi <= 1))
-            return Fail(r.line, std::string("'CropWindow' needs 0 <= ") + axes[i] + "min < " +
-                                    axes[i] + "max <= 1, got " + FormatNumber(lo) + " " +
-                                    FormatNumber(hi));
+            return Fail(r.line, std::string("'CropWindow' needs 0 <= ") + axes[i] + "min < " + axes[i] +
+                                    "max <= 1, got " + FormatNumber(lo) + " " + FormatNumber(hi));
     }
     m_scene.camera.cropWindow = glm::dvec4(v[0], v[1], v[2], v[3]);
     return true;
@@ -366,8 +341,7 @@ bool RibParser::DoClipping(const RibRequest& r) {
     double v[2];
     if (!BeforeWorld(r) || !Numbers(r, 2, "near far", v)) return false;
     if (!(v[0] > 0 && v[0] < v[1]))
-        return Fail(r.line, "'Clipping' needs 0 < near < far, got " + FormatNumber(v[0]) + " " +
-                                FormatNumber(v[1]));
+        return Fail(r.line, "'Clipping' needs 0 < near < far, got " + FormatNumber(v[0]) + " " + FormatNumber(v[1]));
     m_scene.camera.nearClip = v[0];
     m_scene.camera.farClip = v[1];
     return true;
@@ -379,10 +353,8 @@ bool RibParser::DoPixelSamples(const RibRequest& r) {
     const char* names[2] = {"xsamples", "ysamples"};
     for (int i = 0; i < 2; ++i)
         if (!(v[i] >= 1 && v[i] <= kMaxPixelSamples && v[i] == std::floor(v[i])))
-            return Fail(r.line, std::string("'PixelSamples' ") + names[i] +
-                                    " must be an integer from 1 to " +
-                                    std::to_string(kMaxPixelSamples) + ", got " +
-                                    FormatNumber(v[i]));
+            return Fail(r.line, std::string("'PixelSamples' ") + names[i] + " must be an integer from 1 to " +
+                                    std::to_string(kMaxPixelSamples) + ", got " + FormatNumber(v[i]));
     m_scene.camera.xsamples = static_cast<int>(v[0]);
     m_scene.camera.ysamples = static_cast<int>(v[1]);
     return true;
@@ -391,20 +363,18 @@ bool RibParser::DoPixelSamples(const RibRequest& r) {
 bool RibParser::DoPixelFilter(const RibRequest& r) {
     std::string name;
     if (!BeforeWorld(r) || !LeadingString(r, "a filter name", &name)) return false;
-    if (r.args.size() != 3 || r.args[1].isArray || !r.args[1].NumericP() || r.args[2].isArray ||
-        !r.args[2].NumericP())
+    if (r.args.size() != 3 || r.args[1].isArray || !r.args[1].NumericP() || r.args[2].isArray || !r.args[2].NumericP())
         return Fail(r.line, "'PixelFilter' expects a filter name and 2 numbers (xwidth ywidth)");
     double xwidth = r.args[1].numbers[0], ywidth = r.args[2].numbers[0];
     if (!(xwidth > 0 && ywidth > 0))
-        return Fail(r.line, "'PixelFilter' widths must be positive, got " + FormatNumber(xwidth) +
-                                " " + FormatNumber(ywidth));
+        return Fail(r.line,
+                    "'PixelFilter' widths must be positive, got " + FormatNumber(xwidth) + " " + FormatNumber(ywidth));
     FilterDesc& filter = m_scene.camera.filter;
     if (name == "box") {
         filter.kind = FilterDesc::Kind::Box;
     } else {
         // The other RI filters (triangle, catmull-rom, sinc) are all smooth low-pass filters too.
-        if (name != "gaussian")
-            Warn(r.line, "pixel filter " + Quote(name) + " is not supported; using \"gaussian\"");
+        if (name != "gaussian") Warn(r.line, "pixel filter " + Quote(name) + " is not supported; using \"gaussian\"");
         filter.kind = FilterDesc::Kind::Gaussian;
     }
     filter.xwidth = xwidth;
@@ -416,8 +386,8 @@ bool RibParser::DoExposure(const RibRequest& r) {
     double v[2];
     if (!BeforeWorld(r) || !Numbers(r, 2, "gain gamma", v)) return false;
     if (!(v[0] > 0 && v[1] > 0))
-        return Fail(r.line, "'Exposure' gain and gamma must be positive, got " +
-                                FormatNumber(v[0]) + " " + FormatNumber(v[1]));
+        return Fail(r.line,
+                    "'Exposure' gain and gamma must be positive, got " + FormatNumber(v[0]) + " " + FormatNumber(v[1]));
     m_scene.camera.exposureGain = v[0];
     m_scene.camera.exposureGamma = v[1];
     return true;
@@ -426,14 +396,12 @@ bool RibParser::DoExposure(const RibRequest& r) {
 bool RibParser::DoOption(const RibRequest& r) {
     std::string name;
     std::vector<RibParam> params;
-    if (!BeforeWorld(r) || !LeadingString(r, "an option name", &name) || !ParamList(r, 1, &params))
-        return false;
+    if (!BeforeWorld(r) || !LeadingString(r, "an option name", &name) || !ParamList(r, 1, &params)) return false;
     for (const RibParam& p : params) {
         if (name == "searchpath" && p.value.name == "shader") {
             if (!SetShaderSearchPath(p)) return false;
         } else {
-            Warn(r.line,
-                 "'Option \"" + name + "\" \"" + p.value.name + "\"' is not supported; ignored");
+            Warn(r.line, "'Option \"" + name + "\" \"" + p.value.name + "\"' is not supported; ignored");
         }
     }
     if (params.empty()) Warn(r.line, "'Option \"" + name + "\"' is not supported; ignored");
@@ -453,8 +421,7 @@ bool RibParser::SetShaderSearchPath(const RibParam& p) {
         size_t end = std::min(text.find(':', begin), text.size());
         std::string dir = text.substr(begin, end - begin);
         if (dir == "&")
-            path.insert(path.end(), m_scene.shaderSearchPath.begin(),
-                        m_scene.shaderSearchPath.end());
+            path.insert(path.end(), m_scene.shaderSearchPath.begin(), m_scene.shaderSearchPath.end());
         else if (!dir.empty() && dir != "@")
             path.push_back(dir);
         if (end == text.size()) break;
@@ -470,19 +437,18 @@ bool RibParser::DoFrameBegin(const RibRequest& r) {
     if (r.args.size() > 1 || (r.args.size() == 1 && (r.args[0].isArray || !r.args[0].NumericP())))
         return Fail(r.line, "'FrameBegin' expects one frame number");
     if (!m_blocks.empty())
-        return Fail(r.line, "'FrameBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) +
-                                " on line " + std::to_string(m_blocks.back().line));
+        return Fail(r.line, "'FrameBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) + " on line " +
+                                std::to_string(m_blocks.back().line));
     if (m_worldSeen) return Fail(r.line, "a second frame is not supported yet");
     return Begin(r, Block::Frame);
 }
 
 bool RibParser::DoWorldBegin(const RibRequest& r) {
     if (!NoArgs(r)) return false;
-    if (m_worldSeen)
-        return Fail(r.line, "a second 'WorldBegin' (several frames) is not supported yet");
+    if (m_worldSeen) return Fail(r.line, "a second 'WorldBegin' (several frames) is not supported yet");
     if (!m_blocks.empty() && m_blocks.back().kind != Block::Frame)
-        return Fail(r.line, "'WorldBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) +
-                                " on line " + std::to_string(m_blocks.back().line));
+        return Fail(r.line, "'WorldBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) + " on line " +
+                                std::to_string(m_blocks.back().line));
     // The CTM now is world -> camera; it must be invertible for rays to be generated.
     glm::dmat4 worldToCamera = m_state.ctm;
     double det = glm::determinant(worldToCamera);
@@ -519,8 +485,7 @@ bool RibParser::DoConcatTransform(const RibRequest& r) {
 
 bool RibParser::DoTranslate(const RibRequest& r) {
     double v[3];
-    return Numbers(r, 3, "dx dy dz", v) &&
-           SetCtm(r, glm::translate(m_state.ctm, glm::dvec3(v[0], v[1], v[2])));
+    return Numbers(r, 3, "dx dy dz", v) && SetCtm(r, glm::translate(m_state.ctm, glm::dvec3(v[0], v[1], v[2])));
 }
 
 bool RibParser::DoRotate(const RibRequest& r) {
@@ -528,19 +493,17 @@ bool RibParser::DoRotate(const RibRequest& r) {
     if (!Numbers(r, 4, "angle dx dy dz", v)) return false;
     glm::dvec3 axis(v[1], v[2], v[3]);
     double length = glm::length(axis);
-    if (!(length > 0) || !std::isfinite(length))
-        return Fail(r.line, "'Rotate' axis must not be zero");
+    if (!(length > 0) || !std::isfinite(length)) return Fail(r.line, "'Rotate' axis must not be zero");
     return SetCtm(r, glm::rotate(m_state.ctm, glm::radians(v[0]), axis / length));
 }
 
 bool RibParser::DoScale(const RibRequest& r) {
     double v[3];
-    return Numbers(r, 3, "sx sy sz", v) &&
-           SetCtm(r, glm::scale(m_state.ctm, glm::dvec3(v[0], v[1], v[2])));
+    return Numbers(r, 3, "sx sy sz", v) && SetCtm(r, glm::scale(m_state.ctm, glm::dvec3(v[0], v[1], v[2])));
 }
 
-std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& pathForMessages,
-                                  std::string* error, std::vector<std::string>* warnings) {
+std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& pathForMessages, std::string* error,
+                                  std::vector<std::string>* warnings) {
     if (text.size() >= 2 && static_cast<unsigned char>(text[0]) == 0x1f &&
         static_cast<unsigned char>(text[1]) == 0x8b) {
         if (error) *error = pathForMessages + ":1: error: gzip-compressed RIB is not supported yet";
@@ -550,8 +513,7 @@ std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& path
     return parser.Run(error);
 }
 
-std::optional<SceneDesc> ReadRib(const std::string& path, std::string* error,
-                                 std::vector<std::string>* warnings) {
+std::optional<SceneDesc> ReadRib(const std::string& path, std::string* error, std::vector<std::string>* warnings) {
     auto fail = [&](const std::string& reason) {
         if (error) *error = path + ": error: cannot read file: " + reason;
         return std::nullopt;

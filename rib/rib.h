@@ -23,12 +23,11 @@ namespace affray::renderer {
 /// Parses RIB text. On success returns the scene (with path = pathForMessages) and appends any
 /// warnings to *warnings (may be null). On failure returns nullopt and sets *error (may be null)
 /// to the first error, "file:line: error: message"; parsing stops there. Never throws on bad input.
-std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& pathForMessages,
-                                  std::string* error, std::vector<std::string>* warnings);
+std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& pathForMessages, std::string* error,
+                                  std::vector<std::string>* warnings);
 
 /// Reads and parses the RIB file at `path`, as ParseRib. A file that cannot be read gives
 /// "path: error: cannot read file: reason".
-std::optional<SceneDesc> ReadRib(const std::string& path, std::string* error,
-                                 std::vector<std::string>* warnings);
+std::optional<SceneDesc> ReadRib(const std::string& path, std::string* error, std::vector<std::string>* warnings);
 
 }  // namespace affray::renderer

@@ -6,9 +6,9 @@
 
 #include <algorithm>
 
+#include <sys/wait.h>
 #include <cstdio>
 #include <cstdlib>
-#include <sys/wait.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -95,8 +95,8 @@ inline std::string ShrinkFormat(const std::filesystem::path& rib, int divisor, i
 
 /// Requires `got` to equal `want` within 1e-12 per component, printing both on failure.
 inline void RequireVec(const glm::dvec3& got, const glm::dvec3& want) {
-    INFO("got [" << got.x << " " << got.y << " " << got.z << "], want [" << want.x << " " << want.y << " "
-                 << want.z << "]");
+    INFO("got [" << got.x << " " << got.y << " " << got.z << "], want [" << want.x << " " << want.y << " " << want.z
+                 << "]");
     REQUIRE(got.x == Approx(want.x).margin(1e-12));
     REQUIRE(got.y == Approx(want.y).margin(1e-12));
     REQUIRE(got.z == Approx(want.z).margin(1e-12));

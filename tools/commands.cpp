@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <memory>
 
-
 #include "compiler/compile.h"
 #include "renderer/exr_writer.h"
 #include "renderer/png_writer.h"
@@ -64,9 +63,9 @@ void PrintBound(const vm::Program& program, double u0, double u1, double v0, dou
 /// Instruction counts of one shader instance, as a JSON object's members (no braces).
 std::string InstructionCounts(const compiler::CompiledShader& s) {
     auto count = [](const vm::Program& p) { return std::to_string(p.code.size()); };
-    return "\"operations_requested\":" + std::to_string(s.opsBeforeOptimisation) + ",\"bound_generic\":" +
-           count(s.genericBound) + ",\"bound_specialised\":" + count(s.bound) + ",\"shade_generic\":" +
-           count(s.genericShade) + ",\"shade_specialised\":" + count(s.shade);
+    return "\"operations_requested\":" + std::to_string(s.opsBeforeOptimisation) +
+           ",\"bound_generic\":" + count(s.genericBound) + ",\"bound_specialised\":" + count(s.bound) +
+           ",\"shade_generic\":" + count(s.genericShade) + ",\"shade_specialised\":" + count(s.shade);
 }
 
 }  // namespace
@@ -85,7 +84,8 @@ int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
         std::string globals;
         for (int g = 0; g < vm::kGlobalCount; ++g)
             if (shader.shade.readsGlobal(static_cast<vm::Global>(g)))
-                globals += std::string(globals.empty() ? "" : ",") + "\"" + vm::GlobalName(static_cast<vm::Global>(g)) + "\"";
+                globals +=
+                    std::string(globals.empty() ? "" : ",") + "\"" + vm::GlobalName(static_cast<vm::Global>(g)) + "\"";
         std::fprintf(out, "{\"shader\":\"%s\",%s,\"params\":%zu,\"globals_read\":[%s]}\n", shader.name.c_str(),
                      InstructionCounts(shader).c_str(), shader.params.size(), globals.c_str());
     }
@@ -113,11 +113,15 @@ int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
         const vm::Program& p = shader.bound;
         bool dual = p.usesDerivatives();
         if (cmd.mode == "affine") {
-            if (dual) PrintBound<vm::Dual<vm::Affine>>(p, u0, u1, v0, v1, out);
-            else PrintBound<vm::Affine>(p, u0, u1, v0, v1, out);
+            if (dual)
+                PrintBound<vm::Dual<vm::Affine>>(p, u0, u1, v0, v1, out);
+            else
+                PrintBound<vm::Affine>(p, u0, u1, v0, v1, out);
         } else {
-            if (dual) PrintBound<vm::Dual<vm::Interval>>(p, u0, u1, v0, v1, out);
-            else PrintBound<vm::Interval>(p, u0, u1, v0, v1, out);
+            if (dual)
+                PrintBound<vm::Dual<vm::Interval>>(p, u0, u1, v0, v1, out);
+            else
+                PrintBound<vm::Interval>(p, u0, u1, v0, v1, out);
         }
     };
     if (cmd.hasRegion) {
@@ -190,7 +194,8 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
         for (const renderer::Primitive& prim : prepared.primitives) {
             if (!prim.shader) continue;
             json += std::string(first ? "" : ",") + "{\"name\":\"" + prim.shader->name + "\"," +
-                    InstructionCounts(*prim.shader) + ",\"bound_on_surface\":" + std::to_string(prim.bound.code.size()) +
+                    InstructionCounts(*prim.shader) +
+                    ",\"bound_on_surface\":" + std::to_string(prim.bound.code.size()) +
                     ",\"shade_on_surface\":" + std::to_string(prim.shade.code.size()) + "}";
             first = false;
         }

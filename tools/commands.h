@@ -27,8 +27,8 @@ struct EvalCommand {
     std::vector<compiler::ParamOverride> params;
     std::vector<std::array<double, 2>> points;  // --at, in order
     bool hasRegion = false;
-    std::array<double, 4> region{};              // u0, u1, v0, v1
-    std::string mode = "scalar";                 // scalar | affine | interval
+    std::array<double, 4> region{};  // u0, u1, v0, v1
+    std::string mode = "scalar";     // scalar | affine | interval
     lang::PreprocessOptions preprocess;
 };
 
@@ -42,9 +42,9 @@ struct RenderCommand {
     bool stats = false;
     std::string pngPath;  // empty: no preview
     lang::PreprocessOptions preprocess;
-    bool quiet = false;                           // no progress bar
-    std::optional<std::array<double, 4>> crop;    // --crop: replaces the scene's CropWindow
-    int samples = 0;                              // --samples N: N x N per pixel (0: the scene's)
+    bool quiet = false;                         // no progress bar
+    std::optional<std::array<double, 4>> crop;  // --crop: replaces the scene's CropWindow
+    int samples = 0;                            // --samples N: N x N per pixel (0: the scene's)
     uint64_t regionBudget = renderer::kDefaultRegionBudget;
     size_t cacheBytes = renderer::kDefaultCacheBytes;
     int rayGroupPixels = renderer::kDefaultRayGroupPixels;

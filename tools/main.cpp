@@ -106,11 +106,16 @@ int Compile(Args& args) {
     affray::tools::CompileCommand cmd;
     while (!args.Done()) {
         std::string a = args.Next();
-        if (a == "-o") cmd.outputPath = args.Value(a);
-        else if (a == "--disasm") cmd.disasm = true;
-        else if (a == "--stats") cmd.stats = true;
-        else if (PreprocessorOption(a, args, &cmd.preprocess)) continue;
-        else SetInput(&cmd.shaderPath, a);
+        if (a == "-o")
+            cmd.outputPath = args.Value(a);
+        else if (a == "--disasm")
+            cmd.disasm = true;
+        else if (a == "--stats")
+            cmd.stats = true;
+        else if (PreprocessorOption(a, args, &cmd.preprocess))
+            continue;
+        else
+            SetInput(&cmd.shaderPath, a);
     }
     if (cmd.shaderPath.empty()) throw UsageError{"compile: missing SHADER.sl"};
     return affray::tools::RunCompile(cmd, stdout, stderr);
@@ -169,37 +174,50 @@ int Render(Args& args) {
     affray::tools::RenderCommand cmd;
     while (!args.Done()) {
         std::string a = args.Next();
-        if (a == "-o") cmd.outputPath = args.Value(a);
-        else if (a == "--threads") cmd.threads = ParseInt(args.Value(a), a, 1, 1024);
+        if (a == "-o")
+            cmd.outputPath = args.Value(a);
+        else if (a == "--threads")
+            cmd.threads = ParseInt(args.Value(a), a, 1, 1024);
         else if (a == "--tolerance") {
             cmd.tolerance = ParseNumber(args.Value(a), a);
             if (!(cmd.tolerance > 0)) throw UsageError{"--tolerance must be positive"};
-        } else if (a == "--max-depth") cmd.maxDepth = ParseInt(args.Value(a), a, 1, 40);
+        } else if (a == "--max-depth")
+            cmd.maxDepth = ParseInt(args.Value(a), a, 1, 40);
         else if (a == "--bounds") {
             std::string b = args.Value(a);
-            if (b == "affine") cmd.bounds = affray::renderer::BoundMode::Affine;
-            else if (b == "reduced") cmd.bounds = affray::renderer::BoundMode::Reduced;
-            else if (b == "interval") cmd.bounds = affray::renderer::BoundMode::Interval;
-            else throw UsageError{"--bounds takes affine, reduced or interval, got '" + b + "'"};
-        } else if (a == "--stats") cmd.stats = true;
-        else if (a == "--png") cmd.pngPath = args.Value(a);
-        else if (a == "--quiet" || a == "-q") cmd.quiet = true;
-        else if (a == "--samples") cmd.samples = ParseInt(args.Value(a), a, 1, 64);
-        else if (a == "--region-budget") cmd.regionBudget = ParseInt(args.Value(a), a, 1, 1 << 30);
-        else if (a == "--ray-groups") cmd.rayGroupPixels = ParseInt(args.Value(a), a, 0, 256);
+            if (b == "affine")
+                cmd.bounds = affray::renderer::BoundMode::Affine;
+            else if (b == "reduced")
+                cmd.bounds = affray::renderer::BoundMode::Reduced;
+            else if (b == "interval")
+                cmd.bounds = affray::renderer::BoundMode::Interval;
+            else
+                throw UsageError{"--bounds takes affine, reduced or interval, got '" + b + "'"};
+        } else if (a == "--stats")
+            cmd.stats = true;
+        else if (a == "--png")
+            cmd.pngPath = args.Value(a);
+        else if (a == "--quiet" || a == "-q")
+            cmd.quiet = true;
+        else if (a == "--samples")
+            cmd.samples = ParseInt(args.Value(a), a, 1, 64);
+        else if (a == "--region-budget")
+            cmd.regionBudget = ParseInt(args.Value(a), a, 1, 1 << 30);
+        else if (a == "--ray-groups")
+            cmd.rayGroupPixels = ParseInt(args.Value(a), a, 0, 256);
         else if (a == "--cache-mb") {
             const double mb = ParseNumber(args.Value(a), a);
             if (!(mb >= 0 && mb <= 1 << 20)) throw UsageError{"--cache-mb takes a size in MiB from 0 to 1048576"};
             cmd.cacheBytes = static_cast<size_t>(mb * (1 << 20));
-        }
-        else if (a == "--crop") {
+        } else if (a == "--crop") {
             std::vector<double> c = ParseNumbers(args.Value(a), a);
             if (c.size() != 4 || !(0 <= c[0] && c[0] < c[1] && c[1] <= 1 && 0 <= c[2] && c[2] < c[3] && c[3] <= 1))
                 throw UsageError{"--crop takes XMIN,XMAX,YMIN,YMAX with 0 <= min < max <= 1"};
             cmd.crop = std::array<double, 4>{c[0], c[1], c[2], c[3]};
-        }
-        else if (PreprocessorOption(a, args, &cmd.preprocess)) continue;
-        else SetInput(&cmd.scenePath, a);
+        } else if (PreprocessorOption(a, args, &cmd.preprocess))
+            continue;
+        else
+            SetInput(&cmd.scenePath, a);
     }
     if (cmd.scenePath.empty()) throw UsageError{"render: missing SCENE.rib"};
     return affray::tools::RunRender(cmd, stdout, stderr);

@@ -1,10 +1,10 @@
 // tools/progress.cpp: the throttled progress line (see progress.h).
 #include "tools/progress.h"
 
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <unistd.h>
 
 namespace affray::tools {
 
@@ -31,8 +31,8 @@ Progress::~Progress() { Finish(); }
 bool Progress::ShouldShow(bool quiet, std::FILE* out) { return !quiet && out != nullptr && isatty(fileno(out)); }
 
 std::string Progress::Line(int done, int total, double elapsedSeconds) {
-    const int filled = total > 0 ? static_cast<int>(static_cast<long long>(std::min(done, total)) * kBarWidth / total)
-                                 : kBarWidth;
+    const int filled =
+        total > 0 ? static_cast<int>(static_cast<long long>(std::min(done, total)) * kBarWidth / total) : kBarWidth;
     std::string line = "[" + std::string(filled, '#') + std::string(kBarWidth - filled, '.') + "] ";
     char text[128];
     std::snprintf(text, sizeof text, "%d/%d tiles  elapsed %.1fs  ETA ", done, total, elapsedSeconds);

@@ -116,8 +116,7 @@ bool Affine::finish(double center, double error, Terms& terms) {
             int smallest = -1;
             for (int i = 0; i < terms.count; ++i) {
                 if (terms.symbols[i] < kFirstFreshSymbol) continue;
-                if (smallest < 0 || std::fabs(terms.coefs[i]) < std::fabs(terms.coefs[smallest]))
-                    smallest = i;
+                if (smallest < 0 || std::fabs(terms.coefs[i]) < std::fabs(terms.coefs[smallest])) smallest = i;
             }
             error = AddUp(error, std::fabs(terms.coefs[smallest]));
             for (int i = smallest + 1; i < terms.count; ++i) {
@@ -300,8 +299,7 @@ Affine Affine::AddConstantForm(const Affine& x, double c) {
     double absSum = std::fabs(r.m_center);
     for (int i = 0; i < x.m_count; ++i) absSum += std::fabs(x.m_coefs[i]);
     r.m_error = LinearError(x.m_error, absSum);
-    if (!(std::fabs(r.m_center) <= kMaxFinite && r.m_error <= kMaxFinite))
-        return Affine::Unbounded();
+    if (!(std::fabs(r.m_center) <= kMaxFinite && r.m_error <= kMaxFinite)) return Affine::Unbounded();
     return r;
 }
 
@@ -404,8 +402,7 @@ Affine Affine::MulForms(const Affine& x, const Affine& y) {
     t.count = n;
     const double center = x0 * y0 + 0.5 * diag;
     absSum += std::fabs(center);
-    const double delta =
-        ProductRemainder({x0, y0, rx, ry, x.m_error, y.m_error, diag, absDiag, absSum}, kTermSlack);
+    const double delta = ProductRemainder({x0, y0, rx, ry, x.m_error, y.m_error, diag, absDiag, absSum}, kTermSlack);
     if (!(delta <= kMaxFinite)) return Affine::Unbounded();
     t.insert(Affine::NewSymbol(), delta);
     if (!r.finish(center, 0.0, t)) r = Affine::Unbounded();
@@ -467,8 +464,7 @@ Affine Affine::ApplyFit(const Affine& x, double alpha, double gLo, double gHi) {
     const double ax0 = alpha * x.m_center;
     const double center = ax0 + zeta;
     absSum += std::fabs(ax0) + std::fabs(center);
-    const double delta =
-        (delta0 + std::fabs(alpha) * x.m_error + absSum * kEpsilon) * kSumSlack + kUnderflowSlack;
+    const double delta = (delta0 + std::fabs(alpha) * x.m_error + absSum * kEpsilon) * kSumSlack + kUnderflowSlack;
     if (!(delta <= kMaxFinite)) return Unbounded();
     t.insert(NewSymbol(), delta);
     if (!r.finish(center, 0.0, t)) r = Unbounded();

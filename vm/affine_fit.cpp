@@ -75,8 +75,7 @@ AffineFit ReciprocalFit(const Interval& range) {
     if (!(alpha < 0)) return AffineFit::RangeOf(all);
     Interval ga = GAt(ra, alpha, a), gb = GAt(rb, alpha, b);
     const double gMin = 2.0 * SqrtDown(-alpha);
-    return LineOr(MakeFit(alpha, std::min({ga.lo(), gb.lo(), gMin}), std::fmax(ga.hi(), gb.hi()), 0.0, 0.0),
-                  all);
+    return LineOr(MakeFit(alpha, std::min({ga.lo(), gb.lo(), gMin}), std::fmax(ga.hi(), gb.hi()), 0.0, 0.0), all);
 }
 
 // --- sqrt, exp, log -----------------------------------------------------------------------------
@@ -93,8 +92,7 @@ AffineFit SqrtFit(const Interval& range) {
     if (a == b || !(alpha > 0)) return AffineFit::RangeOf(all);
     Interval ga = GAt(sa, alpha, a), gb = GAt(sb, alpha, b);
     const double gMax = DivUp(0.25, alpha);
-    return LineOr(MakeFit(alpha, std::fmin(ga.lo(), gb.lo()), std::max({ga.hi(), gb.hi(), gMax}), sb.hi(),
-                          kEpsilon),
+    return LineOr(MakeFit(alpha, std::fmin(ga.lo(), gb.lo()), std::max({ga.hi(), gb.hi(), gMax}), sb.hi(), kEpsilon),
                   all);
 }
 
@@ -116,8 +114,7 @@ AffineFit ExpFit(const Interval& range) {
     Interval ga = GAt(fa, alpha, a), gb = GAt(fb, alpha, b);
     // alpha > 0: the lower bound of alpha*(1 - ln alpha) takes the upper bound of ln alpha.
     const double gMin = MulDown(alpha, SubDown(1.0, LibmUp(std::log(alpha))));
-    return LineOr(MakeFit(alpha, std::min({ga.lo(), gb.lo(), gMin}), std::fmax(ga.hi(), gb.hi()), fb.hi(),
-                          kLibmRel),
+    return LineOr(MakeFit(alpha, std::min({ga.lo(), gb.lo(), gMin}), std::fmax(ga.hi(), gb.hi()), fb.hi(), kLibmRel),
                   all);
 }
 
@@ -134,9 +131,8 @@ AffineFit LogFit(const Interval& range) {
     if (!(alpha > 0)) return AffineFit::RangeOf(all);
     Interval ga = GAt(fa, alpha, a), gb = GAt(fb, alpha, b);
     const double gMax = SubUp(-LibmDown(std::log(alpha)), 1.0);
-    return LineOr(MakeFit(alpha, std::fmin(ga.lo(), gb.lo()), std::max({ga.hi(), gb.hi(), gMax}), MaxAbs(all),
-                          kLibmRel),
-                  all);
+    return LineOr(
+        MakeFit(alpha, std::fmin(ga.lo(), gb.lo()), std::max({ga.hi(), gb.hi(), gMax}), MaxAbs(all), kLibmRel), all);
 }
 
 // --- sin, cos -----------------------------------------------------------------------------------
@@ -268,10 +264,10 @@ namespace {
 // asin, acos and atan have one inflection point, 0: asin is concave on [-1, 0] and convex on
 // [0, 1], acos and atan the other way round. f' is even, so f'(t) = alpha at t = +-tangent(alpha).
 struct InverseTrig {
-    double (*f)(double);               // glibc's
+    double (*f)(double);                // glibc's
     Interval (*df)(const Interval& t);  // an enclosure of the true f' at t
-    double (*tangent)(double alpha);   // the t >= 0 with f'(t) = alpha (NaN if there is none)
-    bool convexAbove0;                 // f convex on [0, inf), concave on (-inf, 0]
+    double (*tangent)(double alpha);    // the t >= 0 with f'(t) = alpha (NaN if there is none)
+    bool convexAbove0;                  // f convex on [0, inf), concave on (-inf, 0]
 };
 
 Interval AsinDerivative(const Interval& t) { return 1.0 / sqrt(1.0 - sqr(t)); }

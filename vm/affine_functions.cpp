@@ -18,14 +18,10 @@ Affine Affine::FromFit(const Affine& x, const AffineFit& fit) {
         case AffineFit::Kind::Line:
             if (fit.hasLineLimit() && fit.lineTooWide(x.radius())) return FromInterval(fit.range);
             return ApplyFit(x, fit.alpha, fit.lo, fit.hi);
-        case AffineFit::Kind::Range:
-            return FromInterval(fit.range);
-        case AffineFit::Kind::Same:
-            return x;
-        case AffineFit::Kind::Negated:
-            return -x;
-        default:
-            return Unbounded();
+        case AffineFit::Kind::Range: return FromInterval(fit.range);
+        case AffineFit::Kind::Same: return x;
+        case AffineFit::Kind::Negated: return -x;
+        default: return Unbounded();
     }
 }
 
@@ -168,8 +164,7 @@ Affine Affine::Atan2Forms(const Affine& y, const Affine& x) {
     if (rx.lo() > 0) best = atan(y / x);
     if (ry.lo() > 0 || ry.hi() < 0) {
         Affine other = Affine(ry.lo() > 0 ? kHalfPi : -kHalfPi) - atan(x / y);
-        if (best.isUnbounded() || (!other.isUnbounded() && remainder(other) < remainder(best)))
-            best = other;
+        if (best.isUnbounded() || (!other.isUnbounded() && remainder(other) < remainder(best))) best = other;
     }
     if (best.isUnbounded()) return FromInterval(atan2(ry, rx));
     return best.withExtraError(kAtan2Slack);
@@ -181,49 +176,29 @@ Affine operator/(const Affine& x, const Affine& y) {
     return Affine::Tighten(Affine::DivForms(x, y), x.range() / y.range());
 }
 
-Affine operator/(const Affine& x, double c) {
-    return Affine::Tighten(Affine::DivConstantForm(x, c), x.range() / c);
-}
+Affine operator/(const Affine& x, double c) { return Affine::Tighten(Affine::DivConstantForm(x, c), x.range() / c); }
 
-Affine operator/(double c, const Affine& x) {
-    return Affine::Tighten(Affine::ConstantDivForm(c, x), c / x.range());
-}
+Affine operator/(double c, const Affine& x) { return Affine::Tighten(Affine::ConstantDivForm(c, x), c / x.range()); }
 
-Affine sqrt(const Affine& x) {
-    return Affine::Tighten(Affine::SqrtForm(x), sqrt(x.range()));
-}
+Affine sqrt(const Affine& x) { return Affine::Tighten(Affine::SqrtForm(x), sqrt(x.range())); }
 
-Affine exp(const Affine& x) {
-    return Affine::Tighten(Affine::ExpForm(x), exp(x.range()));
-}
+Affine exp(const Affine& x) { return Affine::Tighten(Affine::ExpForm(x), exp(x.range())); }
 
-Affine log(const Affine& x) {
-    return Affine::Tighten(Affine::LogForm(x), log(x.range()));
-}
+Affine log(const Affine& x) { return Affine::Tighten(Affine::LogForm(x), log(x.range())); }
 
-Affine abs(const Affine& x) {
-    return Affine::Tighten(Affine::AbsForm(x), abs(x.range()));
-}
+Affine abs(const Affine& x) { return Affine::Tighten(Affine::AbsForm(x), abs(x.range())); }
 
-Affine sign(const Affine& x) {
-    return Affine::Tighten(Affine::SignForm(x), sign(x.range()));
-}
+Affine sign(const Affine& x) { return Affine::Tighten(Affine::SignForm(x), sign(x.range())); }
 
 Affine pow(const Affine& x, const Affine& y) {
     return Affine::Tighten(Affine::PowForms(x, y), pow(x.range(), y.range()));
 }
 
-Affine asin(const Affine& x) {
-    return Affine::Tighten(Affine::InverseTrigForm(x, 0), asin(x.range()));
-}
+Affine asin(const Affine& x) { return Affine::Tighten(Affine::InverseTrigForm(x, 0), asin(x.range())); }
 
-Affine acos(const Affine& x) {
-    return Affine::Tighten(Affine::InverseTrigForm(x, 1), acos(x.range()));
-}
+Affine acos(const Affine& x) { return Affine::Tighten(Affine::InverseTrigForm(x, 1), acos(x.range())); }
 
-Affine atan(const Affine& x) {
-    return Affine::Tighten(Affine::InverseTrigForm(x, 2), atan(x.range()));
-}
+Affine atan(const Affine& x) { return Affine::Tighten(Affine::InverseTrigForm(x, 2), atan(x.range())); }
 
 Affine atan2(const Affine& y, const Affine& x) {
     return Affine::Tighten(Affine::Atan2Forms(y, x), atan2(y.range(), x.range()));

@@ -29,18 +29,21 @@ Affine Affine::StepForm(const Affine& x, double (*f)(double), double gLo, double
 }
 
 Affine floor(const Affine& x) {
-    return Affine::Tighten(Affine::StepForm(x, [](double t) { return std::floor(t); }, -1.0, 0.0),
+    return Affine::Tighten(Affine::StepForm(
+                               x, [](double t) { return std::floor(t); }, -1.0, 0.0),
                            floor(x.range()));
 }
 
 Affine ceil(const Affine& x) {
-    return Affine::Tighten(Affine::StepForm(x, [](double t) { return std::ceil(t); }, 0.0, 1.0),
+    return Affine::Tighten(Affine::StepForm(
+                               x, [](double t) { return std::ceil(t); }, 0.0, 1.0),
                            ceil(x.range()));
 }
 
 // std::round rounds halves away from zero: round(t) - t lies in [-1/2, 1/2] either way.
 Affine round(const Affine& x) {
-    return Affine::Tighten(Affine::StepForm(x, [](double t) { return std::round(t); }, -0.5, 0.5),
+    return Affine::Tighten(Affine::StepForm(
+                               x, [](double t) { return std::round(t); }, -0.5, 0.5),
                            round(x.range()));
 }
 
@@ -91,13 +94,9 @@ Affine NotEqual(const Affine& a, const Affine& b) {
 
 Truth TruthOf(const Affine& x) { return TruthOf(x.range()); }
 
-Affine And(const Affine& a, const Affine& b) {
-    return Affine::FromTruth(TruthAnd(TruthOf(a), TruthOf(b)));
-}
+Affine And(const Affine& a, const Affine& b) { return Affine::FromTruth(TruthAnd(TruthOf(a), TruthOf(b))); }
 
-Affine Or(const Affine& a, const Affine& b) {
-    return Affine::FromTruth(TruthOr(TruthOf(a), TruthOf(b)));
-}
+Affine Or(const Affine& a, const Affine& b) { return Affine::FromTruth(TruthOr(TruthOf(a), TruthOf(b))); }
 
 Affine Not(const Affine& a) { return Affine::FromTruth(TruthNot(TruthOf(a))); }
 

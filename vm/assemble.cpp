@@ -108,7 +108,8 @@ void Assembler::Finish(const std::vector<Output>& outputs, const std::vector<Pro
     std::set<uint16_t> free;
     std::sort(m_inputs.begin(), m_inputs.end());
     for (const auto& [input, first] : m_inputs) {
-        const int size = input < kGlobalCount ? GlobalSize(static_cast<vm::Global>(input)) : params.at(input - kGlobalCount).size;
+        const int size =
+            input < kGlobalCount ? GlobalSize(static_cast<vm::Global>(input)) : params.at(input - kGlobalCount).size;
         bool read = false;
         for (int i = 0; i < size; ++i) read = read || used[first + i];
         if (!read) continue;
@@ -158,7 +159,8 @@ void Assembler::Finish(const std::vector<Output>& outputs, const std::vector<Pro
                 auto [it, inserted] =
                     pool.try_emplace(std::bit_cast<uint64_t>(k), static_cast<uint16_t>(out->constants.size()));
                 if (inserted) {
-                    if (out->constants.size() >= size_t(kMaxConstants)) throw std::length_error("shader needs more than 65536 constants");
+                    if (out->constants.size() >= size_t(kMaxConstants))
+                        throw std::length_error("shader needs more than 65536 constants");
                     out->constants.push_back(k);
                 }
                 slots[i] = it->second;

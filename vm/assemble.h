@@ -42,17 +42,16 @@ class Assembler {
     /// Writes the code computing `outputs` into *out (its code, lines, constants, registerCount,
     /// globalRegisters, params and outputs; other fields are left as they are). `params` describe
     /// the Param inputs by index. With `lines`, out->lines gets each word's source line.
-    void Finish(const std::vector<Output>& outputs, const std::vector<ProgramParam>& params, bool lines,
-                Program* out);
+    void Finish(const std::vector<Output>& outputs, const std::vector<ProgramParam>& params, bool lines, Program* out);
 
     /// Forgets everything (keeping the capacity), for another program.
     void Clear();
 
   private:
     struct Value {
-        int input = -1;      // for an input: its global (0..) or kGlobalCount + parameter index
-        int component = 0;   // for an input: which component
-        int lastUse = -1;    // the last live operation reading it (INT_MAX for an output)
+        int input = -1;     // for an input: its global (0..) or kGlobalCount + parameter index
+        int component = 0;  // for an input: which component
+        int lastUse = -1;   // the last live operation reading it (INT_MAX for an output)
         uint16_t reg = kNoRegister;
     };
     struct Node {
@@ -68,7 +67,7 @@ class Assembler {
     std::vector<Node> m_nodes;
     std::vector<double> m_constants;
     std::vector<std::pair<uint64_t, ValueId>> m_loads;  // LoadK results by constant bits
-    std::vector<std::pair<int, ValueId>> m_inputs;    // first value of each input block
+    std::vector<std::pair<int, ValueId>> m_inputs;      // first value of each input block
 };
 
 }  // namespace affray::vm

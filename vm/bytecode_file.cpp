@@ -265,8 +265,8 @@ bool LoadBytecode(std::string_view bytes, BytecodeFile* out, std::string* error)
         return Fail(error, "corrupt file (impossible length " + std::to_string(length) + ")");
     if (bytes.size() < length) return Fail(error, "truncated file");
     if (bytes.size() > length)
-        return Fail(error, "trailing bytes after the end of the file (" + std::to_string(bytes.size() - length) +
-                               " extra)");
+        return Fail(error,
+                    "trailing bytes after the end of the file (" + std::to_string(bytes.size() - length) + " extra)");
 
     // Checksum before interpreting anything else, so damage is reported as damage.
     const std::string_view body = bytes.substr(0, length - kChecksumSize);

@@ -83,8 +83,7 @@ std::string Disassemble(const Program& program, const std::string& sourceText) {
         char index[32];
         std::snprintf(index, sizeof index, "%4zu  ", pc);
         out << index << DisassembleInstr(program, &program.code[pc], program.code.size() - pc) << "\n";
-        if (static_cast<int>(program.code[pc].op) < kOpCount)
-            pc += WordCount(Info(program.code[pc].op).format) - 1;
+        if (static_cast<int>(program.code[pc].op) < kOpCount) pc += WordCount(Info(program.code[pc].op).format) - 1;
     }
     return out.str();
 }

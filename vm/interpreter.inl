@@ -110,8 +110,7 @@ uint8_t Interpreter<T>::Choice(const Instr* in, const T* R, double* constant) co
             *constant = K[in->c];
             return 0;
         }
-        default:
-            return 0;
+        default: return 0;
     }
 }
 
@@ -188,8 +187,7 @@ void Interpreter<T>::SetGlobal(Global g, const Vec3<T>& value) {
 
 template <class T>
 Vec3<T> Interpreter<T>::OutputTriple(const ProgramOutput& out) const {
-    return {m_registers[out.registers[0]], m_registers[out.registers[1]],
-            m_registers[out.registers[2]]};
+    return {m_registers[out.registers[0]], m_registers[out.registers[1]], m_registers[out.registers[2]]};
 }
 
 template <class T>
@@ -245,9 +243,18 @@ void Interpreter<T>::RunOnce() {
             case Op::PowRK: A = pow(R[in.b], T(K[in.c])); break;
             case Op::DerivU: A = DerivU(R[in.b]); break;
             case Op::DerivV: A = DerivV(R[in.b]); break;
-            case Op::Floor: A = Rounding(R[in.b], [](double x) { return std::floor(x); }, [](const T& x) { return floor(x); }); break;
-            case Op::Ceil: A = Rounding(R[in.b], [](double x) { return std::ceil(x); }, [](const T& x) { return ceil(x); }); break;
-            case Op::Round: A = Rounding(R[in.b], [](double x) { return std::round(x); }, [](const T& x) { return round(x); }); break;
+            case Op::Floor:
+                A = Rounding(
+                    R[in.b], [](double x) { return std::floor(x); }, [](const T& x) { return floor(x); });
+                break;
+            case Op::Ceil:
+                A = Rounding(
+                    R[in.b], [](double x) { return std::ceil(x); }, [](const T& x) { return ceil(x); });
+                break;
+            case Op::Round:
+                A = Rounding(
+                    R[in.b], [](double x) { return std::round(x); }, [](const T& x) { return round(x); });
+                break;
             case Op::Asin: A = asin(R[in.b]); break;
             case Op::Acos: A = acos(R[in.b]); break;
             case Op::Atan: A = atan(R[in.b]); break;
@@ -301,7 +308,6 @@ void Interpreter<T>::RunOnce() {
                 A = CellNoise(args, dims, in.flags);
                 break;
             }
-
         }
         if constexpr (kRecord) {
             if (std::isnan(constant)) constant = detail::ResultConstant(in.op, A);

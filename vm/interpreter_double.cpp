@@ -15,7 +15,8 @@ double RunScalarOpcode(Op op, const double* operands, uint8_t flags) {
     Program program;
     program.constants.assign(operands, operands + n);
     program.registerCount = n + 1;
-    for (int i = 0; i < n; ++i) program.code.push_back({Op::LoadK, 0, static_cast<uint16_t>(i), static_cast<uint16_t>(i), 0});
+    for (int i = 0; i < n; ++i)
+        program.code.push_back({Op::LoadK, 0, static_cast<uint16_t>(i), static_cast<uint16_t>(i), 0});
     const size_t first = program.code.size();
     program.code.resize(first + static_cast<size_t>(Words(op)), Instr{Op::Ext, 0, 0, 0, 0});
     Instr* in = &program.code[first];

@@ -30,8 +30,7 @@ Interval LibmEnclosure(double r) {
 // +1. t/pi is computed with a relative error below 4u, so a tolerance of 2^-40 (1 + |t/pi|)
 // cannot exclude an extremum that is inside; including one that is just outside is harmless.
 Interval TrigRange(double a, double b, double fa, double fb, double phase) {
-    if (b - a >= kTwoPiBelow || std::fmax(std::fabs(a), std::fabs(b)) > kTrigAnalysisLimit)
-        return Interval(-1.0, 1.0);
+    if (b - a >= kTwoPiBelow || std::fmax(std::fabs(a), std::fabs(b)) > kTrigAnalysisLimit) return Interval(-1.0, 1.0);
     double lo = std::fmin(LibmDown(fa), LibmDown(fb));
     double hi = std::fmax(LibmUp(fa), LibmUp(fb));
     double ta = a * kInvPi - phase;
@@ -87,8 +86,7 @@ Interval operator*(const Interval& a, const Interval& b) {
     }
     if (bl >= 0) return Interval(MulDown(al, bh), MulUp(ah, bh));
     if (bh <= 0) return Interval(MulDown(ah, bl), MulUp(al, bl));
-    return Interval(std::fmin(MulDown(al, bh), MulDown(ah, bl)),
-                    std::fmax(MulUp(al, bl), MulUp(ah, bh)));
+    return Interval(std::fmin(MulDown(al, bh), MulDown(ah, bl)), std::fmax(MulUp(al, bl), MulUp(ah, bh)));
 }
 
 Interval operator/(const Interval& a, const Interval& b) {
@@ -103,10 +101,9 @@ Interval operator/(const Interval& a, const Interval& b) {
         if (bl > 0) return Interval(DivDown(al, al > 0 ? bh : bl), DivUp(ah, ah > 0 ? bl : bh));
         return Interval(DivDown(ah, ah > 0 ? bh : bl), DivUp(al, al > 0 ? bl : bh));
     }
-    double lo = std::min({DivDown(a.m_lo, b.m_lo), DivDown(a.m_lo, b.m_hi), DivDown(a.m_hi, b.m_lo),
-                          DivDown(a.m_hi, b.m_hi)});
-    double hi = std::max({DivUp(a.m_lo, b.m_lo), DivUp(a.m_lo, b.m_hi), DivUp(a.m_hi, b.m_lo),
-                          DivUp(a.m_hi, b.m_hi)});
+    double lo =
+        std::min({DivDown(a.m_lo, b.m_lo), DivDown(a.m_lo, b.m_hi), DivDown(a.m_hi, b.m_lo), DivDown(a.m_hi, b.m_hi)});
+    double hi = std::max({DivUp(a.m_lo, b.m_lo), DivUp(a.m_lo, b.m_hi), DivUp(a.m_hi, b.m_lo), DivUp(a.m_hi, b.m_hi)});
     return Interval(lo, hi);
 }
 
@@ -248,8 +245,7 @@ Interval atan2(const Interval& y, const Interval& x) {
         const double hi = std::atan2(x.m_lo > 0 ? y.m_hi : y.m_lo, x.m_lo);
         return Interval(LibmDown(lo), LibmUp(hi));
     }
-    if (x.m_lo > 0)
-        return Interval(LibmDown(std::atan2(y.m_lo, x.m_lo)), LibmUp(std::atan2(y.m_hi, x.m_lo)));
+    if (x.m_lo > 0) return Interval(LibmDown(std::atan2(y.m_lo, x.m_lo)), LibmUp(std::atan2(y.m_hi, x.m_lo)));
     return Interval(-LibmUp(kPi), LibmUp(kPi));
 }
 
@@ -290,17 +286,11 @@ Interval Equal(const Interval& a, const Interval& b) {
     return Interval::FromTruth(Truth::Unknown);
 }
 
-Interval NotEqual(const Interval& a, const Interval& b) {
-    return Interval::FromTruth(TruthNot(TruthOf(Equal(a, b))));
-}
+Interval NotEqual(const Interval& a, const Interval& b) { return Interval::FromTruth(TruthNot(TruthOf(Equal(a, b)))); }
 
-Interval And(const Interval& a, const Interval& b) {
-    return Interval::FromTruth(TruthAnd(TruthOf(a), TruthOf(b)));
-}
+Interval And(const Interval& a, const Interval& b) { return Interval::FromTruth(TruthAnd(TruthOf(a), TruthOf(b))); }
 
-Interval Or(const Interval& a, const Interval& b) {
-    return Interval::FromTruth(TruthOr(TruthOf(a), TruthOf(b)));
-}
+Interval Or(const Interval& a, const Interval& b) { return Interval::FromTruth(TruthOr(TruthOf(a), TruthOf(b))); }
 
 Interval Not(const Interval& a) { return Interval::FromTruth(TruthNot(TruthOf(a))); }
 

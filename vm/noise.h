@@ -452,8 +452,7 @@ T LocalCell(const T* p, const double* k, int dims, const double (*g)[4]) {
         t[i] = LocalForm::Coordinate(c[i], reach[i], i);
     }
     // The noise value before its clamp, as the double computes it (GradientNoise's last step).
-    const LocalForm raw =
-        CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; }) * NoiseScale(dims) + 0.5;
+    const LocalForm raw = CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; }) * NoiseScale(dims) + 0.5;
     // value(t_d) = z0 + sum_i z_i sigma_i + (fresh terms, e), sigma_i = (t_d,i - c_i)/reach_i,
     // and t_d,i = p_i - k_i + (its rounding, <= u since t_d,i <= 1):
     //   value(t_d) in sum_i a_i p_i + [z0 - sum_i a_i (k_i + c_i)] +- error
@@ -535,8 +534,8 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
     }
     bool local = false;
     if constexpr (kLocalNoise<T>)
-        local = cellwise && (method == NoiseBoundMethod::Local ||
-                             (method == NoiseBoundMethod::Auto && kLocalNoiseByDefault<T>));
+        local = cellwise &&
+                (method == NoiseBoundMethod::Local || (method == NoiseBoundMethod::Auto && kLocalNoiseByDefault<T>));
     T raw(0.0);
     if (cellwise) {
         bool first = true;

@@ -140,12 +140,9 @@ struct NumberTraits<Dual<Interval>> {
 template <class C, class T>
 T Select(const C& c, const T& a, const T& b) {
     switch (TruthOf(c)) {
-        case Truth::True:
-            return a;
-        case Truth::False:
-            return b;
-        default:
-            return Join(a, b);
+        case Truth::True: return a;
+        case Truth::False: return b;
+        default: return Join(a, b);
     }
 }
 

@@ -50,42 +50,42 @@ enum OperationFlag : uint8_t {
 // compiler's IR operations are these plus its leaves (compiler/ir.h), and every fact a consumer
 // needs about an operation is a column here.
 //  X(name, operands (-1: varies, the noise functions), flags, RSL spelling)
-#define AFFRAY_OPERATIONS(X)                                                      \
-    X(Neg, 1, kFoldable, "-x")                                                    \
-    X(Sqr, 1, kFoldable, "x * x")                                                 \
-    X(Sqrt, 1, kFoldable, "sqrt(x)")                                              \
-    X(Exp, 1, kFoldable, "exp(x)")                                                \
-    X(Log, 1, kFoldable, "log(x)")                                                \
-    X(Sin, 1, kFoldable, "sin(x)")                                                \
-    X(Cos, 1, kFoldable, "cos(x)")                                                \
-    X(Abs, 1, kFoldable, "abs(x)")                                                \
-    X(Sign, 1, kFoldable, "sign(x)")                                              \
-    X(DerivU, 1, kDerivative, "Du(x)")                                            \
-    X(DerivV, 1, kDerivative, "Dv(x)")                                            \
-    X(Floor, 1, kFoldable, "floor(x)")                                            \
-    X(Ceil, 1, kFoldable, "ceil(x)")                                              \
-    X(Round, 1, kFoldable, "round(x)")                                            \
-    X(Asin, 1, kFoldable, "asin(x)")                                              \
-    X(Acos, 1, kFoldable, "acos(x)")                                              \
-    X(Atan, 1, kFoldable, "atan(x)")                                              \
-    X(Not, 1, kFoldable | kTruth, "!x")                                           \
-    X(Add, 2, kFoldable | kCommutative | kSwapsExactly, "x + y")                  \
-    X(Sub, 2, kFoldable, "x - y")                                                 \
-    X(Mul, 2, kFoldable | kCommutative | kSwapsExactly, "x * y")                  \
-    X(Div, 2, kFoldable, "x / y")                                                 \
-    X(Pow, 2, kFoldable, "pow(x, y)")                                             \
-    X(Min, 2, kFoldable | kCommutative, "min(x, y)")                              \
-    X(Max, 2, kFoldable | kCommutative, "max(x, y)")                              \
-    X(Atan2, 2, kFoldable, "atan(y, x)")                                          \
-    X(Lt, 2, kFoldable | kTruth, "x < y")                                         \
-    X(Le, 2, kFoldable | kTruth, "x <= y")                                        \
-    X(Eq, 2, kFoldable | kTruth | kCommutative | kSwapsExactly, "x == y")         \
-    X(Ne, 2, kFoldable | kTruth | kCommutative | kSwapsExactly, "x != y")         \
-    X(And, 2, kFoldable | kTruth | kCommutative, "x && y")                        \
-    X(Or, 2, kFoldable | kTruth | kCommutative, "x || y")                         \
-    X(Select, 3, kFoldable, "c ? x : y")                                          \
-    X(Noise, -1, kFoldable, "noise(p)")                                           \
-    X(PNoise, -1, kFoldable, "pnoise(p, period)")                                 \
+#define AFFRAY_OPERATIONS(X)                                              \
+    X(Neg, 1, kFoldable, "-x")                                            \
+    X(Sqr, 1, kFoldable, "x * x")                                         \
+    X(Sqrt, 1, kFoldable, "sqrt(x)")                                      \
+    X(Exp, 1, kFoldable, "exp(x)")                                        \
+    X(Log, 1, kFoldable, "log(x)")                                        \
+    X(Sin, 1, kFoldable, "sin(x)")                                        \
+    X(Cos, 1, kFoldable, "cos(x)")                                        \
+    X(Abs, 1, kFoldable, "abs(x)")                                        \
+    X(Sign, 1, kFoldable, "sign(x)")                                      \
+    X(DerivU, 1, kDerivative, "Du(x)")                                    \
+    X(DerivV, 1, kDerivative, "Dv(x)")                                    \
+    X(Floor, 1, kFoldable, "floor(x)")                                    \
+    X(Ceil, 1, kFoldable, "ceil(x)")                                      \
+    X(Round, 1, kFoldable, "round(x)")                                    \
+    X(Asin, 1, kFoldable, "asin(x)")                                      \
+    X(Acos, 1, kFoldable, "acos(x)")                                      \
+    X(Atan, 1, kFoldable, "atan(x)")                                      \
+    X(Not, 1, kFoldable | kTruth, "!x")                                   \
+    X(Add, 2, kFoldable | kCommutative | kSwapsExactly, "x + y")          \
+    X(Sub, 2, kFoldable, "x - y")                                         \
+    X(Mul, 2, kFoldable | kCommutative | kSwapsExactly, "x * y")          \
+    X(Div, 2, kFoldable, "x / y")                                         \
+    X(Pow, 2, kFoldable, "pow(x, y)")                                     \
+    X(Min, 2, kFoldable | kCommutative, "min(x, y)")                      \
+    X(Max, 2, kFoldable | kCommutative, "max(x, y)")                      \
+    X(Atan2, 2, kFoldable, "atan(y, x)")                                  \
+    X(Lt, 2, kFoldable | kTruth, "x < y")                                 \
+    X(Le, 2, kFoldable | kTruth, "x <= y")                                \
+    X(Eq, 2, kFoldable | kTruth | kCommutative | kSwapsExactly, "x == y") \
+    X(Ne, 2, kFoldable | kTruth | kCommutative | kSwapsExactly, "x != y") \
+    X(And, 2, kFoldable | kTruth | kCommutative, "x && y")                \
+    X(Or, 2, kFoldable | kTruth | kCommutative, "x || y")                 \
+    X(Select, 3, kFoldable, "c ? x : y")                                  \
+    X(Noise, -1, kFoldable, "noise(p)")                                   \
+    X(PNoise, -1, kFoldable, "pnoise(p, period)")                         \
     X(CellNoise, -1, kFoldable, "cellnoise(p)")
 
 enum class Operation : uint8_t {
@@ -106,10 +106,9 @@ struct OperationInfo {
     const char* rsl;
 };
 
-inline constexpr OperationInfo kOperationInfo[] = {
-    {"None", 0, 0, ""},
+inline constexpr OperationInfo kOperationInfo[] = {{"None", 0, 0, ""},
 #define AFFRAY_OPERATION_INFO(name, operands, flags, rsl) {#name, operands, flags, rsl},
-    AFFRAY_OPERATIONS(AFFRAY_OPERATION_INFO)
+                                                   AFFRAY_OPERATIONS(AFFRAY_OPERATION_INFO)
 #undef AFFRAY_OPERATION_INFO
 };
 
@@ -117,69 +116,69 @@ constexpr const OperationInfo& Info(Operation f) { return kOperationInfo[static_
 constexpr bool Has(Operation f, OperationFlag flag) { return (Info(f).flags & flag) != 0; }
 
 //  X(name, number, format, operation, meaning)
-#define AFFRAY_OPCODES(X)                                                                           \
-    X(LoadK, 0, "wk-", None, "R[A] := K[B]")                                                        \
-    X(Move, 1, "wr-", None, "R[A] := R[B]")                                                         \
-    X(Neg, 2, "wr-", Neg, "R[A] := -R[B]")                                                          \
-    X(AddRR, 3, "wrr", Add, "R[A] := R[B] + R[C]")                                                  \
-    X(AddRK, 4, "wrk", Add, "R[A] := R[B] + K[C]")                                                  \
-    X(SubRR, 5, "wrr", Sub, "R[A] := R[B] - R[C]")                                                  \
-    X(SubRK, 6, "wrk", Sub, "R[A] := R[B] - K[C]")                                                  \
-    X(SubKR, 7, "wkr", Sub, "R[A] := K[B] - R[C]")                                                  \
-    X(MulRR, 8, "wrr", Mul, "R[A] := R[B] * R[C]")                                                  \
-    X(MulRK, 9, "wrk", Mul, "R[A] := R[B] * K[C]")                                                  \
-    X(DivRR, 10, "wrr", Div, "R[A] := R[B] / R[C]")                                                 \
-    X(DivRK, 11, "wrk", Div, "R[A] := R[B] / K[C]")                                                 \
-    X(DivKR, 12, "wkr", Div, "R[A] := K[B] / R[C]")                                                 \
-    X(Sqr, 13, "wr-", Sqr, "R[A] := R[B] * R[B]  (one operand: bounds stay correlated)")            \
-    X(Sqrt, 14, "wr-", Sqrt, "R[A] := sqrt(R[B])")                                                  \
-    X(Exp, 15, "wr-", Exp, "R[A] := exp(R[B])")                                                     \
-    X(Log, 16, "wr-", Log, "R[A] := log(R[B])  (natural)")                                          \
-    X(Sin, 17, "wr-", Sin, "R[A] := sin(R[B])")                                                     \
-    X(Cos, 18, "wr-", Cos, "R[A] := cos(R[B])")                                                     \
-    X(Abs, 19, "wr-", Abs, "R[A] := |R[B]|")                                                        \
-    X(Sign, 20, "wr-", Sign, "R[A] := sign(R[B])  (-1, 0 or 1)")                                    \
-    X(PowRR, 21, "wrr", Pow, "R[A] := pow(R[B], R[C])")                                             \
-    X(PowRK, 22, "wrk", Pow, "R[A] := pow(R[B], K[C])")                                             \
-    X(DerivU, 23, "wr-", DerivU, "R[A] := d R[B] / du  (needs a number type with derivatives)")     \
-    X(DerivV, 24, "wr-", DerivV, "R[A] := d R[B] / dv")                                             \
-    X(Floor, 25, "wr-", Floor, "R[A] := floor(R[B])")                                               \
-    X(Ceil, 26, "wr-", Ceil, "R[A] := ceil(R[B])")                                                  \
-    X(Round, 27, "wr-", Round, "R[A] := round(R[B])  (halves away from 0)")                         \
-    X(Asin, 28, "wr-", Asin, "R[A] := asin(R[B])")                                                  \
-    X(Acos, 29, "wr-", Acos, "R[A] := acos(R[B])")                                                  \
-    X(Atan, 30, "wr-", Atan, "R[A] := atan(R[B])")                                                  \
-    X(Not, 31, "wr-", Not, "R[A] := R[B] == 0")                                                     \
-    X(Atan2RR, 32, "wrr", Atan2, "R[A] := atan2(R[B], R[C])  (y, x)")                               \
-    X(MinRR, 33, "wrr", Min, "R[A] := min(R[B], R[C])")                                             \
-    X(MinRK, 34, "wrk", Min, "R[A] := min(R[B], K[C])")                                             \
-    X(MaxRR, 35, "wrr", Max, "R[A] := max(R[B], R[C])")                                             \
-    X(MaxRK, 36, "wrk", Max, "R[A] := max(R[B], K[C])")                                             \
-    X(LtRR, 37, "wrr", Lt, "R[A] := R[B] < R[C]")                                                   \
-    X(LtRK, 38, "wrk", Lt, "R[A] := R[B] < K[C]")                                                   \
-    X(LtKR, 39, "wkr", Lt, "R[A] := K[B] < R[C]")                                                   \
-    X(LeRR, 40, "wrr", Le, "R[A] := R[B] <= R[C]")                                                  \
-    X(LeRK, 41, "wrk", Le, "R[A] := R[B] <= K[C]")                                                  \
-    X(LeKR, 42, "wkr", Le, "R[A] := K[B] <= R[C]")                                                  \
-    X(EqRR, 43, "wrr", Eq, "R[A] := R[B] == R[C]")                                                  \
-    X(EqRK, 44, "wrk", Eq, "R[A] := R[B] == K[C]")                                                  \
-    X(NeRR, 45, "wrr", Ne, "R[A] := R[B] != R[C]")                                                  \
-    X(NeRK, 46, "wrk", Ne, "R[A] := R[B] != K[C]")                                                  \
-    X(AndRR, 47, "wrr", And, "R[A] := R[B] != 0 && R[C] != 0")                                      \
-    X(OrRR, 48, "wrr", Or, "R[A] := R[B] != 0 || R[C] != 0")                                        \
+#define AFFRAY_OPCODES(X)                                                                            \
+    X(LoadK, 0, "wk-", None, "R[A] := K[B]")                                                         \
+    X(Move, 1, "wr-", None, "R[A] := R[B]")                                                          \
+    X(Neg, 2, "wr-", Neg, "R[A] := -R[B]")                                                           \
+    X(AddRR, 3, "wrr", Add, "R[A] := R[B] + R[C]")                                                   \
+    X(AddRK, 4, "wrk", Add, "R[A] := R[B] + K[C]")                                                   \
+    X(SubRR, 5, "wrr", Sub, "R[A] := R[B] - R[C]")                                                   \
+    X(SubRK, 6, "wrk", Sub, "R[A] := R[B] - K[C]")                                                   \
+    X(SubKR, 7, "wkr", Sub, "R[A] := K[B] - R[C]")                                                   \
+    X(MulRR, 8, "wrr", Mul, "R[A] := R[B] * R[C]")                                                   \
+    X(MulRK, 9, "wrk", Mul, "R[A] := R[B] * K[C]")                                                   \
+    X(DivRR, 10, "wrr", Div, "R[A] := R[B] / R[C]")                                                  \
+    X(DivRK, 11, "wrk", Div, "R[A] := R[B] / K[C]")                                                  \
+    X(DivKR, 12, "wkr", Div, "R[A] := K[B] / R[C]")                                                  \
+    X(Sqr, 13, "wr-", Sqr, "R[A] := R[B] * R[B]  (one operand: bounds stay correlated)")             \
+    X(Sqrt, 14, "wr-", Sqrt, "R[A] := sqrt(R[B])")                                                   \
+    X(Exp, 15, "wr-", Exp, "R[A] := exp(R[B])")                                                      \
+    X(Log, 16, "wr-", Log, "R[A] := log(R[B])  (natural)")                                           \
+    X(Sin, 17, "wr-", Sin, "R[A] := sin(R[B])")                                                      \
+    X(Cos, 18, "wr-", Cos, "R[A] := cos(R[B])")                                                      \
+    X(Abs, 19, "wr-", Abs, "R[A] := |R[B]|")                                                         \
+    X(Sign, 20, "wr-", Sign, "R[A] := sign(R[B])  (-1, 0 or 1)")                                     \
+    X(PowRR, 21, "wrr", Pow, "R[A] := pow(R[B], R[C])")                                              \
+    X(PowRK, 22, "wrk", Pow, "R[A] := pow(R[B], K[C])")                                              \
+    X(DerivU, 23, "wr-", DerivU, "R[A] := d R[B] / du  (needs a number type with derivatives)")      \
+    X(DerivV, 24, "wr-", DerivV, "R[A] := d R[B] / dv")                                              \
+    X(Floor, 25, "wr-", Floor, "R[A] := floor(R[B])")                                                \
+    X(Ceil, 26, "wr-", Ceil, "R[A] := ceil(R[B])")                                                   \
+    X(Round, 27, "wr-", Round, "R[A] := round(R[B])  (halves away from 0)")                          \
+    X(Asin, 28, "wr-", Asin, "R[A] := asin(R[B])")                                                   \
+    X(Acos, 29, "wr-", Acos, "R[A] := acos(R[B])")                                                   \
+    X(Atan, 30, "wr-", Atan, "R[A] := atan(R[B])")                                                   \
+    X(Not, 31, "wr-", Not, "R[A] := R[B] == 0")                                                      \
+    X(Atan2RR, 32, "wrr", Atan2, "R[A] := atan2(R[B], R[C])  (y, x)")                                \
+    X(MinRR, 33, "wrr", Min, "R[A] := min(R[B], R[C])")                                              \
+    X(MinRK, 34, "wrk", Min, "R[A] := min(R[B], K[C])")                                              \
+    X(MaxRR, 35, "wrr", Max, "R[A] := max(R[B], R[C])")                                              \
+    X(MaxRK, 36, "wrk", Max, "R[A] := max(R[B], K[C])")                                              \
+    X(LtRR, 37, "wrr", Lt, "R[A] := R[B] < R[C]")                                                    \
+    X(LtRK, 38, "wrk", Lt, "R[A] := R[B] < K[C]")                                                    \
+    X(LtKR, 39, "wkr", Lt, "R[A] := K[B] < R[C]")                                                    \
+    X(LeRR, 40, "wrr", Le, "R[A] := R[B] <= R[C]")                                                   \
+    X(LeRK, 41, "wrk", Le, "R[A] := R[B] <= K[C]")                                                   \
+    X(LeKR, 42, "wkr", Le, "R[A] := K[B] <= R[C]")                                                   \
+    X(EqRR, 43, "wrr", Eq, "R[A] := R[B] == R[C]")                                                   \
+    X(EqRK, 44, "wrk", Eq, "R[A] := R[B] == K[C]")                                                   \
+    X(NeRR, 45, "wrr", Ne, "R[A] := R[B] != R[C]")                                                   \
+    X(NeRK, 46, "wrk", Ne, "R[A] := R[B] != K[C]")                                                   \
+    X(AndRR, 47, "wrr", And, "R[A] := R[B] != 0 && R[C] != 0")                                       \
+    X(OrRR, 48, "wrr", Or, "R[A] := R[B] != 0 || R[C] != 0")                                         \
     X(Select, 49, "wrrr--", Select, "R[A] := R[B] != 0 ? R[C] : R[D]  (undecided: a bound of both)") \
-    X(Ext, 50, "---", None, "further operands of the instruction before; never runs on its own")    \
-    X(Noise1, 51, "wr-", Noise, "R[A] := noise(R[B]), channel = flags")                             \
-    X(Noise2, 52, "wrr", Noise, "R[A] := noise(R[B], R[C])")                                        \
-    X(Noise3, 53, "wrrr--", Noise, "R[A] := noise(R[B], R[C], R[D])")                               \
-    X(Noise4, 54, "wrrrr-", Noise, "R[A] := noise(R[B], R[C], R[D], R[E])")                         \
-    X(PNoise1, 55, "wrr", PNoise, "R[A] := pnoise(x; period), operands x then period")              \
-    X(PNoise2, 56, "wrrrr-", PNoise, "R[A] := pnoise(x, y; periods)")                               \
-    X(PNoise3, 57, "wrrrrrr--", PNoise, "R[A] := pnoise(x, y, z; periods)")                         \
-    X(PNoise4, 58, "wrrrrrrrr", PNoise, "R[A] := pnoise(x, y, z, w; periods)")                      \
-    X(CellNoise1, 59, "wr-", CellNoise, "R[A] := cellnoise(R[B]), channel = flags")                 \
-    X(CellNoise2, 60, "wrr", CellNoise, "R[A] := cellnoise(R[B], R[C])")                            \
-    X(CellNoise3, 61, "wrrr--", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D])")                   \
+    X(Ext, 50, "---", None, "further operands of the instruction before; never runs on its own")     \
+    X(Noise1, 51, "wr-", Noise, "R[A] := noise(R[B]), channel = flags")                              \
+    X(Noise2, 52, "wrr", Noise, "R[A] := noise(R[B], R[C])")                                         \
+    X(Noise3, 53, "wrrr--", Noise, "R[A] := noise(R[B], R[C], R[D])")                                \
+    X(Noise4, 54, "wrrrr-", Noise, "R[A] := noise(R[B], R[C], R[D], R[E])")                          \
+    X(PNoise1, 55, "wrr", PNoise, "R[A] := pnoise(x; period), operands x then period")               \
+    X(PNoise2, 56, "wrrrr-", PNoise, "R[A] := pnoise(x, y; periods)")                                \
+    X(PNoise3, 57, "wrrrrrr--", PNoise, "R[A] := pnoise(x, y, z; periods)")                          \
+    X(PNoise4, 58, "wrrrrrrrr", PNoise, "R[A] := pnoise(x, y, z, w; periods)")                       \
+    X(CellNoise1, 59, "wr-", CellNoise, "R[A] := cellnoise(R[B]), channel = flags")                  \
+    X(CellNoise2, 60, "wrr", CellNoise, "R[A] := cellnoise(R[B], R[C])")                             \
+    X(CellNoise3, 61, "wrrr--", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D])")                    \
     X(CellNoise4, 62, "wrrrr-", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D], R[E])")
 
 enum class Op : uint8_t {
@@ -228,8 +227,9 @@ inline constexpr OpInfo kOpInfo[] = {
 };
 
 // The numbers must be 0..kOpCount-1 in order, so kOpInfo can be indexed by the opcode.
-#define AFFRAY_OP_CHECK(op, number, format, operation, meaning) \
-    static_assert(static_cast<int>(Op::op) == number && number < kOpCount, "opcodes must be numbered 0, 1, 2... in order");
+#define AFFRAY_OP_CHECK(op, number, format, operation, meaning)            \
+    static_assert(static_cast<int>(Op::op) == number && number < kOpCount, \
+                  "opcodes must be numbered 0, 1, 2... in order");
 AFFRAY_OPCODES(AFFRAY_OP_CHECK)
 #undef AFFRAY_OP_CHECK
 

@@ -79,9 +79,7 @@ struct Program {
 
     Program() { globalRegisters.fill(kNoRegister); }
 
-    bool readsGlobal(Global g) const {
-        return globalRegisters[static_cast<int>(g)] != kNoRegister;
-    }
+    bool readsGlobal(Global g) const { return globalRegisters[static_cast<int>(g)] != kNoRegister; }
     /// The output called `name`, or nullptr.
     const ProgramOutput* findOutput(const std::string& name) const;
     /// True if the program takes derivatives (Du, Dv, calculatenormal): it then needs a number

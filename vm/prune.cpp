@@ -100,8 +100,10 @@ void Pruner::Prune(const Program& program, const Decisions& decisions, Program* 
             int operands[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
             for (int i = 1; format[i]; ++i) {
                 const uint16_t x = OperandOf(in, i);
-                if (format[i] == 'r') operands[i - 1] = m_regValue[x];
-                else if (format[i] == 'k') operands[i - 1] = as.Constant(program.constants[x]);
+                if (format[i] == 'r')
+                    operands[i - 1] = m_regValue[x];
+                else if (format[i] == 'k')
+                    operands[i - 1] = as.Constant(program.constants[x]);
             }
             // A register operand now known to be a constant: R op R[c] => R op K[c].
             for (int i = 1; i <= 2 && constantForms; ++i) {

@@ -89,8 +89,8 @@ class Pruner {
     void Prune(const Program& program, const Decisions& decisions, Program* out);
 
   private:
-    Assembler m_assembler;  // the back end it shares with the compiler's emitter
-    std::vector<int> m_regValue;   // the value each original register holds
+    Assembler m_assembler;                // the back end it shares with the compiler's emitter
+    std::vector<int> m_regValue;          // the value each original register holds
     std::vector<double> m_valueConstant;  // per value: the constant it is loaded with, or kNone
 };
 

@@ -86,8 +86,7 @@ ReducedAffine ReducedAffine::ApplyFit(const ReducedAffine& x, double alpha, doub
     const double ax0 = alpha * x.m_center;
     const double center = ax0 + zeta;
     const double absSum = std::fabs(a) + std::fabs(b) + std::fabs(ax0) + std::fabs(center);
-    const double delta =
-        (delta0 + std::fabs(alpha) * x.m_error + absSum * kEpsilon) * kSumSlack + kUnderflowSlack;
+    const double delta = (delta0 + std::fabs(alpha) * x.m_error + absSum * kEpsilon) * kSumSlack + kUnderflowSlack;
     if (!(delta <= kMaxFinite)) return Unbounded();
     return Make(center, a, b, delta);
 }
@@ -97,14 +96,10 @@ ReducedAffine ReducedAffine::FromFit(const ReducedAffine& x, const AffineFit& fi
         case AffineFit::Kind::Line:
             if (fit.hasLineLimit() && fit.lineTooWide(x.radius())) return FromInterval(fit.range);
             return ApplyFit(x, fit.alpha, fit.lo, fit.hi);
-        case AffineFit::Kind::Range:
-            return FromInterval(fit.range);
-        case AffineFit::Kind::Same:
-            return x;
-        case AffineFit::Kind::Negated:
-            return -x;
-        default:
-            return Unbounded();
+        case AffineFit::Kind::Range: return FromInterval(fit.range);
+        case AffineFit::Kind::Same: return x;
+        case AffineFit::Kind::Negated: return -x;
+        default: return Unbounded();
     }
 }
 

@@ -94,12 +94,8 @@ class ReducedAffine {
         r.m_hi = -x.m_lo;
         return r;
     }
-    friend ReducedAffine operator+(const ReducedAffine& x, const ReducedAffine& y) {
-        return AddForms<false>(x, y);
-    }
-    friend ReducedAffine operator-(const ReducedAffine& x, const ReducedAffine& y) {
-        return AddForms<true>(x, y);
-    }
+    friend ReducedAffine operator+(const ReducedAffine& x, const ReducedAffine& y) { return AddForms<false>(x, y); }
+    friend ReducedAffine operator-(const ReducedAffine& x, const ReducedAffine& y) { return AddForms<true>(x, y); }
     friend ReducedAffine operator+(const ReducedAffine& x, double c);
     friend ReducedAffine operator+(double c, const ReducedAffine& x) { return x + c; }
     friend ReducedAffine operator-(const ReducedAffine& x, double c) { return x + (-c); }
@@ -308,8 +304,7 @@ inline ReducedAffine ReducedAffine::MulForms(const ReducedAffine& x, const Reduc
     const double rx = std::fabs(x.m_u) + std::fabs(x.m_v), ry = std::fabs(y.m_u) + std::fabs(y.m_v);
     const double center = x0 * y0 + 0.5 * diag;
     const double absSum = std::fabs(a) + std::fabs(b) + std::fabs(center);
-    const double delta =
-        ProductRemainder({x0, y0, rx, ry, x.m_error, y.m_error, diag, absDiag, absSum}, kTermSlack);
+    const double delta = ProductRemainder({x0, y0, rx, ry, x.m_error, y.m_error, diag, absDiag, absSum}, kTermSlack);
     if (!(delta <= kMaxFinite)) return Unbounded();
     return Make(center, a, b, delta);
 }

@@ -159,8 +159,8 @@ inline double ProductRemainder(const ProductSums& s, double termSlack) {
     const double quad = (s.rx + s.ex) * (s.ry + s.ey) - 0.5 * s.absDiag;
     const double linear = std::fabs(s.x0) * s.ey + std::fabs(s.y0) * s.ex;
     const double maxResult = (std::fabs(s.x0) + s.rx + s.ex) * (std::fabs(s.y0) + s.ry + s.ey);
-    const double rounding = (std::fabs(s.x0) * s.ry + std::fabs(s.y0) * s.rx + std::fabs(p0) +
-                             termSlack * s.absDiag + s.absSum + maxResult) *
+    const double rounding = (std::fabs(s.x0) * s.ry + std::fabs(s.y0) * s.rx + std::fabs(p0) + termSlack * s.absDiag +
+                             s.absSum + maxResult) *
                             kEpsilon;
     return (quad + linear + rounding) * kSumSlack + kUnderflowSlack;
 }

@@ -23,11 +23,7 @@ struct Vec3 {
     Vec3 operator-(const Vec3& o) const { return {x - o.x, y - o.y, z - o.z}; }
     Vec3 operator-() const { return {-x, -y, -z}; }
     Vec3 operator*(const T& s) const { return {x * s, y * s, z * s}; }
-    Vec3 operator*(double s) const
-        requires(!std::is_same_v<T, double>)
-    {
-        return {x * s, y * s, z * s};
-    }
+    Vec3 operator*(double s) const requires(!std::is_same_v<T, double>) { return {x * s, y * s, z * s}; }
 };
 
 template <class T>

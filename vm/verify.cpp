@@ -15,8 +15,7 @@ bool Fail(std::string* error, const std::string& message) {
 bool Verify(const Program& program, std::string* error) {
     const int nRegs = program.registerCount;
     if (nRegs < 0 || nRegs > kMaxRegisters) return Fail(error, "register count out of range");
-    if (program.constants.size() > static_cast<size_t>(kMaxConstants))
-        return Fail(error, "too many constants");
+    if (program.constants.size() > static_cast<size_t>(kMaxConstants)) return Fail(error, "too many constants");
     if (!program.lines.empty() && program.lines.size() != program.code.size())
         return Fail(error, "line table length differs from code length");
 
@@ -26,8 +25,7 @@ bool Verify(const Program& program, std::string* error) {
         if (base == kNoRegister) continue;
         int size = GlobalSize(static_cast<Global>(g));
         if (base + size > nRegs)
-            return Fail(error, std::string("global ") + GlobalName(static_cast<Global>(g)) +
-                                   " register out of range");
+            return Fail(error, std::string("global ") + GlobalName(static_cast<Global>(g)) + " register out of range");
         for (int i = 0; i < size; ++i) written[base + i] = true;
     }
 
@@ -56,23 +54,19 @@ bool Verify(const Program& program, std::string* error) {
             uint16_t x = OperandOf(&in, i);
             switch (format[i]) {
                 case 'r':
-                    if (x >= nRegs)
-                        return Fail(error, where + "register r" + std::to_string(x) + " out of range");
+                    if (x >= nRegs) return Fail(error, where + "register r" + std::to_string(x) + " out of range");
                     if (!written[x])
-                        return Fail(error, where + "register r" + std::to_string(x) +
-                                               " read before it is written");
+                        return Fail(error, where + "register r" + std::to_string(x) + " read before it is written");
                     break;
                 case 'k':
                     if (x >= program.constants.size())
                         return Fail(error, where + "constant k" + std::to_string(x) + " out of range");
                     break;
-                default:
-                    break;
+                default: break;
             }
         }
         if (format[0] == 'w') {
-            if (in.a >= nRegs)
-                return Fail(error, where + "register r" + std::to_string(in.a) + " out of range");
+            if (in.a >= nRegs) return Fail(error, where + "register r" + std::to_string(in.a) + " out of range");
             written[in.a] = true;
         }
         pc += words - 1;

@@ -94,8 +94,8 @@ TEST_CASE("built-ins give their RenderMan values", "[compiler]") {
 }
 
 TEST_CASE("calculatenormal is Du(P) ^ Dv(P)", "[compiler]") {
-    compiler::CompiledShader s = test::CompileOrThrow(
-        "displacement t() { P += 0.5 * u * u * N; N = calculatenormal(P); }");
+    compiler::CompiledShader s =
+        test::CompileOrThrow("displacement t() { P += 0.5 * u * u * N; N = calculatenormal(P); }");
     // P = (u, v, u^2/2): dP/du = (1, 0, u), dP/dv = (0, 1, 0); cross = (-u, 0, 1).
     glm::dvec3 n = test::PointOnSquare(s.shade, 0.5, 0.5, "N");
     CHECK_THAT(n.x, WithinAbs(-0.5, 1e-15));
@@ -114,7 +114,8 @@ TEST_CASE("variables, promotion, compound assignment and scopes", "[compiler]") 
 }
 
 TEST_CASE("parameters take defaults and overrides", "[compiler]") {
-    const std::string src = "displacement t(float Km = 0.5, k2 = Km * 2; point c = (1, 2, 3);) { P += Km + k2 + zcomp(c); }";
+    const std::string src =
+        "displacement t(float Km = 0.5, k2 = Km * 2; point c = (1, 2, 3);) { P += Km + k2 + zcomp(c); }";
     CHECK_THAT(test::PointOnSquare(test::CompileOrThrow(src).shade, 0, 0).z, WithinAbs(4.5, 1e-15));
     // Defaults are constants fixed at compile time: k2's default saw Km's default (0.5), and an
     // instance value of Km does not change it.
@@ -127,9 +128,11 @@ TEST_CASE("parameters take defaults and overrides", "[compiler]") {
     REQUIRE_FALSE(bad.ok());
     REQUIRE(bad.paramErrors == std::vector<std::string>{"shader 't' has no parameter 'Kx'"});
     bad = compiler::CompileSource("t.sl", src, {{"Km", {NAN}}});
-    REQUIRE(bad.paramErrors == std::vector<std::string>{"parameter 'Km' of shader 't' must be finite (got NaN or infinity)"});
+    REQUIRE(bad.paramErrors ==
+            std::vector<std::string>{"parameter 'Km' of shader 't' must be finite (got NaN or infinity)"});
     bad = compiler::CompileSource("t.sl", src, {{"Km", {1, 2}}});
-    REQUIRE(bad.paramErrors == std::vector<std::string>{"parameter 'Km' of shader 't' is a float and takes 1 value, got 2"});
+    REQUIRE(bad.paramErrors ==
+            std::vector<std::string>{"parameter 'Km' of shader 't' is a float and takes 1 value, got 2"});
 }
 
 TEST_CASE("compiler diagnostics are exact", "[compiler]") {
@@ -142,8 +145,9 @@ TEST_CASE("compiler diagnostics are exact", "[compiler]") {
           "test.sl:2:5: error: cannot assign to 'u': it is a read-only global\n      u = 1;\n        ^\n");
     CHECK(Diagnose("displacement t() {\n  float x = P;\n}\n") ==
           "test.sl:2:9: error: cannot assign a point to float variable 'x'\n      float x = P;\n            ^\n");
-    CHECK(Diagnose("displacement t() {\n  P += sin(P);\n}\n") ==
-          "test.sl:2:8: error: no version of 'sin' takes (point); expected (float)\n      P += sin(P);\n           ^\n");
+    CHECK(
+        Diagnose("displacement t() {\n  P += sin(P);\n}\n") ==
+        "test.sl:2:8: error: no version of 'sin' takes (point); expected (float)\n      P += sin(P);\n           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += pow(2);\n}\n") ==
           "test.sl:2:8: error: 'pow' expects 2 arguments, got 1\n      P += pow(2);\n           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += frob(2);\n}\n") ==
@@ -161,7 +165,8 @@ TEST_CASE("compiler diagnostics are exact", "[compiler]") {
           "test.sl:1:9: error: surface shaders are not supported yet; affray renders displacement shaders\n"
           "    surface t() {\n            ^\n");
     CHECK(Diagnose("displacement t(float k) {\n  P += k;\n}\n") ==
-          "test.sl:1:22: error: parameter 'k' needs a default value\n    displacement t(float k) {\n                         ^\n");
+          "test.sl:1:22: error: parameter 'k' needs a default value\n    displacement t(float k) {\n                   "
+          "      ^\n");
     CHECK(Diagnose("displacement t(float k = u) {\n  P += k;\n}\n") ==
           "test.sl:1:22: error: default value of parameter 'k' must be a constant expression\n"
           "    displacement t(float k = u) {\n                         ^\n");
@@ -200,15 +205,15 @@ TEST_CASE("constants fold, shared subexpressions are computed once, dead code go
     compiler::CompiledShader k = test::CompileOrThrow("displacement t() { P += vector(0, 0, (1 + 2) * sin(0.5)); }");
     CHECK(Opcodes(k.bound) == std::vector<Op>{Op::AddRK});
     // u*u becomes one Sqr; the repeated sin(u) is computed once.
-    compiler::CompiledShader s = test::CompileOrThrow("displacement t() { P += vector(0, 0, u * u + sin(u) + sin(u)); }");
+    compiler::CompiledShader s =
+        test::CompileOrThrow("displacement t() { P += vector(0, 0, u * u + sin(u) + sin(u)); }");
     CHECK(Opcodes(s.bound) == std::vector<Op>{Op::Sqr, Op::Sin, Op::AddRR, Op::AddRR, Op::AddRR});
     // A parameter bound to a constant folds away; unused locals emit nothing.
     compiler::CompiledShader p = test::CompileOrThrow(
         "displacement t(float Km = 2) { float unused = sin(u) * 7; P += vector(0, 0, Km * 0.5); }");
     CHECK(Opcodes(p.bound) == std::vector<Op>{Op::AddRK});
     // The bound program leaves out N's computation; the shade program keeps it.
-    compiler::CompiledShader n = test::CompileOrThrow(
-        "displacement t() { P += u * N; N = calculatenormal(P); }");
+    compiler::CompiledShader n = test::CompileOrThrow("displacement t() { P += u * N; N = calculatenormal(P); }");
     CHECK_FALSE(n.bound.usesDerivatives());
     CHECK(n.shade.usesDerivatives());
     CHECK(n.bound.code.size() < n.shade.code.size());
@@ -271,8 +276,7 @@ TEST_CASE("generic programs read parameters, specialised ones fold them away", "
 TEST_CASE("globals constant on a surface fold like parameters", "[compiler][specialise]") {
     compiler::CompiledShader s = test::CompileOrThrow("displacement t() { P += 0.1 * sin(u) * normalize(N); }");
     std::vector<std::string> errors;
-    std::optional<vm::Program> flat =
-        compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
+    std::optional<vm::Program> flat = compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
     REQUIRE(flat);
     CHECK(errors.empty());
     CHECK_FALSE(flat->readsGlobal(vm::Global::N));

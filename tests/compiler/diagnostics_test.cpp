@@ -107,7 +107,8 @@ TEST_CASE("break and continue outside their loops", "[compiler][diagnostics]") {
           "test.sl:3:30: error: 'break 2' is inside only 1 loop\n"
           "      for (i = 0; i < 1; i += 1) break 2;\n"
           "                                 ^\n");
-    CHECK(Diagnose("displacement t() {\n  float i, j;\n  for (i = 0; i < 1; i += 1)\n      for (j = 0; j < 1; j += 1) continue 3;\n}\n") ==
+    CHECK(Diagnose("displacement t() {\n  float i, j;\n  for (i = 0; i < 1; i += 1)\n      for (j = 0; j < 1; j += 1) "
+                   "continue 3;\n}\n") ==
           "test.sl:4:34: error: 'continue 3' is inside only 2 loops\n"
           "          for (j = 0; j < 1; j += 1) continue 3;\n"
           "                                     ^\n");
@@ -116,7 +117,8 @@ TEST_CASE("break and continue outside their loops", "[compiler][diagnostics]") {
 TEST_CASE("a loop that never ends", "[compiler][diagnostics]") {
     // The condition is constant: the unrolling would never stop.
     CHECK(Diagnose("displacement t() {\n  float i = 0;\n  while (i < 1) P += 0;\n}\n") ==
-          "test.sl:3:3: error: this loop runs more than 100000 iterations (affray unrolls loops; is its condition ever false?)\n"
+          "test.sl:3:3: error: this loop runs more than 100000 iterations (affray unrolls loops; is its condition ever "
+          "false?)\n"
           "      while (i < 1) P += 0;\n"
           "      ^\n");
 }
@@ -146,15 +148,18 @@ TEST_CASE("invalid operands to comparisons and logical operators", "[compiler][d
           "      if (P < point(1, 1, 1)) P += 1;\n"
           "            ^\n");
     CHECK(Diagnose("displacement t() {\n  if (P == color(1, 1, 1)) P += 1;\n}\n") ==
-          "test.sl:2:9: error: invalid operands to '==' (point and color): a color does not compare with a point, vector or normal\n"
+          "test.sl:2:9: error: invalid operands to '==' (point and color): a color does not compare with a point, "
+          "vector or normal\n"
           "      if (P == color(1, 1, 1)) P += 1;\n"
           "            ^\n");
     CHECK(Diagnose("displacement t() {\n  if (\"a\" < \"b\") P += 1;\n}\n") ==
-          "test.sl:2:11: error: invalid operands to '<' (string and string): strings compare only with == and != to strings\n"
+          "test.sl:2:11: error: invalid operands to '<' (string and string): strings compare only with == and != to "
+          "strings\n"
           "      if (\"a\" < \"b\") P += 1;\n"
           "              ^\n");
     CHECK(Diagnose("displacement t() {\n  if (\"a\" == 1) P += 1;\n}\n") ==
-          "test.sl:2:11: error: invalid operands to '==' (string and float): strings compare only with == and != to strings\n"
+          "test.sl:2:11: error: invalid operands to '==' (string and float): strings compare only with == and != to "
+          "strings\n"
           "      if (\"a\" == 1) P += 1;\n"
           "              ^\n");
     CHECK(Diagnose("displacement t() {\n  if (P && 1) P += 1;\n}\n") ==
@@ -169,7 +174,8 @@ TEST_CASE("invalid operands to arithmetic", "[compiler][diagnostics]") {
           "      P += \"a\" + 1;\n"
           "               ^\n");
     CHECK(Diagnose("displacement t() {\n  P += color(1, 0, 0) + P;\n}\n") ==
-          "test.sl:2:23: error: invalid operands to '+' (color and point): a color does not combine with a point, vector or normal\n"
+          "test.sl:2:23: error: invalid operands to '+' (color and point): a color does not combine with a point, "
+          "vector or normal\n"
           "      P += color(1, 0, 0) + P;\n"
           "                          ^\n");
     CHECK(Diagnose("displacement t() {\n  P = P ^ 1;\n}\n") ==
@@ -216,7 +222,8 @@ TEST_CASE("calls to user functions", "[compiler][diagnostics]") {
           "test.sl:1:6: note: 'f' is defined here\n"
           "    void f(float x, y) { }\n"
           "         ^\n");
-    CHECK(Diagnose("void dbl(float x; output float y) { y = 2 * x; }\ndisplacement t() {\n  float r = 0;\n  dbl(1, r + 1);\n}\n") ==
+    CHECK(Diagnose("void dbl(float x; output float y) { y = 2 * x; }\ndisplacement t() {\n  float r = 0;\n  dbl(1, r + "
+                   "1);\n}\n") ==
           "test.sl:4:12: error: argument 2 of 'dbl' must be a variable (its parameter is output)\n"
           "      dbl(1, r + 1);\n"
           "               ^\n");
@@ -407,7 +414,8 @@ TEST_CASE("unknown and unsupported functions and types", "[compiler][diagnostics
 
 TEST_CASE("arguments of built-ins", "[compiler][diagnostics]") {
     CHECK(Diagnose("displacement t() {\n  P += min(\"a\", 1);\n}\n") ==
-          "test.sl:2:8: error: no version of 'min' takes (string, float); expected (float or triple, float or triple) or (float or triple, float or triple, float or triple)\n"
+          "test.sl:2:8: error: no version of 'min' takes (string, float); expected (float or triple, float or triple) "
+          "or (float or triple, float or triple, float or triple)\n"
           "      P += min(\"a\", 1);\n"
           "           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += sqrt(1, 2);\n}\n") ==
@@ -473,7 +481,8 @@ TEST_CASE("matrices: what they combine with", "[compiler][diagnostics]") {
           "test.sl:3:13: error: the two results of '?:' have incompatible types (matrix and point)\n"
           "      P = u > 0 ? m : P;\n"
           "                ^\n");
-    CHECK(Diagnose("displacement t() {\n  matrix m = (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, \"a\");\n  P = transform(m, P);\n}\n") ==
+    CHECK(Diagnose("displacement t() {\n  matrix m = (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, \"a\");\n  P = "
+                   "transform(m, P);\n}\n") ==
           "test.sl:2:60: error: a matrix's entries must be floats, got a string\n"
           "      matrix m = (1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, \"a\");\n"
           "                                                               ^\n");
@@ -502,15 +511,18 @@ TEST_CASE("spline, noise and filterstep arguments", "[compiler][diagnostics]") {
           "      P += spline(\"bezier\", 0.5, 1, 2, 3, 4, 5);\n"
           "           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += noise(color(1, 0, 0));\n}\n") ==
-          "test.sl:2:8: error: no version of 'noise' takes (color); expected a float, two floats, a point, or a point and a float\n"
+          "test.sl:2:8: error: no version of 'noise' takes (color); expected a float, two floats, a point, or a point "
+          "and a float\n"
           "      P += noise(color(1, 0, 0));\n"
           "           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += noise(1, 2, 3);\n}\n") ==
-          "test.sl:2:8: error: no version of 'noise' takes (float, float, float); expected a float, two floats, a point, or a point and a float\n"
+          "test.sl:2:8: error: no version of 'noise' takes (float, float, float); expected a float, two floats, a "
+          "point, or a point and a float\n"
           "      P += noise(1, 2, 3);\n"
           "           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += pnoise(P);\n}\n") ==
-          "test.sl:2:8: error: no version of 'pnoise' takes (point); expected (x, period) with x a float, two floats, a point, or a point and a float\n"
+          "test.sl:2:8: error: no version of 'pnoise' takes (point); expected (x, period) with x a float, two floats, "
+          "a point, or a point and a float\n"
           "      P += pnoise(P);\n"
           "           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += filterstep(0.5, u, \"blur\", 1);\n}\n") ==
@@ -581,7 +593,6 @@ TEST_CASE("shader parameters and shader definitions", "[compiler][diagnostics]")
           "                 ^\n");
 }
 
-
 TEST_CASE("calls nested more than 64 functions deep", "[compiler][diagnostics]") {
     // f0 calls f1 ... calls f70: the 65th nested call (f63 calling f64) is refused.
     std::string source;
@@ -651,8 +662,7 @@ TEST_CASE("warnings: a shader that never changes P or N", "[compiler][diagnostic
 // ---------------------------------------------------------------------------------------------
 // Regression tests: diagnostics bugs found by this suite and fixed
 
-TEST_CASE("an error in a loop body is reported once, not once per unrolled iteration",
-          "[compiler][diagnostics]") {
+TEST_CASE("an error in a loop body is reported once, not once per unrolled iteration", "[compiler][diagnostics]") {
     // Regression test (a bug found and fixed): LowerLoop lowers the body once per iteration, and each lowering reports again (up to
     // the cap of 50 errors for a varying loop).
     CHECK(Diagnose("displacement t() {\n  float i;\n  for (i = 0; i < 3; i += 1) P += foo;\n}\n") ==
@@ -667,14 +677,15 @@ TEST_CASE("an error in a loop body is reported once, not once per unrolled itera
           "test.sl:3:35: error: unknown identifier 'foo'\n"
           "      for (i = 0; i < u; i += 1) P += foo;\n"
           "                                      ^\n");
-    CHECK(Warnings("displacement t() {\n  float i;\n  for (i = 0; i < 3; i += 1) {\n    float w = 1;\n  }\n  P += 1;\n}\n") ==
-          "test.sl:4:11: warning: unused variable 'w'\n"
-          "        float w = 1;\n"
-          "              ^\n");
+    CHECK(
+        Warnings(
+            "displacement t() {\n  float i;\n  for (i = 0; i < 3; i += 1) {\n    float w = 1;\n  }\n  P += 1;\n}\n") ==
+        "test.sl:4:11: warning: unused variable 'w'\n"
+        "        float w = 1;\n"
+        "              ^\n");
 }
 
-TEST_CASE("an error in a function body is reported once, not once per call",
-          "[compiler][diagnostics]") {
+TEST_CASE("an error in a function body is reported once, not once per call", "[compiler][diagnostics]") {
     // Regression test (a bug found and fixed): each inlined call lowers the body again and repeats its diagnostics (and the cascade
     // "has no 'return' with a value", see the next test).
     CHECK(Diagnose("float f() {\n  return foo;\n}\ndisplacement t() {\n  P += f() + f();\n}\n") ==
@@ -737,8 +748,10 @@ TEST_CASE("a function that is never called is still checked", "[compiler][diagno
 TEST_CASE("a space name chosen by a varying condition is an error", "[compiler][diagnostics]") {
     // A string chosen at run time compares fine (by its id), but a space must be known when
     // the shader is compiled.
-    CHECK(Diagnose("displacement t() {\n  string s = \"world\";\n  if (u > 0.5) s = \"object\";\n  P = transform(s, P);\n}\n") ==
-          "test.sl:4:17: error: the space name must be known when the shader is compiled (here it depends on a condition)\n"
+    CHECK(Diagnose("displacement t() {\n  string s = \"world\";\n  if (u > 0.5) s = \"object\";\n  P = transform(s, "
+                   "P);\n}\n") ==
+          "test.sl:4:17: error: the space name must be known when the shader is compiled (here it depends on a "
+          "condition)\n"
           "      P = transform(s, P);\n"
           "                    ^\n");
 }
@@ -746,7 +759,8 @@ TEST_CASE("a space name chosen by a varying condition is an error", "[compiler][
 TEST_CASE("an array argument of the wrong size says which sizes", "[compiler][diagnostics]") {
     // Regression test (a bug found and fixed): the message reads "argument 1 of 'sum' is a float array; the parameter 'a' is a float
     // array", which does not say what is wrong (the sizes 2 and 3).
-    std::string d = Diagnose("float sum(float a[3]) { return a[0]; }\ndisplacement t() {\n  float b[2] = {1, 2};\n  P += sum(b);\n}\n");
+    std::string d = Diagnose(
+        "float sum(float a[3]) { return a[0]; }\ndisplacement t() {\n  float b[2] = {1, 2};\n  P += sum(b);\n}\n");
     std::string message = d.substr(0, d.find('\n'));
     message = message.substr(message.find("error: "));
     INFO(message);

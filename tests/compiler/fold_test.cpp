@@ -31,8 +31,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Edge values: signed zeros, small integers and halves, subnormals, huge magnitudes, the largest
 /// double, values whose exp or pow overflows, and (for the IR) the non-finite ones.
-const std::vector<double> kFinite = {0.0,   -0.0, 1.0,       -1.0,    0.5,     -2.5,    3.0,     4.9e-324,
-                                     -2.2250738585072e-308, 1e300, -1e308, 1.7976931348623157e308, 710.0, -0.75};
+const std::vector<double> kFinite = {
+    0.0,   -0.0, 1.0, -1.0, 0.5, -2.5, 3.0, 4.9e-324, -2.2250738585072e-308, 1e300, -1e308, 1.7976931348623157e308,
+    710.0, -0.75};
 const std::vector<double> kNonFinite = {kInf, -kInf, kNaN};
 
 bool SameDouble(double a, double b) {
@@ -123,8 +124,8 @@ TEST_CASE("folding: a shader specialised for constant parameters computes what i
         replace("(p", "(x");
         // A truth value is not a float: as one, through a condition.
         if (vm::Has(f, vm::kTruth)) expr = "(" + expr + ") ? 1 : 0";
-        const std::string source = "displacement t(float x = 0; float y = 0; float c = 0) {\n    P = point(" + expr +
-                                   ", 0, 0);\n}\n";
+        const std::string source =
+            "displacement t(float x = 0; float y = 0; float c = 0) {\n    P = point(" + expr + ", 0, 0);\n}\n";
         INFO(source);
         compiler::CompileResult r = compiler::CompileSource("fold.sl", source);
         INFO(r.diagnostics);

@@ -241,11 +241,13 @@ TEST_CASE("break", "[compiler][semantics]") {
     CheckVec(PAt(body, 0.75), {8, 8, 0});    // 7.5
     CheckVec(PAt(body, 0.99), {10, 10, 0});  // 9.9: the loop ends on its condition
     // Only the innermost loop is left: 3 outer iterations, one inner each.
-    CHECK_THAT(Z("float i, j, n = 0; for (i = 0; i < 3; i += 1) for (j = 0; j < 3; j += 1) { if (j == 1) break; n += 1; } "
-                 "P += n;"),
-               WithinAbs(3, kEps));
+    CHECK_THAT(
+        Z("float i, j, n = 0; for (i = 0; i < 3; i += 1) for (j = 0; j < 3; j += 1) { if (j == 1) break; n += 1; } "
+          "P += n;"),
+        WithinAbs(3, kEps));
     // Code after a break in the same block does not run.
-    CHECK_THAT(Z("float i, n = 0; for (i = 0; i < 3; i += 1) { n += 1; break; n += 100; } P += n;"), WithinAbs(1, kEps));
+    CHECK_THAT(Z("float i, n = 0; for (i = 0; i < 3; i += 1) { n += 1; break; n += 100; } P += n;"),
+               WithinAbs(1, kEps));
 }
 
 TEST_CASE("continue", "[compiler][semantics]") {
@@ -349,8 +351,8 @@ TEST_CASE("early return in the shader body", "[compiler][semantics]") {
 
 TEST_CASE("loops whose bound is a parameter", "[compiler][semantics]") {
     // s = 1 + 2 + ... + octaves = n (n + 1) / 2 for a whole number of octaves.
-    const std::string src = Shader("float i, s = 0;\nfor (i = 0; i < octaves; i += 1) s += i + 1;\nP += s;",
-                                   "float octaves = 3");
+    const std::string src =
+        Shader("float i, s = 0;\nfor (i = 0; i < octaves; i += 1) s += i + 1;\nP += s;", "float octaves = 3");
     CHECK_THAT(ZSource(src), WithinAbs(6, kEps));
     CHECK_THAT(ZSource(src, 0.25, 0.75, {{"octaves", {3}}}), WithinAbs(6, kEps));
     CHECK_THAT(ZSource(src, 0.25, 0.75, {{"octaves", {0}}}), WithinAbs(0, kEps));
@@ -366,12 +368,11 @@ TEST_CASE("loops whose bound is a parameter", "[compiler][semantics]") {
     CHECK_THAT(ZSource(fbm, 0.25, 0.75, {{"octaves", {1}}}), WithinAbs(1, kEps));
 }
 
-TEST_CASE("a precompiled shader refuses a loop bounded by a parameter past 64 iterations",
-          "[compiler][semantics]") {
+TEST_CASE("a precompiled shader refuses a loop bounded by a parameter past 64 iterations", "[compiler][semantics]") {
     // `affray compile -o x.afb` stores the generic programs, and loading them specialises the
     // generic program, whose loop on a parameter was unrolled kVaryingLoopBudget = 64 times.
-    const std::string src = Shader("float i, s = 0;\nfor (i = 0; i < octaves; i += 1) s += i + 1;\nP += s;",
-                                   "float octaves = 3");
+    const std::string src =
+        Shader("float i, s = 0;\nfor (i = 0; i < octaves; i += 1) s += i + 1;\nP += s;", "float octaves = 3");
     compiler::CompiledShader s = test::CompileOrThrow(src);
     std::vector<std::string> errors;
     std::optional<vm::Program> loaded = compiler::Specialise(s.genericBound, {{"octaves", {100}}}, &errors);
@@ -398,8 +399,7 @@ TEST_CASE("a varying while loop", "[compiler][semantics]") {
     CHECK(std::isnan(Z(longer, 0.5)));                    // 500 iterations
 }
 
-TEST_CASE("a loop with a constant condition and a varying break compiles quickly",
-          "[compiler][semantics]") {
+TEST_CASE("a loop with a constant condition and a varying break compiles quickly", "[compiler][semantics]") {
     // Regression test (a bug found and fixed): `while (1)` (or `for (;;)`) left by a varying break is unrolled as a constant loop,
     // towards 100000 iterations, each simplifying a growing condition: the compiler runs for
     // minutes instead of treating the loop as varying (64 iterations, then NaN).
@@ -584,8 +584,9 @@ TEST_CASE("functions: value parameters", "[compiler][semantics]") {
 }
 
 TEST_CASE("functions: output parameters", "[compiler][semantics]") {
-    CHECK_THAT(ZSource("void dbl(float x; output float y) { y = 2 * x; }\n" + Shader("float r = 0; dbl(5, r); P += r;")),
-               WithinAbs(10, kEps));
+    CHECK_THAT(
+        ZSource("void dbl(float x; output float y) { y = 2 * x; }\n" + Shader("float r = 0; dbl(5, r); P += r;")),
+        WithinAbs(10, kEps));
     const std::string lift = "void lift(output point q; float h) { q += vector(0, 0, h); }\n";
     CheckVec(Eval(lift + Shader("point a = (1, 2, 3); lift(a, 4); P = a;"), 0.25, 0.75), {1, 2, 7});
     CheckVec(Eval(lift + Shader("lift(P, 0.5);"), 0.25, 0.75), {0.25, 0.75, 0.5});
@@ -594,7 +595,8 @@ TEST_CASE("functions: output parameters", "[compiler][semantics]") {
                        Shader("float i, s = 0; for (i = 0; i < 4; i += 1) acc(s, i); P += s;")),
                WithinAbs(6, kEps));
     // Under a varying condition: written only where it holds.
-    const std::string set5 = "void set5(output float y) { y = 5; }\n" + Shader("float a = 1; if (u < 0.5) set5(a); P += a;");
+    const std::string set5 =
+        "void set5(output float y) { y = 5; }\n" + Shader("float a = 1; if (u < 0.5) set5(a); P += a;");
     CHECK_THAT(ZSource(set5, 0.25), WithinAbs(5, kEps));
     CHECK_THAT(ZSource(set5, 0.75), WithinAbs(1, kEps));
     // An output parameter and a return value: 3 * 10 + 4.
@@ -617,18 +619,20 @@ TEST_CASE("functions: output parameters", "[compiler][semantics]") {
 
 TEST_CASE("functions calling functions, and nested definitions", "[compiler][semantics]") {
     // (2^2)^2, through a local (a call in the return expression itself: see the [bug] test below).
-    CHECK_THAT(ZSource("float sq(float x) { return x * x; }\nfloat quad(float x) { float s = sq(x); s = sq(s); return s; }\n" +
-                       Shader("P += quad(2);")),
-               WithinAbs(16, kEps));
+    CHECK_THAT(
+        ZSource("float sq(float x) { return x * x; }\nfloat quad(float x) { float s = sq(x); s = sq(s); return s; }\n" +
+                Shader("P += quad(2);")),
+        WithinAbs(16, kEps));
     // A top-level function may call one defined after it.
     CHECK_THAT(ZSource("float a() { float r = b(); return r + 1; }\nfloat b() { return 3; }\n" + Shader("P += a();")),
                WithinAbs(4, kEps));
     // Defined in the shader body.
     CHECK_THAT(Z("float tw(float x) { return 2 * x; } P += tw(u);", 0.25), WithinAbs(0.5, kEps));
     // Defined inside another function: (2 + 1) * 10.
-    CHECK_THAT(ZSource("float outer(float x) { float inner(float y) { return y + 1; } float r = inner(x); return r * 10; }\n" +
-                       Shader("P += outer(2);")),
-               WithinAbs(30, kEps));
+    CHECK_THAT(
+        ZSource("float outer(float x) { float inner(float y) { return y + 1; } float r = inner(x); return r * 10; }\n" +
+                Shader("P += outer(2);")),
+        WithinAbs(30, kEps));
     // A nested definition shadows a top-level one.
     CHECK_THAT(ZSource("float f() { return 1; }\n" + Shader("float f() { return 2; } P += f();")), WithinAbs(2, kEps));
     // The top-level one is visible again outside the block defining the other.
@@ -642,16 +646,19 @@ TEST_CASE("functions calling functions, and nested definitions", "[compiler][sem
 
 TEST_CASE("loops inside functions, and declarations inside loops", "[compiler][semantics]") {
     // The first r with r * r >= x: x = 7.5 -> 3, x = 2.5 -> 2.
-    const std::string root = "float f(float x) { float r = 0; while (r * r < x) r += 1; return r; }\n" + Shader("P += f(u * 10);");
+    const std::string root =
+        "float f(float x) { float r = 0; while (r * r < x) r += 1; return r; }\n" + Shader("P += f(u * 10);");
     CHECK_THAT(ZSource(root, 0.75), WithinAbs(3, kEps));
     CHECK_THAT(ZSource(root, 0.25), WithinAbs(2, kEps));
     // A break in a function's loop: the first i > 4u, i.e. 4 for u = 0.75, 2 for u = 0.25.
     const std::string brk =
-        "float f(float x) { float i; for (i = 0; i < 5; i += 1) { if (i > x) break; } return i; }\n" + Shader("P += f(u * 4);");
+        "float f(float x) { float i; for (i = 0; i < 5; i += 1) { if (i > x) break; } return i; }\n" +
+        Shader("P += f(u * 4);");
     CHECK_THAT(ZSource(brk, 0.75), WithinAbs(4, kEps));
     CHECK_THAT(ZSource(brk, 0.25), WithinAbs(2, kEps));
     // A variable declared in the loop body is a new one each iteration: 0 + 2 + 4.
-    CHECK_THAT(Z("float i, s = 0; for (i = 0; i < 3; i += 1) { float k = i * 2; s += k; } P += s;"), WithinAbs(6, kEps));
+    CHECK_THAT(Z("float i, s = 0; for (i = 0; i < 3; i += 1) { float k = i * 2; s += k; } P += s;"),
+               WithinAbs(6, kEps));
     // A shader may share its name with a built-in.
     CHECK_THAT(ZSource("displacement round() {\n  P += round(0.5);\n}\n"), WithinAbs(1, kEps));
     // A user function may share its name with a built-in, and is the one called.
@@ -690,18 +697,21 @@ TEST_CASE("extern reads and writes the caller's variables", "[compiler][semantic
     CHECK_THAT(Z("float k = 5; void bump() { extern float k; k += 1; } bump(); bump(); P += k;"), WithinAbs(7, kEps));
     CheckVec(PAt("point c = (1, 2, 3); void shift() { extern point c; c += 1; } shift(); P = c;"), {2, 3, 4});
     // The global P.
-    CHECK_THAT(ZSource("void lift() { extern point P; P += vector(0, 0, 1); }\n" + Shader("lift();")), WithinAbs(1, kEps));
+    CHECK_THAT(ZSource("void lift() { extern point P; P += vector(0, 0, 1); }\n" + Shader("lift();")),
+               WithinAbs(1, kEps));
     // Through two levels: g sees f's extern k: 2 * 3 + 2.
-    CHECK_THAT(Z("float k = 2;\n"
-                 "float f() { extern float k; float g() { extern float k; return k * 3; } float r = g(); return r + k; }\n"
-                 "P += f();"),
-               WithinAbs(8, kEps));
+    CHECK_THAT(
+        Z("float k = 2;\n"
+          "float f() { extern float k; float g() { extern float k; return k * 3; } float r = g(); return r + k; }\n"
+          "P += f();"),
+        WithinAbs(8, kEps));
     // A write under a varying condition.
     const std::string body = "float k = 0; void setk() { extern float k; k = 1; } if (u < 0.5) setk(); P += k;";
     CHECK_THAT(Z(body, 0.25), WithinAbs(1, kEps));
     CHECK_THAT(Z(body, 0.75), WithinAbs(0, kEps));
     // A shader parameter, from a top-level function.
-    const std::string src = "float twiceKm() { extern float Km; return Km * 2; }\n" + Shader("P += twiceKm();", "float Km = 2");
+    const std::string src =
+        "float twiceKm() { extern float Km; return Km * 2; }\n" + Shader("P += twiceKm();", "float Km = 2");
     CHECK_THAT(ZSource(src), WithinAbs(4, kEps));
     CHECK_THAT(ZSource(src, 0.25, 0.75, {{"Km", {5}}}), WithinAbs(10, kEps));
 }
@@ -710,8 +720,8 @@ TEST_CASE("void functions", "[compiler][semantics]") {
     CHECK_THAT(ZSource("void addz(float d) { P += vector(0, 0, d); }\n" + Shader("addz(1); addz(u);"), 0.25),
                WithinAbs(1.25, kEps));
     // An early return: nothing for d < 0.
-    const std::string src = "void maybe(float d) { if (d < 0) return; P += vector(0, 0, d); }\n" +
-                            Shader("maybe(u - 0.5); maybe(2);");
+    const std::string src =
+        "void maybe(float d) { if (d < 0) return; P += vector(0, 0, d); }\n" + Shader("maybe(u - 0.5); maybe(2);");
     CHECK_THAT(ZSource(src, 0.25), WithinAbs(2, kEps));
     CHECK_THAT(ZSource(src, 0.75), WithinAbs(2.25, kEps));
     CHECK_THAT(ZSource("void nothing() { return; }\n" + Shader("nothing(); P += 1;")), WithinAbs(1, kEps));
@@ -722,7 +732,8 @@ TEST_CASE("a function with several returns, constant arguments", "[compiler][sem
     // -1 + 10 * 0 + 100 * 1
     CHECK_THAT(ZSource(f + Shader("P += classify(-3) + 10 * classify(0) + 100 * classify(2);")), WithinAbs(99, kEps));
     // Both arms return.
-    const std::string pick = "float pick(float x) { if (x < 0.5) return 10; else return 20; }\n" + Shader("P += pick(u);");
+    const std::string pick =
+        "float pick(float x) { if (x < 0.5) return 10; else return 20; }\n" + Shader("P += pick(u);");
     CHECK_THAT(ZSource(pick, 0.25), WithinAbs(10, kEps));
     CHECK_THAT(ZSource(pick, 0.75), WithinAbs(20, kEps));
     // Only the else arm returns.
@@ -840,8 +851,8 @@ TEST_CASE("a string assigned under a condition on a float parameter", "[compiler
     // values: in the generic program (the parameter is a register) `dir` silently keeps "down".
     // The instance is right (its condition is constant), but a shader loaded from an .afb file
     // is specialised from the generic program, and gives -1 with up = 1.
-    const std::string src = Shader("string dir = \"down\"; if (up > 0) dir = \"up\"; if (dir == \"up\") P += 1; else P -= 1;",
-                                   "float up = 1");
+    const std::string src = Shader(
+        "string dir = \"down\"; if (up > 0) dir = \"up\"; if (dir == \"up\") P += 1; else P -= 1;", "float up = 1");
     CHECK_THAT(ZSource(src), WithinAbs(1, kEps));
     CHECK_THAT(ZSource(src, 0.25, 0.75, {{"up", {-1}}}), WithinAbs(-1, kEps));
     compiler::CompiledShader s = test::CompileOrThrow(src);
@@ -868,8 +879,8 @@ TEST_CASE("built-ins: abs sign floor ceil round", "[compiler][semantics][builtin
     CHECK_THAT(Z("P += abs(-2.5);"), WithinAbs(2.5, kEps));
     CHECK_THAT(Z("P += abs(u - 0.5);", 0.25), WithinAbs(0.25, kEps));
     CHECK_THAT(Z("P += sign(-3) + 10 * sign(0) + 100 * sign(2);"), WithinAbs(99, kEps));
-    CHECK_THAT(Z("P += floor(-1.5) + 10 * floor(1.5);"), WithinAbs(8, kEps));   // -2 + 10
-    CHECK_THAT(Z("P += ceil(-1.5) + 10 * ceil(1.2);"), WithinAbs(19, kEps));    // -1 + 20
+    CHECK_THAT(Z("P += floor(-1.5) + 10 * floor(1.5);"), WithinAbs(8, kEps));  // -2 + 10
+    CHECK_THAT(Z("P += ceil(-1.5) + 10 * ceil(1.2);"), WithinAbs(19, kEps));   // -1 + 20
     CHECK_THAT(Z("P += floor(3) + ceil(3);"), WithinAbs(6, kEps));
     // round: halves away from 0.
     CHECK_THAT(Z("P += round(0.5);"), WithinAbs(1, kEps));
@@ -1038,7 +1049,8 @@ TEST_CASE("built-ins: spline bases", "[compiler][semantics][builtins]") {
     // B-spline at a segment start: (k0 + 4 k1 + k2) / 6.
     CHECK_THAT(Z("P += spline(\"bspline\", 0, 0, 6, 12, 6);"), WithinAbs(6, kEps));
     // Hermite (p0, t0, p1, t1): p1 at t = 1, p0 at t = 0.
-    CHECK_THAT(Z("P += spline(\"hermite\", 1, 1, 0, 5, 0) + 10 * spline(\"hermite\", 0, 1, 0, 5, 0);"), WithinAbs(15, kEps));
+    CHECK_THAT(Z("P += spline(\"hermite\", 1, 1, 0, 5, 0) + 10 * spline(\"hermite\", 0, 1, 0, 5, 0);"),
+               WithinAbs(15, kEps));
     // Power basis: k0 u^3 + k1 u^2 + k2 u + k3.
     CHECK_THAT(Z("P += spline(\"power\", 0.5, 8, 4, 2, 1);"), WithinAbs(1 + 1 + 1 + 1, kEps));
 }
@@ -1118,7 +1130,8 @@ TEST_CASE("built-ins: Du Dv area Deriv", "[compiler][semantics][builtins]") {
                WithinAbs(0.5, kEps));
 }
 
-TEST_CASE("built-ins: noise range, lattice values and return-type overloads", "[compiler][semantics][builtins][noise]") {
+TEST_CASE("built-ins: noise range, lattice values and return-type overloads",
+          "[compiler][semantics][builtins][noise]") {
     // 0.5 at lattice points, in every dimension.
     CHECK_THAT(Z("P += float noise(2);"), WithinAbs(0.5, kEps));
     CHECK_THAT(Z("P += float noise(1, 2);"), WithinAbs(0.5, kEps));
@@ -1153,7 +1166,8 @@ TEST_CASE("built-ins: noise range, lattice values and return-type overloads", "[
     CHECK(f.x != 0.5);
     glm::dvec3 c = PAt("P = point noise(P * 3.7 + 0.2);", 0.3, 0.6);
     CHECK(c.x != c.y);
-    glm::dvec3 k = PAt("color k = color noise(P * 3.7 + 0.2); P = point(comp(k, 0), comp(k, 1), comp(k, 2));", 0.3, 0.6);
+    glm::dvec3 k =
+        PAt("color k = color noise(P * 3.7 + 0.2); P = point(comp(k, 0), comp(k, 1), comp(k, 2));", 0.3, 0.6);
     CHECK(k.x != k.y);
     // 1-D, 2-D, 3-D and 4-D noise are different functions.
     const double n1 = Z("P += float noise(u * 3.7 + 0.2);", 0.3, 0.6);
@@ -1254,8 +1268,9 @@ TEST_CASE("matrices: translate, rotate, scale and their order", "[compiler][sema
 }
 
 TEST_CASE("matrices: product, inverse, division and determinant", "[compiler][semantics][matrix]") {
-    const std::string m = "matrix m = translate(rotate(scale(matrix 1, point(2, 3, 0.5)), 0.7, vector(1, 2, 3)), "
-                          "vector(4, -1, 2));";
+    const std::string m =
+        "matrix m = translate(rotate(scale(matrix 1, point(2, 3, 0.5)), 0.7, vector(1, 2, 3)), "
+        "vector(4, -1, 2));";
     const std::string n = "matrix n = rotate(translate(matrix 1, vector(-2, 1, 1)), -1.1, vector(0, 1, 1));";
     // (m * n) applies m, then n.
     CheckVec(PAt(m + n + " P = transform(m * n, point(1, 2, 3));"),
@@ -1317,7 +1332,8 @@ TEST_CASE("matrices: parameters, functions, arrays and spaces", "[compiler][sema
              {0, 0, 2});
     // Arrays of matrices, with a varying index.
     CheckVec(PAt("matrix a[2] = {matrix 1, translate(matrix 1, vector(0, 1, 0))};\n"
-                 "P = transform(a[u > 0.5], point(0, 0, 0));", 0.75),
+                 "P = transform(a[u > 0.5], point(0, 0, 0));",
+                 0.75),
              {0, 1, 0});
     // `matrix "space" 1` maps current to that space, like transform("space", x).
     const glm::dvec3 viaMatrix = PAt("P = transform(matrix \"shader\" 1, P);");
@@ -1325,8 +1341,8 @@ TEST_CASE("matrices: parameters, functions, arrays and spaces", "[compiler][sema
 }
 
 TEST_CASE("array parameters: defaults, scene values and varying indices", "[compiler][semantics][arrays]") {
-    const std::string source =
-        Shader("P += w[0] + 10 * w[1] + 100 * w[2] + zcomp(c[1]);", "float w[3] = {1, 2, 3}; point c[2] = {0, (4, 5, 6)}");
+    const std::string source = Shader("P += w[0] + 10 * w[1] + 100 * w[2] + zcomp(c[1]);",
+                                      "float w[3] = {1, 2, 3}; point c[2] = {0, (4, 5, 6)}");
     CHECK_THAT(Eval(source, 0.25, 0.75).z, WithinAbs(321 + 6, kEps));
     CHECK_THAT(Eval(source, 0.25, 0.75, {{"w", {4, 5, 6}}}).z, WithinAbs(654 + 6, kEps));
     CHECK_THAT(Eval(source, 0.25, 0.75, {{"c", {0, 0, 0, 0, 0, 9}}}).z, WithinAbs(321 + 9, kEps));

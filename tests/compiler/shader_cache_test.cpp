@@ -50,8 +50,10 @@ TEST_CASE("string parameters take instance values", "[compiler][cache]") {
     CHECK_THAT(HeightOf(test::CompileOrThrow(kShader)), WithinAbs(1, 0));
     CHECK_THAT(HeightOf(test::CompileOrThrow(kShader, {compiler::ParamOverride::String("mode", "down")})),
                WithinAbs(-1, 0));
-    compiler::CompileResult wrong = compiler::CompileSource("c.sl", kShader, {compiler::ParamOverride::String("Km", "x")});
-    CHECK(wrong.paramErrors == std::vector<std::string>{"parameter 'Km' of shader 'c' is not a string, got a string value"});
+    compiler::CompileResult wrong =
+        compiler::CompileSource("c.sl", kShader, {compiler::ParamOverride::String("Km", "x")});
+    CHECK(wrong.paramErrors ==
+          std::vector<std::string>{"parameter 'Km' of shader 'c' is not a string, got a string value"});
     wrong = compiler::CompileSource("c.sl", kShader, {{"mode", {1}}});
     CHECK(wrong.paramErrors == std::vector<std::string>{"parameter 'mode' of shader 'c' is a string, got a number"});
     wrong = compiler::CompileSource("c.sl", kShader, {compiler::ParamOverride::String("style", "x")});
@@ -85,7 +87,8 @@ TEST_CASE("coordinate spaces of an instance are folded into its programs", "[com
     // Compiled bytecode computes every space as the identity, so it refuses a scene that
     // makes a space it uses something else.
     test::TempDir dir;
-    compiler::CompileResult src = compiler::CompileSource("s.sl", "displacement s() {\n  P = transform(\"shader\", P);\n}\n");
+    compiler::CompileResult src =
+        compiler::CompileSource("s.sl", "displacement s() {\n  P = transform(\"shader\", P);\n}\n");
     REQUIRE(src.ok());
     CHECK(src.shader->genericBound.spaces == std::vector<std::string>{"shader"});
     vm::BytecodeFile file{"s", "s.sl", 0, src.shader->genericBound, src.shader->genericShade};

@@ -152,16 +152,19 @@ std::string Mismatch(const std::string& expected, const std::string& actual) {
         for (size_t j = m; j-- > 0;)
             lcs[i][j] = a[i] == b[j] ? lcs[i + 1][j + 1] + 1 : std::max(lcs[i + 1][j], lcs[i][j + 1]);
     struct Op {
-        char kind;  // ' ', '-' or '+'
+        char kind;    // ' ', '-' or '+'
         size_t i, j;  // lines of a and b before this op
         const std::string* line;
     };
     std::vector<Op> ops;
     size_t i = 0, j = 0;
     while (i < n || j < m) {
-        if (i < n && j < m && a[i] == b[j]) ops.push_back({' ', i, j, &a[i]}), ++i, ++j;
-        else if (i < n && (j == m || lcs[i + 1][j] >= lcs[i][j + 1])) ops.push_back({'-', i, j, &a[i]}), ++i;
-        else ops.push_back({'+', i, j, &b[j]}), ++j;
+        if (i < n && j < m && a[i] == b[j])
+            ops.push_back({' ', i, j, &a[i]}), ++i, ++j;
+        else if (i < n && (j == m || lcs[i + 1][j] >= lcs[i][j + 1]))
+            ops.push_back({'-', i, j, &a[i]}), ++i;
+        else
+            ops.push_back({'+', i, j, &b[j]}), ++j;
     }
     if (std::all_of(ops.begin(), ops.end(), [](const Op& op) { return op.kind == ' '; }))
         return "(the texts differ only in their line endings)\n";

@@ -145,8 +145,7 @@ TEST_CASE("a parenthesised triple is not a parenthesised expression", "[lang]") 
 TEST_CASE("calls, numbers, strings and the dot operator", "[lang]") {
     CHECK(Value("f()") == "(call f)");
     CHECK(Value("mix(a, b, smoothstep(0, 1, t))") == "(call mix a b (call smoothstep 0 1 t))");
-    CHECK(Value("1 + 1. + .5 + 1.5e-3 + 2E+4 + 1e-999") ==
-          "(+ (+ (+ (+ (+ 1 1) 0.5) 0.0015) 20000) 0)");
+    CHECK(Value("1 + 1. + .5 + 1.5e-3 + 2E+4 + 1e-999") == "(+ (+ (+ (+ (+ 1 1) 0.5) 0.0015) 20000) 0)");
     CHECK(Value("N.I + N . I + (N).(I)") == "(+ (+ (. N I) (. N I)) (. N I))");
     CHECK(Value("\"a\\\"b\\n\\t\\\\\"") == "\"a\\\"b\\n\\t\\\\\"");
 }
@@ -165,18 +164,15 @@ TEST_CASE("shader parameters share a type across commas", "[lang]") {
 }
 
 TEST_CASE("statements", "[lang]") {
-    CHECK(Body("if (a < b) x = 1; else { x = 2; y = 3; }") ==
-          "(if (< a b) (= x 1) (block (= x 2) (= y 3)))");
+    CHECK(Body("if (a < b) x = 1; else { x = 2; y = 3; }") == "(if (< a b) (= x 1) (block (= x 2) (= y 3)))");
     CHECK(Body("if (a) if (b) x = 1; else x = 2;") == "(if a (if b (= x 1) (= x 2)))");
-    CHECK(Body("for (i = 0; i < 10; i += 1) { P += N; }") ==
-          "(for (= i 0) (< i 10) (+= i 1) (block (+= P N)))");
+    CHECK(Body("for (i = 0; i < 10; i += 1) { P += N; }") == "(for (= i 0) (< i 10) (+= i 1) (block (+= P N)))");
     CHECK(Body("for (;;) break;") == "(for () () () (break))");
     CHECK(Body("while (i > 0) { i -= 1; continue 2; break 1; }") ==
           "(while (> i 0) (block (-= i 1) (continue 2) (break)))");
     CHECK(Body("float a = 1, b; uniform point p; varying normal n = N;") ==
           "(decl (float a 1) (float b)) (decl (uniform point p)) (decl (varying normal n N))");
-    CHECK(Body("; {} return; return x + 1; f(x);") ==
-          "(empty) (block) (return) (return (+ x 1)) (call f x)");
+    CHECK(Body("; {} return; return x + 1; f(x);") == "(empty) (block) (return) (return (+ x 1)) (call f x)");
 }
 
 TEST_CASE("the wave shader", "[lang]") {
@@ -201,8 +197,7 @@ TEST_CASE("the matrix type", "[lang]") {
     CHECK(Tree("displacement d(matrix m = 1; uniform matrix w = matrix \"world\" 1) {}") ==
           "(displacement d (params (matrix m 1) (uniform matrix w (cast matrix \"world\" 1))) "
           "(body))");
-    CHECK(Body("matrix q = m, r; varying matrix v;") ==
-          "(decl (matrix q m) (matrix r)) (decl (varying matrix v))");
+    CHECK(Body("matrix q = m, r; varying matrix v;") == "(decl (matrix q m) (matrix r)) (decl (varying matrix v))");
     CHECK(Value("matrix \"shader\" 1") == "(cast matrix \"shader\" 1)");
     CHECK(Value("matrix(m)") == "(cast matrix m)");
     CHECK(Unit("matrix f(matrix a) { return a; }\ndisplacement d() {}") ==
@@ -211,8 +206,7 @@ TEST_CASE("the matrix type", "[lang]") {
 }
 
 TEST_CASE("16-tuples are matrices", "[lang]") {
-    CHECK(Value("(1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1)") ==
-          "(tuple16 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1)");
+    CHECK(Value("(1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1)") == "(tuple16 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1)");
     CHECK(Value("matrix \"world\" (a, b, c, d, e, f, g, h, i, j, k, l, m, n, o, (p + 1))") ==
           "(cast matrix \"world\" (tuple16 a b c d e f g h i j k l m n o (+ p 1)))");
     CHECK(Value("(1, 2, (3, 4, 5))") == "(triple 1 2 (triple 3 4 5))");
@@ -254,8 +248,7 @@ TEST_CASE("array elements in expressions and as assignment targets", "[lang]") {
     CHECK(Body("a[i] = x; a[0] += 1; a[1] -= 2; a[2] *= 3; a[3] /= 4;") ==
           "(= ([] a i) x) (+= ([] a 0) 1) (-= ([] a 1) 2) (*= ([] a 2) 3) (/= ([] a 3) 4)");
     CHECK(Body("a[i] = b[j] = c;") == "(= ([] a i) (= ([] b j) c))");
-    CHECK(Body("for (i = 0; i < 3; i += 1) s += a[i];") ==
-          "(for (= i 0) (< i 3) (+= i 1) (+= s ([] a i)))");
+    CHECK(Body("for (i = 0; i < 3; i += 1) s += a[i];") == "(for (= i 0) (< i 3) (+= i 1) (+= s ([] a i)))");
     // The element's assignment keeps the array's name, the value and then the index.
     Parsed p = Run("displacement d() {\n  a[i + 1] += v;\n}");
     REQUIRE(p.errors.empty());
@@ -340,21 +333,21 @@ TEST_CASE("return with and without a value, and older forms inside functions", "
 }
 
 TEST_CASE("nodes carry the location of their key token", "[lang]") {
-    Parsed p = Run(
-        "displacement\n"
-        "  wave(float Km = 1)\n"
-        "{\n"
-        "  P += -a . b;\n"
-        "  if (x) y = c ? (1,2,3) : point f(1);\n"
-        "}\n");
+    Parsed p =
+        Run("displacement\n"
+            "  wave(float Km = 1)\n"
+            "{\n"
+            "  P += -a . b;\n"
+            "  if (x) y = c ? (1,2,3) : point f(1);\n"
+            "}\n");
     REQUIRE(p.errors.empty());
     const ShaderDef& s = p.unit.shaders.at(0);
     CHECK(s.loc.line == 2);
     CHECK(s.loc.column == 3);
     CHECK(s.params.at(0).loc.column == 14);
     const Stmt& assign = *s.body.at(0);
-    CHECK(assign.loc.column == 3);                       // the first token
-    CHECK(assign.expr->loc.column == 5);                 // +=
+    CHECK(assign.loc.column == 3);        // the first token
+    CHECK(assign.expr->loc.column == 5);  // +=
     const Expr& dot = *assign.expr->args.at(0);
     CHECK(dot.loc.column == 11);                         // .
     CHECK(dot.args.at(0)->loc.column == 8);              // unary -
@@ -363,25 +356,26 @@ TEST_CASE("nodes carry the location of their key token", "[lang]") {
     CHECK(ifs.loc.line == 5);
     CHECK(ifs.loc.column == 3);
     const Expr& ternary = *ifs.body.at(0)->expr->args.at(0);
-    CHECK(ternary.loc.column == 16);                     // ?
-    CHECK(ternary.args.at(1)->loc.column == 18);         // (
-    CHECK(ternary.args.at(2)->loc.column == 28);         // point
+    CHECK(ternary.loc.column == 16);                          // ?
+    CHECK(ternary.args.at(1)->loc.column == 18);              // (
+    CHECK(ternary.args.at(2)->loc.column == 28);              // point
     CHECK(ternary.args.at(2)->args.at(0)->loc.column == 34);  // f
 
     Parsed q = Run("displacement d() {\n  x = a [i];\n  b[j] = 1;\n}\n");
     REQUIRE(q.errors.empty());
     const Expr& index = *q.unit.shaders.at(0).body.at(0)->expr->args.at(0);
     CHECK(index.kind == ExprKind::Index);
-    CHECK(index.loc.column == 9);                        // [
-    CHECK(index.args.at(0)->loc.column == 7);            // a
+    CHECK(index.loc.column == 9);              // [
+    CHECK(index.args.at(0)->loc.column == 7);  // a
     const Expr& element = *q.unit.shaders.at(0).body.at(1)->expr;
-    CHECK(element.loc.column == 8);                      // =
-    CHECK(element.args.at(1)->loc.column == 5);          // j
+    CHECK(element.loc.column == 8);              // =
+    CHECK(element.args.at(1)->loc.column == 5);  // j
 }
 
 TEST_CASE("pragmas are ignored and line markers renumber", "[lang]") {
-    Parsed p = Run("#pragma once\n  # 40 \"wave.sl\"\ndisplacement d() {}\n#line 7\n"
-                   "surface s() {}\n");
+    Parsed p =
+        Run("#pragma once\n  # 40 \"wave.sl\"\ndisplacement d() {}\n#line 7\n"
+            "surface s() {}\n");
     REQUIRE(p.errors.empty());
     CHECK(p.unit.shaders.at(0).loc.line == 40);
     CHECK(p.unit.shaders.at(1).loc.line == 7);
@@ -438,8 +432,10 @@ TEST_CASE("invalid characters", "[lang]") {
           "              ^\n");
     CHECK(Errors("displacement d()\n{\n\tP = P + " + std::string(1, '\0') + ";\n}\n") ==
           "test.sl:3:10: error: invalid character '\\x00'\n"
-          "    \tP = P + " + std::string(1, '\0') + ";\n"
-          "    \t        ^\n");
+          "    \tP = P + " +
+              std::string(1, '\0') +
+              ";\n"
+              "    \t        ^\n");
     CHECK(Errors("displacement d() { x = \xCF\x80; }") ==
           "test.sl:1:24: error: invalid character '\xCF\x80'\n"
           "    displacement d() { x = \xCF\x80; }\n"
@@ -583,8 +579,7 @@ TEST_CASE("a bad initialiser list is skipped up to its '}'", "[lang]") {
           "               ^\n");
     Parsed p = Run("displacement d() { float a[2] = {1 2}, b = 1; c = 2; }");
     REQUIRE(p.unit.shaders.size() == 1);
-    CHECK(ToString(p.unit.shaders[0]) ==
-          "(displacement d (params) (body (decl (float a[2] {}) (float b 1)) (= c 2)))");
+    CHECK(ToString(p.unit.shaders[0]) == "(displacement d (params) (body (decl (float a[2] {}) (float b 1)) (= c 2)))");
 }
 
 TEST_CASE("function definitions without a body", "[lang]") {
@@ -673,13 +668,15 @@ TEST_CASE("a file without a shader", "[lang]") {
 }
 
 TEST_CASE("nesting limits", "[lang]") {
-    std::string parens = "displacement d() { x = " + std::string(300, '(') + "1" +
-                         std::string(300, ')') + "; }";
+    std::string parens = "displacement d() { x = " + std::string(300, '(') + "1" + std::string(300, ')') + "; }";
     CHECK(Errors(parens) ==
           "test.sl:1:279: error: nesting too deep (more than 256 open parentheses, brackets and "
           "braces)\n"
-          "    " + parens + "\n"
-          "    " + std::string(278, ' ') + "^\n");
+          "    " +
+              parens +
+              "\n"
+              "    " +
+              std::string(278, ' ') + "^\n");
 
     // Brackets count as well: the body's '{' and 256 '[' of `a[a[a[...]]]` are one too many.
     std::string brackets = "displacement d() { x = ";
@@ -688,16 +685,22 @@ TEST_CASE("nesting limits", "[lang]") {
     CHECK(Errors(brackets) ==
           "test.sl:1:535: error: nesting too deep (more than 256 open parentheses, brackets and "
           "braces)\n"
-          "    " + brackets + "\n"
-          "    " + std::string(534, ' ') + "^\n");
+          "    " +
+              brackets +
+              "\n"
+              "    " +
+              std::string(534, ' ') + "^\n");
 
     std::string minus = "displacement d() {\nx = ";
     for (int i = 0; i < 1200; ++i) minus += "- ";
     minus += "1;\n}\n";
     CHECK(Errors(minus) ==
           "test.sl:2:405: error: expression too complex (nested more than 1000 levels deep)\n"
-          "    " + minus.substr(19, minus.size() - 22) + "\n"
-          "    " + std::string(404, ' ') + "^\n");
+          "    " +
+              minus.substr(19, minus.size() - 22) +
+              "\n"
+              "    " +
+              std::string(404, ' ') + "^\n");
 
     std::string ifs = "displacement d() {\n";
     for (int i = 0; i < 1001; ++i) ifs += "if (a)\n";
@@ -729,8 +732,7 @@ TEST_CASE("recovery reports several errors in one run", "[lang]") {
     // The statements around the errors are still there.
     Parsed p = Run("displacement d() { a = 1; b = ; c = 2; }");
     REQUIRE(p.unit.shaders.size() == 1);
-    CHECK(ToString(p.unit.shaders[0]) ==
-          "(displacement d (params) (body (= a 1) (empty) (= c 2)))");
+    CHECK(ToString(p.unit.shaders[0]) == "(displacement d (params) (body (= a 1) (empty) (= c 2)))");
 }
 
 TEST_CASE("loop levels and line markers in messages", "[lang]") {
@@ -745,19 +747,23 @@ TEST_CASE("loop levels and line markers in messages", "[lang]") {
 }
 
 TEST_CASE("garbage bytes never crash", "[lang]") {
-    CHECK(Errors("\x7F" "ELF\x02") ==
+    CHECK(Errors("\x7F"
+                 "ELF\x02") ==
           "test.sl:1:1: error: invalid character '\\x7F'\n"
-          "    \x7F" "ELF\x02\n"
+          "    \x7F"
+          "ELF\x02\n"
           "    ^\n"
           "test.sl:1:5: error: invalid character '\\x02'\n"
-          "    \x7F" "ELF\x02\n"
+          "    \x7F"
+          "ELF\x02\n"
           "        ^\n");
 
     std::mt19937 rng(42);
-    const char* pieces[] = {"displacement", "d", "(", ")", "{", "}", ";", ",", "=", "+", ".",
-                            "float", "point", "\"s\"", "1.5", "if", "else", "for", "return", "?",
-                            ":", "/*", "//", "\n", "#", "@", "\"", "1e", "matrix", "\xFF", "x",
-                            "[", "]", "extern", "void", "output", "{1, 2}"};
+    const char* pieces[] = {
+        "displacement", "d",     "(",      ")",     "{",  "}",    ";",      ",",      "=", "+", ".",
+        "float",        "point", "\"s\"",  "1.5",   "if", "else", "for",    "return", "?", ":", "/*",
+        "//",           "\n",    "#",      "@",     "\"", "1e",   "matrix", "\xFF",   "x", "[", "]",
+        "extern",       "void",  "output", "{1, 2}"};
     for (int i = 0; i < 300; ++i) {
         std::string text;
         int n = static_cast<int>(rng() % 50);
@@ -771,16 +777,14 @@ TEST_CASE("garbage bytes never crash", "[lang]") {
         // Every failure is reported: no diagnostics means a shader was found.
         CHECK((p.errorCount > 0 || !p.unit.shaders.empty()));
         for (const ShaderDef& s : p.unit.shaders) CHECK(!ToString(s).empty());
-        for (const std::shared_ptr<FunctionDef>& f : p.unit.functions)
-            CHECK(!ToString(*f).empty());
+        for (const std::shared_ptr<FunctionDef>& f : p.unit.functions) CHECK(!ToString(*f).empty());
     }
 }
 
 TEST_CASE("many errors stop at the diagnostics cap", "[lang]") {
     Parsed p = Run(std::string(1000, '@'));
     CHECK(p.errorCount == Diagnostics::kMaxErrors + 1);
-    CHECK(p.errors.substr(p.errors.rfind("test.sl: ")) ==
-          "test.sl: error: too many errors (51), stopping after 50\n");
+    CHECK(p.errors.substr(p.errors.rfind("test.sl: ")) == "test.sl: error: too many errors (51), stopping after 50\n");
 }
 
 }  // namespace affray::lang

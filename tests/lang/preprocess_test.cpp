@@ -31,8 +31,7 @@ std::string Code(const PreprocessResult& r) {
         if (end == std::string::npos) end = r.text.size();
         std::string line = r.text.substr(pos, end - pos);
         pos = end + 1;
-        if (line.rfind("#line ", 0) == 0 || line.find_first_not_of(" \t") == std::string::npos)
-            continue;
+        if (line.rfind("#line ", 0) == 0 || line.find_first_not_of(" \t") == std::string::npos) continue;
         out += line + "\n";
     }
     return out;
@@ -42,8 +41,7 @@ std::string Code(const PreprocessResult& r) {
 std::string Messages(const PreprocessResult& r) {
     std::string out;
     for (const Diagnostic& d : r.errors)
-        out += r.files.at(static_cast<size_t>(d.loc.file)) + ":" + std::to_string(d.loc.line) +
-               ": " + d.message + "\n";
+        out += r.files.at(static_cast<size_t>(d.loc.file)) + ":" + std::to_string(d.loc.line) + ": " + d.message + "\n";
     return out;
 }
 
@@ -137,8 +135,10 @@ TEST_CASE("no compiler-specific macros are predefined", "[lang][preprocess]") {
                              "__GNUC__ __x86_64__ __amd64__ __linux__ linux unix __MCPP "
                              "__STDC_HOSTED__ __LINE__ __FILE__\n");
     REQUIRE(r.ok);
-    CHECK(Code(r) == "__GNUC__ __x86_64__ __amd64__ __linux__ linux unix __MCPP __STDC_HOSTED__"
-                     "  1   \"" + dir.Path("a.sl") + "\"\n");
+    CHECK(Code(r) ==
+          "__GNUC__ __x86_64__ __amd64__ __linux__ linux unix __MCPP __STDC_HOSTED__"
+          "  1   \"" +
+              dir.Path("a.sl") + "\"\n");
 }
 
 TEST_CASE("#pragma passes through to the lexer, which ignores it", "[lang][preprocess]") {
@@ -159,21 +159,15 @@ TEST_CASE("#include finds files next to the includer, then in includeDirs", "[la
     dir.Write("lib/near.h", "#define NEAR 99\n");
     PreprocessOptions options;
     options.includeDirs = {dir.Path("lib")};
-    PreprocessResult r = Run(dir, "src/a.sl",
-                             "#include \"near.h\"\n#include \"far.h\"\nx = NEAR + FAR;\n", options);
+    PreprocessResult r = Run(dir, "src/a.sl", "#include \"near.h\"\n#include \"far.h\"\nx = NEAR + FAR;\n", options);
     REQUIRE(r.ok);
     CHECK(Code(r) == "nested_line\nx =  1  +  2 ;\n");
     // Every line marker names a file that exists, so diagnostics can show its lines.
-    CHECK(r.text == "#line 1 \"" + dir.Path("src/a.sl") + "\"\n" +
-                        "#line 1 \"" + dir.Path("src/near.h") + "\"\n" +
-                        "#line 2 \"" + dir.Path("src/near.h") + "\"\n" +
-                        "#line 1 \"" + dir.Path("src/sub/nested.h") + "\"\n" +
-                        "nested_line\n" +
-                        "#line 3 \"" + dir.Path("src/near.h") + "\"\n" +
-                        "#line 2 \"" + dir.Path("src/a.sl") + "\"\n" +
-                        "#line 1 \"" + dir.Path("lib/far.h") + "\"\n" +
-                        "#line 3 \"" + dir.Path("src/a.sl") + "\"\n" +
-                        "x =  1  +  2 ;\n");
+    CHECK(r.text == "#line 1 \"" + dir.Path("src/a.sl") + "\"\n" + "#line 1 \"" + dir.Path("src/near.h") + "\"\n" +
+                        "#line 2 \"" + dir.Path("src/near.h") + "\"\n" + "#line 1 \"" + dir.Path("src/sub/nested.h") +
+                        "\"\n" + "nested_line\n" + "#line 3 \"" + dir.Path("src/near.h") + "\"\n" + "#line 2 \"" +
+                        dir.Path("src/a.sl") + "\"\n" + "#line 1 \"" + dir.Path("lib/far.h") + "\"\n" + "#line 3 \"" +
+                        dir.Path("src/a.sl") + "\"\n" + "x =  1  +  2 ;\n");
 }
 
 TEST_CASE("a missing #include is an error at its line", "[lang][preprocess]") {
@@ -183,9 +177,10 @@ TEST_CASE("a missing #include is an error at its line", "[lang][preprocess]") {
     CHECK(Messages(r) == dir.Path("a.sl") + ":2: Can't open include file \"nowhere.h\"\n");
 
     Compiled c = Parse(dir, "d.sl", "\n  #include \"nowhere.h\"\ndisplacement d() {}\n");
-    CHECK(c.errors == dir.Path("d.sl") + ":2:3: error: Can't open include file \"nowhere.h\"\n"
-                                         "      #include \"nowhere.h\"\n"
-                                         "      ^\n");
+    CHECK(c.errors == dir.Path("d.sl") +
+                          ":2:3: error: Can't open include file \"nowhere.h\"\n"
+                          "      #include \"nowhere.h\"\n"
+                          "      ^\n");
     CHECK(c.unit.shaders.empty());
 }
 
@@ -198,9 +193,7 @@ TEST_CASE("a recursive #include is an error, not a hang", "[lang][preprocess]") 
     CHECK(Messages(r) == dir.Path("r.h") + ":1: More than 256 nesting of #include\n");
 
     // mcpp stops with the 256 files still open; Preprocess closes them.
-    auto openFiles = [] {
-        return std::distance(fs::directory_iterator("/proc/self/fd"), fs::directory_iterator());
-    };
+    auto openFiles = [] { return std::distance(fs::directory_iterator("/proc/self/fd"), fs::directory_iterator()); };
     if (fs::exists("/proc/self/fd")) {
         auto before = openFiles();
         for (int i = 0; i < 8; ++i) Run(dir, "a.sl", "#include \"r.h\"\n");
@@ -212,8 +205,7 @@ TEST_CASE("an unterminated #if is an error", "[lang][preprocess]") {
     TempDir dir;
     PreprocessResult r = Run(dir, "a.sl", "#if 1\nx;\n#ifdef Y\n");
     CHECK_FALSE(r.ok);
-    CHECK(Messages(r) == dir.Path("a.sl") +
-                             ":3: End of input within #if (#ifdef) section started at line 1\n");
+    CHECK(Messages(r) == dir.Path("a.sl") + ":3: End of input within #if (#ifdef) section started at line 1\n");
 }
 
 TEST_CASE("a syntax error in a header names the header", "[lang][preprocess]") {
@@ -228,8 +220,7 @@ TEST_CASE("a syntax error in a header names the header", "[lang][preprocess]") {
                           "    ^\n");
 }
 
-TEST_CASE("a syntax error after an #include is at its line of the main file",
-          "[lang][preprocess]") {
+TEST_CASE("a syntax error after an #include is at its line of the main file", "[lang][preprocess]") {
     TempDir dir;
     dir.Write("defs.h", "#define K 2\n\n\n#define J 3\n");
     Compiled c = Parse(dir, "d.sl",
@@ -246,11 +237,12 @@ TEST_CASE("a syntax error after an #include is at its line of the main file",
 
 TEST_CASE("bad input never crashes or prints", "[lang][preprocess]") {
     TempDir dir;
-    for (const std::string& text :
-         {std::string("#define\n#if\n#elif\n#endif\n#endif\n#include\n#include <>\n"),
-          std::string("#define f(x x\nf(\n#undef\n#line 0\n#error stop\n"),
-          std::string("\x7F" "ELF\x02\x00\x01\xFF#\n\"unterminated\n", 18),
-          std::string("#define A A B\n#define B A\nA B\n")}) {
+    for (const std::string& text : {std::string("#define\n#if\n#elif\n#endif\n#endif\n#include\n#include <>\n"),
+                                    std::string("#define f(x x\nf(\n#undef\n#line 0\n#error stop\n"),
+                                    std::string("\x7F"
+                                                "ELF\x02\x00\x01\xFF#\n\"unterminated\n",
+                                                18),
+                                    std::string("#define A A B\n#define B A\nA B\n")}) {
         PreprocessResult r = Run(dir, "g.sl", text);
         if (!r.ok) CHECK_FALSE(r.errors.empty());
     }
@@ -270,8 +262,7 @@ TEST_CASE("preprocessing from several threads takes turns", "[lang][preprocess]"
             outputs[i] = Code(Preprocess(dir.Path("t.sl"), "x = N;\n", options));
         });
     for (std::thread& t : threads) t.join();
-    for (size_t i = 0; i < outputs.size(); ++i)
-        CHECK(outputs[i] == "x =  " + std::to_string(i) + " ;\n");
+    for (size_t i = 0; i < outputs.size(); ++i) CHECK(outputs[i] == "x =  " + std::to_string(i) + " ;\n");
 }
 
 }  // namespace

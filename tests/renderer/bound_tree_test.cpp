@@ -98,8 +98,8 @@ TEST_CASE("bound tree: the image is the same with any thread count and any cache
 }
 
 TEST_CASE("bound tree: threads refining one tree at once find the hits of a lone walker", "[renderer][cache]") {
-    compiler::CompiledShader s = test::CompileOrThrow(
-        "displacement d() { P += 0.1 * (noise(P * 7) - 0.5) * normalize(N); }");
+    compiler::CompiledShader s =
+        test::CompileOrThrow("displacement d() { P += 0.1 * (noise(P * 7) - 0.5) * normalize(N); }");
     std::vector<std::string> errors;
     const vm::Program bound = *compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
     const BilinearPatch square = BilinearPatch::UnitSquare();
@@ -225,8 +225,8 @@ TEST_CASE("ray groups: every ray through a block lies in its group, and rays bes
 }
 
 TEST_CASE("ray groups: a group's rays find the hits of lone rays", "[renderer][groups]") {
-    compiler::CompiledShader s = test::CompileOrThrow(
-        "displacement d() { P += 0.15 * (noise(P * 9) - 0.5) * normalize(N); }");
+    compiler::CompiledShader s =
+        test::CompileOrThrow("displacement d() { P += 0.15 * (noise(P * 9) - 0.5) * normalize(N); }");
     std::vector<std::string> errors;
     const vm::Program bound = *compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
     const BilinearPatch square = BilinearPatch::UnitSquare();

@@ -16,8 +16,7 @@ namespace {
 
 using affray::test::RequireVec;
 
-CameraDesc Desc(int xres, int yres, double fov = 90, bool perspective = true,
-                double pixelAspect = 1) {
+CameraDesc Desc(int xres, int yres, double fov = 90, bool perspective = true, double pixelAspect = 1) {
     CameraDesc d;
     d.xres = xres;
     d.yres = yres;
@@ -94,8 +93,8 @@ TEST_CASE("Orthographic rays are parallel, from the screen window", "[renderer][
 TEST_CASE("Rays come out in world space", "[renderer][camera]") {
     // The world origin 5 units ahead of a camera turned 90 degrees about y.
     CameraDesc desc = Desc(64, 64);
-    desc.worldToCamera = glm::rotate(glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, 5)),
-                                     glm::radians(90.0), glm::dvec3(0, 1, 0));
+    desc.worldToCamera =
+        glm::rotate(glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, 5)), glm::radians(90.0), glm::dvec3(0, 1, 0));
     Camera camera(desc);
     glm::dvec3 eye = camera.Position();
     RequireVec(glm::dvec3(desc.worldToCamera * glm::dvec4(eye, 1)), {0, 0, 0});
@@ -214,9 +213,7 @@ TEST_CASE("FrameAspectRatio sets the default screen window", "[renderer][camera]
             "WorldBegin\nWorldEnd\n",
             "t.rib", &error, nullptr);
         REQUIRE(scene);
-        RequireVec(Camera(scene->camera).GenerateRay(0, 0).dir,
-                   glm::normalize(glm::dvec3(0, 0, 1)));
-        RequireVec(Camera(scene->camera).GenerateRay(200, 100).dir,
-                   glm::normalize(glm::dvec3(2, -1, 1)));
+        RequireVec(Camera(scene->camera).GenerateRay(0, 0).dir, glm::normalize(glm::dvec3(0, 0, 1)));
+        RequireVec(Camera(scene->camera).GenerateRay(200, 100).dir, glm::normalize(glm::dvec3(2, -1, 1)));
     }
 }

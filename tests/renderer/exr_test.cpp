@@ -22,8 +22,8 @@ namespace {
 struct TempDir {
     fs::path path;
     TempDir() {
-        path = fs::temp_directory_path() / ("affray_exr_test_" + std::to_string(::getpid()) + "_" +
-                                            std::to_string(std::random_device{}()));
+        path = fs::temp_directory_path() /
+               ("affray_exr_test_" + std::to_string(::getpid()) + "_" + std::to_string(std::random_device{}()));
         fs::create_directories(path);
     }
     ~TempDir() {
@@ -32,8 +32,7 @@ struct TempDir {
     }
     std::vector<std::string> Entries() const {
         std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(path))
-            names.push_back(entry.path().filename());
+        for (const auto& entry : fs::directory_iterator(path)) names.push_back(entry.path().filename());
         return names;
     }
 };
@@ -76,8 +75,7 @@ TEST_CASE("EXR round trip keeps RGBA to half precision and Z exactly", "[rendere
     for (size_t i = 0; i < image.rgba.size(); ++i) {
         INFO("value " << i);
         // Half has an 11-bit significand: relative error at most 2^-11.
-        CHECK(std::fabs(back.rgba[i] - image.rgba[i]) <=
-              std::fabs(image.rgba[i]) / 2048.0f + 1e-7f);
+        CHECK(std::fabs(back.rgba[i] - image.rgba[i]) <= std::fabs(image.rgba[i]) / 2048.0f + 1e-7f);
     }
     REQUIRE(back.extraChannels.size() == 1);
     CHECK(back.extraChannels[0].first == "Z");
@@ -109,8 +107,8 @@ TEST_CASE("EXR channels are RGBA half and extra channels float", "[renderer]") {
     CHECK(window.max == Imath::V2i(3, 2));
     std::vector<float> values(12);
     Imf::FrameBuffer frameBuffer;
-    frameBuffer.insert("Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()),
-                                       sizeof(float), 4 * sizeof(float)));
+    frameBuffer.insert(
+        "Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()), sizeof(float), 4 * sizeof(float)));
     file.setFrameBuffer(frameBuffer);
     file.readPixels(0, 2);
     CHECK(values == image.extraChannels[0].second);
@@ -139,8 +137,8 @@ TEST_CASE("EXR write failures are clean", "[renderer]") {
     SECTION("missing directory") {
         std::string path = (dir.path / "missing" / "out.exr").string();
         CHECK_FALSE(WriteExr(path, TestImage(2, 2), &error));
-        CHECK(error == "cannot write '" + path + "': directory '" +
-                           (dir.path / "missing").string() + "' does not exist");
+        CHECK(error ==
+              "cannot write '" + path + "': directory '" + (dir.path / "missing").string() + "' does not exist");
         CHECK(dir.Entries().empty());
     }
     SECTION("target is a directory: the temporary file is written, then removed") {

@@ -15,7 +15,7 @@ namespace {
 using SyntheticScene = std::function<SampleValue(const Sample&)>;
 
 CameraDesc MakeCamera(int xres, int yres, FilterDesc::Kind kind = FilterDesc::Kind::Gaussian, double width = 2,
-                  int xsamples = 2, int ysamples = 2) {
+                      int xsamples = 2, int ysamples = 2) {
     CameraDesc c;
     c.xres = xres;
     c.yres = yres;
@@ -198,17 +198,17 @@ TEST_CASE("Tiles cover the crop window exactly once", "[film]") {
 TEST_CASE("Filter weights match RI appendix E", "[film]") {
     Film gauss(MakeCamera(8, 8, FilterDesc::Kind::Gaussian, 2));
     CHECK(gauss.FilterWeight(0, 0) == 1);
-    CHECK(gauss.FilterWeight(0.5, 0) == Approx(std::exp(-0.5)));    // x' = 0.5: exp(-2 * 0.25)
+    CHECK(gauss.FilterWeight(0.5, 0) == Approx(std::exp(-0.5)));     // x' = 0.5: exp(-2 * 0.25)
     CHECK(gauss.FilterWeight(0.5, -0.5) == Approx(std::exp(-1.0)));  // exp(-2 * (0.25 + 0.25))
-    CHECK(gauss.FilterWeight(-1, 0) == Approx(std::exp(-2.0)));     // the edge is in ...
-    CHECK(gauss.FilterWeight(1, 0) == 0);                           // ... on one side only
+    CHECK(gauss.FilterWeight(-1, 0) == Approx(std::exp(-2.0)));      // the edge is in ...
+    CHECK(gauss.FilterWeight(1, 0) == 0);                            // ... on one side only
     CHECK(gauss.FilterWeight(0, 1.2) == 0);
 
     CameraDesc c = MakeCamera(8, 8, FilterDesc::Kind::Gaussian, 4);
     c.filter.ywidth = 1;
     Film stretched(c);
-    CHECK(stretched.FilterWeight(1, 0) == Approx(std::exp(-0.5)));        // x' = 1 / 2
-    CHECK(stretched.FilterWeight(0, 0.25) == Approx(std::exp(-0.5)));     // y' = 0.25 / 0.5
+    CHECK(stretched.FilterWeight(1, 0) == Approx(std::exp(-0.5)));     // x' = 1 / 2
+    CHECK(stretched.FilterWeight(0, 0.25) == Approx(std::exp(-0.5)));  // y' = 0.25 / 0.5
     CHECK(stretched.FilterWeight(0, 0.5) == 0);
 
     Film box(MakeCamera(8, 8, FilterDesc::Kind::Box, 1));
@@ -294,8 +294,8 @@ TEST_CASE("MakeImage names the AOV channels the display mode asks for", "[film]"
         names.push_back(name);
         CHECK(values.size() == 15u);
     }
-    CHECK(names == std::vector<std::string>{"Z", "N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z", "st.s", "st.t", "cost",
-                                            "err"});
+    CHECK(names ==
+          std::vector<std::string>{"Z", "N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z", "st.s", "st.t", "cost", "err"});
 }
 
 TEST_CASE("Z N P st come from the nearest own sample, cost sums and err maxes", "[film]") {

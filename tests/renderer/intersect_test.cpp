@@ -147,8 +147,8 @@ TEST_CASE("intersector: wave.sl against brute force, interval bounds", "[rendere
 }
 
 TEST_CASE("intersector: a stiff wave (frequency 40, amplitude 0.05) is not missed", "[renderer][intersect]") {
-    compiler::CompileResult r = compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl",
-                                                      {{"frequency", {40}}, {"Km", {0.05}}});
+    compiler::CompileResult r =
+        compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl", {{"frequency", {40}}, {"Km", {0.05}}});
     REQUIRE(r.ok());
     RunAgainstReferences(r.shader->bound, BoundMode::Affine, 80, 13);
 }
@@ -170,8 +170,7 @@ TEST_CASE("intersector: unbounded regions are subdivided, never dropped, and cou
           "[renderer][intersect]") {
     // P.z = 0.001 / (u - 0.5) is infinite at u = 0.5: every region touching it has an unbounded
     // z (x and y stay bounded: the shader moves P along z only).
-    compiler::CompiledShader s =
-        test::CompileOrThrow("displacement pole() { P += vector(0, 0, 0.001 / (u - 0.5)); }");
+    compiler::CompiledShader s = test::CompileOrThrow("displacement pole() { P += vector(0, 0, 0.001 / (u - 0.5)); }");
     auto intersector = renderer::MakeSurfaceIntersector(kSquare, s.bound, glm::dvec3(0), BoundMode::Affine, 10);
     // A ray down the pole: only the unbounded regions there can hold a hit.
     Ray ray{{0.5, 0.3, 5.0}, {0, 0, -1}};

@@ -8,13 +8,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "renderer/quadric.h"
-#include "tests/test_util.h"
 #include "renderer/surface.h"
 #include "tests/test_random.h"
+#include "tests/test_util.h"
 
 using namespace affray;
-using renderer::Quadric;
 using Catch::Matchers::WithinAbs;
+using renderer::Quadric;
 
 namespace {
 
@@ -62,8 +62,8 @@ glm::dvec3 At(const Quadric& q, double u, double v) {
 }
 
 void CheckPoint(const glm::dvec3& got, const glm::dvec3& want) {
-    INFO("got (" << got.x << ", " << got.y << ", " << got.z << "), want (" << want.x << ", " << want.y << ", "
-                 << want.z << ")");
+    INFO("got (" << got.x << ", " << got.y << ", " << got.z << "), want (" << want.x << ", " << want.y << ", " << want.z
+                 << ")");
     CHECK_THAT(got.x, WithinAbs(want.x, kEps));
     CHECK_THAT(got.y, WithinAbs(want.y, kEps));
     CHECK_THAT(got.z, WithinAbs(want.z, kEps));
@@ -77,7 +77,7 @@ TEST_CASE("quadrics: points of RenderMan's parameterisations", "[renderer][quadr
     CheckPoint(At(sphere, 0.25, 0.5), {0, 2, 0});  // theta 90, on the equator
     CheckPoint(At(sphere, 0.5, 1), {0, 0, 2});     // the north pole
     CheckPoint(At(sphere, 0, 0), {0, 0, -2});
-    sphere.zmin = 0, sphere.zmax = 1;              // phi from 0 to 30 degrees
+    sphere.zmin = 0, sphere.zmax = 1;  // phi from 0 to 30 degrees
     CheckPoint(At(sphere, 0, 1), {std::sqrt(3.0), 0, 1});
 
     Quadric cylinder = Make(Quadric::Kind::Cylinder);
@@ -95,7 +95,7 @@ TEST_CASE("quadrics: points of RenderMan's parameterisations", "[renderer][quadr
 
     Quadric torus = Make(Quadric::Kind::Torus);
     torus.majorRadius = 3, torus.minorRadius = 1;
-    CheckPoint(At(torus, 0, 0.25), {3, 0, 1});   // phi 90: the top of the tube
+    CheckPoint(At(torus, 0, 0.25), {3, 0, 1});    // phi 90: the top of the tube
     CheckPoint(At(torus, 0.25, 0.5), {0, 2, 0});  // phi 180: the inner equator
 
     Quadric hyperboloid = Make(Quadric::Kind::Hyperboloid);
@@ -120,9 +120,11 @@ TEST_CASE("quadrics: Interval and Affine bounds contain every point of a region"
             const double u0 = rng.uniform(0, 1 - width), v0 = rng.uniform(0, 1 - width);
             const double u1 = u0 + width, v1 = v0 + width;
             vm::Affine::BeginEvaluation();
-            const vm::Vec3<vm::Affine> a = renderer::QuadricPoint<vm::Affine>(
-                q, renderer::SurfaceParameter<vm::Affine>(u0, u1, 0), renderer::SurfaceParameter<vm::Affine>(v0, v1, 1));
-            const vm::Vec3<vm::Interval> iv = renderer::QuadricPoint<vm::Interval>(q, vm::Interval(u0, u1), vm::Interval(v0, v1));
+            const vm::Vec3<vm::Affine> a =
+                renderer::QuadricPoint<vm::Affine>(q, renderer::SurfaceParameter<vm::Affine>(u0, u1, 0),
+                                                   renderer::SurfaceParameter<vm::Affine>(v0, v1, 1));
+            const vm::Vec3<vm::Interval> iv =
+                renderer::QuadricPoint<vm::Interval>(q, vm::Interval(u0, u1), vm::Interval(v0, v1));
             const renderer::SurfaceFrame<vm::Interval> frame =
                 renderer::QuadricFrame<vm::Interval>(q, vm::Interval(u0, u1), vm::Interval(v0, v1));
             for (int k = 0; k < 8; ++k) {
@@ -153,8 +155,12 @@ TEST_CASE("quadrics: tangents by hand, by duals and by finite differences agree"
             using D = vm::Dual<double>;
             const vm::Vec3<D> p = renderer::QuadricPoint<D>(q, D(u, 1.0, 0.0), D(v, 0.0, 1.0));
             for (int c = 0; c < 3; ++c) {
-                const double du = (renderer::QuadricPoint<double>(q, u + h, v)[c] - renderer::QuadricPoint<double>(q, u - h, v)[c]) / (2 * h);
-                const double dv = (renderer::QuadricPoint<double>(q, u, v + h)[c] - renderer::QuadricPoint<double>(q, u, v - h)[c]) / (2 * h);
+                const double du =
+                    (renderer::QuadricPoint<double>(q, u + h, v)[c] - renderer::QuadricPoint<double>(q, u - h, v)[c]) /
+                    (2 * h);
+                const double dv =
+                    (renderer::QuadricPoint<double>(q, u, v + h)[c] - renderer::QuadricPoint<double>(q, u, v - h)[c]) /
+                    (2 * h);
                 CHECK_THAT(p[c].du, WithinAbs(du, 1e-6 * std::max(1.0, std::abs(du))));
                 CHECK_THAT(p[c].dv, WithinAbs(dv, 1e-6 * std::max(1.0, std::abs(dv))));
                 // The hand-written tangents are the duals' (up to rounding).
@@ -186,8 +192,7 @@ TEST_CASE("quadrics: arguments that describe no surface are named", "[renderer][
     CHECK(q.Problem() == "the minor radius must be positive");
 }
 
-TEST_CASE("quadrics: a displacement shader's bounds over a placed quadric contain its points",
-          "[renderer][quadric]") {
+TEST_CASE("quadrics: a displacement shader's bounds over a placed quadric contain its points", "[renderer][quadric]") {
     // P moves along N by a wave of s and t: reads P, N, s, t through SetQuadricGlobals.
     const std::string source = "displacement d(float Km = 0.1) { P += Km * sin(10 * s) * cos(7 * t) * normalize(N); }";
     const compiler::CompiledShader shader = test::CompileOrThrow(source);
@@ -269,12 +274,11 @@ TEST_CASE("quadrics: the normal direction is along dPdu x dPdv and stays defined
     const renderer::SurfaceFrame<double> apex = renderer::QuadricFrame<double>(cone, 0, 1.0);
     CheckPoint({apex.normalDirection.x, apex.normalDirection.y, apex.normalDirection.z}, {2, 0, 1});
     // Over a region that contains the north pole, the bounded unit normal of a shader is finite.
-    const compiler::CompiledShader shader =
-        test::CompileOrThrow("displacement d() { P += 0.1 * normalize(N); }");
+    const compiler::CompiledShader shader = test::CompileOrThrow("displacement d() { P += 0.1 * normalize(N); }");
     vm::Interpreter<vm::Affine> interp(shader.bound);
-    const vm::Vec3<vm::Affine> p = renderer::EvaluateOnSurface(
-        interp, renderer::BaseSurface(renderer::PlacedQuadric{sphere, glm::dmat4(1.0)}), 0, 1, 0.99, 1,
-        glm::dvec3(0, 0, 5), *shader.bound.findOutput("P"));
+    const vm::Vec3<vm::Affine> p =
+        renderer::EvaluateOnSurface(interp, renderer::BaseSurface(renderer::PlacedQuadric{sphere, glm::dmat4(1.0)}), 0,
+                                    1, 0.99, 1, glm::dvec3(0, 0, 5), *shader.bound.findOutput("P"));
     for (int c = 0; c < 3; ++c) CHECK(!RangeOf(p[c]).isUnbounded());
     CHECK(RangeOf(p.z).contains(1.1));
 }
@@ -289,7 +293,8 @@ TEST_CASE("quadrics: normals follow the placed tangents' cross product, and flip
     for (bool flip : {false, true})
         for (bool mirrored : {false, true}) {
             renderer::BaseSurface base(renderer::PlacedQuadric{sphere, mirrored ? mirror : glm::dmat4(1.0)}, flip);
-            const vm::Vec3<double> p = renderer::EvaluateOnSurface(interp, base, 0.1, 0.1, 0.4, 0.4, glm::dvec3(0), out);
+            const vm::Vec3<double> p =
+                renderer::EvaluateOnSurface(interp, base, 0.1, 0.1, 0.4, 0.4, glm::dvec3(0), out);
             const double radius = glm::length(glm::dvec3(p.x, p.y, p.z));
             // Outward, the point moves from radius 1 to 1.5; inward to 0.5. A mirror turns the
             // world tangents' cross product in (the RIB reader's orientation rule then sets

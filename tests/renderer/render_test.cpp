@@ -87,8 +87,8 @@ TEST_CASE("render: a one-sided surface seen from behind is invisible", "[rendere
     const std::string patch = "Patch \"bilinear\" \"P\" [-1 -1 1  1 -1 1  -1 1 1  1 1 1]\n";
     const std::string sphere = "Sphere 0.5 -0.5 0.5 360\n";
     auto render = [&](const std::string& attributes) {
-        return Render(dir, std::string(kCamera) + "WorldBegin\n" + attributes + patch + "Sides 2\n" + sphere +
-                               "WorldEnd\n");
+        return Render(dir,
+                      std::string(kCamera) + "WorldBegin\n" + attributes + patch + "Sides 2\n" + sphere + "WorldEnd\n");
     };
     const ImageBuffer front = render("Sides 1\n"), back = render("Sides 1\nReverseOrientation\n"),
                       twoSided = render("ReverseOrientation\n");
@@ -103,17 +103,18 @@ TEST_CASE("render: a one-sided surface seen from behind is invisible", "[rendere
         if (depth < 1e29f) CHECK(depth > 4.4f);
 }
 
-TEST_CASE("render: shaders are found on the scene's search path and see its coordinate systems",
-          "[renderer][render]") {
+TEST_CASE("render: shaders are found on the scene's search path and see its coordinate systems", "[renderer][render]") {
     test::TempDir dir;
     // The shader lifts P by the height of "lift" space's origin above world's: 0.5. It lives in a
     // directory only the scene's search path names.
     dir.Write("mine/lifted.sl",
               "displacement lifted() { P += vector(0, 0, zcomp(transform(\"lift\", \"world\", point(0, 0, 0)))); }");
-    const std::string world = "WorldBegin\nTransformBegin\nTranslate 0 0 0.5\nCoordinateSystem \"lift\"\n"
-                              "TransformEnd\nDisplacement \"lifted\"\n"
-                              "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n";
-    const ImageBuffer image = Render(dir, std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"mine:&\"]\n" + world);
+    const std::string world =
+        "WorldBegin\nTransformBegin\nTranslate 0 0 0.5\nCoordinateSystem \"lift\"\n"
+        "TransformEnd\nDisplacement \"lifted\"\n"
+        "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n";
+    const ImageBuffer image =
+        Render(dir, std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"mine:&\"]\n" + world);
     REQUIRE(Covered(image) == 64);
     for (float depth : Channel(image, "Z")) CHECK(depth == Approx(4.5).margin(0.02));
     // Without the search path the shader is not found: an error naming the directories searched.
@@ -131,9 +132,10 @@ TEST_CASE("render: quadrics and patches share the BVH, and AOVs describe the nea
     // north pole (v = 1), which faces the camera: P on the unit sphere, N = P, depth 5 - P.z.
     PreparedScene prepared;
     const ImageBuffer image = Render(dir,
-                                     std::string(kCamera) + "WorldBegin\nSphere 1 -1 1 360\n"
-                                                            "Patch \"bilinear\" \"P\" [-1 -1 -2  1 -1 -2  -1 1 -2  1 1 -2]\n"
-                                                            "WorldEnd\n",
+                                     std::string(kCamera) +
+                                         "WorldBegin\nSphere 1 -1 1 360\n"
+                                         "Patch \"bilinear\" \"P\" [-1 -1 -2  1 -1 -2  -1 1 -2  1 1 -2]\n"
+                                         "WorldEnd\n",
                                      &prepared);
     CHECK(prepared.bvh->nodeCount() == 3);
     CHECK(Covered(image) == 64);

@@ -136,8 +136,8 @@ TEST_CASE("Plastic and matte are unchanged bit for bit", "[shade]") {
         l.push_back(distant);
         return l;
     }();
-    ShadingPoint sp{{0.1, 0.2, 0.05}, glm::normalize(glm::dvec3(0.1, -0.2, 1)),
-                    glm::normalize(glm::dvec3(-0.3, 0.4, 1))};
+    ShadingPoint sp{
+        {0.1, 0.2, 0.05}, glm::normalize(glm::dvec3(0.1, -0.2, 1)), glm::normalize(glm::dvec3(-0.3, 0.4, 1))};
     const glm::dvec3 Cs(0.8, 0.6, 0.3);
     for (auto model : {SurfaceDesc::Model::Matte, SurfaceDesc::Model::Plastic})
         for (double roughness : {0.05, 0.1, 0.3, 0.0})

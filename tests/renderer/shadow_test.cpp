@@ -100,8 +100,7 @@ const char* const kFrontCamera =
 /// elevation, from world (0, 4.6, 3.9) for distance 6.
 std::string ObliqueCamera(double distance, double fov = 40) {
     std::ostringstream out;
-    out << "Projection \"perspective\" \"fov\" [" << fov << "]\nTranslate 0 0 " << distance
-        << "\nRotate -130 1 0 0\n";
+    out << "Projection \"perspective\" \"fov\" [" << fov << "]\nTranslate 0 0 " << distance << "\nRotate -130 1 0 0\n";
     return out.str();
 }
 
@@ -110,14 +109,14 @@ std::string ObliqueCamera(double distance, double fov = 40) {
 std::string GrazingPatchScene(const glm::dvec3& L, const std::string& displacement) {
     std::ostringstream rib;
     rib.precision(17);
-    rib << "Format 48 36 1\n" << ObliqueCamera(3.1) << "WorldBegin\n"
+    rib << "Format 48 36 1\n"
+        << ObliqueCamera(3.1) << "WorldBegin\n"
         << "LightSource \"distantlight\" 1 \"intensity\" [1] \"from\" [" << L.x << " " << L.y << " " << L.z
         << "] \"to\" [0 0 0]\n"
-        << "Surface \"matte\"\n" << displacement
-        << "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n";
+        << "Surface \"matte\"\n"
+        << displacement << "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n";
     return rib.str();
 }
-
 
 }  // namespace
 
@@ -128,9 +127,10 @@ TEST_CASE("shadow: a bumpy sphere lit by a distant light has no acne on its lit 
     // (A displaced sphere costs about 70 regions per ray: the image is kept small.)
     const glm::dvec3 from(-0.6, 0.6, -1.5);
     std::ostringstream rib;
-    rib << "Format 24 24 1\n" << kFrontCamera << "WorldBegin\n"
-        << "LightSource \"distantlight\" 1 \"intensity\" [1] \"from\" [" << from.x << " " << from.y << " "
-        << from.z << "] \"to\" [0 0 0]\n"
+    rib << "Format 24 24 1\n"
+        << kFrontCamera << "WorldBegin\n"
+        << "LightSource \"distantlight\" 1 \"intensity\" [1] \"from\" [" << from.x << " " << from.y << " " << from.z
+        << "] \"to\" [0 0 0]\n"
         << "Surface \"matte\"\nDisplacement \"bumps\" \"Km\" [0.03]\n"
         << "AttributeBegin\nRotate 90 1 0 0\nSphere 1 -1 1 360\nAttributeEnd\nWorldEnd\n";
     auto r = Render(rib.str(), dir);
@@ -154,8 +154,8 @@ TEST_CASE("shadow: a bumpy sphere lit by a distant light has no acne on its lit 
             const double expected = glm::dot(N, L);  // Cs = 1, Kd = 1, intensity 1, no ambient
             if (std::fabs(r->R(x, y) - expected) > 1e-4) {
                 ++acne;
-                UNSCOPED_INFO("pixel (" << x << "," << y << ") P=" << Str(P) << " N=" << Str(N) << " R="
-                                        << r->R(x, y) << " expected " << expected);
+                UNSCOPED_INFO("pixel (" << x << "," << y << ") P=" << Str(P) << " N=" << Str(N) << " R=" << r->R(x, y)
+                                        << " expected " << expected);
             }
         }
     INFO(checked << " pixels checked");
@@ -221,10 +221,11 @@ TEST_CASE("shadow: a bumpy patch above the ground casts a full shadow and nothin
     const double km = 0.05, height = 1, ambient = 0.1;
     const glm::dvec2 lo(-0.6, -0.4), hi(0.6, 0.4);  // the occluder's rectangle
     std::ostringstream rib;
-    rib << "Format 64 48 1\n" << ObliqueCamera(6) << "WorldBegin\n"
+    rib << "Format 64 48 1\n"
+        << ObliqueCamera(6) << "WorldBegin\n"
         << "LightSource \"ambientlight\" 1 \"intensity\" [" << ambient << "]\n"
-        << "LightSource \"distantlight\" 2 \"intensity\" [1] \"from\" [" << from.x << " " << from.y << " "
-        << from.z << "] \"to\" [0 0 0]\n"
+        << "LightSource \"distantlight\" 2 \"intensity\" [1] \"from\" [" << from.x << " " << from.y << " " << from.z
+        << "] \"to\" [0 0 0]\n"
         << "Surface \"matte\"\n"
         << "Patch \"bilinear\" \"P\" [-2.5 -2.5 0  2.5 -2.5 0  -2.5 2.5 0  2.5 2.5 0]\n"
         << "AttributeBegin\nDisplacement \"ripples\" \"Km\" [" << km << "] \"frequency\" [3]\n"
@@ -272,7 +273,8 @@ TEST_CASE("shadow: a cylinder of radius 0.01 still casts its shadow line", "[ren
     test::TempDir dir;
     const double radius = 0.01, ambient = 0.1;
     std::ostringstream rib;
-    rib << "Format 64 48 1\n" << ObliqueCamera(3) << "WorldBegin\n"
+    rib << "Format 64 48 1\n"
+        << ObliqueCamera(3) << "WorldBegin\n"
         << "LightSource \"ambientlight\" 1 \"intensity\" [" << ambient << "]\n"
         << "LightSource \"distantlight\" 2 \"intensity\" [1] \"from\" [0 0 1] \"to\" [0 0 0]\n"
         << "Surface \"matte\"\n"
@@ -320,12 +322,14 @@ TEST_CASE("shadow: a point light inside a closed sphere lights nothing outside",
     const double ambient = 0.1;
     auto scene = [&](const std::string& sphere) {
         std::ostringstream rib;
-        rib << "Format 32 24 1\n" << ObliqueCamera(7) << "WorldBegin\n"
+        rib << "Format 32 24 1\n"
+            << ObliqueCamera(7) << "WorldBegin\n"
             << "LightSource \"ambientlight\" 1 \"intensity\" [" << ambient << "]\n"
             << "LightSource \"pointlight\" 2 \"intensity\" [2] \"from\" [0 0 0]\n"
             << "Surface \"matte\"\n"
             << "Patch \"bilinear\" \"P\" [-3 -3 -1.5  3 -3 -1.5  -3 3 -1.5  3 3 -1.5]\n"
-            << "AttributeBegin\n" << sphere << "\nAttributeEnd\nWorldEnd\n";
+            << "AttributeBegin\n"
+            << sphere << "\nAttributeEnd\nWorldEnd\n";
         return rib.str();
     };
     // Everything visible is outside the sphere: the ground, reached by no ray from the light, and

@@ -59,13 +59,16 @@ renderer::RenderOptions OptionsFromArgs(const std::string& ribPath) {
         std::istringstream args(line.substr(13));
         std::string option;
         while (args >> option) {
-            if (option == "--tolerance") args >> options.tolerancePixels;
-            else if (option == "--max-depth") args >> options.maxDepth;
+            if (option == "--tolerance")
+                args >> options.tolerancePixels;
+            else if (option == "--max-depth")
+                args >> options.maxDepth;
             else if (option == "--bounds") {
                 std::string mode;
                 args >> mode;
                 options.bounds = mode == "interval" ? renderer::BoundMode::Interval : renderer::BoundMode::Affine;
-            } else FAIL("unknown ##stiff-args option " << option);
+            } else
+                FAIL("unknown ##stiff-args option " << option);
         }
     }
     return options;
@@ -231,10 +234,13 @@ class CaseRunner {
   public:
     /// `hLo`, `hHi`: a range the shader's height provably stays in (hLo may be -infinity).
     CaseRunner(const StiffScene& scene, double hLo, double hHi)
-        : m_scene(scene), m_hLo(hLo), m_hHi(hHi), m_field(scene.primitive(), scene.camera->Position()),
+        : m_scene(scene),
+          m_hLo(hLo),
+          m_hHi(hHi),
+          m_field(scene.primitive(), scene.camera->Position()),
           m_intersector(renderer::MakeSurfaceIntersector(scene.primitive().base, scene.primitive().bound,
-                                                       scene.camera->Position(), scene.options.bounds,
-                                                       scene.options.maxDepth)) {
+                                                         scene.camera->Position(), scene.options.bounds,
+                                                         scene.options.maxDepth)) {
         m_field.RequireNormalDisplacement(12);
     }
 
@@ -254,8 +260,8 @@ class CaseRunner {
             glm::dvec3 reported = ray.origin + hit->t * ray.dir;
             if (!(glm::length(surface - reported) <= hit->error * (1 + 1e-9) + m_field.Slack())) {
                 ++m_report.badCertificates;
-                UNSCOPED_INFO("bad certificate: " << renderer::ToString(ray) << " t=" << hit->t << " (u,v)=("
-                                                  << hit->u << "," << hit->v << ") error=" << hit->error);
+                UNSCOPED_INFO("bad certificate: " << renderer::ToString(ray) << " t=" << hit->t << " (u,v)=(" << hit->u
+                                                  << "," << hit->v << ") error=" << hit->error);
             }
         }
         double margin = 1e-3 + (std::isfinite(hit->error) ? hit->error : 0.0);
@@ -277,7 +283,9 @@ class CaseRunner {
         // The height above the plane is linear along the ray.
         double w0 = m_field.Locate(ray.origin + t0 * ray.dir).z, slope = glm::dot(ray.dir, m_field.Normal());
         double w1 = std::isfinite(t1) ? m_field.Locate(ray.origin + t1 * ray.dir).z
-                                      : (slope > 0 ? INFINITY : slope < 0 ? -INFINITY : w0);
+                                      : (slope > 0   ? INFINITY
+                                         : slope < 0 ? -INFINITY
+                                                     : w0);
         return std::min(w0, w1) > m_hHi + margin || std::max(w0, w1) < m_hLo - margin;
     }
 
@@ -291,8 +299,8 @@ class CaseRunner {
         Crossing c = MarchForCrossing(m_field, ray, t0, t1, steps);
         if (c.tb < 0) return;
         ++m_report.bruteForceHits;
-        CheckNoFarther(ray, found, hit, c.tb, "brute force bracket [" + std::to_string(c.ta) + "," +
-                                                  std::to_string(c.tb) + "]");
+        CheckNoFarther(ray, found, hit, c.tb,
+                       "brute force bracket [" + std::to_string(c.ta) + "," + std::to_string(c.tb) + "]");
     }
 
     /// A ray from `origin` through the surface point at (u, v): it must hit no farther.
@@ -333,8 +341,8 @@ class CaseRunner {
             UNSCOPED_INFO("missed hit: " << renderer::ToString(ray) << ", " << what);
         } else if (hit.t > tRef + hit.error * (1 + 1e-9) + m_field.Slack()) {
             ++m_report.tooFar;
-            UNSCOPED_INFO("hit too far: " << renderer::ToString(ray) << " t=" << hit.t << " error=" << hit.error
-                                          << ", " << what << " at t=" << tRef);
+            UNSCOPED_INFO("hit too far: " << renderer::ToString(ray) << " t=" << hit.t << " error=" << hit.error << ", "
+                                          << what << " at t=" << tRef);
         }
     }
 
@@ -409,8 +417,8 @@ TEST_CASE("stiff: amplitude 1000, an oblique ray needs few regions", "[renderer]
     const glm::dvec3 target = field.Surface(0.3, 0.6);
     const double e = M_PI / 3;
     const glm::dvec3 dir(std::cos(e) * 0.6, std::cos(e) * 0.8, std::sin(e));
-    auto intersector = renderer::MakeSurfaceIntersector(scene.primitive().base, scene.primitive().bound,
-                                                      glm::dvec3(0), renderer::BoundMode::Affine, 9);
+    auto intersector = renderer::MakeSurfaceIntersector(scene.primitive().base, scene.primitive().bound, glm::dvec3(0),
+                                                        renderer::BoundMode::Affine, 9);
     Ray ray{target + 3000.0 * dir, -dir};
     Hit hit;
     IntersectStats stats;
@@ -452,7 +460,7 @@ std::pair<double, double> NearSingularPoint(std::mt19937_64& rng) {
 std::pair<double, double> SingularHeights(const std::string& name) {
     if (name == "singular-sqrt") return {0, 0.05 * (std::sqrt(0.5625) + std::sqrt(0.8))};  // sqrt|s-c| + sqrt(r)
     if (name == "singular-log") return {-INFINITY, 0.05 * std::log(0.8)};                  // log(r)
-    return {-0.05, 0.05};                                                                     // |sin(x)/x| <= 1
+    return {-0.05, 0.05};                                                                  // |sin(x)/x| <= 1
 }
 
 void RunSingular(const std::string& name, uint64_t seed, bool checkFalseHits) {
@@ -477,9 +485,7 @@ TEST_CASE("stiff: log whose argument reaches 0 inside a region", "[renderer][sti
     RunSingular("singular-log", 45, false);
 }
 
-TEST_CASE("stiff: division by a range containing 0", "[renderer][stiff]") {
-    RunSingular("singular-div", 46, false);
-}
+TEST_CASE("stiff: division by a range containing 0", "[renderer][stiff]") { RunSingular("singular-div", 46, false); }
 
 TEST_CASE("stiff: unbounded regions at a singular point give no hit to rays that miss the surface",
           "[renderer][stiff]") {
@@ -521,8 +527,8 @@ TEST_CASE("stiff: a singular line costs regions linear in the depth limit", "[re
     Ray ray{{0.2, 0.3, 2.0}, glm::normalize(glm::dvec3(0.3, 0.2, -1.0))};
     uint64_t regions[2];
     for (int i = 0; i < 2; ++i) {
-        auto intersector = renderer::MakeSurfaceIntersector(square, bound, glm::dvec3(0), renderer::BoundMode::Affine,
-                                                          8 + 2 * i);
+        auto intersector =
+            renderer::MakeSurfaceIntersector(square, bound, glm::dvec3(0), renderer::BoundMode::Affine, 8 + 2 * i);
         Hit hit;
         IntersectStats stats;
         intersector->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats);
@@ -551,7 +557,7 @@ TEST_CASE("stiff: the patch placed 1e6 units from the origin", "[renderer][stiff
     StiffScene moved = PrepareDesc(near, scene.options);
     CaseRunner runNear(moved, -0.06, 0.06);
     auto farIntersector = renderer::MakeSurfaceIntersector(scene.primitive().base, scene.primitive().bound,
-                                                         scene.camera->Position(), renderer::BoundMode::Affine, 24);
+                                                           scene.camera->Position(), renderer::BoundMode::Affine, 24);
     int compared = 0;
     for (int j = 0; j < 8; ++j)
         for (int i = 0; i < 8; ++i) {
@@ -643,8 +649,8 @@ TEST_CASE("stiff: a ray stops at its region budget when every bound overflows", 
     const vm::Program bound = *compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
     Ray ray{{0.2, 0.3, 2.0}, glm::normalize(glm::dvec3(0.3, 0.2, -1.0))};
     {
-        auto intersector = renderer::MakeSurfaceIntersector(square, bound, glm::dvec3(0), renderer::BoundMode::Affine,
-                                                            24, 5000);
+        auto intersector =
+            renderer::MakeSurfaceIntersector(square, bound, glm::dvec3(0), renderer::BoundMode::Affine, 24, 5000);
         Hit hit;
         IntersectStats stats;
         const bool found = intersector->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats);
@@ -653,8 +659,8 @@ TEST_CASE("stiff: a ray stops at its region budget when every bound overflows", 
         CHECK(stats.budgetExhausted + stats.depthLimitHits >= 1);
         if (found) CHECK(hit.depthLimited);
     }
-    auto intersector = renderer::MakeSurfaceIntersector(square, bound, glm::dvec3(0), renderer::BoundMode::Affine,
-                                                        24, 40);
+    auto intersector =
+        renderer::MakeSurfaceIntersector(square, bound, glm::dvec3(0), renderer::BoundMode::Affine, 24, 40);
     Hit hit;
     IntersectStats stats;
     const bool found = intersector->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats);

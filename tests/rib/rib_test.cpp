@@ -196,10 +196,9 @@ TEST_CASE("A full RIB scene parses into world space", "[renderer][rib]") {
 TEST_CASE("RIB transforms follow the RenderMan conventions", "[renderer][rib]") {
     auto corner = [](const std::string& transforms) {
         std::string error;
-        auto scene =
-            ParseRib("WorldBegin\n" + transforms +
-                         "\nPatch \"bilinear\" \"P\" [1 0 0  1 0 0  0 1 0  1 1 0]\nWorldEnd\n",
-                     "t.rib", &error, nullptr);
+        auto scene = ParseRib(
+            "WorldBegin\n" + transforms + "\nPatch \"bilinear\" \"P\" [1 0 0  1 0 0  0 1 0  1 1 0]\nWorldEnd\n",
+            "t.rib", &error, nullptr);
         INFO(error);
         REQUIRE(scene);
         return scene->primitives.at(0).corners[0];
@@ -225,8 +224,8 @@ TEST_CASE("RIB defaults and variants", "[renderer][rib]") {
     CHECK(scene->lights.empty());
     CHECK(scene->displayName == "out.exr");
 
-    scene = ParseRib("FrameBegin 1\nProjection \"perspective\"\nWorldBegin\nWorldEnd\nFrameEnd\n",
-                     "t.rib", &error, nullptr);
+    scene = ParseRib("FrameBegin 1\nProjection \"perspective\"\nWorldBegin\nWorldEnd\nFrameEnd\n", "t.rib", &error,
+                     nullptr);
     REQUIRE(scene);
     CHECK(scene->camera.perspective);
     CHECK(scene->camera.fovDegrees == 90);
@@ -242,8 +241,7 @@ TEST_CASE("RIB defaults and variants", "[renderer][rib]") {
     RequireVec(scene->primitives[1].corners[3], {1, 1, 4});
 }
 
-TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors",
-          "[renderer][rib]") {
+TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors", "[renderer][rib]") {
     std::string error;
     std::vector<std::string> warnings;
     auto scene = ParseRib(
@@ -258,9 +256,8 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
     CHECK(ErrorOf("Fooo 1 2\n") == "t.rib:1: error: unknown RIB request 'Fooo'");
     CHECK(ErrorOf("WorldBegin\nPolygon \"P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n") ==
           "t.rib:2: error: 'Polygon' is not supported yet");
-    CHECK(
-        ErrorOf("WorldBegin\n\nPointsPolygons [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n") ==
-        "t.rib:3: error: 'PointsPolygons' is not supported yet");
+    CHECK(ErrorOf("WorldBegin\n\nPointsPolygons [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n") ==
+          "t.rib:3: error: 'PointsPolygons' is not supported yet");
     CHECK(ErrorOf("WorldBegin\nPatch \"bicubic\" \"P\" [0 0 0]\nWorldEnd\n") ==
           "t.rib:2: error: 'Patch \"bicubic\"' is not supported yet");
     CHECK(ErrorOf("Skew 45 0 1 0 1 0 0\n") == "t.rib:1: error: 'Skew' is not supported yet");
@@ -273,10 +270,8 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
         "t.rib", &error, &warnings);
     REQUIRE(scene);
     REQUIRE(warnings.size() == 3);
-    CHECK(warnings[0] ==
-          "t.rib:2: warning: light source 'arealight' is not supported yet; ignored");
-    CHECK(warnings[1] ==
-          "t.rib:3: warning: surface shader 'wood' is not supported yet; using \"plastic\"");
+    CHECK(warnings[0] == "t.rib:2: warning: light source 'arealight' is not supported yet; ignored");
+    CHECK(warnings[1] == "t.rib:3: warning: surface shader 'wood' is not supported yet; using \"plastic\"");
     CHECK(warnings[2] == "t.rib:4: warning: 'Surface \"plastic\"' has no parameter 'foo'; ignored");
 }
 
@@ -285,8 +280,7 @@ TEST_CASE("Malformed RIB gives exact errors with the line", "[renderer][rib]") {
     // Lexical errors.
     CHECK(ErrorOf("Display \"a.exr\" \"file\" \"rgba\nWorldBegin\nWorldEnd\n") ==
           "t.rib:1: error: unterminated string");
-    CHECK(ErrorOf("WorldBegin\nColor [1 0 0\n") ==
-          "t.rib:2: error: unterminated array: '[' has no matching ']'");
+    CHECK(ErrorOf("WorldBegin\nColor [1 0 0\n") == "t.rib:2: error: unterminated array: '[' has no matching ']'");
     CHECK(ErrorOf("WorldBegin\nColor [1 0 0\nWorldEnd\n") ==
           "t.rib:3: error: expected a number, a string or ']' in the array opened on line 2, found "
           "'WorldEnd'");
@@ -295,16 +289,14 @@ TEST_CASE("Malformed RIB gives exact errors with the line", "[renderer][rib]") {
     CHECK(ErrorOf("\n]") == "t.rib:2: error: ']' without matching '['");
     CHECK(ErrorOf("# x\nTranslate nan 0 0\n") ==
           "t.rib:2: error: invalid number 'nan': NaN and infinity are not allowed");
-    CHECK(ErrorOf("Translate 0 -inf 0\n") ==
-          "t.rib:1: error: invalid number '-inf': NaN and infinity are not allowed");
+    CHECK(ErrorOf("Translate 0 -inf 0\n") == "t.rib:1: error: invalid number '-inf': NaN and infinity are not allowed");
     CHECK(ErrorOf("Translate 0 0\n1e999\n") == "t.rib:2: error: number '1e999' is out of range");
     CHECK(ErrorOf("Translate 1.2.3 0 0") == "t.rib:1: error: malformed number '1.2.3'");
     CHECK(ErrorOf("Translate 1 2 3\x01") == "t.rib:1: error: unexpected byte 0x01");
     CHECK(ErrorOf("1 2 3\n") == "t.rib:1: error: expected a request name, found number 1");
 
     // Argument errors.
-    CHECK(ErrorOf("Translate 1 2\n") ==
-          "t.rib:1: error: 'Translate' expects 3 numbers (dx dy dz), got 2");
+    CHECK(ErrorOf("Translate 1 2\n") == "t.rib:1: error: 'Translate' expects 3 numbers (dx dy dz), got 2");
     CHECK(ErrorOf("Rotate 90 \"x\" 0 0\n") ==
           "t.rib:1: error: 'Rotate' expects 4 numbers (angle dx dy dz), got string \"x\"");
     CHECK(ErrorOf("Rotate 90 0 0 0\n") == "t.rib:1: error: 'Rotate' axis must not be zero");
@@ -312,32 +304,27 @@ TEST_CASE("Malformed RIB gives exact errors with the line", "[renderer][rib]") {
           "t.rib:1: error: 'Format' xresolution must be an integer from 1 to 65536, got 0");
     CHECK(ErrorOf("Format 640 -480 1\n") ==
           "t.rib:1: error: 'Format' yresolution must be an integer from 1 to 65536, got -480");
-    CHECK(ErrorOf("Format 640 480 0\n") ==
-          "t.rib:1: error: 'Format' pixelaspectratio must be positive, got 0");
+    CHECK(ErrorOf("Format 640 480 0\n") == "t.rib:1: error: 'Format' pixelaspectratio must be positive, got 0");
     CHECK(ErrorOf("Projection \"perspective\" \"fov\" [180]\n") ==
           "t.rib:1: error: 'Projection' fov must be between 0 and 180 degrees, got 180");
-    CHECK(ErrorOf("Surface \"plastic\" \"Ks\"\n") ==
-          "t.rib:1: error: 'Surface' parameter 'Ks' has no value");
+    CHECK(ErrorOf("Surface \"plastic\" \"Ks\"\n") == "t.rib:1: error: 'Surface' parameter 'Ks' has no value");
     CHECK(ErrorOf("Surface \"plastic\" \"roughness\" [0]\n") ==
           "t.rib:1: error: 'Surface \"plastic\"' roughness must be positive, got 0");
-    CHECK(ErrorOf("WorldBegin\n" + std::string("Patch \"bilinear\" \"P\" [0 0 0 1 0 0 0 1 0]\n") +
-                  "WorldEnd\n") ==
+    CHECK(ErrorOf("WorldBegin\n" + std::string("Patch \"bilinear\" \"P\" [0 0 0 1 0 0 0 1 0]\n") + "WorldEnd\n") ==
           "t.rib:2: error: 'Patch \"bilinear\"' parameter 'P' expects 12 numbers, got 9");
     CHECK(ErrorOf("WorldBegin\nLightSource \"pointlight\"\nWorldEnd\n") ==
           "t.rib:2: error: 'LightSource' expects a light handle (a number or a string) after the "
           "shader name");
     CHECK(ErrorOf("WorldBegin\nLightSource \"pointlight\" 1 \"from\" [0 0]\nWorldEnd\n") ==
           "t.rib:2: error: 'LightSource \"pointlight\"' parameter 'from' expects 3 numbers, got 2");
-    CHECK(ErrorOf("WorldBegin 1\nWorldEnd\n") ==
-          "t.rib:1: error: 'WorldBegin' takes no arguments, found number 1");
+    CHECK(ErrorOf("WorldBegin 1\nWorldEnd\n") == "t.rib:1: error: 'WorldBegin' takes no arguments, found number 1");
 
     // Structure errors.
     CHECK(ErrorOf("WorldBegin\nAttributeEnd\nWorldEnd\n") ==
           "t.rib:2: error: 'AttributeEnd' without matching 'AttributeBegin'");
     CHECK(ErrorOf("WorldBegin\nTransformBegin\nAttributeBegin\nTransformEnd\n") ==
           "t.rib:4: error: 'TransformEnd' does not match 'AttributeBegin' on line 3");
-    CHECK(ErrorOf("WorldBegin\n" + patch) ==
-          "t.rib:1: error: 'WorldBegin' has no matching 'WorldEnd'");
+    CHECK(ErrorOf("WorldBegin\n" + patch) == "t.rib:1: error: 'WorldBegin' has no matching 'WorldEnd'");
     CHECK(ErrorOf("WorldBegin\nAttributeBegin\nWorldEnd\n") ==
           "t.rib:3: error: 'WorldEnd' does not match 'AttributeBegin' on line 2");
     CHECK(ErrorOf(patch + "WorldBegin\nWorldEnd\n") ==
@@ -350,24 +337,20 @@ TEST_CASE("Malformed RIB gives exact errors with the line", "[renderer][rib]") {
           "t.rib:3: error: a second 'WorldBegin' (several frames) is not supported yet");
     CHECK(ErrorOf("Scale 0 1 1\nWorldBegin\nWorldEnd\n") ==
           "t.rib:2: error: the camera transform (the transform at 'WorldBegin') is singular");
-    CHECK(ErrorOf("Format 64 64 1\n") ==
-          "t.rib:1: error: no 'WorldBegin': the file describes no scene");
+    CHECK(ErrorOf("Format 64 64 1\n") == "t.rib:1: error: no 'WorldBegin': the file describes no scene");
     CHECK(ErrorOf("") == "t.rib:1: error: no 'WorldBegin': the file describes no scene");
-    CHECK(
-        ErrorOf("ConcatTransform [1 0 0 1  0 1 0 0  0 0 1 0  0 0 0 1]") ==
-        "t.rib:1: error: 'ConcatTransform' matrix must be affine (last column 0 0 0 1); projective "
-        "transforms are not supported yet");
+    CHECK(ErrorOf("ConcatTransform [1 0 0 1  0 1 0 0  0 0 1 0  0 0 0 1]") ==
+          "t.rib:1: error: 'ConcatTransform' matrix must be affine (last column 0 0 0 1); projective "
+          "transforms are not supported yet");
 }
 
 TEST_CASE("ReadRib reports files it cannot read", "[renderer][rib]") {
     std::string error;
     CHECK_FALSE(ReadRib("/nonexistent/affray/scene.rib", &error, nullptr));
-    CHECK(error ==
-          "/nonexistent/affray/scene.rib: error: cannot read file: No such file or directory");
+    CHECK(error == "/nonexistent/affray/scene.rib: error: cannot read file: No such file or directory");
 
     std::filesystem::path file =
-        std::filesystem::temp_directory_path() /
-        ("affray_rib_test_" + std::to_string(std::random_device{}()) + ".rib");
+        std::filesystem::temp_directory_path() / ("affray_rib_test_" + std::to_string(std::random_device{}()) + ".rib");
     {
         FILE* f = std::fopen(file.c_str(), "w");
         REQUIRE(f);
@@ -398,8 +381,7 @@ TEST_CASE("The RIB reader survives random input", "[renderer][rib]") {
         const std::string alphabet = "WorldBeginEndPatch\"[]#.-+0123456789eE \n\t";
         for (int i = 0; i < 3000; ++i) {
             std::string text(rng() % 120, '\0');
-            for (char& c : text)
-                c = rng() % 2 ? static_cast<char>(rng() % 256) : alphabet[rng() % alphabet.size()];
+            for (char& c : text) c = rng() % 2 ? static_cast<char>(rng() % 256) : alphabet[rng() % alphabet.size()];
             check(text);
         }
     }
@@ -500,15 +482,9 @@ TEST_CASE("The RIB reader survives random input", "[renderer][rib]") {
             for (int k = 0; k < edits && !text.empty(); ++k) {
                 size_t at = rng() % text.size();
                 switch (rng() % 3) {
-                    case 0:
-                        text.erase(at, 1 + rng() % 8);
-                        break;
-                    case 1:
-                        text[at] = static_cast<char>(rng() % 256);
-                        break;
-                    default:
-                        text.insert(at, text.substr(rng() % text.size(), rng() % 16));
-                        break;
+                    case 0: text.erase(at, 1 + rng() % 8); break;
+                    case 1: text[at] = static_cast<char>(rng() % 256); break;
+                    default: text.insert(at, text.substr(rng() % text.size(), rng() % 16)); break;
                 }
             }
             check(text);
@@ -534,9 +510,7 @@ PrimitiveDesc OnlyPrimitive(const std::string& body, const std::string& options 
     return scene.primitives[0];
 }
 
-glm::dvec3 Apply(const glm::dmat4& m, const glm::dvec3& p) {
-    return glm::dvec3(m * glm::dvec4(p, 1.0));
-}
+glm::dvec3 Apply(const glm::dmat4& m, const glm::dvec3& p) { return glm::dvec3(m * glm::dvec4(p, 1.0)); }
 
 }  // namespace
 
@@ -556,12 +530,11 @@ TEST_CASE("RIB camera options fill CameraDesc", "[renderer][rib]") {
         CHECK(c.exposureGamma == 1);
     }
     SECTION("every option, bare arguments") {
-        const CameraDesc c =
-            Parsed(
-                "FrameAspectRatio 1.5\nScreenWindow -2 2 -1 1\nCropWindow 0.25 0.75 0 0.5\n"
-                "Clipping 0.1 100\nPixelSamples 4 3\nPixelFilter \"box\" 1 1.5\n"
-                "Exposure 2 2.2\nWorldBegin\nWorldEnd\n")
-                .camera;
+        const CameraDesc c = Parsed(
+                                 "FrameAspectRatio 1.5\nScreenWindow -2 2 -1 1\nCropWindow 0.25 0.75 0 0.5\n"
+                                 "Clipping 0.1 100\nPixelSamples 4 3\nPixelFilter \"box\" 1 1.5\n"
+                                 "Exposure 2 2.2\nWorldBegin\nWorldEnd\n")
+                                 .camera;
         REQUIRE(c.frameAspectRatio);
         CHECK(*c.frameAspectRatio == 1.5);
         REQUIRE(c.screenWindow);
@@ -591,54 +564,44 @@ TEST_CASE("RIB camera options fill CameraDesc", "[renderer][rib]") {
     }
     SECTION("other filters fall back to gaussian with a warning") {
         std::vector<std::string> warnings;
-        const CameraDesc c =
-            Parsed("PixelFilter \"catmull-rom\" 4 4\nWorldBegin\nWorldEnd\n", &warnings).camera;
+        const CameraDesc c = Parsed("PixelFilter \"catmull-rom\" 4 4\nWorldBegin\nWorldEnd\n", &warnings).camera;
         CHECK(c.filter.kind == FilterDesc::Kind::Gaussian);
         CHECK(c.filter.xwidth == 4);
         REQUIRE(warnings.size() == 1);
-        CHECK(warnings[0] ==
-              "t.rib:1: warning: pixel filter 'catmull-rom' is not supported; using \"gaussian\"");
+        CHECK(warnings[0] == "t.rib:1: warning: pixel filter 'catmull-rom' is not supported; using \"gaussian\"");
     }
 }
 
 TEST_CASE("RIB camera options give exact errors", "[renderer][rib]") {
-    CHECK(ErrorOf("FrameAspectRatio 0\n") ==
-          "t.rib:1: error: 'FrameAspectRatio' must be positive, got 0");
+    CHECK(ErrorOf("FrameAspectRatio 0\n") == "t.rib:1: error: 'FrameAspectRatio' must be positive, got 0");
     CHECK(ErrorOf("ScreenWindow -1 -1 0 1\n") ==
           "t.rib:1: error: 'ScreenWindow' must have a nonzero width and height, got -1 -1 0 1");
     CHECK(ErrorOf("ScreenWindow -1 1 0\n") ==
           "t.rib:1: error: 'ScreenWindow' expects 4 numbers (left right bottom top), got 3");
-    CHECK(ErrorOf("CropWindow -0.1 1 0 1\n") ==
-          "t.rib:1: error: 'CropWindow' needs 0 <= xmin < xmax <= 1, got -0.1 1");
+    CHECK(ErrorOf("CropWindow -0.1 1 0 1\n") == "t.rib:1: error: 'CropWindow' needs 0 <= xmin < xmax <= 1, got -0.1 1");
     CHECK(ErrorOf("CropWindow 0 1 0.5 0.5\n") ==
           "t.rib:1: error: 'CropWindow' needs 0 <= ymin < ymax <= 1, got 0.5 0.5");
-    CHECK(ErrorOf("CropWindow 0 1 0 1.5\n") ==
-          "t.rib:1: error: 'CropWindow' needs 0 <= ymin < ymax <= 1, got 0 1.5");
-    CHECK(ErrorOf("Clipping 0 10\n") ==
-          "t.rib:1: error: 'Clipping' needs 0 < near < far, got 0 10");
-    CHECK(ErrorOf("Clipping 10 1\n") ==
-          "t.rib:1: error: 'Clipping' needs 0 < near < far, got 10 1");
+    CHECK(ErrorOf("CropWindow 0 1 0 1.5\n") == "t.rib:1: error: 'CropWindow' needs 0 <= ymin < ymax <= 1, got 0 1.5");
+    CHECK(ErrorOf("Clipping 0 10\n") == "t.rib:1: error: 'Clipping' needs 0 < near < far, got 0 10");
+    CHECK(ErrorOf("Clipping 10 1\n") == "t.rib:1: error: 'Clipping' needs 0 < near < far, got 10 1");
     CHECK(ErrorOf("PixelSamples 0 2\n") ==
           "t.rib:1: error: 'PixelSamples' xsamples must be an integer from 1 to 64, got 0");
     CHECK(ErrorOf("PixelSamples 2 2.5\n") ==
           "t.rib:1: error: 'PixelSamples' ysamples must be an integer from 1 to 64, got 2.5");
     CHECK(ErrorOf("PixelSamples 65 1\n") ==
           "t.rib:1: error: 'PixelSamples' xsamples must be an integer from 1 to 64, got 65");
-    CHECK(ErrorOf("PixelFilter \"box\" 0 1\n") ==
-          "t.rib:1: error: 'PixelFilter' widths must be positive, got 0 1");
+    CHECK(ErrorOf("PixelFilter \"box\" 0 1\n") == "t.rib:1: error: 'PixelFilter' widths must be positive, got 0 1");
     CHECK(ErrorOf("PixelFilter \"box\" 1\n") ==
           "t.rib:1: error: 'PixelFilter' expects a filter name and 2 numbers (xwidth ywidth)");
     CHECK(ErrorOf("PixelFilter 1 1\n") ==
           "t.rib:1: error: 'PixelFilter' expects a filter name as its first argument, found number "
           "1");
-    CHECK(ErrorOf("Exposure 1 0\n") ==
-          "t.rib:1: error: 'Exposure' gain and gamma must be positive, got 1 0");
-    CHECK(ErrorOf("Exposure -1 1\n") ==
-          "t.rib:1: error: 'Exposure' gain and gamma must be positive, got -1 1");
+    CHECK(ErrorOf("Exposure 1 0\n") == "t.rib:1: error: 'Exposure' gain and gamma must be positive, got 1 0");
+    CHECK(ErrorOf("Exposure -1 1\n") == "t.rib:1: error: 'Exposure' gain and gamma must be positive, got -1 1");
     // Options are frozen at WorldBegin.
-    for (const char* option : {"FrameAspectRatio 1", "ScreenWindow -1 1 -1 1", "CropWindow 0 1 0 1",
-                               "Clipping 1 2", "PixelSamples 1 1", "PixelFilter \"box\" 1 1",
-                               "Exposure 1 1", "Option \"searchpath\" \"shader\" \"a\""}) {
+    for (const char* option :
+         {"FrameAspectRatio 1", "ScreenWindow -1 1 -1 1", "CropWindow 0 1 0 1", "Clipping 1 2", "PixelSamples 1 1",
+          "PixelFilter \"box\" 1 1", "Exposure 1 1", "Option \"searchpath\" \"shader\" \"a\""}) {
         std::string name = std::string(option).substr(0, std::string(option).find(' '));
         CHECK(ErrorOf(std::string("WorldBegin\n") + option + "\nWorldEnd\n") ==
               "t.rib:2: error: '" + name + "' is an option and must come before 'WorldBegin'");
@@ -646,32 +609,28 @@ TEST_CASE("RIB camera options give exact errors", "[renderer][rib]") {
 }
 
 TEST_CASE("RIB Display modes follow the channel grammar", "[renderer][rib]") {
-    for (const char* mode :
-         {"rgb", "rgba", "rgbz", "rgbaz", "r", "z", "rgba,Z,N,P,st,cost,err", "a,g"}) {
+    for (const char* mode : {"rgb", "rgba", "rgbz", "rgbaz", "r", "z", "rgba,Z,N,P,st,cost,err", "a,g"}) {
         INFO(mode);
-        SceneDesc scene = Parsed(std::string("Display \"o.exr\" \"file\" \"") + mode +
-                                 "\"\nWorldBegin\nWorldEnd\n");
+        SceneDesc scene = Parsed(std::string("Display \"o.exr\" \"file\" \"") + mode + "\"\nWorldBegin\nWorldEnd\n");
         CHECK(scene.displayMode == mode);
     }
-    CHECK(
-        ErrorOf("Display \"o.exr\" \"file\" \"rgba,Ci\"\n") ==
-        "t.rib:1: error: 'Display' mode 'rgba,Ci' has an unknown channel group 'Ci' (expected rgb, "
-        "rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost or err, separated by commas)");
+    CHECK(ErrorOf("Display \"o.exr\" \"file\" \"rgba,Ci\"\n") ==
+          "t.rib:1: error: 'Display' mode 'rgba,Ci' has an unknown channel group 'Ci' (expected rgb, "
+          "rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost or err, separated by commas)");
     CHECK(ErrorOf("Display \"o.exr\" \"file\" \"\"\n") ==
           "t.rib:1: error: 'Display' mode '' has an unknown channel group '' (expected rgb, rgba, "
           "rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost or err, separated by commas)");
     CHECK(ErrorOf("Display \"o.exr\" \"file\" \"rgb,,N\"\n") ==
           "t.rib:1: error: 'Display' mode 'rgb,,N' has an unknown channel group '' (expected rgb, "
           "rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost or err, separated by commas)");
-    CHECK(ErrorOf("Display \"o.exr\" \"file\" \"RGB\"\n").find("unknown channel group 'RGB'") !=
-          std::string::npos);
+    CHECK(ErrorOf("Display \"o.exr\" \"file\" \"RGB\"\n").find("unknown channel group 'RGB'") != std::string::npos);
 }
 
 TEST_CASE("RIB Option searchpath shader expands & and @", "[renderer][rib]") {
     using Path = std::vector<std::string>;
     CHECK(Parsed("WorldBegin WorldEnd").shaderSearchPath.empty());  // the renderer's default
-    CHECK(Parsed("Option \"searchpath\" \"shader\" [\"shaders:/opt/sl\"]\nWorldBegin WorldEnd")
-              .shaderSearchPath == Path{"shaders", "/opt/sl"});
+    CHECK(Parsed("Option \"searchpath\" \"shader\" [\"shaders:/opt/sl\"]\nWorldBegin WorldEnd").shaderSearchPath ==
+          Path{"shaders", "/opt/sl"});
     // '&' is the previous value; '@' the default, the empty list; empty entries are skipped.
     CHECK(Parsed("Option \"searchpath\" \"shader\" \"a:b\"\n"
                  "Option \"searchpath\" \"string shader\" \"c:&:@::d\"\nWorldBegin WorldEnd")
@@ -679,9 +638,8 @@ TEST_CASE("RIB Option searchpath shader expands & and @", "[renderer][rib]") {
     CHECK(Parsed("Option \"searchpath\" \"shader\" \"a\"\nOption \"searchpath\" \"shader\" \"@\"\n"
                  "WorldBegin WorldEnd")
               .shaderSearchPath.empty());
-    CHECK(Parsed(
-              "Option \"searchpath\" \"shader\" \"&:x\"\nOption \"searchpath\" \"shader\" \"&:&\"\n"
-              "WorldBegin WorldEnd")
+    CHECK(Parsed("Option \"searchpath\" \"shader\" \"&:x\"\nOption \"searchpath\" \"shader\" \"&:&\"\n"
+                 "WorldBegin WorldEnd")
               .shaderSearchPath == Path{"x", "x"});
     CHECK(ErrorOf("Option \"searchpath\" \"shader\" [1]\n") ==
           "t.rib:1: error: 'Option \"searchpath\"' parameter 'shader' expects 1 string");
@@ -693,10 +651,8 @@ TEST_CASE("RIB Option searchpath shader expands & and @", "[renderer][rib]") {
         &warnings);
     CHECK(scene.shaderSearchPath.empty());
     REQUIRE(warnings.size() == 3);
-    CHECK(warnings[0] ==
-          "t.rib:1: warning: 'Option \"searchpath\" \"texture\"' is not supported; ignored");
-    CHECK(warnings[1] ==
-          "t.rib:3: warning: 'Option \"limits\" \"bucketsize\"' is not supported; ignored");
+    CHECK(warnings[0] == "t.rib:1: warning: 'Option \"searchpath\" \"texture\"' is not supported; ignored");
+    CHECK(warnings[1] == "t.rib:3: warning: 'Option \"limits\" \"bucketsize\"' is not supported; ignored");
     CHECK(warnings[2] == "t.rib:4: warning: 'Option \"statistics\"' is not supported; ignored");
 }
 
@@ -718,8 +674,7 @@ TEST_CASE("RIB CoordinateSystem stores object to world", "[renderer][rib]") {
     CHECK(scene.coordinateSystems.at("origin") == glm::dmat4(1.0));
 
     // A later definition replaces an earlier one.
-    scene = Parsed(
-        "WorldBegin\nCoordinateSystem \"a\"\nTranslate 0 1 0\nCoordinateSystem \"a\"\nWorldEnd\n");
+    scene = Parsed("WorldBegin\nCoordinateSystem \"a\"\nTranslate 0 1 0\nCoordinateSystem \"a\"\nWorldEnd\n");
     RequireVec(Apply(scene.coordinateSystems.at("a"), {0, 0, 0}), {0, 1, 0});
 
     CHECK(ErrorOf("WorldBegin\nCoordinateSystem \"world\"\nWorldEnd\n") ==
@@ -765,8 +720,7 @@ TEST_CASE("RIB constant and metal surfaces", "[renderer][rib]") {
     CHECK(s.Kd == 0);
     CHECK(s.roughness == 0.1);
 
-    s = OnlyPrimitive("Surface \"metal\" \"Ka\" 0.5 \"Ks\" [0.25] \"roughness\" 0.3" + sphere)
-            .surface;
+    s = OnlyPrimitive("Surface \"metal\" \"Ka\" 0.5 \"Ks\" [0.25] \"roughness\" 0.3" + sphere).surface;
     CHECK(s.Ka == 0.5);
     CHECK(s.Ks == 0.25);
     CHECK(s.roughness == 0.3);
@@ -779,8 +733,7 @@ TEST_CASE("RIB constant and metal surfaces", "[renderer][rib]") {
     REQUIRE(warnings.size() == 3);
     CHECK(warnings[0] == "t.rib:2: warning: 'Surface \"constant\"' has no parameter 'Ka'; ignored");
     CHECK(warnings[1] == "t.rib:3: warning: 'Surface \"metal\"' has no parameter 'Kd'; ignored");
-    CHECK(warnings[2] ==
-          "t.rib:4: warning: 'Surface \"metal\"' has no parameter 'specularcolor'; ignored");
+    CHECK(warnings[2] == "t.rib:4: warning: 'Surface \"metal\"' has no parameter 'specularcolor'; ignored");
     CHECK(ErrorOf("Surface \"metal\" \"roughness\" [0]\n") ==
           "t.rib:1: error: 'Surface \"metal\"' roughness must be positive, got 0");
 }
@@ -825,12 +778,10 @@ TEST_CASE("RIB spotlight", "[renderer][rib]") {
     CHECK(light("\"from\" [1 1 1] \"to\" [1 1 1]") == ctx + "'from' and 'to' must differ");
     CHECK(light("\"coneangle\" 0") == ctx + "coneangle must be in (0, pi] radians, got 0");
     CHECK(light("\"coneangle\" 4") == ctx + "coneangle must be in (0, pi] radians, got 4");
-    CHECK(light("\"conedeltaangle\" -0.1") ==
-          ctx + "conedeltaangle must be from 0 to coneangle, got -0.1");
+    CHECK(light("\"conedeltaangle\" -0.1") == ctx + "conedeltaangle must be from 0 to coneangle, got -0.1");
     CHECK(light("\"coneangle\" 0.1 \"conedeltaangle\" 0.2") ==
           ctx + "conedeltaangle must be from 0 to coneangle, got 0.2");
-    CHECK(light("\"beamdistribution\" -1") ==
-          ctx + "beamdistribution must not be negative, got -1");
+    CHECK(light("\"beamdistribution\" -1") == ctx + "beamdistribution must not be negative, got -1");
     CHECK(light("\"coneangle\" [1 2]") == ctx + "parameter 'coneangle' expects 1 number, got 2");
 }
 
@@ -919,40 +870,28 @@ TEST_CASE("RIB quadrics take the graphics state", "[renderer][rib]") {
 }
 
 TEST_CASE("RIB quadric arguments give exact errors", "[renderer][rib]") {
-    auto error = [](const std::string& request) {
-        return ErrorOf("WorldBegin\n" + request + "\nWorldEnd\n");
-    };
-    CHECK(error("Sphere 1 -1 1") ==
-          "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 3");
-    CHECK(error("Sphere [1 -1 1]") ==
-          "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 3");
+    auto error = [](const std::string& request) { return ErrorOf("WorldBegin\n" + request + "\nWorldEnd\n"); };
+    CHECK(error("Sphere 1 -1 1") == "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 3");
+    CHECK(error("Sphere [1 -1 1]") == "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 3");
     CHECK(error("Sphere 1 -1 [1] 360") ==
           "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got array of 1 "
           "number");
-    CHECK(error("Sphere 1 -1 1 360 5") ==
-          "t.rib:2: error: 'Sphere' expects a parameter name string, found number 5");
-    CHECK(error("Cone 1 1") ==
-          "t.rib:2: error: 'Cone' expects 3 numbers (height radius thetamax), got 2");
-    CHECK(
-        error("Torus 1 1 1 1") ==
-        "t.rib:2: error: 'Torus' expects 5 numbers (rmajor rminor phimin phimax thetamax), got 4");
+    CHECK(error("Sphere 1 -1 1 360 5") == "t.rib:2: error: 'Sphere' expects a parameter name string, found number 5");
+    CHECK(error("Cone 1 1") == "t.rib:2: error: 'Cone' expects 3 numbers (height radius thetamax), got 2");
+    CHECK(error("Torus 1 1 1 1") ==
+          "t.rib:2: error: 'Torus' expects 5 numbers (rmajor rminor phimin phimax thetamax), got 4");
     CHECK(error("Hyperboloid [1 0 0 1 0]") ==
           "t.rib:2: error: 'Hyperboloid' expects 7 numbers (x1 y1 z1 x2 y2 z2 thetamax), got 5");
     CHECK(error("Sphere 0 -1 1 360") == "t.rib:2: error: 'Sphere' the radius must be positive");
-    CHECK(error("Sphere 1 2 3 360") ==
-          "t.rib:2: error: 'Sphere' zmin..zmax does not cut the sphere");
-    CHECK(error("Sphere 1 -1 1 0") ==
-          "t.rib:2: error: 'Sphere' thetamax is 0: the surface is empty");
-    CHECK(error("Cylinder 1 1 1 360") ==
-          "t.rib:2: error: 'Cylinder' zmin equals zmax: the surface is empty");
+    CHECK(error("Sphere 1 2 3 360") == "t.rib:2: error: 'Sphere' zmin..zmax does not cut the sphere");
+    CHECK(error("Sphere 1 -1 1 0") == "t.rib:2: error: 'Sphere' thetamax is 0: the surface is empty");
+    CHECK(error("Cylinder 1 1 1 360") == "t.rib:2: error: 'Cylinder' zmin equals zmax: the surface is empty");
     CHECK(error("Cone 1 -1 360") == "t.rib:2: error: 'Cone' the radius must be positive");
     CHECK(error("Disk 0 0 360") == "t.rib:2: error: 'Disk' the radius must be positive");
-    CHECK(error("Torus 1 0 0 360 360") ==
-          "t.rib:2: error: 'Torus' the minor radius must be positive");
+    CHECK(error("Torus 1 0 0 360 360") == "t.rib:2: error: 'Torus' the minor radius must be positive");
     CHECK(error("Hyperboloid 1 0 0 1 0 0 360") ==
           "t.rib:2: error: 'Hyperboloid' point1 equals point2: the surface is empty");
-    CHECK(error("Paraboloid 1 -1 1 360") ==
-          "t.rib:2: error: 'Paraboloid' it needs 0 <= zmin < zmax");
+    CHECK(error("Paraboloid 1 -1 1 360") == "t.rib:2: error: 'Paraboloid' it needs 0 <= zmin < zmax");
     CHECK(ErrorOf("Sphere 1 -1 1 360\nWorldBegin\nWorldEnd\n") ==
           "t.rib:1: error: 'Sphere' must come between 'WorldBegin' and 'WorldEnd'");
 }
@@ -972,7 +911,7 @@ TEST_CASE("RIB Sides and orientation set twoSided and flipNormal", "[renderer][r
     CHECK_FALSE(flip("Orientation \"outside\""));
     CHECK(flip("Orientation \"rh\""));
     CHECK_FALSE(flip("Orientation \"rh\" Orientation \"lh\""));
-    CHECK(flip("Scale -1 1 1"));  // a mirror turns the world dPdu x dPdv in; flipped back out
+    CHECK(flip("Scale -1 1 1"));                          // a mirror turns the world dPdu x dPdv in; flipped back out
     CHECK(flip("Scale -1 1 1 Orientation \"outside\""));  // outside follows the space
     CHECK_FALSE(flip("Scale -1 1 1 Orientation \"inside\"", "Scale 1 1 -1\n"));
     CHECK(flip("Scale -1 1 1", "Scale 1 1 -1\n"));        // the camera's mirror does not matter
@@ -992,13 +931,12 @@ TEST_CASE("RIB Sides and orientation set twoSided and flipNormal", "[renderer][r
     CHECK_FALSE(OnlyPrimitive(sphere, "Sides 1\n").twoSided);  // attributes carry into the world
 
     // Patches get them too.
-    PrimitiveDesc patch = OnlyPrimitive(
-        "Sides 1 ReverseOrientation\nPatch \"bilinear\" \"P\" [0 0 0 1 0 0 0 1 0 1 1 0]");
+    PrimitiveDesc patch =
+        OnlyPrimitive("Sides 1 ReverseOrientation\nPatch \"bilinear\" \"P\" [0 0 0 1 0 0 0 1 0 1 1 0]");
     CHECK_FALSE(patch.twoSided);
     CHECK(patch.flipNormal);
 
-    CHECK(ErrorOf("WorldBegin\nSides 3\nWorldEnd\n") ==
-          "t.rib:2: error: 'Sides' must be 1 or 2, got 3");
+    CHECK(ErrorOf("WorldBegin\nSides 3\nWorldEnd\n") == "t.rib:2: error: 'Sides' must be 1 or 2, got 3");
     CHECK(ErrorOf("WorldBegin\nOrientation \"up\"\nWorldEnd\n") ==
           "t.rib:2: error: unknown orientation 'up' (expected \"outside\", \"inside\", \"lh\" or "
           "\"rh\")");
@@ -1027,9 +965,8 @@ TEST_CASE("A RIB scene with quadrics, options and a mirrored camera", "[renderer
     RequireVec(scene.lights[0].to, {0, 0, -7});  // given in "eye" space, toward the world origin
 
     REQUIRE(scene.primitives.size() == 7);
-    const Quadric::Kind kinds[] = {Quadric::Kind::Sphere,    Quadric::Kind::Cylinder,
-                                   Quadric::Kind::Cone,      Quadric::Kind::Disk,
-                                   Quadric::Kind::Torus,     Quadric::Kind::Hyperboloid,
+    const Quadric::Kind kinds[] = {Quadric::Kind::Sphere,    Quadric::Kind::Cylinder, Quadric::Kind::Cone,
+                                   Quadric::Kind::Disk,      Quadric::Kind::Torus,    Quadric::Kind::Hyperboloid,
                                    Quadric::Kind::Paraboloid};
     for (size_t i = 0; i < 7; ++i) {
         const PrimitiveDesc& p = scene.primitives[i];
@@ -1040,7 +977,6 @@ TEST_CASE("A RIB scene with quadrics, options and a mirrored camera", "[renderer
         // inside out, whatever the mirrored camera.
         CHECK(p.twoSided == (i >= 3));
         CHECK(p.flipNormal);
-        CHECK(p.surface.model ==
-              (i < 3 ? SurfaceDesc::Model::Metal : SurfaceDesc::Model::Constant));
+        CHECK(p.surface.model == (i < 3 ? SurfaceDesc::Model::Metal : SurfaceDesc::Model::Constant));
     }
 }

@@ -3,10 +3,10 @@
 #include <catch2/catch.hpp>
 #include <cstdlib>
 
+#include <sys/wait.h>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sys/wait.h>
 
 #include "../test_util.h"
 #include "renderer/exr_writer.h"
@@ -27,9 +27,7 @@ fs::path TempDir(const std::string& name) {
     return dir;
 }
 
-void WriteFile(const fs::path& path, const std::string& text) {
-    std::ofstream(path) << text;
-}
+void WriteFile(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
 const std::string kWave = test::SourceDir() + "/shaders/wave.sl";
 
@@ -126,8 +124,8 @@ TEST_CASE("cli: a tiny render is lit, shadowed, and the same with any thread cou
     fs::path dir = TempDir("render");
     fs::copy_file(kWave, dir / "wave.sl");
     WriteFile(dir / "small.rib", SmallWaveScene(48, 36));
-    Output one = Run("render " + (dir / "small.rib").string() + " -o " + (dir / "one.exr").string() +
-                     " --threads 1 --stats");
+    Output one =
+        Run("render " + (dir / "small.rib").string() + " -o " + (dir / "one.exr").string() + " --threads 1 --stats");
     REQUIRE(one.status == 0);
     // 2 x 2 samples per pixel (RenderMan's default), and again those of the filter's margin
     // that neighbouring tiles share.
@@ -138,8 +136,9 @@ TEST_CASE("cli: a tiny render is lit, shadowed, and the same with any thread cou
     CHECK(cameraRays <= 48 * 36 * 4 * 2);
     CHECK(one.out.find("\"max_certified_error\":") != std::string::npos);
     CHECK(one.out.find("\"shaders\":[{\"name\":\"wave\",\"operations_requested\":") != std::string::npos);
-    REQUIRE(Run("render " + (dir / "small.rib").string() + " -o " + (dir / "two.exr").string() + " --threads 2")
-                .status == 0);
+    REQUIRE(
+        Run("render " + (dir / "small.rib").string() + " -o " + (dir / "two.exr").string() + " --threads 2").status ==
+        0);
     renderer::ImageBuffer a, b;
     std::string error;
     REQUIRE(renderer::ReadExrRgba((dir / "one.exr").string(), &a, &error));
@@ -219,7 +218,6 @@ TEST_CASE("cli: compiled .afb shaders evaluate and render like their source", "[
     fs::remove_all(dir);
 }
 
-
 TEST_CASE("cli: -I and -D reach the preprocessor of compile, eval and render", "[tools][preprocess]") {
     fs::path dir = TempDir("pp");
     fs::create_directories(dir / "include");
@@ -245,8 +243,7 @@ TEST_CASE("cli: -I and -D reach the preprocessor of compile, eval and render", "
     fs::remove_all(dir);
 }
 
-TEST_CASE("cli: string parameters from --param and RIB, and one compilation per distinct instance",
-          "[tools][render]") {
+TEST_CASE("cli: string parameters from --param and RIB, and one compilation per distinct instance", "[tools][render]") {
     fs::path dir = TempDir("strings");
     WriteFile(dir / "s.sl",
               "displacement s(float Km = 0.05; string mode = \"up\") {\n"
@@ -305,9 +302,9 @@ TEST_CASE("cli: every scene in scenes/ parses and its shaders compile", "[tools]
         WriteFile(dir / "scenes" / entry.path().filename(), text);
         fs::copy(test::SourceDir() + "/shaders", dir / "shaders",
                  fs::copy_options::recursive | fs::copy_options::skip_existing);
-        Output out = Run("render " + (dir / "scenes" / entry.path().filename()).string() + " -o " +
-                             (dir / "out.exr").string(),
-                         true);
+        Output out =
+            Run("render " + (dir / "scenes" / entry.path().filename()).string() + " -o " + (dir / "out.exr").string(),
+                true);
         INFO(entry.path().string() << "\n" << out.out);
         CHECK(out.status == 0);
     }
@@ -358,9 +355,10 @@ TEST_CASE("cli: an uncalled function passing a string parameter as a space compi
     Output eval = Run("eval " + sl + " --at 0.25,0.5");
     CHECK(eval.status == 0);
     CHECK(eval.out.rfind("{\"P\":[0.25,0.5,", 0) == 0);
-    WriteFile(dir / "r.rib", "Format 16 12 1\nProjection \"perspective\" \"fov\" [40]\nDisplay \"r.exr\" \"file\" "
-                             "\"rgba\"\nTranslate 0 0 3\nWorldBegin\nDisplacement \"r\"\n"
-                             "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n");
+    WriteFile(dir / "r.rib",
+              "Format 16 12 1\nProjection \"perspective\" \"fov\" [40]\nDisplay \"r.exr\" \"file\" "
+              "\"rgba\"\nTranslate 0 0 3\nWorldBegin\nDisplacement \"r\"\n"
+              "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n");
     Output render = Run("render " + (dir / "r.rib").string() + " -o " + (dir / "r.exr").string() + " --quiet", true);
     INFO(render.out);
     CHECK(render.status == 0);

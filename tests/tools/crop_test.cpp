@@ -60,9 +60,8 @@ renderer::ImageBuffer Read(const std::string& path) {
 
 /// Renders the scene in `dir` with `extra` arguments into `name`; returns the image.
 renderer::ImageBuffer Render(const test::TempDir& dir, const std::string& name, const std::string& extra) {
-    test::CliOutput out =
-        test::RunCli("render " + Quote(dir.Path("scene.rib")) + " -o " + Quote(dir.Path(name)) + " --quiet " + extra,
-                     true);
+    test::CliOutput out = test::RunCli(
+        "render " + Quote(dir.Path("scene.rib")) + " -o " + Quote(dir.Path(name)) + " --quiet " + extra, true);
     INFO(out.out);
     REQUIRE(out.status == 0);
     return Read(dir.Path(name));
@@ -129,7 +128,8 @@ void CheckCropsRebuild(const test::TempDir& dir, const renderer::ImageBuffer& wh
         // Inside, some pixels are covered (alpha 1): the crop did render something.
         int covered = 0;
         for (int y = range.y0; y < range.y1; ++y)
-            for (int x = range.x0; x < range.x1; ++x) covered += crop.rgba[(static_cast<size_t>(y) * kWidth + x) * 4 + 3] > 0;
+            for (int x = range.x0; x < range.x1; ++x)
+                covered += crop.rgba[(static_cast<size_t>(y) * kWidth + x) * 4 + 3] > 0;
         CHECK(covered > 0);
         std::string error;
         INFO(error);
@@ -162,8 +162,8 @@ TEST_CASE("crop: crop renders pasted together equal the whole render bit for bit
     std::vector<std::string> names;
     for (const auto& [name, values] : whole.extraChannels) names.push_back(name);
     std::sort(names.begin(), names.end());  // the file's order
-    CHECK(names == std::vector<std::string>{"N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z", "Z", "cost", "err", "st.s",
-                                            "st.t"});
+    CHECK(names ==
+          std::vector<std::string>{"N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z", "Z", "cost", "err", "st.s", "st.t"});
     int covered = 0;
     for (int i = 0; i < kWidth * kHeight; ++i) covered += whole.rgba[i * 4 + 3] == 1.0f;
     CHECK(covered > kWidth * kHeight / 3);

@@ -6,13 +6,11 @@
 // stop running on a machine set up without them.
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <cstdio>
 #include <sstream>
-#include <sstream>
-#include <sys/wait.h>
 
 #include "../test_util.h"
 
@@ -43,8 +41,9 @@ std::string Quote(const std::string& s) { return "'" + s + "'"; }
 void RequireTool(const std::string& tool) {
     const bool found = Run("command -v " + tool).status == 0;
     if (!found)
-        FAIL("'" << tool << "' is not installed: install the Debian package openimageio-tools "
-                 "(sudo apt-get install openimageio-tools, or run tools/setup.sh)");
+        FAIL("'" << tool
+                 << "' is not installed: install the Debian package openimageio-tools "
+                    "(sudo apt-get install openimageio-tools, or run tools/setup.sh)");
 }
 
 constexpr int kWidth = 24, kHeight = 16;
@@ -68,7 +67,8 @@ WorldEnd
 /// Renders the scene in `dir` into `name` with `extra` arguments; returns the file's path.
 std::string Render(const test::TempDir& dir, const std::string& name, const std::string& extra) {
     const std::string path = dir.Path(name);
-    test::CliOutput out = test::RunCli("render " + Quote(dir.Path("scene.rib")) + " -o " + Quote(path) + " --quiet " + extra, true);
+    test::CliOutput out =
+        test::RunCli("render " + Quote(dir.Path("scene.rib")) + " -o " + Quote(path) + " --quiet " + extra, true);
     INFO(out.out);
     REQUIRE(out.status == 0);
     return path;
@@ -108,16 +108,15 @@ void CheckInfo(const std::string& info) {
     CHECK(info.find("openexr") != std::string::npos);
     const std::map<std::string, std::string> channels = Channels(info);
     const std::map<std::string, std::string> expected = {
-        {"R", "half"},     {"G", "half"},     {"B", "half"},     {"A", "half"},    {"Z", "float"},
-        {"N.X", "float"},  {"N.Y", "float"},  {"N.Z", "float"},  {"P.X", "float"}, {"P.Y", "float"},
-        {"P.Z", "float"},  {"st.s", "float"}, {"st.t", "float"}, {"cost", "float"}, {"err", "float"}};
+        {"R", "half"},    {"G", "half"},     {"B", "half"},     {"A", "half"},     {"Z", "float"},
+        {"N.X", "float"}, {"N.Y", "float"},  {"N.Z", "float"},  {"P.X", "float"},  {"P.Y", "float"},
+        {"P.Z", "float"}, {"st.s", "float"}, {"st.t", "float"}, {"cost", "float"}, {"err", "float"}};
     CHECK(channels == expected);
 }
 
 }  // namespace
 
-TEST_CASE("oiio: oiiotool and iinfo read the resolution, channel names and types of a render",
-          "[tools][oiio]") {
+TEST_CASE("oiio: oiiotool and iinfo read the resolution, channel names and types of a render", "[tools][oiio]") {
     RequireTool("oiiotool");
     RequireTool("iinfo");
     test::TempDir dir;

@@ -92,7 +92,8 @@ TEST_CASE("Progress counts tiles from many threads", "[progress]") {
     constexpr int kThreads = 4, kTilesEach = 500, kTotal = kThreads * kTilesEach;
     {
         // Interval 0: every tile redraws, the most contention there can be.
-        Progress progress(kTotal, out.file, true, [] { return 0.0; }, 0.0);
+        Progress progress(
+            kTotal, out.file, true, [] { return 0.0; }, 0.0);
         std::vector<std::thread> threads;
         for (int t = 0; t < kThreads; ++t)
             threads.emplace_back([&] {

@@ -4,11 +4,11 @@
 // name the parameter, exit non-zero and leave no image.
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
 
 #include "../test_util.h"
 
@@ -21,7 +21,6 @@ using Output = test::CliOutput;
 
 /// Runs the CLI, capturing stdout and stderr.
 Output Run(const std::string& args) { return test::RunCli(args, true); }
-
 
 /// The small scene the parameter checks render: wave.sl on the unit patch, 8 x 8 pixels.
 std::string WaveScene(const std::string& displacement) {
@@ -68,10 +67,12 @@ TEST_CASE("stiff cli: NaN, infinite and overflowing parameters in a scene name t
         {"[1e400]", "number '1e400' is out of range (in the value of parameter \"Km\" of Displacement)"},
         {"1e999", "number '1e999' is out of range (in the value of parameter \"Km\" of Displacement)"},
         {"[-1e400]", "number '-1e400' is out of range (in the value of parameter \"Km\" of Displacement)"},
-        {"[nan]", "invalid number 'nan': NaN and infinity are not allowed (in the value of parameter \"Km\" of "
-                  "Displacement)"},
-        {"[inf]", "invalid number 'inf': NaN and infinity are not allowed (in the value of parameter \"Km\" of "
-                  "Displacement)"},
+        {"[nan]",
+         "invalid number 'nan': NaN and infinity are not allowed (in the value of parameter \"Km\" of "
+         "Displacement)"},
+        {"[inf]",
+         "invalid number 'inf': NaN and infinity are not allowed (in the value of parameter \"Km\" of "
+         "Displacement)"},
         // Finite, but the bounds overflow in every region: a render that would never end.
         {"[1e300]", "parameter 'Km' = 1e+300 is too large"},
     };
@@ -109,7 +110,8 @@ TEST_CASE("stiff cli: NaN and infinite values for eval --param name the paramete
         CHECK(r.out.find("affray: error: --param Km: '" + std::string(value) + "' is not finite") != std::string::npos);
         CHECK(r.out.find("\"P\"") == std::string::npos);
     }
-    Output other = Run("eval " + test::SourceDir() + "/tests/scenes/stiff/singular.sl --param centerS=nan --at 0.5,0.5");
+    Output other =
+        Run("eval " + test::SourceDir() + "/tests/scenes/stiff/singular.sl --param centerS=nan --at 0.5,0.5");
     CHECK(other.status == 2);
     CHECK(other.out.find("--param centerS: 'nan' is not finite") != std::string::npos);
     // A finite value is taken, however large: the scalar result is what it is.
@@ -125,8 +127,8 @@ TEST_CASE("stiff cli: a parameter default that folds to NaN or infinity is an er
         const std::string sl = dir.Write("bad.sl", "displacement bad(float Km = 0.1; float k = " + std::string(value) +
                                                        ")\n{\n    P += Km * k * normalize(N);\n}\n");
         INFO(value);
-        for (const std::string& command : {"compile " + sl, "eval " + sl + " --at 0.5,0.5",
-                                           "eval " + sl + " --region 0,1,0,1 --mode affine"}) {
+        for (const std::string& command :
+             {"compile " + sl, "eval " + sl + " --at 0.5,0.5", "eval " + sl + " --region 0,1,0,1 --mode affine"}) {
             Output r = Run(command);
             INFO(command << ": " << r.out);
             CHECK(r.status == 1);

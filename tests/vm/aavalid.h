@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
-#include "vm/number.h"
 #include "../test_random.h"
+#include "vm/number.h"
 
 namespace affray::test::aavalid {
 
@@ -87,8 +87,7 @@ struct RecipeConfig {
 inline Recipe RandomRecipe(Rng& rng, const RecipeConfig& cfg) {
     Recipe r;
     r.kind = rng.integer(0, cfg.kindHi);
-    for (double& c : r.c)
-        c = rng.chance(0.1) ? 1.0 : rng.dyadic(rng.integer(cfg.coefExpLo, cfg.coefExpHi), 24);
+    for (double& c : r.c) c = rng.chance(0.1) ? 1.0 : rng.dyadic(rng.integer(cfg.coefExpLo, cfg.coefExpHi), 24);
     r.shift = cfg.shifts[rng.integer(0, static_cast<int>(cfg.shifts.size()) - 1)];
     r.scale = cfg.scale;
     return r;
@@ -99,24 +98,12 @@ T Build(const Recipe& r, const T& u, const T& v) {
     using std::cos, std::sin;
     T x = u;
     switch (r.kind) {
-        case 0:
-            x = u;
-            break;
-        case 1:
-            x = v;
-            break;
-        case 2:
-            x = r.c[0] + r.c[1] * u + r.c[2] * v;
-            break;
-        case 3:
-            x = r.c[0] * u * v + r.c[1] * u - r.c[2];
-            break;
-        case 4:
-            x = r.c[0] + r.c[1] * sqr(u - r.c[2]) + r.c[3] * v;
-            break;
-        case 5:
-            x = r.c[0] * u + r.c[1] * sin(r.c[2] * u + v);
-            break;
+        case 0: x = u; break;
+        case 1: x = v; break;
+        case 2: x = r.c[0] + r.c[1] * u + r.c[2] * v; break;
+        case 3: x = r.c[0] * u * v + r.c[1] * u - r.c[2]; break;
+        case 4: x = r.c[0] + r.c[1] * sqr(u - r.c[2]) + r.c[3] * v; break;
+        case 5: x = r.c[0] * u + r.c[1] * sin(r.c[2] * u + v); break;
         default: {
             // Many nonlinear terms: more fresh symbols than Affine::kCapacity.
             x = r.c[0] * v;

@@ -5,8 +5,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "vm/number.h"
 #include "../test_random.h"
+#include "vm/number.h"
 
 using namespace affray::vm;
 using affray::test::Rng;
@@ -60,8 +60,7 @@ TEST_CASE("a form past the active capacity keeps its largest terms and eps_u and
         CHECK(x.coefficientOf(Affine::kSymbolV) == 1e-13);
         // The kept fresh terms are the largest: radii fresh, fresh - 1, ...
         for (int i = 0; i < x.termCount(); ++i)
-            if (x.termSymbol(i) >= Affine::kFirstFreshSymbol)
-                CHECK(std::fabs(x.termCoef(i)) >= fresh - (capacity - 2));
+            if (x.termSymbol(i) >= Affine::kFirstFreshSymbol) CHECK(std::fabs(x.termCoef(i)) >= fresh - (capacity - 2));
         double kept = 0;
         for (int i = 0; i < x.termCount(); ++i)
             if (x.termSymbol(i) >= Affine::kFirstFreshSymbol) kept += std::fabs(x.termCoef(i));

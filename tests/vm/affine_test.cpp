@@ -11,9 +11,9 @@
 #include <random>
 #include <sstream>
 
-#include "vm/number.h"
 #include "../test_random.h"
 #include "aavalid.h"
+#include "vm/number.h"
 
 using namespace affray::vm;
 using affray::test::Rng;
@@ -36,31 +36,26 @@ struct Report {
 std::string Describe(const char* what, double d, const Affine& a, const Interval& i) {
     std::ostringstream s;
     s.precision(17);
-    s << what << ": double " << d << "\n  affine " << a.toString() << "\n  interval "
-      << i.toString();
+    s << what << ": double " << d << "\n  affine " << a.toString() << "\n  interval " << i.toString();
     return s.str();
 }
 
 // Checks the result triple of one sample; `exact` says whether the ratio check applies.
-void CheckResult(Report& rep, const Region& g, double rd, const Affine& ra, const Interval& ri,
-                 bool exact) {
+void CheckResult(Report& rep, const Region& g, double rd, const Affine& ra, const Interval& ri, bool exact) {
     rep.samples++;
     if (!std::isfinite(rd)) {
-        if (!ra.isUnbounded() || !ri.isUnbounded())
-            rep.fail(Describe("NaN/inf not Unbounded", rd, ra, ri));
+        if (!ra.isUnbounded() || !ri.isUnbounded()) rep.fail(Describe("NaN/inf not Unbounded", rd, ra, ri));
         return;
     }
     rep.scalarFinite++;
     if (!ra.isUnbounded()) {
         rep.bounded++;
-        if (!ra.evaluateAt(g.eu, g.ev).contains(rd))
-            rep.fail(Describe("affine misses", rd, ra, ri));
+        if (!ra.evaluateAt(g.eu, g.ev).contains(rd)) rep.fail(Describe("affine misses", rd, ra, ri));
         if (!ra.range().contains(rd)) rep.fail(Describe("affine range misses", rd, ra, ri));
         // Widths of a few ulps are all rounding slack: compare beyond 1e-14 of the magnitude.
         double allowance = 1e-14 * std::fmax(std::fabs(ri.lo()), std::fabs(ri.hi()));
         if (exact && !ri.isUnbounded() && ri.width() + allowance > 1e-300)
-            rep.worstRatio =
-                std::max(rep.worstRatio, ra.range().width() / (ri.width() + allowance));
+            rep.worstRatio = std::max(rep.worstRatio, ra.range().width() / (ri.width() + allowance));
     }
     if (!ri.contains(rd)) rep.fail(Describe("interval misses", rd, ra, ri));
 }
@@ -74,8 +69,7 @@ struct Operands {
     bool ok = true;
 };
 
-Operands MakeOperands(Rng& rng, const RegionConfig& gc, const RecipeConfig& xc,
-                      const RecipeConfig& yc, Report& rep) {
+Operands MakeOperands(Rng& rng, const RegionConfig& gc, const RecipeConfig& xc, const RecipeConfig& yc, Report& rep) {
     Operands o;
     Affine::BeginEvaluation();
     o.g = RandomRegion(rng, gc);
@@ -101,8 +95,7 @@ Operands MakeOperands(Rng& rng, const RegionConfig& gc, const RecipeConfig& xc,
 }
 
 template <class F>
-Report CheckOp(uint64_t seed, int n, const RegionConfig& gc, const RecipeConfig& xc,
-               const RecipeConfig& yc, F op) {
+Report CheckOp(uint64_t seed, int n, const RegionConfig& gc, const RecipeConfig& xc, const RecipeConfig& yc, F op) {
     Rng rng(seed);
     Report rep;
     for (int s = 0; s < n; ++s) {
@@ -121,11 +114,10 @@ Report CheckOp(uint64_t seed, int n, const RegionConfig& gc, const RecipeConfig&
 // AFFRAY_VERBOSE=1 prints every report.
 void Expect(const char* name, const Report& rep, double minBoundedFraction, double maxRatio) {
     if (std::getenv("AFFRAY_VERBOSE"))
-        std::printf("%-20s %7d samples %7d finite %7d bounded  worst ratio %.4g  failures %d\n",
-                    name, rep.samples, rep.scalarFinite, rep.bounded, rep.worstRatio, rep.failures);
-    INFO(name << ": " << rep.samples << " samples, " << rep.bounded << " bounded of "
-              << rep.scalarFinite << " finite, worst width ratio to interval " << rep.worstRatio
-              << "\n"
+        std::printf("%-20s %7d samples %7d finite %7d bounded  worst ratio %.4g  failures %d\n", name, rep.samples,
+                    rep.scalarFinite, rep.bounded, rep.worstRatio, rep.failures);
+    INFO(name << ": " << rep.samples << " samples, " << rep.bounded << " bounded of " << rep.scalarFinite
+              << " finite, worst width ratio to interval " << rep.worstRatio << "\n"
               << rep.first.str());
     CHECK(rep.failures == 0);
     CHECK(rep.samples > 0);
@@ -286,8 +278,7 @@ TEST_CASE("affine and interval contain random programs", "[vm][affine]") {
         Region g = RandomRegion(rng, gc);
         auto ra = RunProgram(program, Affine::FromSymbol(g.uc, g.ur, Affine::kSymbolU),
                              Affine::FromSymbol(g.vc, g.vr, Affine::kSymbolV));
-        auto ri = RunProgram(program, Interval(g.uc - g.ur, g.uc + g.ur),
-                             Interval(g.vc - g.vr, g.vc + g.vr));
+        auto ri = RunProgram(program, Interval(g.uc - g.ur, g.uc + g.ur), Interval(g.vc - g.vr, g.vc + g.vr));
         for (int point = 0; point < 8; ++point) {
             Region q = g;
             for (int k = 0; k < 20; ++k) {
@@ -371,8 +362,7 @@ TEST_CASE("affine folds the smallest terms past capacity, never eps_u or eps_v",
     Affine u = Affine::FromSymbol(0.5, 1e-12, Affine::kSymbolU);
     Affine v = Affine::FromSymbol(2.0, 1e-13, Affine::kSymbolV);
     Affine x = u + v;
-    for (int k = 0; k < 3 * Affine::kCapacity; ++k)
-        x = x + Affine::FromInterval(Interval(-1.0 - k, 1.0 + k));
+    for (int k = 0; k < 3 * Affine::kCapacity; ++k) x = x + Affine::FromInterval(Interval(-1.0 - k, 1.0 + k));
     CHECK(x.termCount() == Affine::kCapacity);
     CHECK(x.coefficientOf(Affine::kSymbolU) == 1e-12);
     CHECK(x.coefficientOf(Affine::kSymbolV) == 1e-13);
@@ -381,9 +371,8 @@ TEST_CASE("affine folds the smallest terms past capacity, never eps_u or eps_v",
     for (int i = 0; i < x.termCount(); ++i)
         if (x.termSymbol(i) >= Affine::kFirstFreshSymbol)
             CHECK(std::fabs(x.termCoef(i)) >= 3 * Affine::kCapacity - (Affine::kCapacity - 2));
-    CHECK(x.error() >= 0.5 * (3 * Affine::kCapacity - Affine::kCapacity + 2) *
-                               (3 * Affine::kCapacity - Affine::kCapacity + 3) -
-                           1);
+    CHECK(x.error() >=
+          0.5 * (3 * Affine::kCapacity - Affine::kCapacity + 2) * (3 * Affine::kCapacity - Affine::kCapacity + 3) - 1);
     // A computation with many nonlinear terms (recipe kind 6) still contains every sample.
     RegionConfig g;
     g.expHi = 2;

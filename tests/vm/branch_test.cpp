@@ -19,8 +19,8 @@
 #include <random>
 #include <sstream>
 
-#include "vm/number.h"
 #include "../test_random.h"
+#include "vm/number.h"
 
 using namespace affray::vm;
 using affray::test::Rng;
@@ -130,8 +130,7 @@ void Check(Tally& t, W what, double rd, const Affine& ra, const Interval& ri, co
     t.samples++;
     if (!std::isfinite(rd)) {
         if (!ra.isUnbounded() || !ri.isUnbounded())
-            t.fail(what() + ": " + ToString(rd) + " but affine " + ra.toString() + ", interval " +
-                   ri.toString());
+            t.fail(what() + ": " + ToString(rd) + " but affine " + ra.toString() + ", interval " + ri.toString());
         return;
     }
     t.finite++;
@@ -144,10 +143,9 @@ void Check(Tally& t, W what, double rd, const Affine& ra, const Interval& ri, co
 
 void Expect(const char* name, const Tally& t, double minBounded) {
     if (std::getenv("AFFRAY_VERBOSE"))
-        std::printf("%-12s %7d samples %7d finite %7d bounded  failures %d\n", name, t.samples,
-                    t.finite, t.bounded, t.failures);
-    INFO(name << ": " << t.samples << " samples, " << t.bounded << " bounded of " << t.finite
-              << " finite\n"
+        std::printf("%-12s %7d samples %7d finite %7d bounded  failures %d\n", name, t.samples, t.finite, t.bounded,
+                    t.failures);
+    INFO(name << ": " << t.samples << " samples, " << t.bounded << " bounded of " << t.finite << " finite\n"
               << t.first.str());
     CHECK(t.failures == 0);
     CHECK(t.samples > 100);
@@ -165,8 +163,7 @@ struct Sample {
     std::string describe() const {
         std::ostringstream s;
         s.precision(17);
-        for (size_t i = 0; i < xd.size(); ++i)
-            s << (i ? ", " : "") << xd[i] << " in " << xa[i].toString();
+        for (size_t i = 0; i < xd.size(); ++i) s << (i ? ", " : "") << xd[i] << " in " << xa[i].toString();
         return s.str();
     }
 };
@@ -245,18 +242,18 @@ Tally Run(uint64_t seed, int n, int operands, const Shape& shape, Op op) {
     return t;
 }
 
-#define OP1(expr)                                                   \
-    [](const auto& v) {                                             \
+#define OP1(expr)                                                                 \
+    [](const auto& v) {                                                           \
         using std::floor, std::ceil, std::round, std::asin, std::acos, std::atan; \
-        const auto& x = v[0];                                       \
-        return expr;                                                \
+        const auto& x = v[0];                                                     \
+        return expr;                                                              \
     }
-#define OP2(expr)                            \
-    [](const auto& v) {                      \
-        using std::atan2;                    \
-        const auto& x = v[0];                \
-        const auto& y = v[1];                \
-        return expr;                         \
+#define OP2(expr)             \
+    [](const auto& v) {       \
+        using std::atan2;     \
+        const auto& x = v[0]; \
+        const auto& y = v[1]; \
+        return expr;          \
     }
 
 }  // namespace
@@ -326,17 +323,12 @@ TEST_CASE("comparisons and logic contain the scalar result", "[vm][branch]") {
     Expect("Or", Run(45, n, 2, s, OP2(Or(x, y))), 1.0);
     Expect("Not", Run(46, n, 1, s, OP1(Not(x))), 1.0);
     // Logic on comparison results, and Select on them.
-    Expect("And(Less)", Run(47, n, 3, s, [](const auto& v) {
-               return And(Less(v[0], v[1]), Not(Equal(v[2], v[0])));
-           }), 1.0);
-    Expect("Or(LessEq)", Run(48, n, 3, s, [](const auto& v) {
-               return Or(LessEq(v[1], v[0]), NotEqual(v[2], v[1]));
-           }), 1.0);
-    Expect("Select", Run(49, n, 3, s, [](const auto& v) {
-               return Select(Less(v[0], v[1]), v[1] - v[0], v[2]);
-           }), 0.9);
-    Expect("Select(x)", Run(50, n, 3, s, [](const auto& v) { return Select(v[0], v[1], v[2]); }),
-           0.9);
+    Expect("And(Less)", Run(47, n, 3, s, [](const auto& v) { return And(Less(v[0], v[1]), Not(Equal(v[2], v[0]))); }),
+           1.0);
+    Expect("Or(LessEq)", Run(48, n, 3, s, [](const auto& v) { return Or(LessEq(v[1], v[0]), NotEqual(v[2], v[1])); }),
+           1.0);
+    Expect("Select", Run(49, n, 3, s, [](const auto& v) { return Select(Less(v[0], v[1]), v[1] - v[0], v[2]); }), 0.9);
+    Expect("Select(x)", Run(50, n, 3, s, [](const auto& v) { return Select(v[0], v[1], v[2]); }), 0.9);
 }
 
 TEST_CASE("Join contains both operands", "[vm][branch]") {
@@ -450,9 +442,7 @@ TEST_CASE("random programs with branches contain the scalar result", "[vm][branc
             double u = uc + ur * a.eps[Affine::kSymbolU], v = vc + vr * a.eps[Affine::kSymbolV];
             auto rd = RunProgram(program, u, v);
             for (size_t i = 2; i < rd.size(); ++i) {
-                auto what = [&] {
-                    return "program " + std::to_string(p) + " step " + std::to_string(i);
-                };
+                auto what = [&] { return "program " + std::to_string(p) + " step " + std::to_string(i); };
                 Check(t, what, rd[i], ra[i], ri[i], a);
             }
         }
@@ -468,9 +458,8 @@ TEST_CASE("steps inside one integer cell are exact constants", "[vm][branch]") {
         double c, r, floor, ceil, round;
     };
     // Ranges [c - r, c + r] inside one cell of each function.
-    for (Case k : {Case{2.5, 0.4, 2, 3, kNaN}, Case{3.0, 0.4, kNaN, kNaN, 3},
-                   Case{-0.5, 0.4, -1, -0.0, kNaN}, Case{1e6 + 0.5, 0.25, 1e6, 1e6 + 1, kNaN},
-                   Case{-7.25, 0.125, -8, -7, -7}}) {
+    for (Case k : {Case{2.5, 0.4, 2, 3, kNaN}, Case{3.0, 0.4, kNaN, kNaN, 3}, Case{-0.5, 0.4, -1, -0.0, kNaN},
+                   Case{1e6 + 0.5, 0.25, 1e6, 1e6 + 1, kNaN}, Case{-7.25, 0.125, -8, -7, -7}}) {
         INFO("center " << k.c << " radius " << k.r);
         Affine x = Affine::FromSymbol(k.c, k.r, Affine::kSymbolU) * 1.0 + sin(Affine(0.0));
         if (!std::isnan(k.floor)) {
@@ -630,16 +619,16 @@ TEST_CASE("Unbounded operands never decide a comparison", "[vm][branch]") {
     Affine::BeginEvaluation();
     Affine U = Affine::Unbounded();
     Affine x = Affine::FromSymbol(0.5, 0.25, Affine::kSymbolU);
-    for (const Affine& r : {Less(U, x), Less(x, U), LessEq(U, x), LessEq(x, U), Equal(U, U),
-                            Equal(U, x), NotEqual(U, x), NotEqual(U, U), Less(U, U), Not(U),
-                            And(U, Affine(1.0)), Or(U, Affine(0.0))}) {
+    for (const Affine& r :
+         {Less(U, x), Less(x, U), LessEq(U, x), LessEq(x, U), Equal(U, U), Equal(U, x), NotEqual(U, x), NotEqual(U, U),
+          Less(U, U), Not(U), And(U, Affine(1.0)), Or(U, Affine(0.0))}) {
         CHECK_FALSE(r.isUnbounded());
         CHECK(r.range().lo() == 0);
         CHECK(r.range().hi() == 1);
     }
     Interval UI = Interval::Unbounded();
-    for (const Interval& r : {Less(UI, Interval(1)), LessEq(Interval(1), UI), Equal(UI, UI),
-                              NotEqual(UI, Interval(0)), Not(UI), Or(UI, Interval(0.0))}) {
+    for (const Interval& r : {Less(UI, Interval(1)), LessEq(Interval(1), UI), Equal(UI, UI), NotEqual(UI, Interval(0)),
+                              Not(UI), Or(UI, Interval(0.0))}) {
         CHECK(r.lo() == 0);
         CHECK(r.hi() == 1);
     }
@@ -647,11 +636,11 @@ TEST_CASE("Unbounded operands never decide a comparison", "[vm][branch]") {
     CHECK(TruthOf(Less(du, dx)) == Truth::Unknown);
     CHECK(TruthOf(Equal(dx, du)) == Truth::Unknown);
     // Functions of Unbounded operands stay Unbounded.
-    for (const Affine& r : {floor(U), ceil(U), round(U), asin(U), acos(U), atan(U), atan2(U, x),
-                            atan2(x, U), Min(U, x), Max(x, U), Join(U, x)})
+    for (const Affine& r : {floor(U), ceil(U), round(U), asin(U), acos(U), atan(U), atan2(U, x), atan2(x, U), Min(U, x),
+                            Max(x, U), Join(U, x)})
         CHECK(r.isUnbounded());
-    for (const Interval& r : {floor(UI), asin(UI), atan(UI), atan2(UI, Interval(1)), Min(UI, UI),
-                              Max(Interval(1), UI), Join(UI, Interval(1))})
+    for (const Interval& r : {floor(UI), asin(UI), atan(UI), atan2(UI, Interval(1)), Min(UI, UI), Max(Interval(1), UI),
+                              Join(UI, Interval(1))})
         CHECK(r.isUnbounded());
 }
 
@@ -677,8 +666,8 @@ TEST_CASE("inverse trigonometric edge cases", "[vm][branch]") {
     CHECK(cut.contains(std::atan2(-0.0, -1.5)));
     CHECK(cut.contains(std::atan2(0.0, -1.5)));
     CHECK(atan2(Interval(0.0), Interval(-1.0, 0.0)).contains(-pi));
-    Affine cutA = atan2(Affine::FromSymbol(0.0, 1.0, Affine::kSymbolU),
-                        Affine::FromSymbol(-1.0, 0.5, Affine::kSymbolV));
+    Affine cutA =
+        atan2(Affine::FromSymbol(0.0, 1.0, Affine::kSymbolU), Affine::FromSymbol(-1.0, 0.5, Affine::kSymbolV));
     CHECK(cutA.range().contains(std::atan2(-0.0, -1.0)));
     CHECK(cutA.range().contains(std::atan2(0.0, -1.0)));
     // Away from the cut the quadrants are narrow.

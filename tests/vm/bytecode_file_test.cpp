@@ -144,8 +144,7 @@ TEST_CASE("loaded programs compute what the compiled ones do", "[vm][bytecode]")
         for (int i = 0; i <= 4; ++i) {
             for (int j = 0; j <= 4; ++j) {
                 const double u = 0.25 * i, v = 0.25 * j;
-                glm::dvec3 expected[3] = {test::PointOnSquare(file.bound, u, v),
-                                          test::PointOnSquare(file.shade, u, v),
+                glm::dvec3 expected[3] = {test::PointOnSquare(file.bound, u, v), test::PointOnSquare(file.shade, u, v),
                                           test::PointOnSquare(file.shade, u, v, "N")};
                 glm::dvec3 actual[3] = {test::PointOnSquare(loaded.bound, u, v),
                                         test::PointOnSquare(loaded.shade, u, v),
@@ -170,7 +169,7 @@ TEST_CASE("layout: little-endian fields at documented offsets, exact doubles", "
     uint64_t length = 0;
     for (int i = 7; i >= 0; --i) length = (length << 8) | static_cast<uint8_t>(bytes[12 + i]);
     CHECK(length == bytes.size());
-    CHECK(bytes.substr(28, 9) == std::string("\1\0\0\0s\0\0\0\0", 9));             // shaderName, sourcePath
+    CHECK(bytes.substr(28, 9) == std::string("\1\0\0\0s\0\0\0\0", 9));                 // shaderName, sourcePath
     CHECK(bytes.substr(37, 8) == std::string("\x08\x07\x06\x05\x04\x03\x02\x01", 8));  // sourceHash
     vm::BytecodeFile loaded;
     std::string error;
@@ -189,8 +188,8 @@ TEST_CASE("wrong magic, wrong version and trailing bytes", "[vm][bytecode]") {
     CHECK(LoadError(wrongMagic) == "not an affray bytecode file");
     std::string version7 = bytes;
     version7[8] = 7;
-    CHECK(LoadError(version7) == "unsupported bytecode version 7 (this affray reads " +
-                                     std::to_string(vm::kBytecodeVersion) + ")");
+    CHECK(LoadError(version7) ==
+          "unsupported bytecode version 7 (this affray reads " + std::to_string(vm::kBytecodeVersion) + ")");
     CHECK(LoadError(bytes + "x") == "trailing bytes after the end of the file (1 extra)");
 }
 
@@ -301,8 +300,8 @@ TEST_CASE("random and mutated files never crash the loader", "[vm][bytecode]") {
         if (vm::LoadBytecode(bytes, &file, &error)) {
             // Whatever loads is verified, and the encoding has no slack: it saves to the same bytes.
             ++loaded;
-            problems += !vm::Verify(file.bound, nullptr) || !vm::Verify(file.shade, nullptr) ||
-                        vm::SaveBytecode(file) != bytes;
+            problems +=
+                !vm::Verify(file.bound, nullptr) || !vm::Verify(file.shade, nullptr) || vm::SaveBytecode(file) != bytes;
         } else {
             problems += error.empty();
         }

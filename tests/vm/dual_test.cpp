@@ -9,8 +9,8 @@
 #include <cstdlib>
 #include <random>
 
-#include "vm/number.h"
 #include "../test_random.h"
+#include "vm/number.h"
 
 using namespace affray::vm;
 using affray::test::Rng;
@@ -32,8 +32,7 @@ T ShaderB(const T& u, const T& v) {
 template <class T>
 T ShaderC(const T& u, const T& v) {
     using std::abs, std::cos, std::pow;
-    return abs(u - 0.3) * sign(v + 2.0) + pow(u - 2.0, T(3.0)) + 1.0 / (3.0 + sqr(u) * v) +
-           cos(u * 10.0 + v);
+    return abs(u - 0.3) * sign(v + 2.0) + pow(u - 2.0, T(3.0)) + 1.0 / (3.0 + sqr(u) * v) + cos(u * 10.0 + v);
 }
 
 // Branches, steps and inverse trigonometry: not smooth everywhere, so only in the containment
@@ -50,21 +49,15 @@ T ShaderD(const T& u, const T& v) {
 template <class T>
 T Shader(int which, const T& u, const T& v) {
     switch (which) {
-        case 0:
-            return ShaderA(u, v);
-        case 1:
-            return ShaderB(u, v);
-        case 2:
-            return ShaderC(u, v);
-        default:
-            return ShaderD(u, v);
+        case 0: return ShaderA(u, v);
+        case 1: return ShaderB(u, v);
+        case 2: return ShaderC(u, v);
+        default: return ShaderD(u, v);
     }
 }
 
 // |a - b| small relative to the scale of the derivative and of the function.
-bool Near(double a, double b, double scale) {
-    return std::fabs(a - b) <= 1e-6 * (scale + std::fabs(b));
-}
+bool Near(double a, double b, double scale) { return std::fabs(a - b) <= 1e-6 * (scale + std::fabs(b)); }
 
 }  // namespace
 
@@ -83,8 +76,8 @@ TEST_CASE("dual derivatives match central differences", "[vm][dual]") {
             double scale = 1 + std::fabs(r.v);
             if (r.v != Shader(which, u, v) || !Near(r.du, fu, scale) || !Near(r.dv, fv, scale)) {
                 if (failures++ < 4)
-                    WARN("shader " << which << " at " << u << ", " << v << ": " << ToString(r)
-                                   << " vs " << fu << ", " << fv);
+                    WARN("shader " << which << " at " << u << ", " << v << ": " << ToString(r) << " vs " << fu << ", "
+                                   << fv);
             }
         }
     }
@@ -100,56 +93,35 @@ TEST_CASE("every dual function matches central differences", "[vm][dual]") {
         double lo, hi;
     };
     const Fn fns[] = {
-        {"sqr", [](const Dual<double>& x) { return sqr(x); }, [](double x) { return sqr(x); }, -3,
-         3},
-        {"sqrt", [](const Dual<double>& x) { return sqrt(x); },
-         [](double x) { return std::sqrt(x); }, 0.1, 9},
-        {"exp", [](const Dual<double>& x) { return exp(x); }, [](double x) { return std::exp(x); },
-         -5, 5},
-        {"log", [](const Dual<double>& x) { return log(x); }, [](double x) { return std::log(x); },
-         0.1, 9},
-        {"sin", [](const Dual<double>& x) { return sin(x); }, [](double x) { return std::sin(x); },
-         -9, 9},
-        {"cos", [](const Dual<double>& x) { return cos(x); }, [](double x) { return std::cos(x); },
-         -9, 9},
-        {"abs", [](const Dual<double>& x) { return abs(x); }, [](double x) { return std::fabs(x); },
-         -3, 3},
-        {"sign", [](const Dual<double>& x) { return sign(x); }, [](double x) { return sign(x); },
-         -3, 3},
+        {"sqr", [](const Dual<double>& x) { return sqr(x); }, [](double x) { return sqr(x); }, -3, 3},
+        {"sqrt", [](const Dual<double>& x) { return sqrt(x); }, [](double x) { return std::sqrt(x); }, 0.1, 9},
+        {"exp", [](const Dual<double>& x) { return exp(x); }, [](double x) { return std::exp(x); }, -5, 5},
+        {"log", [](const Dual<double>& x) { return log(x); }, [](double x) { return std::log(x); }, 0.1, 9},
+        {"sin", [](const Dual<double>& x) { return sin(x); }, [](double x) { return std::sin(x); }, -9, 9},
+        {"cos", [](const Dual<double>& x) { return cos(x); }, [](double x) { return std::cos(x); }, -9, 9},
+        {"abs", [](const Dual<double>& x) { return abs(x); }, [](double x) { return std::fabs(x); }, -3, 3},
+        {"sign", [](const Dual<double>& x) { return sign(x); }, [](double x) { return sign(x); }, -3, 3},
         {"neg", [](const Dual<double>& x) { return -x; }, [](double x) { return -x; }, -3, 3},
-        {"1/x", [](const Dual<double>& x) { return 1.0 / x; }, [](double x) { return 1.0 / x; },
-         0.2, 3},
-        {"x/3", [](const Dual<double>& x) { return x / 3.0; }, [](double x) { return x / 3.0; }, -3,
+        {"1/x", [](const Dual<double>& x) { return 1.0 / x; }, [](double x) { return 1.0 / x; }, 0.2, 3},
+        {"x/3", [](const Dual<double>& x) { return x / 3.0; }, [](double x) { return x / 3.0; }, -3, 3},
+        {"x/(x+2)", [](const Dual<double>& x) { return x / (x + 2.0); }, [](double x) { return x / (x + 2.0); }, -1, 3},
+        {"x*x*x", [](const Dual<double>& x) { return x * x * x; }, [](double x) { return x * x * x; }, -3, 3},
+        {"1-x", [](const Dual<double>& x) { return 1.0 - x; }, [](double x) { return 1.0 - x; }, -3, 3},
+        {"pow(x,2.5)", [](const Dual<double>& x) { return pow(x, 2.5); }, [](double x) { return std::pow(x, 2.5); },
+         0.1, 3},
+        {"pow(x,-3)", [](const Dual<double>& x) { return pow(x, -3.0); }, [](double x) { return std::pow(x, -3.0); },
+         -3, -0.2},
+        {"pow(2,x)", [](const Dual<double>& x) { return pow(2.0, x); }, [](double x) { return std::pow(2.0, x); }, -3,
          3},
-        {"x/(x+2)", [](const Dual<double>& x) { return x / (x + 2.0); },
-         [](double x) { return x / (x + 2.0); }, -1, 3},
-        {"x*x*x", [](const Dual<double>& x) { return x * x * x; },
-         [](double x) { return x * x * x; }, -3, 3},
-        {"1-x", [](const Dual<double>& x) { return 1.0 - x; }, [](double x) { return 1.0 - x; }, -3,
-         3},
-        {"pow(x,2.5)", [](const Dual<double>& x) { return pow(x, 2.5); },
-         [](double x) { return std::pow(x, 2.5); }, 0.1, 3},
-        {"pow(x,-3)", [](const Dual<double>& x) { return pow(x, -3.0); },
-         [](double x) { return std::pow(x, -3.0); }, -3, -0.2},
-        {"pow(2,x)", [](const Dual<double>& x) { return pow(2.0, x); },
-         [](double x) { return std::pow(2.0, x); }, -3, 3},
-        {"pow(x,x)", [](const Dual<double>& x) { return pow(x, x); },
-         [](double x) { return std::pow(x, x); }, 0.1, 3},
-        {"asin", [](const Dual<double>& x) { return asin(x); },
-         [](double x) { return std::asin(x); }, -0.95, 0.95},
-        {"acos", [](const Dual<double>& x) { return acos(x); },
-         [](double x) { return std::acos(x); }, -0.95, 0.95},
-        {"atan", [](const Dual<double>& x) { return atan(x); },
-         [](double x) { return std::atan(x); }, -5, 5},
+        {"pow(x,x)", [](const Dual<double>& x) { return pow(x, x); }, [](double x) { return std::pow(x, x); }, 0.1, 3},
+        {"asin", [](const Dual<double>& x) { return asin(x); }, [](double x) { return std::asin(x); }, -0.95, 0.95},
+        {"acos", [](const Dual<double>& x) { return acos(x); }, [](double x) { return std::acos(x); }, -0.95, 0.95},
+        {"atan", [](const Dual<double>& x) { return atan(x); }, [](double x) { return std::atan(x); }, -5, 5},
         // Steps between their jumps: derivative 0.
-        {"floor", [](const Dual<double>& x) { return floor(x); },
-         [](double x) { return std::floor(x); }, 1.01, 1.99},
-        {"ceil", [](const Dual<double>& x) { return ceil(x); },
-         [](double x) { return std::ceil(x); }, -1.99, -1.01},
-        {"round", [](const Dual<double>& x) { return round(x); },
-         [](double x) { return std::round(x); }, 2.51, 3.49},
-        {"Not", [](const Dual<double>& x) { return Not(x); }, [](double x) { return Not(x); }, 0.1,
-         3},
+        {"floor", [](const Dual<double>& x) { return floor(x); }, [](double x) { return std::floor(x); }, 1.01, 1.99},
+        {"ceil", [](const Dual<double>& x) { return ceil(x); }, [](double x) { return std::ceil(x); }, -1.99, -1.01},
+        {"round", [](const Dual<double>& x) { return round(x); }, [](double x) { return std::round(x); }, 2.51, 3.49},
+        {"Not", [](const Dual<double>& x) { return Not(x); }, [](double x) { return Not(x); }, 0.1, 3},
     };
     std::mt19937_64 rng(2);
     for (const Fn& f : fns) {
@@ -182,8 +154,7 @@ TEST_CASE("dual atan2, Min and Max match central differences in both operands", 
          [](double y, double x) { return std::fmin(y, x); }},
         {"Max", [](const Dual<double>& y, const Dual<double>& x) { return Max(y, x); },
          [](double y, double x) { return std::fmax(y, x); }},
-        {"Select", [](const Dual<double>& y, const Dual<double>& x) {
-             return Select(Less(y, x), y * x, sqr(x)); },
+        {"Select", [](const Dual<double>& y, const Dual<double>& x) { return Select(Less(y, x), y * x, sqr(x)); },
          [](double y, double x) { return y < x ? y * x : x * x; }},
     };
     std::mt19937_64 rng(4);
@@ -202,8 +173,7 @@ TEST_CASE("dual atan2, Min and Max match central differences in both operands", 
             double scale = 1 + std::fabs(r.v);
             if (r.v != f.scalar(y, x) || !Near(r.du, fy, scale) || !Near(r.dv, fx, scale)) {
                 if (failures++ < 4)
-                    WARN(f.name << " at " << y << ", " << x << ": " << ToString(r) << " vs " << fy
-                                << ", " << fx);
+                    WARN(f.name << " at " << y << ", " << x << ": " << ToString(r) << " vs " << fy << ", " << fx);
             }
         }
         INFO(f.name);
@@ -291,23 +261,19 @@ TEST_CASE("dual affine and dual interval contain dual double", "[vm][dual]") {
             double eu = std::ldexp(std::round(std::ldexp(unit(rng), 10)), -10);
             double ev = std::ldexp(std::round(std::ldexp(unit(rng), 10)), -10);
             if (p == 0) eu = ev = -1;
-            Dual<double> rd =
-                Shader(which, Dual<double>(uc + ur * eu, 1, 0), Dual<double>(vc + vr * ev, 0, 1));
+            Dual<double> rd = Shader(which, Dual<double>(uc + ur * eu, 1, 0), Dual<double>(vc + vr * ev, 0, 1));
             checked++;
             bool ok = Contains(ra.v, rd.v, eu, ev) && Contains(ra.du, rd.du, eu, ev) &&
                       Contains(ra.dv, rd.dv, eu, ev) && Contains(ri.v, rd.v, eu, ev) &&
                       Contains(ri.du, rd.du, eu, ev) && Contains(ri.dv, rd.dv, eu, ev) &&
-                      Contains(rr.v, rd.v, eu, ev) && Contains(rr.du, rd.du, eu, ev) &&
-                      Contains(rr.dv, rd.dv, eu, ev);
+                      Contains(rr.v, rd.v, eu, ev) && Contains(rr.du, rd.du, eu, ev) && Contains(rr.dv, rd.dv, eu, ev);
             if (!ok && failures++ < 4)
-                WARN("shader " << which << " eps " << eu << ", " << ev << "\n  double "
-                               << ToString(rd) << "\n  affine " << ToString(ra) << "\n  interval "
-                               << ToString(ri) << "\n  reduced " << ToString(rr));
+                WARN("shader " << which << " eps " << eu << ", " << ev << "\n  double " << ToString(rd) << "\n  affine "
+                               << ToString(ra) << "\n  interval " << ToString(ri) << "\n  reduced " << ToString(rr));
         }
     }
     if (std::getenv("AFFRAY_VERBOSE"))
-        std::printf("dual containment: %d points, %d of %d regions bounded\n", checked, bounded,
-                    Samples(20000) / 10);
+        std::printf("dual containment: %d points, %d of %d regions bounded\n", checked, bounded, Samples(20000) / 10);
     CHECK(failures == 0);
     CHECK(bounded > Samples(20000) / 40);
     CHECK(boundedReduced > Samples(20000) / 40);

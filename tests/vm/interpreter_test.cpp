@@ -25,9 +25,9 @@ TEST_CASE("containment: every shader's scalar P lies in its affine and interval 
 TEST_CASE("containment: stiff parameters of wave.sl", "[vm][containment]") {
     const std::string path = test::SourceDir() + "/shaders/wave.sl";
     const std::vector<std::vector<compiler::ParamOverride>> cases = {
-        {{"frequency", {1000}}},             // many periods per region
-        {{"Km", {1e3}}},                     // huge amplitude
-        {{"decay", {200}}, {"Km", {5}}},     // steep decay
+        {{"frequency", {1000}}},               // many periods per region
+        {{"Km", {1e3}}},                       // huge amplitude
+        {{"decay", {200}}, {"Km", {5}}},       // steep decay
         {{"centerS", {0}}, {"centerT", {0}}},  // the sqrt's zero at a corner of the domain
     };
     for (const auto& params : cases) {
@@ -72,18 +72,18 @@ TEMPLATE_TEST_CASE("every opcode runs under every number type", "[vm]", double, 
         })");
     std::vector<vm::Op> seen;
     for (const vm::Instr& in : s.bound.code) seen.push_back(in.op);
-    for (vm::Op op : {vm::Op::Neg, vm::Op::AddRR, vm::Op::AddRK, vm::Op::SubRR, vm::Op::SubRK, vm::Op::SubKR,
-                      vm::Op::MulRR, vm::Op::MulRK, vm::Op::DivRR, vm::Op::DivRK, vm::Op::DivKR, vm::Op::Sqr,
-                      vm::Op::Sqrt, vm::Op::Exp, vm::Op::Log, vm::Op::Sin, vm::Op::Cos, vm::Op::Abs,
-                      vm::Op::Sign, vm::Op::PowRR, vm::Op::PowRK, vm::Op::DerivU, vm::Op::DerivV})
+    for (vm::Op op : {vm::Op::Neg,   vm::Op::AddRR, vm::Op::AddRK, vm::Op::SubRR,  vm::Op::SubRK, vm::Op::SubKR,
+                      vm::Op::MulRR, vm::Op::MulRK, vm::Op::DivRR, vm::Op::DivRK,  vm::Op::DivKR, vm::Op::Sqr,
+                      vm::Op::Sqrt,  vm::Op::Exp,   vm::Op::Log,   vm::Op::Sin,    vm::Op::Cos,   vm::Op::Abs,
+                      vm::Op::Sign,  vm::Op::PowRR, vm::Op::PowRK, vm::Op::DerivU, vm::Op::DerivV})
         CHECK(std::find(seen.begin(), seen.end(), op) != seen.end());
 
     using vm::RangeOf;
     const double u = 0.3, v = 0.6;
     double a = u + 1, b = v + 2, k = 3;
     double expected = -a + (a + b) + (a + k) + (a - b) + (a - k) + (k - a) + a * b + a * k + a / b + a / k + k / a +
-                      a * a + std::sqrt(a) + std::exp(a) + std::log(a) + std::sin(a) + std::cos(a) +
-                      std::abs(a - 2) + 1.0 + std::pow(a, b) + std::pow(a, 3.5) + b + a;
+                      a * a + std::sqrt(a) + std::exp(a) + std::log(a) + std::sin(a) + std::cos(a) + std::abs(a - 2) +
+                      1.0 + std::pow(a, b) + std::pow(a, 3.5) + b + a;
     auto p = test::EvalOnSquare<TestType>(s.bound, u, u, v, v);
     if constexpr (std::is_same_v<TestType, double>) {
         // Without derivatives Du and Dv are unknown: NaN, never a silently wrong number.
@@ -145,8 +145,8 @@ TEST_CASE("floor straddling an integer is split into its two cases", "[vm][inter
             CHECK(z.contains(test::PointOnSquare(s.bound, u, 0.55).z));
     }
     // Two straddled boundaries (u and v): four cases, all joined.
-    compiler::CompiledShader two = test::CompileOrThrow(
-        "displacement t() {\n  P = point(0, 0, floor(u * 4) + 10 * floor(v * 4));\n}\n");
+    compiler::CompiledShader two =
+        test::CompileOrThrow("displacement t() {\n  P = point(0, 0, floor(u * 4) + 10 * floor(v * 4));\n}\n");
     vm::Interval z = test::EvalOnSquare<vm::Affine>(two.bound, u0, u1, u0, u1).z.range();
     CHECK(z.lo() == 0);
     CHECK(z.hi() == 11);

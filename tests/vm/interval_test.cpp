@@ -11,8 +11,8 @@
 #include <random>
 #include <sstream>
 
-#include "vm/number.h"
 #include "../test_random.h"
+#include "vm/number.h"
 
 using namespace affray::vm;
 using affray::test::Rng;
@@ -33,18 +33,12 @@ struct Gen {
         double m = magnitude(e10lo, e10hi);
         double a = uniform(-m, m), w = m * std::pow(10.0, uniform(-8, 0.3));
         switch (integer(0, 7)) {
-            case 0:
-                return Interval(0.0, w);  // touching 0 from above
-            case 1:
-                return Interval(-w, 0.0);  // touching 0 from below
-            case 2:
-                return Interval(-w, w * uniform(0.1, 2));  // across 0
-            case 3:
-                return Interval(a);  // a point
-            case 4:
-                return Interval(std::fabs(a), std::fabs(a) + w);
-            default:
-                return Interval(a, a + w);
+            case 0: return Interval(0.0, w);                   // touching 0 from above
+            case 1: return Interval(-w, 0.0);                  // touching 0 from below
+            case 2: return Interval(-w, w * uniform(0.1, 2));  // across 0
+            case 3: return Interval(a);                        // a point
+            case 4: return Interval(std::fabs(a), std::fabs(a) + w);
+            default: return Interval(a, a + w);
         }
     }
     // Points of x chosen on purpose, then random ones.
@@ -90,8 +84,8 @@ void CheckUnary(Tally& t, const Interval& x, F f, bool checkTight, Gen& g) {
     if (r.lo() < lo - slack || r.hi() > hi + slack) {
         t.loose++;
         if (t.loose <= 4)
-            t.first << "loose: " << r.toString() << " vs samples [" << ToString(lo) << ", " << ToString(hi)
-                    << "] over " << x.toString() << "\n";
+            t.first << "loose: " << r.toString() << " vs samples [" << ToString(lo) << ", " << ToString(hi) << "] over "
+                    << x.toString() << "\n";
     }
 }
 
@@ -104,16 +98,15 @@ void CheckBinary(Tally& t, const Interval& x, const Interval& y, F f, Gen& g) {
             Contain(
                 t,
                 [&] {
-                    return "f(" + ToString(p) + ", " + ToString(q) + ") over " + x.toString() + ", " +
-                           y.toString();
+                    return "f(" + ToString(p) + ", " + ToString(q) + ") over " + x.toString() + ", " + y.toString();
                 },
                 f(p, q), r);
 }
 
 void Report(const char* name, const Tally& t) {
     if (std::getenv("AFFRAY_VERBOSE"))
-        std::printf("%-12s %8d points %6d bounded  loose %d  failures %d\n", name, t.samples,
-                    t.bounded, t.loose, t.failures);
+        std::printf("%-12s %8d points %6d bounded  loose %d  failures %d\n", name, t.samples, t.bounded, t.loose,
+                    t.failures);
     INFO(name << ": " << t.samples << " points\n" << t.first.str());
     CHECK(t.failures == 0);
     CHECK(t.loose == 0);
@@ -163,8 +156,7 @@ TEST_CASE("interval functions contain the scalar result and are tight", "[vm][in
         CheckUnary(
             ex, small, [](auto a) { return exp(a); }, true, g);
         CheckUnary(
-            ex, small + 700.0 + 10.0 * (i % 2) * g.uniform(0, 1), [](auto a) { return exp(a); },
-            true, g);
+            ex, small + 700.0 + 10.0 * (i % 2) * g.uniform(0, 1), [](auto a) { return exp(a); }, true, g);
         CheckUnary(
             lg, x, [](auto a) { return log(a); }, true, g);
         // Points include the extrema of sin and cos only on narrower ranges.
@@ -187,8 +179,7 @@ TEST_CASE("interval functions contain the scalar result and are tight", "[vm][in
     Report("sign", sg);
 }
 
-TEST_CASE("interval steps, inverse trigonometry, min/max and logic contain the scalar result",
-          "[vm][interval]") {
+TEST_CASE("interval steps, inverse trigonometry, min/max and logic contain the scalar result", "[vm][interval]") {
     using std::floor, std::ceil, std::round, std::asin, std::acos, std::atan, std::atan2;
     const int n = Samples(20000) / 2;
     Gen g(6);
@@ -333,12 +324,11 @@ TEST_CASE("interval Unbounded comes from every NaN/inf source and propagates", "
     CHECK(U.contains(std::nan("")));
     CHECK_FALSE(x.contains(inf));
     CHECK_FALSE(x.contains(std::nan("")));
-    std::vector<Interval> results = {
-        U + x,      x + U,     U - x,   x - U,     U * x,     x * U,
-        U / x,      x / U,     -U,      U + 1.0,   1.0 - U,   U * 0.0,
-        2.0 / U,    sqr(U),    sqrt(U), exp(U),    log(U),    sin(U),
-        cos(U),     abs(U),    sign(U), pow(U, x), pow(x, U), pow(U, Interval(0.0)),
-        Hull(U, x), Hull(x, U)};
+    std::vector<Interval> results = {U + x,      x + U,     U - x,   x - U,     U * x,     x * U,
+                                     U / x,      x / U,     -U,      U + 1.0,   1.0 - U,   U * 0.0,
+                                     2.0 / U,    sqr(U),    sqrt(U), exp(U),    log(U),    sin(U),
+                                     cos(U),     abs(U),    sign(U), pow(U, x), pow(x, U), pow(U, Interval(0.0)),
+                                     Hull(U, x), Hull(x, U)};
     for (size_t i = 0; i < results.size(); ++i) {
         INFO("result " << i);
         CHECK(results[i].isUnbounded());

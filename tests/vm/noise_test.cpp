@@ -4,16 +4,16 @@
 // Affine, ReducedAffine and the Duals of each contain the double (and Dual<double>) result at every
 // point of random regions from one cell to many, never exceed [0, 1], and are tight inside one
 // cell. AFFRAY_SAMPLES=N raises the number of random regions.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
 #include <random>
 #include <sstream>
 #include <vector>
 
-#include "vm/noise.h"
 #include "../test_random.h"
+#include "vm/noise.h"
 
 using namespace affray::vm;
 using affray::test::Rng;
@@ -47,8 +47,8 @@ TEST_CASE("noise values lie between 0 and 1 with mean 0.5 and the measured sprea
                 hi = std::max(hi, x);
             }
             double mean = sum / n, sd = std::sqrt(sum2 / n - mean * mean);
-            INFO("dims " << dims << " seed " << seed << ": range [" << lo << ", " << hi << "] mean "
-                         << mean << " sd " << sd);
+            INFO("dims " << dims << " seed " << seed << ": range [" << lo << ", " << hi << "] mean " << mean << " sd "
+                         << sd);
             CHECK(lo >= 0);
             CHECK(hi <= 1);
             CHECK(std::fabs(mean - 0.5) < 0.05);
@@ -106,8 +106,8 @@ TEST_CASE("noise Dual<double> derivatives match central differences", "[vm][nois
                 return Noise(q, dims, seed);
             };
             double du = (at(a, h) - at(a, -h)) / (2 * h), dv = (at(b, h) - at(b, -h)) / (2 * h);
-            INFO("dims " << dims << " seed " << seed << ": du " << r.du << " vs " << du << ", dv "
-                         << r.dv << " vs " << dv);
+            INFO("dims " << dims << " seed " << seed << ": du " << r.du << " vs " << du << ", dv " << r.dv << " vs "
+                         << dv);
             // Truncation h^2/6 |f'''| (|f'''| < 100) plus rounding 1e-16/h: far below 1e-6.
             CHECK(std::fabs(r.du - du) < 1e-6);
             CHECK(std::fabs(r.dv - dv) < 1e-6);
@@ -214,14 +214,10 @@ TEST_CASE("noise is deterministic: golden values", "[vm][noise]") {
         double noise, cell;
     };
     const Golden golden[] = {
-        {1, 0, 0.80530849999999998, 0.24525582159337656},
-        {1, 2, 0.15759499999999999, 0.38285963728049566},
-        {2, 0, 0.40826709537922634, 0.85472535024240559},
-        {2, 1, 0.30995510968422246, 0.98265758727797059},
-        {3, 0, 0.68182156792075888, 0.77658714197504874},
-        {3, 1, 0.68532820796428573, 0.58977641520064694},
-        {3, 2, 0.59763677663950898, 0.86439763607975961},
-        {4, 0, 0.57978204214097229, 0.5107686282369418},
+        {1, 0, 0.80530849999999998, 0.24525582159337656}, {1, 2, 0.15759499999999999, 0.38285963728049566},
+        {2, 0, 0.40826709537922634, 0.85472535024240559}, {2, 1, 0.30995510968422246, 0.98265758727797059},
+        {3, 0, 0.68182156792075888, 0.77658714197504874}, {3, 1, 0.68532820796428573, 0.58977641520064694},
+        {3, 2, 0.59763677663950898, 0.86439763607975961}, {4, 0, 0.57978204214097229, 0.5107686282369418},
         {4, 2, 0.5258665332630208, 0.26673817282877366},
     };
     for (const Golden& g : golden) {
@@ -367,8 +363,7 @@ TEST_CASE("noise scale: computer-assisted proof that unclamped noise lies betwee
         REQUIRE(set.dims == dims);
         REQUIRE(HasSymmetries(set));
         // The fallback's component range covers the set.
-        for (int k = 0; k < set.count * dims; ++k)
-            CHECK(std::fabs(set.components[k]) <= set.componentBound);
+        for (int k = 0; k < set.count * dims; ++k) CHECK(std::fabs(set.components[k]) <= set.componentBound);
         ScaleProof proof{set, DivDown(0.5, NoiseScale(dims))};
         double lo[4] = {0, 0, 0, 0}, hi[4] = {0.5, 0.5, 0.5, 0.5};
         INFO("dims " << dims << ": proving F <= " << proof.bound);
@@ -441,8 +436,7 @@ bool Contains(const ReducedAffine& bound, double x, double eu, double ev) {
 }
 template <class T>
 bool Contains(const Dual<T>& bound, const Dual<double>& x, double eu, double ev) {
-    return Contains(bound.v, x.v, eu, ev) && Contains(bound.du, x.du, eu, ev) &&
-           Contains(bound.dv, x.dv, eu, ev);
+    return Contains(bound.v, x.v, eu, ev) && Contains(bound.du, x.du, eu, ev) && Contains(bound.dv, x.dv, eu, ev);
 }
 template <class T>
 bool Contains(const T& bound, const Dual<double>& x, double eu, double ev) {
@@ -476,12 +470,9 @@ template <class T>
 T Evaluate(Function f, const T* p, const T* period, int dims, uint32_t seed,
            NoiseBoundMethod method = NoiseBoundMethod::Auto) {
     switch (f) {
-        case Function::Noise:
-            return noise_detail::GradientNoise(p, static_cast<const T*>(nullptr), dims, seed, method);
-        case Function::CellNoise:
-            return CellNoise(p, dims, seed);
-        default:
-            return noise_detail::GradientNoise(p, period, dims, seed, method);
+        case Function::Noise: return noise_detail::GradientNoise(p, static_cast<const T*>(nullptr), dims, seed, method);
+        case Function::CellNoise: return CellNoise(p, dims, seed);
+        default: return noise_detail::GradientNoise(p, period, dims, seed, method);
     }
 }
 
@@ -494,9 +485,8 @@ struct ContainmentReport {
 /// Evaluates f over a region in T and at random points in Dual<double>: every point's value (and,
 /// for dual T, derivatives) must lie in the bound, and the bound's range in [0, 1].
 template <class T>
-void CheckRegion(ContainmentReport& rep, Rng& rng, Function f, int dims, uint32_t seed,
-                 double width, NoiseBoundMethod method = NoiseBoundMethod::Auto,
-                 Placement where = Placement::Anywhere) {
+void CheckRegion(ContainmentReport& rep, Rng& rng, Function f, int dims, uint32_t seed, double width,
+                 NoiseBoundMethod method = NoiseBoundMethod::Auto, Placement where = Placement::Anywhere) {
     NoiseRegion g = RandomRegion(rng, dims, width, where);
     Affine::BeginEvaluation();
     T u, v;
@@ -508,8 +498,7 @@ void CheckRegion(ContainmentReport& rep, Rng& rng, Function f, int dims, uint32_
         Interval r = RangeOf(ValueOf(p[i]));
         cells *= std::floor(r.hi()) - std::floor(r.lo()) + 1;
         // A varying period: a range of width up to 1 around the integer period.
-        period[i] = f == Function::PNoiseVaryingPeriod ? g.period[i] + 0.25 * (u - g.uc) / g.r
-                                                       : T(g.period[i]);
+        period[i] = f == Function::PNoiseVaryingPeriod ? g.period[i] + 0.25 * (u - g.uc) / g.r : T(g.period[i]);
     }
     rep.regions++;
     (cells == 1 ? rep.oneCell : cells <= kNoiseCellCap ? rep.fewCells : rep.manyCells)++;
@@ -523,15 +512,14 @@ void CheckRegion(ContainmentReport& rep, Rng& rng, Function f, int dims, uint32_
         Dual<double> pd[4], periodd[4];
         for (int i = 0; i < dims; ++i) {
             pd[i] = g.coord[i](ud, vd);
-            periodd[i] = f == Function::PNoiseVaryingPeriod ? g.period[i] + 0.25 * (ud - g.uc) / g.r
-                                                            : Dual<double>(g.period[i]);
+            periodd[i] =
+                f == Function::PNoiseVaryingPeriod ? g.period[i] + 0.25 * (ud - g.uc) / g.r : Dual<double>(g.period[i]);
         }
         Dual<double> x = Evaluate(f, pd, periodd, dims, seed);
         rep.points++;
         if (!Contains(bound, x, eu, ev) && rep.failures++ < 4)
-            rep.first << "dims " << dims << " seed " << seed << " width " << width << " cells "
-                      << cells << " at (" << eu << ", " << ev << "): " << ToString(x)
-                      << " not in " << ToString(bound) << "\n";
+            rep.first << "dims " << dims << " seed " << seed << " width " << width << " cells " << cells << " at ("
+                      << eu << ", " << ev << "): " << ToString(x) << " not in " << ToString(bound) << "\n";
     }
 }
 
@@ -539,18 +527,15 @@ template <class T>
 void CheckContainment(const char* name, int regionsPerWidth) {
     // One cell, a few cells, and (from ~1.5 for d = 4 to 16 for d = 1) past kNoiseCellCap.
     const double widths[] = {1e-9, 1e-6, 1e-3, 0.05, 0.3, 0.9, 1.5, 3, 10, 40};
-    for (Function f : {Function::Noise, Function::PNoise, Function::PNoiseVaryingPeriod,
-                       Function::CellNoise}) {
+    for (Function f : {Function::Noise, Function::PNoise, Function::PNoiseVaryingPeriod, Function::CellNoise}) {
         for (int dims = 1; dims <= 4; ++dims) {
             ContainmentReport rep;
             Rng rng(1000 * dims + static_cast<int>(f));
             for (double width : widths)
-                for (int k = 0; k < regionsPerWidth; ++k)
-                    CheckRegion<T>(rep, rng, f, dims, k % 3, width);
-            INFO(name << " function " << static_cast<int>(f) << " dims " << dims << ": "
-                      << rep.regions << " regions (" << rep.oneCell << " in one cell, "
-                      << rep.fewCells << " in 2.." << kNoiseCellCap << ", " << rep.manyCells
-                      << " in more), " << rep.points << " points\n"
+                for (int k = 0; k < regionsPerWidth; ++k) CheckRegion<T>(rep, rng, f, dims, k % 3, width);
+            INFO(name << " function " << static_cast<int>(f) << " dims " << dims << ": " << rep.regions << " regions ("
+                      << rep.oneCell << " in one cell, " << rep.fewCells << " in 2.." << kNoiseCellCap << ", "
+                      << rep.manyCells << " in more), " << rep.points << " points\n"
                       << rep.first.str());
             CHECK(rep.failures == 0);
             CHECK(rep.oneCell > 0);
@@ -575,8 +560,7 @@ TEST_CASE("noise bounds contain the Dual<double> value and derivatives: Dual<Int
 TEST_CASE("noise bounds contain the double value: ReducedAffine", "[vm][noise][reduced]") {
     CheckContainment<ReducedAffine>("reduced", Samples(40));
 }
-TEST_CASE("noise bounds contain the Dual<double> value and derivatives: Dual<ReducedAffine>",
-          "[vm][noise][reduced]") {
+TEST_CASE("noise bounds contain the Dual<double> value and derivatives: Dual<ReducedAffine>", "[vm][noise][reduced]") {
     CheckContainment<Dual<ReducedAffine>>("dual-reduced", Samples(25));
 }
 
@@ -592,8 +576,7 @@ TEST_CASE("noise bounds contain the double value far from the origin, near 0 and
         using T = decltype(tag);
         Rng rng(7000 + 100 * dims + 10 * static_cast<int>(f) + static_cast<int>(where) + 1000 * check++);
         for (double width : widths)
-            for (int k = 0; k < regions; ++k)
-                CheckRegion<T>(rep, rng, f, dims, k % 3, width, method, where);
+            for (int k = 0; k < regions; ++k) CheckRegion<T>(rep, rng, f, dims, k % 3, width, method, where);
     };
     for (Placement where : {Placement::Far, Placement::StraddlingFace, Placement::NearZero}) {
         for (Function f : {Function::Noise, Function::PNoise, Function::CellNoise}) {
@@ -608,9 +591,8 @@ TEST_CASE("noise bounds contain the double value far from the origin, near 0 and
             }
         }
     }
-    INFO(rep.regions << " regions (" << rep.oneCell << " in one cell, " << rep.fewCells << " in 2.."
-                     << kNoiseCellCap << ", " << rep.manyCells << " in more), " << rep.points
-                     << " points\n"
+    INFO(rep.regions << " regions (" << rep.oneCell << " in one cell, " << rep.fewCells << " in 2.." << kNoiseCellCap
+                     << ", " << rep.manyCells << " in more), " << rep.points << " points\n"
                      << rep.first.str());
     CHECK(rep.failures == 0);
 }
@@ -646,8 +628,13 @@ TEST_CASE("noise LocalForm operations contain the double results (aavalid)", "[v
         LocalForm::NextFresh() = used;
         const double k = rng.chance(0.3) ? rng.integer(-15, 15) : rng.uniform(-16, 16);
         const int op = rng.integer(0, 6);
-        const LocalForm r = op == 0 ? x + y : op == 1 ? x - y : op == 2 ? x * y : op == 3 ? x * k
-                          : op == 4 ? x + k : op == 5 ? -x : k * x;
+        const LocalForm r = op == 0   ? x + y
+                            : op == 1 ? x - y
+                            : op == 2 ? x * y
+                            : op == 3 ? x * k
+                            : op == 4 ? x + k
+                            : op == 5 ? -x
+                                      : k * x;
         for (int trial = 0; trial < 8; ++trial) {
             long double sigma[LocalForm::kSlots];
             for (long double& s : sigma) s = rng.eps();
@@ -667,8 +654,13 @@ TEST_CASE("noise LocalForm operations contain the double results (aavalid)", "[v
                 ++skipped;
                 continue;
             }
-            const double scalar = op == 0 ? a + b : op == 1 ? a - b : op == 2 ? a * b : op == 3 ? a * k
-                                : op == 4 ? a + k : op == 5 ? -a : k * a;
+            const double scalar = op == 0   ? a + b
+                                  : op == 1 ? a - b
+                                  : op == 2 ? a * b
+                                  : op == 3 ? a * k
+                                  : op == 4 ? a + k
+                                  : op == 5 ? -a
+                                            : k * a;
             long double mid = r.c0, rad = r.e;
             for (int j = 0; j < r.n; ++j) {
                 if (j < used)
@@ -679,8 +671,7 @@ TEST_CASE("noise LocalForm operations contain the double results (aavalid)", "[v
             tally.samples++;
             if (!(std::fabs(static_cast<long double>(scalar) - mid) <= rad))
                 tally.fail("op " + std::to_string(op) + ": " + ToString(scalar) + " outside " +
-                           ToString(static_cast<double>(mid)) + " +- " +
-                           ToString(static_cast<double>(rad)));
+                           ToString(static_cast<double>(mid)) + " +- " + ToString(static_cast<double>(rad)));
         }
     }
     INFO(tally.samples << " samples, " << skipped << " skipped\n" << tally.first.str());
@@ -733,9 +724,8 @@ TEST_CASE("noise bounds are tight inside one cell", "[vm][noise]") {
             sumLocalRatio += wa / wap;
             sumIntervalLocalRatio += wil / wi;
         }
-        INFO("dims " << dims << ": worst affine width " << worstAffine << ", interval (local) "
-                     << worstInterval << ", mean affine/interval " << sumRatio / n
-                     << ", affine local/polynomial " << sumLocalRatio / n
+        INFO("dims " << dims << ": worst affine width " << worstAffine << ", interval (local) " << worstInterval
+                     << ", mean affine/interval " << sumRatio / n << ", affine local/polynomial " << sumLocalRatio / n
                      << ", interval local/polynomial " << sumIntervalLocalRatio / n);
         CHECK(worstAffine < 4e-3);
         CHECK(worstInterval < 4e-3);

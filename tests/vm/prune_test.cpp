@@ -118,8 +118,8 @@ vm::Program PruneAndCheck(const std::string& name, const vm::Program& full, cons
 /// From the whole domain down, each level a random quarter-ish of the last, pruning the pruned
 /// program again at each level (as the intersector does); checks each against the full program.
 template <class N>
-void CheckShader(const std::string& name, const vm::Program& full, const std::vector<const char*>& outputs,
-                 int chains, uint64_t seed) {
+void CheckShader(const std::string& name, const vm::Program& full, const std::vector<const char*>& outputs, int chains,
+                 uint64_t seed) {
     Rng rng(seed);
     test::Tally tally;
     std::vector<std::pair<size_t, size_t>> sizes;  // (depth, instructions) for the verbose report
@@ -219,8 +219,7 @@ TEST_CASE("a decided select drops its dead arm and its condition", "[vm][prune]"
 
 TEST_CASE("a min or max of strictly ordered operands gives that operand", "[vm][prune]") {
     // z = max(min(u, v), 0.75): over u in [0, 0.1], v in [0.5, 0.6], min is u and max is 0.75.
-    const vm::Program p =
-        Hand({I(vm::Op::MinRR, 2, 0, 1), I(vm::Op::MaxRK, 2, 2, 0)}, {0.75}, 3, 2);
+    const vm::Program p = Hand({I(vm::Op::MinRR, 2, 0, 1), I(vm::Op::MaxRK, 2, 2, 0)}, {0.75}, 3, 2);
     vm::Decisions d = Record<vm::Affine>(p, {0, 0.1, 0.5, 0.6});
     CHECK(d.operandAt(0) == 1);
     double k = 0;
@@ -271,8 +270,8 @@ TEST_CASE("floor splitting: a choice decided differently by the two cases is und
         CHECK_FALSE(d.constantAt(1, &k));  // the floor is 0 in one case, 1 in the other
     }
     const vm::Program pruned = PruneFor(p, straddling);
-    CHECK(Ops(pruned) == std::vector<vm::Op>{vm::Op::MulRK, vm::Op::Floor, vm::Op::EqRK, vm::Op::Select,
-                                             vm::Op::Ext, vm::Op::AddRR});
+    CHECK(Ops(pruned) ==
+          std::vector<vm::Op>{vm::Op::MulRK, vm::Op::Floor, vm::Op::EqRK, vm::Op::Select, vm::Op::Ext, vm::Op::AddRR});
 }
 
 TEST_CASE("an unbounded condition decides nothing", "[vm][prune]") {
@@ -287,8 +286,8 @@ TEST_CASE("an unbounded condition decides nothing", "[vm][prune]") {
 }
 
 TEST_CASE("recording is off by default and changes no result", "[vm][prune]") {
-    compiler::CompiledShader s = test::CompileOrThrow(
-        "displacement t() { float h = u < 0.5 ? sin(v * 9) : min(v, u * u); P += N * h; }");
+    compiler::CompiledShader s =
+        test::CompileOrThrow("displacement t() { float h = u < 0.5 ? sin(v * 9) : min(v, u * u); P += N * h; }");
     vm::Interpreter<vm::Affine> plain(s.bound), recording(s.bound);
     recording.SetRecording(true);
     for (double u0 : {0.1, 0.45, 0.7}) {

@@ -55,8 +55,8 @@ double WidthRatio(const Interval& num, const Interval& den) {
 }
 
 // Checks the results of one sample; `exact` says whether the operands are u or v themselves.
-void CheckResult(Report& rep, const Region& g, double rd, const ReducedAffine& rr, const Affine& ra,
-                 const Interval& ri, bool exact) {
+void CheckResult(Report& rep, const Region& g, double rd, const ReducedAffine& rr, const Affine& ra, const Interval& ri,
+                 bool exact) {
     rep.samples++;
     if (!std::isfinite(rd)) {
         if (!rr.isUnbounded()) rep.fail(Describe("NaN/inf not Unbounded", rd, rr, ra, ri));
@@ -85,8 +85,7 @@ struct Operands {
 ReducedAffine U(const Region& g) { return ReducedAffine::FromSymbol(g.uc, g.ur, ReducedAffine::kSymbolU); }
 ReducedAffine V(const Region& g) { return ReducedAffine::FromSymbol(g.vc, g.vr, ReducedAffine::kSymbolV); }
 
-Operands MakeOperands(Rng& rng, const RegionConfig& gc, const RecipeConfig& xc, const RecipeConfig& yc,
-                      Report& rep) {
+Operands MakeOperands(Rng& rng, const RegionConfig& gc, const RecipeConfig& xc, const RecipeConfig& yc, Report& rep) {
     Operands o;
     Affine::BeginEvaluation();
     o.g = RandomRegion(rng, gc);
@@ -114,8 +113,7 @@ Operands MakeOperands(Rng& rng, const RegionConfig& gc, const RecipeConfig& xc, 
 }
 
 template <class F>
-Report CheckOp(uint64_t seed, int n, const RegionConfig& gc, const RecipeConfig& xc, const RecipeConfig& yc,
-               F op) {
+Report CheckOp(uint64_t seed, int n, const RegionConfig& gc, const RecipeConfig& xc, const RecipeConfig& yc, F op) {
     Rng rng(seed);
     Report rep;
     for (int s = 0; s < n; ++s) {
@@ -132,12 +130,11 @@ Report CheckOp(uint64_t seed, int n, const RegionConfig& gc, const RecipeConfig&
 // operands; the ratio to the interval result is always at most 1 (plus rounding).
 void Expect(const char* name, const Report& rep, double minBoundedFraction, double maxToAffine = 1.01) {
     if (std::getenv("AFFRAY_VERBOSE"))
-        std::printf("%-20s %7d samples %7d finite %7d bounded  worst /interval %.4g  /affine %.4g  failures %d\n",
-                    name, rep.samples, rep.scalarFinite, rep.bounded, rep.worstToInterval, rep.worstToAffine,
-                    rep.failures);
+        std::printf("%-20s %7d samples %7d finite %7d bounded  worst /interval %.4g  /affine %.4g  failures %d\n", name,
+                    rep.samples, rep.scalarFinite, rep.bounded, rep.worstToInterval, rep.worstToAffine, rep.failures);
     INFO(name << ": " << rep.samples << " samples, " << rep.bounded << " bounded of " << rep.scalarFinite
-              << " finite, worst width ratio to interval " << rep.worstToInterval << ", to affine "
-              << rep.worstToAffine << "\n"
+              << " finite, worst width ratio to interval " << rep.worstToInterval << ", to affine " << rep.worstToAffine
+              << "\n"
               << rep.first.str());
     CHECK(rep.failures == 0);
     CHECK(rep.samples > 0);
@@ -225,20 +222,26 @@ TEST_CASE("reduced affine pow contains the scalar result", "[vm][reduced]") {
         INFO("exponent " << p);
         // Integer powers square: with one error term per value, a power of u alone keeps less
         // correlation than Affine's fresh symbols do.
-        Expect("pow(x, p)", CheckOp(40, n, g, r, r, [p](const auto& x, const auto&) {
-                   using std::pow;
-                   return pow(x, std::decay_t<decltype(x)>(p));
-               }), 0.05, 1e300);
+        Expect("pow(x, p)",
+               CheckOp(40, n, g, r, r,
+                       [p](const auto& x, const auto&) {
+                           using std::pow;
+                           return pow(x, std::decay_t<decltype(x)>(p));
+                       }),
+               0.05, 1e300);
     }
     RecipeConfig negative = r;
     negative.kindHi = 2;
     negative.shifts = {-4.0, -0.5};
     for (double p : {2.0, 3.0, -3.0, 4.0}) {
         INFO("negative base, exponent " << p);
-        Expect("pow(-x, n)", CheckOp(41, n, g, negative, r, [p](const auto& x, const auto&) {
-                   using std::pow;
-                   return pow(x, std::decay_t<decltype(x)>(p));
-               }), 0.2, 1e300);
+        Expect("pow(-x, n)",
+               CheckOp(41, n, g, negative, r,
+                       [p](const auto& x, const auto&) {
+                           using std::pow;
+                           return pow(x, std::decay_t<decltype(x)>(p));
+                       }),
+               0.2, 1e300);
     }
     RecipeConfig exponent = r;
     exponent.scale = 0.25;
@@ -403,8 +406,8 @@ TEST_CASE("reduced affine Unbounded comes from every NaN/inf source and propagat
         CHECK(results[i].isUnbounded());
     }
     // Comparisons and logic on Unbounded are undecided, never Unbounded (NaN compares false).
-    for (const ReducedAffine& c : {Less(U, u), LessEq(u, U), Equal(U, U), NotEqual(U, u), And(U, u), Or(u, U),
-                                   Not(U)}) {
+    for (const ReducedAffine& c :
+         {Less(U, u), LessEq(u, U), Equal(U, U), NotEqual(U, u), And(U, u), Or(u, U), Not(U)}) {
         CHECK(TruthOf(c) == Truth::Unknown);
         CHECK(c.range().lo() == 0);
         CHECK(c.range().hi() == 1);

@@ -55,9 +55,9 @@ void CheckContainment(const std::string& name, const vm::Program& program, int r
             for (int i = 0; i < 3; ++i)
                 for (size_t t = 0; t < sizeof...(Bounds); ++t)
                     if (!bounds[t][i].contains(p[i]) && failures++ < 5)
-                        UNSCOPED_INFO(name << ": P[" << i << "] = " << p[i] << " at (" << u << ", " << v
-                                           << ") region [" << u0 << "," << u1 << "]x[" << v0 << "," << v1
-                                           << "] not in " << names[t] << " " << bounds[t][i].toString());
+                        UNSCOPED_INFO(name << ": P[" << i << "] = " << p[i] << " at (" << u << ", " << v << ") region ["
+                                           << u0 << "," << u1 << "]x[" << v0 << "," << v1 << "] not in " << names[t]
+                                           << " " << bounds[t][i].toString());
         }
     }
     CHECK(failures == 0);
