@@ -22,8 +22,8 @@
 
 #include "bench/evals_per_second.h"
 #include "compiler/compile.h"
+#include "renderer/geometry/surface.h"
 #include "renderer/render.h"
-#include "renderer/surface.h"
 
 namespace affray::bench {
 

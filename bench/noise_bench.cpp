@@ -1,4 +1,4 @@
-// bench/noise_bench.cpp: vm/noise.h's Noise in every number type: evaluations per second at a
+// bench/noise_bench.cpp: vm/numbers/noise.h's Noise in every number type: evaluations per second at a
 // point (double, Dual<double>) and over regions, and, for Interval and Affine, the two ways of
 // bounding a region side by side: NoiseBoundMethod::Polynomial (the cell polynomial evaluated in
 // T arithmetic: Interval's default, and Affine's before LocalForm) against Local (the cell
@@ -16,7 +16,7 @@
 
 #include "bench/evals_per_second.h"
 
-#include "vm/noise.h"
+#include "vm/numbers/noise.h"
 
 using namespace affray::vm;
 

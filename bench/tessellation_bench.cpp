@@ -28,10 +28,10 @@
 #include <thread>
 #include <vector>
 
-#include "renderer/camera.h"
-#include "renderer/exr_writer.h"
+#include "renderer/geometry/camera.h"
+#include "renderer/geometry/surface.h"
+#include "renderer/image/exr_writer.h"
 #include "renderer/render.h"
-#include "renderer/surface.h"
 #include "rib/rib.h"
 
 using namespace affray;

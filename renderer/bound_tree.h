@@ -28,13 +28,13 @@
 
 #include <glm/glm.hpp>
 
-#include "renderer/surface.h"
+#include "renderer/geometry/surface.h"
 #include "vm/program.h"
 
 namespace affray::renderer {
 
 /// The arithmetic that bounds regions: full affine forms (every symbol kept, up to the capacity),
-/// reduced affine forms (centre, eps_u, eps_v and one error term: vm/reduced_affine.h) or intervals.
+/// reduced affine forms (centre, eps_u, eps_v and one error term: vm/numbers/reduced_affine.h) or intervals.
 enum class BoundMode { Affine, Reduced, Interval };
 
 /// What a ray needs of the displaced surface over one region, reduced from the shader's bound.

@@ -12,8 +12,8 @@
 #include <memory>
 
 #include "renderer/bound_tree.h"
-#include "renderer/camera.h"
-#include "renderer/surface.h"
+#include "renderer/geometry/camera.h"
+#include "renderer/geometry/surface.h"
 #include "vm/program.h"
 
 namespace affray::renderer {

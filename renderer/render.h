@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "compiler/compile.h"
-#include "renderer/bvh.h"
-#include "renderer/exr_writer.h"
+#include "renderer/geometry/bvh.h"
+#include "renderer/image/exr_writer.h"
 #include "renderer/intersect.h"
 #include "renderer/scene.h"
 
@@ -108,7 +108,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                   const lang::PreprocessOptions& preprocess, PreparedScene* out, std::string* error);
 
 /// Renders the prepared scene into `image`: full resolution, RGBA plus the AOVs the Display mode
-/// asks for, pixels outside the CropWindow zero (renderer/film.h), row 0 at the top.
+/// asks for, pixels outside the CropWindow zero (renderer/image/film.h), row 0 at the top.
 void RenderImage(const PreparedScene& scene, const RenderOptions& options, ImageBuffer* image, RenderStats* stats);
 
 }  // namespace affray::renderer

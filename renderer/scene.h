@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/quadric.h"
+#include "renderer/geometry/quadric.h"
 
 namespace affray::renderer {
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "compiler/compile.h"
-#include "renderer/surface.h"
+#include "renderer/geometry/surface.h"
 
 namespace affray::test {
 

@@ -6,10 +6,10 @@
 #include <memory>
 
 #include "compiler/compile.h"
-#include "renderer/exr_writer.h"
-#include "renderer/png_writer.h"
+#include "renderer/geometry/surface.h"
+#include "renderer/image/exr_writer.h"
+#include "renderer/image/png_writer.h"
 #include "renderer/render.h"
-#include "renderer/surface.h"
 #include "rib/rib.h"
 #include "tools/progress.h"
 #include "vm/bytecode_file.h"

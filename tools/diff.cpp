@@ -2,7 +2,7 @@
 // half of the error-against-run-time report, bench/error_report.py).
 #include <cmath>
 
-#include "renderer/exr_writer.h"
+#include "renderer/image/exr_writer.h"
 #include "tools/commands.h"
 
 namespace affray::tools {

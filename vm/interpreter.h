@@ -6,10 +6,10 @@
 
 #include <vector>
 
-#include "vm/number.h"
+#include "vm/numbers/number.h"
+#include "vm/numbers/vec3.h"
 #include "vm/program.h"
 #include "vm/prune.h"
-#include "vm/vec3.h"
 
 namespace affray::vm {
 

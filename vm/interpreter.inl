@@ -8,7 +8,7 @@
 #include <type_traits>
 
 #include "vm/interpreter.h"
-#include "vm/noise.h"
+#include "vm/numbers/noise.h"
 
 #ifdef AFFRAY_TRACE_VM
 #include <cstdio>

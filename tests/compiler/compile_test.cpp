@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "../test_util.h"
+#include "tests/test_util.h"
 #include "vm/disasm.h"
 
 using namespace affray;

@@ -71,7 +71,7 @@
 
 #include <string>
 
-#include "../test_util.h"
+#include "tests/test_util.h"
 
 using namespace affray;
 

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "../test_random.h"
-#include "../test_util.h"
 #include "compiler/compile.h"
 #include "compiler/ir.h"
+#include "tests/test_random.h"
+#include "tests/test_util.h"
 #include "vm/interpreter.h"
 
 using namespace affray;

@@ -20,7 +20,7 @@
 #include <numbers>
 #include <thread>
 
-#include "../test_util.h"
+#include "tests/test_util.h"
 
 using namespace affray;
 using Catch::Matchers::WithinAbs;

@@ -2,8 +2,8 @@
 // string parameters take instance values; coordinate spaces fold into an instance.
 #include <catch2/catch.hpp>
 
-#include "../test_util.h"
 #include "compiler/shader_cache.h"
+#include "tests/test_util.h"
 #include "vm/bytecode_file.h"
 
 using namespace affray;

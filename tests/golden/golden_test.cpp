@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "../test_util.h"
+#include "tests/test_util.h"
 
 namespace fs = std::filesystem;
 

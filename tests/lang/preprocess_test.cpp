@@ -11,9 +11,9 @@
 #include <string>
 #include <thread>
 
-#include "../test_util.h"
 #include "lang/parse.h"
 #include "lang/preprocess.h"
+#include "tests/test_util.h"
 
 namespace affray::lang {
 namespace {

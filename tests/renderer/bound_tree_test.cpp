@@ -9,11 +9,11 @@
 #include <catch2/catch.hpp>
 #include <thread>
 
-#include "../test_random.h"
-#include "../test_util.h"
 #include "renderer/intersect.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
+#include "tests/test_random.h"
+#include "tests/test_util.h"
 
 using namespace affray;
 using namespace affray::renderer;

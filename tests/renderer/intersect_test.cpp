@@ -8,8 +8,8 @@
 
 #include <random>
 
-#include "../test_util.h"
 #include "renderer/intersect.h"
+#include "tests/test_util.h"
 
 using namespace affray;
 using renderer::BoundMode;

@@ -5,9 +5,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "../test_util.h"
-#include "renderer/film.h"
+#include "renderer/image/film.h"
 #include "rib/rib.h"
+#include "tests/test_util.h"
 
 using namespace affray;
 using namespace affray::renderer;

@@ -11,11 +11,11 @@
 #include <memory>
 #include <sstream>
 
-#include "../test_util.h"
-#include "renderer/camera.h"
-#include "renderer/film.h"
+#include "renderer/geometry/camera.h"
+#include "renderer/image/film.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
+#include "tests/test_util.h"
 
 using namespace affray;
 

@@ -21,11 +21,11 @@
 #include <random>
 #include <sstream>
 
-#include "../test_util.h"
-#include "renderer/camera.h"
+#include "renderer/geometry/camera.h"
 #include "renderer/intersect.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
+#include "tests/test_util.h"
 
 using namespace affray;
 using renderer::Hit;

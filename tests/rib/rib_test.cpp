@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "../test_util.h"
+#include "tests/test_util.h"
 
 using namespace affray::renderer;
 

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "../test_util.h"
-#include "renderer/exr_writer.h"
+#include "renderer/image/exr_writer.h"
+#include "tests/test_util.h"
 
 namespace fs = std::filesystem;
 using namespace affray;

@@ -11,9 +11,9 @@
 #include <filesystem>
 #include <sstream>
 
-#include "../test_util.h"
-#include "renderer/exr_writer.h"
-#include "renderer/film.h"
+#include "renderer/image/exr_writer.h"
+#include "renderer/image/film.h"
+#include "tests/test_util.h"
 
 using namespace affray;
 

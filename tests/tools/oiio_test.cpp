@@ -12,7 +12,7 @@
 #include <map>
 #include <sstream>
 
-#include "../test_util.h"
+#include "tests/test_util.h"
 
 using namespace affray;
 

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "../test_util.h"
+#include "tests/test_util.h"
 
 namespace fs = std::filesystem;
 using namespace affray;

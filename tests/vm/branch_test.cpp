@@ -19,8 +19,8 @@
 #include <random>
 #include <sstream>
 
-#include "../test_random.h"
-#include "vm/number.h"
+#include "tests/test_random.h"
+#include "vm/numbers/number.h"
 
 using namespace affray::vm;
 using affray::test::Rng;

@@ -11,7 +11,7 @@
 #include <limits>
 #include <random>
 
-#include "../test_util.h"
+#include "tests/test_util.h"
 #include "vm/bytecode_file.h"
 #include "vm/verify.h"
 

@@ -3,7 +3,7 @@
 // compile: SampleFor's switch names every opcode (-Wswitch under -Werror), and a static_assert
 // checks that every opcode but Ext has a sample whose operand count is its format's.
 // A sample builds a one-instruction program from the opcode's format (registers, constants, Ext
-// words), names the scalar reference (written here from the meaning strings and vm/number.h, not
+// words), names the scalar reference (written here from the meaning strings and vm/numbers/number.h, not
 // taken from the VM; the noise functions have no independent definition, so they compare with
 // vm::Noise, vm::PNoise and vm::CellNoise) and the domain its operands are drawn from. Then, over
 // every number type the VM is instantiated with (AFFRAY_CONFORMANCE_TYPES, TEMPLATE_TEST_CASEs):
@@ -36,9 +36,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "../test_random.h"
+#include "tests/test_random.h"
 #include "vm/interpreter.h"
-#include "vm/noise.h"
+#include "vm/numbers/noise.h"
 #include "vm/verify.h"
 
 // Every number type the VM is instantiated with (vm/interpreter_*.cpp): a new instantiation is one
@@ -136,7 +136,7 @@ constexpr Sample Deriv(Kind k) {
     Sample s;
     s.kind = k;
     s.arity = 1;
-    // Without derivatives a double's Du and Dv are "unknown": NaN (vm/number.h).
+    // Without derivatives a double's Du and Dv are "unknown": NaN (vm/numbers/number.h).
     s.ref = [](const double*, uint8_t) { return kNaN; };
     s.dom[0] = Domain{.lo = -10, .hi = 10};
     return s;
@@ -159,7 +159,7 @@ constexpr Sample NoiseSample(RefFn f, int dims, int periods, double maxRadius) {
     return s;
 }
 
-// The scalar references, on the operand values in format order: vm/number.h's semantics of
+// The scalar references, on the operand values in format order: vm/numbers/number.h's semantics of
 // double (std's functions, fmin/fmax, sign in {-1, 0, 1} keeping a signed zero, comparisons 1 or
 // 0 and false with NaN but !=, truth as "not 0", NaN included), written from the opcodes'
 // meanings rather than taken from the VM. The noise functions have no second definition: vm's.
@@ -659,7 +659,7 @@ vm::Interval At(const vm::Affine& x, double eu, double ev) { return x.evaluateAt
 vm::Interval At(const vm::ReducedAffine& x, double eu, double ev) { return x.evaluateAt(eu, ev); }
 
 // Whether the form holds x at (eu, ev): |centre + sum coef*eps - x| <= error + sum |free coef|
-// in real numbers (the contract of vm/affine.h and vm/reduced_affine.h), evaluated in binary128:
+// in real numbers (the contract of vm/numbers/affine.h and vm/numbers/reduced_affine.h), evaluated in binary128:
 // products of doubles are exact there, and a relative margin of 2^-100 covers the sums. Not with
 // the type's evaluateAt, whose outward rounding (an ulp per term) would hide a bound narrowed by
 // an ulp.
@@ -948,7 +948,7 @@ void CheckCase(const Sample& s, const Case& c, const std::vector<Point>& points,
         const T result = interp.Register(kResult);
         const vm::Interval range = RangeOf(vm::ValueOf(result));
         // Truth values are 1, 0 or within [0, 1] (Unbounded operands included); noise is within
-        // [0, 1] for finite input (vm/noise.h). (Ranges reaching +-1e308 give Unbounded noise, as
+        // [0, 1] for finite input (vm/numbers/noise.h). (Ranges reaching +-1e308 give Unbounded noise, as
         // p - floor(p) overflows in the cell-independent bound: not checked.)
         if ((s.truth || (s.unitRange && finiteInputs)) && !(range.lo() >= 0 && range.hi() <= 1))
             rep.fail(Describe(c) + ": " + ToString(result) + " leaves [0, 1]");
@@ -972,7 +972,7 @@ void CheckCase(const Sample& s, const Case& c, const std::vector<Point>& points,
                 if (s.unitRange && range.isUnbounded() && IsExactlyZero(result.du) && IsExactlyZero(result.dv)) {
                     // KNOWN BUG (reported, not fixed here; reproducer: the hidden test "noise of an
                     // unbounded operand under Dual<bound>", tag [conformance-known-bug]): where an
-                    // operand's bound is Unbounded, vm/noise.h returns T(NaN), whose derivatives are
+                    // operand's bound is Unbounded, vm/numbers/noise.h returns T(NaN), whose derivatives are
                     // exactly 0 instead of Unbounded. Only these derivatives are exempt.
                     ++rep.knownBug;
                 } else {
@@ -1379,7 +1379,7 @@ TEST_CASE("conformance: the verifier over every opcode value, and what it accept
 TEST_CASE("known bug: noise of an unbounded operand under Dual<bound> claims zero derivatives",
           "[.][conformance-known-bug]") {
     // x's bound is Unbounded (it holds x = 0.3, among others) and dx/du = 1. At x = 0.3 noise has
-    // a nonzero derivative, but vm/noise.h returns T(NaN) for an unbounded operand: a Dual whose
+    // a nonzero derivative, but vm/numbers/noise.h returns T(NaN) for an unbounded operand: a Dual whose
     // derivatives are exactly 0. They should be Unbounded too.
     const vm::Dual<double> point(0.3, 1.0, 0.0);
     const vm::Dual<double> at = vm::Noise(&point, 1, 0);

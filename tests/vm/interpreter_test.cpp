@@ -6,8 +6,8 @@
 
 #include <random>
 
-#include "../test_util.h"
-#include "shader_containment.h"
+#include "tests/test_util.h"
+#include "tests/vm/shader_containment.h"
 #include "vm/verify.h"
 
 using namespace affray;

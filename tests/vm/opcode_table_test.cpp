@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "../test_util.h"
 #include "compiler/opcode_map.h"
+#include "tests/test_util.h"
 #include "vm/disasm.h"
 #include "vm/opcodes.h"
 

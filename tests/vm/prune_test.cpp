@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "../test_random.h"
-#include "../test_util.h"
 #include "renderer/intersect.h"
+#include "tests/test_random.h"
+#include "tests/test_util.h"
 #include "vm/prune.h"
 #include "vm/verify.h"
 

@@ -10,7 +10,7 @@
 #include <random>
 #include <string>
 
-#include "../test_util.h"
+#include "tests/test_util.h"
 
 namespace affray::test {
 

@@ -1,0 +1,72 @@
+// renderer/geometry/bvh.cpp: building the top-level hierarchy and the slab test (renderer/geometry/bvh.h).
+#include "renderer/geometry/bvh.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace affray::renderer {
+
+bool Box::Clip(const Ray& ray, double* t0, double* t1) const {
+    if (empty()) return false;
+    double lo = *t0, hi = *t1;
+    for (int i = 0; i < 3; ++i) {
+        const double o = ray.origin[i], d = ray.dir[i];
+        if (d == 0) {
+            if (o < this->lo[i] || o > this->hi[i]) return false;
+            continue;
+        }
+        // Infinite box sides give infinite slab ends, which is right: a box unbounded along an
+        // axis limits nothing there. 0 * inf cannot occur: d != 0.
+        double a = (this->lo[i] - o) / d, b = (this->hi[i] - o) / d;
+        if (a > b) std::swap(a, b);
+        // The subtraction and division each round by half an ulp: widen by a few.
+        if (std::isfinite(a)) a -= 4e-16 * std::fabs(a) + 1e-300;
+        if (std::isfinite(b)) b += 4e-16 * std::fabs(b) + 1e-300;
+        lo = std::max(lo, a);
+        hi = std::min(hi, b);
+        if (lo > hi) return false;
+    }
+    *t0 = lo;
+    *t1 = hi;
+    return true;
+}
+
+Bvh::Bvh(const std::vector<Box>& boxes) {
+    std::vector<int> items;
+    for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
+        if (!boxes[i].empty()) items.push_back(i);
+    if (!items.empty()) m_root = Build(items, 0, static_cast<int>(items.size()), boxes);
+}
+
+int Bvh::Build(std::vector<int>& items, int begin, int end, const std::vector<Box>& boxes) {
+    Node node;
+    for (int i = begin; i < end; ++i) node.box.Extend(boxes[items[i]]);
+    const int index = static_cast<int>(m_nodes.size());
+    m_nodes.push_back(node);
+    if (end - begin == 1) {
+        m_nodes[index].primitive = items[begin];
+        return index;
+    }
+    // Split at the median of the centres along their longest axis. Infinite boxes have no
+    // finite centre: they sort by their finite sides (or last), which only costs balance.
+    Box centres;
+    auto centre = [&](int item) {
+        glm::dvec3 c = 0.5 * (boxes[item].lo + boxes[item].hi);
+        for (int i = 0; i < 3; ++i)
+            if (!std::isfinite(c[i])) c[i] = std::isfinite(boxes[item].lo[i]) ? boxes[item].lo[i] : 0.0;
+        return c;
+    };
+    for (int i = begin; i < end; ++i) centres.Extend(centre(items[i]));
+    const glm::dvec3 extent = centres.hi - centres.lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const int mid = (begin + end) / 2;
+    std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+                     [&](int a, int b) { return centre(a)[axis] < centre(b)[axis]; });
+    const int left = Build(items, begin, mid, boxes);
+    const int right = Build(items, mid, end, boxes);
+    m_nodes[index].left = left;
+    m_nodes[index].right = right;
+    return index;
+}
+
+}  // namespace affray::renderer

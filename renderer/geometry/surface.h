@@ -1,0 +1,279 @@
+// renderer/geometry/surface.h: base surfaces and the shader globals they supply, for every number type.
+// A base surface is evaluated over a (u,v) *region* with the same templated code whatever the
+// number type: doubles at a point, intervals or affine forms over a region (a bound), duals for
+// exact derivatives. So the displaced point P' = shader(base(u,v)) is bounded by one machinery.
+#pragma once
+
+#include <array>
+#include <cmath>
+
+#include <glm/glm.hpp>
+
+#include "renderer/geometry/quadric.h"
+#include "vm/interpreter.h"
+#include "vm/numbers/number.h"
+#include "vm/numbers/vec3.h"
+
+namespace affray::renderer {
+
+using vm::Affine;
+using vm::Dual;
+using vm::Interval;
+using vm::Vec3;
+
+/// RenderMan's du and dv: the parametric distance between shading samples. affray fixes them per
+/// surface (they must be the same for bounding and for shading, or the surface bounded would not
+/// be the surface shaded).
+inline constexpr double kParametricStep = 1.0 / 1024.0;
+
+/// The value of the surface parameter `axis` (0 = u, 1 = v) over [lo, hi] as a T: a point for
+/// double (lo == hi), the range for Interval, lo..hi on the symbol of u or v for Affine, and with
+/// unit derivative along its own axis for Dual<T>.
+template <class T>
+struct SurfaceParameterOf;
+
+template <>
+struct SurfaceParameterOf<double> {
+    static double Make(double lo, double, int) { return lo; }
+};
+
+template <>
+struct SurfaceParameterOf<Interval> {
+    static Interval Make(double lo, double hi, int) { return Interval(lo, hi); }
+};
+
+/// The centre c and radius r with which a region's parameter [lo, hi] becomes c + r * eps: both
+/// rounded, the radius widened until [c - r, c + r] covers [lo, hi]. Every affine type and the
+/// intersector (which maps eps back to u and v) share it.
+inline void RegionParameter(double lo, double hi, double* c, double* r) {
+    *c = 0.5 * lo + 0.5 * hi;
+    *r = std::max(hi - *c, *c - lo);
+    while (*c - *r > lo || *c + *r < hi) *r = std::nextafter(*r, INFINITY);
+}
+
+template <>
+struct SurfaceParameterOf<Affine> {
+    static Affine Make(double lo, double hi, int axis) {
+        double c, r;
+        RegionParameter(lo, hi, &c, &r);
+        return Affine::FromSymbol(c, r, axis == 0 ? Affine::kSymbolU : Affine::kSymbolV);
+    }
+};
+
+template <>
+struct SurfaceParameterOf<vm::ReducedAffine> {
+    static vm::ReducedAffine Make(double lo, double hi, int axis) {
+        double c, r;
+        RegionParameter(lo, hi, &c, &r);
+        using vm::ReducedAffine;
+        return ReducedAffine::FromSymbol(c, r, axis == 0 ? ReducedAffine::kSymbolU : ReducedAffine::kSymbolV);
+    }
+};
+
+template <class T>
+struct SurfaceParameterOf<Dual<T>> {
+    static Dual<T> Make(double lo, double hi, int axis) {
+        return Dual<T>(SurfaceParameterOf<T>::Make(lo, hi, axis), T(axis == 0 ? 1.0 : 0.0), T(axis == 1 ? 1.0 : 0.0));
+    }
+};
+
+template <class T>
+T SurfaceParameter(double lo, double hi, int axis) {
+    return SurfaceParameterOf<T>::Make(lo, hi, axis);
+}
+
+template <class T>
+Vec3<T> Constant(const glm::dvec3& p) {
+    return {T(p.x), T(p.y), T(p.z)};
+}
+
+/// RenderMan's bilinear patch: corners in the order (u0,v0), (u1,v0), (u0,v1), (u1,v1).
+struct BilinearPatch {
+    std::array<glm::dvec3, 4> corners;
+
+    /// The unit square P = (u, v, 0), as `affray eval` uses.
+    static BilinearPatch UnitSquare() {
+        return {{glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(1, 1, 0)}};
+    }
+
+    // P(u,v) = c0 + a*u + b*v + d*u*v
+    glm::dvec3 a() const { return corners[1] - corners[0]; }
+    glm::dvec3 b() const { return corners[2] - corners[0]; }
+    glm::dvec3 d() const { return corners[0] - corners[1] - corners[2] + corners[3]; }
+    /// A flat patch (d = 0) has the same tangents a, b and normal everywhere.
+    bool flat() const { return d() == glm::dvec3(0.0); }
+    /// The normal of a flat patch, normalize(a ^ b) (not finite if the patch is degenerate).
+    glm::dvec3 flatNormal() const { return glm::normalize(glm::cross(a(), b())); }
+};
+
+/// Whether `program` reads the normal (N or Ng), which is then worth computing.
+inline bool ReadsNormal(const vm::Program& program) {
+    return program.readsGlobal(vm::Global::N) || program.readsGlobal(vm::Global::Ng);
+}
+
+/// Writes the globals of one surface evaluation that `interp`'s program reads: the parameters
+/// u, v (also s, t), the frame P, dPdu, dPdv, the normal and E, I from `eye`. The normal is
+/// `flatNormal` if the surface has one normal everywhere (a constant keeps its bound exact), else
+/// the frame's normal direction, else dPdu ^ dPdv, normalised; negated if `flipNormal`
+/// (RenderMan's Orientation and ReverseOrientation, scene.h).
+template <class T>
+void SetFrameGlobals(vm::Interpreter<T>& interp, const T& u, const T& v, const SurfaceFrame<T>& frame,
+                     const glm::dvec3* flatNormal, const glm::dvec3& eye, bool flipNormal = false) {
+    using vm::Global;
+    const vm::Program& program = interp.program();
+    interp.SetGlobal(Global::P, frame.P);
+    interp.SetGlobal(Global::u, u);
+    interp.SetGlobal(Global::v, v);
+    interp.SetGlobal(Global::s, u);
+    interp.SetGlobal(Global::t, v);
+    interp.SetGlobal(Global::du, T(kParametricStep));
+    interp.SetGlobal(Global::dv, T(kParametricStep));
+    interp.SetGlobal(Global::dPdu, frame.dPdu);
+    interp.SetGlobal(Global::dPdv, frame.dPdv);
+    if (ReadsNormal(program)) {
+        Vec3<T> N;
+        if (flatNormal)
+            N = Constant<T>(flipNormal ? -*flatNormal : *flatNormal);
+        else {
+            N = vm::Normalize(frame.hasNormalDirection ? frame.normalDirection : vm::Cross(frame.dPdu, frame.dPdv));
+            if (flipNormal) N = Vec3<T>{-N.x, -N.y, -N.z};
+        }
+        interp.SetGlobal(Global::N, N);
+        interp.SetGlobal(Global::Ng, N);
+    }
+    if (program.readsGlobal(Global::E)) interp.SetGlobal(Global::E, Constant<T>(eye));
+    if (program.readsGlobal(Global::I)) interp.SetGlobal(Global::I, frame.P - Constant<T>(eye));
+}
+
+/// Starts a new evaluation for the interpreter `interp` over the patch region [u0,u1] x [v0,v1]
+/// (a point when the bounds are equal): writes the globals its program reads; `eye` is the
+/// camera position E. For affine types this restarts the fresh symbols, so the values of an
+/// earlier evaluation must not be combined with this one's.
+template <class T>
+void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, double u0, double u1, double v0, double v1,
+                     const glm::dvec3& eye, bool flipNormal = false) {
+    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
+    T u = SurfaceParameter<T>(u0, u1, 0);
+    T v = SurfaceParameter<T>(v0, v1, 1);
+    // P = c0 + a*u + b*v + d*u*v, each coordinate a combination with double coefficients (zero
+    // terms skipped: for an axis-aligned patch most are, and every skipped product is work saved
+    // in every region bound).
+    const glm::dvec3 c0 = patch.corners[0], a = patch.a(), b = patch.b(), d = patch.d();
+    const bool twisted = !patch.flat();
+    T uv = twisted ? u * v : T(0.0);
+    auto combine = [](double k0, double ku, const T& x, double kv, const T& y) {
+        T r(k0);
+        if (ku != 0) r = r + x * ku;
+        if (kv != 0) r = r + y * kv;
+        return r;
+    };
+    SurfaceFrame<T> frame;
+    for (int i = 0; i < 3; ++i) {
+        frame.P[i] = combine(c0[i], a[i], u, b[i], v);
+        if (twisted && d[i] != 0) frame.P[i] = frame.P[i] + uv * d[i];
+        frame.dPdu[i] = twisted ? combine(a[i], d[i], v, 0.0, v) : T(a[i]);
+        frame.dPdv[i] = twisted ? combine(b[i], d[i], u, 0.0, u) : T(b[i]);
+    }
+    // A flat patch has one normal: computed in doubles, so its bound stays exact.
+    const glm::dvec3 flatNormal = patch.flatNormal();
+    SetFrameGlobals(interp, u, v, frame, twisted ? nullptr : &flatNormal, eye, flipNormal);
+}
+
+/// A quadric placed in the world by an affine object-to-world matrix (GLM's column-major).
+struct PlacedQuadric {
+    Quadric quadric;
+    glm::dmat4 objectToWorld{1.0};
+};
+
+/// The matrix that carries a normal direction n of object space to world space so that it stays
+/// a positive multiple of the world dPdu ^ dPdv: (Ma) ^ (Mb) = cof(M) (a ^ b), with the cofactor
+/// matrix cof(M) = det(M) M^-T of the linear part (no division: exact for any invertible M).
+inline glm::dmat3 NormalToWorld(const glm::dmat4& objectToWorld) {
+    const glm::dmat3 m(objectToWorld);
+    glm::dmat3 cof;
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) {
+            // Cofactor (r, c): the 2x2 minor without row r and column c, with its sign folded
+            // into the cyclic order of the remaining indices.
+            const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+            cof[c][r] = m[c1][r1] * m[c2][r2] - m[c2][r1] * m[c1][r2];
+        }
+    return cof;
+}
+
+/// SetPatchGlobals for a region of a quadric: its frame in object space, carried to the world.
+template <class T>
+void SetQuadricGlobals(vm::Interpreter<T>& interp, const PlacedQuadric& placed, double u0, double u1, double v0,
+                       double v1, const glm::dvec3& eye, bool flipNormal = false) {
+    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
+    const T u = SurfaceParameter<T>(u0, u1, 0);
+    const T v = SurfaceParameter<T>(v0, v1, 1);
+    const SurfaceFrame<T> local = QuadricFrame(placed.quadric, u, v);
+    const glm::dmat4& m = placed.objectToWorld;
+    // x -> M x, with w = 1 for the point and 0 for the tangents; zero entries skipped.
+    auto map = [&](const Vec3<T>& x, bool point) {
+        Vec3<T> out;
+        for (int row = 0; row < 3; ++row) {
+            T sum(point ? m[3][row] : 0.0);
+            for (int column = 0; column < 3; ++column)
+                if (m[column][row] != 0) sum = sum + x[column] * m[column][row];
+            out[row] = sum;
+        }
+        return out;
+    };
+    SurfaceFrame<T> world{map(local.P, true), map(local.dPdu, false), map(local.dPdv, false), {}, false};
+    if (local.hasNormalDirection && ReadsNormal(interp.program())) {
+        const glm::dmat3 cof = NormalToWorld(m);
+        for (int row = 0; row < 3; ++row) {
+            T sum(0.0);
+            for (int column = 0; column < 3; ++column)
+                if (cof[column][row] != 0) sum = sum + local.normalDirection[column] * cof[column][row];
+            world.normalDirection[row] = sum;
+        }
+        world.hasNormalDirection = true;
+    }
+    SetFrameGlobals(interp, u, v, world, nullptr, eye, flipNormal);
+}
+
+/// A base surface for the intersector and the shading: a bilinear patch or a placed quadric,
+/// with the orientation of its normal.
+struct BaseSurface {
+    enum class Kind { BilinearPatch, Quadric } kind = Kind::BilinearPatch;
+    BilinearPatch patch{};
+    PlacedQuadric quadric{};
+    bool flipNormal = false;
+
+    BaseSurface() = default;
+    // Implicit on purpose: a patch is a base surface (as in every caller of the intersector).
+    BaseSurface(const BilinearPatch& p, bool flip = false) : kind(Kind::BilinearPatch), patch(p), flipNormal(flip) {}
+    BaseSurface(const PlacedQuadric& q, bool flip = false) : kind(Kind::Quadric), quadric(q), flipNormal(flip) {}
+};
+
+/// SetPatchGlobals or SetQuadricGlobals, as `surface` is.
+template <class T>
+void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, double u0, double u1, double v0,
+                       double v1, const glm::dvec3& eye) {
+    if (surface.kind == BaseSurface::Kind::BilinearPatch)
+        SetPatchGlobals(interp, surface.patch, u0, u1, v0, v1, eye, surface.flipNormal);
+    else
+        SetQuadricGlobals(interp, surface.quadric, u0, u1, v0, v1, eye, surface.flipNormal);
+}
+
+/// Runs `interp`'s program over the region [u0,u1] x [v0,v1] of `surface` and returns its triple
+/// output `output`.
+template <class T>
+Vec3<T> EvaluateOnSurface(vm::Interpreter<T>& interp, const BaseSurface& surface, double u0, double u1, double v0,
+                          double v1, const glm::dvec3& eye, const vm::ProgramOutput& output) {
+    SetSurfaceGlobals(interp, surface, u0, u1, v0, v1, eye);
+    interp.Run();
+    return interp.OutputTriple(output);
+}
+
+/// EvaluateOnSurface for a patch (tests, benches and `affray eval`).
+template <class T>
+Vec3<T> EvaluateOnPatch(vm::Interpreter<T>& interp, const BilinearPatch& patch, double u0, double u1, double v0,
+                        double v1, const glm::dvec3& eye, const vm::ProgramOutput& output) {
+    return EvaluateOnSurface(interp, BaseSurface(patch), u0, u1, v0, v1, eye, output);
+}
+
+}  // namespace affray::renderer

@@ -1,0 +1,165 @@
+// renderer/image/exr_writer.cpp: OpenEXR output and input (format and atomicity rules in exr_writer.h).
+#include "renderer/image/exr_writer.h"
+
+#include <Imath/half.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+#include <system_error>
+
+namespace affray::renderer {
+namespace {
+
+constexpr const char* kRgbaNames[4] = {"R", "G", "B", "A"};
+// Refuse images this large (pixels): a corrupt header must not make us allocate without bound.
+constexpr int64_t kMaxPixels = int64_t(1) << 28;
+
+// A temporary name beside `path`, unique within this process and across processes.
+std::string TemporaryPath(const std::string& path) {
+    static std::atomic<unsigned> counter{0};
+    return path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+}
+
+// Checks sizes and channel names before any file is touched; returns "" if the image is valid.
+std::string ValidateImage(const ImageBuffer& image) {
+    if (image.width <= 0 || image.height <= 0)
+        return "image size " + std::to_string(image.width) + "x" + std::to_string(image.height) + " is empty";
+    int64_t pixels = int64_t(image.width) * image.height;
+    if (pixels > kMaxPixels) return "image is too large";
+    if (image.rgba.size() != size_t(pixels) * 4)
+        return "RGBA buffer holds " + std::to_string(image.rgba.size()) + " floats, expected " +
+               std::to_string(pixels * 4);
+    std::set<std::string> names(std::begin(kRgbaNames), std::end(kRgbaNames));
+    for (const auto& [name, values] : image.extraChannels) {
+        if (name.empty()) return "extra channel with an empty name";
+        if (!names.insert(name).second) return "channel '" + name + "' is given twice";
+        if (values.size() != size_t(pixels))
+            return "channel '" + name + "' holds " + std::to_string(values.size()) + " values, expected " +
+                   std::to_string(pixels);
+    }
+    return "";
+}
+
+// Flushes a closed file's data to disk so the rename cannot expose an empty file after a crash.
+void SyncFile(const std::string& path) {
+    int fd = ::open(path.c_str(), O_RDONLY);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
+
+// Writes the image to `file` (a new file). Throws what OpenEXR throws.
+void WriteExrFile(const std::string& file, const ImageBuffer& image) {
+    Imf::Header header(image.width, image.height);
+    for (const char* name : kRgbaNames) header.channels().insert(name, Imf::Channel(Imf::HALF));
+    for (const auto& channel : image.extraChannels) header.channels().insert(channel.first, Imf::Channel(Imf::FLOAT));
+
+    // RGBA goes to disk as half; convert once into an interleaved buffer.
+    std::vector<Imath::half> rgba(image.rgba.size());
+    for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = Imath::half(image.rgba[i]);
+
+    Imf::FrameBuffer frameBuffer;
+    const size_t halfPixel = 4 * sizeof(Imath::half);
+    for (int c = 0; c < 4; ++c)
+        frameBuffer.insert(kRgbaNames[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(rgba.data() + c), halfPixel,
+                                                     halfPixel * image.width));
+    for (const auto& [name, values] : image.extraChannels)
+        frameBuffer.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(values.data())),
+                                            sizeof(float), sizeof(float) * image.width));
+
+    Imf::OutputFile out(file.c_str(), header);
+    out.setFrameBuffer(frameBuffer);
+    out.writePixels(image.height);
+}  // the file is closed here, before the caller renames it
+
+}  // namespace
+
+std::string ToString(const ImageBuffer& image) {
+    std::string text = std::to_string(image.width) + "x" + std::to_string(image.height) + " RGBA";
+    for (const auto& channel : image.extraChannels) text += " + " + channel.first;
+    return text;
+}
+
+bool WriteExr(const std::string& path, const ImageBuffer& image, std::string* error) {
+    auto fail = [&](const std::string& reason) {
+        if (error) *error = "cannot write '" + path + "': " + reason;
+        return false;
+    };
+    if (path.empty()) return fail("empty file name");
+    if (std::string reason = ValidateImage(image); !reason.empty()) return fail(reason);
+
+    std::filesystem::path directory = std::filesystem::path(path).parent_path();
+    if (directory.empty()) directory = ".";
+    std::error_code ec;
+    if (!std::filesystem::is_directory(directory, ec))
+        return fail("directory '" + directory.string() + "' does not exist");
+
+    std::string temporary = TemporaryPath(path);
+    try {
+        WriteExrFile(temporary, image);
+    } catch (const std::exception& e) {
+        std::filesystem::remove(temporary, ec);
+        return fail(e.what());
+    }
+    SyncFile(temporary);
+    if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+        std::string reason = std::generic_category().message(errno);
+        std::filesystem::remove(temporary, ec);
+        return fail(reason);
+    }
+    return true;
+}
+
+bool ReadExrRgba(const std::string& path, ImageBuffer* out, std::string* error) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dataWindow = file.header().dataWindow();
+        int64_t width = int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
+        int64_t height = int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
+        if (width <= 0 || height <= 0 || width * height > kMaxPixels)
+            throw std::runtime_error("unsupported data window " + std::to_string(width) + "x" + std::to_string(height));
+
+        ImageBuffer image;
+        image.width = static_cast<int>(width);
+        image.height = static_cast<int>(height);
+        image.rgba.assign(size_t(width * height) * 4, 0.0f);
+        Imf::FrameBuffer frameBuffer;
+        for (int c = 0; c < 4; ++c)
+            frameBuffer.insert(kRgbaNames[c],
+                               Imf::Slice::Make(Imf::FLOAT, image.rgba.data() + c, dataWindow, 4 * sizeof(float),
+                                                4 * sizeof(float) * width, 1, 1, c == 3 ? 1.0 : 0.0));
+        const Imf::ChannelList& channels = file.header().channels();
+        for (auto it = channels.begin(); it != channels.end(); ++it) {
+            std::string name = it.name();
+            if (name == "R" || name == "G" || name == "B" || name == "A") continue;
+            if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
+                throw std::runtime_error("subsampled channel '" + name + "' is not supported");
+            image.extraChannels.emplace_back(name, std::vector<float>(size_t(width * height)));
+        }
+        for (auto& [name, values] : image.extraChannels)
+            frameBuffer.insert(
+                name, Imf::Slice::Make(Imf::FLOAT, values.data(), dataWindow, sizeof(float), sizeof(float) * width));
+        file.setFrameBuffer(frameBuffer);
+        file.readPixels(dataWindow.min.y, dataWindow.max.y);
+        *out = std::move(image);
+        return true;
+    } catch (const std::exception& e) {
+        if (error) *error = "cannot read '" + path + "': " + e.what();
+        return false;
+    }
+}
+
+}  // namespace affray::renderer

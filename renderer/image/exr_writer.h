@@ -1,0 +1,35 @@
+// renderer/image/exr_writer.h: the film's image buffer and its OpenEXR file I/O.
+// Owns the on-disk format of rendered images: RGBA as HALF, any extra channels (Z, AOVs) as
+// FLOAT, scanline order with row 0 at the top. Writes are atomic: the image goes to a temporary
+// file beside the target and is renamed onto it, so a reader never sees a half-written image.
+// Failures are returned as messages "cannot write 'path': reason"; nothing throws.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace affray::renderer {
+
+/// A float image: interleaved RGBA plus optional named float channels.
+struct ImageBuffer {
+    int width = 0, height = 0;
+    std::vector<float> rgba;  ///< Interleaved RGBA, width * height * 4, row 0 at the top.
+    /// Extra float32 channels such as {"Z", ...}, width * height values each, same pixel order.
+    std::vector<std::pair<std::string, std::vector<float>>> extraChannels;
+};
+
+/// Describes an image on one line ("640x480 RGBA + Z"), for logs.
+std::string ToString(const ImageBuffer& image);
+
+/// Writes `image` to `path` as OpenEXR, atomically (temporary file in the same directory, then
+/// rename). Returns false with *error (may be null) set, leaving no temporary file behind, if the
+/// image is malformed (sizes, channel names) or the file cannot be written.
+bool WriteExr(const std::string& path, const ImageBuffer& image, std::string* error);
+
+/// Reads an OpenEXR file: R, G, B, A into out->rgba (missing color channels read as 0, a missing
+/// alpha as 1) and every other channel into out->extraChannels, as float. Returns false with
+/// *error (may be null) set to "cannot read 'path': reason" on failure.
+bool ReadExrRgba(const std::string& path, ImageBuffer* out, std::string* error);
+
+}  // namespace affray::renderer

@@ -1,0 +1,178 @@
+// tests/renderer/image/exr_test.cpp: OpenEXR output (renderer/image/exr_writer.*): round trips, channel
+// types, and clean failure without leftover temporary files.
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include "renderer/image/exr_writer.h"
+
+using namespace affray::renderer;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A fresh empty directory, removed with everything in it at scope exit.
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        path = fs::temp_directory_path() /
+               ("affray_exr_test_" + std::to_string(::getpid()) + "_" + std::to_string(std::random_device{}()));
+        fs::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+    std::vector<std::string> Entries() const {
+        std::vector<std::string> names;
+        for (const auto& entry : fs::directory_iterator(path)) names.push_back(entry.path().filename());
+        return names;
+    }
+};
+
+ImageBuffer TestImage(int width, int height) {
+    ImageBuffer image;
+    image.width = width;
+    image.height = height;
+    image.rgba.resize(size_t(width) * height * 4);
+    std::vector<float> z(size_t(width) * height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            size_t i = size_t(y) * width + x;
+            image.rgba[4 * i + 0] = x / float(width);
+            image.rgba[4 * i + 1] = y / float(height);
+            image.rgba[4 * i + 2] = 0.25f + 100.0f * x * y;  // beyond [0,1] on purpose
+            image.rgba[4 * i + 3] = (x + y) % 2 ? 1.0f : 0.5f;
+            z[i] = 1.0f + 0.001f * x + 1000.0f * y;  // needs float precision
+        }
+    image.extraChannels.emplace_back("Z", std::move(z));
+    return image;
+}
+
+}  // namespace
+
+TEST_CASE("EXR round trip keeps RGBA to half precision and Z exactly", "[renderer]") {
+    TempDir dir;
+    std::string path = (dir.path / "image.exr").string();
+    ImageBuffer image = TestImage(7, 5);
+    std::string error;
+    REQUIRE(WriteExr(path, image, &error));
+    CHECK(dir.Entries() == std::vector<std::string>{"image.exr"});  // no temporary left
+
+    ImageBuffer back;
+    INFO(error);
+    REQUIRE(ReadExrRgba(path, &back, &error));
+    REQUIRE(back.width == 7);
+    REQUIRE(back.height == 5);
+    REQUIRE(back.rgba.size() == image.rgba.size());
+    for (size_t i = 0; i < image.rgba.size(); ++i) {
+        INFO("value " << i);
+        // Half has an 11-bit significand: relative error at most 2^-11.
+        CHECK(std::fabs(back.rgba[i] - image.rgba[i]) <= std::fabs(image.rgba[i]) / 2048.0f + 1e-7f);
+    }
+    REQUIRE(back.extraChannels.size() == 1);
+    CHECK(back.extraChannels[0].first == "Z");
+    CHECK(back.extraChannels[0].second == image.extraChannels[0].second);
+    CHECK(ToString(back) == "7x5 RGBA + Z");
+}
+
+TEST_CASE("EXR channels are RGBA half and extra channels float", "[renderer]") {
+    TempDir dir;
+    std::string path = (dir.path / "channels.exr").string();
+    ImageBuffer image = TestImage(4, 3);
+    std::string error;
+    REQUIRE(WriteExr(path, image, &error));
+
+    Imf::InputFile file(path.c_str());
+    const Imf::ChannelList& channels = file.header().channels();
+    for (const char* name : {"R", "G", "B", "A"}) {
+        const Imf::Channel* channel = channels.findChannel(name);
+        REQUIRE(channel);
+        CHECK(channel->type == Imf::HALF);
+    }
+    const Imf::Channel* z = channels.findChannel("Z");
+    REQUIRE(z);
+    CHECK(z->type == Imf::FLOAT);
+
+    // Read Z straight through OpenEXR: row 0 is the top row of the buffer.
+    const Imath::Box2i window = file.header().dataWindow();
+    CHECK(window.min == Imath::V2i(0, 0));
+    CHECK(window.max == Imath::V2i(3, 2));
+    std::vector<float> values(12);
+    Imf::FrameBuffer frameBuffer;
+    frameBuffer.insert(
+        "Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()), sizeof(float), 4 * sizeof(float)));
+    file.setFrameBuffer(frameBuffer);
+    file.readPixels(0, 2);
+    CHECK(values == image.extraChannels[0].second);
+    CHECK(values[4 * 2 + 3] == 1.0f + 0.003f + 2000.0f);
+}
+
+TEST_CASE("EXR writes replace an existing file", "[renderer]") {
+    TempDir dir;
+    std::string path = (dir.path / "again.exr").string();
+    std::string error;
+    REQUIRE(WriteExr(path, TestImage(8, 8), &error));
+    ImageBuffer second = TestImage(3, 2);
+    second.extraChannels.clear();
+    REQUIRE(WriteExr(path, second, &error));
+    ImageBuffer back;
+    REQUIRE(ReadExrRgba(path, &back, &error));
+    CHECK(back.width == 3);
+    CHECK(back.extraChannels.empty());
+    CHECK(dir.Entries() == std::vector<std::string>{"again.exr"});
+}
+
+TEST_CASE("EXR write failures are clean", "[renderer]") {
+    TempDir dir;
+    std::string error;
+
+    SECTION("missing directory") {
+        std::string path = (dir.path / "missing" / "out.exr").string();
+        CHECK_FALSE(WriteExr(path, TestImage(2, 2), &error));
+        CHECK(error ==
+              "cannot write '" + path + "': directory '" + (dir.path / "missing").string() + "' does not exist");
+        CHECK(dir.Entries().empty());
+    }
+    SECTION("target is a directory: the temporary file is written, then removed") {
+        fs::create_directory(dir.path / "sub");
+        std::string path = (dir.path / "sub").string();
+        CHECK_FALSE(WriteExr(path, TestImage(2, 2), &error));
+        CHECK(error.rfind("cannot write '" + path + "': ", 0) == 0);
+        CHECK(dir.Entries() == std::vector<std::string>{"sub"});
+    }
+    SECTION("malformed images touch nothing") {
+        std::string path = (dir.path / "bad.exr").string();
+        ImageBuffer empty;
+        CHECK_FALSE(WriteExr(path, empty, &error));
+        CHECK(error == "cannot write '" + path + "': image size 0x0 is empty");
+        ImageBuffer shortRgba = TestImage(2, 2);
+        shortRgba.rgba.pop_back();
+        CHECK_FALSE(WriteExr(path, shortRgba, &error));
+        CHECK(error == "cannot write '" + path + "': RGBA buffer holds 15 floats, expected 16");
+        ImageBuffer duplicate = TestImage(2, 2);
+        duplicate.extraChannels.emplace_back("A", std::vector<float>(4));
+        CHECK_FALSE(WriteExr(path, duplicate, &error));
+        CHECK(error == "cannot write '" + path + "': channel 'A' is given twice");
+        CHECK(dir.Entries().empty());
+    }
+    SECTION("reading a missing or corrupt file") {
+        ImageBuffer back;
+        CHECK_FALSE(ReadExrRgba((dir.path / "none.exr").string(), &back, &error));
+        CHECK(error.rfind("cannot read '", 0) == 0);
+        std::string junk = (dir.path / "junk.exr").string();
+        FILE* f = std::fopen(junk.c_str(), "w");
+        REQUIRE(f);
+        std::fputs("not an exr file at all", f);
+        std::fclose(f);
+        CHECK_FALSE(ReadExrRgba(junk, &back, &error));
+        CHECK(error.rfind("cannot read '" + junk + "': ", 0) == 0);
+    }
+}

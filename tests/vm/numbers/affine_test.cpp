@@ -1,0 +1,461 @@
+// tests/vm/numbers/affine_test.cpp: containment of every Affine operation, Stolfi's aavalid method.
+// Operands are built from the region's exact symbols u = uc + ur*eps_u and v = vc + vr*eps_v by a
+// random recipe, run once on doubles at a point (eps_u, eps_v) and once on Affine (and Interval):
+// the double operand is then a value the operand form allows at that point, and the double result
+// of the operation must lie in result.evaluateAt(eps_u, eps_v) (other symbols free) and in the
+// interval result; a NaN/inf double result requires Unbounded. Region parameters and points are
+// dyadic, so that u and v are exact doubles. AFFRAY_SAMPLES=N raises the samples per operation.
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <sstream>
+
+#include "tests/test_random.h"
+#include "tests/vm/numbers/aavalid.h"
+#include "vm/numbers/number.h"
+
+using namespace affray::vm;
+using affray::test::Rng;
+using affray::test::Samples;
+using namespace affray::test::aavalid;
+
+namespace {
+
+/// Containment results of one operation.
+struct Report {
+    int samples = 0, failures = 0, bounded = 0, scalarFinite = 0;
+    double worstRatio = 0;  // affine range width / interval width, for exact-symbol operands
+    std::ostringstream first;
+
+    void fail(const std::string& what) {
+        if (failures++ < 4) first << what << "\n";
+    }
+};
+
+std::string Describe(const char* what, double d, const Affine& a, const Interval& i) {
+    std::ostringstream s;
+    s.precision(17);
+    s << what << ": double " << d << "\n  affine " << a.toString() << "\n  interval " << i.toString();
+    return s.str();
+}
+
+// Checks the result triple of one sample; `exact` says whether the ratio check applies.
+void CheckResult(Report& rep, const Region& g, double rd, const Affine& ra, const Interval& ri, bool exact) {
+    rep.samples++;
+    if (!std::isfinite(rd)) {
+        if (!ra.isUnbounded() || !ri.isUnbounded()) rep.fail(Describe("NaN/inf not Unbounded", rd, ra, ri));
+        return;
+    }
+    rep.scalarFinite++;
+    if (!ra.isUnbounded()) {
+        rep.bounded++;
+        if (!ra.evaluateAt(g.eu, g.ev).contains(rd)) rep.fail(Describe("affine misses", rd, ra, ri));
+        if (!ra.range().contains(rd)) rep.fail(Describe("affine range misses", rd, ra, ri));
+        // Widths of a few ulps are all rounding slack: compare beyond 1e-14 of the magnitude.
+        double allowance = 1e-14 * std::fmax(std::fabs(ri.lo()), std::fabs(ri.hi()));
+        if (exact && !ri.isUnbounded() && ri.width() + allowance > 1e-300)
+            rep.worstRatio = std::max(rep.worstRatio, ra.range().width() / (ri.width() + allowance));
+    }
+    if (!ri.contains(rd)) rep.fail(Describe("interval misses", rd, ra, ri));
+}
+
+struct Operands {
+    Region g;
+    Recipe rx, ry;
+    double xd, yd;
+    Affine xa, ya;
+    Interval xi, yi;
+    bool ok = true;
+};
+
+Operands MakeOperands(Rng& rng, const RegionConfig& gc, const RecipeConfig& xc, const RecipeConfig& yc, Report& rep) {
+    Operands o;
+    Affine::BeginEvaluation();
+    o.g = RandomRegion(rng, gc);
+    o.rx = RandomRecipe(rng, xc);
+    o.ry = RandomRecipe(rng, yc);
+    const Region& g = o.g;
+    Affine ua = Affine::FromSymbol(g.uc, g.ur, Affine::kSymbolU);
+    Affine va = Affine::FromSymbol(g.vc, g.vr, Affine::kSymbolV);
+    Interval ui(g.uc - g.ur, g.uc + g.ur), vi(g.vc - g.vr, g.vc + g.vr);
+    o.xd = Build(o.rx, g.u, g.v);
+    o.yd = Build(o.ry, g.u, g.v);
+    o.xa = Build(o.rx, ua, va);
+    o.ya = Build(o.ry, ua, va);
+    o.xi = Build(o.rx, ui, vi);
+    o.yi = Build(o.ry, ui, vi);
+    // The operands are themselves results of Affine operations: check them too.
+    Report sub;
+    CheckResult(sub, g, o.xd, o.xa, o.xi, false);
+    CheckResult(sub, g, o.yd, o.ya, o.yi, false);
+    if (sub.failures) rep.fail("operand: " + sub.first.str());
+    o.ok = sub.failures == 0;
+    return o;
+}
+
+template <class F>
+Report CheckOp(uint64_t seed, int n, const RegionConfig& gc, const RecipeConfig& xc, const RecipeConfig& yc, F op) {
+    Rng rng(seed);
+    Report rep;
+    for (int s = 0; s < n; ++s) {
+        Operands o = MakeOperands(rng, gc, xc, yc, rep);
+        if (!o.ok) continue;
+        double rd = op(o.xd, o.yd);
+        Affine ra = op(o.xa, o.ya);
+        Interval ri = op(o.xi, o.yi);
+        auto isExact = [](const Recipe& r) { return r.kind <= 1 && r.shift == 0 && r.scale == 1; };
+        bool exact = isExact(o.rx) && isExact(o.ry);
+        CheckResult(rep, o.g, rd, ra, ri, exact);
+    }
+    return rep;
+}
+
+// AFFRAY_VERBOSE=1 prints every report.
+void Expect(const char* name, const Report& rep, double minBoundedFraction, double maxRatio) {
+    if (std::getenv("AFFRAY_VERBOSE"))
+        std::printf("%-20s %7d samples %7d finite %7d bounded  worst ratio %.4g  failures %d\n", name, rep.samples,
+                    rep.scalarFinite, rep.bounded, rep.worstRatio, rep.failures);
+    INFO(name << ": " << rep.samples << " samples, " << rep.bounded << " bounded of " << rep.scalarFinite
+              << " finite, worst width ratio to interval " << rep.worstRatio << "\n"
+              << rep.first.str());
+    CHECK(rep.failures == 0);
+    CHECK(rep.samples > 0);
+    CHECK(rep.bounded >= minBoundedFraction * rep.scalarFinite);
+    CHECK(rep.worstRatio <= maxRatio);
+}
+
+#define UNARY(expr) [](const auto& x, const auto&) { return expr; }
+#define BINARY(expr) [](const auto& x, const auto& y) { return expr; }
+
+}  // namespace
+
+TEST_CASE("affine arithmetic contains the scalar result", "[vm][affine]") {
+    const int n = Samples(20000);
+    RegionConfig g;
+    RecipeConfig r;
+    Expect("x + y", CheckOp(1, n, g, r, r, BINARY(x + y)), 1.0, 1.01);
+    Expect("x - y", CheckOp(2, n, g, r, r, BINARY(x - y)), 1.0, 1.01);
+    Expect("x * y", CheckOp(3, n, g, r, r, BINARY(x * y)), 1.0, 1e300);
+    Expect("x / y", CheckOp(4, n, g, r, r, BINARY(x / y)), 0.3, 1e300);
+    Expect("-x", CheckOp(5, n, g, r, r, UNARY(-x)), 1.0, 1.01);
+    Expect("x + c", CheckOp(6, n, g, r, r, UNARY(x + 0.1)), 1.0, 1.01);
+    Expect("c - x", CheckOp(7, n, g, r, r, UNARY(1e3 - x)), 1.0, 1.01);
+    Expect("x * c", CheckOp(8, n, g, r, r, UNARY(x * 0.7)), 1.0, 1.01);
+    Expect("x / c", CheckOp(9, n, g, r, r, UNARY(x / 3.0)), 1.0, 1.01);
+    Expect("c / x", CheckOp(10, n, g, r, r, UNARY(3.0 / x)), 0.3, 2.01);
+    Expect("sqr", CheckOp(11, n, g, r, r, UNARY(sqr(x))), 1.0, 2.01);
+}
+
+TEST_CASE("affine functions contain the scalar result", "[vm][affine]") {
+    const int n = Samples(20000);
+    RegionConfig g;
+    RecipeConfig r;
+    Expect("sqrt", CheckOp(20, n, g, r, r, UNARY(sqrt(x))), 0.2, 2.01);
+    Expect("log", CheckOp(21, n, g, r, r, UNARY(log(x))), 0.2, 2.01);
+    Expect("abs", CheckOp(22, n, g, r, r, UNARY(abs(x))), 1.0, 1.01);
+    Expect("sign", CheckOp(23, n, g, r, r, UNARY(sign(x))), 1.0, 1.01);
+    RegionConfig small;
+    small.expLo = -20;
+    small.expHi = 4;
+    RecipeConfig mild = r;
+    mild.coefExpHi = 1;
+    Expect("exp", CheckOp(24, n, small, mild, r, UNARY(exp(x))), 0.9, 2.01);
+    RecipeConfig nearOverflow = mild;
+    nearOverflow.shifts = {700.0, 704.0, 708.0, 709.5, 710.0};
+    nearOverflow.kindHi = 4;
+    Expect("exp near overflow", CheckOp(25, n, small, nearOverflow, r, UNARY(exp(x))), 0.1, 2.01);
+    Expect("sin", CheckOp(26, n, small, mild, r, UNARY(sin(x))), 1.0, 2.01);
+    Expect("cos", CheckOp(27, n, small, mild, r, UNARY(cos(x))), 1.0, 2.01);
+}
+
+TEST_CASE("affine sin and cos over periods and far from 0", "[vm][affine]") {
+    const int n = Samples(20000) / 4;
+    const double pi = 3.141592653589793;
+    RecipeConfig exact;
+    exact.kindHi = 2;
+    // v stays small: the argument's range is u's.
+    exact.coefExpLo = -1;
+    exact.coefExpHi = 0;
+    for (double width : {pi / 2, pi, 2 * pi, 1e-6}) {
+        for (double center : {4.0, 1e3, 1e6}) {
+            RegionConfig g;
+            g.expHi = -2;
+            g.uWidth = width;
+            g.uCenter = center;
+            g.touchZero = 0;
+            INFO("width " << width << " center " << center);
+            Expect("sin", CheckOp(30, n, g, exact, exact, UNARY(sin(x))), 1.0, 2.01);
+            Expect("cos", CheckOp(31, n, g, exact, exact, UNARY(cos(x))), 1.0, 2.01);
+        }
+    }
+}
+
+TEST_CASE("affine pow contains the scalar result", "[vm][affine]") {
+    const int n = Samples(20000) / 2;
+    RegionConfig g;
+    g.expLo = -10;
+    g.expHi = 3;
+    RecipeConfig r;
+    r.coefExpHi = 1;
+    for (double p : {2.0, 3.0, -1.0, -2.0, 5.0, 0.5, 2.5, -0.75, 0.0, 1.0, 64.0, 65.0}) {
+        INFO("exponent " << p);
+        Expect("pow(x, p)",
+               CheckOp(40, n, g, r, r,
+                       [p](const auto& x, const auto&) {
+                           using std::pow;
+                           return pow(x, std::decay_t<decltype(x)>(p));
+                       }),
+               0.05, 1e300);
+    }
+    // Negative bases with integer exponents, and varying exponents.
+    RecipeConfig negative = r;
+    negative.kindHi = 2;
+    negative.shifts = {-4.0, -0.5};
+    for (double p : {2.0, 3.0, -3.0, 4.0}) {
+        INFO("negative base, exponent " << p);
+        Expect("pow(-x, n)",
+               CheckOp(41, n, g, negative, r,
+                       [p](const auto& x, const auto&) {
+                           using std::pow;
+                           return pow(x, std::decay_t<decltype(x)>(p));
+                       }),
+               0.2, 1e300);
+    }
+    RecipeConfig exponent = r;
+    exponent.scale = 0.25;
+    Expect("pow(x, y)", CheckOp(42, n, g, r, exponent, BINARY(pow(x, y))), 0.05, 1e300);
+}
+
+TEST_CASE("affine branch functions contain the scalar result", "[vm][affine]") {
+    // Operands from the recipes (nonlinear terms, fresh symbols); tests/vm/branch_test.cpp fixes
+    // every symbol instead, and checks the exactness properties.
+    const int n = Samples(20000) / 2;
+    RegionConfig g;
+    RecipeConfig r;
+    RegionConfig small;
+    small.expLo = -20;
+    small.expHi = 3;
+    RecipeConfig mild = r;
+    mild.coefExpHi = 1;
+    Expect("floor", CheckOp(80, n, small, mild, r, UNARY(floor(x))), 1.0, 1.01);
+    Expect("ceil", CheckOp(81, n, small, mild, r, UNARY(ceil(x * 3.0))), 1.0, 1.01);
+    Expect("round", CheckOp(82, n, small, mild, r, UNARY(round(x))), 1.0, 1.01);
+    Expect("floor wide", CheckOp(83, n, g, r, r, UNARY(floor(x))), 1.0, 1.01);
+    RegionConfig unit;
+    unit.expLo = -20;
+    unit.expHi = 0;
+    RecipeConfig quarter = mild;
+    quarter.scale = 0.25;
+    Expect("asin", CheckOp(84, n, unit, quarter, r, UNARY(asin(x))), 0.3, 1.01);
+    Expect("acos", CheckOp(85, n, unit, quarter, r, UNARY(acos(x))), 0.3, 1.01);
+    Expect("atan", CheckOp(86, n, g, r, r, UNARY(atan(x))), 1.0, 1.01);
+    Expect("atan small", CheckOp(87, n, small, mild, r, UNARY(atan(x))), 1.0, 1.01);
+    Expect("atan2", CheckOp(88, n, small, mild, mild, BINARY(atan2(x, y))), 1.0, 1.01);
+    Expect("atan2 wide", CheckOp(89, n, g, r, r, BINARY(atan2(y, x))), 1.0, 1.01);
+    Expect("Min", CheckOp(90, n, g, r, r, BINARY(Min(x, y))), 1.0, 1.01);
+    Expect("Max", CheckOp(91, n, g, r, r, BINARY(Max(x, y))), 1.0, 1.01);
+    Expect("Less", CheckOp(92, n, g, r, r, BINARY(Less(x, y))), 1.0, 1.01);
+    Expect("LessEq", CheckOp(93, n, g, r, r, BINARY(LessEq(x, y))), 1.0, 1.01);
+    Expect("Equal", CheckOp(94, n, g, r, r, BINARY(Equal(x, y))), 1.0, 1.01);
+    Expect("NotEqual", CheckOp(95, n, g, r, r, BINARY(NotEqual(x, y))), 1.0, 1.01);
+    Expect("And", CheckOp(96, n, g, r, r, BINARY(And(x, y - 1.0))), 1.0, 1.01);
+    Expect("Or", CheckOp(97, n, g, r, r, BINARY(Or(x - 0.5, y))), 1.0, 1.01);
+    Expect("Not", CheckOp(98, n, g, r, r, UNARY(Not(x))), 1.0, 1.01);
+    Expect("Select", CheckOp(99, n, g, r, r, BINARY(Select(Less(x, y), y - x, x * y))), 0.3, 1e300);
+}
+
+TEST_CASE("affine and interval contain random programs", "[vm][affine]") {
+    Rng rng(70);
+    Report rep;
+    const int programs = Samples(20000) / 10;
+    for (int p = 0; p < programs; ++p) {
+        std::vector<Step> program = RandomSteps(rng);
+        RegionConfig gc;
+        gc.expLo = -12;
+        gc.expHi = 1;
+        Affine::BeginEvaluation();
+        Region g = RandomRegion(rng, gc);
+        auto ra = RunProgram(program, Affine::FromSymbol(g.uc, g.ur, Affine::kSymbolU),
+                             Affine::FromSymbol(g.vc, g.vr, Affine::kSymbolV));
+        auto ri = RunProgram(program, Interval(g.uc - g.ur, g.uc + g.ur), Interval(g.vc - g.vr, g.vc + g.vr));
+        for (int point = 0; point < 8; ++point) {
+            Region q = g;
+            for (int k = 0; k < 20; ++k) {
+                q.eu = rng.eps();
+                q.ev = rng.eps();
+                if (ExactSum(g.uc, g.ur, q.eu, &q.u) && ExactSum(g.vc, g.vr, q.ev, &q.v)) break;
+                q.eu = q.ev = 0;
+                q.u = g.uc;
+                q.v = g.vc;
+            }
+            auto rd = RunProgram(program, q.u, q.v);
+            for (size_t i = 2; i < rd.size(); ++i) CheckResult(rep, q, rd[i], ra[i], ri[i], false);
+        }
+    }
+    Expect("random programs", rep, 0.3, 1e300);
+}
+
+TEST_CASE("affine ranges touching 0", "[vm][affine]") {
+    Affine::BeginEvaluation();
+    for (double r : {1e-6, 0.5, 3.0, 1e6}) {
+        Affine x = Affine::FromSymbol(r, r, Affine::kSymbolU);  // [0, 2r], 0 at eps_u = -1
+        CHECK(x.range().lo() == 0);
+        Affine s = sqrt(x);
+        REQUIRE_FALSE(s.isUnbounded());
+        CHECK(s.evaluateAt(-1, 0).contains(0.0));
+        CHECK(s.evaluateAt(1, 0).contains(std::sqrt(2 * r)));
+        CHECK(log(x).isUnbounded());
+        CHECK((1.0 / x).isUnbounded());
+        CHECK((Affine(1.0) / x).isUnbounded());
+        CHECK((x / (x - r)).isUnbounded());
+        CHECK(pow(x, Affine(-1.0)).isUnbounded());
+        CHECK(pow(x, Affine(-0.5)).isUnbounded());
+        CHECK(pow(x, Affine(0.5)).evaluateAt(-1, 0).contains(0.0));
+        Affine a = abs(x - r);
+        CHECK(a.range().lo() == 0);  // min-range abs stays >= 0 exactly
+        CHECK_FALSE(sqrt(a).isUnbounded());
+    }
+}
+
+TEST_CASE("affine is exact on linear correlations and tighter than intervals", "[vm][affine]") {
+    Affine::BeginEvaluation();
+    Affine u = Affine::FromSymbol(0.5, 0.5, Affine::kSymbolU);
+    Affine v = Affine::FromSymbol(2.0, 0.25, Affine::kSymbolV);
+    // Exact forms cancel exactly; computed ones keep only their independent rounding error e
+    // (treated as independent of everything, itself included).
+    Affine zero = u - u;
+    CHECK(zero.isConstant());
+    CHECK(zero.center() == 0);
+    CHECK(zero.range().lo() == 0);
+    CHECK(zero.range().hi() == 0);
+    Affine x = u * 3.0 + v;
+    Affine almostZero = x - x;
+    CHECK(almostZero.termCount() == 0);
+    CHECK(almostZero.center() == 0);
+    CHECK(almostZero.range().width() < 1e-14);
+    Interval ui(0, 1);
+    Interval xi = ui * 3.0 + Interval(1.75, 2.25);
+    CHECK((xi - xi).width() == 7.0);
+    // (u + 1)(u - 1) = u^2 - 1 on [0, 1]: interval [-2, 0]; affine [-1.25, 0].
+    Interval pi = (ui + 1.0) * (ui - 1.0);
+    Interval pa = ((u + 1.0) * (u - 1.0)).range();
+    CHECK(pa.width() < pi.width());
+    CHECK(pa.lo() <= -1.0);
+    CHECK(pa.hi() >= 0.0);
+    // Affine and interval bounds of the same computation always intersect.
+    Rng rng(50);
+    RegionConfig g;
+    RecipeConfig r;
+    for (int s = 0; s < 2000; ++s) {
+        Report rep;
+        Operands o = MakeOperands(rng, g, r, r, rep);
+        REQUIRE(o.ok);
+        Interval a = o.xa.range(), i = o.xi;
+        if (a.isUnbounded() || i.isUnbounded()) continue;
+        CHECK(std::fmax(a.lo(), i.lo()) <= std::fmin(a.hi(), i.hi()));
+    }
+}
+
+TEST_CASE("affine folds the smallest terms past capacity, never eps_u or eps_v", "[vm][affine]") {
+    Affine::BeginEvaluation();
+    Affine u = Affine::FromSymbol(0.5, 1e-12, Affine::kSymbolU);
+    Affine v = Affine::FromSymbol(2.0, 1e-13, Affine::kSymbolV);
+    Affine x = u + v;
+    for (int k = 0; k < 3 * Affine::kCapacity; ++k) x = x + Affine::FromInterval(Interval(-1.0 - k, 1.0 + k));
+    CHECK(x.termCount() == Affine::kCapacity);
+    CHECK(x.coefficientOf(Affine::kSymbolU) == 1e-12);
+    CHECK(x.coefficientOf(Affine::kSymbolV) == 1e-13);
+    CHECK(x.error() > 0);
+    // The largest fresh terms are the ones kept: 1 + k for the last kCapacity - 2 values of k.
+    for (int i = 0; i < x.termCount(); ++i)
+        if (x.termSymbol(i) >= Affine::kFirstFreshSymbol)
+            CHECK(std::fabs(x.termCoef(i)) >= 3 * Affine::kCapacity - (Affine::kCapacity - 2));
+    CHECK(x.error() >=
+          0.5 * (3 * Affine::kCapacity - Affine::kCapacity + 2) * (3 * Affine::kCapacity - Affine::kCapacity + 3) - 1);
+    // A computation with many nonlinear terms (recipe kind 6) still contains every sample.
+    RegionConfig g;
+    g.expHi = 2;
+    RecipeConfig many;
+    many.kindHi = 6;
+    Rng rng(60);
+    int checked = 0;
+    for (int s = 0; s < Samples(20000) / 4; ++s) {
+        Report rep;
+        Operands o = MakeOperands(rng, g, many, many, rep);
+        INFO(rep.first.str());
+        REQUIRE(o.ok);
+        if (o.rx.kind == 6) {
+            checked++;
+            CHECK(o.xa.termCount() <= Affine::kCapacity);
+        }
+    }
+    CHECK(checked > 100);
+}
+
+TEST_CASE("affine Unbounded comes from every NaN/inf source and propagates", "[vm][affine]") {
+    Affine::BeginEvaluation();
+    Affine u = Affine::FromSymbol(0.5, 0.5, Affine::kSymbolU);
+    const double inf = std::numeric_limits<double>::infinity();
+    // clang-format off
+    std::vector<Affine> sources = {  // every way to NaN or infinity
+        Affine(std::nan("")), Affine(inf), Affine(-inf), sqrt(u - 0.75), log(u), log(u - 1.0),
+        1.0 / (u - 0.5), u / (u - 0.25), u / 0.0, exp(u * 1000.0), exp(Affine(710.0)),
+        pow(u - 0.5, Affine(0.5)), pow(u, Affine(-1.0)), pow(u - 1.0, u),
+        Affine(1e300) * Affine(1e300), u * 1e300 * 1e300, Affine::FromSymbol(1, inf, 0),
+        Affine::Unbounded()};
+    Affine U = Affine::Unbounded();
+    std::vector<Affine> results = {  // every operation, U in every operand position
+        U + u, u + U, U - u, u - U, U * u, u * U, U / (u + 1.0), u / U, U + 1.0, 1.0 - U,
+        U * 0.0, 2.0 / U, U / 2.0, -U, sqr(U), sqrt(U), exp(U), log(U), sin(U), cos(U), abs(U),
+        sign(U), pow(U, u), pow(u, U), pow(U, Affine(0.0)), pow(U, Affine(2.0))};
+    // clang-format on
+    for (size_t i = 0; i < sources.size(); ++i) {
+        INFO("source " << i);
+        CHECK(sources[i].isUnbounded());
+    }
+    for (size_t i = 0; i < results.size(); ++i) {
+        INFO("result " << i);
+        CHECK(results[i].isUnbounded());
+    }
+    CHECK(U.range().isUnbounded());
+    CHECK(U.evaluateAt(0, 0).isUnbounded());
+    CHECK(U.toString() == "unbounded");
+}
+
+TEST_CASE("affine basics", "[vm][affine]") {
+    Affine::BeginEvaluation();
+    Affine c(2.5);
+    CHECK(c.isConstant());
+    CHECK(c.range().lo() == 2.5);
+    CHECK(c.range().hi() == 2.5);
+    Affine u = Affine::FromSymbol(1.0, 0.5, Affine::kSymbolU);
+    CHECK(u.coefficientOf(Affine::kSymbolU) == 0.5);
+    CHECK(u.evaluateAt(1, 0).lo() == 1.5);
+    CHECK(u.evaluateAt(1, 0).hi() == 1.5);
+    CHECK(u.toString() == "1 + 0.5*e0");
+    Affine f = Affine::FromInterval(Interval(1, 3));
+    CHECK(f.termSymbol(0) == Affine::kFirstFreshSymbol);
+    CHECK(f.range().lo() <= 1);
+    CHECK(f.range().hi() >= 3);
+    // Constant arithmetic is the scalar result, exactly.
+    CHECK((Affine(0.1) + Affine(0.2)).isConstant());
+    CHECK((Affine(0.1) + Affine(0.2)).center() == 0.1 + 0.2);
+    CHECK((Affine(3.0) * Affine(7.0)).center() == 21.0);
+    CHECK(IsExactlyZero(Affine(0.0)));
+    CHECK_FALSE(IsExactlyZero(u - 1.0));
+    CHECK(pow(u, Affine(0.0)).isConstant());
+    // pow at 0: pow(0, 0) = 1, pow(0, y > 0) = 0, pow(0, y < 0) = inf.
+    CHECK(pow(Affine(0.0), Affine(0.0)).center() == 1.0);
+    CHECK(pow(Affine(0.0), Affine(2.5)).range().contains(0.0));
+    CHECK(pow(Affine(0.0), Affine(3.0)).range().contains(0.0));
+    CHECK(pow(Affine(0.0), Affine(-1.0)).isUnbounded());
+    CHECK(pow(Affine(0.0), Affine(-0.5)).isUnbounded());
+    CHECK(Affine::FromSymbol(3.0, 0.0, Affine::kSymbolU).isConstant());
+    CHECK(Affine::FromInterval(Interval::Unbounded()).isUnbounded());
+    // Symbols are sorted, whatever the order they were made in.
+    Affine::BeginEvaluation();
+    Affine a = Affine::FromInterval(Interval(0, 1));  // symbol 2
+    Affine b = Affine::FromSymbol(0, 1, 7) + Affine::FromSymbol(0, 1, 1) + a;
+    for (int i = 1; i < b.termCount(); ++i) CHECK(b.termSymbol(i - 1) < b.termSymbol(i));
+}

@@ -1,0 +1,535 @@
+// tests/vm/numbers/reduced_affine_test.cpp: containment of every ReducedAffine operation by Stolfi's aavalid
+// method, edge cases, and containment of whole shaders.
+// Operands are built from the region's exact u = uc + ur*eps_u and v = vc + vr*eps_v by random
+// recipes (tests/vm/numbers/aavalid.h), once on doubles at a point (eps_u, eps_v) and once on
+// ReducedAffine (and Affine, and Interval): the double result of the operation must lie in the
+// reduced result's evaluateAt(eps_u, eps_v) (its error term free) and in its range; a NaN/inf
+// double result requires Unbounded. Tightness is compared too: the reduced range is never wider
+// than the interval result (its enclosure), and on operands that are u or v themselves it is as
+// tight as Affine's (the same fits on the same ranges). AFFRAY_SAMPLES=N raises the samples.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+#include <type_traits>
+
+#include "tests/test_random.h"
+#include "tests/vm/numbers/aavalid.h"
+#include "tests/vm/shader_containment.h"
+#include "vm/numbers/number.h"
+
+using namespace affray::vm;
+using affray::test::Rng;
+using affray::test::Samples;
+using namespace affray::test::aavalid;
+
+namespace {
+
+/// Containment results of one operation.
+struct Report {
+    int samples = 0, failures = 0, bounded = 0, scalarFinite = 0;
+    double worstToInterval = 0;  // reduced range width / interval width, every sample
+    double worstToAffine = 0;    // reduced range width / affine range width, exact-symbol operands
+    std::ostringstream first;
+
+    void fail(const std::string& what) {
+        if (failures++ < 4) first << what << "\n";
+    }
+};
+
+std::string Describe(const char* what, double d, const ReducedAffine& r, const Affine& a, const Interval& i) {
+    std::ostringstream s;
+    s.precision(17);
+    s << what << ": double " << d << "\n  reduced " << r.toString() << " " << r.range().toString() << "\n  affine "
+      << a.toString() << "\n  interval " << i.toString();
+    return s.str();
+}
+
+// Width ratio b/a beyond a few ulps of the magnitude (widths that small are all rounding slack).
+double WidthRatio(const Interval& num, const Interval& den) {
+    const double allowance = 1e-14 * std::fmax(std::fabs(den.lo()), std::fabs(den.hi()));
+    if (den.isUnbounded() || num.isUnbounded() || den.width() + allowance <= 1e-300) return 0;
+    return num.width() / (den.width() + allowance);
+}
+
+// Checks the results of one sample; `exact` says whether the operands are u or v themselves.
+void CheckResult(Report& rep, const Region& g, double rd, const ReducedAffine& rr, const Affine& ra, const Interval& ri,
+                 bool exact) {
+    rep.samples++;
+    if (!std::isfinite(rd)) {
+        if (!rr.isUnbounded()) rep.fail(Describe("NaN/inf not Unbounded", rd, rr, ra, ri));
+        return;
+    }
+    rep.scalarFinite++;
+    if (rr.isUnbounded()) return;
+    rep.bounded++;
+    if (!rr.evaluateAt(g.eu, g.ev).contains(rd)) rep.fail(Describe("reduced misses", rd, rr, ra, ri));
+    if (!rr.range().contains(rd)) rep.fail(Describe("reduced range misses", rd, rr, ra, ri));
+    if (!(rr.error() >= 0)) rep.fail(Describe("negative error", rd, rr, ra, ri));
+    rep.worstToInterval = std::max(rep.worstToInterval, WidthRatio(rr.range(), ri));
+    if (exact) rep.worstToAffine = std::max(rep.worstToAffine, WidthRatio(rr.range(), ra.range()));
+}
+
+struct Operands {
+    Region g;
+    Recipe rx, ry;
+    double xd, yd;
+    ReducedAffine xr, yr;
+    Affine xa, ya;
+    Interval xi, yi;
+    bool ok = true;
+};
+
+ReducedAffine U(const Region& g) { return ReducedAffine::FromSymbol(g.uc, g.ur, ReducedAffine::kSymbolU); }
+ReducedAffine V(const Region& g) { return ReducedAffine::FromSymbol(g.vc, g.vr, ReducedAffine::kSymbolV); }
+
+Operands MakeOperands(Rng& rng, const RegionConfig& gc, const RecipeConfig& xc, const RecipeConfig& yc, Report& rep) {
+    Operands o;
+    Affine::BeginEvaluation();
+    o.g = RandomRegion(rng, gc);
+    o.rx = RandomRecipe(rng, xc);
+    o.ry = RandomRecipe(rng, yc);
+    const Region& g = o.g;
+    Affine ua = Affine::FromSymbol(g.uc, g.ur, Affine::kSymbolU);
+    Affine va = Affine::FromSymbol(g.vc, g.vr, Affine::kSymbolV);
+    Interval ui(g.uc - g.ur, g.uc + g.ur), vi(g.vc - g.vr, g.vc + g.vr);
+    o.xd = Build(o.rx, g.u, g.v);
+    o.yd = Build(o.ry, g.u, g.v);
+    o.xr = Build(o.rx, U(g), V(g));
+    o.yr = Build(o.ry, U(g), V(g));
+    o.xa = Build(o.rx, ua, va);
+    o.ya = Build(o.ry, ua, va);
+    o.xi = Build(o.rx, ui, vi);
+    o.yi = Build(o.ry, ui, vi);
+    // The operands are themselves results of ReducedAffine operations: check them too.
+    Report sub;
+    CheckResult(sub, g, o.xd, o.xr, o.xa, o.xi, false);
+    CheckResult(sub, g, o.yd, o.yr, o.ya, o.yi, false);
+    if (sub.failures) rep.fail("operand: " + sub.first.str());
+    o.ok = sub.failures == 0;
+    return o;
+}
+
+template <class F>
+Report CheckOp(uint64_t seed, int n, const RegionConfig& gc, const RecipeConfig& xc, const RecipeConfig& yc, F op) {
+    Rng rng(seed);
+    Report rep;
+    for (int s = 0; s < n; ++s) {
+        Operands o = MakeOperands(rng, gc, xc, yc, rep);
+        if (!o.ok) continue;
+        auto isExact = [](const Recipe& r) { return r.kind <= 1 && r.shift == 0 && r.scale == 1; };
+        CheckResult(rep, o.g, op(o.xd, o.yd), op(o.xr, o.yr), op(o.xa, o.ya), op(o.xi, o.yi),
+                    isExact(o.rx) && isExact(o.ry));
+    }
+    return rep;
+}
+
+// AFFRAY_VERBOSE=1 prints every report. `maxToAffine` bounds the width ratio to Affine on exact
+// operands; the ratio to the interval result is always at most 1 (plus rounding).
+void Expect(const char* name, const Report& rep, double minBoundedFraction, double maxToAffine = 1.01) {
+    if (std::getenv("AFFRAY_VERBOSE"))
+        std::printf("%-20s %7d samples %7d finite %7d bounded  worst /interval %.4g  /affine %.4g  failures %d\n", name,
+                    rep.samples, rep.scalarFinite, rep.bounded, rep.worstToInterval, rep.worstToAffine, rep.failures);
+    INFO(name << ": " << rep.samples << " samples, " << rep.bounded << " bounded of " << rep.scalarFinite
+              << " finite, worst width ratio to interval " << rep.worstToInterval << ", to affine " << rep.worstToAffine
+              << "\n"
+              << rep.first.str());
+    CHECK(rep.failures == 0);
+    CHECK(rep.samples > 0);
+    CHECK(rep.bounded >= minBoundedFraction * rep.scalarFinite);
+    CHECK(rep.worstToInterval <= 1.0 + 1e-9);
+    CHECK(rep.worstToAffine <= maxToAffine);
+}
+
+#define UNARY(expr) [](const auto& x, const auto&) { return expr; }
+#define BINARY(expr) [](const auto& x, const auto& y) { return expr; }
+
+}  // namespace
+
+TEST_CASE("reduced affine arithmetic contains the scalar result", "[vm][reduced]") {
+    const int n = Samples(20000);
+    RegionConfig g;
+    RecipeConfig r;
+    Expect("x + y", CheckOp(1, n, g, r, r, BINARY(x + y)), 1.0);
+    Expect("x - y", CheckOp(2, n, g, r, r, BINARY(x - y)), 1.0);
+    Expect("x * y", CheckOp(3, n, g, r, r, BINARY(x * y)), 1.0);
+    Expect("x / y", CheckOp(4, n, g, r, r, BINARY(x / y)), 0.3, 1.5);
+    Expect("-x", CheckOp(5, n, g, r, r, UNARY(-x)), 1.0);
+    Expect("x + c", CheckOp(6, n, g, r, r, UNARY(x + 0.1)), 1.0);
+    Expect("c - x", CheckOp(7, n, g, r, r, UNARY(1e3 - x)), 1.0);
+    Expect("x * c", CheckOp(8, n, g, r, r, UNARY(x * 0.7)), 1.0);
+    Expect("x / c", CheckOp(9, n, g, r, r, UNARY(x / 3.0)), 1.0);
+    Expect("c / x", CheckOp(10, n, g, r, r, UNARY(3.0 / x)), 0.3);
+    Expect("sqr", CheckOp(11, n, g, r, r, UNARY(sqr(x))), 1.0);
+    Expect("x * x", CheckOp(12, n, g, r, r, BINARY(x * x + y)), 1.0);
+}
+
+TEST_CASE("reduced affine functions contain the scalar result", "[vm][reduced]") {
+    const int n = Samples(20000);
+    RegionConfig g;
+    RecipeConfig r;
+    Expect("sqrt", CheckOp(20, n, g, r, r, UNARY(sqrt(x))), 0.2);
+    Expect("log", CheckOp(21, n, g, r, r, UNARY(log(x))), 0.2);
+    Expect("abs", CheckOp(22, n, g, r, r, UNARY(abs(x))), 1.0);
+    Expect("sign", CheckOp(23, n, g, r, r, UNARY(sign(x))), 1.0);
+    RegionConfig small;
+    small.expLo = -20;
+    small.expHi = 4;
+    RecipeConfig mild = r;
+    mild.coefExpHi = 1;
+    Expect("exp", CheckOp(24, n, small, mild, r, UNARY(exp(x))), 0.9);
+    RecipeConfig nearOverflow = mild;
+    nearOverflow.shifts = {700.0, 704.0, 708.0, 709.5, 710.0};
+    nearOverflow.kindHi = 4;
+    Expect("exp near overflow", CheckOp(25, n, small, nearOverflow, r, UNARY(exp(x))), 0.1);
+    Expect("sin", CheckOp(26, n, small, mild, r, UNARY(sin(x))), 1.0);
+    Expect("cos", CheckOp(27, n, small, mild, r, UNARY(cos(x))), 1.0);
+    // sqrt of a sum of squares across 0 stays bounded (the enclosure keeps it >= 0).
+    Expect("sqrt(x^2 + y^2)", CheckOp(28, n, g, r, r, BINARY(sqrt(sqr(x) + sqr(y)))), 1.0, 1.5);
+}
+
+TEST_CASE("reduced affine sin and cos over periods and far from 0", "[vm][reduced]") {
+    const int n = Samples(20000) / 4;
+    const double pi = 3.141592653589793;
+    RecipeConfig exact;
+    exact.kindHi = 2;
+    exact.coefExpLo = -1;
+    exact.coefExpHi = 0;
+    for (double width : {pi / 2, pi, 2 * pi, 1e-6}) {
+        for (double center : {4.0, 1e3, 1e6}) {
+            RegionConfig g;
+            g.expHi = -2;
+            g.uWidth = width;
+            g.uCenter = center;
+            g.touchZero = 0;
+            INFO("width " << width << " center " << center);
+            Expect("sin", CheckOp(30, n, g, exact, exact, UNARY(sin(x))), 1.0);
+            Expect("cos", CheckOp(31, n, g, exact, exact, UNARY(cos(x))), 1.0);
+        }
+    }
+}
+
+TEST_CASE("reduced affine pow contains the scalar result", "[vm][reduced]") {
+    const int n = Samples(20000) / 2;
+    RegionConfig g;
+    g.expLo = -10;
+    g.expHi = 3;
+    RecipeConfig r;
+    r.coefExpHi = 1;
+    for (double p : {2.0, 3.0, -1.0, -2.0, 5.0, 0.5, 2.5, -0.75, 0.0, 1.0, 64.0, 65.0}) {
+        INFO("exponent " << p);
+        // Integer powers square: with one error term per value, a power of u alone keeps less
+        // correlation than Affine's fresh symbols do.
+        Expect("pow(x, p)",
+               CheckOp(40, n, g, r, r,
+                       [p](const auto& x, const auto&) {
+                           using std::pow;
+                           return pow(x, std::decay_t<decltype(x)>(p));
+                       }),
+               0.05, 1e300);
+    }
+    RecipeConfig negative = r;
+    negative.kindHi = 2;
+    negative.shifts = {-4.0, -0.5};
+    for (double p : {2.0, 3.0, -3.0, 4.0}) {
+        INFO("negative base, exponent " << p);
+        Expect("pow(-x, n)",
+               CheckOp(41, n, g, negative, r,
+                       [p](const auto& x, const auto&) {
+                           using std::pow;
+                           return pow(x, std::decay_t<decltype(x)>(p));
+                       }),
+               0.2, 1e300);
+    }
+    RecipeConfig exponent = r;
+    exponent.scale = 0.25;
+    Expect("pow(x, y)", CheckOp(42, n, g, r, exponent, BINARY(pow(x, y))), 0.05, 1e300);
+}
+
+TEST_CASE("reduced affine branch functions contain the scalar result", "[vm][reduced]") {
+    const int n = Samples(20000) / 2;
+    RegionConfig g;
+    RecipeConfig r;
+    RegionConfig small;
+    small.expLo = -20;
+    small.expHi = 3;
+    RecipeConfig mild = r;
+    mild.coefExpHi = 1;
+    Expect("floor", CheckOp(80, n, small, mild, r, UNARY(floor(x))), 1.0);
+    Expect("ceil", CheckOp(81, n, small, mild, r, UNARY(ceil(x * 3.0))), 1.0);
+    Expect("round", CheckOp(82, n, small, mild, r, UNARY(round(x))), 1.0);
+    Expect("floor wide", CheckOp(83, n, g, r, r, UNARY(floor(x))), 1.0);
+    RegionConfig unit;
+    unit.expLo = -20;
+    unit.expHi = 0;
+    RecipeConfig quarter = mild;
+    quarter.scale = 0.25;
+    Expect("asin", CheckOp(84, n, unit, quarter, r, UNARY(asin(x))), 0.3);
+    Expect("acos", CheckOp(85, n, unit, quarter, r, UNARY(acos(x))), 0.3);
+    Expect("atan", CheckOp(86, n, g, r, r, UNARY(atan(x))), 1.0);
+    Expect("atan small", CheckOp(87, n, small, mild, r, UNARY(atan(x))), 1.0);
+    Expect("atan2", CheckOp(88, n, small, mild, mild, BINARY(atan2(x, y))), 1.0, 1.5);
+    Expect("atan2 wide", CheckOp(89, n, g, r, r, BINARY(atan2(y, x))), 1.0, 1.5);
+    Expect("Min", CheckOp(90, n, g, r, r, BINARY(Min(x, y))), 1.0);
+    Expect("Max", CheckOp(91, n, g, r, r, BINARY(Max(x, y))), 1.0);
+    Expect("Less", CheckOp(92, n, g, r, r, BINARY(Less(x, y))), 1.0);
+    Expect("LessEq", CheckOp(93, n, g, r, r, BINARY(LessEq(x, y))), 1.0);
+    Expect("Equal", CheckOp(94, n, g, r, r, BINARY(Equal(x, y))), 1.0);
+    Expect("NotEqual", CheckOp(95, n, g, r, r, BINARY(NotEqual(x, y))), 1.0);
+    Expect("And", CheckOp(96, n, g, r, r, BINARY(And(x, y - 1.0))), 1.0);
+    Expect("Or", CheckOp(97, n, g, r, r, BINARY(Or(x - 0.5, y))), 1.0);
+    Expect("Not", CheckOp(98, n, g, r, r, UNARY(Not(x))), 1.0);
+    Expect("Select", CheckOp(99, n, g, r, r, BINARY(Select(Less(x, y), y - x, x * y))), 0.3, 1e300);
+}
+
+TEST_CASE("reduced affine Join contains both operands", "[vm][reduced]") {
+    const int n = Samples(20000) / 2;
+    Rng rng(100);
+    RegionConfig g;
+    RecipeConfig r;
+    Report rep;
+    for (int s = 0; s < n; ++s) {
+        Operands o = MakeOperands(rng, g, r, r, rep);
+        if (!o.ok) continue;
+        ReducedAffine j = Join(o.xr, o.yr);
+        Interval hull = Hull(o.xr.range(), o.yr.range());
+        for (double d : {o.xd, o.yd}) {
+            rep.samples++;
+            if (!std::isfinite(d)) continue;
+            rep.scalarFinite++;
+            if (j.isUnbounded()) continue;
+            rep.bounded++;
+            if (!j.evaluateAt(o.g.eu, o.g.ev).contains(d) || !j.range().contains(d))
+                rep.fail(Describe("join misses", d, j, Affine(0.0), hull));
+            if (!hull.isUnbounded() && (j.range().lo() < hull.lo() || j.range().hi() > hull.hi()))
+                rep.fail(Describe("join leaves the hull", d, j, Affine(0.0), hull));
+        }
+    }
+    Expect("Join", rep, 0.9);
+    // A value joined with itself keeps its u and v terms.
+    const Region reg{0.5, 0.25, 2.0, 0.5, 0, 0, 0.5, 2.0};
+    ReducedAffine x = U(reg) * 3.0 + V(reg);
+    ReducedAffine j = Join(x, x);
+    CHECK(j.coefficientU() == x.coefficientU());
+    CHECK(j.coefficientV() == x.coefficientV());
+    CHECK(j.error() < 1e-14);
+}
+
+TEST_CASE("reduced affine contains random programs", "[vm][reduced]") {
+    Rng rng(70);
+    Report rep;
+    const int programs = Samples(20000) / 10;
+    for (int p = 0; p < programs; ++p) {
+        std::vector<Step> program = RandomSteps(rng);
+        RegionConfig gc;
+        gc.expLo = -12;
+        gc.expHi = 1;
+        Affine::BeginEvaluation();
+        Region g = RandomRegion(rng, gc);
+        auto rr = RunProgram(program, U(g), V(g));
+        auto ra = RunProgram(program, Affine::FromSymbol(g.uc, g.ur, Affine::kSymbolU),
+                             Affine::FromSymbol(g.vc, g.vr, Affine::kSymbolV));
+        auto ri = RunProgram(program, Interval(g.uc - g.ur, g.uc + g.ur), Interval(g.vc - g.vr, g.vc + g.vr));
+        for (int point = 0; point < 8; ++point) {
+            Region q = g;
+            for (int k = 0; k < 20; ++k) {
+                q.eu = rng.eps();
+                q.ev = rng.eps();
+                if (ExactSum(g.uc, g.ur, q.eu, &q.u) && ExactSum(g.vc, g.vr, q.ev, &q.v)) break;
+                q.eu = q.ev = 0;
+                q.u = g.uc;
+                q.v = g.vc;
+            }
+            auto rd = RunProgram(program, q.u, q.v);
+            for (size_t i = 2; i < rd.size(); ++i) CheckResult(rep, q, rd[i], rr[i], ra[i], ri[i], false);
+        }
+    }
+    Expect("random programs", rep, 0.3);
+}
+
+TEST_CASE("reduced affine ranges touching 0", "[vm][reduced]") {
+    for (double r : {1e-6, 0.5, 3.0, 1e6}) {
+        ReducedAffine x = ReducedAffine::FromSymbol(r, r, ReducedAffine::kSymbolU);  // [0, 2r]
+        CHECK(x.range().lo() == 0);
+        ReducedAffine s = sqrt(x);
+        REQUIRE_FALSE(s.isUnbounded());
+        CHECK(s.evaluateAt(-1, 0).contains(0.0));
+        CHECK(s.evaluateAt(1, 0).contains(std::sqrt(2 * r)));
+        CHECK(s.range().lo() >= 0);
+        CHECK(log(x).isUnbounded());
+        CHECK((1.0 / x).isUnbounded());
+        CHECK((ReducedAffine(1.0) / x).isUnbounded());
+        CHECK((x / (x - r)).isUnbounded());
+        CHECK(pow(x, ReducedAffine(-1.0)).isUnbounded());
+        CHECK(pow(x, ReducedAffine(-0.5)).isUnbounded());
+        CHECK(pow(x, ReducedAffine(0.5)).evaluateAt(-1, 0).contains(0.0));
+        ReducedAffine a = abs(x - r);
+        CHECK(a.range().lo() == 0);  // min-range abs stays >= 0 exactly
+        CHECK_FALSE(sqrt(a).isUnbounded());
+        // Squares across 0 stay >= 0 (the compiler makes x*x a square), so their sums have a
+        // square root.
+        ReducedAffine c = x - r;  // [-r, r]
+        CHECK(sqr(c).range().lo() == 0);
+        CHECK_FALSE(sqrt(sqr(c) + sqr(c * 0.5)).isUnbounded());
+    }
+}
+
+TEST_CASE("reduced affine Unbounded comes from every NaN/inf source and propagates", "[vm][reduced]") {
+    ReducedAffine u = ReducedAffine::FromSymbol(0.5, 0.5, ReducedAffine::kSymbolU);
+    const double inf = std::numeric_limits<double>::infinity();
+    // clang-format off
+    std::vector<ReducedAffine> sources = {  // every way to NaN or infinity
+        ReducedAffine(std::nan("")), ReducedAffine(inf), ReducedAffine(-inf), sqrt(u - 0.75), log(u),
+        log(u - 1.0), 1.0 / (u - 0.5), u / (u - 0.25), u / 0.0, exp(u * 1000.0), exp(ReducedAffine(710.0)),
+        pow(u - 0.5, ReducedAffine(0.5)), pow(u, ReducedAffine(-1.0)), pow(u - 1.0, u),
+        ReducedAffine(1e300) * ReducedAffine(1e300), u * 1e300 * 1e300, ReducedAffine(1.5e308) + 1.5e308,
+        u * 1e308 + u * 1e308, sqr(u * 1e200), ReducedAffine::FromSymbol(1, inf, 0),
+        ReducedAffine::FromSymbol(std::nan(""), 1, 1), asin(u * 3.0), acos(u + 0.75),
+        ReducedAffine::FromInterval(Interval::Unbounded()), ReducedAffine::Unbounded()};
+    ReducedAffine U = ReducedAffine::Unbounded();
+    std::vector<ReducedAffine> results = {  // every operation, U in every operand position
+        U + u, u + U, U - u, u - U, U * u, u * U, U / (u + 1.0), u / U, U + 1.0, 1.0 - U, U * 0.0, 2.0 / U,
+        U / 2.0, -U, sqr(U), sqrt(U), exp(U), log(U), sin(U), cos(U), abs(U), sign(U), pow(U, u), pow(u, U),
+        pow(U, ReducedAffine(0.0)), pow(U, ReducedAffine(2.0)), floor(U), ceil(U), round(U), asin(U), acos(U),
+        atan(U), atan2(U, u), atan2(u, U), Min(U, u), Max(u, U), Join(U, u), Join(u, U), DerivU(u), DerivV(u),
+        u + 1.0 / 0.0};
+    // clang-format on
+    for (size_t i = 0; i < sources.size(); ++i) {
+        INFO("source " << i << ": " << sources[i].toString());
+        CHECK(sources[i].isUnbounded());
+        CHECK(RangeOf(sources[i]).isUnbounded());
+    }
+    for (size_t i = 0; i < results.size(); ++i) {
+        INFO("result " << i);
+        CHECK(results[i].isUnbounded());
+    }
+    // Comparisons and logic on Unbounded are undecided, never Unbounded (NaN compares false).
+    for (const ReducedAffine& c :
+         {Less(U, u), LessEq(u, U), Equal(U, U), NotEqual(U, u), And(U, u), Or(u, U), Not(U)}) {
+        CHECK(TruthOf(c) == Truth::Unknown);
+        CHECK(c.range().lo() == 0);
+        CHECK(c.range().hi() == 1);
+    }
+    CHECK(U.evaluateAt(0, 0).isUnbounded());
+    CHECK(U.toString() == "unbounded");
+    CHECK(IsUnbounded(U));
+}
+
+TEST_CASE("reduced affine basics", "[vm][reduced]") {
+    STATIC_REQUIRE(std::is_trivially_copyable_v<ReducedAffine>);
+    STATIC_REQUIRE(sizeof(ReducedAffine) <= 6 * sizeof(double));
+    CHECK(std::string(NumberTraits<ReducedAffine>::kName) == "reduced");
+    CHECK(std::string(NumberTraits<Dual<ReducedAffine>>::kName) == "dual-reduced");
+    CHECK_FALSE(NumberTraits<ReducedAffine>::kHasDerivatives);
+    ReducedAffine c(2.5);
+    CHECK(c.isConstant());
+    CHECK(c.range().lo() == 2.5);
+    CHECK(c.range().hi() == 2.5);
+    CHECK(IsExactlyZero(ReducedAffine()));
+    CHECK(IsExactlyZero(ReducedAffine(0.0)));
+    ReducedAffine u = ReducedAffine::FromSymbol(1.0, 0.5, ReducedAffine::kSymbolU);
+    ReducedAffine v = ReducedAffine::FromSymbol(2.0, 0.25, ReducedAffine::kSymbolV);
+    CHECK(u.center() == 1.0);
+    CHECK(u.coefficientU() == 0.5);
+    CHECK(u.coefficientV() == 0);
+    CHECK(v.coefficientV() == 0.25);
+    CHECK(u.error() == 0);
+    CHECK(u.range().lo() == 0.5);
+    CHECK(u.range().hi() == 1.5);
+    CHECK(u.evaluateAt(1, 0).lo() == 1.5);
+    CHECK(u.evaluateAt(1, 0).hi() == 1.5);
+    CHECK(u.toString() == "1 + 0.5*eu");
+    // (Linear operations add a bound on their rounding to e, even where nothing was rounded.)
+    CHECK((u - v * 2.0).toString().rfind("-3 + 0.5*eu - 0.5*ev +- ", 0) == 0);
+    CHECK_FALSE(IsExactlyZero(u - 1.0));
+    CHECK(ReducedAffine::FromSymbol(3.0, 0.0, ReducedAffine::kSymbolU).isConstant());
+    // Constant arithmetic is the scalar result, exactly.
+    CHECK((ReducedAffine(0.1) + ReducedAffine(0.2)).isConstant());
+    CHECK((ReducedAffine(0.1) + ReducedAffine(0.2)).center() == 0.1 + 0.2);
+    CHECK((ReducedAffine(3.0) * ReducedAffine(7.0)).center() == 21.0);
+    CHECK((ReducedAffine(1.0) / ReducedAffine(3.0)).center() == 1.0 / 3.0);
+    CHECK(sqrt(ReducedAffine(2.0)).center() == std::sqrt(2.0));
+    CHECK(pow(u, ReducedAffine(0.0)).isConstant());
+    CHECK(pow(ReducedAffine(0.0), ReducedAffine(0.0)).center() == 1.0);
+    CHECK(pow(ReducedAffine(0.0), ReducedAffine(-1.0)).isUnbounded());
+    // Linear functions of u and v are exact; the same form cancels exactly.
+    ReducedAffine zero = u - u;
+    CHECK(zero.isConstant());
+    CHECK(zero.center() == 0);
+    ReducedAffine x = u * 3.0 + v;
+    CHECK(x.coefficientU() == 1.5);
+    CHECK(x.coefficientV() == 0.25);
+    CHECK(x.range().width() < 2 * 1.75 + 1e-14);
+    // The error term is independent per value: x - x keeps 2e (here only rounding, tiny), while a
+    // nonlinear value minus itself keeps twice its remainder.
+    CHECK((x - x).coefficientU() == 0);
+    CHECK((x - x).range().width() < 1e-14);
+    ReducedAffine s = sin(u);
+    CHECK(s.error() > 0);
+    CHECK((s - s).error() >= 2 * s.error());
+    // Affine-style correlation beats intervals: (u + 1)(u - 1) on u in [0.5, 1.5].
+    Interval ui(0.5, 1.5);
+    CHECK(((u + 1.0) * (u - 1.0)).range().width() < ((ui + 1.0) * (ui - 1.0)).width());
+    // Comparisons decide from the difference form: correlated operands whose ranges overlap.
+    CHECK(Less(u, u + 0.25).isConstant());
+    CHECK(Less(u, u + 0.25).center() == 1.0);
+    CHECK(LessEq(u * 2.0 + v, u * 2.0 + v - 1e-9).center() == 0.0);
+    CHECK(Equal(u, u).center() == 1.0);
+    CHECK(NotEqual(u, u + 1e-6).center() == 1.0);
+    ReducedAffine undecided = Less(u, v - 1.0);  // u - v + 1 in [-1.25, 0.75]
+    CHECK(TruthOf(undecided) == Truth::Unknown);
+    CHECK(undecided.center() == 0.5);
+    CHECK(undecided.error() == 0.5);
+    CHECK(undecided.range().lo() == 0);
+    CHECK(undecided.range().hi() == 1);
+    CHECK(And(Less(u, u + 1.0), Less(v, v + 1.0)).center() == 1.0);
+    CHECK(Not(Less(u, u + 1.0)).center() == 0.0);
+    CHECK(TruthOf(Or(undecided, ReducedAffine(0.0))) == Truth::Unknown);
+    // Min and Max decided by the difference return the operand itself.
+    CHECK(Min(u, u + 0.125).coefficientU() == 0.5);
+    CHECK(Max(u, u - 0.125).center() == 1.0);
+    // Step functions within one integer cell are the exact constant.
+    CHECK(floor(u * 0.25 + 3.0).isConstant());
+    CHECK(floor(u * 0.25 + 3.0).center() == 3.0);
+    // No derivatives: the unknown value.
+    CHECK(DerivU(u).isUnbounded());
+    CHECK(DerivV(u).isUnbounded());
+    // Huge but finite values stay bounded.
+    ReducedAffine big = u * 1e300;
+    CHECK_FALSE(big.isUnbounded());
+    CHECK(big.range().contains(1.5e300));
+    CHECK_FALSE((big - big * 0.5).isUnbounded());
+    // Dual<ReducedAffine> carries derivatives of forms.
+    Dual<ReducedAffine> du(u, 1.0, 0.0);
+    Dual<ReducedAffine> d2 = sqr(du);
+    CHECK(d2.du.range().contains(2.0));
+    CHECK(d2.du.range().lo() >= 1.0 - 1e-12);
+    CHECK(d2.du.range().hi() <= 3.0 + 1e-12);
+}
+
+TEST_CASE("containment: every shader's scalar P lies in its reduced affine bound", "[vm][reduced][containment]") {
+    for (const std::string& path : affray::test::AllShaders()) {
+        affray::compiler::CompileResult r = affray::compiler::CompileFile(path);
+        INFO(path << "\n" << r.diagnostics);
+        REQUIRE(r.ok());
+        affray::test::CheckContainment<ReducedAffine>(path, r.shader->bound, 2000, 24, 42);
+        affray::test::CheckContainment<ReducedAffine>(path + " (shade)", r.shader->shade, 60, 12, 43);
+    }
+}
+
+TEST_CASE("containment: stiff parameters of wave.sl in reduced affine", "[vm][reduced][containment]") {
+    const std::string path = affray::test::SourceDir() + "/shaders/wave.sl";
+    const std::vector<std::vector<affray::compiler::ParamOverride>> cases = {
+        {{"frequency", {1000}}},
+        {{"Km", {1e3}}},
+        {{"decay", {200}}, {"Km", {5}}},
+        {{"centerS", {0}}, {"centerT", {0}}},
+    };
+    for (const auto& params : cases) {
+        affray::compiler::CompileResult r = affray::compiler::CompileFile(path, params);
+        REQUIRE(r.ok());
+        affray::test::CheckContainment<ReducedAffine>(path + " " + params[0].name, r.shader->bound, 200, 16, 7);
+    }
+}

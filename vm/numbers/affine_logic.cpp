@@ -1,0 +1,151 @@
+// vm/numbers/affine_logic.cpp: the piecewise-constant and branching functions of affine arithmetic:
+// floor, ceil, round, Min, Max, the comparisons, And/Or/Not, TruthOf and Join (the value of an
+// undecided branch). Separate from affine_functions.cpp because none of them is a smooth fit:
+// each is either decided over the whole region (an exact constant, or one operand itself) or
+// bounded by a form that keeps the correlation with its operands plus a bounded jump.
+// Comparisons are decided from the affine difference a - b, so that correlated operands decide
+// where their ranges overlap (x < x + 1 for any x): see SignOfDifference. An undecided
+// comparison is 0.5 +- 0.5 on a fresh symbol (the step form of AFFINE-NOTES), never Unbounded.
+// Sources: Stolfi & de Figueiredo (1997), sec. 3.10 (mixed affine-interval evaluation);
+// AFFINE-NOTES.md ("Conditionals").
+#include "vm/numbers/affine.h"
+#include "vm/numbers/affine_fit.h"
+
+namespace affray::vm {
+
+Affine Affine::FromTruth(Truth t) {
+    if (t == Truth::True) return Affine(1.0);
+    if (t == Truth::False) return Affine(0.0);
+    return FromSymbol(0.5, 0.5, NewSymbol());  // range exactly [0, 1]
+}
+
+// --- floor, ceil, round -------------------------------------------------------------------------
+
+// StepFit (vm/numbers/affine_fit.cpp): the exact constant where the range lies in one integer cell, x
+// itself past 2^52, else x plus the jump on a fresh symbol.
+Affine Affine::StepForm(const Affine& x, double (*f)(double), double gLo, double gHi) {
+    if (x.isUnbounded()) return x;
+    return FromFit(x, StepFit(x.range(), f, gLo, gHi));
+}
+
+Affine floor(const Affine& x) {
+    return Affine::Tighten(Affine::StepForm(
+                               x, [](double t) { return std::floor(t); }, -1.0, 0.0),
+                           floor(x.range()));
+}
+
+Affine ceil(const Affine& x) {
+    return Affine::Tighten(Affine::StepForm(
+                               x, [](double t) { return std::ceil(t); }, 0.0, 1.0),
+                           ceil(x.range()));
+}
+
+// std::round rounds halves away from zero: round(t) - t lies in [-1/2, 1/2] either way.
+Affine round(const Affine& x) {
+    return Affine::Tighten(Affine::StepForm(
+                               x, [](double t) { return std::round(t); }, -0.5, 0.5),
+                           round(x.range()));
+}
+
+// --- Comparisons --------------------------------------------------------------------------------
+
+namespace {
+
+// The sign of a - b for every pair of scalar values the operands allow, as the range of the form
+// a - b (or, if that form is Unbounded, e.g. by overflow, of the interval difference of the
+// ranges); Unbounded if an operand is (it may be NaN: every comparison false but !=).
+// Why the range of the *rounded* difference decides the double comparison: the form contains the
+// scalar fl(a - b) for each pair, and for finite doubles fl(a - b) has the sign of a - b and is 0
+// exactly when a == b. Rounding to nearest is monotone and maps 0 to 0, so it keeps the sign
+// (possibly giving 0 from a nonzero value only if |a - b| < 2^-1075), and a - b is a multiple of
+// 2^-1074 (both are), so a nonzero difference is at least the smallest subnormal and rounds to
+// itself or beyond (gradual underflow: a difference in the subnormal range is exact). An
+// overflowed difference would be +-inf with the right sign, but then the form is Unbounded and
+// the interval difference (directed, never overflowing silently) is used instead.
+Interval SignOfDifference(const Affine& a, const Affine& b) {
+    if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
+    Affine d = a - b;
+    return d.isUnbounded() ? a.range() - b.range() : d.range();
+}
+
+}  // namespace
+
+Affine Less(const Affine& a, const Affine& b) {
+    Interval d = SignOfDifference(a, b);
+    return Affine::FromTruth(TruthOf(Less(d, Interval(0.0))));
+}
+
+Affine LessEq(const Affine& a, const Affine& b) {
+    Interval d = SignOfDifference(a, b);
+    return Affine::FromTruth(TruthOf(LessEq(d, Interval(0.0))));
+}
+
+Affine Equal(const Affine& a, const Affine& b) {
+    Interval d = SignOfDifference(a, b);
+    return Affine::FromTruth(TruthOf(Equal(d, Interval(0.0))));
+}
+
+Affine NotEqual(const Affine& a, const Affine& b) {
+    Interval d = SignOfDifference(a, b);
+    return Affine::FromTruth(TruthOf(NotEqual(d, Interval(0.0))));
+}
+
+// --- Logic --------------------------------------------------------------------------------------
+
+Truth TruthOf(const Affine& x) { return TruthOf(x.range()); }
+
+Affine And(const Affine& a, const Affine& b) { return Affine::FromTruth(TruthAnd(TruthOf(a), TruthOf(b))); }
+
+Affine Or(const Affine& a, const Affine& b) { return Affine::FromTruth(TruthOr(TruthOf(a), TruthOf(b))); }
+
+Affine Not(const Affine& a) { return Affine::FromTruth(TruthNot(TruthOf(a))); }
+
+// --- Min, Max -----------------------------------------------------------------------------------
+
+// min/max(a, b) = (a + b)/2 -+ |a - b|/2 exactly in reals, plus the difference between that
+// formula's scalar value and std::fmin's (MinMaxSlack, vm/numbers/affine_fit.h).
+Affine Affine::MinMaxForm(const Affine& a, const Affine& b, bool isMax) {
+    if (a.isUnbounded() || b.isUnbounded()) return Affine::Unbounded();
+    // a <= b for every pair: fmin is a (or b, if equal: the same value), fmax is b; and so on.
+    Interval d = SignOfDifference(a, b);
+    if (!d.isUnbounded()) {
+        if (d.hi() <= 0) return isMax ? b : a;
+        if (d.lo() >= 0) return isMax ? a : b;
+    }
+    Affine mid = (a + b) * 0.5;
+    Affine half = abs(a - b) * 0.5;
+    Affine r = isMax ? mid + half : mid - half;
+    const double extra = MinMaxSlack(a.range(), b.range());
+    if (r.isUnbounded() || !(extra <= kMaxFinite)) return Affine::Unbounded();
+    return r.withExtraError(extra);
+}
+
+// Where the sign of a - b is decided, the operand itself (exactly, correlations and all).
+// Otherwise the abs formula keeps the symbols of a and b in (a + b)/2; abs(a - b) is min-range
+// (>= 0) on a fresh symbol. Unbounded operands give Unbounded: fmin(NaN, b) = b, but an Unbounded
+// a may also be any finite value.
+Affine Min(const Affine& a, const Affine& b) {
+    return Affine::Tighten(Affine::MinMaxForm(a, b, false), Min(a.range(), b.range()));
+}
+
+Affine Max(const Affine& a, const Affine& b) {
+    return Affine::Tighten(Affine::MinMaxForm(a, b, true), Max(a.range(), b.range()));
+}
+
+// --- Join ---------------------------------------------------------------------------------------
+
+// With m = (a + b)/2 and h = (a - b)/2 as forms, every scalar a = (a + b)/2 + (a - b)/2 lies within
+// D = max|h| (over h's whole range) of (a + b)/2, b likewise: m plus the independent error
+// JoinSlack (vm/numbers/affine_fit.h) contains both.
+Affine Join(const Affine& a, const Affine& b) {
+    if (a.isUnbounded() || b.isUnbounded()) return Affine::Unbounded();
+    Interval hull = Hull(a.range(), b.range());
+    Affine m = (a + b) * 0.5;
+    Affine h = (a - b) * 0.5;
+    if (m.isUnbounded() || h.isUnbounded()) return Affine::FromInterval(hull);
+    const double extra = JoinSlack(MaxAbs(h.range()), MaxAbs(m.range()));
+    if (!(extra <= kMaxFinite)) return Affine::FromInterval(hull);
+    return Affine::Tighten(m.withExtraError(extra), hull);
+}
+
+}  // namespace affray::vm

@@ -1,0 +1,610 @@
+// vm/numbers/noise.h: the RenderMan noise functions (noise, pnoise, cellnoise), written once as templates
+// over the number type, so that the double value a shader computes at a point and the bound an
+// Interval, Affine or Dual<...> evaluation computes over a (u,v) region come from the same code.
+// Owns Noise, PNoise and CellNoise, their lattice hash and gradient sets (vm/numbers/noise.cpp), the
+// scale that keeps gradient noise inside [0, 1], and LocalForm, the small affine arithmetic that
+// bounds one cell (see "Bounds"). This header is longer than 600 lines because the templates
+// and the proofs that keep them sound belong together.
+//
+// Semantics (double is the reference, as everywhere in the VM):
+//  - Noise(p, dims, seed): gradient ("Perlin") noise of dims = 1..4 coordinates. Lattice point c
+//    (an integer vector) gets a gradient g(c) drawn by an integer hash of (c, dims, seed) from a
+//    fixed set (NoiseGradients). In the cell k = floor(p), with local coordinates t = p - k in
+//    [0,1]^dims, fades s_i = 6t^5 - 15t^4 + 10t^3 and corner weights W_o = prod_i (o_i ? s_i :
+//    1 - s_i) for o in {0,1}^dims, the raw value is
+//        raw(t) = sum_o W_o * g(k + o).(t - o)        (computed as nested lerps, dimension 0 first)
+//    and the result is 0.5 + raw * NoiseScale(dims), clamped to [0, 1] (a no-op in exact
+//    arithmetic, see "The scale" below; it only guards rounding). C1: the fade has zero first and
+//    second derivatives at 0 and 1, so raw is C2 across cell faces. Values are 0.5 at lattice
+//    points; the mean is 0.5 (the gradient sets are symmetric, so raw is symmetric about 0).
+//    `seed` selects independent channels (the compiler uses 0, 1, 2 for x, y, z of a triple).
+//    Non-finite input gives NaN (Unbounded for bounded types).
+//  - PNoise(p, period, dims, seed): the same noise on a lattice that wraps with the integer period
+//    P_i = max(1, round(period_i)) per dimension: gradients are hashed from (c_i mod P_i). Hence
+//    PNoise(p + P e_i) = PNoise(p), and PNoise = Noise wherever 0 <= floor(p_i) and
+//    floor(p_i) + 1 < P_i for every i (both hash the same corners there). Periods are uniform
+//    values; a non-finite period gives NaN (Unbounded for a bounded period that may be one).
+//  - CellNoise(p, dims, seed): constant on each cell floor(p): a hash of (floor(p), dims, seed)
+//    mapped to [0, 1) (53 bits). Derivatives 0.
+//
+// Bounds (Interval, Affine and Dual<...> of them; the same template code, CellPolynomial, on
+// every type):
+//  1. The range of each coordinate gives the cells it touches, floor(lo)..floor(hi). If at most
+//     kNoiseCellCap cells are touched in total, each touched cell is bounded on its own and the
+//     results are Joined. Every point lies in one of these cells (floor is monotone), and each
+//     cell's bound contains the double value at every point of the region in that cell.
+//     kNoiseCellCap = 16 = 2^4: every region narrower than one cell in each coordinate (so
+//     touching at most 2 cells per coordinate) is bounded cell by cell in every dimension up to 4,
+//     which covers the regions a subdividing ray tracer spends its time on; a region a full cell
+//     wide or more sees noise through most of its range anyway, so the fallback loses little.
+//     A cell is bounded one of two ways (NoiseBoundMethod):
+//     a. Local (Affine's and ReducedAffine's default): CellPolynomial (then * scale + 0.5) evaluated on LocalForms, a
+//        small affine arithmetic whose first symbols are the cell's local coordinates over the
+//        part B of the region inside the cell (t_i = c_i + reach_i sigma_i, c the centre of B)
+//        and whose further symbols are fresh, one per product. It keeps Affine's contract and
+//        error formulas (tested by Stolfi's aavalid method in tests/vm/numbers/noise_test.cpp), so the
+//        form contains the double value at every double t in B. The result z0 + sum_i z_i
+//        sigma_i +- rest is then mapped back to T by sigma_i = (t_i - c_i)/reach_i, with
+//        t_i = p_i - k_i, as sum_i a_i p_i + [constant +- rest] (a_i = z_i/reach_i; the
+//        rounding of a_i, of p_i - k_i and of the constant are added to rest; the Interval and
+//        Affine operations that form it enclose their exact results as well as the double ones):
+//        2 dims T operations instead of the ~50 (d = 3) to ~100 (d = 4) of method b. In Affine,
+//        [constant +- rest] is one fresh symbol, so a shader reusing the value keeps its
+//        correlation. This is a bound-only path (double and the Duals never take it), but the
+//        double value and the bound still come from the same CellPolynomial.
+//        Why it is cheaper: LocalForm is dense (at most dims + 31 slots, the products of one cell
+//        polynomial), inline, with no sorting, enclosure or capacity folding; Affine spends most
+//        of its time on those (range() alone was 29 % of a profile). Why it is as tight: the
+//        local coordinates are exactly the t_i, so the first-order part is exact as in Affine;
+//        the remainders are Affine's, but none is folded for lack of capacity, and B excludes
+//        the parts of a straddling region outside the cell (no overhang, no clamp).
+//        Measured (bench/noise_bench.cpp, regions 1/8, 1/64, 1/512 of a cell inside one cell or
+//        with one coordinate straddling a face, d = 1..4): Affine 2.1-4.0 times the calls per
+//        second, with mean widths 0.66-1.0 times the polynomial's (never wider: 0.87-0.94 at
+//        1/8, 0.97-0.99 at 1/64 and 1/512 inside a cell, 0.66-0.71 straddling at 1/8). A 96x72
+//        render of shaders/dented.sl: 2.2 times less CPU time, regions per ray 22.37 -> 22.03.
+//        Interval can take it too (NoiseBoundMethod::Local): 5 to 100 times narrower bounds, but
+//        up to 2.5 times the cost of the interval polynomial per call, and the same dented render
+//        with --bounds interval then takes 60 % more time for 2.4 times fewer regions per ray,
+//        so Interval keeps b by default. ReducedAffine takes it by default: in its polynomial
+//        every product's remainder lands in the one error term and the correlations between
+//        them are lost, whereas here only [constant +- rest] does (bench/bounds_bench.cpp, 100
+//        regions, mean z widths of Local over Polynomial at 1/8, 1/64, 1/512: dented 0.91, 0.62,
+//        0.88; stucco 1.0, 0.70, 0.96; ridged 0.97, 0.84, 0.93; strata 0.87, 0.91, 0.99; cost
+//        per evaluation between 0.65 and 1.3 times Polynomial's).
+//        The mean-value form raw(c) + grad raw(B).(t - c), with the gradient over B enclosed by
+//        interval forward differentiation, was tried first and dropped: as slow (the interval
+//        gradient costs as much as the affine polynomial) and 1.2-8 times wider at 1/64 (the
+//        interval gradient's dependency overestimate enters the second-order term).
+//     b. Polynomial (every other type, and Affine or ReducedAffine on request): CellPolynomial in T arithmetic with
+//        t_i = clamp(p_i - k_i, 0, 1) (so, values at that cell's points only): the T evaluation
+//        of the same operations contains the double result, rounding included.
+//        A t_i whose range overhangs [0, 1] by at most kNoiseOverhang = 1/16 is left unclamped (the
+//        polynomial over a superset of the cell still contains its values): past a face, a cell's
+//        polynomial agrees with its neighbour's to third order (C2), so the Joined forms of a
+//        region straddling a face stay nearly equal, whereas Min/Max make them differ. Measured on
+//        regions straddling faces, about 0.025 wide: affine bounds 15-25 % narrower for d = 2..4
+//        (6 % wider for d = 1); past overhangs of ~0.1 clamping wins.
+//  2. Otherwise (or for a period whose range is not one point) a cell-independent evaluation: the
+//     same formula with t_i = clamp(p_i - floor(p_i), 0, 1) and every gradient component replaced
+//     by Join(T(-G), T(G)), G the largest |component| of the set (a separate Join per corner and
+//     component, since corners have independent gradients): it contains every cell's value. A
+//     double never takes this path (it touches one cell, and its finite period is one point),
+//     which is why Join(T(-G), T(G)) may be meaningless for double.
+//  3. The result is clamped to [0, 1] with Min/Max, so a bound is never wider than [0, 1]
+//     (except Unbounded for non-finite input). Clamps (of t and of the result) are applied only
+//     when the value's range leaves [0, 1] (plus the overhang for t); a double never needs the t
+//     clamp, so Dual<double> derivatives are the polynomial's exact chain rule.
+//
+// The scale. For any gradients from a set S closed under negation, and phi(y) = max_{g in S} g.y
+// (>= 0), the partition of unity (W_o >= 0, sum_o W_o = 1) gives
+//     |raw(t)| <= sum_o W_o |g_o.(t - o)| <= F(t) := sum_o W_o(t) phi(t - o).
+// NoiseScale(d) = 0.5 / B_d with B_d >= sup over [0,1]^d of F, so 0.5 + raw*scale is in [0, 1]:
+//  - d = 1, S = {+-9/16, ..., +-16/16}: phi(y) = |y|, F(t) = h(t) := (1 - s)t + s(1 - t) and
+//    h(t) - 1/2 = (t - 1/2)(1 - 2s(t)) <= 0 since the fade s is increasing with s(1/2) = 1/2.
+//    So B_1 = 1/2, attained at t = 1/2 (by gradients +-1): scale 1.
+//  - d >= 2: a general analytic bound is phi(y) <= |g|max |y|_2 and, by Jensen,
+//    sum_o W_o |t - o|_2 <= sqrt(sum_i h2(t_i)) with h2(t) = (1-s)t^2 + s(1-t)^2 <= 1/4 (h2(t) - 1/4
+//    = (t - 1/2)(t + 1/2 - 2s), and on [0, 1/2] the convex s lies below the line t/2 + 1/4,
+//    which it meets at t = 1/2; h2(1 - t) = h2(t)), so
+//    B_d = |g|max sqrt(d)/2. It is attained only by sets holding the diagonals; ours do not, and
+//    a computer-assisted proof gives a tighter B_d (more contrast): an interval branch and bound
+//    over [0, 1/2]^d (F is symmetric under t_i -> 1 - t_i and, S being closed under coordinate
+//    permutations, under permutations) with outward rounding shows F <= 0.5/NoiseScale(d)
+//    everywhere. It is the test "noise scale: computer-assisted proof" (tests/vm/numbers/noise_test.cpp),
+//    which also checks the symmetries of the sets. The sets and the proven bounds (and the
+//    largest F found by local search, i.e. how tight each B_d is):
+//      d = 2: 8 unit vectors at odd multiples of 22.5 deg:   B_2 = 0.665  (sup F ~ 0.66082)
+//      d = 3: the 12 edge vectors (+-1, +-1, 0) permuted:    B_3 = 1.05   (sup F ~ 1.03636)
+//      d = 4: the 24 vectors (+-1, +-1, 0, 0) permuted:      B_4 = 1.125  (sup F ~ 1.07346)
+//    The analytic bound for these sets (0.707, 1.225, 1.414) is 6, 17 and 26 % larger: that much
+//    less contrast. (Sets holding the diagonals reach it, with the same spread of raw.)
+//
+// Sources: Perlin, "An image synthesizer" (SIGGRAPH 1985) and "Improving noise" (SIGGRAPH 2002)
+// for gradient noise, the quintic fade and edge-vector gradients; the RenderMan Interface
+// Specification 3.2 for noise/pnoise/cellnoise; Heidrich & Seidel, "Ray-tracing procedural
+// displacement shaders" (GI 1998) for bounding noise cell by cell in affine arithmetic.
+#pragma once
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <limits>
+
+#include "vm/numbers/number.h"
+
+namespace affray::vm {
+
+/// At most this many lattice cells are bounded one by one (see the head comment).
+inline constexpr int kNoiseCellCap = 16;
+/// A cell's local coordinate is not clamped when its range overhangs [0, 1] by at most this.
+inline constexpr double kNoiseOverhang = 1.0 / 16;
+
+/// How GradientNoise bounds a region (the bench compares them; Noise and PNoise use Auto).
+enum class NoiseBoundMethod {
+    Auto,        ///< Local for Affine and ReducedAffine, Polynomial for every other type
+    Polynomial,  ///< each touched cell's polynomial evaluated in T arithmetic
+    Local,       ///< each touched cell's polynomial in a LocalForm (Interval, Affine, ReducedAffine)
+};
+
+/// A gradient set: `count` vectors of `dims` components, row by row.
+struct NoiseGradientSet {
+    int dims;
+    int count;
+    const double* components;
+    /// The largest |component| (the fallback's per-component range).
+    double componentBound;
+};
+/// The gradient set of dims = 1..4 coordinates.
+const NoiseGradientSet& NoiseGradients(int dims);
+/// 0.5 / B_dims (see the head comment): raw * NoiseScale(dims) lies in [-0.5, 0.5].
+double NoiseScale(int dims);
+
+namespace noise_detail {
+
+/// Which function a hash is for: noise (and pnoise) gradients or cellnoise values.
+enum class HashKind : uint64_t { Gradient = 1, Cell = 2 };
+
+/// The integer lattice coordinate of a cell floor value k (an integral finite double): k itself,
+/// saturated to +-2^62 (far beyond 2^53, where every double is an integer anyway).
+int64_t CellIndex(double k);
+/// max(1, round(period)) saturated to 2^62, for a finite period.
+int64_t PeriodOf(double period);
+/// A 64-bit hash of the lattice point c[0..dims) for (kind, dims, seed).
+uint64_t HashLattice(const int64_t* c, int dims, uint32_t seed, HashKind kind);
+/// The gradient of lattice point c: `dims` components into g.
+void LatticeGradient(const int64_t* c, int dims, uint32_t seed, double* g);
+/// The cellnoise value of cell c, in [0, 1).
+double CellValue(const int64_t* c, int dims, uint32_t seed);
+
+/// x unchanged where its range lies in [-slack, 1 + slack] or is unbounded (NaN stays NaN),
+/// else Max(Min(x, 1), 0).
+template <class T>
+T ClampUnit(const T& x, double slack = 0) {
+    Interval r = RangeOf(ValueOf(x));
+    if ((r.lo() >= -slack && r.hi() <= 1 + slack) || r.isUnbounded()) return x;
+    return Max(Min(x, T(1.0)), T(0.0));
+}
+
+/// acc + g*x (acc = g*x for the first term). Components 0, 1 and -1 (most of the edge-vector
+/// sets') skip the product: the same double results, fewer bounded operations. Fallback
+/// gradients (T ranges) always multiply.
+template <class T>
+void AddTerm(T& acc, bool& any, double g, const T& x) {
+    if (g == 0) return;
+    if (g == 1 || g == -1) {
+        acc = any ? (g == 1 ? acc + x : acc - x) : (g == 1 ? x : -x);
+    } else {
+        acc = any ? acc + g * x : g * x;
+    }
+    any = true;
+}
+template <class T, class G>
+void AddTerm(T& acc, bool& any, const G& g, const T& x) {
+    acc = any ? acc + g * x : g * x;
+    any = true;
+}
+
+/// raw(t) of one cell: gradient(o, i) gives component i of corner o's gradient (a double or a
+/// T); corners are numbered by bits, bit i set for o_i = 1.
+template <class T, class GradientOf>
+T CellPolynomial(const T* t, int dims, GradientOf&& gradient) {
+    T fade[4];
+    T offset[4][2];  // t_i - o_i
+    for (int i = 0; i < dims; ++i) {
+        const T& x = t[i];
+        fade[i] = x * x * x * (x * (x * 6.0 - 15.0) + 10.0);
+        offset[i][0] = x;
+        offset[i][1] = x - 1.0;
+    }
+    T v[16];
+    const int corners = 1 << dims;
+    for (int o = 0; o < corners; ++o) {
+        T acc(0.0);
+        bool any = false;
+        for (int i = 0; i < dims; ++i) AddTerm(acc, any, gradient(o, i), offset[i][(o >> i) & 1]);
+        v[o] = acc;
+    }
+    // Lerp away dimension 0, then 1, ...: v[o] + s_i (v[o + 2^i] - v[o]) over the remaining o.
+    for (int i = 0, n = corners; i < dims; ++i) {
+        n >>= 1;
+        for (int j = 0; j < n; ++j) v[j] = v[2 * j] + fade[i] * (v[2 * j + 1] - v[2 * j]);
+    }
+    return v[0];
+}
+
+/// Whether T can bound cells by LocalForm (the bounded types without derivatives: a Dual's
+/// derivatives would need forms of their own; double is the reference and never bounds), and
+/// whether it does by default (NoiseBoundMethod::Auto): Affine and ReducedAffine, see the head
+/// comment.
+template <class T>
+inline constexpr bool kLocalNoise = false;
+template <>
+inline constexpr bool kLocalNoise<Interval> = true;
+template <>
+inline constexpr bool kLocalNoise<Affine> = true;
+template <>
+inline constexpr bool kLocalNoise<ReducedAffine> = true;
+template <class T>
+inline constexpr bool kLocalNoiseByDefault = false;
+template <>
+inline constexpr bool kLocalNoiseByDefault<Affine> = true;
+template <>
+inline constexpr bool kLocalNoiseByDefault<ReducedAffine> = true;
+
+/// An affine form over one cell's part of a region (see the head comment, "Bounds"):
+///     x = c0 + sum_k c[k]*sigma_k +- e,    every sigma_k in [-1, 1], e >= 0,
+/// where sigma_0..sigma_{dims-1} stand for the local coordinates (t_i = centre_i +
+/// reach_i*sigma_i) and the later slots for fresh symbols, one per product (a product's whole
+/// remainder, rounding included, goes on its own symbol, as in vm/numbers/affine.cpp). Dense storage of
+/// the first n slots (zeros where a symbol is absent): no sorting, no enclosure, no capacity
+/// folding (a cell polynomial makes at most 31 products, all of which fit), all inline, which is
+/// what makes it several times cheaper than Affine.
+/// Contract (Affine's): for every sigma, the double result of the same operation on any operand
+/// values the operand forms allow at sigma lies in the result form at sigma, rounding included.
+/// The error formulas are vm/numbers/affine.cpp's (vm/numbers/rounding.h's LinearError, Scale, MulForms), with
+/// the term slack of kSlots terms.
+struct LocalForm {
+    static constexpr int kSlots = 4 + 32;
+    /// Roundings per term of a sum of kSlots terms, doubled (vm/numbers/affine.cpp's kTermSlack).
+    static constexpr double kTermSlack = 2.0 * kSlots + 4.0;
+
+    double c0 = 0;
+    double e = 0;
+    int n = 0;  // c[0..n) are set
+    double c[kSlots];
+
+    LocalForm() = default;
+    LocalForm(double x) : c0(x) {}  // NOLINT: implicit, as CellPolynomial's T(0.0) and mixed ops
+    /// Copies copy the slots in use only.
+    LocalForm(const LocalForm& x) { copyFrom(x); }
+    LocalForm& operator=(const LocalForm& x) {
+        if (this != &x) copyFrom(x);
+        return *this;
+    }
+    void copyFrom(const LocalForm& x) {
+        c0 = x.c0;
+        e = x.e;
+        n = x.n;
+        for (int k = 0; k < n; ++k) c[k] = x.c[k];
+    }
+
+    /// Restarts the fresh symbols after the `dims` coordinates' slots.
+    static void Begin(int dims) { NextFresh() = dims; }
+    /// centre + reach*sigma_i exactly (reach >= 0), i < the dims given to Begin.
+    static LocalForm Coordinate(double centre, double reach, int i) {
+        LocalForm r(centre);
+        r.n = i + 1;
+        for (int k = 0; k < i; ++k) r.c[k] = 0;
+        r.c[i] = reach;
+        return r;
+    }
+    /// The next fresh symbol's slot (kSlots when none is left). Every form's n is at most it.
+    static int& NextFresh() {
+        static thread_local int next = 0;
+        return next;
+    }
+
+    bool isConstant() const { return n == 0 && e == 0; }
+    /// sum |c[k]|, rounded to nearest (the callers' kSumSlack covers it).
+    double termSum() const {
+        double s = 0;
+        for (int k = 0; k < n; ++k) s += std::fabs(c[k]);
+        return s;
+    }
+
+    friend LocalForm operator-(const LocalForm& x) {
+        LocalForm r;
+        r.c0 = -x.c0;
+        r.e = x.e;
+        r.n = x.n;
+        for (int k = 0; k < x.n; ++k) r.c[k] = -x.c[k];
+        return r;
+    }
+    template <bool kSubtract>
+    static LocalForm Add(const LocalForm& x, const LocalForm& y) {
+        LocalForm r(kSubtract ? x.c0 - y.c0 : x.c0 + y.c0);
+        if (x.isConstant() && y.isConstant()) return r;  // the double operation itself
+        const int common = std::min(x.n, y.n);
+        double absSum = std::fabs(r.c0);
+        for (int k = 0; k < common; ++k) {
+            r.c[k] = kSubtract ? x.c[k] - y.c[k] : x.c[k] + y.c[k];
+            absSum += std::fabs(r.c[k]);
+        }
+        for (int k = common; k < x.n; ++k) {
+            r.c[k] = x.c[k];
+            absSum += std::fabs(r.c[k]);
+        }
+        for (int k = common; k < y.n; ++k) {
+            r.c[k] = kSubtract ? -y.c[k] : y.c[k];
+            absSum += std::fabs(r.c[k]);
+        }
+        r.n = std::max(x.n, y.n);
+        r.e = LinearError(x.e + y.e, absSum);
+        return r;
+    }
+    friend LocalForm operator+(const LocalForm& x, const LocalForm& y) { return Add<false>(x, y); }
+    friend LocalForm operator-(const LocalForm& x, const LocalForm& y) { return Add<true>(x, y); }
+    friend LocalForm operator+(const LocalForm& x, double k) {
+        LocalForm r = x;
+        r.c0 = x.c0 + k;
+        if (x.isConstant()) return r;
+        r.e = LinearError(x.e, std::fabs(r.c0) + x.termSum());
+        return r;
+    }
+    friend LocalForm operator-(const LocalForm& x, double k) { return x + (-k); }
+    /// vm/numbers/affine.cpp's Scale.
+    friend LocalForm operator*(const LocalForm& x, double k) {
+        if (k == 0) return LocalForm(0.0);
+        if (k == 1) return x;
+        if (k == -1) return -x;
+        LocalForm r(x.c0 * k);
+        if (x.isConstant()) return r;
+        r.n = x.n;
+        double absSum = std::fabs(r.c0);
+        for (int i = 0; i < x.n; ++i) {
+            r.c[i] = x.c[i] * k;
+            absSum += std::fabs(r.c[i]);
+        }
+        r.e = LinearError(std::fabs(k) * x.e * (1 + kEpsilon), absSum) + kUnderflowSlack;
+        return r;
+    }
+    friend LocalForm operator*(double k, const LocalForm& x) { return x * k; }
+    /// vm/numbers/affine.cpp's MulForms: center x0*y0 + (1/2) sum xk*yk, coefficients x0*yk + y0*xk, and
+    /// the remainder (rx + ex)(ry + ey) - (1/2) sum |xk*yk| + |x0| ey + |y0| ex plus rounding on a
+    /// fresh symbol (in e when none is left).
+    friend LocalForm operator*(const LocalForm& x, const LocalForm& y) {
+        if (x.isConstant()) return y * x.c0;
+        if (y.isConstant()) return x * y.c0;
+        const double x0 = x.c0, y0 = y.c0;
+        LocalForm r;
+        const int common = std::min(x.n, y.n);
+        double rx = 0, ry = 0, diag = 0, absDiag = 0, absSum = 0;
+        for (int k = 0; k < common; ++k) {
+            const double xk = x.c[k], yk = y.c[k];
+            const double p = xk * yk;
+            diag += p;
+            absDiag += std::fabs(p);
+            rx += std::fabs(xk);
+            ry += std::fabs(yk);
+            r.c[k] = x0 * yk + y0 * xk;
+            absSum += std::fabs(r.c[k]);
+        }
+        for (int k = common; k < x.n; ++k) {
+            rx += std::fabs(x.c[k]);
+            r.c[k] = y0 * x.c[k];
+            absSum += std::fabs(r.c[k]);
+        }
+        for (int k = common; k < y.n; ++k) {
+            ry += std::fabs(y.c[k]);
+            r.c[k] = x0 * y.c[k];
+            absSum += std::fabs(r.c[k]);
+        }
+        r.n = std::max(x.n, y.n);
+        r.c0 = x0 * y0 + 0.5 * diag;
+        absSum += std::fabs(r.c0);
+        const double delta = ProductRemainder({x0, y0, rx, ry, x.e, y.e, diag, absDiag, absSum}, kTermSlack);
+        int& fresh = NextFresh();
+        if (fresh < kSlots) {
+            for (int k = r.n; k < fresh; ++k) r.c[k] = 0;
+            r.c[fresh] = delta;
+            r.n = ++fresh;
+        } else {
+            r.e = delta;
+        }
+        return r;
+    }
+};
+
+/// A T holding the range r (bounded): on a fresh symbol for Affine, so that the bound stays
+/// correlated with itself wherever a shader reuses it; in the error term for ReducedAffine.
+template <class T>
+T SpreadOf(const Interval& r);
+template <>
+inline Interval SpreadOf<Interval>(const Interval& r) {
+    return r;
+}
+template <>
+inline Affine SpreadOf<Affine>(const Interval& r) {
+    return Affine::FromInterval(r);
+}
+template <>
+inline ReducedAffine SpreadOf<ReducedAffine>(const Interval& r) {
+    return ReducedAffine::FromInterval(r);
+}
+
+/// One cell's noise value before the final clamp, raw * NoiseScale(dims) + 0.5, over a region by
+/// LocalForm (see the head comment): p the noise coordinates, k the cell, g[o] the gradients of
+/// its corners. Contains the double value at every double point of the region that lies in this
+/// cell (t_d = p - k in double, in [0, 1]^dims).
+template <class T>
+T LocalCell(const T* p, const double* k, int dims, const double (*g)[4]) {
+    // The part B of the region inside the cell, its centre c and a reach >= |t_i - c_i| on B.
+    // B holds every such t_d: Interval subtraction contains the double one.
+    double c[4], reach[4];
+    LocalForm t[4];
+    LocalForm::Begin(dims);
+    for (int i = 0; i < dims; ++i) {
+        const Interval r = RangeOf(p[i]) - k[i];
+        const double lo = std::clamp(r.lo(), 0.0, 1.0), hi = std::clamp(r.hi(), 0.0, 1.0);
+        c[i] = 0.5 * (lo + hi);  // between lo and hi: both are in [0, 1]
+        reach[i] = std::fmax(SubUp(c[i], lo), SubUp(hi, c[i]));
+        t[i] = LocalForm::Coordinate(c[i], reach[i], i);
+    }
+    // The noise value before its clamp, as the double computes it (GradientNoise's last step).
+    const LocalForm raw = CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; }) * NoiseScale(dims) + 0.5;
+    // value(t_d) = z0 + sum_i z_i sigma_i + (fresh terms, e), sigma_i = (t_d,i - c_i)/reach_i,
+    // and t_d,i = p_i - k_i + (its rounding, <= u since t_d,i <= 1):
+    //   value(t_d) in sum_i a_i p_i + [z0 - sum_i a_i (k_i + c_i)] +- error
+    // with a_i = z_i/reach_i rounded (its rounding times |t_d,i - c_i| <= reach_i is
+    // <= 2u |z_i|), the subtraction's rounding |a_i| u, and the fresh terms and e.
+    UpperSum error;
+    error.add(raw.e);
+    Interval constant(raw.c0);
+    T linear(0.0);
+    bool any = false;
+    for (int s = 0; s < raw.n; ++s) {
+        const double z = raw.c[s];
+        if (z == 0) continue;
+        if (s >= dims) {
+            error.add(std::fabs(z));
+            continue;
+        }
+        const double a = z / reach[s];
+        error.add(MulUp(std::fabs(z), kEpsilon));
+        error.add(MulUp(std::fabs(a), kEpsilon));
+        constant = constant - Interval(a) * (Interval(k[s]) + Interval(c[s]));
+        AddTerm(linear, any, a, p[s]);
+    }
+    const double e = AddUp(error.value(), kUnderflowSlack);
+    const T rest = SpreadOf<T>(Interval(SubDown(constant.lo(), e), AddUp(constant.hi(), e)));
+    return any ? linear + rest : rest;
+}
+
+/// The lattice cells a box of inputs touches: floor(lo_i) .. floor(hi_i) in each coordinate.
+struct CellBox {
+    double kLo[4] = {0, 0, 0, 0}, count[4] = {1, 1, 1, 1};
+    double cells = 1;  // their number (a double: it may be huge)
+
+    /// False if dims is out of 1..4 or an input is unbounded.
+    template <class T>
+    bool Of(const T* p, int dims) {
+        if (dims < 1 || dims > 4) return false;
+        for (int i = 0; i < dims; ++i) {
+            Interval r = RangeOf(ValueOf(p[i]));
+            if (r.isUnbounded()) return false;
+            kLo[i] = std::floor(r.lo());
+            count[i] = std::floor(r.hi()) - kLo[i] + 1;
+            cells *= count[i];
+        }
+        return true;
+    }
+
+    /// Calls visit(k) for each cell k (its lowest corner) in turn: a mixed-radix counter.
+    template <class Visit>
+    void ForEach(int dims, Visit&& visit) const {
+        int j[4] = {0, 0, 0, 0};
+        for (;;) {
+            double k[4] = {0, 0, 0, 0};
+            for (int i = 0; i < dims; ++i) k[i] = kLo[i] + j[i];
+            visit(k);
+            int i = 0;
+            while (i < dims && ++j[i] >= count[i]) j[i++] = 0;
+            if (i == dims) return;
+        }
+    }
+};
+
+/// Noise and PNoise (period == nullptr for Noise), bounding regions by `method`.
+template <class T>
+T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
+                NoiseBoundMethod method = NoiseBoundMethod::Auto) {
+    const T nan(std::numeric_limits<double>::quiet_NaN());
+    CellBox box;
+    if (!box.Of(p, dims)) return nan;
+    int64_t periods[4];
+    bool cellwise = box.cells <= kNoiseCellCap;
+    for (int i = 0; period && i < dims; ++i) {
+        Interval r = RangeOf(ValueOf(period[i]));
+        if (r.isUnbounded()) return nan;
+        if (r.isPoint())
+            periods[i] = PeriodOf(r.lo());
+        else
+            cellwise = false;
+    }
+    bool local = false;
+    if constexpr (kLocalNoise<T>)
+        local = cellwise &&
+                (method == NoiseBoundMethod::Local || (method == NoiseBoundMethod::Auto && kLocalNoiseByDefault<T>));
+    T raw(0.0);
+    if (cellwise) {
+        bool first = true;
+        box.ForEach(dims, [&](const double* k) {
+            T t[4];
+            int64_t cell[4];
+            for (int i = 0; i < dims; ++i) {
+                if (!local) t[i] = ClampUnit(T(p[i] - k[i]), kNoiseOverhang);
+                cell[i] = CellIndex(k[i]);
+            }
+            double g[16][4];
+            for (int o = 0; o < (1 << dims); ++o) {
+                int64_t c[4];
+                for (int i = 0; i < dims; ++i) {
+                    c[i] = cell[i] + ((o >> i) & 1);
+                    if (period) c[i] = ((c[i] % periods[i]) + periods[i]) % periods[i];
+                }
+                LatticeGradient(c, dims, seed, g[o]);
+            }
+            T v(0.0);
+            if constexpr (kLocalNoise<T>) {
+                if (local) v = LocalCell(p, k, dims, g);
+            }
+            if (!local) v = CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; });
+            raw = first ? v : Join(raw, v);
+            first = false;
+        });
+    } else {
+        T t[4];
+        for (int i = 0; i < dims; ++i) t[i] = ClampUnit(T(p[i] - floor(p[i])));
+        const double bound = NoiseGradients(dims).componentBound;
+        raw = CellPolynomial(t, dims, [&](int, int) { return Join(T(-bound), T(bound)); });
+    }
+    // (LocalCell has scaled and offset its value already.)
+    return ClampUnit(local ? raw : T(raw * NoiseScale(dims) + 0.5));
+}
+
+}  // namespace noise_detail
+
+/// RenderMan noise of p[0..dims), dims = 1..4, channel `seed`: values in [0, 1], mean 0.5.
+template <class T>
+T Noise(const T* p, int dims, uint32_t seed) {
+    return noise_detail::GradientNoise<T>(p, nullptr, dims, seed);
+}
+
+/// RenderMan pnoise: Noise on a lattice wrapping with period max(1, round(period[i])) per
+/// coordinate (uniform values; a bounded period that is not one point gives the cell-independent
+/// bound).
+template <class T>
+T PNoise(const T* p, const T* period, int dims, uint32_t seed) {
+    return noise_detail::GradientNoise<T>(p, period, dims, seed);
+}
+
+/// RenderMan cellnoise: a value in [0, 1) constant on each cell floor(p[0..dims)), dims = 1..4.
+template <class T>
+T CellNoise(const T* p, int dims, uint32_t seed) {
+    noise_detail::CellBox box;
+    if (!box.Of(p, dims)) return T(std::numeric_limits<double>::quiet_NaN());
+    if (!(box.cells <= kNoiseCellCap)) return Join(T(0.0), T(1.0));
+    T result(0.0);
+    bool first = true;
+    box.ForEach(dims, [&](const double* k) {
+        int64_t cell[4];
+        for (int i = 0; i < dims; ++i) cell[i] = noise_detail::CellIndex(k[i]);
+        T v(noise_detail::CellValue(cell, dims, seed));
+        result = first ? v : Join(result, v);
+        first = false;
+    });
+    return result;
+}
+
+}  // namespace affray::vm
