@@ -220,12 +220,39 @@ Dual<T> atan(const Dual<T>& a) {
     T k = 1.0 / (1.0 + sqr(a.v));
     return {atan(a.v), k * a.du, k * a.dv};
 }
-/// atan2(y, x)' = (x y' - y x') / (x^2 + y^2).
+/// The value `v` with the derivatives f(v) where `pick` is True, g(v) where False, and the Join of
+/// both where Unknown (Select's rule, for a bound that cannot decide which formula a point uses).
+template <class T, class F, class G>
+Dual<T> WithDerivativesBy(const T& v, Truth pick, F f, G g) {
+    if (pick == Truth::True) return f(v);
+    if (pick == Truth::False) return g(v);
+    return Join(f(v), g(v));
+}
+/// atan2(y, x)' = (x y' - y x') / (x^2 + y^2) where m = max(|x|, |y|) lies in [2^-480, 2^511],
+/// so that x^2 + y^2 neither overflows nor falls below kUnderflowLimit. Elsewhere (x = 1e300, or
+/// x and y 1e-200) the same divided through by the larger square, as hypot scales: with q = y/x,
+/// (y' - q x') / (x (1 + q^2)) for |y| <= |x|; with q = x/y, (q y' - x') / (y (1 + q^2))
+/// otherwise. Each choice is decided on T, so every point of a bound takes the formula its double
+/// takes, or the bound joins both.
 template <class T>
 Dual<T> atan2(const Dual<T>& y, const Dual<T>& x) {
-    using std::atan2;
-    T r2 = sqr(x.v) + sqr(y.v);
-    return {atan2(y.v, x.v), (x.v * y.du - y.v * x.du) / r2, (x.v * y.dv - y.v * x.dv) / r2};
+    using std::abs, std::atan2;
+    const T ax = abs(x.v), ay = abs(y.v), m = Max(ax, ay);
+    const Truth plain = TruthOf(And(LessEq(T(0x1p-480), m), LessEq(m, T(0x1p511))));
+    auto bySquares = [&](const T& v) -> Dual<T> {
+        const T r2 = sqr(x.v) + sqr(y.v);
+        return {v, (x.v * y.du - y.v * x.du) / r2, (x.v * y.dv - y.v * x.dv) / r2};
+    };
+    auto overX = [&](const T& v) -> Dual<T> {  // |y| <= |x|
+        const T q = y.v / x.v, k = 1.0 / (x.v * (1.0 + sqr(q)));
+        return {v, (y.du - q * x.du) * k, (y.dv - q * x.dv) * k};
+    };
+    auto overY = [&](const T& v) -> Dual<T> {
+        const T q = x.v / y.v, k = 1.0 / (y.v * (1.0 + sqr(q)));
+        return {v, (q * y.du - x.du) * k, (q * y.dv - x.dv) * k};
+    };
+    auto scaled = [&](const T& v) { return WithDerivativesBy(v, TruthOf(LessEq(ay, ax)), overX, overY); };
+    return WithDerivativesBy(atan2(y.v, x.v), plain, bySquares, scaled);
 }
 /// Componentwise: a value and derivatives that contain both operands' (vm/numbers/number.h's Join).
 template <class T>

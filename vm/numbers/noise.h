@@ -18,7 +18,7 @@
 //    second derivatives at 0 and 1, so raw is C2 across cell faces. Values are 0.5 at lattice
 //    points; the mean is 0.5 (the gradient sets are symmetric, so raw is symmetric about 0).
 //    `seed` selects independent channels (the compiler uses 0, 1, 2 for x, y, z of a triple).
-//    Non-finite input gives NaN (Unbounded for bounded types).
+//    Non-finite input gives NaN (Unbounded for bounded types), with unknown derivatives.
 //  - PNoise(p, period, dims, seed): the same noise on a lattice that wraps with the integer period
 //    P_i = max(1, round(period_i)) per dimension: gradients are hashed from (c_i mod P_i). Hence
 //    PNoise(p + P e_i) = PNoise(p), and PNoise = Noise wherever 0 <= floor(p_i) and
@@ -92,9 +92,11 @@
 //     double never takes this path (it touches one cell, and its finite period is one point),
 //     which is why Join(T(-G), T(G)) may be meaningless for double.
 //  3. The result is clamped to [0, 1] with Min/Max, so a bound is never wider than [0, 1]
-//     (except Unbounded for non-finite input). Clamps (of t and of the result) are applied only
-//     when the value's range leaves [0, 1] (plus the overhang for t); a double never needs the t
-//     clamp, so Dual<double> derivatives are the polynomial's exact chain rule.
+//     (except Unbounded for non-finite input; a bound that overflows on finite input, p -
+//     floor(p) over a range reaching +-1e308, is [0, 1] itself, derivatives unknown). Clamps (of
+//     t and of the result) are applied only when the value's range leaves [0, 1] (plus the
+//     overhang for t); a double never needs the t clamp, so Dual<double> derivatives are the
+//     polynomial's exact chain rule.
 //
 // The scale. For any gradients from a set S closed under negation, and phi(y) = max_{g in S} g.y
 // (>= 0), the partition of unity (W_o >= 0, sum_o W_o = 1) gives
@@ -416,21 +418,41 @@ struct LocalForm {
     }
 };
 
-/// A T holding the range r (bounded): on a fresh symbol for Affine, so that the bound stays
-/// correlated with itself wherever a shader reuses it; in the error term for ReducedAffine.
+/// A T holding the range r: on a fresh symbol for Affine, so that the bound stays correlated with
+/// itself wherever a shader reuses it; in the error term for ReducedAffine; the value r with
+/// unknown (Unbounded) derivatives for a Dual. Unbounded r gives the unknown value, derivatives
+/// included; a double, which holds one value, is r if r is a point, else NaN (the paths that
+/// spread a range never run on a double).
 template <class T>
-T SpreadOf(const Interval& r);
+struct Spread;
 template <>
-inline Interval SpreadOf<Interval>(const Interval& r) {
-    return r;
-}
+struct Spread<double> {
+    static double Of(const Interval& r) {
+        return r.isPoint() && !r.isUnbounded() ? r.lo() : std::numeric_limits<double>::quiet_NaN();
+    }
+};
 template <>
-inline Affine SpreadOf<Affine>(const Interval& r) {
-    return Affine::FromInterval(r);
-}
+struct Spread<Interval> {
+    static Interval Of(const Interval& r) { return r; }
+};
 template <>
-inline ReducedAffine SpreadOf<ReducedAffine>(const Interval& r) {
-    return ReducedAffine::FromInterval(r);
+struct Spread<Affine> {
+    static Affine Of(const Interval& r) { return Affine::FromInterval(r); }
+};
+template <>
+struct Spread<ReducedAffine> {
+    static ReducedAffine Of(const Interval& r) { return ReducedAffine::FromInterval(r); }
+};
+template <class B>
+struct Spread<Dual<B>> {
+    static Dual<B> Of(const Interval& r) {
+        const B unknown = Spread<B>::Of(Interval::Unbounded());
+        return {Spread<B>::Of(r), unknown, unknown};
+    }
+};
+template <class T>
+T SpreadOf(const Interval& r) {
+    return Spread<T>::Of(r);
 }
 
 /// One cell's noise value before the final clamp, raw * NoiseScale(dims) + 0.5, over a region by
@@ -516,10 +538,12 @@ struct CellBox {
 };
 
 /// Noise and PNoise (period == nullptr for Noise), bounding regions by `method`.
+/// Where a coordinate or period may be non-finite the value is unknown, and so are its derivatives:
+/// at a finite point of the operand's range noise has a nonzero slope.
 template <class T>
 T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
                 NoiseBoundMethod method = NoiseBoundMethod::Auto) {
-    const T nan(std::numeric_limits<double>::quiet_NaN());
+    const T nan = SpreadOf<T>(Interval::Unbounded());
     CellBox box;
     if (!box.Of(p, dims)) return nan;
     int64_t periods[4];
@@ -570,7 +594,11 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
         raw = CellPolynomial(t, dims, [&](int, int) { return Join(T(-bound), T(bound)); });
     }
     // (LocalCell has scaled and offset its value already.)
-    return ClampUnit(local ? raw : T(raw * NoiseScale(dims) + 0.5));
+    const T value = local ? raw : T(raw * NoiseScale(dims) + 0.5);
+    // Every operand is finite here, so the value is in [0, 1]: a bound that overflowed (p -
+    // floor(p) over a range reaching +-1e308) is that range, with unknown derivatives.
+    if (RangeOf(ValueOf(value)).isUnbounded()) return SpreadOf<T>(Interval(0.0, 1.0));
+    return ClampUnit(value);
 }
 
 }  // namespace noise_detail

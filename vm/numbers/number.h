@@ -2,8 +2,9 @@
 // surface) may ask of a number type, and nothing more.
 // Owns the concept, the double overloads that make double a Number (double is the scalar
 // semantics every other type bounds: sqr(x) = x*x, sqrt/exp/log/sin/cos/pow/floor/ceil/round/
-// asin/acos/atan/atan2 = std's, abs = std::fabs, sign in {-1, 0, 1}, Min/Max = std::fmin/fmax,
-// IEEE division), and NumberTraits for every type the VM is instantiated on.
+// asin/acos/atan/atan2 = std's, abs = std::fabs, sign in {-1, 0, 1}, Min/Max = std::fmin/fmax
+// with the first operand on a tie (-0, +0), IEEE division), and NumberTraits for every type the
+// VM is instantiated on.
 // Booleans are numbers of the same type: comparisons give 1 (true) or 0 (false), IEEE style (any
 // comparison with NaN is false except NotEqual); And/Or/Not read a value as true where it is != 0
 // (NaN too, as in C). A bounded type gives the exact 1 or 0 where decided over its whole range and
@@ -49,9 +50,12 @@ using std::sqrt;
 inline double sqr(double x) { return x * x; }
 /// -1, 0 or 1 (a signed zero stays as it is; NaN stays NaN).
 inline double sign(double x) { return x > 0 ? 1.0 : x < 0 ? -1.0 : x; }
-/// std::fmin/fmax: a NaN operand gives the other one.
-inline double Min(double a, double b) { return std::fmin(a, b); }
-inline double Max(double a, double b) { return std::fmax(a, b); }
+/// std::fmin/fmax (a NaN operand gives the other one), and where the operands compare equal (-0
+/// and +0) the first one. Written out rather than calling fmin/fmax: C leaves the zero of
+/// fmin(-0, +0) open, and GCC, taking fmin and fmax as commutative, may swap the operands of the
+/// call, so the scalar VM, Dual<double> and the constant folder gave different zeros.
+inline double Min(double a, double b) { return b < a || std::isnan(a) ? b : a; }
+inline double Max(double a, double b) { return a < b || std::isnan(a) ? b : a; }
 /// 1 or 0; comparisons with NaN are false, except NotEqual.
 inline double Less(double a, double b) { return a < b ? 1.0 : 0.0; }
 inline double LessEq(double a, double b) { return a <= b ? 1.0 : 0.0; }
