@@ -41,7 +41,7 @@ struct BenchShader {
 inline std::optional<BenchShader> LoadBenchShader(const std::string& path, std::string* error) {
     compiler::CompileResult result = compiler::CompileFile(path);
     if (!result.ok()) {
-        *error = result.diagnostics;
+        *error = result.diagnostics.format();
         return std::nullopt;
     }
     const std::vector<compiler::ConstantGlobal> constants =

@@ -52,13 +52,13 @@ int main(int argc, char** argv) {
     double seconds = 1.0;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc)
-            seconds = std::atof(argv[++i]);
+            seconds = std::stod(argv[++i]);
         else
             shaderPath = argv[i];
     }
     compiler::CompileResult result = compiler::CompileFile(shaderPath);
     if (!result.ok()) {
-        std::fputs(result.diagnostics.c_str(), stderr);
+        std::fputs(result.diagnostics.format().c_str(), stderr);
         return 1;
     }
     const vm::Program& bound = result.shader->bound;

@@ -173,8 +173,9 @@ struct Mesh {
     /// The (u,v) of grid point k.
     void Parameters(uint32_t k, double* u, double* v) const {
         const uint32_t side = static_cast<uint32_t>(n) + 1;
-        *u = double(k / side) / n;
-        *v = double(k % side) / n;
+        const uint32_t row = k / side, column = k % side;
+        *u = double(row) / n;
+        *v = double(column) / n;
     }
 };
 
@@ -338,23 +339,20 @@ int main(int argc, char** argv) {
     const Options opt = ParseArgs(argc, argv);
 
     // Read and prepare the scene as `affray render` does (tools/commands.cpp, RunRender).
-    std::string error;
-    std::vector<std::string> warnings;
-    std::optional<renderer::SceneDesc> scene = renderer::ReadRib(opt.scenePath, &error, &warnings);
-    for (const std::string& w : warnings) std::fprintf(stderr, "%s\n", w.c_str());
+    diag::Report report;
+    std::optional<renderer::SceneDesc> scene = rib::ReadRib(opt.scenePath, &report);
     if (!scene) {
-        std::fprintf(stderr, "%s\n", error.c_str());
-        return 1;
+        std::fputs(report.format().c_str(), stderr);
+        return diag::kExitBadInput;
     }
     std::filesystem::path ribDir = std::filesystem::path(opt.scenePath).parent_path();
     if (ribDir.empty()) ribDir = ".";
     const std::vector<std::string> shaderPaths = {ribDir.string(), (ribDir / ".." / "shaders").string(), "shaders"};
     if (opt.samples > 0) scene->camera.xsamples = scene->camera.ysamples = opt.samples;
     renderer::PreparedScene prepared;
-    if (!renderer::PrepareScene(*scene, shaderPaths, lang::PreprocessOptions{}, &prepared, &error)) {
-        std::fprintf(stderr, "%s\n", error.c_str());
-        return 1;
-    }
+    const bool preparedOk = renderer::PrepareScene(*scene, shaderPaths, lang::PreprocessOptions{}, &prepared, &report);
+    std::fputs(report.format().c_str(), stderr);
+    if (!preparedOk) return diag::kExitBadInput;
     const int threads =
         opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     const glm::dvec3 eye = renderer::Camera(prepared.desc.camera).Position();
@@ -395,9 +393,10 @@ int main(int argc, char** argv) {
     const double renderSeconds = SecondsSince(renderStart);
 
     const std::string outputPath = opt.outputPath.empty() ? scene->displayName : opt.outputPath;
-    if (!renderer::WriteExr(outputPath, image, &error)) {
-        std::fprintf(stderr, "affray_bench_tessellation: error: %s\n", error.c_str());
-        return 1;
+    diag::Report output;
+    if (!renderer::WriteExr(outputPath, image, &output)) {
+        std::fputs(output.format().c_str(), stderr);
+        return diag::kExitOutput;
     }
 
     size_t triangles = 0, meshBytes = 0;

@@ -51,7 +51,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     // The generic programs are lowered with the instance's spaces too, only so that a scene's
     // CoordinateSystem names are known (their matrices are folded again into the instance).
     if (!diags.hasErrors()) lowered = Lower(unit, diags, nullptr, nullptr, spaces);
-    result.diagnostics = diags.format();
+    result.diagnostics = diags.report();
     if (!lowered) return result;
 
     CompiledShader shader;
@@ -104,7 +104,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         std::optional<LoweredShader> instance = Lower(unit, again, &*values, &strings, spaces);
         if (!instance && again.hasErrors()) {
             // A string value can make code reachable that the defaults left out (a space name).
-            result.diagnostics += again.format();
+            result.diagnostics.add(again.report());
             return result;
         }
         if (!instance) throw std::logic_error("lowering " + path + " with its parameter values failed");
@@ -116,7 +116,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
             p->sourcePath = path;
         }
     } catch (const std::length_error& e) {
-        result.diagnostics += path + ": error: " + e.what() + "\n";
+        result.diagnostics.error({path}, e.what());
         return result;
     }
     for (vm::Program* p : {&shader.genericBound, &shader.genericShade, &shader.bound, &shader.shade}) {
@@ -132,11 +132,7 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
                                  const Spaces* spaces) {
     CompileResult result;
     vm::BytecodeFile file;
-    std::string error;
-    if (!vm::ReadBytecodeFile(path, &file, &error)) {
-        result.diagnostics = error.rfind(path, 0) == 0 ? error + "\n" : path + ": error: " + error + "\n";
-        return result;
-    }
+    if (!vm::ReadBytecodeFile(path, &file, &result.diagnostics)) return result;
     CompiledShader shader;
     shader.name = file.shaderName;
     shader.sourcePath = file.sourcePath;
@@ -176,7 +172,7 @@ CompileResult CompileFile(const std::string& path, const std::vector<ParamOverri
     std::string error;
     if (!lang::SourceFile::Load(path, &file, &error)) {
         CompileResult result;
-        result.diagnostics = error + "\n";
+        result.diagnostics.error({path}, error);
         return result;
     }
     return CompileSource(path, file.text(), overrides, preprocess, spaces);

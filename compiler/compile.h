@@ -10,6 +10,7 @@
 
 #include "compiler/lower.h"
 #include "compiler/specialise.h"
+#include "diag/diagnostic.h"
 #include "lang/preprocess.h"
 #include "vm/program.h"
 
@@ -33,8 +34,8 @@ struct CompiledShader {
 
 struct CompileResult {
     std::optional<CompiledShader> shader;
-    /// Formatted diagnostics (errors and warnings), empty if there were none.
-    std::string diagnostics;
+    /// Errors and warnings (diag/diagnostic.h); print them with diagnostics.format().
+    diag::Report diagnostics;
     /// Problems with the parameter overrides, each a full sentence.
     std::vector<std::string> paramErrors;
     bool ok() const { return shader.has_value(); }

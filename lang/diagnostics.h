@@ -1,39 +1,36 @@
-// lang/diagnostics.h: errors and warnings about user input, collected as values.
-// Library code never prints or exits: it reports here, and the caller decides what to show.
-// The one message format is   file:line:col: error: message   followed by the source line and a
-// caret under the column, as gcc and clang print it.
+// lang/diagnostics.h: the shading-language front end's view of diag::Report.
+// The preprocessor, lexer, parser and compiler speak in SourceLoc (a line, a column and a small
+// file index, cheap to keep in every AST node); a Diagnostics turns each into the one
+// diag::Diagnostic (diag/diagnostic.h), with the file's path and the source line for the caret.
 // A Diagnostics is made for one main file; after preprocessing, locations may also be in the files
-// it included (SourceLoc::file), whose text is read from disk only to format a diagnostic there.
+// it included (SourceLoc::file), whose text is read from disk only when a diagnostic points there.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "diag/diagnostic.h"
 #include "lang/source.h"
 
 namespace affray::lang {
 
-enum class Severity { Error, Warning, Note };
-
-struct Diagnostic {
-    Severity severity = Severity::Error;
-    SourceLoc loc;
-    std::string message;
-};
+using diag::Severity;
 
 class Diagnostics {
   public:
     /// Diagnostics about `file`; the file must outlive this object.
     explicit Diagnostics(const SourceFile& file) : m_file(&file) {}
 
-    void error(SourceLoc loc, std::string message);
-    void warning(SourceLoc loc, std::string message);
-    void note(SourceLoc loc, std::string message);
+    void error(SourceLoc loc, std::string message) { m_report.error(at(loc), std::move(message)); }
+    void warning(SourceLoc loc, std::string message) { m_report.warning(at(loc), std::move(message)); }
+    void note(SourceLoc loc, std::string message) { m_report.note(at(loc), std::move(message)); }
+    /// A diagnostic already in the one form (the preprocessor's), by the path it names.
+    void add(diag::Diagnostic d) { m_report.add(std::move(d)); }
 
-    int errorCount() const { return m_errorCount; }
-    bool hasErrors() const { return m_errorCount > 0; }
-    const std::vector<Diagnostic>& all() const { return m_list; }
+    int errorCount() const { return m_report.errorCount(); }
+    bool hasErrors() const { return m_report.hasErrors(); }
+    const diag::Report& report() const { return m_report; }
     const SourceFile& file() const { return *m_file; }
 
     /// The SourceLoc::file index for `path`: 0 for file().path(); another path gets the next
@@ -41,14 +38,13 @@ class Diagnostics {
     int fileIndex(const std::string& path);
     /// The path for a SourceLoc::file index; an index never handed out means the main file.
     const std::string& filePath(int index) const;
+    /// The location `loc` names, with its source line.
+    diag::Location at(SourceLoc loc) const;
 
-    /// All diagnostics in the order reported, each as "file:line:col: kind: message", the source
-    /// line and a caret line. Past kMaxErrors errors, one "too many errors" line closes the list.
-    std::string format() const;
-    /// One diagnostic in the same format.
-    std::string format(const Diagnostic& d) const;
+    /// All diagnostics in the one format (diag::Report::format).
+    std::string format() const { return m_report.format(); }
 
-    static constexpr int kMaxErrors = 50;
+    static constexpr int kMaxErrors = diag::Report::kMaxErrors;
 
   private:
     /// A file other than the main one, named by a line marker; `text` is loaded on first need.
@@ -58,15 +54,12 @@ class Diagnostics {
         mutable bool loadTried = false;
     };
 
-    void add(Severity severity, SourceLoc loc, std::string message);
     /// The text of line `line` of file `index` (empty if unknown or unreadable).
     std::string_view lineText(int index, int line) const;
 
     const SourceFile* m_file;
     std::vector<OtherFile> m_others;  // file index i > 0 is m_others[i - 1]
-    std::vector<Diagnostic> m_list;
-    int m_errorCount = 0;
-    bool m_repeating = false;  // the last error or warning repeated an earlier one
+    diag::Report m_report;
 };
 
 }  // namespace affray::lang

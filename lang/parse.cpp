@@ -370,16 +370,8 @@ TranslationUnit Parse(Diagnostics& diags) { return ParseText(diags, diags.file()
 
 TranslationUnit PreprocessAndParse(Diagnostics& diags, const PreprocessOptions& options) {
     PreprocessResult pre = Preprocess(diags.file().path(), diags.file().text(), options);
-    std::vector<int> fileIndex;
-    for (const std::string& path : pre.files) fileIndex.push_back(diags.fileIndex(path));
-    for (Diagnostic& d : pre.errors) {
-        d.loc.file = fileIndex.at(static_cast<size_t>(d.loc.file));
-        switch (d.severity) {
-            case Severity::Error: diags.error(d.loc, std::move(d.message)); break;
-            case Severity::Warning: diags.warning(d.loc, std::move(d.message)); break;
-            case Severity::Note: diags.note(d.loc, std::move(d.message)); break;
-        }
-    }
+    for (const std::string& path : pre.files) diags.fileIndex(path);
+    for (diag::Diagnostic& d : pre.errors) diags.add(std::move(d));
     if (!pre.ok) return {};
     return ParseText(diags, pre.text, true);
 }

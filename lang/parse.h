@@ -16,7 +16,7 @@ TranslationUnit Parse(Diagnostics& diags);
 
 /// Preprocesses `diags.file()` (lang/preprocess.h), then lexes and parses the result. Errors of
 /// both stages go to `diags`, at their line in the original file, the main one or an included one
-/// (Diagnostic::loc.file, see Diagnostics::fileIndex). If preprocessing fails, nothing is parsed
+/// (named by its path). If preprocessing fails, nothing is parsed
 /// and the unit is empty. Never throws on bad input.
 TranslationUnit PreprocessAndParse(Diagnostics& diags, const PreprocessOptions& options);
 

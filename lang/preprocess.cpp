@@ -202,17 +202,15 @@ class FileTable {
         m_result.files.push_back(mcppPath);
         return static_cast<int>(m_result.files.size()) - 1;
     }
-    /// The column of the first non-blank character of a line, or 0 if it cannot be read.
-    int FirstColumn(int index, int line) {
+    /// The text of a line of file `index` (empty if it cannot be read).
+    std::string_view LineText(int index, int line) {
         auto it = m_texts.find(index);
         if (it == m_texts.end()) {
             SourceFile file(m_result.files[index], "");
             SourceFile::Load(m_result.files[index], &file, nullptr);
             it = m_texts.emplace(index, std::move(file)).first;
         }
-        std::string_view text = it->second.lineText(line);
-        size_t first = text.find_first_not_of(" \t\f\v");
-        return first == std::string_view::npos ? 0 : static_cast<int>(first) + 1;
+        return it->second.lineText(line);
     }
 
   private:
@@ -293,12 +291,18 @@ void AddMessages(const Capture& capture, FileTable& files, PreprocessResult& res
             if (capture.overflow && message == "File write error")
                 message = "preprocessed text too long (over " + std::to_string(kMaxOutputBytes >> 20) +
                           " MiB): is a macro or #include expanding without end?";
-            Diagnostic d;
-            d.severity = kind.severity;
-            d.loc.file = files.Index(Normal(file));
-            d.loc.line = number > 0 ? number : 0;
-            d.loc.column = d.loc.line > 0 ? files.FirstColumn(d.loc.file, d.loc.line) : 0;
-            d.message = std::move(message);
+            // mcpp gives no column: point at the line's first non-blank character.
+            const int index = files.Index(Normal(file));
+            diag::Diagnostic d{kind.severity,
+                               {result.files[static_cast<size_t>(index)], number > 0 ? number : 0, 0, {}},
+                               std::move(message),
+                               {}};
+            if (d.where.line > 0) {
+                std::string_view text = files.LineText(index, d.where.line);
+                const size_t first = text.find_first_not_of(" \t\f\v");
+                if (first != std::string_view::npos) d.where.column = static_cast<int>(first) + 1;
+                d.where.text = std::string(text);
+            }
             result.errors.push_back(std::move(d));
             break;
         }
@@ -364,7 +368,7 @@ PreprocessResult Preprocess(const std::string& path, const std::string& text, co
     PreprocessResult result;
     result.files = {path};
     auto fail = [&](std::string message) {
-        result.errors.push_back({Severity::Error, {}, std::move(message)});
+        result.errors.push_back({Severity::Error, {path, 0, 0, {}}, std::move(message), {}});
         return result;
     };
     if (text.size() > kMaxOutputBytes) return fail("file too large to preprocess");
@@ -405,7 +409,7 @@ PreprocessResult Preprocess(const std::string& path, const std::string& text, co
         result.text.replace(at, quotedTemp.size(), "\"" + path + "\"");
 
     result.ok = true;
-    for (const Diagnostic& d : result.errors)
+    for (const diag::Diagnostic& d : result.errors)
         if (d.severity == Severity::Error) result.ok = false;
     return result;
 }

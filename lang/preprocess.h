@@ -22,12 +22,13 @@ struct PreprocessResult {
     bool ok = false;
     /// The preprocessed text, with `#line N "file"` markers naming `files` entries.
     std::string text;
-    /// The files that diagnostics point into: files[0] is the `path` given to Preprocess, the
-    /// others are included files (absolute paths). SourceLoc::file indexes this list.
+    /// The files the text's line markers name: files[0] is the `path` given to Preprocess, the
+    /// others are included files (absolute paths).
     std::vector<std::string> files;
     /// mcpp's errors and warnings, in the order reported, each at a line of an original file
-    /// (column: the line's first non-blank character, as mcpp gives no column).
-    std::vector<Diagnostic> errors;
+    /// (column: the line's first non-blank character, as mcpp gives no column; an error about the
+    /// run itself names `path` with no line).
+    std::vector<diag::Diagnostic> errors;
 };
 
 /// Preprocesses `text` (the contents of the file at `path`; a quoted #include is looked up next to

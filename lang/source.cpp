@@ -3,6 +3,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 namespace affray::lang {
 
@@ -15,13 +16,13 @@ SourceFile::SourceFile(std::string path, std::string text) : m_path(std::move(pa
 bool SourceFile::Load(const std::string& path, SourceFile* out, std::string* error) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-        if (error) *error = path + ": error: cannot open file";
+        if (error) *error = "cannot open file: " + std::generic_category().message(errno);
         return false;
     }
     std::ostringstream text;
     text << in.rdbuf();
     if (in.bad()) {
-        if (error) *error = path + ": error: cannot read file";
+        if (error) *error = "cannot read file";
         return false;
     }
     *out = SourceFile(path, text.str());

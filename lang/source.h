@@ -23,7 +23,8 @@ class SourceFile {
   public:
     SourceFile(std::string path, std::string text);
 
-    /// Reads a file from disk; returns false (and leaves *out untouched) if it cannot be read.
+    /// Reads a file from disk; returns false (leaving *out untouched, and *error, if not null, a
+    /// sentence such as "cannot open file: No such file or directory") if it cannot be read.
     static bool Load(const std::string& path, SourceFile* out, std::string* error);
 
     const std::string& path() const { return m_path; }

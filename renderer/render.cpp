@@ -287,7 +287,7 @@ std::string RenderStats::ToJson() const {
         wallSeconds, width, height, static_cast<unsigned long long>(cameraRays),
         perRay(camera.regionsBounded, cameraRays), static_cast<unsigned long long>(camera.maxRegionsPerRay),
         perRay(camera.regionsEvaluated, cameraRays),
-        static_cast<unsigned long long>(camera.depthLimitHits + shadow.depthLimitHits),
+        static_cast<unsigned long long>(camera.depthLimitHits) + shadow.depthLimitHits,
         std::max(camera.maxHitError, 0.0),
         static_cast<unsigned long long>(camera.parallelogramHits + shadow.parallelogramHits),
         static_cast<unsigned long long>(shadow.rays), perRay(shadow.regionsBounded, shadow.rays),
@@ -303,7 +303,11 @@ std::string RenderStats::ToJson() const {
 }
 
 bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,
-                  const lang::PreprocessOptions& preprocess, PreparedScene* out, std::string* error) {
+                  const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report) {
+    auto fail = [&](const diag::Location& where, std::string message) {
+        if (report) report->error(where, std::move(message));
+        return false;
+    };
     out->desc = desc;
     out->primitives.clear();
     const glm::dvec3 eye = Camera(desc.camera).Position();
@@ -326,21 +330,21 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         prim.line = patch.line;
         if (patch.displacement) {
             const ShaderRef& ref = *patch.displacement;
-            std::string where = desc.path + ":" + std::to_string(ref.line) + ": error: ";
+            // The Displacement request in the RIB file (its line is read again only for a message).
+            auto where = [&] {
+                return diag::Location(desc.path, ref.line, ref.column, diag::ReadLine(desc.path, ref.line));
+            };
             std::string path = FindShader(ref.name, searchPath);
             if (path.empty()) {
                 std::string searched;
                 for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
-                *error = where + "shader '" + ref.name + "' not found (searched " + searched + ")";
-                return false;
+                return fail(where(), "shader '" + ref.name + "' not found (searched " + searched + ")");
             }
             std::vector<compiler::ParamOverride> overrides;
             for (const ParamValue& p : ref.params) {
-                if (p.strings.size() > 1) {
-                    *error =
-                        where + "parameter '" + p.name + "' takes one string, got " + std::to_string(p.strings.size());
-                    return false;
-                }
+                if (p.strings.size() > 1)
+                    return fail(where(),
+                                "parameter '" + p.name + "' takes one string, got " + std::to_string(p.strings.size()));
                 if (p.strings.empty())
                     overrides.emplace_back(p.name, p.numbers);
                 else
@@ -348,20 +352,18 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
             }
             const compiler::Spaces spaces = SpacesOf(desc, patch);
             compiler::CompileResult result = cache.Load(path, overrides, preprocess, &spaces);
+            // The shader's own diagnostics (its warnings too), then what the scene asked of it.
+            if (report) report->add(result.diagnostics);
             if (!result.ok()) {
-                *error = result.diagnostics;
-                for (const std::string& e : result.paramErrors) *error += where + e + "\n";
-                if (result.paramErrors.empty()) *error += where + "cannot compile shader '" + ref.name + "'\n";
-                if (!error->empty() && error->back() == '\n') error->pop_back();
+                for (const std::string& e : result.paramErrors) fail(where(), e);
+                if (result.paramErrors.empty()) fail(where(), "cannot compile shader '" + ref.name + "'");
                 return false;
             }
             prim.shader = std::make_shared<compiler::CompiledShader>(std::move(*result.shader));
             for (const std::string& name : prim.shader->genericBound.spaces) {
-                if (spaces.count(name) && !IsAffine(spaces.at(name).toCurrent)) {
-                    *error = where + "shader '" + ref.name + "' uses coordinate space '" + name +
-                             "', which the scene makes projective (not supported)";
-                    return false;
-                }
+                if (spaces.count(name) && !IsAffine(spaces.at(name).toCurrent))
+                    return fail(where(), "shader '" + ref.name + "' uses coordinate space '" + name +
+                                             "', which the scene makes projective (not supported)");
             }
             prim.bound = prim.shader->bound;
             prim.shade = prim.shader->shade;
@@ -376,8 +378,8 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         if (patch.displacement) {
             std::string problem = UnboundedEverywhere(prim, *patch.displacement, eye, intervalCells);
             if (!problem.empty()) {
-                *error = desc.path + ":" + std::to_string(patch.displacement->line) + ": error: " + problem;
-                return false;
+                const ShaderRef& ref = *patch.displacement;
+                return fail({desc.path, ref.line, ref.column, diag::ReadLine(desc.path, ref.line)}, problem);
             }
         }
         prim.box = UnionBox(intervalCells);

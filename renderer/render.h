@@ -102,10 +102,10 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, c
 /// specialises it for its surface (an instance like an earlier one reuses its compilation).
 /// Shaders are found as NAME.sl or NAME.afb in the scene's Option "searchpath" "shader" (relative
 /// directories taken from the RIB file's directory), then in `shaderPaths`;
-/// `preprocess` gives the -I and -D of the C preprocessor. On error returns false with a message naming the RIB
-/// line and the shader's diagnostics.
+/// `preprocess` gives the -I and -D of the C preprocessor. The shaders' diagnostics go to *report
+/// (may be null); on error returns false with an error there at the Displacement request.
 bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,
-                  const lang::PreprocessOptions& preprocess, PreparedScene* out, std::string* error);
+                  const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report);
 
 /// Renders the prepared scene into `image`: full resolution, RGBA plus the AOVs the Display mode
 /// asks for, pixels outside the CropWindow zero (renderer/image/film.h), row 0 at the top.

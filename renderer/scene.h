@@ -29,7 +29,7 @@ struct ParamValue {
 struct ShaderRef {
     std::string name;
     std::vector<ParamValue> params;  ///< In file order; a repeated name replaces the earlier value.
-    int line = 0;                    ///< RIB line of the request, for diagnostics.
+    int line = 0, column = 0;        ///< Where the request starts in the RIB file, for diagnostics.
     /// Shader space: the current transform at the request (shader -> world, column vectors).
     glm::dmat4 shaderToWorld{1.0};
 };
@@ -65,7 +65,7 @@ struct PrimitiveDesc {
     glm::dvec3 color{1.0};                ///< The RIB Color (Cs) in effect.
     SurfaceDesc surface;
     std::optional<ShaderRef> displacement;
-    int line = 0;
+    int line = 0, column = 0;  ///< Where the request starts in the RIB file, for diagnostics.
     /// Object space: the current transform at the request (object -> world, column vectors).
     glm::dmat4 objectToWorld{1.0};
     /// Sides: false for "Sides 1" (seen from behind, the surface is invisible).

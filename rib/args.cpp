@@ -6,10 +6,10 @@
 #include <sstream>
 #include <unordered_map>
 
-namespace affray::renderer {
+namespace affray::rib {
 
-bool RibArgChecks::Fail(int line, const std::string& message) {
-    m_errorLine = line;
+bool RibArgChecks::Fail(RibPos at, const std::string& message) {
+    m_errorAt = at;
     m_errorMessage = message;
     return false;
 }
@@ -22,7 +22,7 @@ std::string RibArgChecks::FormatNumber(double v) {
 
 bool RibArgChecks::NoArgs(const RibRequest& r) {
     if (r.args.empty()) return true;
-    return Fail(r.args[0].line, Quote(r.name) + " takes no arguments, found " + r.args[0].Describe());
+    return Fail(r.args[0].at, Quote(r.name) + " takes no arguments, found " + r.args[0].Describe());
 }
 
 // The end of Numbers and LeadingNumbers: `count` values, else an error naming what was found.
@@ -30,8 +30,7 @@ bool RibArgChecks::TakeNumbers(const RibRequest& r, const std::vector<double>& v
                                const char* names, double* out) {
     if (bad || values.size() != count) {
         std::string got = bad ? bad->Describe() : std::to_string(values.size());
-        return Fail(r.line,
-                    Quote(r.name) + " expects " + std::to_string(count) + " numbers (" + names + "), got " + got);
+        return Fail(r.at, Quote(r.name) + " expects " + std::to_string(count) + " numbers (" + names + "), got " + got);
     }
     std::copy(values.begin(), values.end(), out);
     return true;
@@ -80,7 +79,7 @@ bool RibArgChecks::LeadingNumbers(const RibRequest& r, size_t count, const char*
 
 bool RibArgChecks::LeadingString(const RibRequest& r, const char* what, std::string* out) {
     if (r.args.empty() || r.args[0].isArray || !r.args[0].StringsP())
-        return Fail(r.args.empty() ? r.line : r.args[0].line,
+        return Fail(r.args.empty() ? r.at : r.args[0].at,
                     Quote(r.name) + " expects " + what + " as its first argument" +
                         (r.args.empty() ? "" : ", found " + r.args[0].Describe()));
     *out = r.args[0].strings[0];
@@ -95,10 +94,10 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
     for (size_t i = first; i < r.args.size(); i += 2) {
         const RibArg& token = r.args[i];
         if (token.isArray || !token.StringsP())
-            return Fail(token.line, Quote(r.name) + " expects a parameter name string, found " + token.Describe());
+            return Fail(token.at, Quote(r.name) + " expects a parameter name string, found " + token.Describe());
         const std::string& text = token.strings[0];
         size_t last = text.find_last_not_of(" \t\n\r");
-        if (last == std::string::npos) return Fail(token.line, Quote(r.name) + " has an empty parameter name");
+        if (last == std::string::npos) return Fail(token.at, Quote(r.name) + " has an empty parameter name");
         size_t space = text.find_last_of(" \t\n\r", last);
         size_t start = space == std::string::npos ? 0 : space + 1;
         RibParam p;
@@ -109,11 +108,11 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
             if (declBegin <= declEnd) p.value.declaration = text.substr(declBegin, declEnd + 1 - declBegin);
         }
         if (i + 1 >= r.args.size())
-            return Fail(token.line, Quote(r.name) + " parameter " + Quote(p.value.name) + " has no value");
+            return Fail(token.at, Quote(r.name) + " parameter " + Quote(p.value.name) + " has no value");
         const RibArg& value = r.args[i + 1];
         p.value.numbers = value.numbers;
         p.value.strings = value.strings;
-        p.line = value.line;
+        p.at = value.at;
         // An index by name keeps long parameter lists linear.
         auto [slot, isNew] = index.try_emplace(p.value.name, out->size());
         if (isNew)
@@ -127,8 +126,8 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
 bool RibArgChecks::ParamNumbers(const RibParam& p, const std::string& context, size_t count, double* out) {
     if (!p.value.strings.empty() || p.value.numbers.size() != count) {
         std::string got = !p.value.strings.empty() ? "a string" : std::to_string(p.value.numbers.size());
-        return Fail(p.line, context + " parameter " + Quote(p.value.name) + " expects " + std::to_string(count) +
-                                (count == 1 ? " number" : " numbers") + ", got " + got);
+        return Fail(p.at, context + " parameter " + Quote(p.value.name) + " expects " + std::to_string(count) +
+                              (count == 1 ? " number" : " numbers") + ", got " + got);
     }
     std::copy(p.value.numbers.begin(), p.value.numbers.end(), out);
     return true;
@@ -147,11 +146,11 @@ bool RibArgChecks::Matrix(const RibRequest& r, glm::dmat4* out) {
     double m[16];
     if (!Numbers(r, 16, "a 4x4 matrix", m)) return false;
     if (m[3] != 0 || m[7] != 0 || m[11] != 0 || m[15] == 0)
-        return Fail(r.line, Quote(r.name) +
-                                " matrix must be affine (last column 0 0 0 1); projective transforms "
-                                "are not supported yet");
+        return Fail(r.at, Quote(r.name) +
+                              " matrix must be affine (last column 0 0 0 1); projective transforms "
+                              "are not supported yet");
     *out = glm::make_mat4(m) / m[15];
     return true;
 }
 
-}  // namespace affray::renderer
+}  // namespace affray::rib

@@ -2,7 +2,7 @@
 // Owns the rules every request shares: positional numbers given bare or as one array, a leading
 // name string, token-value parameter lists with inline declarations ("uniform float Km"), and
 // 4x4 matrices. It knows no request's meaning (that is rib/rib.cpp). Each check returns
-// false after Fail() has recorded the message and the line of the offending token.
+// false after Fail() has recorded the message and the place of the offending token.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -12,19 +12,29 @@
 #include "renderer/scene.h"
 #include "rib/lexer.h"
 
-namespace affray::renderer {
+namespace affray::rib {
 
-/// A parameter of a request with the line of its value, for messages.
+using renderer::CameraDesc;
+using renderer::FilterDesc;
+using renderer::LightDesc;
+using renderer::ParamValue;
+using renderer::PrimitiveDesc;
+using renderer::Quadric;
+using renderer::SceneDesc;
+using renderer::ShaderRef;
+using renderer::SurfaceDesc;
+
+/// A parameter of a request with the place of its value, for messages.
 struct RibParam {
     ParamValue value;
-    int line = 0;
+    RibPos at;
 };
 
 /// Argument checks for the RIB reader, which derives from this class. Messages name the request.
 class RibArgChecks {
   protected:
-    /// Records the first error ("message" and its line) and returns false.
-    bool Fail(int line, const std::string& message);
+    /// Records the first error ("message" and its place) and returns false.
+    bool Fail(RibPos at, const std::string& message);
 
     /// No arguments at all.
     bool NoArgs(const RibRequest& r);
@@ -55,8 +65,8 @@ class RibArgChecks {
     /// A number as printed in messages (shortest of %g).
     static std::string FormatNumber(double v);
 
-    int m_errorLine = 0;
+    RibPos m_errorAt;
     std::string m_errorMessage;
 };
 
-}  // namespace affray::renderer
+}  // namespace affray::rib

@@ -5,7 +5,7 @@
 
 #include "rib/parser.h"
 
-namespace affray::renderer {
+namespace affray::rib {
 
 bool RibParser::DoColor(const RibRequest& r) {
     double v[3];
@@ -17,7 +17,7 @@ bool RibParser::DoColor(const RibRequest& r) {
 bool RibParser::DoOpacity(const RibRequest& r) {
     double v[3];
     if (!Numbers(r, 3, "r g b", v)) return false;
-    if (v[0] != 1 || v[1] != 1 || v[2] != 1) Warn(r.line, "affray renders opaque surfaces only; Opacity ignored");
+    if (v[0] != 1 || v[1] != 1 || v[2] != 1) Warn(r.at, "affray renders opaque surfaces only; Opacity ignored");
     return true;
 }
 
@@ -27,18 +27,18 @@ bool RibParser::DoAttribute(const RibRequest& r) {
     if (!LeadingString(r, "an attribute name", &name) || !ParamList(r, 1, &params)) return false;
     // The intersector bounds displaced surfaces exactly, so no user bound is needed.
     if (name == "displacementbound")
-        Warn(r.line,
+        Warn(r.at,
              "'Attribute \"displacementbound\"' is not needed: affray bounds displacement "
              "exactly; ignored");
     else
-        Warn(r.line, "'Attribute \"" + name + "\"' is not supported; ignored");
+        Warn(r.at, "'Attribute \"" + name + "\"' is not supported; ignored");
     return true;
 }
 
 bool RibParser::DoSides(const RibRequest& r) {
     double sides;
     if (!Numbers(r, 1, "sides", &sides)) return false;
-    if (sides != 1 && sides != 2) return Fail(r.line, "'Sides' must be 1 or 2, got " + FormatNumber(sides));
+    if (sides != 1 && sides != 2) return Fail(r.at, "'Sides' must be 1 or 2, got " + FormatNumber(sides));
     m_state.twoSided = sides == 2;
     return true;
 }
@@ -52,7 +52,7 @@ bool RibParser::DoReverseOrientation(const RibRequest& r) {
 bool RibParser::DoOrientation(const RibRequest& r) {
     std::string name;
     if (!LeadingString(r, "an orientation", &name)) return false;
-    if (r.args.size() > 1) return Fail(r.line, "'Orientation' expects one string");
+    if (r.args.size() > 1) return Fail(r.at, "'Orientation' expects one string");
     // "outside" and "inside" are relative to the handedness of the current coordinate system;
     // "lh" and "rh" are absolute, so they are inside out where the system has the other one.
     if (name == "lh")
@@ -64,7 +64,7 @@ bool RibParser::DoOrientation(const RibRequest& r) {
     else if (name == "inside")
         m_state.insideOut = true;
     else
-        return Fail(r.args[0].line,
+        return Fail(r.args[0].at,
                     "unknown orientation " + Quote(name) + " (expected \"outside\", \"inside\", \"lh\" or \"rh\")");
     return true;
 }
@@ -89,7 +89,7 @@ bool RibParser::DoSurface(const RibRequest& r) {
         surface.Kd = 0;
         surface.Ks = 0;
     } else if (name != "plastic") {
-        Warn(r.line, "surface shader " + Quote(name) + " is not supported yet; using \"plastic\"");
+        Warn(r.at, "surface shader " + Quote(name) + " is not supported yet; using \"plastic\"");
         m_state.surface = surface;
         return true;
     }
@@ -112,11 +112,11 @@ bool RibParser::DoSurface(const RibRequest& r) {
         else if (n == "specularcolor" && model == Model::Plastic)
             ok = ParamVector(p, context, &surface.specularColor);
         else
-            Warn(p.line, context + " has no parameter " + Quote(n) + "; ignored");
+            Warn(p.at, context + " has no parameter " + Quote(n) + "; ignored");
         if (!ok) return false;
     }
     if (!(surface.roughness > 0))  // the highlight exponent is 1 / roughness
-        return Fail(r.line, context + " roughness must be positive, got " + FormatNumber(surface.roughness));
+        return Fail(r.at, context + " roughness must be positive, got " + FormatNumber(surface.roughness));
     m_state.surface = surface;
     return true;
 }
@@ -129,7 +129,8 @@ bool RibParser::DoDisplacement(const RibRequest& r) {
         m_state.displacement.reset();
         return true;
     }
-    shader.line = r.line;
+    shader.line = r.at.line;
+    shader.column = r.at.column;
     shader.shaderToWorld = m_state.ctm;
     for (RibParam& p : params) shader.params.push_back(std::move(p.value));
     m_state.displacement = std::move(shader);
@@ -140,13 +141,13 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     std::string name;
     if (!LeadingString(r, "a light shader name", &name)) return false;
     if (r.args.size() < 2 || r.args[1].isArray)
-        return Fail(r.line, "'LightSource' expects a light handle (a number or a string) after the shader name");
+        return Fail(r.at, "'LightSource' expects a light handle (a number or a string) after the shader name");
     std::vector<RibParam> params;
     if (!ParamList(r, 2, &params)) return false;
-    if (m_worldEnded) return Fail(r.line, "'LightSource' after 'WorldEnd'");
+    if (m_worldEnded) return Fail(r.at, "'LightSource' after 'WorldEnd'");
 
     LightDesc light;
-    light.line = r.line;
+    light.line = r.at.line;
     const RibArg& handle = r.args[1];
     light.handle = handle.StringsP() ? handle.strings[0] : FormatNumber(handle.numbers[0]);
     if (name == "ambientlight")
@@ -158,7 +159,7 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     else if (name == "spotlight")
         light.kind = LightDesc::Kind::Spot;
     else {
-        Warn(r.line, "light source " + Quote(name) + " is not supported yet; ignored");
+        Warn(r.at, "light source " + Quote(name) + " is not supported yet; ignored");
         return true;
     }
     const std::string context = "'LightSource \"" + name + "\"'";
@@ -169,7 +170,7 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     light.from = TransformPoint(m_state.ctm, light.from);
     light.to = TransformPoint(m_state.ctm, light.to);
     bool aimed = light.kind == LightDesc::Kind::Distant || light.kind == LightDesc::Kind::Spot;
-    if (aimed && light.from == light.to) return Fail(r.line, context + " 'from' and 'to' must differ");
+    if (aimed && light.from == light.to) return Fail(r.at, context + " 'from' and 'to' must differ");
     if (m_worldSeen)
         m_scene.lights.push_back(light);
     else
@@ -199,7 +200,7 @@ bool RibParser::LightParams(const std::string& context, const std::vector<RibPar
         else if (n == "beamdistribution" && spot)
             ok = ParamNumbers(p, context, 1, &light->beamDistribution);
         else
-            Warn(p.line, context + " has no parameter " + Quote(n) + "; ignored");
+            Warn(p.at, context + " has no parameter " + Quote(n) + "; ignored");
         if (!ok) return false;
     }
     return true;
@@ -209,14 +210,14 @@ bool RibParser::LightParams(const std::string& context, const std::vector<RibPar
 bool RibParser::CheckSpotlight(const RibRequest& r, const std::string& context, const LightDesc& light) {
     const double pi = 3.14159265358979323846;
     if (!(light.coneAngle > 0 && light.coneAngle <= pi))
-        return Fail(r.line, context + " coneangle must be in (0, pi] radians, got " + FormatNumber(light.coneAngle));
+        return Fail(r.at, context + " coneangle must be in (0, pi] radians, got " + FormatNumber(light.coneAngle));
     if (!(light.coneDeltaAngle >= 0 && light.coneDeltaAngle <= light.coneAngle))
-        return Fail(r.line,
+        return Fail(r.at,
                     context + " conedeltaangle must be from 0 to coneangle, got " + FormatNumber(light.coneDeltaAngle));
     if (!(light.beamDistribution >= 0))
-        return Fail(r.line,
+        return Fail(r.at,
                     context + " beamdistribution must not be negative, got " + FormatNumber(light.beamDistribution));
     return true;
 }
 
-}  // namespace affray::renderer
+}  // namespace affray::rib

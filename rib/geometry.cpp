@@ -10,7 +10,7 @@
 
 #include "rib/parser.h"
 
-namespace affray::renderer {
+namespace affray::rib {
 
 // flipNormal = (det objectToWorld < 0) XOR insideOut, as documented in scene.h: the first term
 // undoes the turn a mirroring placement gives dPdu x dPdv, the second applies the RI rule.
@@ -23,7 +23,8 @@ void RibParser::SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) co
     p->color = m_state.color;
     p->surface = m_state.surface;
     p->displacement = m_state.displacement;
-    p->line = r.line;
+    p->line = r.at.line;
+    p->column = r.at.column;
     p->objectToWorld = m_state.ctm;
     p->twoSided = m_state.twoSided;
     p->flipNormal = FlipNormalP();
@@ -32,9 +33,9 @@ void RibParser::SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) co
 bool RibParser::DoPatch(const RibRequest& r) {
     std::string type;
     if (!LeadingString(r, "a patch type", &type)) return false;
-    if (type == "bicubic") return Fail(r.line, "'Patch \"bicubic\"' is not supported yet");
+    if (type == "bicubic") return Fail(r.at, "'Patch \"bicubic\"' is not supported yet");
     if (type != "bilinear")
-        return Fail(r.args[0].line, "unknown patch type " + Quote(type) + " (expected \"bilinear\" or \"bicubic\")");
+        return Fail(r.args[0].at, "unknown patch type " + Quote(type) + " (expected \"bilinear\" or \"bicubic\")");
     std::vector<RibParam> params;
     if (!ParamList(r, 1, &params) || !InsideWorld(r)) return false;
 
@@ -51,7 +52,7 @@ bool RibParser::DoPatch(const RibRequest& r) {
             double v[16];
             if (!ParamNumbers(p, context, 16, v)) return false;
             for (int i = 0; i < 4; ++i) {
-                if (v[4 * i + 3] == 0) return Fail(p.line, context + " parameter 'Pw' has a zero w");
+                if (v[4 * i + 3] == 0) return Fail(p.at, context + " parameter 'Pw' has a zero w");
                 corners[i] = glm::dvec3(v[4 * i], v[4 * i + 1], v[4 * i + 2]) / v[4 * i + 3];
             }
         } else if (n == "Pz") {  // heights over the unit square (x = u, y = v)
@@ -59,18 +60,18 @@ bool RibParser::DoPatch(const RibRequest& r) {
             if (!ParamNumbers(p, context, 4, z)) return false;
             for (int i = 0; i < 4; ++i) corners[i] = glm::dvec3(i & 1, i >> 1, z[i]);
         } else {
-            Warn(p.line, context + " parameter " + Quote(n) + " is not supported yet; ignored");
+            Warn(p.at, context + " parameter " + Quote(n) + " is not supported yet; ignored");
             continue;
         }
         havePosition = true;
     }
-    if (!havePosition) return Fail(r.line, context + " needs a \"P\" parameter");
+    if (!havePosition) return Fail(r.at, context + " needs a \"P\" parameter");
 
     PrimitiveDesc patch;
     for (int i = 0; i < 4; ++i) {
         patch.corners[i] = TransformPoint(m_state.ctm, corners[i]);
         if (!FiniteP(patch.corners[i]))
-            return Fail(r.line, context + " corner " + std::to_string(i) + " overflows in world space");
+            return Fail(r.at, context + " corner " + std::to_string(i) + " overflows in world space");
     }
     SetPrimitiveAttributes(r, &patch);
     m_scene.primitives.push_back(std::move(patch));
@@ -126,13 +127,13 @@ bool RibParser::DoQuadric(const RibRequest& r, Quadric::Kind kind) {
     if (!LeadingNumbers(r, count, names, v, &next) || !ParamList(r, next, &params) || !InsideWorld(r)) return false;
     // Primitive variables (Cs, st, N, ...) would vary over the surface; none is used yet.
     for (const RibParam& p : params)
-        Warn(p.line, Quote(r.name) + " parameter " + Quote(p.value.name) + " is not supported yet; ignored");
+        Warn(p.at, Quote(r.name) + " parameter " + Quote(p.value.name) + " is not supported yet; ignored");
 
     PrimitiveDesc prim;
     prim.shape = PrimitiveDesc::Shape::Quadric;
     prim.quadric = MakeQuadric(kind, v);
     if (std::string problem = prim.quadric.Problem(); !problem.empty())
-        return Fail(r.line, Quote(r.name) + " " + problem);
+        return Fail(r.at, Quote(r.name) + " " + problem);
     SetPrimitiveAttributes(r, &prim);
     m_scene.primitives.push_back(std::move(prim));
     return true;
@@ -143,13 +144,12 @@ bool RibParser::DoQuadric(const RibRequest& r, Quadric::Kind kind) {
 bool RibParser::DoCoordinateSystem(const RibRequest& r) {
     std::string name;
     if (!LeadingString(r, "a coordinate system name", &name)) return false;
-    if (r.args.size() > 1) return Fail(r.line, "'CoordinateSystem' expects one string");
-    if (m_worldEnded) return Fail(r.line, "'CoordinateSystem' after 'WorldEnd'");
+    if (r.args.size() > 1) return Fail(r.at, "'CoordinateSystem' expects one string");
+    if (m_worldEnded) return Fail(r.at, "'CoordinateSystem' after 'WorldEnd'");
     static const char* const kStandard[] = {"camera", "current", "object", "raster",
                                             "screen", "shader",  "world",  "NDC"};
     for (const char* standard : kStandard)
-        if (name == standard)
-            return Fail(r.line, "'CoordinateSystem' cannot redefine the standard space " + Quote(name));
+        if (name == standard) return Fail(r.at, "'CoordinateSystem' cannot redefine the standard space " + Quote(name));
     if (m_worldSeen)
         m_scene.coordinateSystems[name] = m_state.ctm;
     else
@@ -157,4 +157,4 @@ bool RibParser::DoCoordinateSystem(const RibRequest& r) {
     return true;
 }
 
-}  // namespace affray::renderer
+}  // namespace affray::rib

@@ -1,4 +1,4 @@
-// rib/lexer.cpp: RIB ASCII tokens and requests (see rib_lexer.h for the rules).
+// rib/lexer.cpp: RIB ASCII tokens and requests (see rib/lexer.h for the rules).
 #include "rib/lexer.h"
 
 #include <cfloat>
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
-namespace affray::renderer {
+namespace affray::rib {
 namespace {
 
 bool SpaceP(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
@@ -43,11 +43,11 @@ std::string DescribeChar(char c) {
 
 }  // namespace
 
-RibToken RibLexer::Error(int line, std::string message) {
+RibToken RibLexer::Error(RibPos at, std::string message) {
     RibToken token;
     token.kind = RibToken::Kind::Error;
     token.text = std::move(message);
-    token.line = line;
+    token.at = at;
     m_pos = m_text.size();  // an error ends the input: Next() then returns End
     return token;
 }
@@ -57,8 +57,7 @@ RibToken RibLexer::Next() {
     while (m_pos < m_text.size()) {
         char c = m_text[m_pos];
         if (c == '\n') {
-            ++m_line;
-            ++m_pos;
+            NewLine();
         } else if (SpaceP(c)) {
             ++m_pos;
         } else if (c == '#') {
@@ -68,7 +67,7 @@ RibToken RibLexer::Next() {
         }
     }
     RibToken token;
-    token.line = m_line;
+    token.at = Here();
     if (m_pos >= m_text.size()) return token;  // End
 
     char c = m_text[m_pos];
@@ -80,36 +79,45 @@ RibToken RibLexer::Next() {
     }
     if (DigitP(c) || c == '.' || c == '+' || c == '-') return LexNumber();
     if (AlphaP(c)) return LexName();
-    return Error(m_line, "unexpected " + DescribeChar(c));
+    return Error(Here(), "unexpected " + DescribeChar(c));
 }
 
 RibToken RibLexer::LexString() {
-    int startLine = m_line;
+    const RibPos start = Here();
     ++m_pos;  // opening quote
     std::string value;
     while (m_pos < m_text.size()) {
-        char c = m_text[m_pos++];
+        char c = m_text[m_pos];
+        if (c == '\n') {
+            value += c;
+            NewLine();
+            continue;
+        }
+        ++m_pos;
         if (c == '"') {
             RibToken token;
             token.kind = RibToken::Kind::String;
             token.text = std::move(value);
-            token.line = startLine;
+            token.at = start;
             return token;
         }
-        if (c == '\n') ++m_line;
         if (c != '\\') {
             value += c;
             continue;
         }
         if (m_pos >= m_text.size()) break;
-        char e = m_text[m_pos++];
+        char e = m_text[m_pos];
+        if (e == '\n') {  // backslash-newline continues the string
+            NewLine();
+            continue;
+        }
+        ++m_pos;
         switch (e) {
             case 'n': value += '\n'; break;
             case 'r': value += '\r'; break;
             case 't': value += '\t'; break;
             case 'b': value += '\b'; break;
             case 'f': value += '\f'; break;
-            case '\n': ++m_line; break;  // backslash-newline continues the string
             default:
                 if (e >= '0' && e <= '7') {
                     // Up to three octal digits, as in C.
@@ -122,15 +130,16 @@ RibToken RibLexer::LexString() {
                 }
         }
     }
-    return Error(startLine, "unterminated string");
+    return Error(start, "unterminated string");
 }
 
 RibToken RibLexer::LexNumber() {
+    const RibPos at = Here();
     size_t start = m_pos;
     while (m_pos < m_text.size() && NumberCharP(m_text[m_pos])) ++m_pos;
     std::string_view word = m_text.substr(start, m_pos - start);
     if (NonFiniteWordP(word))
-        return Error(m_line, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
+        return Error(at, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
 
     // from_chars accepts no leading '+'; parse in long double so that overflow past double's
     // range is detected here rather than silently becoming infinity.
@@ -140,29 +149,30 @@ RibToken RibLexer::LexNumber() {
     auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
     if (ec == std::errc::result_out_of_range ||
         (ec == std::errc() && std::isfinite(value) && std::fabs(value) > DBL_MAX))
-        return Error(m_line, "number '" + std::string(word) + "' is out of range");
+        return Error(at, "number '" + std::string(word) + "' is out of range");
     if (ec != std::errc() || end != digits.data() + digits.size())
-        return Error(m_line, "malformed number '" + std::string(word) + "'");
+        return Error(at, "malformed number '" + std::string(word) + "'");
     if (!std::isfinite(value))
-        return Error(m_line, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
+        return Error(at, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
     RibToken token;
     token.kind = RibToken::Kind::Number;
     token.number = static_cast<double>(value);  // values below double's range round to 0
     token.text = std::string(word);
-    token.line = m_line;
+    token.at = at;
     return token;
 }
 
 RibToken RibLexer::LexName() {
+    const RibPos at = Here();
     size_t start = m_pos;
     while (m_pos < m_text.size() && (AlphaP(m_text[m_pos]) || DigitP(m_text[m_pos]))) ++m_pos;
     std::string_view word = m_text.substr(start, m_pos - start);
     if (NonFiniteWordP(word))
-        return Error(m_line, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
+        return Error(at, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
     RibToken token;
     token.kind = RibToken::Kind::Name;
     token.text = std::string(word);
-    token.line = m_line;
+    token.at = at;
     return token;
 }
 
@@ -179,7 +189,7 @@ std::string RibArg::Describe() const {
 
 void RibRequestReader::Advance() {
     m_token = m_lexer.Next();
-    if (m_token.kind != RibToken::Kind::End) m_lastLine = m_token.line;
+    if (m_token.kind != RibToken::Kind::End) m_lastPos = m_token.at;
 }
 
 namespace {
@@ -197,36 +207,36 @@ std::string InParameter(const RibRequest& request, std::string message) {
 
 }  // namespace
 
-RibRequestReader::Status RibRequestReader::Next(RibRequest* request, std::string* error, int* errorLine) {
+RibRequestReader::Status RibRequestReader::Next(RibRequest* request, std::string* error, RibPos* errorAt) {
     using Kind = RibToken::Kind;
-    auto fail = [&](int line, std::string message) {
+    auto fail = [&](RibPos at, std::string message) {
         *error = std::move(message);
-        *errorLine = line;
+        *errorAt = at;
         return Status::Error;
     };
     request->args.clear();
     switch (m_token.kind) {
         case Kind::End: return Status::End;
-        case Kind::Error: return fail(m_token.line, m_token.text);
+        case Kind::Error: return fail(m_token.at, m_token.text);
         case Kind::Name: break;
-        case Kind::Number: return fail(m_token.line, "expected a request name, found number " + m_token.text);
-        case Kind::String: return fail(m_token.line, "expected a request name, found string \"" + m_token.text + "\"");
-        case Kind::ArrayBegin: return fail(m_token.line, "expected a request name, found '['");
-        case Kind::ArrayEnd: return fail(m_token.line, "']' without matching '['");
+        case Kind::Number: return fail(m_token.at, "expected a request name, found number " + m_token.text);
+        case Kind::String: return fail(m_token.at, "expected a request name, found string \"" + m_token.text + "\"");
+        case Kind::ArrayBegin: return fail(m_token.at, "expected a request name, found '['");
+        case Kind::ArrayEnd: return fail(m_token.at, "']' without matching '['");
     }
     request->name = m_token.text;
-    request->line = m_token.line;
+    request->at = m_token.at;
     Advance();
 
     // Arguments run up to the next request name or the end of the input.
     for (;;) {
         RibArg arg;
-        arg.line = m_token.line;
+        arg.at = m_token.at;
         switch (m_token.kind) {
             case Kind::Name:
             case Kind::End: return Status::Ok;
-            case Kind::Error: return fail(m_token.line, InParameter(*request, m_token.text));
-            case Kind::ArrayEnd: return fail(m_token.line, "']' without matching '['");
+            case Kind::Error: return fail(m_token.at, InParameter(*request, m_token.text));
+            case Kind::ArrayEnd: return fail(m_token.at, "']' without matching '['");
             case Kind::Number:
                 arg.numbers.push_back(m_token.number);
                 Advance();
@@ -236,7 +246,7 @@ RibRequestReader::Status RibRequestReader::Next(RibRequest* request, std::string
                 Advance();
                 break;
             case Kind::ArrayBegin:
-                if (!ReadArray(&arg, error, errorLine)) {
+                if (!ReadArray(&arg, error, errorAt)) {
                     *error = InParameter(*request, *error);
                     return Status::Error;
                 }
@@ -246,32 +256,32 @@ RibRequestReader::Status RibRequestReader::Next(RibRequest* request, std::string
     }
 }
 
-bool RibRequestReader::ReadArray(RibArg* arg, std::string* error, int* errorLine) {
+bool RibRequestReader::ReadArray(RibArg* arg, std::string* error, RibPos* errorAt) {
     using Kind = RibToken::Kind;
-    int openLine = m_token.line;
+    const RibPos open = m_token.at;
     arg->isArray = true;
-    arg->line = openLine;
-    auto fail = [&](int line, std::string message) {
+    arg->at = open;
+    auto fail = [&](RibPos at, std::string message) {
         *error = std::move(message);
-        *errorLine = line;
+        *errorAt = at;
         return false;
     };
     Advance();  // '['
     for (;;) {
         switch (m_token.kind) {
             case Kind::ArrayEnd: Advance(); return true;
-            case Kind::End: return fail(openLine, "unterminated array: '[' has no matching ']'");
-            case Kind::Error: return fail(m_token.line, m_token.text);
-            case Kind::ArrayBegin: return fail(m_token.line, "nested arrays are not allowed");
+            case Kind::End: return fail(open, "unterminated array: '[' has no matching ']'");
+            case Kind::Error: return fail(m_token.at, m_token.text);
+            case Kind::ArrayBegin: return fail(m_token.at, "nested arrays are not allowed");
             case Kind::Name:
-                return fail(m_token.line, "expected a number, a string or ']' in the array opened on line " +
-                                              std::to_string(openLine) + ", found '" + m_token.text + "'");
+                return fail(m_token.at, "expected a number, a string or ']' in the array opened on line " +
+                                            std::to_string(open.line) + ", found '" + m_token.text + "'");
             case Kind::Number:
-                if (!arg->strings.empty()) return fail(m_token.line, "array mixes strings and numbers");
+                if (!arg->strings.empty()) return fail(m_token.at, "array mixes strings and numbers");
                 arg->numbers.push_back(m_token.number);
                 break;
             case Kind::String:
-                if (!arg->numbers.empty()) return fail(m_token.line, "array mixes numbers and strings");
+                if (!arg->numbers.empty()) return fail(m_token.at, "array mixes numbers and strings");
                 arg->strings.push_back(std::move(m_token.text));
                 break;
         }
@@ -279,4 +289,4 @@ bool RibRequestReader::ReadArray(RibArg* arg, std::string* error, int* errorLine
     }
 }
 
-}  // namespace affray::renderer
+}  // namespace affray::rib

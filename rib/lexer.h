@@ -9,14 +9,20 @@
 #include <string_view>
 #include <vector>
 
-namespace affray::renderer {
+namespace affray::rib {
+
+/// A place in RIB text: line and column (in bytes) from 1.
+struct RibPos {
+    int line = 1;
+    int column = 1;
+};
 
 /// One RIB token.
 struct RibToken {
     enum class Kind { Name, Number, String, ArrayBegin, ArrayEnd, End, Error } kind = Kind::End;
     std::string text;   ///< Name: the name. String: the unescaped contents. Error: the message.
     double number = 0;  ///< Number: the value (always finite).
-    int line = 1;       ///< The line the token starts on.
+    RibPos at;          ///< Where the token starts.
 };
 
 /// Splits RIB ASCII text into tokens. The text must outlive the lexer.
@@ -26,17 +32,23 @@ class RibLexer {
 
     /// The next token; End at the end of the text (and for ever after).
     RibToken Next();
-    /// The line the lexer has reached.
-    int Line() const { return m_line; }
+    /// Where the lexer has reached.
+    RibPos Here() const { return {m_line, static_cast<int>(m_pos - m_lineStart) + 1}; }
 
   private:
     RibToken LexString();
     RibToken LexNumber();
     RibToken LexName();
-    RibToken Error(int line, std::string message);
+    RibToken Error(RibPos at, std::string message);
+    /// Steps over a line break at m_pos.
+    void NewLine() {
+        ++m_line;
+        m_lineStart = ++m_pos;
+    }
 
     std::string_view m_text;
     size_t m_pos = 0;
+    size_t m_lineStart = 0;  // where line m_line starts
     int m_line = 1;
 };
 
@@ -45,7 +57,7 @@ struct RibArg {
     bool isArray = false;
     std::vector<double> numbers;       ///< Bare number: one value. Numeric array: its values.
     std::vector<std::string> strings;  ///< Bare string: one value. String array: its values.
-    int line = 1;
+    RibPos at;
 
     /// True for a bare number or an array without strings (an empty array counts as both kinds).
     bool NumericP() const { return strings.empty(); }
@@ -58,7 +70,7 @@ struct RibArg {
 /// A request name and its arguments, up to the next request name.
 struct RibRequest {
     std::string name;
-    int line = 1;
+    RibPos at;
     std::vector<RibArg> args;
 };
 
@@ -68,18 +80,18 @@ class RibRequestReader {
     explicit RibRequestReader(std::string_view text) : m_lexer(text) { Advance(); }
 
     enum class Status { Ok, End, Error };
-    /// Reads the next request into *request. On Error, *error is "message" and *errorLine its line.
-    Status Next(RibRequest* request, std::string* error, int* errorLine);
-    /// The line of the last token read, for errors at the end of the input.
-    int LastLine() const { return m_lastLine; }
+    /// Reads the next request into *request. On Error, *error is "message" and *errorAt its place.
+    Status Next(RibRequest* request, std::string* error, RibPos* errorAt);
+    /// Where the last token read starts, for errors at the end of the input.
+    RibPos LastPos() const { return m_lastPos; }
 
   private:
     void Advance();
-    bool ReadArray(RibArg* arg, std::string* error, int* errorLine);
+    bool ReadArray(RibArg* arg, std::string* error, RibPos* errorAt);
 
     RibLexer m_lexer;
     RibToken m_token;  // one token of lookahead
-    int m_lastLine = 1;
+    RibPos m_lastPos;
 };
 
-}  // namespace affray::renderer
+}  // namespace affray::rib

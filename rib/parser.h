@@ -13,23 +13,25 @@
 #include <string_view>
 #include <vector>
 
+#include "diag/diagnostic.h"
 #include "renderer/scene.h"
 #include "rib/args.h"
 #include "rib/lexer.h"
 
-namespace affray::renderer {
+namespace affray::rib {
 
 /// Builds a SceneDesc from the requests of one RIB text. Use once: construct, then Run().
 class RibParser : private RibArgChecks {
   public:
-    RibParser(std::string_view text, const std::string& path, std::vector<std::string>* warnings)
-        : m_reader(text), m_path(path), m_warnings(warnings) {
+    RibParser(std::string_view text, const std::string& path, diag::Report* report)
+        : m_reader(text), m_text(text), m_path(path), m_report(report) {
         m_scene.path = path;
         m_scene.camera.perspective = false;  // RI default without a Projection request
     }
 
-    /// Parses everything; on failure sets *error (may be null) to "file:line: error: message".
-    std::optional<SceneDesc> Run(std::string* error);
+    /// Parses everything; on failure reports the first error and returns nothing. Warnings are
+    /// reported as they are found, each distinct one once.
+    std::optional<SceneDesc> Run();
 
   private:
     struct State {
@@ -46,13 +48,15 @@ class RibParser : private RibArgChecks {
     enum class Block { Frame, World, Attribute, Transform };
     struct OpenBlock {
         Block kind;
-        int line;
+        RibPos at;
         State saved;
     };
     using Handler = bool (RibParser::*)(const RibRequest&);
 
     bool Dispatch(const RibRequest& r);
-    void Warn(int line, const std::string& message);
+    void Warn(RibPos at, const std::string& message);
+    /// `at` as a diagnostic location, with its source line.
+    diag::Location Where(RibPos at) const;
     static const char* BlockName(Block kind, bool end);
     static bool FiniteP(const glm::dmat4& m);
     static bool FiniteP(const glm::dvec3& v);
@@ -128,8 +132,9 @@ class RibParser : private RibArgChecks {
     bool DoVersion(const RibRequest&) { return true; }  // "version 3.03": nothing to check
 
     RibRequestReader m_reader;
+    std::string_view m_text;
     std::string m_path;
-    std::vector<std::string>* m_warnings;
+    diag::Report* m_report;
     std::set<std::string> m_warned;  // each distinct warning once
 
     SceneDesc m_scene;
@@ -142,4 +147,4 @@ class RibParser : private RibArgChecks {
     std::map<std::string, glm::dmat4> m_cameraCoordinateSystems;
 };
 
-}  // namespace affray::renderer
+}  // namespace affray::rib

@@ -25,7 +25,7 @@
 
 #include "rib/parser.h"
 
-namespace affray::renderer {
+namespace affray::rib {
 namespace {
 
 // clang-format off
@@ -63,16 +63,16 @@ bool ContainsP(const std::string_view* begin, const std::string_view* end, std::
 
 }  // namespace
 
-std::optional<SceneDesc> RibParser::Run(std::string* error) {
+std::optional<SceneDesc> RibParser::Run() {
     RibRequest request;
     std::string message;
-    int line = 0;
+    RibPos at;
     bool ok = true;
     for (;;) {
-        RibRequestReader::Status status = m_reader.Next(&request, &message, &line);
+        RibRequestReader::Status status = m_reader.Next(&request, &message, &at);
         if (status == RibRequestReader::Status::End) break;
         if (status == RibRequestReader::Status::Error) {
-            ok = Fail(line, message);
+            ok = Fail(at, message);
             break;
         }
         if (!Dispatch(request)) {
@@ -82,12 +82,12 @@ std::optional<SceneDesc> RibParser::Run(std::string* error) {
     }
     if (ok && !m_blocks.empty()) {
         const OpenBlock& open = m_blocks.back();
-        ok = Fail(open.line,
-                  Quote(BlockName(open.kind, false)) + " has no matching " + Quote(BlockName(open.kind, true)));
+        ok =
+            Fail(open.at, Quote(BlockName(open.kind, false)) + " has no matching " + Quote(BlockName(open.kind, true)));
     }
-    if (ok && !m_worldSeen) ok = Fail(m_reader.LastLine(), "no 'WorldBegin': the file describes no scene");
+    if (ok && !m_worldSeen) ok = Fail(m_reader.LastPos(), "no 'WorldBegin': the file describes no scene");
     if (!ok) {
-        if (error) *error = m_path + ":" + std::to_string(m_errorLine) + ": error: " + m_errorMessage;
+        if (m_report) m_report->error(Where(m_errorAt), m_errorMessage);
         return std::nullopt;
     }
     return std::move(m_scene);
@@ -142,17 +142,21 @@ bool RibParser::Dispatch(const RibRequest& r) {
     };
     if (auto it = kHandlers.find(r.name); it != kHandlers.end()) return (this->*(it->second))(r);
     if (ContainsP(std::begin(kIgnored), std::end(kIgnored), r.name)) {
-        Warn(r.line, "request " + Quote(r.name) + " is not supported yet; ignored");
+        Warn(r.at, "request " + Quote(r.name) + " is not supported yet; ignored");
         return true;
     }
     if (ContainsP(std::begin(kUnsupported), std::end(kUnsupported), r.name))
-        return Fail(r.line, Quote(r.name) + " is not supported yet");
-    return Fail(r.line, "unknown RIB request " + Quote(r.name));
+        return Fail(r.at, Quote(r.name) + " is not supported yet");
+    return Fail(r.at, "unknown RIB request " + Quote(r.name));
 }
 
-void RibParser::Warn(int line, const std::string& message) {
+void RibParser::Warn(RibPos at, const std::string& message) {
     if (!m_warned.insert(message).second) return;
-    if (m_warnings) m_warnings->push_back(m_path + ":" + std::to_string(line) + ": warning: " + message);
+    if (m_report) m_report->warning(Where(at), message);
+}
+
+diag::Location RibParser::Where(RibPos at) const {
+    return {m_path, at.line, at.column, std::string(diag::LineOf(m_text, at.line))};
 }
 
 const char* RibParser::BlockName(Block kind, bool end) {
@@ -166,7 +170,7 @@ const char* RibParser::BlockName(Block kind, bool end) {
 }
 
 bool RibParser::SetCtm(const RibRequest& r, const glm::dmat4& ctm) {
-    if (!FiniteP(ctm)) return Fail(r.line, Quote(r.name) + " makes the current transform overflow");
+    if (!FiniteP(ctm)) return Fail(r.at, Quote(r.name) + " makes the current transform overflow");
     m_state.ctm = ctm;
     return true;
 }
@@ -182,7 +186,7 @@ bool RibParser::FiniteP(const glm::dvec3& v) { return std::isfinite(v.x) && std:
 
 bool RibParser::BeforeWorld(const RibRequest& r) {
     if (!m_worldSeen) return true;
-    return Fail(r.line, Quote(r.name) + " is an option and must come before 'WorldBegin'");
+    return Fail(r.at, Quote(r.name) + " is an option and must come before 'WorldBegin'");
 }
 
 glm::dmat4 RibParser::ObjectToCamera() const {
@@ -194,21 +198,21 @@ glm::dmat4 RibParser::ObjectToCamera() const {
 bool RibParser::InsideWorld(const RibRequest& r) {
     for (const OpenBlock& b : m_blocks)
         if (b.kind == Block::World) return true;
-    return Fail(r.line, Quote(r.name) + " must come between 'WorldBegin' and 'WorldEnd'");
+    return Fail(r.at, Quote(r.name) + " must come between 'WorldBegin' and 'WorldEnd'");
 }
 
 bool RibParser::Begin(const RibRequest& r, Block kind) {
-    m_blocks.push_back({kind, r.line, m_state});
+    m_blocks.push_back({kind, r.at, m_state});
     return true;
 }
 
 bool RibParser::End(const RibRequest& r, Block kind) {
     bool anyOpen = std::any_of(m_blocks.begin(), m_blocks.end(), [&](const OpenBlock& b) { return b.kind == kind; });
-    if (!anyOpen) return Fail(r.line, Quote(r.name) + " without matching " + Quote(BlockName(kind, false)));
+    if (!anyOpen) return Fail(r.at, Quote(r.name) + " without matching " + Quote(BlockName(kind, false)));
     const OpenBlock& open = m_blocks.back();
     if (open.kind != kind)
-        return Fail(r.line, Quote(r.name) + " does not match " + Quote(BlockName(open.kind, false)) + " on line " +
-                                std::to_string(open.line));
+        return Fail(r.at, Quote(r.name) + " does not match " + Quote(BlockName(open.kind, false)) + " on line " +
+                              std::to_string(open.at.line));
     // TransformEnd restores only the transform; every other block restores all attributes.
     if (kind == Block::Transform)
         m_state.ctm = open.saved.ctm;
@@ -227,9 +231,9 @@ bool RibParser::DoFormat(const RibRequest& r) {
     const char* names[2] = {"xresolution", "yresolution"};
     for (int i = 0; i < 2; ++i)
         if (!(v[i] >= 1 && v[i] <= kMaxResolution && v[i] == std::floor(v[i])))
-            return Fail(r.line, std::string("'Format' ") + names[i] + " must be an integer from 1 to " +
-                                    std::to_string(kMaxResolution) + ", got " + FormatNumber(v[i]));
-    if (!(v[2] > 0)) return Fail(r.line, "'Format' pixelaspectratio must be positive, got " + FormatNumber(v[2]));
+            return Fail(r.at, std::string("'Format' ") + names[i] + " must be an integer from 1 to " +
+                                  std::to_string(kMaxResolution) + ", got " + FormatNumber(v[i]));
+    if (!(v[2] > 0)) return Fail(r.at, "'Format' pixelaspectratio must be positive, got " + FormatNumber(v[2]));
     m_scene.camera.xres = static_cast<int>(v[0]);
     m_scene.camera.yres = static_cast<int>(v[1]);
     m_scene.camera.pixelAspect = v[2];
@@ -246,25 +250,25 @@ bool RibParser::DoProjection(const RibRequest& r) {
         camera.fovDegrees = 90;
         for (const RibParam& p : params) {
             if (p.value.name != "fov") {
-                Warn(p.line, "'Projection' parameter " + Quote(p.value.name) + " is not supported; ignored");
+                Warn(p.at, "'Projection' parameter " + Quote(p.value.name) + " is not supported; ignored");
                 continue;
             }
             if (!ParamNumbers(p, "'Projection'", 1, &camera.fovDegrees)) return false;
             if (!(camera.fovDegrees > 0 && camera.fovDegrees < 180))
-                return Fail(p.line, "'Projection' fov must be between 0 and 180 degrees, got " +
-                                        FormatNumber(camera.fovDegrees));
+                return Fail(
+                    p.at, "'Projection' fov must be between 0 and 180 degrees, got " + FormatNumber(camera.fovDegrees));
         }
     } else if (name == "orthographic") {
         camera.perspective = false;
         for (const RibParam& p : params)
-            Warn(p.line, "'Projection' parameter " + Quote(p.value.name) + " is not supported; ignored");
+            Warn(p.at, "'Projection' parameter " + Quote(p.value.name) + " is not supported; ignored");
     } else {
-        return Fail(r.line, "projection " + Quote(name) + " is not supported yet");
+        return Fail(r.at, "projection " + Quote(name) + " is not supported yet");
     }
     // RI 3.2: transforms before Projection form the screen transform; Projection then resets the
     // CTM to identity and what follows is the camera transform.
     if (m_state.ctm != glm::dmat4(1.0))
-        Warn(r.line, "transforms before 'Projection' (screen transforms) are not supported; ignored");
+        Warn(r.at, "transforms before 'Projection' (screen transforms) are not supported; ignored");
     m_state.ctm = glm::dmat4(1.0);
     return true;
 }
@@ -273,25 +277,25 @@ bool RibParser::DoDisplay(const RibRequest& r) {
     if (!BeforeWorld(r)) return false;
     for (size_t i = 0; i < 3; ++i)
         if (i >= r.args.size() || r.args[i].isArray || !r.args[i].StringsP())
-            return Fail(r.line, "'Display' expects 3 strings (name type mode)");
+            return Fail(r.at, "'Display' expects 3 strings (name type mode)");
     std::vector<RibParam> params;  // display parameters are checked but none is used
     if (!ParamList(r, 3, &params)) return false;
     const std::string& name = r.args[0].strings[0];
     if (!name.empty() && name[0] == '+') {
-        Warn(r.line, "additional display " + Quote(name) + " is not supported yet; ignored");
+        Warn(r.at, "additional display " + Quote(name) + " is not supported yet; ignored");
         return true;
     }
-    if (name.empty()) return Fail(r.args[0].line, "'Display' name must not be empty");
+    if (name.empty()) return Fail(r.args[0].at, "'Display' name must not be empty");
     // The mode is checked here so that a typo fails before a long render, not after it.
     const std::string& mode = r.args[2].strings[0];
     for (size_t begin = 0;;) {
         size_t end = std::min(mode.find(',', begin), mode.size());
         std::string_view group = std::string_view(mode).substr(begin, end - begin);
         if (!ContainsP(std::begin(kDisplayGroups), std::end(kDisplayGroups), group))
-            return Fail(r.args[2].line, "'Display' mode " + Quote(mode) + " has an unknown channel group " +
-                                            Quote(std::string(group)) +
-                                            " (expected rgb, rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost "
-                                            "or err, separated by commas)");
+            return Fail(r.args[2].at, "'Display' mode " + Quote(mode) + " has an unknown channel group " +
+                                          Quote(std::string(group)) +
+                                          " (expected rgb, rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost "
+                                          "or err, separated by commas)");
         if (end == mode.size()) break;
         begin = end + 1;
     }
@@ -300,14 +304,14 @@ bool RibParser::DoDisplay(const RibRequest& r) {
     m_scene.displayMode = mode;
     const std::string& type = m_scene.displayType;
     if (type != "file" && type != "openexr" && type != "exr")
-        Warn(r.line, "display type " + Quote(type) + " is not supported; writing an OpenEXR file");
+        Warn(r.at, "display type " + Quote(type) + " is not supported; writing an OpenEXR file");
     return true;
 }
 
 bool RibParser::DoFrameAspectRatio(const RibRequest& r) {
     double a;
     if (!BeforeWorld(r) || !Numbers(r, 1, "frameratio", &a)) return false;
-    if (!(a > 0)) return Fail(r.line, "'FrameAspectRatio' must be positive, got " + FormatNumber(a));
+    if (!(a > 0)) return Fail(r.at, "'FrameAspectRatio' must be positive, got " + FormatNumber(a));
     m_scene.camera.frameAspectRatio = a;
     return true;
 }
@@ -317,8 +321,8 @@ bool RibParser::DoScreenWindow(const RibRequest& r) {
     if (!BeforeWorld(r) || !Numbers(r, 4, "left right bottom top", v)) return false;
     // A reversed window mirrors the image, which RI allows; an empty one maps nothing.
     if (v[0] == v[1] || v[2] == v[3])
-        return Fail(r.line, "'ScreenWindow' must have a nonzero width and height, got " + FormatNumber(v[0]) + " " +
-                                FormatNumber(v[1]) + " " + FormatNumber(v[2]) + " " + FormatNumber(v[3]));
+        return Fail(r.at, "'ScreenWindow' must have a nonzero width and height, got " + FormatNumber(v[0]) + " " +
+                              FormatNumber(v[1]) + " " + FormatNumber(v[2]) + " " + FormatNumber(v[3]));
     m_scene.camera.screenWindow = glm::dvec4(v[0], v[1], v[2], v[3]);
     return true;
 }
@@ -330,8 +334,8 @@ bool RibParser::DoCropWindow(const RibRequest& r) {
     for (int i = 0; i < 2; ++i) {
         double lo = v[2 * i], hi = v[2 * i + 1];
         if (!(lo >= 0 && lo < hi && hi <= 1))
-            return Fail(r.line, std::string("'CropWindow' needs 0 <= ") + axes[i] + "min < " + axes[i] +
-                                    "max <= 1, got " + FormatNumber(lo) + " " + FormatNumber(hi));
+            return Fail(r.at, std::string("'CropWindow' needs 0 <= ") + axes[i] + "min < " + axes[i] +
+                                  "max <= 1, got " + FormatNumber(lo) + " " + FormatNumber(hi));
     }
     m_scene.camera.cropWindow = glm::dvec4(v[0], v[1], v[2], v[3]);
     return true;
@@ -341,7 +345,7 @@ bool RibParser::DoClipping(const RibRequest& r) {
     double v[2];
     if (!BeforeWorld(r) || !Numbers(r, 2, "near far", v)) return false;
     if (!(v[0] > 0 && v[0] < v[1]))
-        return Fail(r.line, "'Clipping' needs 0 < near < far, got " + FormatNumber(v[0]) + " " + FormatNumber(v[1]));
+        return Fail(r.at, "'Clipping' needs 0 < near < far, got " + FormatNumber(v[0]) + " " + FormatNumber(v[1]));
     m_scene.camera.nearClip = v[0];
     m_scene.camera.farClip = v[1];
     return true;
@@ -353,8 +357,8 @@ bool RibParser::DoPixelSamples(const RibRequest& r) {
     const char* names[2] = {"xsamples", "ysamples"};
     for (int i = 0; i < 2; ++i)
         if (!(v[i] >= 1 && v[i] <= kMaxPixelSamples && v[i] == std::floor(v[i])))
-            return Fail(r.line, std::string("'PixelSamples' ") + names[i] + " must be an integer from 1 to " +
-                                    std::to_string(kMaxPixelSamples) + ", got " + FormatNumber(v[i]));
+            return Fail(r.at, std::string("'PixelSamples' ") + names[i] + " must be an integer from 1 to " +
+                                  std::to_string(kMaxPixelSamples) + ", got " + FormatNumber(v[i]));
     m_scene.camera.xsamples = static_cast<int>(v[0]);
     m_scene.camera.ysamples = static_cast<int>(v[1]);
     return true;
@@ -364,17 +368,17 @@ bool RibParser::DoPixelFilter(const RibRequest& r) {
     std::string name;
     if (!BeforeWorld(r) || !LeadingString(r, "a filter name", &name)) return false;
     if (r.args.size() != 3 || r.args[1].isArray || !r.args[1].NumericP() || r.args[2].isArray || !r.args[2].NumericP())
-        return Fail(r.line, "'PixelFilter' expects a filter name and 2 numbers (xwidth ywidth)");
+        return Fail(r.at, "'PixelFilter' expects a filter name and 2 numbers (xwidth ywidth)");
     double xwidth = r.args[1].numbers[0], ywidth = r.args[2].numbers[0];
     if (!(xwidth > 0 && ywidth > 0))
-        return Fail(r.line,
+        return Fail(r.at,
                     "'PixelFilter' widths must be positive, got " + FormatNumber(xwidth) + " " + FormatNumber(ywidth));
     FilterDesc& filter = m_scene.camera.filter;
     if (name == "box") {
         filter.kind = FilterDesc::Kind::Box;
     } else {
         // The other RI filters (triangle, catmull-rom, sinc) are all smooth low-pass filters too.
-        if (name != "gaussian") Warn(r.line, "pixel filter " + Quote(name) + " is not supported; using \"gaussian\"");
+        if (name != "gaussian") Warn(r.at, "pixel filter " + Quote(name) + " is not supported; using \"gaussian\"");
         filter.kind = FilterDesc::Kind::Gaussian;
     }
     filter.xwidth = xwidth;
@@ -386,7 +390,7 @@ bool RibParser::DoExposure(const RibRequest& r) {
     double v[2];
     if (!BeforeWorld(r) || !Numbers(r, 2, "gain gamma", v)) return false;
     if (!(v[0] > 0 && v[1] > 0))
-        return Fail(r.line,
+        return Fail(r.at,
                     "'Exposure' gain and gamma must be positive, got " + FormatNumber(v[0]) + " " + FormatNumber(v[1]));
     m_scene.camera.exposureGain = v[0];
     m_scene.camera.exposureGamma = v[1];
@@ -401,10 +405,10 @@ bool RibParser::DoOption(const RibRequest& r) {
         if (name == "searchpath" && p.value.name == "shader") {
             if (!SetShaderSearchPath(p)) return false;
         } else {
-            Warn(r.line, "'Option \"" + name + "\" \"" + p.value.name + "\"' is not supported; ignored");
+            Warn(r.at, "'Option \"" + name + "\" \"" + p.value.name + "\"' is not supported; ignored");
         }
     }
-    if (params.empty()) Warn(r.line, "'Option \"" + name + "\"' is not supported; ignored");
+    if (params.empty()) Warn(r.at, "'Option \"" + name + "\"' is not supported; ignored");
     return true;
 }
 
@@ -414,7 +418,7 @@ bool RibParser::DoOption(const RibRequest& r) {
 // file's directory.
 bool RibParser::SetShaderSearchPath(const RibParam& p) {
     if (p.value.strings.size() != 1 || !p.value.numbers.empty())
-        return Fail(p.line, "'Option \"searchpath\"' parameter 'shader' expects 1 string");
+        return Fail(p.at, "'Option \"searchpath\"' parameter 'shader' expects 1 string");
     const std::string& text = p.value.strings[0];
     std::vector<std::string> path;
     for (size_t begin = 0;;) {
@@ -435,26 +439,26 @@ bool RibParser::SetShaderSearchPath(const RibParam& p) {
 
 bool RibParser::DoFrameBegin(const RibRequest& r) {
     if (r.args.size() > 1 || (r.args.size() == 1 && (r.args[0].isArray || !r.args[0].NumericP())))
-        return Fail(r.line, "'FrameBegin' expects one frame number");
+        return Fail(r.at, "'FrameBegin' expects one frame number");
     if (!m_blocks.empty())
-        return Fail(r.line, "'FrameBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) + " on line " +
-                                std::to_string(m_blocks.back().line));
-    if (m_worldSeen) return Fail(r.line, "a second frame is not supported yet");
+        return Fail(r.at, "'FrameBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) + " on line " +
+                              std::to_string(m_blocks.back().at.line));
+    if (m_worldSeen) return Fail(r.at, "a second frame is not supported yet");
     return Begin(r, Block::Frame);
 }
 
 bool RibParser::DoWorldBegin(const RibRequest& r) {
     if (!NoArgs(r)) return false;
-    if (m_worldSeen) return Fail(r.line, "a second 'WorldBegin' (several frames) is not supported yet");
+    if (m_worldSeen) return Fail(r.at, "a second 'WorldBegin' (several frames) is not supported yet");
     if (!m_blocks.empty() && m_blocks.back().kind != Block::Frame)
-        return Fail(r.line, "'WorldBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) + " on line " +
-                                std::to_string(m_blocks.back().line));
+        return Fail(r.at, "'WorldBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) + " on line " +
+                              std::to_string(m_blocks.back().at.line));
     // The CTM now is world -> camera; it must be invertible for rays to be generated.
     glm::dmat4 worldToCamera = m_state.ctm;
     double det = glm::determinant(worldToCamera);
     glm::dmat4 cameraToWorld = glm::inverse(worldToCamera);
     if (!(std::fabs(det) > 0) || !std::isfinite(det) || !FiniteP(cameraToWorld))
-        return Fail(r.line, "the camera transform (the transform at 'WorldBegin') is singular");
+        return Fail(r.at, "the camera transform (the transform at 'WorldBegin') is singular");
     m_scene.camera.worldToCamera = worldToCamera;
     for (LightDesc light : m_cameraLights) {
         light.from = TransformPoint(cameraToWorld, light.from);
@@ -493,7 +497,7 @@ bool RibParser::DoRotate(const RibRequest& r) {
     if (!Numbers(r, 4, "angle dx dy dz", v)) return false;
     glm::dvec3 axis(v[1], v[2], v[3]);
     double length = glm::length(axis);
-    if (!(length > 0) || !std::isfinite(length)) return Fail(r.line, "'Rotate' axis must not be zero");
+    if (!(length > 0) || !std::isfinite(length)) return Fail(r.at, "'Rotate' axis must not be zero");
     return SetCtm(r, glm::rotate(m_state.ctm, glm::radians(v[0]), axis / length));
 }
 
@@ -502,20 +506,19 @@ bool RibParser::DoScale(const RibRequest& r) {
     return Numbers(r, 3, "sx sy sz", v) && SetCtm(r, glm::scale(m_state.ctm, glm::dvec3(v[0], v[1], v[2])));
 }
 
-std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& pathForMessages, std::string* error,
-                                  std::vector<std::string>* warnings) {
+std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& pathForMessages, diag::Report* report) {
     if (text.size() >= 2 && static_cast<unsigned char>(text[0]) == 0x1f &&
         static_cast<unsigned char>(text[1]) == 0x8b) {
-        if (error) *error = pathForMessages + ":1: error: gzip-compressed RIB is not supported yet";
+        if (report) report->error({pathForMessages, 1, 1, {}}, "gzip-compressed RIB is not supported yet");
         return std::nullopt;
     }
-    RibParser parser(text, pathForMessages, warnings);
-    return parser.Run(error);
+    RibParser parser(text, pathForMessages, report);
+    return parser.Run();
 }
 
-std::optional<SceneDesc> ReadRib(const std::string& path, std::string* error, std::vector<std::string>* warnings) {
-    auto fail = [&](const std::string& reason) {
-        if (error) *error = path + ": error: cannot read file: " + reason;
+std::optional<SceneDesc> ReadRib(const std::string& path, diag::Report* report) {
+    auto fail = [&](const std::string& reason) -> std::optional<SceneDesc> {
+        if (report) report->error({path}, "cannot read file: " + reason);
         return std::nullopt;
     };
     std::error_code ec;
@@ -525,7 +528,7 @@ std::optional<SceneDesc> ReadRib(const std::string& path, std::string* error, st
     if (!in) return fail(errno ? std::generic_category().message(errno) : "cannot open");
     std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     if (in.bad()) return fail("read error");
-    return ParseRib(text, path, error, warnings);
+    return ParseRib(text, path, report);
 }
 
-}  // namespace affray::renderer
+}  // namespace affray::rib

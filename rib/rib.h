@@ -8,7 +8,7 @@
 // Cylinder, Cone, Disk, Torus, Hyperboloid, Paraboloid). Other RI 3.2 requests, other Option and
 // Attribute names, and unknown shaders are skipped with one warning per name, unless ignoring them
 // would change the geometry (other primitives, Skew, Perspective, MotionBegin, ...), which is an
-// error. Messages are "file:line: error: message" / "file:line: warning: message".
+// error. Problems are reported through diag/diagnostic.h, at the line and column of the token.
 #pragma once
 
 #include <optional>
@@ -16,18 +16,20 @@
 #include <string_view>
 #include <vector>
 
+#include "diag/diagnostic.h"
 #include "renderer/scene.h"
 
-namespace affray::renderer {
+namespace affray::rib {
 
-/// Parses RIB text. On success returns the scene (with path = pathForMessages) and appends any
-/// warnings to *warnings (may be null). On failure returns nullopt and sets *error (may be null)
-/// to the first error, "file:line: error: message"; parsing stops there. Never throws on bad input.
-std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& pathForMessages, std::string* error,
-                                  std::vector<std::string>* warnings);
+using renderer::SceneDesc;
 
-/// Reads and parses the RIB file at `path`, as ParseRib. A file that cannot be read gives
-/// "path: error: cannot read file: reason".
-std::optional<SceneDesc> ReadRib(const std::string& path, std::string* error, std::vector<std::string>* warnings);
+/// Parses RIB text. On success returns the scene (with path = pathForMessages), with any warnings
+/// in *report (may be null). On failure returns nullopt with the first error in *report; parsing
+/// stops there. Never throws on bad input.
+std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& pathForMessages, diag::Report* report);
 
-}  // namespace affray::renderer
+/// Reads and parses the RIB file at `path`, as ParseRib. A file that cannot be read gives an
+/// error at `path`: "cannot read file: reason".
+std::optional<SceneDesc> ReadRib(const std::string& path, diag::Report* report);
+
+}  // namespace affray::rib

@@ -49,6 +49,13 @@ class TempDir {
 
 inline std::string SourceDir() { return AFFRAY_SOURCE_DIR; }
 
+/// The first line of the last diagnostic in `report` ("file: error: message"), "" if none.
+inline std::string LastMessage(const diag::Report& report) {
+    if (report.all().empty()) return "";
+    const std::string text = diag::Format(report.all().back());
+    return text.substr(0, text.find('\n'));
+}
+
 /// What the `affray` program printed and its exit status (-1 if it did not exit normally).
 struct CliOutput {
     int status;
@@ -115,7 +122,7 @@ inline std::vector<std::string> AllShaders() {
 inline compiler::CompiledShader CompileOrThrow(const std::string& source,
                                                const std::vector<compiler::ParamOverride>& params = {}) {
     compiler::CompileResult r = compiler::CompileSource("test.sl", source, params);
-    if (!r.ok()) throw std::runtime_error("does not compile:\n" + r.diagnostics);
+    if (!r.ok()) throw std::runtime_error("does not compile:\n" + r.diagnostics.format());
     return std::move(*r.shader);
 }
 

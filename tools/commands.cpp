@@ -70,10 +70,12 @@ std::string InstructionCounts(const compiler::CompiledShader& s) {
 
 }  // namespace
 
+void Print(const diag::Report& report, FILE* err) { std::fputs(report.format().c_str(), err); }
+
 int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
     compiler::CompileResult result = compiler::CompileFile(cmd.shaderPath, {}, cmd.preprocess);
-    std::fputs(result.diagnostics.c_str(), err);
-    if (!result.ok()) return 1;
+    Print(result.diagnostics, err);
+    if (!result.ok()) return diag::kExitBadInput;
     const compiler::CompiledShader& shader = *result.shader;
     std::string listing = "; " + shader.name + " from " + shader.sourcePath + ": " +
                           std::to_string(shader.opsBeforeOptimisation) + " operations before optimisation\n";
@@ -92,20 +94,21 @@ int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
     if (!cmd.outputPath.empty()) {
         vm::BytecodeFile file{shader.name, shader.sourcePath, vm::HashSource(shader.sourceText), shader.genericBound,
                               shader.genericShade};
-        std::string error;
-        if (!vm::WriteBytecodeFile(cmd.outputPath, file, &error)) {
-            std::fprintf(err, "affray: error: %s\n", error.c_str());
-            return 1;
+        diag::Report report;
+        if (!vm::WriteBytecodeFile(cmd.outputPath, file, &report)) {
+            Print(report, err);
+            return diag::kExitOutput;
         }
     }
-    return 0;
+    return diag::kExitSuccess;
 }
 
 int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
     compiler::CompileResult result = compiler::LoadShader(cmd.shaderPath, cmd.params, cmd.preprocess);
-    std::fputs(result.diagnostics.c_str(), err);
-    for (const std::string& e : result.paramErrors) std::fprintf(err, "affray: error: %s\n", e.c_str());
-    if (!result.ok()) return 1;
+    diag::Report report = result.diagnostics;
+    for (const std::string& e : result.paramErrors) report.error({"affray"}, e);
+    Print(report, err);
+    if (!result.ok()) return diag::kExitBadInput;
     const compiler::CompiledShader& shader = *result.shader;
     const renderer::BilinearPatch square = renderer::BilinearPatch::UnitSquare();
 
@@ -126,7 +129,7 @@ int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
     };
     if (cmd.hasRegion) {
         bound(cmd.region[0], cmd.region[1], cmd.region[2], cmd.region[3]);
-        return 0;
+        return diag::kExitSuccess;
     }
     vm::Interpreter<vm::Dual<double>> interp(shader.shade);
     for (const auto& [u, v] : cmd.points) {
@@ -140,17 +143,15 @@ int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
         double p[3] = {P.x.v, P.y.v, P.z.v}, n[3] = {N.x.v, N.y.v, N.z.v};
         std::fprintf(out, "{\"P\":%s,\"N\":%s}\n", Json(p).c_str(), Json(n).c_str());
     }
-    return 0;
+    return diag::kExitSuccess;
 }
 
 int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
-    std::string error;
-    std::vector<std::string> warnings;
-    std::optional<renderer::SceneDesc> scene = renderer::ReadRib(cmd.scenePath, &error, &warnings);
-    for (const std::string& w : warnings) std::fprintf(err, "%s\n", w.c_str());
+    diag::Report report;
+    std::optional<renderer::SceneDesc> scene = rib::ReadRib(cmd.scenePath, &report);
     if (!scene) {
-        std::fprintf(err, "%s\n", error.c_str());
-        return 1;
+        Print(report, err);
+        return diag::kExitBadInput;
     }
     std::filesystem::path ribDir = std::filesystem::path(cmd.scenePath).parent_path();
     if (ribDir.empty()) ribDir = ".";
@@ -158,10 +159,10 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     if (cmd.crop) scene->camera.cropWindow = glm::dvec4((*cmd.crop)[0], (*cmd.crop)[1], (*cmd.crop)[2], (*cmd.crop)[3]);
     if (cmd.samples > 0) scene->camera.xsamples = scene->camera.ysamples = cmd.samples;
     renderer::PreparedScene prepared;
-    if (!renderer::PrepareScene(*scene, shaderPaths, cmd.preprocess, &prepared, &error)) {
-        std::fprintf(err, "%s\n", error.c_str());
-        return 1;
-    }
+    const bool preparedOk = renderer::PrepareScene(*scene, shaderPaths, cmd.preprocess, &prepared, &report);
+    // The scene's and the shaders' warnings are printed before the render starts.
+    Print(report, err);
+    if (!preparedOk) return diag::kExitBadInput;
     renderer::RenderOptions options;
     options.threads = cmd.threads;
     options.tolerancePixels = cmd.tolerance;
@@ -176,13 +177,11 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
     std::string outputPath = cmd.outputPath.empty() ? scene->displayName : cmd.outputPath;
-    if (!renderer::WriteExr(outputPath, image, &error)) {
-        std::fprintf(err, "affray: error: %s\n", error.c_str());
-        return 1;
-    }
-    if (!cmd.pngPath.empty() && !renderer::WritePngPreview(cmd.pngPath, image, &error)) {
-        std::fprintf(err, "affray: error: %s\n", error.c_str());
-        return 1;
+    diag::Report output;
+    if (!renderer::WriteExr(outputPath, image, &output) ||
+        (!cmd.pngPath.empty() && !renderer::WritePngPreview(cmd.pngPath, image, &output))) {
+        Print(output, err);
+        return diag::kExitOutput;
     }
     if (cmd.stats) {
         // The render's figures, then each shader instance's instruction counts.
@@ -201,7 +200,7 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
         }
         std::fprintf(out, "%s]}\n", json.c_str());
     }
-    return 0;
+    return diag::kExitSuccess;
 }
 
 }  // namespace affray::tools

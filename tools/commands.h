@@ -1,5 +1,6 @@
 // tools/commands.h: the subcommands of the `affray` program. Each takes its parsed options and
-// returns the process exit code; messages go to the given streams, never exit().
+// returns the process exit code (diag::ExitCode); diagnostics go to `err` in the one format of
+// diag/diagnostic.h, results to `out`; nothing calls exit().
 #pragma once
 
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "compiler/specialise.h"
+#include "diag/diagnostic.h"
 #include "lang/preprocess.h"
 #include "renderer/intersect.h"
 #include "renderer/render.h"
@@ -59,5 +61,8 @@ int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err);
 int RunDiff(const DiffCommand& cmd, FILE* out, FILE* err);
 int RunEval(const EvalCommand& cmd, FILE* out, FILE* err);
 int RunRender(const RenderCommand& cmd, FILE* out, FILE* err);
+
+/// Prints `report` to `err` in the one format.
+void Print(const diag::Report& report, FILE* err);
 
 }  // namespace affray::tools

@@ -9,15 +9,18 @@ namespace affray::tools {
 
 int RunDiff(const DiffCommand& cmd, FILE* out, FILE* err) {
     renderer::ImageBuffer reference, test;
-    std::string error;
-    if (!renderer::ReadExrRgba(cmd.reference, &reference, &error) || !renderer::ReadExrRgba(cmd.test, &test, &error)) {
-        std::fprintf(err, "affray: error: %s\n", error.c_str());
-        return 1;
-    }
+    diag::Report report;
+    auto fail = [&] {
+        Print(report, err);
+        return diag::kExitBadInput;
+    };
+    if (!renderer::ReadExrRgba(cmd.reference, &reference, &report) || !renderer::ReadExrRgba(cmd.test, &test, &report))
+        return fail();
     if (reference.width != test.width || reference.height != test.height) {
-        std::fprintf(err, "affray: error: '%s' is %dx%d but '%s' is %dx%d\n", cmd.reference.c_str(), reference.width,
-                     reference.height, cmd.test.c_str(), test.width, test.height);
-        return 1;
+        report.error({cmd.test}, "the image is " + std::to_string(test.width) + "x" + std::to_string(test.height) +
+                                     " but the reference '" + cmd.reference + "' is " +
+                                     std::to_string(reference.width) + "x" + std::to_string(reference.height));
+        return fail();
     }
     // Over R, G and B of every pixel (alpha is 1 wherever either image has a surface).
     double sumSquares = 0, largest = 0;
@@ -26,15 +29,18 @@ int RunDiff(const DiffCommand& cmd, FILE* out, FILE* err) {
         for (int c = 0; c < 3; ++c) {
             const double d = static_cast<double>(test.rgba[4 * p + c]) - reference.rgba[4 * p + c];
             if (std::isnan(d)) {
-                std::fprintf(err, "affray: error: pixel %zu of one image is NaN\n", p);
-                return 1;
+                const bool inTest = std::isnan(test.rgba[4 * p + c]);
+                report.error({inTest ? cmd.test : cmd.reference},
+                             "pixel (" + std::to_string(p % static_cast<size_t>(reference.width)) + ", " +
+                                 std::to_string(p / static_cast<size_t>(reference.width)) + ") is NaN");
+                return fail();
             }
             sumSquares += d * d;
             largest = std::fmax(largest, std::fabs(d));
         }
     const double rmse = pixels ? std::sqrt(sumSquares / (3.0 * static_cast<double>(pixels))) : 0.0;
     std::fprintf(out, "{\"pixels\":%zu,\"rmse\":%.17g,\"max\":%.17g}\n", pixels, rmse, largest);
-    return 0;
+    return diag::kExitSuccess;
 }
 
 }  // namespace affray::tools

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <new>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include "vm/disasm.h"
 
 namespace {
+
+namespace diag = affray::diag;
 
 const char* const kUsage =
     "usage:\n"
@@ -228,16 +231,16 @@ int Render(Args& args) {
 int main(int argc, char** argv) {
     if (argc < 2) {
         std::fputs(kUsage, stderr);
-        return 2;
+        return diag::kExitUsage;
     }
     std::string command = argv[1];
     if (command == "--help" || command == "-h" || command == "help") {
         std::fputs(kUsage, stdout);
-        return 0;
+        return diag::kExitSuccess;
     }
     if (command == "--version") {
         std::puts("affray 0.1.0");
-        return 0;
+        return diag::kExitSuccess;
     }
     Args args(argc, argv, 2);
     try {
@@ -248,14 +251,20 @@ int main(int argc, char** argv) {
         if (command == "opcodes") {
             if (!args.Done()) throw UsageError{"opcodes takes no arguments"};
             std::fputs(affray::vm::OpcodeTable().c_str(), stdout);
-            return 0;
+            return diag::kExitSuccess;
         }
         throw UsageError{"unknown command '" + command + "'"};
     } catch (const UsageError& e) {
-        std::fprintf(stderr, "affray: error: %s\n%s", e.message.c_str(), kUsage);
-        return 2;
+        std::fprintf(stderr, "%s%s", diag::Format({diag::Severity::Error, {"affray"}, e.message, {}}).c_str(), kUsage);
+        return diag::kExitUsage;
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "affray: error: out of memory (is the image or the scene too large?)\n");
-        return 1;
+        const std::string message = "out of memory (is the image or the scene too large?)";
+        std::fputs(diag::Format({diag::Severity::Error, {"affray"}, message, {}}).c_str(), stderr);
+        return diag::kExitResources;
+    } catch (const std::exception& e) {
+        // Only a bug gets here: every library reports bad input as diagnostics.
+        const std::string message = std::string("internal error: ") + e.what() + " (please report this)";
+        std::fputs(diag::Format({diag::Severity::Error, {"affray"}, message, {}}).c_str(), stderr);
+        return diag::kExitInternal;
     }
 }

@@ -285,13 +285,17 @@ bool LoadBytecode(std::string_view bytes, BytecodeFile* out, std::string* error)
     return true;
 }
 
-bool WriteBytecodeFile(const std::string& path, const BytecodeFile& file, std::string* error) {
+bool WriteBytecodeFile(const std::string& path, const BytecodeFile& file, diag::Report* report) {
+    auto fail = [&](int err) {
+        if (report) report->error({path}, "cannot write file: " + ErrnoText(err));
+        return false;
+    };
     const std::string bytes = SaveBytecode(file);
     // A name no other writer (thread or process) uses, in the same directory so rename is atomic.
     static std::atomic<unsigned> counter{0};
     const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
     const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0) return Fail(error, "cannot write '" + path + "': " + ErrnoText(errno));
+    if (fd < 0) return fail(errno);
 
     size_t done = 0;
     int err = 0;
@@ -309,18 +313,22 @@ bool WriteBytecodeFile(const std::string& path, const BytecodeFile& file, std::s
     if (err == 0 && std::rename(tmp.c_str(), path.c_str()) != 0) err = errno;
     if (err != 0) {
         ::unlink(tmp.c_str());
-        return Fail(error, "cannot write '" + path + "': " + ErrnoText(err));
+        return fail(err);
     }
     return true;
 }
 
-bool ReadBytecodeFile(const std::string& path, BytecodeFile* out, std::string* error) {
+bool ReadBytecodeFile(const std::string& path, BytecodeFile* out, diag::Report* report) {
+    auto fail = [&](std::string message) {
+        if (report) report->error({path}, std::move(message));
+        return false;
+    };
     std::ifstream in(path, std::ios::binary);
-    if (!in) return Fail(error, "cannot open '" + path + "': " + ErrnoText(errno));
+    if (!in) return fail("cannot open file: " + ErrnoText(errno));
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) return Fail(error, "cannot read '" + path + "'");
+    if (in.bad()) return fail("cannot read file");
     std::string problem;
-    if (!LoadBytecode(bytes, out, &problem)) return Fail(error, path + ": " + problem);
+    if (!LoadBytecode(bytes, out, &problem)) return fail(problem);
     return true;
 }
 

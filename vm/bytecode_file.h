@@ -40,6 +40,7 @@
 #include <string>
 #include <string_view>
 
+#include "diag/diagnostic.h"
 #include "vm/program.h"
 
 namespace affray::vm {
@@ -68,10 +69,12 @@ std::string SaveBytecode(const BytecodeFile& file);
 bool LoadBytecode(std::string_view bytes, BytecodeFile* out, std::string* error);
 
 /// Writes atomically: a temporary file beside `path`, renamed over it; the temporary file is
-/// removed on failure, so `path` is either the old file or the complete new one.
-bool WriteBytecodeFile(const std::string& path, const BytecodeFile& file, std::string* error);
-/// Reads and parses the whole file; errors are prefixed with the path ("x.afb: truncated file").
-bool ReadBytecodeFile(const std::string& path, BytecodeFile* out, std::string* error);
+/// removed on failure, so `path` is either the old file or the complete new one. A failure is
+/// reported (if `report` is not null) as an error at `path`: "cannot write file: reason".
+bool WriteBytecodeFile(const std::string& path, const BytecodeFile& file, diag::Report* report);
+/// Reads and parses the whole file; a problem is reported as an error at `path` (if `report` is
+/// not null), with LoadBytecode's sentence or "cannot open file: reason".
+bool ReadBytecodeFile(const std::string& path, BytecodeFile* out, diag::Report* report);
 
 /// FNV-1a 64-bit hash of text (Fowler, Noll and Vo; offset basis 14695981039346656037, prime
 /// 1099511628211).

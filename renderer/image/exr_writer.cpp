@@ -93,9 +93,9 @@ std::string ToString(const ImageBuffer& image) {
     return text;
 }
 
-bool WriteExr(const std::string& path, const ImageBuffer& image, std::string* error) {
+bool WriteExr(const std::string& path, const ImageBuffer& image, diag::Report* report) {
     auto fail = [&](const std::string& reason) {
-        if (error) *error = "cannot write '" + path + "': " + reason;
+        if (report) report->error({path}, "cannot write file: " + reason);
         return false;
     };
     if (path.empty()) return fail("empty file name");
@@ -123,7 +123,7 @@ bool WriteExr(const std::string& path, const ImageBuffer& image, std::string* er
     return true;
 }
 
-bool ReadExrRgba(const std::string& path, ImageBuffer* out, std::string* error) {
+bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report) {
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dataWindow = file.header().dataWindow();
@@ -157,7 +157,7 @@ bool ReadExrRgba(const std::string& path, ImageBuffer* out, std::string* error) 
         *out = std::move(image);
         return true;
     } catch (const std::exception& e) {
-        if (error) *error = "cannot read '" + path + "': " + e.what();
+        if (report) report->error({path}, std::string("cannot read image: ") + e.what());
         return false;
     }
 }

@@ -2,12 +2,15 @@
 // Owns the on-disk format of rendered images: RGBA as HALF, any extra channels (Z, AOVs) as
 // FLOAT, scanline order with row 0 at the top. Writes are atomic: the image goes to a temporary
 // file beside the target and is renamed onto it, so a reader never sees a half-written image.
-// Failures are returned as messages "cannot write 'path': reason"; nothing throws.
+// Failures are reported as errors at the file (diag/diagnostic.h): "cannot write file: reason";
+// nothing throws.
 #pragma once
 
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "diag/diagnostic.h"
 
 namespace affray::renderer {
 
@@ -23,13 +26,13 @@ struct ImageBuffer {
 std::string ToString(const ImageBuffer& image);
 
 /// Writes `image` to `path` as OpenEXR, atomically (temporary file in the same directory, then
-/// rename). Returns false with *error (may be null) set, leaving no temporary file behind, if the
-/// image is malformed (sizes, channel names) or the file cannot be written.
-bool WriteExr(const std::string& path, const ImageBuffer& image, std::string* error);
+/// rename). Returns false, with an error in *report (may be null) and no temporary file left
+/// behind, if the image is malformed (sizes, channel names) or the file cannot be written.
+bool WriteExr(const std::string& path, const ImageBuffer& image, diag::Report* report);
 
 /// Reads an OpenEXR file: R, G, B, A into out->rgba (missing color channels read as 0, a missing
-/// alpha as 1) and every other channel into out->extraChannels, as float. Returns false with
-/// *error (may be null) set to "cannot read 'path': reason" on failure.
-bool ReadExrRgba(const std::string& path, ImageBuffer* out, std::string* error);
+/// alpha as 1) and every other channel into out->extraChannels, as float. Returns false with an
+/// error at `path` in *report (may be null), "cannot read image: reason", on failure.
+bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report);
 
 }  // namespace affray::renderer

@@ -5,6 +5,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -37,12 +38,14 @@ unsigned char ToSrgb8(float linear) {
 
 }  // namespace
 
-bool WritePngPreview(const std::string& path, const ImageBuffer& image, std::string* error) {
-    if (image.width <= 0 || image.height <= 0 ||
-        image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4) {
-        *error = "cannot write '" + path + "': empty or malformed image";
+bool WritePngPreview(const std::string& path, const ImageBuffer& image, diag::Report* report) {
+    auto fail = [&](const std::string& reason) {
+        if (report) report->error({path}, "cannot write file: " + reason);
         return false;
-    }
+    };
+    if (image.width <= 0 || image.height <= 0 ||
+        image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4)
+        return fail("empty or malformed image");
     std::vector<unsigned char> raw;
     raw.reserve((static_cast<size_t>(image.width) * 4 + 1) * image.height);
     for (int y = 0; y < image.height; ++y) {
@@ -55,10 +58,8 @@ bool WritePngPreview(const std::string& path, const ImageBuffer& image, std::str
     }
     uLongf packedSize = compressBound(static_cast<uLong>(raw.size()));
     std::vector<unsigned char> packed(packedSize);
-    if (compress2(packed.data(), &packedSize, raw.data(), static_cast<uLong>(raw.size()), 6) != Z_OK) {
-        *error = "cannot write '" + path + "': compression failed";
-        return false;
-    }
+    if (compress2(packed.data(), &packedSize, raw.data(), static_cast<uLong>(raw.size()), 6) != Z_OK)
+        return fail("compression failed");
     packed.resize(packedSize);
 
     std::vector<unsigned char> file = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -72,14 +73,15 @@ bool WritePngPreview(const std::string& path, const ImageBuffer& image, std::str
 
     std::string tmp = path + ".tmp." + std::to_string(::getpid());
     FILE* f = std::fopen(tmp.c_str(), "wb");
-    bool ok = f && std::fwrite(file.data(), 1, file.size(), f) == file.size();
-    if (f) ok = (std::fclose(f) == 0) && ok;
+    int err = f ? 0 : errno;
+    if (f && std::fwrite(file.data(), 1, file.size(), f) != file.size()) err = errno ? errno : EIO;
+    if (f && std::fclose(f) != 0 && err == 0) err = errno;
     std::error_code ec;
-    if (ok) std::filesystem::rename(tmp, path, ec);
-    if (!ok || ec) {
+    if (err == 0) std::filesystem::rename(tmp, path, ec);
+    if (err != 0 || ec) {
+        const std::string reason = ec ? ec.message() : std::generic_category().message(err);
         std::filesystem::remove(tmp, ec);
-        *error = "cannot write '" + path + "'";
-        return false;
+        return fail(reason);
     }
     return true;
 }

@@ -9,7 +9,8 @@
 namespace affray::renderer {
 
 /// Writes `image`'s RGBA as an 8-bit PNG: colours clamped to [0,1] and sRGB-encoded, alpha kept.
-/// Written atomically like WriteExr (temporary file, then rename).
-bool WritePngPreview(const std::string& path, const ImageBuffer& image, std::string* error);
+/// Written atomically like WriteExr (temporary file, then rename); failures are reported like
+/// WriteExr's.
+bool WritePngPreview(const std::string& path, const ImageBuffer& image, diag::Report* report);
 
 }  // namespace affray::renderer

@@ -22,7 +22,7 @@ double ZOf(const std::string& body, double u = 0.25, double v = 0.75, const std:
 std::string Diagnose(const std::string& source) {
     compiler::CompileResult r = compiler::CompileSource("test.sl", source);
     REQUIRE_FALSE(r.ok());
-    return r.diagnostics;
+    return r.diagnostics.format();
 }
 
 std::vector<vm::Op> Opcodes(const vm::Program& p) {
@@ -194,7 +194,7 @@ TEST_CASE("compiler diagnostics are exact", "[compiler]") {
 TEST_CASE("warnings: unused variables and shaders that change nothing", "[compiler]") {
     compiler::CompileResult r = compiler::CompileSource("test.sl", "displacement t() {\n  float unused = 1;\n}\n");
     REQUIRE(r.ok());
-    CHECK(r.diagnostics ==
+    CHECK(r.diagnostics.format() ==
           "test.sl:2:9: warning: unused variable 'unused'\n      float unused = 1;\n            ^\n"
           "test.sl:1:14: warning: shader 't' never changes P or N\n    displacement t() {\n                 ^\n");
 }

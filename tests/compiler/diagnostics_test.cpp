@@ -81,7 +81,7 @@ namespace {
 std::string Diagnose(const std::string& source) {
     compiler::CompileResult r = compiler::CompileSource("test.sl", source);
     CHECK_FALSE(r.ok());
-    return r.diagnostics;
+    return r.diagnostics.format();
 }
 
 /// The diagnostics (warnings) of `source`, which must compile.
@@ -89,7 +89,7 @@ std::string Warnings(const std::string& source) {
     compiler::CompileResult r = compiler::CompileSource("test.sl", source);
     INFO(r.diagnostics);
     CHECK(r.ok());
-    return r.diagnostics;
+    return r.diagnostics.format();
 }
 
 }  // namespace

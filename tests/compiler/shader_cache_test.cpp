@@ -92,7 +92,7 @@ TEST_CASE("coordinate spaces of an instance are folded into its programs", "[com
     REQUIRE(src.ok());
     CHECK(src.shader->genericBound.spaces == std::vector<std::string>{"shader"});
     vm::BytecodeFile file{"s", "s.sl", 0, src.shader->genericBound, src.shader->genericShade};
-    std::string error;
+    affray::diag::Report error;
     REQUIRE(vm::WriteBytecodeFile(dir.Path("s.afb"), file, &error));
     CHECK(compiler::LoadCompiledShader(dir.Path("s.afb"), {}, nullptr).ok());
     compiler::CompileResult refused = compiler::LoadCompiledShader(dir.Path("s.afb"), {}, &spaces);

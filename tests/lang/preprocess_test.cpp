@@ -40,8 +40,8 @@ std::string Code(const PreprocessResult& r) {
 // Each diagnostic as "file:line: message".
 std::string Messages(const PreprocessResult& r) {
     std::string out;
-    for (const Diagnostic& d : r.errors)
-        out += r.files.at(static_cast<size_t>(d.loc.file)) + ":" + std::to_string(d.loc.line) + ": " + d.message + "\n";
+    for (const diag::Diagnostic& d : r.errors)
+        out += d.where.file + ":" + std::to_string(d.where.line) + ": " + d.message + "\n";
     return out;
 }
 

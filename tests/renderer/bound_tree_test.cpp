@@ -17,6 +17,7 @@
 
 using namespace affray;
 using namespace affray::renderer;
+using affray::rib::ParseRib;
 
 namespace {
 
@@ -48,8 +49,8 @@ struct Result {
 };
 
 Result RenderWith(int threads, size_t cacheBytes, int tileSize = 32, int rayGroupPixels = kDefaultRayGroupPixels) {
-    std::string error;
-    std::optional<SceneDesc> desc = ParseRib(kScene, "t.rib", &error, nullptr);
+    affray::diag::Report error;
+    std::optional<SceneDesc> desc = ParseRib(kScene, "t.rib", &error);
     INFO(error);
     REQUIRE(desc);
     PreparedScene prepared;
@@ -82,7 +83,7 @@ TEST_CASE("bound tree: the image is the same with any thread count and any cache
     const Result four = RenderWith(4, kDefaultCacheBytes);
     CHECK(SameImage(one.image, four.image));
     // A budget of a few blocks: evicted over and over, rebuilt on demand, the same pixels.
-    const size_t tiny = 64 * 1024;
+    const size_t tiny = size_t{64} * 1024;
     const Result starved = RenderWith(3, tiny);
     CHECK(SameImage(one.image, starved.image));
     CHECK(starved.stats.cache.evictions > 0);
@@ -130,6 +131,7 @@ TEST_CASE("bound tree: threads refining one tree at once find the hits of a lone
     std::vector<std::vector<Hit>> hits(kThreads);
     std::vector<std::vector<int>> found(kThreads);
     std::vector<std::thread> threads;
+    threads.reserve(kThreads);
     for (int t = 0; t < kThreads; ++t)
         threads.emplace_back([&, t] {
             auto it = MakeSurfaceIntersector(tree);

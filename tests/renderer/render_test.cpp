@@ -11,14 +11,15 @@
 
 using namespace affray;
 using namespace affray::renderer;
+using affray::rib::ParseRib;
 
 namespace {
 
 /// Parses `rib` (the scene's path is `dir`/scene.rib, for the search path), prepares and renders
 /// it with one box-filtered sample per pixel; returns the image.
 ImageBuffer Render(const test::TempDir& dir, const std::string& rib, PreparedScene* keep = nullptr) {
-    std::string error;
-    std::optional<SceneDesc> desc = ParseRib(rib, dir.Path("scene.rib"), &error, nullptr);
+    affray::diag::Report error;
+    std::optional<SceneDesc> desc = ParseRib(rib, dir.Path("scene.rib"), &error);
     INFO(error);
     REQUIRE(desc);
     desc->camera.xsamples = desc->camera.ysamples = 1;
@@ -118,12 +119,12 @@ TEST_CASE("render: shaders are found on the scene's search path and see its coor
     REQUIRE(Covered(image) == 64);
     for (float depth : Channel(image, "Z")) CHECK(depth == Approx(4.5).margin(0.02));
     // Without the search path the shader is not found: an error naming the directories searched.
-    std::string error;
-    std::optional<SceneDesc> desc = ParseRib(std::string(kCamera) + world, dir.Path("scene.rib"), &error, nullptr);
+    affray::diag::Report error;
+    std::optional<SceneDesc> desc = ParseRib(std::string(kCamera) + world, dir.Path("scene.rib"), &error);
     REQUIRE(desc);
     PreparedScene prepared;
     CHECK_FALSE(PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error));
-    CHECK(error.find("shader 'lifted' not found") != std::string::npos);
+    CHECK(error.format().find("shader 'lifted' not found") != std::string::npos);
 }
 
 TEST_CASE("render: quadrics and patches share the BVH, and AOVs describe the nearest hit", "[renderer][render]") {

@@ -67,9 +67,9 @@ struct Rendered {
 /// Parses `rib`, sets one sample per pixel through a 1 x 1 box filter and the AOVs, prepares it
 /// with `dir` as the shader path and renders it.
 std::unique_ptr<Rendered> Render(const std::string& rib, const test::TempDir& dir) {
-    std::string error;
+    affray::diag::Report error;
     std::vector<std::string> warnings;
-    std::optional<renderer::SceneDesc> desc = renderer::ParseRib(rib, "shadow.rib", &error, &warnings);
+    std::optional<renderer::SceneDesc> desc = rib::ParseRib(rib, "shadow.rib", &error);
     INFO(error);
     REQUIRE(desc);
     desc->camera.xsamples = desc->camera.ysamples = 1;

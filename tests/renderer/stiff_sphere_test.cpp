@@ -35,9 +35,9 @@ struct SphereCase {
 
 SphereCase LoadSphere() {
     SphereCase c;
-    std::string error;
+    affray::diag::Report error;
     const std::string dir = test::SourceDir() + "/tests/scenes/stiff";
-    std::optional<renderer::SceneDesc> desc = renderer::ReadRib(dir + "/sphere-poles.rib", &error, nullptr);
+    std::optional<renderer::SceneDesc> desc = rib::ReadRib(dir + "/sphere-poles.rib", &error);
     INFO(error);
     REQUIRE(desc);
     REQUIRE(renderer::PrepareScene(*desc, {dir}, {}, &c.prepared, &error));
@@ -108,8 +108,8 @@ void Check(renderer::SurfaceIntersector& intersector, DisplacedSphere& surface, 
 
 /// The first t in (0, tFar] where g changes sign from outside to inside, bisected; INFINITY if none.
 double MarchReference(DisplacedSphere& surface, const Ray& ray, double tFar, int steps) {
-    double tPrev = 0, gPrev = surface.Inside(ray.origin);
-    if (!(gPrev > 0)) return INFINITY;
+    double tPrev = 0;
+    if (!(surface.Inside(ray.origin) > 0)) return INFINITY;
     for (int i = 1; i <= steps; ++i) {
         const double t = tFar * i / steps, g = surface.Inside(ray.origin + t * ray.dir);
         if (g <= 0) {
@@ -120,7 +120,7 @@ double MarchReference(DisplacedSphere& surface, const Ray& ray, double tFar, int
             }
             return hi;
         }
-        tPrev = t, gPrev = g;
+        tPrev = t;
     }
     return INFINITY;
 }

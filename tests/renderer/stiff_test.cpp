@@ -76,7 +76,7 @@ renderer::RenderOptions OptionsFromArgs(const std::string& ribPath) {
 
 StiffScene PrepareDesc(const renderer::SceneDesc& desc, const renderer::RenderOptions& options) {
     StiffScene s;
-    std::string error;
+    affray::diag::Report error;
     bool ok = renderer::PrepareScene(desc, {StiffDir(), test::SourceDir() + "/shaders"}, {}, &s.prepared, &error);
     INFO(error);
     REQUIRE(ok);
@@ -87,8 +87,8 @@ StiffScene PrepareDesc(const renderer::SceneDesc& desc, const renderer::RenderOp
 }
 
 renderer::SceneDesc ReadStiffDesc(const std::string& name) {
-    std::string error;
-    std::optional<renderer::SceneDesc> desc = renderer::ReadRib(StiffDir() + "/" + name + ".rib", &error, nullptr);
+    affray::diag::Report error;
+    std::optional<renderer::SceneDesc> desc = rib::ReadRib(StiffDir() + "/" + name + ".rib", &error);
     INFO(error);
     REQUIRE(desc);
     return *desc;
@@ -621,20 +621,20 @@ TEST_CASE("stiff: tolerance 1e-4 pixel", "[renderer][stiff]") {
 
 TEST_CASE("stiff: a bad number in a RIB parameter list names the parameter", "[renderer][stiff][rib]") {
     auto errorOf = [](const std::string& text) {
-        std::string error;
-        CHECK_FALSE(renderer::ParseRib(text, "t.rib", &error, nullptr));
-        return error;
+        affray::diag::Report error;
+        CHECK_FALSE(rib::ParseRib(text, "t.rib", &error));
+        return test::LastMessage(error);
     };
     CHECK(errorOf("WorldBegin\nDisplacement \"wave\" \"Km\" [1e400]\n") ==
-          "t.rib:2: error: number '1e400' is out of range (in the value of parameter \"Km\" of Displacement)");
+          "t.rib:2:27: error: number '1e400' is out of range (in the value of parameter \"Km\" of Displacement)");
     CHECK(errorOf("WorldBegin\nDisplacement \"wave\" \"float Km\" -inf\n") ==
-          "t.rib:2: error: invalid number '-inf': NaN and infinity are not allowed (in the value of parameter "
+          "t.rib:2:32: error: invalid number '-inf': NaN and infinity are not allowed (in the value of parameter "
           "\"float Km\" of Displacement)");
     CHECK(errorOf("LightSource \"pointlight\" 1 \"from\" [0 nan 0]\n") ==
-          "t.rib:1: error: invalid number 'nan': NaN and infinity are not allowed (in the value of parameter "
+          "t.rib:1:38: error: invalid number 'nan': NaN and infinity are not allowed (in the value of parameter "
           "\"from\" of LightSource)");
     // Without a parameter name before it, the message is the lexer's alone.
-    CHECK(errorOf("Translate 0 0 1e999\n") == "t.rib:1: error: number '1e999' is out of range");
+    CHECK(errorOf("Translate 0 0 1e999\n") == "t.rib:1:15: error: number '1e999' is out of range");
 }
 
 TEST_CASE("stiff: a ray stops at its region budget when every bound overflows", "[renderer][stiff]") {
@@ -681,9 +681,9 @@ TEST_CASE("stiff: a wall 1e-4 thick covers every pixel of its projected rectangl
     const std::string format = "Format 320 384 1";
     REQUIRE(rib.find(format) != std::string::npos);
     rib.replace(rib.find(format), format.size(), "Format 80 96 1");
-    std::string error;
+    affray::diag::Report error;
     std::optional<renderer::SceneDesc> desc =
-        renderer::ParseRib(rib, test::SourceDir() + "/tests/scenes/stiff/wall.rib", &error, nullptr);
+        rib::ParseRib(rib, test::SourceDir() + "/tests/scenes/stiff/wall.rib", &error);
     INFO(error);
     REQUIRE(desc);
     desc->camera.filter = renderer::FilterDesc{renderer::FilterDesc::Kind::Box, 1, 1};

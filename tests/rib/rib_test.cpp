@@ -12,17 +12,37 @@
 #include "tests/test_util.h"
 
 using namespace affray::renderer;
+using namespace affray::rib;
 
 namespace {
 
 using affray::test::RequireVec;
 
-// The error ParseRib gives for `text` (empty if it parses).
+// A diagnostic's first line without its column, "t.rib:3: error: message" (columns, source lines
+// and carets have their own test below, and the golden tests show them all).
+std::string Short(const affray::diag::Diagnostic& d) {
+    static const char* const kKind[] = {"error", "warning", "note"};
+    return d.where.file + ":" + std::to_string(d.where.line) + ": " + kKind[static_cast<int>(d.severity)] + ": " +
+           d.message;
+}
+
+// The warnings of `report`, each as Short gives it.
+std::vector<std::string> WarningsOf(const affray::diag::Report& report) {
+    std::vector<std::string> out;
+    for (const affray::diag::Diagnostic& d : report.all())
+        if (d.severity == affray::diag::Severity::Warning) out.push_back(Short(d));
+    return out;
+}
+
+// The error ParseRib gives for `text` (empty if it parses), as Short gives it.
 std::string ErrorOf(const std::string& text) {
-    std::string error;
-    std::optional<SceneDesc> scene = ParseRib(text, "t.rib", &error, nullptr);
+    affray::diag::Report report;
+    std::optional<SceneDesc> scene = ParseRib(text, "t.rib", &report);
     if (scene) return "";
-    return error;
+    REQUIRE(report.errorCount() == 1);
+    for (const affray::diag::Diagnostic& d : report.all())
+        if (d.severity == affray::diag::Severity::Error) return Short(d);
+    return "(no error reported)";
 }
 
 const char* const kScene = R"(# a full scene
@@ -94,12 +114,11 @@ WorldEnd
 }  // namespace
 
 TEST_CASE("A full RIB scene parses into world space", "[renderer][rib]") {
-    std::string error;
-    std::vector<std::string> warnings;
-    std::optional<SceneDesc> scene = ParseRib(kScene, "scene.rib", &error, &warnings);
+    affray::diag::Report error;
+    std::optional<SceneDesc> scene = ParseRib(kScene, "scene.rib", &error);
     INFO(error);
     REQUIRE(scene);
-    CHECK(warnings.empty());
+    CHECK(error.empty());
     CHECK(scene->path == "scene.rib");
 
     SECTION("camera and display") {
@@ -195,10 +214,10 @@ TEST_CASE("A full RIB scene parses into world space", "[renderer][rib]") {
 
 TEST_CASE("RIB transforms follow the RenderMan conventions", "[renderer][rib]") {
     auto corner = [](const std::string& transforms) {
-        std::string error;
+        affray::diag::Report error;
         auto scene = ParseRib(
             "WorldBegin\n" + transforms + "\nPatch \"bilinear\" \"P\" [1 0 0  1 0 0  0 1 0  1 1 0]\nWorldEnd\n",
-            "t.rib", &error, nullptr);
+            "t.rib", &error);
         INFO(error);
         REQUIRE(scene);
         return scene->primitives.at(0).corners[0];
@@ -216,16 +235,15 @@ TEST_CASE("RIB transforms follow the RenderMan conventions", "[renderer][rib]") 
 }
 
 TEST_CASE("RIB defaults and variants", "[renderer][rib]") {
-    std::string error;
-    auto scene = ParseRib("WorldBegin WorldEnd", "t.rib", &error, nullptr);
+    affray::diag::Report error;
+    auto scene = ParseRib("WorldBegin WorldEnd", "t.rib", &error);
     REQUIRE(scene);
     CHECK_FALSE(scene->camera.perspective);  // RI default without Projection: orthographic
     CHECK(scene->camera.xres == 640);
     CHECK(scene->lights.empty());
     CHECK(scene->displayName == "out.exr");
 
-    scene = ParseRib("FrameBegin 1\nProjection \"perspective\"\nWorldBegin\nWorldEnd\nFrameEnd\n", "t.rib", &error,
-                     nullptr);
+    scene = ParseRib("FrameBegin 1\nProjection \"perspective\"\nWorldBegin\nWorldEnd\nFrameEnd\n", "t.rib", &error);
     REQUIRE(scene);
     CHECK(scene->camera.perspective);
     CHECK(scene->camera.fovDegrees == 90);
@@ -234,7 +252,7 @@ TEST_CASE("RIB defaults and variants", "[renderer][rib]") {
     scene = ParseRib(
         "WorldBegin\nPatch \"bilinear\" \"Pw\" [2 0 0 2  1 0 0 1  0 1 0 1  1 1 0 1]\n"
         "Patch \"bilinear\" \"Pz\" [1 2 3 4]\nWorldEnd\n",
-        "t.rib", &error, nullptr);
+        "t.rib", &error);
     INFO(error);
     REQUIRE(scene);
     RequireVec(scene->primitives[0].corners[0], {1, 0, 0});
@@ -242,13 +260,13 @@ TEST_CASE("RIB defaults and variants", "[renderer][rib]") {
 }
 
 TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors", "[renderer][rib]") {
-    std::string error;
-    std::vector<std::string> warnings;
+    affray::diag::Report error;
     auto scene = ParseRib(
         "ShadingRate 4\nPixelSamples 2 2\nShadingRate 1\nWorldBegin\n"
         "Attribute \"identifier\" \"name\" \"x\"\nWorldEnd\n",
-        "t.rib", &error, &warnings);
+        "t.rib", &error);
     REQUIRE(scene);
+    std::vector<std::string> warnings = WarningsOf(error);
     REQUIRE(warnings.size() == 2);
     CHECK(warnings[0] == "t.rib:1: warning: request 'ShadingRate' is not supported yet; ignored");
     CHECK(warnings[1] == "t.rib:5: warning: 'Attribute \"identifier\"' is not supported; ignored");
@@ -263,12 +281,13 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
     CHECK(ErrorOf("Skew 45 0 1 0 1 0 0\n") == "t.rib:1: error: 'Skew' is not supported yet");
 
     // Other ignored things: unknown shader parameters, light shaders and surface shaders.
-    warnings.clear();
+    error = {};
     scene = ParseRib(
         "WorldBegin\nLightSource \"arealight\" 1\nSurface \"wood\"\n"
         "Surface \"plastic\" \"foo\" 1\nWorldEnd\n",
-        "t.rib", &error, &warnings);
+        "t.rib", &error);
     REQUIRE(scene);
+    warnings = WarningsOf(error);
     REQUIRE(warnings.size() == 3);
     CHECK(warnings[0] == "t.rib:2: warning: light source 'arealight' is not supported yet; ignored");
     CHECK(warnings[1] == "t.rib:3: warning: surface shader 'wood' is not supported yet; using \"plastic\"");
@@ -345,9 +364,9 @@ TEST_CASE("Malformed RIB gives exact errors with the line", "[renderer][rib]") {
 }
 
 TEST_CASE("ReadRib reports files it cannot read", "[renderer][rib]") {
-    std::string error;
-    CHECK_FALSE(ReadRib("/nonexistent/affray/scene.rib", &error, nullptr));
-    CHECK(error == "/nonexistent/affray/scene.rib: error: cannot read file: No such file or directory");
+    affray::diag::Report error;
+    CHECK_FALSE(ReadRib("/nonexistent/affray/scene.rib", &error));
+    CHECK(error.format() == "/nonexistent/affray/scene.rib: error: cannot read file: No such file or directory\n");
 
     std::filesystem::path file =
         std::filesystem::temp_directory_path() / ("affray_rib_test_" + std::to_string(std::random_device{}()) + ".rib");
@@ -357,7 +376,7 @@ TEST_CASE("ReadRib reports files it cannot read", "[renderer][rib]") {
         std::fputs(kScene, f);
         std::fclose(f);
     }
-    auto scene = ReadRib(file.string(), &error, nullptr);
+    auto scene = ReadRib(file.string(), &error);
     std::filesystem::remove(file);
     REQUIRE(scene);
     CHECK(scene->path == file.string());
@@ -367,13 +386,22 @@ TEST_CASE("ReadRib reports files it cannot read", "[renderer][rib]") {
 TEST_CASE("The RIB reader survives random input", "[renderer][rib]") {
     std::mt19937 rng(12345);
     auto check = [](const std::string& text) {
-        std::string error;
-        std::vector<std::string> warnings;
-        auto scene = ParseRib(text, "f.rib", &error, &warnings);
+        affray::diag::Report report;
+        auto scene = ParseRib(text, "f.rib", &report);
         if (!scene) {
-            // Every failure is a well-formed message.
-            REQUIRE(error.rfind("f.rib:", 0) == 0);
-            REQUIRE(error.find(": error: ") != std::string::npos);
+            // Every failure is one error, at a place in the file, printed as one line (and the
+            // source line with a caret).
+            REQUIRE(report.errorCount() == 1);
+            const affray::diag::Diagnostic& e = report.all().back();
+            REQUIRE(e.severity == affray::diag::Severity::Error);
+            REQUIRE(e.where.file == "f.rib");
+            REQUIRE(e.where.line >= 1);
+            REQUIRE(e.where.column >= 1);
+            const std::string printed = affray::diag::Format(e);
+            REQUIRE(printed.rfind(
+                        "f.rib:" + std::to_string(e.where.line) + ":" + std::to_string(e.where.column) + ": error: ",
+                        0) == 0);
+            REQUIRE(std::count(printed.begin(), printed.end(), '\n') == (e.where.text.empty() ? 1 : 3));
         }
     };
 
@@ -496,10 +524,11 @@ namespace {
 
 // The scene `text` parses into; fails the test with the error if it does not parse.
 SceneDesc Parsed(const std::string& text, std::vector<std::string>* warnings = nullptr) {
-    std::string error;
-    std::optional<SceneDesc> scene = ParseRib(text, "t.rib", &error, warnings);
+    affray::diag::Report error;
+    std::optional<SceneDesc> scene = ParseRib(text, "t.rib", &error);
     INFO(error);
     REQUIRE(scene);
+    if (warnings) *warnings = WarningsOf(error);
     return *scene;
 }
 

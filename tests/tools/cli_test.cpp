@@ -140,7 +140,7 @@ TEST_CASE("cli: a tiny render is lit, shadowed, and the same with any thread cou
         Run("render " + (dir / "small.rib").string() + " -o " + (dir / "two.exr").string() + " --threads 2").status ==
         0);
     renderer::ImageBuffer a, b;
-    std::string error;
+    affray::diag::Report error;
     REQUIRE(renderer::ReadExrRgba((dir / "one.exr").string(), &a, &error));
     REQUIRE(renderer::ReadExrRgba((dir / "two.exr").string(), &b, &error));
     CHECK(a.rgba == b.rgba);
@@ -184,7 +184,7 @@ TEST_CASE("cli: bad scenes fail with their location and leave no image", "[tools
     CHECK(Run("render " + (dir / "nothere.rib").string() + " -o " + (dir / "out.exr").string()).status == 1);
     // Unwritable output: fails, and nothing is left behind.
     WriteFile(dir / "valid.rib", scene);
-    CHECK(Run("render " + (dir / "valid.rib").string() + " -o /nonexistent/dir/out.exr").status == 1);
+    CHECK(Run("render " + (dir / "valid.rib").string() + " -o /nonexistent/dir/out.exr").status == diag::kExitOutput);
     CHECK_FALSE(fs::exists(dir / "out.exr"));
     for (const auto& entry : fs::directory_iterator(dir)) CHECK(entry.path().extension() != ".tmp");
     fs::remove_all(dir);
@@ -214,7 +214,7 @@ TEST_CASE("cli: compiled .afb shaders evaluate and render like their source", "[
     WriteFile(dir / "cut.afb", bytes.substr(0, bytes.size() / 2));
     Output cut = Run("eval " + (dir / "cut.afb").string() + " --at 0.5,0.5", true);
     CHECK(cut.status == 1);
-    CHECK(cut.out.find("cut.afb: truncated file") != std::string::npos);
+    CHECK(cut.out.find("cut.afb: error: truncated file") != std::string::npos);
     fs::remove_all(dir);
 }
 
@@ -333,7 +333,7 @@ TEST_CASE("cli: diff reports the RMSE and largest RGB error of one image against
     CHECK(d.out.find("\"rmse\":0.2282177322938192") != std::string::npos);
     Output size = Run("diff " + (dir / "a.exr").string() + " " + (dir / "wide.exr").string(), true);
     CHECK(size.status == 1);
-    CHECK(size.out.find("is 2x1 but") != std::string::npos);
+    CHECK(size.out.find("wide.exr: error: the image is 3x1 but the reference '") != std::string::npos);
     Output missing = Run("diff " + (dir / "a.exr").string() + " " + (dir / "none.exr").string(), true);
     CHECK(missing.status == 1);
     CHECK(missing.out.find("cannot read") != std::string::npos);
@@ -363,5 +363,75 @@ TEST_CASE("cli: an uncalled function passing a string parameter as a space compi
     INFO(render.out);
     CHECK(render.status == 0);
     CHECK(fs::exists(dir / "r.exr"));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("cli: the exit codes of the README, and every message in the one diagnostic format", "[tools][diagnostics]") {
+    const fs::path dir = TempDir("exit");
+    fs::copy_file(kWave, dir / "wave.sl");
+    WriteFile(dir / "small.rib", SmallWaveScene(8, 6));
+    const std::string rib = (dir / "small.rib").string();
+    const std::string missingDir = (dir / "no" / "such" / "dir").string();
+    // A message line is "place: error: text" (the place "affray" for the command line).
+    auto firstLine = [](const std::string& out) { return out.substr(0, out.find('\n')); };
+
+    // 0: success.
+    CHECK(Run("render " + rib + " -o " + (dir / "ok.exr").string() + " --quiet").status == diag::kExitSuccess);
+    CHECK(Run("--version").status == diag::kExitSuccess);
+
+    // 1: bad input, of every kind: shader, scene, compiled shader, image.
+    WriteFile(dir / "bad.sl", "displacement bad() {\n  P += ;\n}\n");
+    Output shader = Run("compile " + (dir / "bad.sl").string(), true);
+    CHECK(shader.status == diag::kExitBadInput);
+    CHECK(firstLine(shader.out).rfind((dir / "bad.sl").string() + ":2:8: error: ", 0) == 0);
+    WriteFile(dir / "bad.rib", "WorldBegin\n  Sphere 1 -1 1\nWorldEnd\n");
+    Output scene = Run("render " + (dir / "bad.rib").string(), true);
+    CHECK(scene.status == diag::kExitBadInput);
+    CHECK(scene.out == (dir / "bad.rib").string() +
+                           ":2:3: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 3\n"
+                           "      Sphere 1 -1 1\n"
+                           "      ^\n");
+    WriteFile(dir / "bad.afb", "not bytecode");
+    Output afb = Run("eval " + (dir / "bad.afb").string() + " --at 0.5,0.5", true);
+    CHECK(afb.status == diag::kExitBadInput);
+    CHECK(afb.out == (dir / "bad.afb").string() + ": error: not an affray bytecode file\n");
+    Output image = Run("diff " + (dir / "none.exr").string() + " " + (dir / "ok.exr").string(), true);
+    CHECK(image.status == diag::kExitBadInput);
+    CHECK(firstLine(image.out).rfind((dir / "none.exr").string() + ": error: cannot read image: ", 0) == 0);
+    Output missing = Run("render " + (dir / "none.rib").string(), true);
+    CHECK(missing.status == diag::kExitBadInput);
+    CHECK(missing.out == (dir / "none.rib").string() + ": error: cannot read file: No such file or directory\n");
+
+    // 2: bad usage, with the usage after the message.
+    Output usage = Run("render " + rib + " --threads 0", true);
+    CHECK(usage.status == diag::kExitUsage);
+    CHECK(firstLine(usage.out) == "affray: error: --threads takes an integer from 1 to 1024");
+    CHECK(usage.out.find("usage:") != std::string::npos);
+
+    // 3: an output that cannot be written, and nothing left behind.
+    Output exr = Run("render " + rib + " --quiet -o " + missingDir + "/out.exr", true);
+    CHECK(exr.status == diag::kExitOutput);
+    CHECK(exr.out ==
+          missingDir + "/out.exr: error: cannot write file: directory '" + missingDir + "' does not exist\n");
+    Output png =
+        Run("render " + rib + " --quiet -o " + (dir / "p.exr").string() + " --png " + missingDir + "/p.png", true);
+    CHECK(png.status == diag::kExitOutput);
+    CHECK(firstLine(png.out).rfind(missingDir + "/p.png: error: cannot write file: ", 0) == 0);
+    Output bytecode = Run("compile " + kWave + " -o " + missingDir + "/w.afb", true);
+    CHECK(bytecode.status == diag::kExitOutput);
+    CHECK(bytecode.out == missingDir + "/w.afb: error: cannot write file: No such file or directory\n");
+    CHECK_FALSE(fs::exists(dir / "no"));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("cli: a message holding a line break prints on one line", "[tools][diagnostics]") {
+    const fs::path dir = TempDir("oneline");
+    // A Display mode string with a line break inside: the message quotes it.
+    WriteFile(dir / "s.rib", "Display \"out.exr\" \"file\" \"rgba\nzz\"\nWorldBegin\nWorldEnd\n");
+    Output r = Run("render " + (dir / "s.rib").string(), true);
+    CHECK(r.status == diag::kExitBadInput);
+    CHECK(r.out.rfind((dir / "s.rib").string() + ":1:26: error: 'Display' mode 'rgba\\nzz' has an unknown", 0) == 0);
+    // Three lines: the message, the source line, the caret.
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 3);
     fs::remove_all(dir);
 }

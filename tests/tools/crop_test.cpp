@@ -52,7 +52,7 @@ std::string Quote(const std::string& s) { return "'" + s + "'"; }
 
 renderer::ImageBuffer Read(const std::string& path) {
     renderer::ImageBuffer image;
-    std::string error;
+    affray::diag::Report error;
     INFO(error);
     REQUIRE(renderer::ReadExrRgba(path, &image, &error));
     return image;

@@ -44,7 +44,7 @@ TEST_CASE("scenes cli: the gallery scenes render shrunk with every AOV", "[tools
         INFO(r.out);
         REQUIRE(r.status == 0);
         renderer::ImageBuffer image;
-        std::string error;
+        affray::diag::Report error;
         REQUIRE(renderer::ReadExrRgba(exr, &image, &error));
         const size_t pixels = size_t(image.width) * size_t(image.height);
         REQUIRE(pixels > 0);

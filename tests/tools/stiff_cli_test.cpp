@@ -82,7 +82,8 @@ TEST_CASE("stiff cli: NaN, infinite and overflowing parameters in a scene name t
         Output r = Run("render " + rib + " -o " + exr);
         INFO(c.value << ": " << r.out);
         CHECK(r.status == 1);
-        CHECK(r.out.find("scene.rib:7: error: ") != std::string::npos);
+        CHECK(r.out.find("scene.rib:7:") != std::string::npos);
+        CHECK(r.out.find(": error: ") != std::string::npos);
         CHECK(r.out.find(c.message) != std::string::npos);
         CHECK_FALSE(fs::exists(exr));
     }

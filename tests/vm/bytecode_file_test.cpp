@@ -315,7 +315,7 @@ TEST_CASE("files are written atomically and read back", "[vm][bytecode]") {
     const fs::path dir = fs::temp_directory_path() / ("affray_bytecode_test_" + std::to_string(std::random_device()()));
     fs::create_directories(dir);
     const std::string path = (dir / "wave.afb").string();
-    std::string error;
+    affray::diag::Report error;
 
     REQUIRE(vm::WriteBytecodeFile(path, Wave(), &error));
     REQUIRE(vm::WriteBytecodeFile(path, Wave(), &error));  // over an existing file
@@ -334,7 +334,7 @@ TEST_CASE("files are written atomically and read back", "[vm][bytecode]") {
     SECTION("a missing directory fails and leaves nothing") {
         const std::string missing = (dir / "missing" / "x.afb").string();
         CHECK_FALSE(vm::WriteBytecodeFile(missing, Wave(), &error));
-        CHECK(error == "cannot write '" + missing + "': No such file or directory");
+        CHECK(test::LastMessage(error) == missing + ": error: cannot write file: No such file or directory");
         CHECK_FALSE(fs::exists(dir / "missing"));
         CHECK(entries() == std::vector<std::string>{"wave.afb"});
     }
@@ -346,11 +346,12 @@ TEST_CASE("files are written atomically and read back", "[vm][bytecode]") {
     }
     SECTION("read errors name the file") {
         CHECK_FALSE(vm::ReadBytecodeFile((dir / "none.afb").string(), &loaded, &error));
-        CHECK(error == "cannot open '" + (dir / "none.afb").string() + "': No such file or directory");
+        CHECK(test::LastMessage(error) ==
+              (dir / "none.afb").string() + ": error: cannot open file: No such file or directory");
         const std::string& bytes = WaveBytes();
         std::ofstream((dir / "short.afb").string(), std::ios::binary).write(bytes.data(), 100);
         CHECK_FALSE(vm::ReadBytecodeFile((dir / "short.afb").string(), &loaded, &error));
-        CHECK(error == (dir / "short.afb").string() + ": truncated file");
+        CHECK(test::LastMessage(error) == (dir / "short.afb").string() + ": error: truncated file");
     }
     fs::remove_all(dir);
 }

@@ -11,6 +11,7 @@
 #include "tests/test_util.h"
 
 using namespace affray::renderer;
+using affray::rib::ParseRib;
 
 namespace {
 
@@ -112,11 +113,11 @@ TEST_CASE("Rays come out in world space", "[renderer][camera]") {
 }
 
 TEST_CASE("A RIB camera places the eye where the RIB says", "[renderer][camera]") {
-    std::string error;
+    affray::diag::Report error;
     auto scene = ParseRib(
         "Format 64 48 1\nProjection \"perspective\" \"fov\" 45\nTranslate 0 0 5\n"
         "WorldBegin\nWorldEnd\n",
-        "t.rib", &error, nullptr);
+        "t.rib", &error);
     REQUIRE(scene);
     Camera camera(scene->camera);
     RequireVec(camera.Position(), {0, 0, -5});
@@ -198,11 +199,11 @@ TEST_CASE("FrameAspectRatio sets the default screen window", "[renderer][camera]
         CHECK(Camera(desc).ScreenWindow() == glm::dvec4(-1, 1, -1, 1));
     }
     SECTION("from RIB") {
-        std::string error;
+        affray::diag::Report error;
         auto scene = ParseRib(
             "Format 200 100 1\nFrameAspectRatio 1\nProjection "
             "\"perspective\"\nWorldBegin\nWorldEnd\n",
-            "t.rib", &error, nullptr);
+            "t.rib", &error);
         REQUIRE(scene);
         Camera camera(scene->camera);
         CHECK(camera.ScreenWindow() == glm::dvec4(-1, 1, -1, 1));
@@ -211,7 +212,7 @@ TEST_CASE("FrameAspectRatio sets the default screen window", "[renderer][camera]
         scene = ParseRib(
             "Format 200 100 1\nScreenWindow [0 2 -1 0]\nProjection \"perspective\"\n"
             "WorldBegin\nWorldEnd\n",
-            "t.rib", &error, nullptr);
+            "t.rib", &error);
         REQUIRE(scene);
         RequireVec(Camera(scene->camera).GenerateRay(0, 0).dir, glm::normalize(glm::dvec3(0, 0, 1)));
         RequireVec(Camera(scene->camera).GenerateRay(200, 100).dir, glm::normalize(glm::dvec3(2, -1, 1)));

@@ -12,6 +12,7 @@
 #include <random>
 
 #include "renderer/image/exr_writer.h"
+#include "tests/test_util.h"
 
 using namespace affray::renderer;
 namespace fs = std::filesystem;
@@ -62,7 +63,7 @@ TEST_CASE("EXR round trip keeps RGBA to half precision and Z exactly", "[rendere
     TempDir dir;
     std::string path = (dir.path / "image.exr").string();
     ImageBuffer image = TestImage(7, 5);
-    std::string error;
+    affray::diag::Report error;
     REQUIRE(WriteExr(path, image, &error));
     CHECK(dir.Entries() == std::vector<std::string>{"image.exr"});  // no temporary left
 
@@ -87,7 +88,7 @@ TEST_CASE("EXR channels are RGBA half and extra channels float", "[renderer]") {
     TempDir dir;
     std::string path = (dir.path / "channels.exr").string();
     ImageBuffer image = TestImage(4, 3);
-    std::string error;
+    affray::diag::Report error;
     REQUIRE(WriteExr(path, image, &error));
 
     Imf::InputFile file(path.c_str());
@@ -118,7 +119,7 @@ TEST_CASE("EXR channels are RGBA half and extra channels float", "[renderer]") {
 TEST_CASE("EXR writes replace an existing file", "[renderer]") {
     TempDir dir;
     std::string path = (dir.path / "again.exr").string();
-    std::string error;
+    affray::diag::Report error;
     REQUIRE(WriteExr(path, TestImage(8, 8), &error));
     ImageBuffer second = TestImage(3, 2);
     second.extraChannels.clear();
@@ -132,47 +133,49 @@ TEST_CASE("EXR writes replace an existing file", "[renderer]") {
 
 TEST_CASE("EXR write failures are clean", "[renderer]") {
     TempDir dir;
-    std::string error;
+    affray::diag::Report error;
 
     SECTION("missing directory") {
         std::string path = (dir.path / "missing" / "out.exr").string();
         CHECK_FALSE(WriteExr(path, TestImage(2, 2), &error));
-        CHECK(error ==
-              "cannot write '" + path + "': directory '" + (dir.path / "missing").string() + "' does not exist");
+        CHECK(affray::test::LastMessage(error) ==
+              path + ": error: cannot write file: directory '" + (dir.path / "missing").string() + "' does not exist");
         CHECK(dir.Entries().empty());
     }
     SECTION("target is a directory: the temporary file is written, then removed") {
         fs::create_directory(dir.path / "sub");
         std::string path = (dir.path / "sub").string();
         CHECK_FALSE(WriteExr(path, TestImage(2, 2), &error));
-        CHECK(error.rfind("cannot write '" + path + "': ", 0) == 0);
+        CHECK(affray::test::LastMessage(error).rfind(path + ": error: cannot write file: ", 0) == 0);
         CHECK(dir.Entries() == std::vector<std::string>{"sub"});
     }
     SECTION("malformed images touch nothing") {
         std::string path = (dir.path / "bad.exr").string();
         ImageBuffer empty;
         CHECK_FALSE(WriteExr(path, empty, &error));
-        CHECK(error == "cannot write '" + path + "': image size 0x0 is empty");
+        CHECK(affray::test::LastMessage(error) == path + ": error: cannot write file: image size 0x0 is empty");
         ImageBuffer shortRgba = TestImage(2, 2);
         shortRgba.rgba.pop_back();
         CHECK_FALSE(WriteExr(path, shortRgba, &error));
-        CHECK(error == "cannot write '" + path + "': RGBA buffer holds 15 floats, expected 16");
+        CHECK(affray::test::LastMessage(error) ==
+              path + ": error: cannot write file: RGBA buffer holds 15 floats, expected 16");
         ImageBuffer duplicate = TestImage(2, 2);
         duplicate.extraChannels.emplace_back("A", std::vector<float>(4));
         CHECK_FALSE(WriteExr(path, duplicate, &error));
-        CHECK(error == "cannot write '" + path + "': channel 'A' is given twice");
+        CHECK(affray::test::LastMessage(error) == path + ": error: cannot write file: channel 'A' is given twice");
         CHECK(dir.Entries().empty());
     }
     SECTION("reading a missing or corrupt file") {
         ImageBuffer back;
         CHECK_FALSE(ReadExrRgba((dir.path / "none.exr").string(), &back, &error));
-        CHECK(error.rfind("cannot read '", 0) == 0);
+        CHECK(affray::test::LastMessage(error).rfind((dir.path / "none.exr").string() + ": error: cannot read image: ",
+                                                     0) == 0);
         std::string junk = (dir.path / "junk.exr").string();
         FILE* f = std::fopen(junk.c_str(), "w");
         REQUIRE(f);
         std::fputs("not an exr file at all", f);
         std::fclose(f);
         CHECK_FALSE(ReadExrRgba(junk, &back, &error));
-        CHECK(error.rfind("cannot read '" + junk + "': ", 0) == 0);
+        CHECK(affray::test::LastMessage(error).rfind(junk + ": error: cannot read image: ", 0) == 0);
     }
 }
