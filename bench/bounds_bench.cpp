@@ -305,7 +305,7 @@ bool LoadShaders(const std::string& only, std::vector<BenchShader>* out) {
 std::vector<int> ParseList(const char* s) {
     std::vector<int> out;
     for (const char* p = s; *p;) {
-        out.push_back(std::atoi(p));
+        out.push_back(std::stoi(p));
         p = std::strchr(p, ',');
         if (!p) break;
         ++p;
@@ -320,9 +320,9 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         auto arg = [&](const char* name) { return !std::strcmp(argv[i], name) && i + 1 < argc; };
         if (arg("--seconds"))
-            opt.seconds = std::atof(argv[++i]);
+            opt.seconds = std::stod(argv[++i]);
         else if (arg("--regions"))
-            opt.regions = std::max(1, std::atoi(argv[++i]));
+            opt.regions = std::max(1, std::stoi(argv[++i]));
         else if (arg("--shader"))
             opt.shader = argv[++i];
         else if (arg("--capacities"))

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <random>
+#include <string>
 
 #include "bench/evals_per_second.h"
 
@@ -123,7 +124,7 @@ void Compare(int dims, double width, Placement where, double seconds, Figures* o
 int main(int argc, char** argv) {
     double seconds = 0.05;
     for (int i = 1; i < argc; ++i)
-        if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc) seconds = std::atof(argv[++i]);
+        if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc) seconds = std::stod(argv[++i]);
     const auto kAuto = NoiseBoundMethod::Auto;
 
     std::printf("evaluations per second (thousands)\n");

@@ -20,8 +20,6 @@ namespace affray::compiler {
 using lang::Expr;
 using lang::ExprKind;
 using lang::SourceLoc;
-using lang::Stmt;
-using lang::StmtKind;
 
 Lowerer::Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues,
                  const std::map<std::string, std::string>* stringValues, const Spaces* spaces)

@@ -118,7 +118,7 @@ Value ValueOps::Translate(const Value& m, const Value& t) {
 
 Value ValueOps::Scale(const Value& m, const Value& s) {
     Value step = Promote(Constant(1.0), Type::Matrix);
-    for (int j = 0; j < 3; ++j) step.c[5 * j] = s.c[j];
+    for (int j = 0; j < 3; ++j) step.c[5 * static_cast<size_t>(j)] = s.c[j];
     return MatrixProduct(step, m);
 }
 

@@ -42,9 +42,9 @@ class Bvh {
 
     /// Calls visit(i, tEntry) for every primitive whose box the ray crosses within [tMin, *tMax],
     /// nearer boxes first (by entry), skipping boxes entered beyond *tMax, which `visit` may
-    /// lower (to the nearest hit so far). visit returns false to stop the traversal (any-hit).
+    /// lower (to the nearest hit so far) through the caller's variable; Traverse only reads it. visit returns false to stop the traversal (any-hit).
     template <class Visit>
-    void Traverse(const Ray& ray, double tMin, double* tMax, Visit&& visit) const;
+    void Traverse(const Ray& ray, double tMin, const double* tMax, Visit&& visit) const;
 
     int nodeCount() const { return static_cast<int>(m_nodes.size()); }
 
@@ -61,7 +61,7 @@ class Bvh {
 };
 
 template <class Visit>
-void Bvh::Traverse(const Ray& ray, double tMin, double* tMax, Visit&& visit) const {
+void Bvh::Traverse(const Ray& ray, double tMin, const double* tMax, Visit&& visit) const {
     if (m_root < 0) return;
     struct Entry {
         int node;

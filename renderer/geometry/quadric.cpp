@@ -10,9 +10,10 @@ std::string ToString(const Quadric& q) {
     std::ostringstream out;
     out << Quadric::Name(q.kind);
     switch (q.kind) {
-        case Quadric::Kind::Sphere: out << ' ' << q.radius << ' ' << q.zmin << ' ' << q.zmax; break;
-        case Quadric::Kind::Cylinder: out << ' ' << q.radius << ' ' << q.zmin << ' ' << q.zmax; break;
-        case Quadric::Kind::Cone: out << ' ' << q.height << ' ' << q.radius; break;
+        case Quadric::Kind::Sphere:
+        case Quadric::Kind::Cylinder:
+        case Quadric::Kind::Paraboloid: out << ' ' << q.radius << ' ' << q.zmin << ' ' << q.zmax; break;
+        case Quadric::Kind::Cone:
         case Quadric::Kind::Disk: out << ' ' << q.height << ' ' << q.radius; break;
         case Quadric::Kind::Torus:
             out << ' ' << q.majorRadius << ' ' << q.minorRadius << ' ' << q.phimin << ' ' << q.phimax;
@@ -21,7 +22,6 @@ std::string ToString(const Quadric& q) {
             for (double x : q.point1) out << ' ' << x;
             for (double x : q.point2) out << ' ' << x;
             break;
-        case Quadric::Kind::Paraboloid: out << ' ' << q.radius << ' ' << q.zmin << ' ' << q.zmax; break;
     }
     out << ' ' << q.thetamax;
     return out.str();

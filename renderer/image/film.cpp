@@ -324,7 +324,7 @@ bool PasteCrop(const ImageBuffer& crop, const PixelRange& range, ImageBuffer* wh
         }
     for (const auto& [name, values] : crop.extraChannels) {
         auto it = std::find_if(whole->extraChannels.begin(), whole->extraChannels.end(),
-                               [&](const auto& channel) { return channel.first == name; });
+                               [&name = name](const auto& channel) { return channel.first == name; });
         if (it == whole->extraChannels.end()) {
             whole->extraChannels.emplace_back(name, std::vector<float>(pixels, 0.0f));
             it = std::prev(whole->extraChannels.end());

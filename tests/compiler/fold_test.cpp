@@ -58,6 +58,7 @@ std::vector<std::vector<double>> Tuples(const std::vector<double>& values, int c
     test::Rng rng(seed);
     for (int s = 0; s < samples; ++s) {
         std::vector<double> t;
+        t.reserve(static_cast<size_t>(count));
         for (int i = 0; i < count; ++i) t.push_back(values[static_cast<size_t>(rng.uniform(0, double(n))) % n]);
         out.push_back(t);
     }

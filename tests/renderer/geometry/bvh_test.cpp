@@ -72,6 +72,7 @@ TEST_CASE("bvh: the slab test contains every point of the box on the ray", "[ren
 
 TEST_CASE("bvh: nearer boxes are visited first and a lowered tMax skips farther ones", "[renderer][bvh]") {
     std::vector<Box> boxes;
+    boxes.reserve(8);
     for (int i = 0; i < 8; ++i) boxes.push_back(MakeBox(glm::dvec3(-1, -1, 10.0 * i), glm::dvec3(1, 1, 10.0 * i + 1)));
     const Bvh bvh(boxes);
     const Ray ray{{0, 0, -5}, {0, 0, 1}};

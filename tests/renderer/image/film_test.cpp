@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <functional>
 
@@ -116,7 +117,7 @@ TEST_CASE("Crops of a partition of the frame partition the pixels", "[film]") {
                             for (int x = r.x0; x < r.x1; ++x) ++covered[static_cast<size_t>(y) * res + x];
                     }
                 INFO("resolution " << res << ", " << xs.size() - 1 << " x " << ys.size() - 1 << " crops");
-                REQUIRE(std::count(covered.begin(), covered.end(), 1) == res * res);
+                REQUIRE(std::count(covered.begin(), covered.end(), 1) == static_cast<std::ptrdiff_t>(res) * res);
             }
     }
 }
@@ -153,7 +154,7 @@ TEST_CASE("Each sample lies in its own stratum of its pixel", "[film]") {
     Film film(MakeCamera(9, 5, FilterDesc::Kind::Box, 1, 3, 4));
     std::vector<Sample> samples;
     film.TileSamples({0, 9, 0, 5}, &samples);
-    REQUIRE(samples.size() == 9u * 5u * 12u);
+    REQUIRE(samples.size() == size_t{9} * 5 * 12);
     for (const Sample& s : samples) {
         const int i = s.index % 3, j = s.index / 3;
         INFO("pixel " << s.px << "," << s.py << " sample " << s.index);
@@ -184,7 +185,7 @@ TEST_CASE("Tiles cover the crop window exactly once", "[film]") {
     Film film(c);
     const PixelRange crop = film.crop();
     for (int size : {1, 7, 16, 64}) {
-        std::vector<int> covered(50 * 40, 0);
+        std::vector<int> covered(size_t{50} * 40, 0);
         for (const PixelRange& t : film.Tiles(size)) {
             CHECK(t.width() <= size);
             for (int y = t.y0; y < t.y1; ++y)
@@ -228,7 +229,7 @@ TEST_CASE("A constant image resolves to its colour under both filters", "[film]"
         for (double width : {1.0, 2.0, 3.5}) {
             Film film(MakeCamera(13, 9, kind, width, 3, 3));
             ImageBuffer image = Render(film, 4, constant);
-            for (size_t p = 0; p < 13 * 9; ++p) {
+            for (size_t p = 0; p < size_t{13} * 9; ++p) {
                 INFO("pixel " << p << " width " << width);
                 // Normalising by the weight sum makes the edge pixels, with clipped footprints, exact too.
                 REQUIRE(image.rgba[p * 4 + 0] == Approx(0.25f));
