@@ -1,7 +1,8 @@
 // tests/vm/interpreter_test.cpp: the interpreter's contracts over every shader in shaders/:
 // containment (the scalar result at any point of a region lies in the region's affine and
-// interval bounds), derivatives (duals agree with finite differences), and every opcode run
-// under every number type.
+// interval bounds), derivatives (duals agree with finite differences), the verifier's rejection
+// of malformed programs, and floor's splits. Every opcode under every number type, and the
+// verifier over every opcode value, are tests/vm/conformance_test.cpp's.
 #include <catch2/catch.hpp>
 
 #include <random>
@@ -59,45 +60,6 @@ TEST_CASE("dual derivatives agree with finite differences", "[vm][dual]") {
     }
 }
 
-TEMPLATE_TEST_CASE("every opcode runs under every number type", "[vm]", double, vm::Interval, vm::Affine,
-                   vm::Dual<double>, vm::Dual<vm::Affine>, vm::ReducedAffine, vm::Dual<vm::ReducedAffine>) {
-    // One expression per opcode family; the scalar value is known, every type must contain it.
-    compiler::CompiledShader s = test::CompileOrThrow(R"(
-        displacement all(float k = 3) {
-            float a = u + 1, b = v + 2;
-            float x = -a + (a + b) + (a + k) + (a - b) + (a - k) + (k - a) + a * b + a * k
-                    + a / b + a / k + k / a + a * a + sqrt(a) + exp(a) + log(a) + sin(a) + cos(a)
-                    + abs(a - 2) + sign(a - 1.2) + pow(a, b) + pow(a, 3.5) + Du(a * b) + Dv(a * b);
-            P += vector(0, 0, x);
-        })");
-    std::vector<vm::Op> seen;
-    for (const vm::Instr& in : s.bound.code) seen.push_back(in.op);
-    for (vm::Op op : {vm::Op::Neg,   vm::Op::AddRR, vm::Op::AddRK, vm::Op::SubRR,  vm::Op::SubRK, vm::Op::SubKR,
-                      vm::Op::MulRR, vm::Op::MulRK, vm::Op::DivRR, vm::Op::DivRK,  vm::Op::DivKR, vm::Op::Sqr,
-                      vm::Op::Sqrt,  vm::Op::Exp,   vm::Op::Log,   vm::Op::Sin,    vm::Op::Cos,   vm::Op::Abs,
-                      vm::Op::Sign,  vm::Op::PowRR, vm::Op::PowRK, vm::Op::DerivU, vm::Op::DerivV})
-        CHECK(std::find(seen.begin(), seen.end(), op) != seen.end());
-
-    using vm::RangeOf;
-    const double u = 0.3, v = 0.6;
-    double a = u + 1, b = v + 2, k = 3;
-    double expected = -a + (a + b) + (a + k) + (a - b) + (a - k) + (k - a) + a * b + a * k + a / b + a / k + k / a +
-                      a * a + std::sqrt(a) + std::exp(a) + std::log(a) + std::sin(a) + std::cos(a) + std::abs(a - 2) +
-                      1.0 + std::pow(a, b) + std::pow(a, 3.5) + b + a;
-    auto p = test::EvalOnSquare<TestType>(s.bound, u, u, v, v);
-    if constexpr (std::is_same_v<TestType, double>) {
-        // Without derivatives Du and Dv are unknown: NaN, never a silently wrong number.
-        CHECK(std::isnan(p.z));
-    } else if constexpr (!vm::NumberTraits<TestType>::kHasDerivatives) {
-        CHECK(IsUnbounded(p.z));
-    } else {
-        vm::Interval range = RangeOf(p.z.v);
-        INFO(range.toString() << " expected " << expected);
-        CHECK(range.contains(expected));
-        CHECK(range.hi() - range.lo() < 1e-9);
-    }
-}
-
 TEST_CASE("the verifier rejects malformed programs", "[vm]") {
     compiler::CompiledShader s = test::CompileOrThrow("displacement t() { P += sin(u) * N; }");
     std::string error;
@@ -112,20 +74,7 @@ TEST_CASE("the verifier rejects malformed programs", "[vm]") {
     bad = s.bound;
     bad.outputs[0].registers[0] = 60000;
     CHECK_FALSE(vm::Verify(bad, &error));
-    // Random garbage never crashes the verifier.
-    std::mt19937 rng(5);
-    for (int i = 0; i < 2000; ++i) {
-        vm::Program g = s.bound;
-        for (vm::Instr& in : g.code) {
-            if (rng() % 4) continue;
-            in.op = static_cast<vm::Op>(rng() % 40);
-            in.a = rng() % 20;
-            in.b = rng() % 20;
-            in.c = rng() % 20;
-        }
-        g.registerCount = static_cast<int>(rng() % 30);
-        vm::Verify(g, &error);
-    }
+    // (Random programs over every opcode value: tests/vm/conformance_test.cpp's verifier fuzz.)
 }
 
 TEST_CASE("floor straddling an integer is split into its two cases", "[vm][interpreter]") {

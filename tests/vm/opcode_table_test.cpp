@@ -1,8 +1,11 @@
 // tests/vm/opcode_table_test.cpp: the one opcode table (vm/opcodes.h) and what is derived from it:
 // docs/opcodes.md lists it as `affray opcodes` prints it, the constant forms the pruner uses are
-// the hand-checked ones, and the compiler's map lifts every opcode back to itself.
+// the hand-checked ones, the compiler's map lifts every opcode back to itself, and RSL compiles
+// to the opcodes' operand forms.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -70,4 +73,34 @@ TEST_CASE("opcode table: every operation's opcodes lift to it and back", "[vm][o
         CHECK(row->count == vm::OperandCount(op));
     }
     CHECK(rows == vm::kOpCount - 3);  // all but LoadK, Move and Ext
+}
+
+TEST_CASE("opcode table: RSL arithmetic and built-ins compile to each operand form", "[vm][opcodes]") {
+    // The compiler's instruction selection end to end: one expression per opcode family (the
+    // number types' rules for every opcode are tests/vm/conformance_test.cpp's).
+    compiler::CompiledShader s = test::CompileOrThrow(R"(
+        displacement all(float k = 3) {
+            float a = u + 1, b = v + 2;
+            float x = -a + (a + b) + (a + k) + (a - b) + (a - k) + (k - a) + a * b + a * k
+                    + a / b + a / k + k / a + a * a + sqrt(a) + exp(a) + log(a) + sin(a) + cos(a)
+                    + abs(a - 2) + sign(a - 1.2) + pow(a, b) + pow(a, 3.5) + Du(a * b) + Dv(a * b);
+            P += vector(0, 0, x);
+        })");
+    std::vector<vm::Op> seen;
+    for (const vm::Instr& in : s.bound.code) seen.push_back(in.op);
+    for (vm::Op op : {vm::Op::Neg,   vm::Op::AddRR, vm::Op::AddRK, vm::Op::SubRR,  vm::Op::SubRK, vm::Op::SubKR,
+                      vm::Op::MulRR, vm::Op::MulRK, vm::Op::DivRR, vm::Op::DivRK,  vm::Op::DivKR, vm::Op::Sqr,
+                      vm::Op::Sqrt,  vm::Op::Exp,   vm::Op::Log,   vm::Op::Sin,    vm::Op::Cos,   vm::Op::Abs,
+                      vm::Op::Sign,  vm::Op::PowRR, vm::Op::PowRK, vm::Op::DerivU, vm::Op::DerivV}) {
+        INFO(vm::Info(op).name);
+        CHECK(std::find(seen.begin(), seen.end(), op) != seen.end());
+    }
+    const double u = 0.3, v = 0.6;
+    const double a = u + 1, b = v + 2, k = 3;
+    const double expected = -a + (a + b) + (a + k) + (a - b) + (a - k) + (k - a) + a * b + a * k + a / b + a / k +
+                            k / a + a * a + std::sqrt(a) + std::exp(a) + std::log(a) + std::sin(a) + std::cos(a) +
+                            std::abs(a - 2) + 1.0 + std::pow(a, b) + std::pow(a, 3.5) + b + a;
+    CHECK(test::EvalOnSquare<vm::Dual<double>>(s.bound, u, u, v, v).z.v == Approx(expected).epsilon(1e-12));
+    // Without derivatives Du and Dv are unknown: NaN, never a silently wrong number.
+    CHECK(std::isnan(test::EvalOnSquare<double>(s.bound, u, u, v, v).z));
 }
