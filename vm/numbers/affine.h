@@ -245,8 +245,8 @@ class Affine {
     /// alpha*x + zeta +- delta on a fresh symbol, where g(t) = f(t) - alpha*t lies in [gLo, gHi]
     /// for every t in x's range (f's glibc rounding included): the result of any unary f.
     static Affine ApplyFit(const Affine& x, double alpha, double gLo, double gHi);
-    /// The form of a shared fit of a unary function over x's range (vm/numbers/affine_fit.h): ApplyFit,
-    /// FromInterval, x, -x or Unbounded (affine_functions.cpp).
+    /// The form of a shared fit of a unary function over x's range: vm/numbers/affine_fit.h's
+    /// FormOfFit with ApplyFit (affine_functions.cpp).
     static Affine FromFit(const Affine& x, const AffineFit& fit);
     /// x + y or x - y by a sorted merge of the terms (affine.cpp).
     template <bool kSubtract>

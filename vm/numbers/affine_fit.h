@@ -1,12 +1,12 @@
 // vm/numbers/affine_fit.h: the approximation math of affine arithmetic, shared by every affine form type
 // (vm::Affine and vm::ReducedAffine): for each nonlinear unary function, what its result is over
 // an input range, computed from that range alone, and the error slacks of the composite functions.
-// Owns struct AffineFit and the *Fit functions. A form type turns a fit into a form of its own
-// (its FromFit): a Line becomes alpha*x + zeta +- delta (its ApplyFit, which keeps x's symbols and
-// adds the rounding of the form's coefficients), a Range the interval on its own (FromInterval),
-// Same/Negated x or -x exactly, Unbounded the explicit unknown value. How a form keeps the new
-// error (a fresh symbol in Affine, the one independent error term in ReducedAffine) is the type's
-// business; what the error is, is decided here, once.
+// Owns struct AffineFit, the *Fit functions and FormOfFit, which turns a fit into a form of any
+// affine type (the type's FromFit): a Line becomes alpha*x + zeta +- delta (the type's ApplyFit,
+// which keeps x's symbols and adds the rounding of the form's coefficients), a Range the interval
+// on its own (FromInterval), Same/Negated x or -x exactly, Unbounded the explicit unknown value.
+// How a form keeps the new error (a fresh symbol in Affine, the one independent error term in
+// ReducedAffine) is the type's business; what the error is, is decided here, once.
 // Rules every fit keeps (tests: tests/vm/numbers/affine_test.cpp, tests/vm/numbers/reduced_affine_test.cpp): for
 // every t in the input range, glibc's f(t) (the scalar result) lies in alpha*t + [lo, hi], the
 // rounding of every computation here included; Unbounded wherever f(t) can be NaN or infinite.
@@ -71,6 +71,22 @@ struct AffineFit {
     /// Whether a Line over an input form of radius `formRadius` should give way to `range`.
     bool lineTooWide(double formRadius) const { return std::fabs(alpha) * formRadius + 0.5 * (hi - lo) > lineLimit; }
 };
+
+/// The form of a fit for any affine form type F (F::FromFit): `apply`(x, alpha, lo, hi), F's own
+/// ApplyFit, for a Line (F::FromInterval of the fit's range for a Line wider than its
+/// lineLimit), F::FromInterval for a Range, x, -x, or F::Unbounded().
+template <class F, class Apply>
+F FormOfFit(const F& x, const AffineFit& fit, Apply apply) {
+    switch (fit.kind) {
+        case AffineFit::Kind::Line:
+            if (fit.hasLineLimit() && fit.lineTooWide(x.radius())) return F::FromInterval(fit.range);
+            return apply(x, fit.alpha, fit.lo, fit.hi);
+        case AffineFit::Kind::Range: return F::FromInterval(fit.range);
+        case AffineFit::Kind::Same: return x;
+        case AffineFit::Kind::Negated: return -x;
+        default: return F::Unbounded();
+    }
+}
 
 // Each takes the (bounded) range of the input form, already intersected with its enclosure.
 /// 1/t on a range > 0 (callers handle a range < 0 by symmetry, and 0 in the range).

@@ -13,17 +13,7 @@
 
 namespace affray::vm {
 
-Affine Affine::FromFit(const Affine& x, const AffineFit& fit) {
-    switch (fit.kind) {
-        case AffineFit::Kind::Line:
-            if (fit.hasLineLimit() && fit.lineTooWide(x.radius())) return FromInterval(fit.range);
-            return ApplyFit(x, fit.alpha, fit.lo, fit.hi);
-        case AffineFit::Kind::Range: return FromInterval(fit.range);
-        case AffineFit::Kind::Same: return x;
-        case AffineFit::Kind::Negated: return -x;
-        default: return Unbounded();
-    }
-}
+Affine Affine::FromFit(const Affine& x, const AffineFit& fit) { return FormOfFit(x, fit, ApplyFit); }
 
 // --- 1/x and division ---------------------------------------------------------------------------
 

@@ -92,15 +92,7 @@ ReducedAffine ReducedAffine::ApplyFit(const ReducedAffine& x, double alpha, doub
 }
 
 ReducedAffine ReducedAffine::FromFit(const ReducedAffine& x, const AffineFit& fit) {
-    switch (fit.kind) {
-        case AffineFit::Kind::Line:
-            if (fit.hasLineLimit() && fit.lineTooWide(x.radius())) return FromInterval(fit.range);
-            return ApplyFit(x, fit.alpha, fit.lo, fit.hi);
-        case AffineFit::Kind::Range: return FromInterval(fit.range);
-        case AffineFit::Kind::Same: return x;
-        case AffineFit::Kind::Negated: return -x;
-        default: return Unbounded();
-    }
+    return FormOfFit(x, fit, ApplyFit);
 }
 
 template <class F>

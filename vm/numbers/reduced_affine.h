@@ -233,7 +233,8 @@ class ReducedAffine {
     /// alpha*x + zeta +- delta, where g(t) = f(t) - alpha*t lies in [gLo, gHi] for every t in x's
     /// range (f's glibc rounding included): the result of any unary f; no enclosure.
     static ReducedAffine ApplyFit(const ReducedAffine& x, double alpha, double gLo, double gHi);
-    /// The form of a shared fit (vm/numbers/affine_fit.h) over x's range; no enclosure.
+    /// The form of a shared fit over x's range: vm/numbers/affine_fit.h's FormOfFit with ApplyFit;
+    /// no enclosure.
     static ReducedAffine FromFit(const ReducedAffine& x, const AffineFit& fit);
     /// FromFit narrowed to f's interval result over x's range: the fit's own (fit.range) where it
     /// computed it, else interval(x.range()) (reduced_affine.cpp).

@@ -1,12 +1,15 @@
 // tests/vm/numbers/aavalid.h: the operands of Stolfi's aavalid method, shared by the containment tests of
 // every affine type (tests/vm/numbers/affine_test.cpp, tests/vm/numbers/reduced_affine_test.cpp): a random region
 // u = uc + ur*eps_u, v = vc + vr*eps_v with a point (eps_u, eps_v) in it, all exact doubles, and
-// random recipes that build operands from u and v with the same code on any number type, and
-// random straight-line programs over every built-in.
+// random recipes that build operands from u and v with the same code on any number type, random
+// straight-line programs over every built-in, and the sweeps every affine type's test runs alike.
 #pragma once
+
+#include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "tests/test_random.h"
@@ -14,6 +17,16 @@
 
 namespace affray::test::aavalid {
 
+using vm::And;
+using vm::Equal;
+using vm::Less;
+using vm::LessEq;
+using vm::Max;
+using vm::Min;
+using vm::Not;
+using vm::NotEqual;
+using vm::Or;
+using vm::Select;
 using vm::sign;
 using vm::sqr;
 
@@ -154,6 +167,127 @@ std::vector<T> RunProgram(const std::vector<Step>& program, const T& u, const T&
     std::vector<T> r = {u, v};
     for (const Step& s : program) r.push_back(RunStep(s, r[s.a], r[s.b]));
     return r;
+}
+
+// --- The sweeps every affine type's containment test runs -----------------------------------
+// Each takes the test's own check(seed, n, region, xRecipe, yRecipe, op), which runs op on the
+// types the test compares and returns its report, and expect(name, report, minBoundedFraction,
+// ratio), which checks the report against the test's width ratio limit `ratio`.
+
+/// sin and cos over regions a quarter, half or whole period wide (or 1e-6), centred up to 1e6.
+template <class Check, class Expect>
+void SweepSinCosPeriods(Check check, Expect expect, double ratio) {
+    using std::cos, std::sin;
+    const int n = Samples(20000) / 4;
+    const double pi = 3.141592653589793;
+    RecipeConfig exact;
+    exact.kindHi = 2;
+    // v stays small: the argument's range is u's.
+    exact.coefExpLo = -1;
+    exact.coefExpHi = 0;
+    for (double width : {pi / 2, pi, 2 * pi, 1e-6}) {
+        for (double center : {4.0, 1e3, 1e6}) {
+            RegionConfig g;
+            g.expHi = -2;
+            g.uWidth = width;
+            g.uCenter = center;
+            g.touchZero = 0;
+            INFO("width " << width << " center " << center);
+            expect("sin", check(30, n, g, exact, exact, [](const auto& x, const auto&) { return sin(x); }), 1.0, ratio);
+            expect("cos", check(31, n, g, exact, exact, [](const auto& x, const auto&) { return cos(x); }), 1.0, ratio);
+        }
+    }
+}
+
+/// pow to constant exponents (integers up to past kMaxIntegerPower, fractions, 0, negative), of
+/// negative bases to integer exponents, and to varying exponents.
+template <class Check, class Expect>
+void SweepPow(Check check, Expect expect) {
+    const int n = Samples(20000) / 2;
+    RegionConfig g;
+    g.expLo = -10;
+    g.expHi = 3;
+    RecipeConfig r;
+    r.coefExpHi = 1;
+    auto power = [](double p) {
+        return [p](const auto& x, const auto&) {
+            using std::pow;
+            return pow(x, std::decay_t<decltype(x)>(p));
+        };
+    };
+    for (double p : {2.0, 3.0, -1.0, -2.0, 5.0, 0.5, 2.5, -0.75, 0.0, 1.0, 64.0, 65.0}) {
+        INFO("exponent " << p);
+        expect("pow(x, p)", check(40, n, g, r, r, power(p)), 0.05, 1e300);
+    }
+    RecipeConfig negative = r;
+    negative.kindHi = 2;
+    negative.shifts = {-4.0, -0.5};
+    for (double p : {2.0, 3.0, -3.0, 4.0}) {
+        INFO("negative base, exponent " << p);
+        expect("pow(-x, n)", check(41, n, g, negative, r, power(p)), 0.2, 1e300);
+    }
+    RecipeConfig exponent = r;
+    exponent.scale = 0.25;
+    expect("pow(x, y)",
+           check(42, n, g, r, exponent,
+                 [](const auto& x, const auto& y) {
+                     using std::pow;
+                     return pow(x, y);
+                 }),
+           0.05, 1e300);
+}
+
+/// The width ratio limits of SweepBranches: atan2's, Select's, and every other function's.
+struct BranchRatios {
+    double atan2 = 1.01, select = 1.01, others = 1.01;
+};
+
+/// floor, ceil, round, asin, acos, atan, atan2, Min, Max, the comparisons, logic and Select on
+/// recipe operands (nonlinear terms, fresh symbols); tests/vm/branch_test.cpp fixes every symbol
+/// instead, and checks the exactness properties.
+template <class Check, class Expect>
+void SweepBranches(Check check, Expect expect, const BranchRatios& ratio) {
+    using std::acos, std::asin, std::atan, std::atan2, std::ceil, std::floor, std::round;
+    const int n = Samples(20000) / 2;
+    RegionConfig g;
+    RecipeConfig r;
+    RegionConfig small;
+    small.expLo = -20;
+    small.expHi = 3;
+    RecipeConfig mild = r;
+    mild.coefExpHi = 1;
+    const double k = ratio.others;
+    // clang-format off
+    expect("floor", check(80, n, small, mild, r, [](const auto& x, const auto&) { return floor(x); }), 1.0, k);
+    expect("ceil", check(81, n, small, mild, r, [](const auto& x, const auto&) { return ceil(x * 3.0); }), 1.0, k);
+    expect("round", check(82, n, small, mild, r, [](const auto& x, const auto&) { return round(x); }), 1.0, k);
+    expect("floor wide", check(83, n, g, r, r, [](const auto& x, const auto&) { return floor(x); }), 1.0, k);
+    RegionConfig unit;
+    unit.expLo = -20;
+    unit.expHi = 0;
+    RecipeConfig quarter = mild;
+    quarter.scale = 0.25;
+    expect("asin", check(84, n, unit, quarter, r, [](const auto& x, const auto&) { return asin(x); }), 0.3, k);
+    expect("acos", check(85, n, unit, quarter, r, [](const auto& x, const auto&) { return acos(x); }), 0.3, k);
+    expect("atan", check(86, n, g, r, r, [](const auto& x, const auto&) { return atan(x); }), 1.0, k);
+    expect("atan small", check(87, n, small, mild, r, [](const auto& x, const auto&) { return atan(x); }), 1.0, k);
+    expect("atan2", check(88, n, small, mild, mild, [](const auto& x, const auto& y) { return atan2(x, y); }), 1.0,
+           ratio.atan2);
+    expect("atan2 wide", check(89, n, g, r, r, [](const auto& x, const auto& y) { return atan2(y, x); }), 1.0,
+           ratio.atan2);
+    expect("Min", check(90, n, g, r, r, [](const auto& x, const auto& y) { return Min(x, y); }), 1.0, k);
+    expect("Max", check(91, n, g, r, r, [](const auto& x, const auto& y) { return Max(x, y); }), 1.0, k);
+    expect("Less", check(92, n, g, r, r, [](const auto& x, const auto& y) { return Less(x, y); }), 1.0, k);
+    expect("LessEq", check(93, n, g, r, r, [](const auto& x, const auto& y) { return LessEq(x, y); }), 1.0, k);
+    expect("Equal", check(94, n, g, r, r, [](const auto& x, const auto& y) { return Equal(x, y); }), 1.0, k);
+    expect("NotEqual", check(95, n, g, r, r, [](const auto& x, const auto& y) { return NotEqual(x, y); }), 1.0, k);
+    expect("And", check(96, n, g, r, r, [](const auto& x, const auto& y) { return And(x, y - 1.0); }), 1.0, k);
+    expect("Or", check(97, n, g, r, r, [](const auto& x, const auto& y) { return Or(x - 0.5, y); }), 1.0, k);
+    expect("Not", check(98, n, g, r, r, [](const auto& x, const auto&) { return Not(x); }), 1.0, k);
+    expect("Select",
+           check(99, n, g, r, r, [](const auto& x, const auto& y) { return Select(Less(x, y), y - x, x * y); }), 0.3,
+           ratio.select);
+    // clang-format on
 }
 
 }  // namespace affray::test::aavalid

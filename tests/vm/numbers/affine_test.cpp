@@ -169,100 +169,19 @@ TEST_CASE("affine functions contain the scalar result", "[vm][affine]") {
     Expect("cos", CheckOp(27, n, small, mild, r, UNARY(cos(x))), 1.0, 2.01);
 }
 
+// The shared sweeps (tests/vm/numbers/aavalid.h), with Affine's width ratio limits to the interval.
+namespace {
+const auto kAffineCheck = [](const auto&... args) { return CheckOp(args...); };
+}  // namespace
+
 TEST_CASE("affine sin and cos over periods and far from 0", "[vm][affine]") {
-    const int n = Samples(20000) / 4;
-    const double pi = 3.141592653589793;
-    RecipeConfig exact;
-    exact.kindHi = 2;
-    // v stays small: the argument's range is u's.
-    exact.coefExpLo = -1;
-    exact.coefExpHi = 0;
-    for (double width : {pi / 2, pi, 2 * pi, 1e-6}) {
-        for (double center : {4.0, 1e3, 1e6}) {
-            RegionConfig g;
-            g.expHi = -2;
-            g.uWidth = width;
-            g.uCenter = center;
-            g.touchZero = 0;
-            INFO("width " << width << " center " << center);
-            Expect("sin", CheckOp(30, n, g, exact, exact, UNARY(sin(x))), 1.0, 2.01);
-            Expect("cos", CheckOp(31, n, g, exact, exact, UNARY(cos(x))), 1.0, 2.01);
-        }
-    }
+    SweepSinCosPeriods(kAffineCheck, Expect, 2.01);
 }
 
-TEST_CASE("affine pow contains the scalar result", "[vm][affine]") {
-    const int n = Samples(20000) / 2;
-    RegionConfig g;
-    g.expLo = -10;
-    g.expHi = 3;
-    RecipeConfig r;
-    r.coefExpHi = 1;
-    for (double p : {2.0, 3.0, -1.0, -2.0, 5.0, 0.5, 2.5, -0.75, 0.0, 1.0, 64.0, 65.0}) {
-        INFO("exponent " << p);
-        Expect("pow(x, p)",
-               CheckOp(40, n, g, r, r,
-                       [p](const auto& x, const auto&) {
-                           using std::pow;
-                           return pow(x, std::decay_t<decltype(x)>(p));
-                       }),
-               0.05, 1e300);
-    }
-    // Negative bases with integer exponents, and varying exponents.
-    RecipeConfig negative = r;
-    negative.kindHi = 2;
-    negative.shifts = {-4.0, -0.5};
-    for (double p : {2.0, 3.0, -3.0, 4.0}) {
-        INFO("negative base, exponent " << p);
-        Expect("pow(-x, n)",
-               CheckOp(41, n, g, negative, r,
-                       [p](const auto& x, const auto&) {
-                           using std::pow;
-                           return pow(x, std::decay_t<decltype(x)>(p));
-                       }),
-               0.2, 1e300);
-    }
-    RecipeConfig exponent = r;
-    exponent.scale = 0.25;
-    Expect("pow(x, y)", CheckOp(42, n, g, r, exponent, BINARY(pow(x, y))), 0.05, 1e300);
-}
+TEST_CASE("affine pow contains the scalar result", "[vm][affine]") { SweepPow(kAffineCheck, Expect); }
 
 TEST_CASE("affine branch functions contain the scalar result", "[vm][affine]") {
-    // Operands from the recipes (nonlinear terms, fresh symbols); tests/vm/branch_test.cpp fixes
-    // every symbol instead, and checks the exactness properties.
-    const int n = Samples(20000) / 2;
-    RegionConfig g;
-    RecipeConfig r;
-    RegionConfig small;
-    small.expLo = -20;
-    small.expHi = 3;
-    RecipeConfig mild = r;
-    mild.coefExpHi = 1;
-    Expect("floor", CheckOp(80, n, small, mild, r, UNARY(floor(x))), 1.0, 1.01);
-    Expect("ceil", CheckOp(81, n, small, mild, r, UNARY(ceil(x * 3.0))), 1.0, 1.01);
-    Expect("round", CheckOp(82, n, small, mild, r, UNARY(round(x))), 1.0, 1.01);
-    Expect("floor wide", CheckOp(83, n, g, r, r, UNARY(floor(x))), 1.0, 1.01);
-    RegionConfig unit;
-    unit.expLo = -20;
-    unit.expHi = 0;
-    RecipeConfig quarter = mild;
-    quarter.scale = 0.25;
-    Expect("asin", CheckOp(84, n, unit, quarter, r, UNARY(asin(x))), 0.3, 1.01);
-    Expect("acos", CheckOp(85, n, unit, quarter, r, UNARY(acos(x))), 0.3, 1.01);
-    Expect("atan", CheckOp(86, n, g, r, r, UNARY(atan(x))), 1.0, 1.01);
-    Expect("atan small", CheckOp(87, n, small, mild, r, UNARY(atan(x))), 1.0, 1.01);
-    Expect("atan2", CheckOp(88, n, small, mild, mild, BINARY(atan2(x, y))), 1.0, 1.01);
-    Expect("atan2 wide", CheckOp(89, n, g, r, r, BINARY(atan2(y, x))), 1.0, 1.01);
-    Expect("Min", CheckOp(90, n, g, r, r, BINARY(Min(x, y))), 1.0, 1.01);
-    Expect("Max", CheckOp(91, n, g, r, r, BINARY(Max(x, y))), 1.0, 1.01);
-    Expect("Less", CheckOp(92, n, g, r, r, BINARY(Less(x, y))), 1.0, 1.01);
-    Expect("LessEq", CheckOp(93, n, g, r, r, BINARY(LessEq(x, y))), 1.0, 1.01);
-    Expect("Equal", CheckOp(94, n, g, r, r, BINARY(Equal(x, y))), 1.0, 1.01);
-    Expect("NotEqual", CheckOp(95, n, g, r, r, BINARY(NotEqual(x, y))), 1.0, 1.01);
-    Expect("And", CheckOp(96, n, g, r, r, BINARY(And(x, y - 1.0))), 1.0, 1.01);
-    Expect("Or", CheckOp(97, n, g, r, r, BINARY(Or(x - 0.5, y))), 1.0, 1.01);
-    Expect("Not", CheckOp(98, n, g, r, r, UNARY(Not(x))), 1.0, 1.01);
-    Expect("Select", CheckOp(99, n, g, r, r, BINARY(Select(Less(x, y), y - x, x * y))), 0.3, 1e300);
+    SweepBranches(kAffineCheck, Expect, {.atan2 = 1.01, .select = 1e300, .others = 1.01});
 }
 
 TEST_CASE("affine and interval contain random programs", "[vm][affine]") {

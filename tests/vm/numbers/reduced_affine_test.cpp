@@ -190,98 +190,21 @@ TEST_CASE("reduced affine functions contain the scalar result", "[vm][reduced]")
     Expect("sqrt(x^2 + y^2)", CheckOp(28, n, g, r, r, BINARY(sqrt(sqr(x) + sqr(y)))), 1.0, 1.5);
 }
 
+// The shared sweeps (tests/vm/numbers/aavalid.h), with ReducedAffine's width ratio limits to Affine.
+namespace {
+const auto kReducedCheck = [](const auto&... args) { return CheckOp(args...); };
+}  // namespace
+
 TEST_CASE("reduced affine sin and cos over periods and far from 0", "[vm][reduced]") {
-    const int n = Samples(20000) / 4;
-    const double pi = 3.141592653589793;
-    RecipeConfig exact;
-    exact.kindHi = 2;
-    exact.coefExpLo = -1;
-    exact.coefExpHi = 0;
-    for (double width : {pi / 2, pi, 2 * pi, 1e-6}) {
-        for (double center : {4.0, 1e3, 1e6}) {
-            RegionConfig g;
-            g.expHi = -2;
-            g.uWidth = width;
-            g.uCenter = center;
-            g.touchZero = 0;
-            INFO("width " << width << " center " << center);
-            Expect("sin", CheckOp(30, n, g, exact, exact, UNARY(sin(x))), 1.0);
-            Expect("cos", CheckOp(31, n, g, exact, exact, UNARY(cos(x))), 1.0);
-        }
-    }
+    SweepSinCosPeriods(kReducedCheck, Expect, 1.01);
 }
 
-TEST_CASE("reduced affine pow contains the scalar result", "[vm][reduced]") {
-    const int n = Samples(20000) / 2;
-    RegionConfig g;
-    g.expLo = -10;
-    g.expHi = 3;
-    RecipeConfig r;
-    r.coefExpHi = 1;
-    for (double p : {2.0, 3.0, -1.0, -2.0, 5.0, 0.5, 2.5, -0.75, 0.0, 1.0, 64.0, 65.0}) {
-        INFO("exponent " << p);
-        // Integer powers square: with one error term per value, a power of u alone keeps less
-        // correlation than Affine's fresh symbols do.
-        Expect("pow(x, p)",
-               CheckOp(40, n, g, r, r,
-                       [p](const auto& x, const auto&) {
-                           using std::pow;
-                           return pow(x, std::decay_t<decltype(x)>(p));
-                       }),
-               0.05, 1e300);
-    }
-    RecipeConfig negative = r;
-    negative.kindHi = 2;
-    negative.shifts = {-4.0, -0.5};
-    for (double p : {2.0, 3.0, -3.0, 4.0}) {
-        INFO("negative base, exponent " << p);
-        Expect("pow(-x, n)",
-               CheckOp(41, n, g, negative, r,
-                       [p](const auto& x, const auto&) {
-                           using std::pow;
-                           return pow(x, std::decay_t<decltype(x)>(p));
-                       }),
-               0.2, 1e300);
-    }
-    RecipeConfig exponent = r;
-    exponent.scale = 0.25;
-    Expect("pow(x, y)", CheckOp(42, n, g, r, exponent, BINARY(pow(x, y))), 0.05, 1e300);
-}
+// (Integer powers square: with one error term per value, a power of u alone keeps less correlation
+// than Affine's fresh symbols do.)
+TEST_CASE("reduced affine pow contains the scalar result", "[vm][reduced]") { SweepPow(kReducedCheck, Expect); }
 
 TEST_CASE("reduced affine branch functions contain the scalar result", "[vm][reduced]") {
-    const int n = Samples(20000) / 2;
-    RegionConfig g;
-    RecipeConfig r;
-    RegionConfig small;
-    small.expLo = -20;
-    small.expHi = 3;
-    RecipeConfig mild = r;
-    mild.coefExpHi = 1;
-    Expect("floor", CheckOp(80, n, small, mild, r, UNARY(floor(x))), 1.0);
-    Expect("ceil", CheckOp(81, n, small, mild, r, UNARY(ceil(x * 3.0))), 1.0);
-    Expect("round", CheckOp(82, n, small, mild, r, UNARY(round(x))), 1.0);
-    Expect("floor wide", CheckOp(83, n, g, r, r, UNARY(floor(x))), 1.0);
-    RegionConfig unit;
-    unit.expLo = -20;
-    unit.expHi = 0;
-    RecipeConfig quarter = mild;
-    quarter.scale = 0.25;
-    Expect("asin", CheckOp(84, n, unit, quarter, r, UNARY(asin(x))), 0.3);
-    Expect("acos", CheckOp(85, n, unit, quarter, r, UNARY(acos(x))), 0.3);
-    Expect("atan", CheckOp(86, n, g, r, r, UNARY(atan(x))), 1.0);
-    Expect("atan small", CheckOp(87, n, small, mild, r, UNARY(atan(x))), 1.0);
-    Expect("atan2", CheckOp(88, n, small, mild, mild, BINARY(atan2(x, y))), 1.0, 1.5);
-    Expect("atan2 wide", CheckOp(89, n, g, r, r, BINARY(atan2(y, x))), 1.0, 1.5);
-    Expect("Min", CheckOp(90, n, g, r, r, BINARY(Min(x, y))), 1.0);
-    Expect("Max", CheckOp(91, n, g, r, r, BINARY(Max(x, y))), 1.0);
-    Expect("Less", CheckOp(92, n, g, r, r, BINARY(Less(x, y))), 1.0);
-    Expect("LessEq", CheckOp(93, n, g, r, r, BINARY(LessEq(x, y))), 1.0);
-    Expect("Equal", CheckOp(94, n, g, r, r, BINARY(Equal(x, y))), 1.0);
-    Expect("NotEqual", CheckOp(95, n, g, r, r, BINARY(NotEqual(x, y))), 1.0);
-    Expect("And", CheckOp(96, n, g, r, r, BINARY(And(x, y - 1.0))), 1.0);
-    Expect("Or", CheckOp(97, n, g, r, r, BINARY(Or(x - 0.5, y))), 1.0);
-    Expect("Not", CheckOp(98, n, g, r, r, UNARY(Not(x))), 1.0);
-    Expect("Select", CheckOp(99, n, g, r, r, BINARY(Select(Less(x, y), y - x, x * y))), 0.3, 1e300);
+    SweepBranches(kReducedCheck, Expect, {.atan2 = 1.5, .select = 1.01, .others = 1.01});
 }
 
 TEST_CASE("reduced affine Join contains both operands", "[vm][reduced]") {
