@@ -35,7 +35,8 @@ ParamInfo ParamFromProgram(const vm::ProgramParam& p) {
     const std::string base = p.type.substr(0, bracket);
     for (Type t : {Type::Float, Type::Point, Type::Vector, Type::Normal, Type::Color, Type::Matrix})
         if (base == ToString(t)) info.type = t;
-    if (bracket != std::string::npos) info.arraySize = std::atoi(p.type.c_str() + bracket + 1);
+    if (bracket != std::string::npos)
+        info.arraySize = static_cast<int>(std::strtol(p.type.c_str() + bracket + 1, nullptr, 10));
     return info;
 }
 }  // namespace

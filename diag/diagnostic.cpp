@@ -43,7 +43,8 @@ void Escape(std::string_view text, std::string* out, size_t bytes = 0, std::stri
             n = 1;
             shown = u == '\n' ? "\\n" : u == '\r' ? "\\r" : std::string("\\x") + kHex[u >> 4] + kHex[u & 15];
         }
-        if (caret && i < bytes) *caret += shown == "\t" ? "\t" : std::string(u >= 0x80 && n > 1 ? 1 : shown.size(), ' ');
+        if (caret && i < bytes)
+            *caret += shown == "\t" ? "\t" : std::string(u >= 0x80 && n > 1 ? 1 : shown.size(), ' ');
         *out += shown;
         i += n;
     }
@@ -157,8 +158,8 @@ std::string Report::format() const {
     std::string out;
     for (const Diagnostic& d : m_list) out += Format(d);
     if (m_errorCount > kMaxErrors)
-        out += OneLine(m_overflowFile.empty() ? "affray" : m_overflowFile) + ": error: too many errors (" + std::to_string(m_errorCount) + "), stopping after " +
-               std::to_string(kMaxErrors) + "\n";
+        out += OneLine(m_overflowFile.empty() ? "affray" : m_overflowFile) + ": error: too many errors (" +
+               std::to_string(m_errorCount) + "), stopping after " + std::to_string(kMaxErrors) + "\n";
     return out;
 }
 

@@ -56,7 +56,9 @@ std::string ReadLine(const std::string& path, int line);
 /// The diagnostics of one run of a front end, in the order reported.
 class Report {
   public:
-    void error(Location where, std::string message) { add({Severity::Error, std::move(where), std::move(message), {}}); }
+    void error(Location where, std::string message) {
+        add({Severity::Error, std::move(where), std::move(message), {}});
+    }
     void warning(Location where, std::string message) {
         add({Severity::Warning, std::move(where), std::move(message), {}});
     }
@@ -84,7 +86,7 @@ class Report {
     std::vector<Diagnostic> m_list;
     int m_errorCount = 0;
     std::string m_overflowFile;  // the file of the first error past kMaxErrors
-    bool m_repeating = false;  // the last error or warning repeated an earlier one
+    bool m_repeating = false;    // the last error or warning repeated an earlier one
 };
 
 /// Prints report.format(), for logs and test messages.

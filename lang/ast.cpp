@@ -121,7 +121,7 @@ std::string Quoted(const std::string& text) {
 }
 
 // "(head a b c)" from already printed parts.
-std::string List(std::string head, const std::vector<std::string>& items) {
+std::string List(const std::string& head, const std::vector<std::string>& items) {
     std::string out = "(" + head;
     for (const std::string& item : items) out += " " + item;
     return out + ")";
@@ -158,12 +158,14 @@ std::string Maybe(const StmtPtr& s) { return s ? ToString(*s) : "()"; }
 
 std::string Params(const std::vector<VarDecl>& params) {
     std::vector<std::string> items;
+    items.reserve(params.size());
     for (const VarDecl& v : params) items.push_back(ToString(v));
     return List("params", items);
 }
 
 std::string Body(const std::vector<StmtPtr>& body) {
     std::vector<std::string> items;
+    items.reserve(body.size());
     for (const StmtPtr& s : body) items.push_back(Maybe(s));
     return List("body", items);
 }

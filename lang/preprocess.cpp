@@ -126,6 +126,7 @@ Capture RunMcpp(const std::vector<std::string>& args) {
     std::vector<std::string> storage{"mcpp"};
     storage.insert(storage.end(), args.begin(), args.end());
     std::vector<char*> argv;
+    argv.reserve(storage.size() + 1);
     for (std::string& s : storage) argv.push_back(s.data());
     argv.push_back(nullptr);
 
@@ -240,7 +241,7 @@ std::string RewriteMarkers(const std::string& out, const FileTable& files) {
         size_t open = line.find('"');
         size_t close = line.rfind('"');
         if (line.substr(0, 6) == "#line " && open != std::string_view::npos && close > open) {
-            long number = std::atol(std::string(line.substr(6, open - 6)).c_str());
+            long number = std::strtol(std::string(line.substr(6, open - 6)).c_str(), nullptr, 10);
             std::string printed(line.substr(open + 1, close - open - 1));
             if (stack.empty()) {
                 stack.push_back({printed, Normal(printed)});
@@ -283,7 +284,8 @@ void AddMessages(const Capture& capture, FileTable& files, PreprocessResult& res
             size_t colon = line.rfind(':', at - 1);
             if (colon == std::string_view::npos) continue;
             std::string file(line.substr(0, colon));
-            int number = std::atoi(std::string(line.substr(colon + 1, at - colon - 1)).c_str());
+            const long parsed = std::strtol(std::string(line.substr(colon + 1, at - colon - 1)).c_str(), nullptr, 10);
+            const int number = parsed > 0 && parsed < (1L << 30) ? static_cast<int>(parsed) : 0;
             std::string message(line.substr(at + kind.tag.size()));
             // mcpp reads the locale to guess the source encoding, and warns about names it does
             // not know (C.UTF-8); the encoding does not matter to RSL.

@@ -47,11 +47,11 @@ bool RibParser::DoPatch(const RibRequest& r) {
         if (n == "P") {
             double v[12];
             if (!ParamNumbers(p, context, 12, v)) return false;
-            for (int i = 0; i < 4; ++i) corners[i] = glm::dvec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+            for (size_t i = 0; i < 4; ++i) corners[i] = glm::dvec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
         } else if (n == "Pw") {  // homogeneous points
             double v[16];
             if (!ParamNumbers(p, context, 16, v)) return false;
-            for (int i = 0; i < 4; ++i) {
+            for (size_t i = 0; i < 4; ++i) {
                 if (v[4 * i + 3] == 0) return Fail(p.at, context + " parameter 'Pw' has a zero w");
                 corners[i] = glm::dvec3(v[4 * i], v[4 * i + 1], v[4 * i + 2]) / v[4 * i + 3];
             }

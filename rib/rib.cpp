@@ -331,7 +331,7 @@ bool RibParser::DoCropWindow(const RibRequest& r) {
     double v[4];
     if (!BeforeWorld(r) || !Numbers(r, 4, "xmin xmax ymin ymax", v)) return false;
     const char* axes[2] = {"x", "y"};
-    for (int i = 0; i < 2; ++i) {
+    for (size_t i = 0; i < 2; ++i) {
         double lo = v[2 * i], hi = v[2 * i + 1];
         if (!(lo >= 0 && lo < hi && hi <= 1))
             return Fail(r.at, std::string("'CropWindow' needs 0 <= ") + axes[i] + "min < " + axes[i] +

@@ -17,7 +17,7 @@ namespace affray::test {
 /// `base`, or AFFRAY_SAMPLES if that is larger.
 inline int Samples(int base) {
     const char* s = std::getenv("AFFRAY_SAMPLES");
-    return s ? std::max(base, std::atoi(s)) : base;
+    return s ? std::max(base, static_cast<int>(std::strtol(s, nullptr, 10))) : base;
 }
 
 struct Rng {

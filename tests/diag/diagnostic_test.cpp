@@ -19,7 +19,8 @@ TEST_CASE("diag: a diagnostic prints as file:line:col, the source line and a car
           "    ^\n");
     // No column: the source line without a caret; no line: the file alone; no file: the program.
     CHECK(Format({Severity::Warning, {"s.rib", 4, 0, "Foo"}, "w", {}}) == "s.rib:4: warning: w\n    Foo\n");
-    CHECK(Format({Severity::Error, {"out.exr"}, "cannot write file: x", {}}) == "out.exr: error: cannot write file: x\n");
+    CHECK(Format({Severity::Error, {"out.exr"}, "cannot write file: x", {}}) ==
+          "out.exr: error: cannot write file: x\n");
     CHECK(Format({Severity::Error, {}, "bad option", {}}) == "affray: error: bad option\n");
 }
 
@@ -34,7 +35,8 @@ TEST_CASE("diag: every message prints on one line and the caret stays under its 
     CHECK(Format({Severity::Error, {"t.sl", 1, 4, "\xc3\xa9tx"}, "m", {}}) ==
           "t.sl:1:4: error: m\n    \xc3\xa9tx\n      ^\n");
     // A stray byte that is not UTF-8 is escaped; a valid sequence is kept.
-    CHECK(OneLine("a\xff" "b\xe2\x82\xac") == "a\\xffb\xe2\x82\xac");
+    CHECK(OneLine("a\xff"
+                  "b\xe2\x82\xac") == "a\\xffb\xe2\x82\xac");
     CHECK(OneLine("\xc0\xaf") == "\\xc0\\xaf");  // overlong
 }
 
@@ -48,7 +50,8 @@ TEST_CASE("diag: a report keeps repeats once, attaches notes, and stops storing 
     CHECK(r.errorCount() == 1);
     REQUIRE(r.all().size() == 2);
     CHECK(r.all()[1].notes.size() == 1);
-    CHECK(r.format() == "a.sl:2:3: warning: unused variable 'x'\na.sl:5:1: error: bad\na.sl:1:1: note: declared here\n");
+    CHECK(r.format() ==
+          "a.sl:2:3: warning: unused variable 'x'\na.sl:5:1: error: bad\na.sl:1:1: note: declared here\n");
 
     Report many;
     for (int i = 1; i <= Report::kMaxErrors + 5; ++i) many.error({"m.sl", i, 1, {}}, "e");

@@ -265,7 +265,7 @@ TEST_CASE("golden: a wrong expectation is reported as a mismatch with a diff", "
     // The driver's own comparison can fail: a real case's output against a doctored expectation.
     const std::vector<fs::path> cases = ListCases(GoldenDir());
     REQUIRE_FALSE(cases.empty());
-    const fs::path file = cases.front();
+    const fs::path& file = cases.front();
     affray::test::TempDir tmp;
     std::string problem;
     const std::string actual = Actual(file, fs::path(tmp.Path("stdout")).parent_path(), &problem);

@@ -60,7 +60,7 @@ TEST_CASE("cli: eval --at prints P and N as JSON with round-trip precision", "[t
     // The second line: r = 0.25, P.z = Km * exp(-2.5 * 0.25) * cos(2 pi 8 0.25) = Km * exp(-0.625).
     double expected = 0.06 * std::exp(-0.625) * std::cos(2 * M_PI * 8 * 0.25);
     std::string second = r.out.substr(r.out.find('\n') + 1);
-    double z = std::stod(second.substr(second.find(",", second.find(",") + 1) + 1));
+    double z = std::stod(second.substr(second.find(',', second.find(',') + 1) + 1));
     CHECK(z == Approx(expected).epsilon(1e-15));
 }
 
@@ -111,7 +111,7 @@ TEST_CASE("cli: compile exits 0 or prints diagnostics and exits 1", "[tools]") {
     Output bad = Run("compile " + (dir / "bad.sl").string(), true);
     CHECK(bad.status == 1);
     CHECK(bad.out.find("bad.sl:2:") != std::string::npos);
-    CHECK(bad.out.find("^") != std::string::npos);
+    CHECK(bad.out.find('^') != std::string::npos);
     CHECK(Run("compile " + (dir / "missing.sl").string()).status == 1);
     Output stats = Run("compile " + kWave + " --stats");
     CHECK(stats.status == 0);
@@ -131,9 +131,9 @@ TEST_CASE("cli: a tiny render is lit, shadowed, and the same with any thread cou
     // that neighbouring tiles share.
     const size_t rays = one.out.find("\"camera_rays\":");
     REQUIRE(rays != std::string::npos);
-    const long long cameraRays = std::atoll(one.out.c_str() + rays + 14);
-    CHECK(cameraRays >= 48 * 36 * 4);
-    CHECK(cameraRays <= 48 * 36 * 4 * 2);
+    const long long cameraRays = std::strtoll(one.out.c_str() + rays + 14, nullptr, 10);
+    CHECK(cameraRays >= 48LL * 36 * 4);
+    CHECK(cameraRays <= 48LL * 36 * 4 * 2);
     CHECK(one.out.find("\"max_certified_error\":") != std::string::npos);
     CHECK(one.out.find("\"shaders\":[{\"name\":\"wave\",\"operations_requested\":") != std::string::npos);
     REQUIRE(

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
@@ -82,15 +84,17 @@ std::string CropArg(const std::array<double, 4>& w) {
     return out.str();
 }
 
+bool SameBits(float a, float b) { return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b); }
+
 bool SameBits(const std::vector<float>& a, const std::vector<float>& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](float x, float y) { return SameBits(x, y); });
 }
 
 /// The first pixel where `a` and `b` differ in a channel of `components` floats per pixel.
 std::string FirstDifference(const std::vector<float>& a, const std::vector<float>& b, int components) {
     if (a.size() != b.size()) return "sizes " + std::to_string(a.size()) + " and " + std::to_string(b.size());
     for (size_t i = 0; i < a.size(); ++i)
-        if (std::memcmp(&a[i], &b[i], sizeof(float)) != 0) {
+        if (!SameBits(a[i], b[i])) {
             const size_t pixel = i / components;
             std::ostringstream out;
             out.precision(9);
@@ -194,7 +198,7 @@ TEST_CASE("crop: a pasted crop differs from the whole render when a crop is miss
         for (int x = range.x0; x < range.x1; ++x)
             for (int c = 0; c < 4; ++c) {
                 const size_t i = (static_cast<size_t>(y) * kWidth + x) * 4 + c;
-                differ += std::memcmp(&crop.rgba[i], &whole.rgba[i], sizeof(float)) != 0;
+                differ += !SameBits(crop.rgba[i], whole.rgba[i]);
             }
     CHECK(differ == 0);
 }

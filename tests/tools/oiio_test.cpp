@@ -8,9 +8,11 @@
 
 #include <sys/wait.h>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 #include "tests/test_util.h"
 
@@ -66,7 +68,7 @@ WorldEnd
 
 /// Renders the scene in `dir` into `name` with `extra` arguments; returns the file's path.
 std::string Render(const test::TempDir& dir, const std::string& name, const std::string& extra) {
-    const std::string path = dir.Path(name);
+    std::string path = dir.Path(name);
     test::CliOutput out =
         test::RunCli("render " + Quote(dir.Path("scene.rib")) + " -o " + Quote(path) + " --quiet " + extra, true);
     INFO(out.out);
@@ -100,8 +102,20 @@ void CheckInfo(const std::string& info) {
     // "FILE :   24 x   16, 15 channel, half/.../float openexr"
     const size_t colon = info.find(" : ");
     REQUIRE(colon != std::string::npos);
-    int width = 0, height = 0, channelCount = 0;
-    REQUIRE(std::sscanf(info.c_str() + colon + 3, " %d x %d, %d channel", &width, &height, &channelCount) == 3);
+    // "W x H, N channel": three integers, read with strtol so that a malformed line fails here.
+    const char* p = info.c_str() + colon + 3;
+    char* end = nullptr;
+    const long width = std::strtol(p, &end, 10);
+    REQUIRE(end != p);
+    REQUIRE(std::string_view(end).substr(0, 3) == " x ");
+    p = end + 3;
+    const long height = std::strtol(p, &end, 10);
+    REQUIRE(end != p);
+    REQUIRE(std::string_view(end).substr(0, 2) == ", ");
+    p = end + 2;
+    const long channelCount = std::strtol(p, &end, 10);
+    REQUIRE(end != p);
+    REQUIRE(std::string_view(end).substr(0, 8) == " channel");
     CHECK(width == kWidth);
     CHECK(height == kHeight);
     CHECK(channelCount == 15);

@@ -95,6 +95,7 @@ TEST_CASE("Progress counts tiles from many threads", "[progress]") {
         Progress progress(
             kTotal, out.file, true, [] { return 0.0; }, 0.0);
         std::vector<std::thread> threads;
+        threads.reserve(kThreads);
         for (int t = 0; t < kThreads; ++t)
             threads.emplace_back([&] {
                 for (int i = 0; i < kTilesEach; ++i) progress.TileDone();
