@@ -1,13 +1,20 @@
 // compiler/builtins.cpp: the table of built-in functions and how each lowers.
-// To add a built-in: add a row to kBuiltins with its argument pattern and a lowering lambda.
+// A VM operation whose RSL spelling in the opcode table (vm/opcodes.h) is a call of its operands,
+// "name(x)" or "name(y, x)", is the built-in of that name on floats, with no row here (sin,
+// atan(y, x), ...): adding such an operation to the table adds the built-in. For anything else
+// (other argument types, a lowering to several operations) add a row to kRows with its argument
+// pattern and a lowering lambda; a row takes the place of the table's built-in of the same name
+// and argument count.
 // Pattern letters: 'f' float, 't' point/vector/normal (a float is promoted), 'c' color,
 // 'a' float or any triple (the result has the widest argument type), 'm' matrix (a float is
 // promoted: x times the identity).
 #include "compiler/builtins.h"
 
+#include <cctype>
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <string_view>
 
 namespace affray::compiler {
 
@@ -16,26 +23,36 @@ namespace {
 using Lowering = std::function<Value(ValueOps&, const std::vector<Value>&)>;
 
 struct Builtin {
-    const char* name;
+    std::string_view name;
     const char* pattern;
     Lowering lower;
 };
 
 Value Scalar(ValueOps& ops, IrOp op, const Value& x) { return ops.Map(op, x); }
 
-const std::vector<Builtin>& Table() {
+/// The operand count of an RSL spelling that calls its operands, "name(x)" or "name(y, x)" (a
+/// letter each), and its name; 0 for any other spelling ("x + y", "c ? x : y").
+int CallOperands(std::string_view rsl, std::string_view* name) {
+    const size_t open = rsl.find('(');
+    if (open == 0 || open == std::string_view::npos) return 0;
+    for (size_t i = 0; i < open; ++i)
+        if (!std::isalnum(static_cast<unsigned char>(rsl[i]))) return 0;
+    *name = rsl.substr(0, open);
+    // Then a letter and ", " or ")", as many times as there are operands.
+    for (size_t i = open + 1, count = 1; i + 1 < rsl.size(); i += 3, ++count) {
+        if (!std::islower(static_cast<unsigned char>(rsl[i]))) return 0;
+        if (rsl.substr(i + 1) == ")") return static_cast<int>(count);
+        if (rsl.substr(i + 1, 2) != ", ") return 0;
+    }
+    return 0;
+}
+
+const std::vector<Builtin>& Rows() {
     using A = const std::vector<Value>&;
-    static const std::vector<Builtin> kBuiltins = {
-        {"sin", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Sin, a[0]); }},
-        {"cos", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Cos, a[0]); }},
+    static const std::vector<Builtin> kRows = {
         {"tan", "f", [](ValueOps& o, A a) { return o.Div(Scalar(o, IrOp::Sin, a[0]), Scalar(o, IrOp::Cos, a[0])); }},
-        {"exp", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Exp, a[0]); }},
-        {"log", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Log, a[0]); }},
         {"log", "ff", [](ValueOps& o, A a) { return o.Div(Scalar(o, IrOp::Log, a[0]), Scalar(o, IrOp::Log, a[1])); }},
-        {"sqrt", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Sqrt, a[0]); }},
         {"inversesqrt", "f", [](ValueOps& o, A a) { return o.Div(o.Constant(1.0), Scalar(o, IrOp::Sqrt, a[0])); }},
-        {"abs", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Abs, a[0]); }},
-        {"sign", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Sign, a[0]); }},
         {"pow", "ff", [](ValueOps& o, A a) { return o.Pow(a[0], a[1]); }},
         {"radians", "f", [](ValueOps& o, A a) { return o.Mul(a[0], o.Constant(std::numbers::pi / 180)); }},
         {"degrees", "f", [](ValueOps& o, A a) { return o.Mul(a[0], o.Constant(180 / std::numbers::pi)); }},
@@ -75,10 +92,6 @@ const std::vector<Builtin>& Table() {
         {"floor", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::Floor, a[0]); }},
         {"ceil", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::Ceil, a[0]); }},
         {"round", "a", [](ValueOps& o, A a) { return Scalar(o, IrOp::Round, a[0]); }},
-        {"asin", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Asin, a[0]); }},
-        {"acos", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Acos, a[0]); }},
-        {"atan", "f", [](ValueOps& o, A a) { return Scalar(o, IrOp::Atan, a[0]); }},
-        {"atan", "ff", [](ValueOps& o, A a) { return o.Binary(IrOp::Atan2, a[0], a[1]); }},
         {"mod", "aa",
          [](ValueOps& o, A a) {
              // RenderMan's mod has the sign of the divisor: a - b*floor(a/b)
@@ -134,6 +147,33 @@ const std::vector<Builtin>& Table() {
              return o.Add(o.Mul(a[0], oneMinusT), o.Mul(a[1], a[2]));
          }},
     };
+    return kRows;
+}
+
+/// The table's built-ins that no row takes the place of (see the head comment), in the table's
+/// order, then the rows.
+const std::vector<Builtin>& Table() {
+    static const std::vector<Builtin> kBuiltins = [] {
+        using A = const std::vector<Value>&;
+        std::vector<Builtin> all;
+        for (int i = 1; i < vm::kOperationCount; ++i) {
+            const vm::Operation f = static_cast<vm::Operation>(i);
+            std::string_view name;
+            const int n = CallOperands(vm::Info(f).rsl, &name);
+            if (n < 1 || n > 2 || n != vm::Info(f).operands) continue;
+            bool replaced = false;
+            for (const Builtin& row : Rows())
+                replaced |= row.name == name && std::char_traits<char>::length(row.pattern) == static_cast<size_t>(n);
+            if (replaced) continue;
+            const IrOp op = IrOpOf(f);
+            if (n == 1)
+                all.push_back({name, "f", [op](ValueOps& o, A a) { return Scalar(o, op, a[0]); }});
+            else
+                all.push_back({name, "ff", [op](ValueOps& o, A a) { return o.Binary(op, a[0], a[1]); }});
+        }
+        all.insert(all.end(), Rows().begin(), Rows().end());
+        return all;
+    }();
     return kBuiltins;
 }
 
