@@ -289,7 +289,7 @@ std::string RenderStats::ToJson() const {
         perRay(camera.regionsEvaluated, cameraRays),
         static_cast<unsigned long long>(camera.depthLimitHits) + shadow.depthLimitHits,
         std::max(camera.maxHitError, 0.0),
-        static_cast<unsigned long long>(camera.parallelogramHits + shadow.parallelogramHits),
+        static_cast<unsigned long long>(camera.parallelogramHits) + shadow.parallelogramHits,
         static_cast<unsigned long long>(shadow.rays), perRay(shadow.regionsBounded, shadow.rays),
         perRay(shadow.regionsEvaluated, shadow.rays),
         static_cast<unsigned long long>(camera.budgetExhausted + shadow.budgetExhausted),
