@@ -50,7 +50,6 @@ int CallOperands(std::string_view rsl, std::string_view* name) {
 const std::vector<Builtin>& Rows() {
     using A = const std::vector<Value>&;
     static const std::vector<Builtin> kRows = {
-        {"tan", "f", [](ValueOps& o, A a) { return o.Div(Scalar(o, IrOp::Sin, a[0]), Scalar(o, IrOp::Cos, a[0])); }},
         {"log", "ff", [](ValueOps& o, A a) { return o.Div(Scalar(o, IrOp::Log, a[0]), Scalar(o, IrOp::Log, a[1])); }},
         {"inversesqrt", "f", [](ValueOps& o, A a) { return o.Div(o.Constant(1.0), Scalar(o, IrOp::Sqrt, a[0])); }},
         {"pow", "ff", [](ValueOps& o, A a) { return o.Pow(a[0], a[1]); }},

@@ -195,7 +195,7 @@ template <bool kRecord>
 void Interpreter<T>::RunOnce() {
     // For T = double the std functions are the scalar semantics; other types find theirs by ADL.
     using std::abs, std::cos, std::exp, std::log, std::pow, std::sin, std::sqrt;
-    using std::acos, std::asin, std::atan, std::atan2, std::ceil, std::floor, std::round;
+    using std::acos, std::asin, std::atan, std::atan2, std::ceil, std::floor, std::round, std::tan;
     T* R = m_registers.data();
     const double* K = m_program->constants.data();
     // Parameter registers may be reused once read, so they are written before every run.
@@ -308,6 +308,7 @@ void Interpreter<T>::RunOnce() {
                 A = CellNoise(args, dims, in.flags);
                 break;
             }
+            case Op::Tan: A = tan(R[in.b]); break;
         }
         if constexpr (kRecord) {
             if (std::isnan(constant)) constant = detail::ResultConstant(in.op, A);

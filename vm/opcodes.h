@@ -58,6 +58,7 @@ enum OperationFlag : uint8_t {
     X(Log, 1, kFoldable, "log(x)")                                        \
     X(Sin, 1, kFoldable, "sin(x)")                                        \
     X(Cos, 1, kFoldable, "cos(x)")                                        \
+    X(Tan, 1, kFoldable, "tan(x)")                                        \
     X(Abs, 1, kFoldable, "abs(x)")                                        \
     X(Sign, 1, kFoldable, "sign(x)")                                      \
     X(DerivU, 1, kDerivative, "Du(x)")                                    \
@@ -179,7 +180,8 @@ constexpr bool Has(Operation f, OperationFlag flag) { return (Info(f).flags & fl
     X(CellNoise1, 59, "wr-", CellNoise, "R[A] := cellnoise(R[B]), channel = flags")                  \
     X(CellNoise2, 60, "wrr", CellNoise, "R[A] := cellnoise(R[B], R[C])")                             \
     X(CellNoise3, 61, "wrrr--", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D])")                    \
-    X(CellNoise4, 62, "wrrrr-", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D], R[E])")
+    X(CellNoise4, 62, "wrrrr-", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D], R[E])")              \
+    X(Tan, 63, "wr-", Tan, "R[A] := tan(R[B])")
 
 enum class Op : uint8_t {
 #define AFFRAY_OP_ENUM(name, number, format, operation, meaning) name = number,

@@ -169,6 +169,7 @@ double Exp(const double* x, uint8_t) { return std::exp(x[0]); }
 double Log(const double* x, uint8_t) { return std::log(x[0]); }
 double Sin(const double* x, uint8_t) { return std::sin(x[0]); }
 double Cos(const double* x, uint8_t) { return std::cos(x[0]); }
+double Tan(const double* x, uint8_t) { return std::tan(x[0]); }
 double Abs(const double* x, uint8_t) { return std::fabs(x[0]); }
 double Sign(const double* x, uint8_t) { return x[0] > 0 ? 1.0 : x[0] < 0 ? -1.0 : x[0]; }
 double Pow(const double* x, uint8_t) { return std::pow(x[0], x[1]); }
@@ -218,6 +219,8 @@ bool EitherAtZero(const double* x, double reach) { return std::fabs(x[0]) <= rea
 bool Tie(const double* x, double reach) { return std::fabs(x[0] - x[1]) <= 2 * reach; }
 bool AtInteger(const double* x, double reach) { return NearInteger(x[0], reach); }
 bool AtHalf(const double* x, double reach) { return NearHalf(x[0], reach); }
+// tan's poles (k + 1/2) pi, where |cos| is about the distance to the pole.
+bool AtPole(const double* x, double reach) { return std::fabs(std::cos(x[0])) <= 2 * reach; }
 // atan2(y, x): the branch cut y = 0, x < 0, and the origin.
 bool Atan2Cut(const double* x, double reach) { return std::fabs(x[0]) <= reach && x[1] <= reach; }
 // A point bound cannot tell -0 from +0, which atan2 distinguishes on its cut (Sample::loose).
@@ -322,6 +325,7 @@ constexpr Sample SampleFor(Op op) {
         case Op::CellNoise2: return NoiseSample(ref::CellNoise<2>, 2, 0, 3).withKink(kink::CellFace<2>);
         case Op::CellNoise3: return NoiseSample(ref::CellNoise<3>, 3, 0, 3).withKink(kink::CellFace<3>);
         case Op::CellNoise4: return NoiseSample(ref::CellNoise<4>, 4, 0, 3).withKink(kink::CellFace<4>);
+        case Op::Tan: return Make(ref::Tan, 1, D{.lo = -1e4, .hi = 1e4, .maxRadius = 2}).withKink(kink::AtPole);
     }
     return Sample();
 }

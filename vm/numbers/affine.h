@@ -147,6 +147,9 @@ class Affine {
     /// symbol past a width of 2*pi or beyond |x| = 1e8.
     friend Affine sin(const Affine& x);
     friend Affine cos(const Affine& x);
+    /// Secant slope with the remainder bounded by a tangent line on each side of tan's zero;
+    /// Unbounded where a pole may lie in the range (as Interval's tan).
+    friend Affine tan(const Affine& x);
     /// x or -x where the sign is decided, else min-range [0, max|x|] on a fresh symbol.
     friend Affine abs(const Affine& x);
     /// 1, -1 or 0 where decided, else the hull of the possible signs on a fresh symbol.
@@ -260,6 +263,8 @@ class Affine {
     static Affine Reciprocal(const Affine& x);
     /// sin or cos (affine_functions.cpp).
     static Affine SinOrCos(const Affine& x, bool isCos);
+    /// tan (affine_functions.cpp).
+    static Affine TanForm(const Affine& x);
     /// x^n for an integer 1 <= n by repeated squaring.
     static Affine IntegerPower(const Affine& x, int n);
     /// x^p for a constant p that is not a small integer (or x constant): PowConstantFit.

@@ -21,10 +21,11 @@ namespace affray::vm {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;  // 2*pi rounded to nearest (below 2*pi)
-constexpr double kPi = 3.141592653589793;     // pi rounded to nearest (below pi)
-constexpr double kTwoPiBelow = 6.2831853;     // sin and cos cover [-1, 1] past this width
-constexpr double kTrigAnalysisLimit = 1e8;    // beyond it, sin and cos are just [-1, 1]
+constexpr double kTwoPi = 6.283185307179586;     // 2*pi rounded to nearest (below 2*pi)
+constexpr double kPi = 3.141592653589793;        // pi rounded to nearest (below pi)
+constexpr double kPiAbove = 3.1415926535897936;  // the next double (above pi)
+constexpr double kTwoPiBelow = 6.2831853;        // sin and cos cover [-1, 1] past this width
+constexpr double kTrigAnalysisLimit = 1e8;       // beyond it, sin and cos are just [-1, 1]
 
 // An enclosure of the true f(t), and of glibc's f near t, from glibc's value r = f(t).
 Interval LibmAt(double r) {
@@ -347,6 +348,62 @@ AffineFit InverseTrigFit(const Interval& range, int which) {
     if (!f.ok) return AffineFit::RangeOf(all());
     AffineFit fit = AffineFit::Line(f.alpha, f.lo, f.hi, all());
     fit.lineLimit = 1.25 * fit.range.radius();
+    return fit;
+}
+
+// --- tan ----------------------------------------------------------------------------------------
+
+namespace {
+
+// tan' = 1 + tan^2 (= 1/cos^2), from an enclosure of tan.
+Interval TanDerivative(const Interval& t) { return 1.0 + sqr(tan(t)); }
+// For TangentBound: tan is convex where it is >= 0 (tan'' = 2 tan tan'), on the right half of
+// its branch.
+const InverseTrig kTan = {[](double t) { return std::tan(t); }, TanDerivative, nullptr, true};
+
+}  // namespace
+
+// Secant slope (Chebyshev's choice) over [a, b] within one branch ((n - 1/2) pi, (n + 1/2) pi):
+// tan is concave left of its zero n*pi and convex right of it, known only to an enclosure Z of
+// n*pi. So g(t) = tan(t) - alpha*t is bounded at the endpoints, on the concave side [a, Z.lo]
+// from above and on the convex side [Z.hi, b] from below by the tangent line at the point where
+// tan' = alpha (tan = -+sqrt(alpha - 1), so t = n*pi -+ atan(sqrt(alpha - 1))), and over the part
+// of Z in [a, b] (a sliver of a few ulps of n*pi, where the side is unknown; it holds the sides'
+// inner ends) in interval arithmetic. A pole may lie in the range: Unbounded, as Interval's tan.
+// As for atan, a fit wider than the interval range by a quarter gives the interval range.
+AffineFit TanFit(const Interval& range) {
+    const Interval all = tan(range);
+    if (all.isUnbounded()) return AffineFit::Of(AffineFit::Kind::Unbounded);
+    const double a = range.lo(), b = range.hi();
+    if (a == b) return AffineFit::RangeOf(all);
+    // The branch: n from the midpoint, kept only if both ends lie clearly inside it.
+    const double n = std::round((0.5 * a + 0.5 * b) / kPi);
+    const double ta = a / kPi - n, tb = b / kPi - n;
+    if (!(ta > -0.5 + 0x1p-30 * (1 + std::fabs(n)) && tb < 0.5 - 0x1p-30 * (1 + std::fabs(n))))
+        return AffineFit::RangeOf(all);
+    const double fa = std::tan(a), fb = std::tan(b);
+    const double alpha = (fb - fa) / (b - a);
+    if (!(alpha > 0) || !std::isfinite(alpha)) return AffineFit::RangeOf(all);
+    Interval ga = GAt(LibmAt(fa), alpha, a), gb = GAt(LibmAt(fb), alpha, b);
+    double gLo = std::fmin(ga.lo(), gb.lo()), gHi = std::fmax(ga.hi(), gb.hi());
+    const Interval zero = Interval(n) * Interval(kPi, kPiAbove);
+    const double offset = std::atan(std::sqrt(std::fmax(alpha - 1.0, 0.0)));
+    if (a < zero.lo())  // concave
+        gHi = std::fmax(gHi, TangentBound(kTan, alpha, n * kPi - offset, a, std::fmin(b, zero.lo())).hi());
+    if (b > zero.hi())  // convex
+        gLo = std::fmin(gLo, TangentBound(kTan, alpha, n * kPi + offset, std::fmax(a, zero.hi()), b).lo());
+    const double p = std::fmax(a, zero.lo()), q = std::fmin(b, zero.hi());
+    if (p <= q) {
+        const Interval t(p, q);
+        const Interval g = tan(t) - alpha * t;
+        gLo = std::fmin(gLo, g.lo());
+        gHi = std::fmax(gHi, g.hi());
+    }
+    // tan is monotone: |tan| is largest at an endpoint.
+    const Fit f = MakeFit(alpha, gLo, gHi, MaxAbs(all), kLibmRel);
+    if (!f.ok) return AffineFit::RangeOf(all);
+    AffineFit fit = AffineFit::Line(f.alpha, f.lo, f.hi, all);
+    fit.lineLimit = 1.25 * all.radius();
     return fit;
 }
 

@@ -97,6 +97,8 @@ AffineFit ExpFit(const Interval& range);
 /// log (Unbounded unless the range is > 0).
 AffineFit LogFit(const Interval& range);
 AffineFit SinCosFit(const Interval& range, bool isCos);
+/// tan (Unbounded where a pole may lie in the range, as Interval's tan).
+AffineFit TanFit(const Interval& range);
 AffineFit AbsFit(const Interval& range);
 AffineFit SignFit(const Interval& range);
 /// t^p for a constant p that is not a small integer (or a constant base).

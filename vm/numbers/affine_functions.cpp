@@ -79,6 +79,13 @@ Affine Affine::SinOrCos(const Affine& x, bool isCos) {
 Affine sin(const Affine& x) { return Affine::Tighten(Affine::SinOrCos(x, false), sin(x.range())); }
 Affine cos(const Affine& x) { return Affine::Tighten(Affine::SinOrCos(x, true), cos(x.range())); }
 
+Affine Affine::TanForm(const Affine& x) {
+    if (x.isUnbounded()) return x;
+    return FromFit(x, TanFit(x.range()));
+}
+
+Affine tan(const Affine& x) { return Affine::Tighten(Affine::TanForm(x), tan(x.range())); }
+
 Affine Affine::AbsForm(const Affine& x) {
     if (x.isUnbounded()) return x;
     return FromFit(x, AbsFit(x.range()));

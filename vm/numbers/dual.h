@@ -145,6 +145,15 @@ Dual<T> cos(const Dual<T>& a) {
     T s = -sin(a.v);
     return {cos(a.v), s * a.du, s * a.dv};
 }
+/// tan(a)' = a' / cos^2(a) = a' (1 + tan^2(a)), which reuses tan(a); exactly 0 where a' is
+/// (ChainScale: a bound of tan may be Unbounded).
+template <class T>
+Dual<T> tan(const Dual<T>& a) {
+    using std::tan;
+    T t = tan(a.v);
+    T k = 1.0 + sqr(t);
+    return {t, ChainScale(k, a.du), ChainScale(k, a.dv)};
+}
 /// |a|' = sign(a) a'
 template <class T>
 Dual<T> abs(const Dual<T>& a) {

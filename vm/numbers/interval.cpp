@@ -25,18 +25,25 @@ Interval LibmEnclosure(double r) {
     return Interval(LibmDown(r), LibmUp(r));
 }
 
+// The integers k with t = (k + phase) * pi possibly in [a, b] (finite, a <= b): kLo..kHi. t/pi is
+// computed with a relative error below 4u, so a tolerance of 2^-40 (1 + |t/pi|) cannot exclude
+// a k whose t is inside; including one that is just outside is harmless.
+void MultiplesOfPi(double a, double b, double phase, double* kLo, double* kHi) {
+    double ta = a * kInvPi - phase;
+    double tb = b * kInvPi - phase;
+    *kLo = std::ceil(ta - 0x1p-40 * (1 + std::fabs(ta)));
+    *kHi = std::floor(tb + 0x1p-40 * (1 + std::fabs(tb)));
+}
+
 // Bounds of sin (phase 0.5) or cos (phase 0) over [a, b] (finite, a <= b): the values at the
 // endpoints, plus +-1 for every extremum t = (k + phase) * pi that may lie inside, k even giving
-// +1. t/pi is computed with a relative error below 4u, so a tolerance of 2^-40 (1 + |t/pi|)
-// cannot exclude an extremum that is inside; including one that is just outside is harmless.
+// +1.
 Interval TrigRange(double a, double b, double fa, double fb, double phase) {
     if (b - a >= kTwoPiBelow || std::fmax(std::fabs(a), std::fabs(b)) > kTrigAnalysisLimit) return Interval(-1.0, 1.0);
     double lo = std::fmin(LibmDown(fa), LibmDown(fb));
     double hi = std::fmax(LibmUp(fa), LibmUp(fb));
-    double ta = a * kInvPi - phase;
-    double tb = b * kInvPi - phase;
-    double kLo = std::ceil(ta - 0x1p-40 * (1 + std::fabs(ta)));
-    double kHi = std::floor(tb + 0x1p-40 * (1 + std::fabs(tb)));
+    double kLo, kHi;
+    MultiplesOfPi(a, b, phase, &kLo, &kHi);
     for (double k = kLo; k <= kHi && k <= kLo + 2; k += 1) {
         if (std::fmod(k, 2.0) == 0)
             hi = 1.0;
@@ -145,6 +152,20 @@ Interval cos(const Interval& x) {
 
 Interval SinCosFromEnds(double a, double b, double fa, double fb, bool isCos) {
     return TrigRange(a, b, fa, fb, isCos ? 0.0 : 0.5);
+}
+
+// tan increases on each branch ((k - 1/2) pi, (k + 1/2) pi), so over a range holding no pole
+// (k + 1/2) pi (sin's extrema, found the same way) the scalar tan lies within glibc's slack of
+// [tan(lo), tan(hi)]. A pole may lie inside: Unbounded (the doubles nearest a pole have tangents
+// near +-1.6e16, and either sign). A point is its own branch at any magnitude.
+Interval tan(const Interval& x) {
+    if (x.isUnbounded()) return x;
+    if (x.isPoint()) return LibmEnclosure(std::tan(x.m_lo));
+    if (std::fmax(std::fabs(x.m_lo), std::fabs(x.m_hi)) > kTrigAnalysisLimit) return Interval::Unbounded();
+    double kLo, kHi;
+    MultiplesOfPi(x.m_lo, x.m_hi, 0.5, &kLo, &kHi);
+    if (kLo <= kHi) return Interval::Unbounded();
+    return Interval(LibmDown(std::tan(x.m_lo)), LibmUp(std::tan(x.m_hi)));
 }
 
 Interval abs(const Interval& x) {

@@ -102,6 +102,9 @@ class Interval {
     /// Exact extremum analysis within a period; [-1, 1] past 2*pi or beyond |x| = 1e8.
     friend Interval sin(const Interval& x);
     friend Interval cos(const Interval& x);
+    /// Increasing between poles: [tan(lo), tan(hi)] where no pole k*pi + pi/2 may lie in x, else
+    /// Unbounded (as past |x| = 1e8, except for a point).
+    friend Interval tan(const Interval& x);
     friend Interval abs(const Interval& x);
     /// The hull of the signs (-1, 0, 1) of the values.
     friend Interval sign(const Interval& x);

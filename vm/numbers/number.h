@@ -1,7 +1,7 @@
 // vm/numbers/number.h: the Number concept: what the interpreter (and every templated built-in or base
 // surface) may ask of a number type, and nothing more.
 // Owns the concept, the double overloads that make double a Number (double is the scalar
-// semantics every other type bounds: sqr(x) = x*x, sqrt/exp/log/sin/cos/pow/floor/ceil/round/
+// semantics every other type bounds: sqr(x) = x*x, sqrt/exp/log/sin/cos/tan/pow/floor/ceil/round/
 // asin/acos/atan/atan2 = std's, abs = std::fabs, sign in {-1, 0, 1}, Min/Max = std::fmin/fmax
 // with the first operand on a tie (-0, +0), IEEE division), and NumberTraits for every type the
 // VM is instantiated on.
@@ -45,6 +45,7 @@ using std::pow;
 using std::round;
 using std::sin;
 using std::sqrt;
+using std::tan;
 
 /// x*x.
 inline double sqr(double x) { return x * x; }
@@ -178,6 +179,7 @@ concept Number = std::copyable<T> && std::convertible_to<double, T> &&
                      { log(a) } -> std::same_as<T>;
                      { sin(a) } -> std::same_as<T>;
                      { cos(a) } -> std::same_as<T>;
+                     { tan(a) } -> std::same_as<T>;
                      { abs(a) } -> std::same_as<T>;
                      { sign(a) } -> std::same_as<T>;
                      { pow(a, b) } -> std::same_as<T>;

@@ -181,6 +181,11 @@ ReducedAffine cos(const ReducedAffine& x) {
     return ReducedAffine::FromFitTight(x, SinCosFit(x.range(), true), [](const Interval& r) { return cos(r); });
 }
 
+ReducedAffine tan(const ReducedAffine& x) {
+    if (x.isUnbounded()) return x;
+    return ReducedAffine::FromFitTight(x, TanFit(x.range()), [](const Interval& r) { return tan(r); });
+}
+
 ReducedAffine abs(const ReducedAffine& x) {
     if (x.isUnbounded()) return x;
     return ReducedAffine::FromFitTight(x, AbsFit(x.range()), [](const Interval& r) { return abs(r); });

@@ -116,6 +116,7 @@ class ReducedAffine {
     friend ReducedAffine log(const ReducedAffine& x);
     friend ReducedAffine sin(const ReducedAffine& x);
     friend ReducedAffine cos(const ReducedAffine& x);
+    friend ReducedAffine tan(const ReducedAffine& x);
     friend ReducedAffine abs(const ReducedAffine& x);
     friend ReducedAffine sign(const ReducedAffine& x);
     friend ReducedAffine pow(const ReducedAffine& x, const ReducedAffine& y);
