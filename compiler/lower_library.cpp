@@ -298,7 +298,7 @@ Value Lowerer::Spline(const SplineBasis& basis, const Value& t, const std::vecto
     const Value segment = m_ops.Binary(IrOp::Min, m_ops.Map(IrOp::Floor, x), m_ops.Constant(segments - 1));
     const Value u = m_ops.Sub(x, segment);
     auto piece = [&](int s) {
-        const Value* k = &knots[static_cast<size_t>(s * basis.step)];
+        const Value* k = &knots[static_cast<size_t>(s) * static_cast<size_t>(basis.step)];
         Value c[4];
         for (int row = 0; row < 4; ++row) {
             c[row] = m_ops.Mul(m_ops.Constant(basis.m[row][0]), k[0]);

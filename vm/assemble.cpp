@@ -167,7 +167,7 @@ void Assembler::Finish(const std::vector<Output>& outputs, const std::vector<Pro
             }
         }
         const int words = Words(n.op);
-        for (int w = 0; w < words; ++w) {
+        for (size_t w = 0; w < size_t(words); ++w) {
             out->code.push_back(Instr{w == 0 ? n.op : Op::Ext, w == 0 ? n.flags : uint8_t(0), slots[3 * w],
                                       slots[3 * w + 1], slots[3 * w + 2]});
             if (lines) out->lines.push_back(n.line);

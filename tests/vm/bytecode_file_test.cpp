@@ -179,7 +179,7 @@ TEST_CASE("layout: little-endian fields at documented offsets, exact doubles", "
 }
 
 TEST_CASE("wrong magic, wrong version and trailing bytes", "[vm][bytecode]") {
-    std::string bytes = WaveBytes();
+    const std::string& bytes = WaveBytes();
     CHECK(LoadError(bytes) == "<loaded>");
     CHECK(LoadError("hello") == "not an affray bytecode file");
     CHECK(LoadError("#version 1\nsurface x() {}") == "not an affray bytecode file");

@@ -259,7 +259,7 @@ constexpr Sample SampleFor(Op op) {
     constexpr D exponential{.lo = -760, .hi = 720, .maxRadius = 20};  // underflow and overflow
     constexpr D angle{.lo = -1e9, .hi = 1e9, .maxRadius = 10};        // past 1e8 too
     switch (op) {
-        case Op::LoadK: return Make(ref::First, 1, wide);
+        case Op::LoadK:
         case Op::Move: return Make(ref::First, 1, wide);
         case Op::Neg: return Make(ref::Neg, 1, wide);
         case Op::AddRR:

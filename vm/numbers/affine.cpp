@@ -118,6 +118,8 @@ bool Affine::finish(double center, double error, Terms& terms) {
                 if (terms.symbols[i] < kFirstFreshSymbol) continue;
                 if (smallest < 0 || std::fabs(terms.coefs[i]) < std::fabs(terms.coefs[smallest])) smallest = i;
             }
+            // Only eps_u and eps_v left over capacity: a capacity below 2 (SetCapacity refuses it).
+            if (smallest < 0) return false;
             error = AddUp(error, std::fabs(terms.coefs[smallest]));
             for (int i = smallest + 1; i < terms.count; ++i) {
                 terms.symbols[i - 1] = terms.symbols[i];

@@ -168,7 +168,9 @@ Fit TrigFit(double a, double b, bool isCos, double* faOut, double* fbOut) {
     }
     for (double base : bases) {
         double k0 = std::floor((a - base) / kTwoPi);
-        for (double k = k0 - 2; k <= k0 + 3; k += 1) {
+        // k runs over k0 - 2 ... k0 + 3 (integers, exact: |k0| < 2^53 past the analysis limit).
+        for (int step = -2; step <= 3; ++step) {
+            const double k = k0 + step;
             double xi = base + k * kTwoPi;
             double err = 0x1p-47 * (std::fabs(base) + 8 * std::fabs(k) + std::fabs(xi) + 4);
             // xi grows by 2*pi per k, err by under 1e-12: past b once, past b for every later k.

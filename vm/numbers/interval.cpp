@@ -44,7 +44,8 @@ Interval TrigRange(double a, double b, double fa, double fb, double phase) {
     double hi = std::fmax(LibmUp(fa), LibmUp(fb));
     double kLo, kHi;
     MultiplesOfPi(a, b, phase, &kLo, &kHi);
-    for (double k = kLo; k <= kHi && k <= kLo + 2; k += 1) {
+    for (int step = 0; step <= 2 && kLo + step <= kHi; ++step) {
+        const double k = kLo + step;
         if (std::fmod(k, 2.0) == 0)
             hi = 1.0;
         else

@@ -508,10 +508,10 @@ struct CellBox {
     double kLo[4] = {0, 0, 0, 0}, count[4] = {1, 1, 1, 1};
     double cells = 1;  // their number (a double: it may be huge)
 
-    /// False if dims is out of 1..4 or an input is unbounded.
+    /// False if dims is out of 1..4, p is null or an input is unbounded.
     template <class T>
     bool Of(const T* p, int dims) {
-        if (dims < 1 || dims > 4) return false;
+        if (p == nullptr || dims < 1 || dims > 4) return false;
         for (int i = 0; i < dims; ++i) {
             Interval r = RangeOf(ValueOf(p[i]));
             if (r.isUnbounded()) return false;
@@ -543,14 +543,14 @@ struct CellBox {
 template <class T>
 T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
                 NoiseBoundMethod method = NoiseBoundMethod::Auto) {
-    const T nan = SpreadOf<T>(Interval::Unbounded());
+    const auto unknown = [] { return SpreadOf<T>(Interval::Unbounded()); };
     CellBox box;
-    if (!box.Of(p, dims)) return nan;
+    if (!box.Of(p, dims)) return unknown();
     int64_t periods[4];
     bool cellwise = box.cells <= kNoiseCellCap;
     for (int i = 0; period && i < dims; ++i) {
         Interval r = RangeOf(ValueOf(period[i]));
-        if (r.isUnbounded()) return nan;
+        if (r.isUnbounded()) return unknown();
         if (r.isPoint())
             periods[i] = PeriodOf(r.lo());
         else

@@ -243,12 +243,14 @@ TEST_CASE("affine is exact on linear correlations and tighter than intervals", "
     Affine v = Affine::FromSymbol(2.0, 0.25, Affine::kSymbolV);
     // Exact forms cancel exactly; computed ones keep only their independent rounding error e
     // (treated as independent of everything, itself included).
+    // NOLINTNEXTLINE(misc-redundant-expression): the cancellation is what is tested
     Affine zero = u - u;
     CHECK(zero.isConstant());
     CHECK(zero.center() == 0);
     CHECK(zero.range().lo() == 0);
     CHECK(zero.range().hi() == 0);
     Affine x = u * 3.0 + v;
+    // NOLINTNEXTLINE(misc-redundant-expression): the cancellation is what is tested
     Affine almostZero = x - x;
     CHECK(almostZero.termCount() == 0);
     CHECK(almostZero.center() == 0);

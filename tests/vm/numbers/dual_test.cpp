@@ -13,7 +13,6 @@
 #include "vm/numbers/number.h"
 
 using namespace affray::vm;
-using affray::test::Rng;
 using affray::test::Samples;
 
 namespace {

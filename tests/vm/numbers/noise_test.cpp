@@ -262,11 +262,11 @@ TEST_CASE("noise of non-finite input is NaN, Unbounded in bounded types", "[vm][
 bool HasSymmetries(const NoiseGradientSet& set) {
     auto contains = [&](const double* g) {
         for (int k = 0; k < set.count; ++k)
-            if (std::equal(g, g + set.dims, set.components + k * set.dims)) return true;
+            if (std::equal(g, g + set.dims, set.components + static_cast<ptrdiff_t>(k) * set.dims)) return true;
         return false;
     };
     for (int k = 0; k < set.count; ++k) {
-        const double* g = set.components + k * set.dims;
+        const double* g = set.components + static_cast<ptrdiff_t>(k) * set.dims;
         for (int i = 0; i < set.dims; ++i) {
             double h[4];
             std::copy(g, g + set.dims, h);
@@ -317,7 +317,7 @@ struct ScaleProof {
             for (int i = 0; i < d; ++i) weight = MulUp(weight, w[i][(o >> i) & 1]);
             double phi = 0;
             for (int k = 0; k < set.count; ++k) {
-                const double* g = set.components + k * d;
+                const double* g = set.components + static_cast<ptrdiff_t>(k) * d;
                 double dot = 0;
                 for (int i = 0; i < d; ++i) {
                     int b = (o >> i) & 1;
