@@ -178,10 +178,8 @@ const std::vector<Builtin>& Table() {
 
 // Functions of RenderMan's library that affray does not implement yet: a clear error, not
 // "unknown function".
-const char* const kNotYet[] = {
-    "texture", "environment", "shadow", "random", "illuminance", "specular", "diffuse", "ambient", "printf",
-    "format",  "concat",      "match",  "bump",   "trace",       "fresnel",  "refract", "ptlined", "depth",
-};
+// (The surface shaders' functions are in lower_surface.cpp.)
+const char* const kNotYet[] = {"depth"};
 
 bool ArgMatches(char pattern, Type type) {
     switch (pattern) {
@@ -208,6 +206,13 @@ std::string DescribePattern(const char* pattern) {
 }
 
 }  // namespace
+
+std::vector<std::string> TableBuiltinNames() {
+    std::vector<std::string> names;
+    for (const Builtin& b : Table()) names.emplace_back(b.name);
+    names.insert(names.end(), std::begin(kNotYet), std::end(kNotYet));
+    return names;
+}
 
 std::optional<Value> LowerBuiltin(ValueOps& ops, const lang::Expr& call, const std::vector<Value>& args,
                                   lang::Diagnostics& diags) {

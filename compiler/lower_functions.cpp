@@ -146,6 +146,7 @@ std::optional<Value> Lowerer::LowerUserCall(const Expr& call, const lang::Functi
     // count from the globals again) must not take the caller's functions with them.
     const auto functionsBefore = m_functions;
     PushScope();
+    if (m_checkingOnly) AddSurfaceGlobals(m_state.scopes.back());
     for (size_t i = 0; i < params.size(); ++i) m_state.scopes.back()[f.params[i].name] = params[i];
     m_externs.push_back({&callerScopes, {}});
 
@@ -253,6 +254,7 @@ void Lowerer::CheckUncalledFunctions() {
         m_checkingOnly = true;
         m_externs.push_back({&before.scopes, {}});
         PushScope();
+        AddSurfaceGlobals(m_state.scopes.back());
         for (const lang::VarDecl& p : f->params) {
             Variable param;
             param.type = FromTypeName(p.type);
