@@ -86,6 +86,7 @@ std::optional<Value> Lowerer::Convert(const Value& value, Type target, SourceLoc
 
 std::optional<Value> Lowerer::LowerIdent(const Expr& e) {
     Variable* var = Find(e.name);
+    if (!var) var = ImplicitExtern(e.name);
     if (!var) {
         if (e.name == "PI") return m_ops.Constant(std::numbers::pi);
         if (SurfaceGlobalType(e.name) != Type::Void)
@@ -246,6 +247,7 @@ std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
     const bool isElement = e.args.size() == 2;
     std::optional<Value> index = isElement ? LowerExpr(*e.args[1]) : std::nullopt;
     Variable* var = Find(e.name);
+    if (!var) var = ImplicitExtern(e.name);
     if (!var) {
         if (SurfaceGlobalType(e.name) != Type::Void)
             m_diags.error(e.loc, "'" + e.name +

@@ -47,6 +47,7 @@ void Lowerer::DefineFunction(const lang::FunctionDef& f) {
     }
     m_functions.emplace_back(depth, &f);
     m_defined.push_back(&f);
+    if (depth > 0) m_nested.insert(&f);
 }
 
 std::optional<Value> Lowerer::LowerUserCall(const Expr& call, const lang::FunctionDef& f) {
@@ -238,6 +239,22 @@ void Lowerer::DeclareExtern(const lang::VarDecl& d) {
     // In the function's parameter scope, so that it outlives the block declaring it.
     m_state.scopes[1][d.name] = alias;
     frame.names.push_back(d.name);
+}
+
+Variable* Lowerer::ImplicitExtern(const std::string& name) {
+    if (m_callStack.empty() || m_externs.empty() || !m_nested.count(m_callStack.back())) return nullptr;
+    ExternFrame& frame = m_externs.back();
+    const Variable* outer = nullptr;
+    for (auto scope = frame.callerScopes->rbegin(); scope != frame.callerScopes->rend() && !outer; ++scope) {
+        auto it = scope->find(name);
+        if (it != scope->end()) outer = &it->second;
+    }
+    if (!outer) return nullptr;
+    Variable alias = *outer;
+    alias.used = true;
+    m_state.scopes[1][name] = alias;
+    frame.names.push_back(name);
+    return &m_state.scopes[1][name];
 }
 
 void Lowerer::CheckUncalledFunctions() {

@@ -1,9 +1,9 @@
 // compiler/lower_surface.cpp: the functions and global variables of surface and light shaders
 // (RI Spec 3.2, sections 15.5-15.9: ambient, diffuse, specular, texture, illuminance, Ci, L...).
-// A displacement shader cannot run them, but the headers it includes often define helpers that
-// do. So each call is type-checked and yields 0 of its type; it is an error only where the
-// displacement shader runs it, i.e. not while checking a function nobody calls
-// (CheckUncalledFunctions). Likewise the surface globals exist only while checking such a
+// A displacement shader cannot run them (nor, in affray, the texture functions, which it may
+// call), but the headers it includes often define helpers that do. So each call is type-checked
+// and yields 0 of its type; it is an error only where the displacement shader runs it: not
+// while checking a function nobody calls (CheckUncalledFunctions), nor in dead code. Likewise the surface globals exist only while checking such a
 // function. The light loops (illuminance, illuminate, solar) reach here as an `if` on a call of
 // their name (lang/parser.y), so their bodies are checked too.
 // To add a function: a row in kSurfaceCalls (argument letters below, then the result).
@@ -22,14 +22,31 @@ struct SurfaceCall {
     const char* args;
     /// 'c' color, 'f' float, 'x' float or color as the context wants (texture, environment).
     char result;
+    /// Reads a texture file: a displacement shader may call it, but affray reads none yet.
+    bool texture = false;
 };
 
 constexpr SurfaceCall kSurfaceCalls[] = {
-    {"ambient", "", 'c'},        {"diffuse", "t", 'c'},      {"specular", "ttf", 'c'},    {"specularbrdf", "tttf", 'c'},
-    {"phong", "ttf", 'c'},       {"trace", "tt", 'c'},       {"texture", "s*", 'x'},      {"environment", "s*", 'x'},
-    {"shadow", "s*", 'f'},       {"bump", "s*", 'f'},        {"textureinfo", "sso", 'f'}, {"lightsource", "so", 'f'},
-    {"incident", "so", 'f'},     {"opposite", "so", 'f'},    {"attribute", "so", 'f'},    {"option", "so", 'f'},
-    {"rendererinfo", "so", 'f'}, {"illuminance", "?*", 'f'}, {"illuminate", "t*", 'f'},   {"solar", "*", 'f'},
+    {"ambient", "", 'c'},
+    {"diffuse", "t", 'c'},
+    {"specular", "ttf", 'c'},
+    {"specularbrdf", "tttf", 'c'},
+    {"phong", "ttf", 'c'},
+    {"trace", "tt", 'c'},
+    {"texture", "s*", 'x', true},
+    {"environment", "s*", 'x', true},
+    {"shadow", "s*", 'f', true},
+    {"bump", "s*", 'f', true},
+    {"textureinfo", "sso", 'f', true},
+    {"lightsource", "so", 'f'},
+    {"incident", "so", 'f'},
+    {"opposite", "so", 'f'},
+    {"attribute", "so", 'f'},
+    {"option", "so", 'f'},
+    {"rendererinfo", "so", 'f'},
+    {"illuminance", "?*", 'f'},
+    {"illuminate", "t*", 'f'},
+    {"solar", "*", 'f'},
 };
 
 struct SurfaceGlobal {
@@ -135,9 +152,16 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
         }
     }
     if (!ok) return std::nullopt;
-    if (!m_checkingOnly) {
-        m_diags.error(
-            e.loc, "'" + e.name + "' is a function of surface and light shaders: a displacement shader cannot call it");
+    // Code that never runs (a function nobody calls, an arm a constant condition rules out, as
+    // in `if (texname != "") ... texture(texname)` with the default "") may call it.
+    const std::optional<double> alive = ir().ConstValue(m_state.alive);
+    if (!m_checkingOnly && !(alive && *alive == 0.0)) {
+        if (call.texture)
+            m_diags.error(e.loc, "function '" + e.name + "' is not supported yet: affray reads no texture files");
+        else
+            m_diags.error(
+                e.loc,
+                "'" + e.name + "' is a function of surface and light shaders: a displacement shader cannot call it");
         return std::nullopt;
     }
     const Type result = call.result == 'c'                              ? Type::Color

@@ -224,6 +224,11 @@ class Lowerer {
     std::vector<ExternFrame> m_externs;
     /// Declares `d` (extern) as an alias of the caller's variable of that name.
     void DeclareExtern(const lang::VarDecl& d);
+    /// In a nested function, a variable of the enclosing scopes it names without declaring it
+    /// extern: declared extern implicitly (as prman does), or null if there is none.
+    Variable* ImplicitExtern(const std::string& name);
+    /// Functions defined inside the shader body or another function.
+    std::unordered_set<const lang::FunctionDef*> m_nested;
     /// Every function defined, and those inlined at least once.
     std::vector<const lang::FunctionDef*> m_defined;
     std::unordered_set<const lang::FunctionDef*> m_called;

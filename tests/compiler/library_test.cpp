@@ -124,3 +124,8 @@ TEST_CASE("surface shaders' functions: accepted in helpers nobody calls, an erro
     // Type errors are reported even where nothing calls the function.
     CHECK(!Compile("color lit() { return diffuse(\"n\"); }\ndisplacement t() { P += N; }").ok());
 }
+
+TEST_CASE("Deriv of a function of u alone is its derivative, not 0/0 from Dv", "[compiler][library]") {
+    CHECK_THAT(PAt("P = point(Deriv(u * u, u), Deriv(v * u, v), 0);", 0.3, 0.4).x, WithinAbs(0.6, 1e-12));
+    CHECK_THAT(PAt("P = point(Deriv(u * u, u), Deriv(v * u, v), 0);", 0.3, 0.4).y, WithinAbs(0.3, 1e-12));
+}

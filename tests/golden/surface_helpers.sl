@@ -1,6 +1,7 @@
 // golden: compile
 // A header's helpers for surface shaders (lighting, texture, illuminance, Ci and L): checked
-// but never called, so the displacement shader compiles.
+// but never called, so the displacement shader compiles; and a texture call the default of a
+// parameter rules out.
 color MaterialPlastic(normal Nf; float Ka, Kd, Ks, roughness) {
     return Ka * ambient() + Kd * diffuse(Nf) + Ks * specular(Nf, -normalize(I), roughness);
 }
@@ -18,6 +19,7 @@ void Shade(string map) {
     Ci = Cs * tint * (1 - shadowed) + environment("sky.env", vector(0, 0, 1));
     Oi = Os;
 }
-displacement t() {
+displacement t(string dmap = "") {
+    if (dmap != "") P -= (float texture(dmap, s, t) - 0.5) * N;
     P += 0.1 * N;
 }
