@@ -1,7 +1,7 @@
 // golden: compile
 // A header's helpers for surface shaders (lighting, texture, illuminance, Ci and L): checked
-// but never called, so the displacement shader compiles; and a texture call the default of a
-// parameter rules out.
+// but never called, so the displacement shader compiles; and texture calls the default of a
+// parameter rules out (in an if and in ?:).
 color MaterialPlastic(normal Nf; float Ka, Kd, Ks, roughness) {
     return Ka * ambient() + Kd * diffuse(Nf) + Ks * specular(Nf, -normalize(I), roughness);
 }
@@ -21,5 +21,6 @@ void Shade(string map) {
 }
 displacement t(string dmap = "") {
     if (dmap != "") P -= (float texture(dmap, s, t) - 0.5) * N;
+    P += (dmap == "" ? 0 : float texture(dmap, s, t)) * N;
     P += 0.1 * N;
 }
