@@ -95,7 +95,7 @@ TEST_CASE("refract, fresnel and ptlined", "[compiler][library]") {
                      {2, 2, std::sqrt(27.0)});
 }
 
-TEST_CASE("random is deterministic, in [0, 1), and differs between calls", "[compiler][library]") {
+TEST_CASE("random is deterministic, between 0 and 1, and differs between calls", "[compiler][library]") {
     const std::string body = "P = point(random(), random(), float random());";
     const glm::dvec3 a = PAt(body, 0.3, 0.6), b = PAt(body, 0.3, 0.6), c = PAt(body, 0.31, 0.6);
     test::RequireVec(a, b);
