@@ -77,10 +77,14 @@ const std::vector<Builtin>& Rows() {
          }},
         {"Deriv", "af",
          [](ValueOps& o, A a) {
-             // Deriv(num, den) = Du(num)/Du(den) + Dv(num)/Dv(den)
-             Value byU = o.Div(Scalar(o, IrOp::DerivU, a[0]), Scalar(o, IrOp::DerivU, a[1]));
-             Value byV = o.Div(Scalar(o, IrOp::DerivV, a[0]), Scalar(o, IrOp::DerivV, a[1]));
-             return o.Add(byU, byV);
+             // Deriv(num, den) = Du(num)/Du(den) + Dv(num)/Dv(den), a term 0 where den does not
+             // change in that direction (Deriv(f(u), u) is f'(u), not NaN from Dv's 0/0).
+             auto term = [&](IrOp d) {
+                 const Value den = Scalar(o, d, a[1]);
+                 return o.SelectValue(o.Binary(IrOp::Eq, den, o.Constant(0.0)), o.Constant(0.0),
+                                      o.Div(Scalar(o, d, a[0]), den));
+             };
+             return o.Add(term(IrOp::DerivU), term(IrOp::DerivV));
          }},
         {"calculatenormal", "t",
          [](ValueOps& o, A a) {
@@ -178,10 +182,8 @@ const std::vector<Builtin>& Table() {
 
 // Functions of RenderMan's library that affray does not implement yet: a clear error, not
 // "unknown function".
-const char* const kNotYet[] = {
-    "texture", "environment", "shadow", "random", "illuminance", "specular", "diffuse", "ambient", "printf",
-    "format",  "concat",      "match",  "bump",   "trace",       "fresnel",  "refract", "ptlined", "depth",
-};
+// (The surface shaders' functions are in lower_surface.cpp.)
+const char* const kNotYet[] = {"depth"};
 
 bool ArgMatches(char pattern, Type type) {
     switch (pattern) {
@@ -208,6 +210,13 @@ std::string DescribePattern(const char* pattern) {
 }
 
 }  // namespace
+
+std::vector<std::string> TableBuiltinNames() {
+    std::vector<std::string> names;
+    for (const Builtin& b : Table()) names.emplace_back(b.name);
+    names.insert(names.end(), std::begin(kNotYet), std::end(kNotYet));
+    return names;
+}
 
 std::optional<Value> LowerBuiltin(ValueOps& ops, const lang::Expr& call, const std::vector<Value>& args,
                                   lang::Diagnostics& diags) {

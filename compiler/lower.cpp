@@ -13,6 +13,7 @@
 #include <unordered_map>
 
 #include "compiler/builtins.h"
+#include "compiler/builtins_color.h"
 #include "compiler/lowerer.h"
 
 namespace affray::compiler {
@@ -85,15 +86,22 @@ std::optional<Value> Lowerer::Convert(const Value& value, Type target, SourceLoc
 
 std::optional<Value> Lowerer::LowerIdent(const Expr& e) {
     Variable* var = Find(e.name);
+    if (!var) var = ImplicitExtern(e.name);
     if (!var) {
         if (e.name == "PI") return m_ops.Constant(std::numbers::pi);
-        m_diags.error(e.loc, "unknown identifier '" + e.name + "'");
+        if (SurfaceGlobalType(e.name) != Type::Void)
+            m_diags.error(e.loc, "'" + e.name +
+                                     "' is a global variable of surface and light shaders: a displacement "
+                                     "shader cannot use it");
+        else
+            m_diags.error(e.loc, "unknown identifier '" + e.name + "'");
         return std::nullopt;
     }
     var->used = true;
     if (!var->assigned) {
-        m_diags.error(e.loc, "variable '" + e.name + "' is used before it is assigned a value");
-        return std::nullopt;
+        // As prman and aqsis: a warning, and the value is 0 (or ""). Once per variable.
+        m_diags.warning(e.loc, "variable '" + e.name + "' is used before it is assigned a value (it is 0 here)");
+        var->assigned = true;
     }
     return var->value;
 }
@@ -104,7 +112,14 @@ std::optional<Value> Lowerer::LowerComponentCall(const Expr& e) {
     // (A plain Value and a flag: GCC 12 misreads an optional's state through the checks below.)
     Value target;
     bool haveTarget = false;
-    if (!e.args.empty()) {
+    Variable* unassigned =
+        isSet && !e.args.empty() && e.args[0]->kind == ExprKind::Ident ? Find(e.args[0]->name) : nullptr;
+    if (unassigned && !unassigned->assigned) {
+        // Setting a component of a variable not yet assigned starts from 0: no warning.
+        unassigned->used = unassigned->assigned = true;
+        target = unassigned->value;
+        haveTarget = true;
+    } else if (!e.args.empty()) {
         if (std::optional<Value> t = LowerExpr(*e.args[0])) {
             target = *t;
             haveTarget = true;
@@ -232,8 +247,14 @@ std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
     const bool isElement = e.args.size() == 2;
     std::optional<Value> index = isElement ? LowerExpr(*e.args[1]) : std::nullopt;
     Variable* var = Find(e.name);
+    if (!var) var = ImplicitExtern(e.name);
     if (!var) {
-        m_diags.error(e.loc, "assignment to undeclared variable '" + e.name + "'");
+        if (SurfaceGlobalType(e.name) != Type::Void)
+            m_diags.error(e.loc, "'" + e.name +
+                                     "' is a global variable of surface and light shaders: a displacement "
+                                     "shader cannot use it");
+        else
+            m_diags.error(e.loc, "assignment to undeclared variable '" + e.name + "'");
         return std::nullopt;
     }
     if (!var->writable) {
@@ -256,8 +277,8 @@ std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
     if (value.type == Type::Bool) value.type = Type::Float;
     if (e.assignOp != lang::AssignOp::Assign) {
         if (!var->assigned) {
-            m_diags.error(e.loc, "variable '" + e.name + "' is used before it is assigned a value");
-            return std::nullopt;
+            m_diags.warning(e.loc, "variable '" + e.name + "' is used before it is assigned a value (it is 0 here)");
+            var->assigned = true;
         }
         const bool matrixOp = var->type == Type::Matrix &&
                               (e.assignOp == lang::AssignOp::MulAssign || e.assignOp == lang::AssignOp::DivAssign);
@@ -299,8 +320,9 @@ std::optional<Value> Lowerer::LowerCast(const Expr& e) {
     // A space on a spatial cast is checked like a transform's (all are the identity for now, see
     // lower_library.cpp); a color's is "rgb" (the only color space affray knows).
     if (!e.castSpace.empty()) {
-        if (target == Type::Color && e.castSpace != "rgb") {
-            m_diags.error(e.loc, "color space '" + e.castSpace + "' is not supported yet (only \"rgb\")");
+        if (target == Type::Color && !IsColorSpace(e.castSpace)) {
+            m_diags.error(e.loc,
+                          "unknown color space '" + e.castSpace + "' (rgb, hsv, hsl, xyz, XYZ, xyY and YIQ are known)");
             return std::nullopt;
         }
         if (target != Type::Color && !SpaceName(StringValue(e.castSpace), e.loc)) return std::nullopt;
@@ -308,6 +330,11 @@ std::optional<Value> Lowerer::LowerCast(const Expr& e) {
     std::optional<Value> v = LowerExpecting(*e.args[0], target);
     if (!v) return std::nullopt;
     if (v->type == Type::Bool) v->type = Type::Float;
+    if (!e.castSpace.empty() && target == Type::Color && (v->type == Type::Float || IsTriple(v->type))) {
+        // `color "hsv" (h, s, v)`: components given in that space, converted to rgb.
+        m_ops.SetLine(e.loc.line);
+        return ColorToRgb(m_ops, e.castSpace, *v);
+    }
     if (!e.castSpace.empty() && IsSpatial(target) && (v->type == Type::Float || IsSpatial(v->type))) {
         // `point "shader" (x, y, z)`: coordinates given in that space, converted to current.
         m_ops.SetLine(e.loc.line);
@@ -334,9 +361,18 @@ std::optional<Value> Lowerer::LowerCall(const Expr& e, Type expected) {
     if (const lang::FunctionDef* f = FindFunction(e.name)) return LowerUserCall(e, *f);
     if (e.name == "comp" || e.name == "setcomp" || e.name == "setxcomp" || e.name == "setycomp" || e.name == "setzcomp")
         return LowerComponentCall(e);
+    if (IsSurfaceCall(e.name)) return LowerSurfaceCall(e, expected);
+    if (IsExtraCall(e.name)) return LowerExtraCall(e, expected);
     std::vector<Value> args;
     bool ok = true;
     for (const lang::ExprPtr& arg : e.args) {
+        // spline(t, knots) with an array of knots: its elements.
+        if (const Variable* array = e.name == "spline" && arg->kind == ExprKind::Ident ? Find(arg->name) : nullptr;
+            array && array->arraySize >= 0) {
+            Find(arg->name)->used = true;
+            args.insert(args.end(), array->elements.begin(), array->elements.end());
+            continue;
+        }
         std::optional<Value> v = LowerExpr(*arg);
         if (v) args.push_back(*v);
         ok = ok && v.has_value();

@@ -47,6 +47,7 @@ void Lowerer::DefineFunction(const lang::FunctionDef& f) {
     }
     m_functions.emplace_back(depth, &f);
     m_defined.push_back(&f);
+    if (depth > 0) m_nested.insert(&f);
 }
 
 std::optional<Value> Lowerer::LowerUserCall(const Expr& call, const lang::FunctionDef& f) {
@@ -146,6 +147,7 @@ std::optional<Value> Lowerer::LowerUserCall(const Expr& call, const lang::Functi
     // count from the globals again) must not take the caller's functions with them.
     const auto functionsBefore = m_functions;
     PushScope();
+    if (m_checkingOnly) AddSurfaceGlobals(m_state.scopes.back());
     for (size_t i = 0; i < params.size(); ++i) m_state.scopes.back()[f.params[i].name] = params[i];
     m_externs.push_back({&callerScopes, {}});
 
@@ -239,6 +241,22 @@ void Lowerer::DeclareExtern(const lang::VarDecl& d) {
     frame.names.push_back(d.name);
 }
 
+Variable* Lowerer::ImplicitExtern(const std::string& name) {
+    if (m_callStack.empty() || m_externs.empty() || !m_nested.count(m_callStack.back())) return nullptr;
+    ExternFrame& frame = m_externs.back();
+    const Variable* outer = nullptr;
+    for (auto scope = frame.callerScopes->rbegin(); scope != frame.callerScopes->rend() && !outer; ++scope) {
+        auto it = scope->find(name);
+        if (it != scope->end()) outer = &it->second;
+    }
+    if (!outer) return nullptr;
+    Variable alias = *outer;
+    alias.used = true;
+    m_state.scopes[1][name] = alias;
+    frame.names.push_back(name);
+    return &m_state.scopes[1][name];
+}
+
 void Lowerer::CheckUncalledFunctions() {
     // A function nobody calls is still checked: lowered once as dead code, its parameters 0,
     // and an `extern` it names taken on trust (there is no caller to look in).
@@ -253,6 +271,7 @@ void Lowerer::CheckUncalledFunctions() {
         m_checkingOnly = true;
         m_externs.push_back({&before.scopes, {}});
         PushScope();
+        AddSurfaceGlobals(m_state.scopes.back());
         for (const lang::VarDecl& p : f->params) {
             Variable param;
             param.type = FromTypeName(p.type);

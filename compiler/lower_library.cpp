@@ -42,8 +42,10 @@ const SplineBasis* FindSplineBasis(const std::string& name) {
         {"power", {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}, 4},
         {"linear", {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, -1, 1, 0}, {0, 1, 0, 0}}, 1},
     };
+    // RiBasis spells it "b-spline"; shaders write "bspline" as often.
+    const std::string canonical = name == "b-spline" ? "bspline" : name;
     for (const SplineBasis& b : kBases)
-        if (name == b.name) return &b;
+        if (canonical == b.name) return &b;
     return nullptr;
 }
 

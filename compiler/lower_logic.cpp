@@ -68,8 +68,18 @@ std::optional<ValueId> Lowerer::LowerCondition(const Expr& e) {
 
 std::optional<Value> Lowerer::LowerTernary(const Expr& e) {
     std::optional<ValueId> c = LowerCondition(*e.args[0]);
-    std::optional<Value> a = LowerExpr(*e.args[1]);
-    std::optional<Value> b = LowerExpr(*e.args[2]);
+    // The arm a constant condition rules out is lowered as dead code (alive 0), as an if's is:
+    // `map != "" ? texture(map, s, t) : 0` calls nothing with the default "".
+    const std::optional<double> k = c ? ir().ConstValue(*c) : std::nullopt;
+    auto arm = [&](const Expr& x, bool dead) {
+        const ValueId alive = m_state.alive;
+        if (dead) m_state.alive = False();
+        std::optional<Value> v = LowerExpr(x);
+        m_state.alive = alive;
+        return v;
+    };
+    std::optional<Value> a = arm(*e.args[1], k && *k == 0.0);
+    std::optional<Value> b = arm(*e.args[2], k && *k != 0.0);
     if (!c || !a || !b) return std::nullopt;
     Value x = *a, y = *b;
     if (x.type == Type::Bool && y.type == Type::Bool) {

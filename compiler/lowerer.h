@@ -133,6 +133,24 @@ class Lowerer {
     /// Lowers `e` with `expected` as the type its context wants (picks noise's result type).
     std::optional<Value> LowerExpecting(const lang::Expr& e, Type expected);
 
+    // --- the rest of the library (lower_extras.cpp): printf, format, concat, match, ctransform,
+    // fresnel, refract, ptlined, random; each lowers its own arguments
+    static bool IsExtraCall(const std::string& name);
+    std::optional<Value> LowerExtraCall(const lang::Expr& e, Type expected);
+    /// A string computed from values that vary: no constant text (StringOf gives nothing).
+    Value VaryingString();
+    int m_varyingStrings = 0;
+    int m_randomCalls = 0;
+
+    // --- surface and light shaders' functions and globals (lower_surface.cpp): checked, an
+    // error only where the displacement shader runs them
+    static bool IsSurfaceCall(const std::string& name);
+    std::optional<Value> LowerSurfaceCall(const lang::Expr& e, Type expected);
+    /// The type of a surface shader's global variable (Ci, Cs, L...), else Void.
+    static Type SurfaceGlobalType(const std::string& name);
+    /// Declares the surface globals in `scope` (while checking a function nobody calls).
+    void AddSurfaceGlobals(std::unordered_map<std::string, Variable>& scope);
+
     // --- statements and control flow (lower_flow.cpp)
     void LowerStmt(const lang::Stmt& s);
     void LowerIf(const lang::Stmt& s);
@@ -206,6 +224,11 @@ class Lowerer {
     std::vector<ExternFrame> m_externs;
     /// Declares `d` (extern) as an alias of the caller's variable of that name.
     void DeclareExtern(const lang::VarDecl& d);
+    /// In a nested function, a variable of the enclosing scopes it names without declaring it
+    /// extern: declared extern implicitly (as prman does), or null if there is none.
+    Variable* ImplicitExtern(const std::string& name);
+    /// Functions defined inside the shader body or another function.
+    std::unordered_set<const lang::FunctionDef*> m_nested;
     /// Every function defined, and those inlined at least once.
     std::vector<const lang::FunctionDef*> m_defined;
     std::unordered_set<const lang::FunctionDef*> m_called;
@@ -217,5 +240,8 @@ class Lowerer {
 };
 
 std::string Article(Type t);
+/// The names of the built-ins lower_extras.cpp and lower_surface.cpp lower.
+std::vector<std::string> ExtraCallNames();
+std::vector<std::string> SurfaceCallNames();
 
 }  // namespace affray::compiler

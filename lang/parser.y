@@ -227,6 +227,7 @@ Parser::symbol_type yylex(ParseContext& ctx);
 %token BREAK "'break'" CONTINUE "'continue'"
 %token DISPLACEMENT "'displacement'" SURFACE "'surface'" LIGHT "'light'" VOLUME "'volume'"
 %token IMAGER "'imager'"
+%token ILLUMINANCE "'illuminance'" ILLUMINATE "'illuminate'" SOLAR "'solar'"
 %token ADD_ASSIGN "'+='" SUB_ASSIGN "'-='" MUL_ASSIGN "'*='" DIV_ASSIGN "'/='"
 %token OR "'||'" AND "'&&'" EQ "'=='" NE "'!='" LE "'<='" GE "'>='"
 
@@ -388,6 +389,12 @@ stmt
       { $$ = ctx.If(@1, $3, $5, $7); }
   | WHILE '(' expr ')' stmt
       { $$ = ctx.While(@1, $3, $5); }
+  // The light loops of surface and light shaders, `illuminance (P, N, angle) stmt` and the
+  // like, are an `if` on a call of the same name: the compiler type-checks the call and reports
+  // it only where a displacement shader runs it (compiler/lower_surface.cpp).
+  | ILLUMINANCE '(' args ')' stmt  { $$ = ctx.If(@1, ctx.Call(@1, "illuminance", $3), $5, {}); }
+  | ILLUMINATE '(' args ')' stmt   { $$ = ctx.If(@1, ctx.Call(@1, "illuminate", $3), $5, {}); }
+  | SOLAR '(' args ')' stmt        { $$ = ctx.If(@1, ctx.Call(@1, "solar", $3), $5, {}); }
   | FOR '(' opt_expr ';' opt_expr ';' opt_expr ')' stmt
       { $$ = ctx.For(@1, $3, $5, $7, $9); }
   | RETURN opt_expr ';'     { $$ = ctx.Simple(StmtKind::Return, @1, $2); }

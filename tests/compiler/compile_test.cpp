@@ -153,9 +153,13 @@ TEST_CASE("compiler diagnostics are exact", "[compiler]") {
     CHECK(Diagnose("displacement t() {\n  P += frob(2);\n}\n") ==
           "test.sl:2:8: error: unknown function 'frob'\n      P += frob(2);\n           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += texture(\"x\");\n}\n") ==
-          "test.sl:2:8: error: function 'texture' is not supported yet\n      P += texture(\"x\");\n           ^\n");
-    CHECK(Diagnose("displacement t() {\n  float x;\n  P += x;\n}\n") ==
-          "test.sl:3:8: error: variable 'x' is used before it is assigned a value\n      P += x;\n           ^\n");
+          "test.sl:2:8: error: function 'texture' is not supported yet: affray reads no texture files\n      P += "
+          "texture(\"x\");\n           ^\n");
+    CHECK(Diagnose("displacement t() {\n  float x;\n  P += x + color(1, 0, 0);\n}\n") ==
+          "test.sl:3:8: warning: variable 'x' is used before it is assigned a value (it is 0 here)\n"
+          "      P += x + color(1, 0, 0);\n           ^\n"
+          "test.sl:3:5: error: cannot assign a color to point variable 'P'\n"
+          "      P += x + color(1, 0, 0);\n        ^\n");
     CHECK(Diagnose("displacement t() {\n  P += color(1, 0, 0);\n}\n") ==
           "test.sl:2:5: error: cannot assign a color to point variable 'P'\n      P += color(1, 0, 0);\n        ^\n");
     CHECK(Diagnose("displacement t() {\n  P += P . 1;\n}\n") ==

@@ -40,7 +40,7 @@
 //                   37 expected the name of a coordinate space
 //                   38 'transform' expects 2 or 3 arguments
 //                   39 'transform' transforms a point, vector or normal, not ...
-//                   40 color space 'hsv' is not supported yet
+//                   40 unknown color space 'hsb'
 //   arrays          41 index N is outside the array (size M)   42 only an array can be indexed
 //                   43 unknown identifier                 44 array 'a' needs a size
 //                   45 cannot assign to the whole array   46 'x' is not an array
@@ -61,7 +61,7 @@
 //                   65 'filterstep' expects (float edge, float x) or (float edge, float x0, float x1)
 //   variables       66 assignment to undeclared variable  67 cannot assign to 'mode': it is read-only
 //                   68 cannot assign a string to float variable 'x'
-//                   69 variable 'q' is used before it is assigned a value
+//                   69 variable 'q' is used before it is assigned a value (a warning)
 //                   70 cannot cast a point to float (and a string to point)
 //   parameters      71 redefinition of parameter          72 default value of string parameter
 //                   73 parameter 'k' needs a default value
@@ -352,9 +352,9 @@ TEST_CASE("coordinate spaces", "[compiler][diagnostics]") {
           "test.sl:2:26: error: 'transform' transforms a point, vector or normal, not a color\n"
           "      P = transform(\"world\", color(1, 0, 0));\n"
           "                             ^\n");
-    CHECK(Diagnose("displacement t() {\n  color c = color \"hsv\" (1, 0, 0);\n}\n") ==
-          "test.sl:2:13: error: color space 'hsv' is not supported yet (only \"rgb\")\n"
-          "      color c = color \"hsv\" (1, 0, 0);\n"
+    CHECK(Diagnose("displacement t() {\n  color c = color \"hsb\" (1, 0, 0);\n}\n") ==
+          "test.sl:2:13: error: unknown color space 'hsb' (rgb, hsv, hsl, xyz, XYZ, xyY and YIQ are known)\n"
+          "      color c = color \"hsb\" (1, 0, 0);\n"
           "                ^\n");
 }
 
@@ -403,7 +403,7 @@ TEST_CASE("unknown and unsupported functions and types", "[compiler][diagnostics
           "      P += noize(P);\n"
           "           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += environment(\"x\", N);\n}\n") ==
-          "test.sl:2:8: error: function 'environment' is not supported yet\n"
+          "test.sl:2:8: error: function 'environment' is not supported yet: affray reads no texture files\n"
           "      P += environment(\"x\", N);\n"
           "           ^\n");
     CHECK(Diagnose("surface t() {\n  P += 1;\n}\n") ==
@@ -560,9 +560,10 @@ TEST_CASE("variables, assignment and casts", "[compiler][diagnostics]") {
           "test.sl:2:9: error: cannot assign a string to float variable 'x'\n"
           "      float x = \"a\";\n"
           "            ^\n");
-    CHECK(Diagnose("displacement t() {\n  point q;\n  P += q;\n}\n") ==
-          "test.sl:3:8: error: variable 'q' is used before it is assigned a value\n"
-          "      P += q;\n"
+    // As prman and aqsis: a warning, the value 0.
+    CHECK(Warnings("displacement t() {\n  point q;\n  P += q + N;\n}\n") ==
+          "test.sl:3:8: warning: variable 'q' is used before it is assigned a value (it is 0 here)\n"
+          "      P += q + N;\n"
           "           ^\n");
     CHECK(Diagnose("displacement t() {\n  float x = float P;\n}\n") ==
           "test.sl:2:13: error: cannot cast a point to float\n"

@@ -10,6 +10,6 @@ displacement t() {
     P = transform(P);
     P = transform("world", color(1, 0, 0));
     P = transform(s, P);
-    color c = color "hsv" (1, 0, 0);
+    color c = color "hsb" (1, 0, 0);
     P += comp(c, 0) * N;
 }

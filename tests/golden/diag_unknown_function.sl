@@ -1,5 +1,6 @@
 // golden: compile
-// Unknown functions, a function out of its scope, and RenderMan functions not supported yet.
+// Unknown functions, a function out of its scope, and RenderMan functions not supported yet or only
+// in surface shaders.
 displacement t() {
     {
         float g() { return 1; }
@@ -8,4 +9,5 @@ displacement t() {
     P += noize(P) * N;
     P += environment("sky.env", N);
     P += texture("bumps.tx") * N;
+    P += depth(P) * N;
 }
