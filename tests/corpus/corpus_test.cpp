@@ -166,33 +166,43 @@ TEST_CASE("corpus: at least 40 shaders, and PENDING.md names only shaders that e
 
 TEST_CASE("corpus: every shader compiles and evaluates in every number type", "[corpus]") {
     for (const std::string& path : CorpusShaders()) {
-        const compiler::CompiledShader shader = Compile(path);
-        EvaluateEveryType(path + " (bound)", shader.bound);
-        EvaluateEveryType(path + " (shade)", shader.shade);
+        DYNAMIC_SECTION(fs::path(path).filename().string()) {
+            const compiler::CompiledShader shader = Compile(path);
+            EvaluateEveryType(path + " (bound)", shader.bound);
+            EvaluateEveryType(path + " (shade)", shader.shade);
+        }
     }
 }
 
 TEST_CASE("corpus: scalar P lies in the affine and interval bounds", "[corpus][containment]") {
     for (const std::string& path : CorpusShaders()) {
-        const compiler::CompiledShader shader = Compile(path);
-        test::CheckContainment<vm::Affine, vm::Interval>(path, shader.bound, 240 / kWorkDivisor, 12, 12);
-        test::CheckContainment<vm::Affine, vm::Interval>(path + " (shade)", shader.shade, 24 / kWorkDivisor, 8, 13);
+        DYNAMIC_SECTION(fs::path(path).filename().string()) {
+            const compiler::CompiledShader shader = Compile(path);
+            test::CheckContainment<vm::Affine, vm::Interval>(path, shader.bound, 1000 / kWorkDivisor, 16, 12);
+            test::CheckContainment<vm::Affine, vm::Interval>(path + " (shade)", shader.shade, 100 / kWorkDivisor, 8,
+                                                             13);
+        }
     }
 }
 
 TEST_CASE("corpus: scalar P lies in the reduced affine bounds", "[corpus][containment]") {
     for (const std::string& path : CorpusShaders()) {
-        const compiler::CompiledShader shader = Compile(path);
-        test::CheckContainment<vm::ReducedAffine>(path, shader.bound, 240 / kWorkDivisor, 12, 14);
-        test::CheckContainment<vm::ReducedAffine>(path + " (shade)", shader.shade, 24 / kWorkDivisor, 8, 15);
+        DYNAMIC_SECTION(fs::path(path).filename().string()) {
+            const compiler::CompiledShader shader = Compile(path);
+            test::CheckContainment<vm::ReducedAffine>(path, shader.bound, 1000 / kWorkDivisor, 16, 14);
+            test::CheckContainment<vm::ReducedAffine>(path + " (shade)", shader.shade, 100 / kWorkDivisor, 8, 15);
+        }
     }
 }
 
 TEST_CASE("corpus: every shader renders on a bilinear patch", "[corpus][render]") {
-    for (const std::string& path : CorpusShaders())
-        SmokeRender(fs::path(path).stem().string(), "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]");
+    for (const std::string& path : CorpusShaders()) DYNAMIC_SECTION(fs::path(path).filename().string()) {
+            SmokeRender(fs::path(path).stem().string(), "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]");
+        }
 }
 
 TEST_CASE("corpus: every shader renders on a sphere", "[corpus][render]") {
-    for (const std::string& path : CorpusShaders()) SmokeRender(fs::path(path).stem().string(), "Sphere 1 -1 1 360");
+    for (const std::string& path : CorpusShaders()) DYNAMIC_SECTION(fs::path(path).filename().string()) {
+            SmokeRender(fs::path(path).stem().string(), "Sphere 1 -1 1 360");
+        }
 }
