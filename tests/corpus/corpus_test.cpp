@@ -3,7 +3,7 @@
 // number type, containment-checked over random regions, and rendered small on a bilinear patch
 // and on a sphere. Shaders named in tests/corpus/PENDING.md (constructs not supported yet) are
 // skipped and listed; every other shader is checked in full. Under sanitizers the containment
-// check runs a quarter of the regions.
+// check runs a quarter of the regions and the renders have half the pixels per side.
 #include <catch2/catch.hpp>
 
 #include <cmath>
