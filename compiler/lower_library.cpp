@@ -181,10 +181,11 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
             return std::nullopt;
         }
         const Value edge = args[0];
-        Value lo, hi;
+        Value lo, hi, width;
         if (numeric == 3) {
             lo = args[1];
             hi = args[2];
+            width = m_ops.Sub(hi, lo);
         } else {
             const Value& x = args[1];
             auto global = [&](vm::Global g) { return m_ops.Float(ir().Global(g, 0)); };
@@ -193,9 +194,11 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
             w = m_ops.Mul(w, m_ops.Constant(0.5 * widthScale));
             lo = m_ops.Sub(x, w);
             hi = m_ops.Add(x, w);
+            // 2w, not hi - lo: interval and reduced affine bounds of (x + w) - (x - w) keep x's
+            // width twice over, and the divisor's range would reach 0 where w's does not.
+            width = m_ops.Add(w, w);
         }
         // The fraction of [lo, hi] above the edge; a zero-width filter is the plain step.
-        const Value width = m_ops.Sub(hi, lo);
         const Value filtered =
             m_ops.Clamp(m_ops.Div(m_ops.Sub(hi, edge), width), m_ops.Constant(0.0), m_ops.Constant(1.0));
         const Value step = m_ops.Binary(IrOp::Le, edge, hi);

@@ -199,15 +199,24 @@ bool MeasurableSomewhere(const CellRanges& cells) {
     return false;
 }
 
-/// An error if no cell of a coarse grid of the patch has a measurable bound in either bounding
-/// mode (`intervalCells` are the interval bounds of that grid): every region would then survive
-/// the ray test down to the depth limit, 4^depth regions per ray, a render that never ends. Names
-/// the instance's parameters that are large enough to be the cause. Empty if the surface can be
-/// bounded somewhere.
+/// The finest grid UnboundedEverywhere tries (64 x 64: 4096 cells per bounding mode, evaluated only
+/// for a surface that no coarser grid could bound).
+constexpr int kFinestCheckCells = 64;
+
+/// An error if no cell of the grids of the patch, kGridCells across and then twice, four and eight
+/// times finer, has a measurable bound in either bounding mode (`intervalCells` are the interval
+/// bounds of the first grid): every region would then survive the ray test down to the depth
+/// limit, 4^depth regions per ray, a render that never ends. A shader whose bound is unbounded
+/// where a region straddles a branch (a square root on the side not taken) is bounded on finer
+/// cells, so one grid is not enough. Names the instance's parameters that are large enough to be
+/// the cause. Empty if the surface can be bounded somewhere.
 std::string UnboundedEverywhere(const Primitive& prim, const ShaderRef& ref, const glm::dvec3& eye,
                                 const CellRanges& intervalCells) {
-    if (MeasurableSomewhere(BoundCellsIn<vm::Affine>(prim, eye, kGridCells))) return {};
-    if (MeasurableSomewhere(intervalCells)) return {};
+    for (int n = kGridCells; n <= kFinestCheckCells; n *= 2) {
+        if (MeasurableSomewhere(BoundCellsIn<vm::Affine>(prim, eye, n))) return {};
+        if (MeasurableSomewhere(n == kGridCells ? intervalCells : BoundCellsIn<vm::Interval>(prim, eye, n)))
+            return {};
+    }
     std::string culprits;
     for (const ParamValue& p : ref.params)
         for (double x : p.numbers)
