@@ -31,7 +31,7 @@ bool RibParser::DoAttribute(const RibRequest& r) {
              "'Attribute \"displacementbound\"' is not needed: affray bounds displacement "
              "exactly; ignored");
     else
-        Warn(r.at, "'Attribute \"" + name + "\"' is not supported; ignored");
+        Warn(r.at, "'Attribute \"" + name + "\"' does not apply to affray; ignored");
     return true;
 }
 
@@ -129,6 +129,7 @@ bool RibParser::DoDisplacement(const RibRequest& r) {
         m_state.displacement.reset();
         return true;
     }
+    shader.file = FileOf(r.at);
     shader.line = r.at.line;
     shader.column = r.at.column;
     shader.shaderToWorld = m_state.ctm;

@@ -32,21 +32,21 @@ namespace {
 // RI 3.2 requests whose absence changes only appearance, sampling or bookkeeping: skipped with one
 // warning per name.
 constexpr std::string_view kIgnored[] = {
-    "ArchiveRecord", "AreaLightSource", "Atmosphere", "Basis", "Begin", "Bound", "ClippingPlane",
-    "ColorSamples", "Declare", "DepthOfField", "Detail", "DetailRange", "End", "ErrorHandler",
-    "Exterior", "GeometricApproximation", "Hider", "Illuminate", "Imager", "Interior", "MakeBump",
+    "AreaLightSource", "Atmosphere", "Basis", "Begin", "Bound", "ClippingPlane",
+    "ColorSamples", "DepthOfField", "Detail", "DetailRange", "End", "ErrorHandler",
+    "Exterior", "GeometricApproximation", "Illuminate", "Imager", "Interior", "MakeBump",
     "MakeCubeFaceEnvironment", "MakeLatLongEnvironment", "MakeShadow", "MakeTexture", "Matte",
-    "PixelVariance", "Quantize", "RelativeDetail", "ShadingInterpolation", "ShadingRate",
-    "Shutter", "TextureCoordinates", "TransformPoints", "TrimCurve",
+    "PixelVariance", "Quantize", "RelativeDetail", "Shutter", "TextureCoordinates",
+    "TransformPoints", "TrimCurve",
 };
 
 // RI 3.2 requests that create or move geometry: ignoring them would render the wrong scene, so
 // they are errors until implemented.
 constexpr std::string_view kUnsupported[] = {
     "Blobby", "CoordSysTransform", "Curves", "Deformation", "GeneralPolygon", "Geometry",
-    "MotionBegin", "MotionEnd", "NuPatch", "ObjectBegin", "ObjectEnd", "ObjectInstance",
-    "PatchMesh", "Perspective", "Points", "PointsGeneralPolygons", "PointsPolygons", "Polygon",
-    "Procedural", "ReadArchive", "Skew", "SolidBegin", "SolidEnd", "SubdivisionMesh",
+    "MotionBegin", "MotionEnd", "NuPatch", "PatchMesh", "Perspective", "Points",
+    "PointsGeneralPolygons", "PointsPolygons", "Polygon", "Procedural", "Skew", "SolidBegin",
+    "SolidEnd", "SubdivisionMesh",
 };
 // clang-format on
 
@@ -63,31 +63,53 @@ bool ContainsP(const std::string_view* begin, const std::string_view* end, std::
 
 }  // namespace
 
+namespace {
+
+// Marks the request and its arguments as read from file `file` (RibPos::file).
+void StampFile(RibRequest* r, int file) {
+    r->at.file = file;
+    for (RibArg& arg : r->args) arg.at.file = file;
+}
+
+}  // namespace
+
 std::optional<SceneDesc> RibParser::Run() {
     RibRequest request;
     std::string message;
     RibPos at;
     bool ok = true;
     for (;;) {
-        RibRequestReader::Status status = m_reader.Next(&request, &message, &at);
-        if (status == RibRequestReader::Status::End) break;
+        OpenReader& current = m_readers.back();
+        RibRequestReader::Status status = current.reader.Next(&request, &message, &at);
+        if (status == RibRequestReader::Status::End) {
+            if (m_readers.size() == 1) break;
+            m_readers.pop_back();  // the end of an archive: back to the file that read it
+            continue;
+        }
         if (status == RibRequestReader::Status::Error) {
+            at.file = current.file;
             ok = Fail(at, message);
             break;
         }
-        if (!Dispatch(request)) {
+        StampFile(&request, current.file);
+        if (!(m_defining ? Record(request) : Dispatch(request))) {
             ok = false;
             break;
         }
     }
+    if (ok && m_defining) ok = Fail(m_defining->second.at, "'ObjectBegin' has no matching 'ObjectEnd'");
     if (ok && !m_blocks.empty()) {
         const OpenBlock& open = m_blocks.back();
         ok =
             Fail(open.at, Quote(BlockName(open.kind, false)) + " has no matching " + Quote(BlockName(open.kind, true)));
     }
-    if (ok && !m_worldSeen) ok = Fail(m_reader.LastPos(), "no 'WorldBegin': the file describes no scene");
+    if (ok && !m_worldSeen)
+        ok = Fail(m_readers.front().reader.LastPos(), "no 'WorldBegin': the file describes no scene");
     if (!ok) {
-        if (m_report) m_report->error(Where(m_errorAt), m_errorMessage);
+        if (m_report) {
+            m_report->error(Where(m_errorAt), m_errorMessage);
+            if (m_errorNote) m_report->note(Where(m_errorNote->first), m_errorNote->second);
+        }
         return std::nullopt;
     }
     return std::move(m_scene);
@@ -139,6 +161,15 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"Hyperboloid", &RibParser::DoHyperboloid},
         {"Paraboloid", &RibParser::DoParaboloid},
         {"version", &RibParser::DoVersion},
+        {"Hider", &RibParser::DoHider},
+        {"Declare", &RibParser::DoDeclare},
+        {"ShadingRate", &RibParser::DoShadingRate},
+        {"ShadingInterpolation", &RibParser::DoShadingInterpolation},
+        {"ArchiveRecord", &RibParser::DoArchiveRecord},
+        {"ReadArchive", &RibParser::DoReadArchive},
+        {"ObjectBegin", &RibParser::DoObjectBegin},
+        {"ObjectEnd", &RibParser::DoObjectEnd},
+        {"ObjectInstance", &RibParser::DoObjectInstance},
     };
     if (auto it = kHandlers.find(r.name); it != kHandlers.end()) return (this->*(it->second))(r);
     if (ContainsP(std::begin(kIgnored), std::end(kIgnored), r.name)) {
@@ -156,7 +187,14 @@ void RibParser::Warn(RibPos at, const std::string& message) {
 }
 
 diag::Location RibParser::Where(RibPos at) const {
-    return {m_path, at.line, at.column, std::string(diag::LineOf(m_text, at.line))};
+    const Source& source = m_sources[static_cast<size_t>(at.file)];
+    return {source.path, at.line, at.column, std::string(diag::LineOf(source.text, at.line))};
+}
+
+std::string RibParser::LineName(RibPos at, RibPos from) const {
+    std::string text = "line " + std::to_string(at.line);
+    if (at.file != from.file) text += " of " + m_sources[static_cast<size_t>(at.file)].path;
+    return text;
 }
 
 const char* RibParser::BlockName(Block kind, bool end) {
@@ -211,8 +249,8 @@ bool RibParser::End(const RibRequest& r, Block kind) {
     if (!anyOpen) return Fail(r.at, Quote(r.name) + " without matching " + Quote(BlockName(kind, false)));
     const OpenBlock& open = m_blocks.back();
     if (open.kind != kind)
-        return Fail(r.at, Quote(r.name) + " does not match " + Quote(BlockName(open.kind, false)) + " on line " +
-                              std::to_string(open.at.line));
+        return Fail(r.at, Quote(r.name) + " does not match " + Quote(BlockName(open.kind, false)) + " on " +
+                              LineName(open.at, r.at));
     // TransformEnd restores only the transform; every other block restores all attributes.
     if (kind == Block::Transform)
         m_state.ctm = open.saved.ctm;
@@ -397,41 +435,123 @@ bool RibParser::DoExposure(const RibRequest& r) {
     return true;
 }
 
+// Option "searchpath" "shader" and "archive" are used; every other option tunes another
+// renderer (bucket sizes, statistics, caches...) and is ignored with one warning per name.
 bool RibParser::DoOption(const RibRequest& r) {
     std::string name;
     std::vector<RibParam> params;
     if (!BeforeWorld(r) || !LeadingString(r, "an option name", &name) || !ParamList(r, 1, &params)) return false;
+    if (name != "searchpath") {
+        Warn(r.at, "'Option \"" + name + "\"' does not apply to affray; ignored");
+        return true;
+    }
     for (const RibParam& p : params) {
-        if (name == "searchpath" && p.value.name == "shader") {
-            if (!SetShaderSearchPath(p)) return false;
+        if (p.value.name == "shader") {
+            if (!SetSearchPath(p, &m_scene.shaderSearchPath)) return false;
+        } else if (p.value.name == "archive") {
+            if (!SetSearchPath(p, &m_archiveSearchPath)) return false;
         } else {
-            Warn(r.at, "'Option \"" + name + "\" \"" + p.value.name + "\"' is not supported; ignored");
+            Warn(p.at, "'Option \"searchpath\" \"" + p.value.name + "\"' does not apply to affray; ignored");
         }
     }
-    if (params.empty()) Warn(r.at, "'Option \"" + name + "\"' is not supported; ignored");
     return true;
 }
 
 // Option "searchpath" "shader" "dir1:dir2": '&' is the previous path and '@' the default, which
 // is the empty list (the renderer's own default), so '@' adds nothing. Empty entries are
-// skipped. Relative directories are kept as written; the renderer resolves them against the RIB
-// file's directory.
-bool RibParser::SetShaderSearchPath(const RibParam& p) {
+// skipped. Relative directories are kept as written; they are taken relative to the RIB file's
+// directory (the renderer does so for shaders, FindArchive for archives).
+bool RibParser::SetSearchPath(const RibParam& p, std::vector<std::string>* out) {
     if (p.value.strings.size() != 1 || !p.value.numbers.empty())
-        return Fail(p.at, "'Option \"searchpath\"' parameter 'shader' expects 1 string");
+        return Fail(p.at, "'Option \"searchpath\"' parameter " + Quote(p.value.name) + " expects 1 string");
     const std::string& text = p.value.strings[0];
     std::vector<std::string> path;
     for (size_t begin = 0;;) {
         size_t end = std::min(text.find(':', begin), text.size());
         std::string dir = text.substr(begin, end - begin);
         if (dir == "&")
-            path.insert(path.end(), m_scene.shaderSearchPath.begin(), m_scene.shaderSearchPath.end());
+            path.insert(path.end(), out->begin(), out->end());
         else if (!dir.empty() && dir != "@")
             path.push_back(dir);
         if (end == text.size()) break;
         begin = end + 1;
     }
-    m_scene.shaderSearchPath = std::move(path);
+    *out = std::move(path);
+    return true;
+}
+
+// Hider: affray has one hider, a ray tracer that takes each sample's nearest hit, which is what
+// "hidden" with "depthfilter" "min" computes. "jitter" places the samples; other hiders and
+// parameters change sampling or speed only and are ignored with a warning.
+bool RibParser::DoHider(const RibRequest& r) {
+    std::string name;
+    std::vector<RibParam> params;
+    if (!BeforeWorld(r) || !LeadingString(r, "a hider name", &name) || !ParamList(r, 1, &params)) return false;
+    if (name != "hidden")
+        Warn(r.at, "hider " + Quote(name) + " is not supported; rendering with affray's ray tracer (as \"hidden\")");
+    const std::string context = "'Hider \"" + name + "\"'";
+    for (const RibParam& p : params) {
+        if (p.value.name == "jitter") {
+            double jitter;
+            if (!ParamNumbers(p, context, 1, &jitter)) return false;
+            if (jitter != 0 && jitter != 1)
+                return Fail(p.at, context + " parameter 'jitter' must be 0 or 1, got " + FormatNumber(jitter));
+            m_scene.camera.jitter = jitter == 1;
+        } else if (p.value.name == "depthfilter") {
+            if (p.value.strings.size() != 1 || !p.value.numbers.empty())
+                return Fail(p.at, context + " parameter 'depthfilter' expects 1 string");
+            const std::string& filter = p.value.strings[0];
+            if (filter != "min")
+                Warn(p.at, context + " depthfilter " + Quote(filter) +
+                               " is not supported; depth is each sample's nearest hit (\"min\")");
+        } else {
+            Warn(p.at, context + " parameter " + Quote(p.value.name) + " is not supported; ignored");
+        }
+    }
+    return true;
+}
+
+// Declare "name" "declaration": later parameter lists may give `name` without a declaration.
+bool RibParser::DoDeclare(const RibRequest& r) {
+    if (r.args.size() != 2 || r.args[0].isArray || !r.args[0].StringsP() || r.args[1].isArray || !r.args[1].StringsP())
+        return Fail(r.at, "'Declare' expects 2 strings (name declaration)");
+    const std::string& name = r.args[0].strings[0];
+    const std::string& declaration = r.args[1].strings[0];
+    if (name.empty() || name.find_first_of(" \t\n\r") != std::string::npos)
+        return Fail(r.args[0].at, "'Declare' name " + Quote(name) + " must be one word");
+    RibDeclaration parsed;
+    std::string problem;
+    if (!RibDeclaration::Parse(declaration, &parsed, &problem)) return Fail(r.args[1].at, "'Declare': " + problem);
+    m_declared[name] = declaration;
+    return true;
+}
+
+// affray shades each ray hit exactly, so the micropolygon shading rate and its interpolation
+// have nothing to tune; the arguments are still checked.
+bool RibParser::DoShadingRate(const RibRequest& r) {
+    double rate;
+    if (!Numbers(r, 1, "size", &rate)) return false;
+    if (!(rate > 0)) return Fail(r.at, "'ShadingRate' must be positive, got " + FormatNumber(rate));
+    Warn(r.at, "'ShadingRate' does not apply: affray shades every ray hit; ignored");
+    return true;
+}
+
+bool RibParser::DoShadingInterpolation(const RibRequest& r) {
+    std::string type;
+    if (!LeadingString(r, "an interpolation type", &type)) return false;
+    if (r.args.size() > 1) return Fail(r.at, "'ShadingInterpolation' expects one string");
+    if (type != "constant" && type != "smooth")
+        return Fail(r.args[0].at,
+                    "unknown shading interpolation " + Quote(type) + " (expected \"constant\" or \"smooth\")");
+    Warn(r.at, "'ShadingInterpolation' does not apply: affray shades every ray hit; ignored");
+    return true;
+}
+
+// ArchiveRecord "comment"|"structure"|"verbatim" "text": a comment in the file, as # is.
+bool RibParser::DoArchiveRecord(const RibRequest& r) {
+    std::string type;
+    if (!LeadingString(r, "a record type", &type)) return false;
+    if (type == "verbatim") return Fail(r.at, "'ArchiveRecord \"verbatim\"' (RIB text in a string) is not supported");
     return true;
 }
 

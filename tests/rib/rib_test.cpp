@@ -268,8 +268,8 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
     REQUIRE(scene);
     std::vector<std::string> warnings = WarningsOf(error);
     REQUIRE(warnings.size() == 2);
-    CHECK(warnings[0] == "t.rib:1: warning: request 'ShadingRate' is not supported yet; ignored");
-    CHECK(warnings[1] == "t.rib:5: warning: 'Attribute \"identifier\"' is not supported; ignored");
+    CHECK(warnings[0] == "t.rib:1: warning: 'ShadingRate' does not apply: affray shades every ray hit; ignored");
+    CHECK(warnings[1] == "t.rib:5: warning: 'Attribute \"identifier\"' does not apply to affray; ignored");
 
     CHECK(ErrorOf("Fooo 1 2\n") == "t.rib:1: error: unknown RIB request 'Fooo'");
     CHECK(ErrorOf("WorldBegin\nPolygon \"P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n") ==
@@ -680,9 +680,9 @@ TEST_CASE("RIB Option searchpath shader expands & and @", "[renderer][rib]") {
         &warnings);
     CHECK(scene.shaderSearchPath.empty());
     REQUIRE(warnings.size() == 3);
-    CHECK(warnings[0] == "t.rib:1: warning: 'Option \"searchpath\" \"texture\"' is not supported; ignored");
-    CHECK(warnings[1] == "t.rib:3: warning: 'Option \"limits\" \"bucketsize\"' is not supported; ignored");
-    CHECK(warnings[2] == "t.rib:4: warning: 'Option \"statistics\"' is not supported; ignored");
+    CHECK(warnings[0] == "t.rib:1: warning: 'Option \"searchpath\" \"texture\"' does not apply to affray; ignored");
+    CHECK(warnings[1] == "t.rib:3: warning: 'Option \"limits\"' does not apply to affray; ignored");
+    CHECK(warnings[2] == "t.rib:4: warning: 'Option \"statistics\"' does not apply to affray; ignored");
 }
 
 TEST_CASE("RIB CoordinateSystem stores object to world", "[renderer][rib]") {
@@ -729,7 +729,7 @@ TEST_CASE("RIB Attribute and Opacity warn once and are ignored", "[renderer][rib
     CHECK(warnings[0] ==
           "t.rib:2: warning: 'Attribute \"displacementbound\"' is not needed: affray bounds "
           "displacement exactly; ignored");
-    CHECK(warnings[1] == "t.rib:4: warning: 'Attribute \"visibility\"' is not supported; ignored");
+    CHECK(warnings[1] == "t.rib:4: warning: 'Attribute \"visibility\"' does not apply to affray; ignored");
     CHECK(warnings[2] == "t.rib:7: warning: affray renders opaque surfaces only; Opacity ignored");
     CHECK(ErrorOf("WorldBegin\nOpacity 1 1\nWorldEnd\n") ==
           "t.rib:2: error: 'Opacity' expects 3 numbers (r g b), got 2");
