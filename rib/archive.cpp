@@ -164,16 +164,16 @@ bool RibParser::DoObjectInstance(const RibRequest& r) {
     // The object's requests inside an attribute block: the instance's graphics state, restored after.
     const ObjectDef& object = it->second;
     const State saved = m_state;
-    const size_t blocks = m_blocks.size();
     ++m_instanceDepth;
     for (const RibRequest& request : object.requests) {
         if (!Dispatch(request)) {
-            if (!m_errorNote) m_errorNote = {r.at, "in the instance of object " + Quote(handle) + " here"};
+            // Each level out replaces the note, so it ends at the outermost instance.
+            m_errorNote = {r.at, "in the instance of object " + Quote(handle) + " here"};
             return false;
         }
     }
+    // Record() saw that the object's blocks close inside it, so m_blocks is as it was.
     --m_instanceDepth;
-    if (m_blocks.size() != blocks) return Fail(r.at, "object " + Quote(handle) + " leaves a block open");
     m_state = saved;
     return true;
 }

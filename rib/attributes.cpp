@@ -179,6 +179,19 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     return true;
 }
 
+// Illuminate handle on|off: every light shines on every surface, so turning one on changes
+// nothing; turning one off for some surfaces (light linking) is not supported and warns.
+bool RibParser::DoIlluminate(const RibRequest& r) {
+    if (r.args.size() != 2 || r.args[0].isArray || r.args[1].isArray || !r.args[1].NumericP())
+        return Fail(r.at, "'Illuminate' expects a light handle and 0 or 1");
+    const RibArg& handle = r.args[0];
+    const std::string name = handle.StringsP() ? handle.strings[0] : FormatNumber(handle.numbers[0]);
+    const double on = r.args[1].numbers[0];
+    if (on != 0 && on != 1) return Fail(r.args[1].at, "'Illuminate' expects 0 or 1, got " + FormatNumber(on));
+    if (on == 0) Warn(r.at, "'Illuminate' cannot turn a light off yet: every light lights every surface");
+    return true;
+}
+
 // The parameters of the RI 3.2 light shaders; each light takes only its own.
 bool RibParser::LightParams(const std::string& context, const std::vector<RibParam>& params, LightDesc* light) {
     using Kind = LightDesc::Kind;

@@ -1,8 +1,9 @@
-// rib/parser.h: the RIB reader's state machine, shared by its two source files.
+// rib/parser.h: the RIB reader's state machine, shared by its source files.
 // Private to the reader: use rib/rib.h. rib.cpp holds dispatch, the block structure, options
-// and transforms; rib_attributes.cpp the shading attributes (with Sides and orientation) and
-// lights; rib_geometry.cpp the primitives and coordinate systems. The graphics state (CTM, color,
-// surface, displacement, sides, orientation) is saved by every Begin and restored by its End.
+// and transforms; attributes.cpp the shading attributes (with Sides and orientation) and lights;
+// geometry.cpp the primitives and coordinate systems; archive.cpp ReadArchive and retained
+// objects. The graphics state (CTM, color, surface, displacement, sides, orientation) is saved by
+// every Begin and restored by its End.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -159,9 +160,11 @@ class RibParser : private RibArgChecks {
     bool DoSurface(const RibRequest& r);
     bool DoDisplacement(const RibRequest& r);
     bool DoLightSource(const RibRequest& r);
+    bool DoIlluminate(const RibRequest& r);
     bool LightParams(const std::string& context, const std::vector<RibParam>& params, LightDesc* light);
     bool CheckSpotlight(const RibRequest& r, const std::string& context, const LightDesc& light);
     bool DoCoordinateSystem(const RibRequest& r);
+    bool DoCoordSysTransform(const RibRequest& r);
     bool DoPatch(const RibRequest& r);
     bool DoSphere(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Sphere); }
     bool DoCylinder(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Cylinder); }

@@ -32,7 +32,10 @@ std::string SceneDir(const test::TempDir& dir) {
 
 std::vector<std::string> Lines(const diag::Report& report) {
     std::vector<std::string> out;
-    for (const diag::Diagnostic& d : report.all()) out.push_back(Line(d));
+    for (const diag::Diagnostic& d : report.all()) {
+        out.push_back(Line(d));
+        for (const diag::Diagnostic& note : d.notes) out.push_back(Line(note));
+    }
     return out;
 }
 

@@ -82,7 +82,8 @@ TEST_CASE("Hider sets the jitter and accepts the depth filter", "[renderer][rib]
 
 TEST_CASE("Without jitter the camera rays go through the stratum centres", "[renderer][rib]") {
     // An orthographic view of [-2, 2] x [-0.5, 0.5], 4 x 1 pixels of one unit: a square from x = -2
-    // to -0.8 covers pixel 0, and 2 x 2 samples of pixel 1 at x = -0.75 (hit) and -0.25 (miss).
+    // to -0.6 covers pixel 0, and of the 2 x 2 samples of pixel 1, those at x = -0.75 (hit) and not
+    // those at -0.25 (miss).
     // Centred samples give exactly 1, 0.5, 0, 0; jittered ones only by chance.
     const std::string rib = R"(Format 4 1 1
 Projection "orthographic"
@@ -93,7 +94,7 @@ Hider "hidden" "jitter" [0]
 Scale 1 1 -1
 Translate 0 0 -5
 WorldBegin
-  Patch "bilinear" "P" [-2 -1 0  -0.8 -1 0  -2 1 0  -0.8 1 0]
+  Patch "bilinear" "P" [-2 -1 0  -0.6 -1 0  -2 1 0  -0.6 1 0]
 WorldEnd
 )";
     diag::Report report;
@@ -222,6 +223,22 @@ TEST_CASE("Options and attributes of other renderers warn once per name", "[rend
                       });
 }
 
+TEST_CASE("Illuminate turns lights on; turning one off warns", "[renderer][rib]") {
+    Messages messages;
+    std::optional<SceneDesc> scene = Parse(
+        "WorldBegin\nLightSource \"pointlight\" \"k\"\nIlluminate \"k\" 1\nIlluminate 2 0\nIlluminate \"k\" "
+        "0\nWorldEnd\n",
+        &messages);
+    REQUIRE(scene);
+    CHECK(scene->lights.size() == 1);
+    CHECK(messages ==
+          Messages{"t.rib:4: warning: 'Illuminate' cannot turn a light off yet: every light lights every surface"});
+    CHECK(ErrorsOf("WorldBegin\nIlluminate \"k\"\n") ==
+          Messages{"t.rib:2: error: 'Illuminate' expects a light handle and 0 or 1"});
+    CHECK(ErrorsOf("WorldBegin\nIlluminate \"k\" 2\n") ==
+          Messages{"t.rib:2: error: 'Illuminate' expects 0 or 1, got 2"});
+}
+
 TEST_CASE("ShadingRate, ShadingInterpolation and ArchiveRecord", "[renderer][rib]") {
     Messages messages;
     std::optional<SceneDesc> scene = Parse(
@@ -308,11 +325,11 @@ FrameEnd
                           "t.rib:8: warning: 'Option \"statistics\"' does not apply to affray; ignored",
                           "t.rib:9: warning: 'Option \"trace\"' does not apply to affray; ignored",
                           "t.rib:10: warning: 'Option \"user\"' does not apply to affray; ignored",
-                          "t.rib:18: warning: request 'PixelVariance' is not supported yet; ignored",
-                          "t.rib:21: warning: request 'Quantize' is not supported yet; ignored",
+                          "t.rib:18: warning: 'PixelVariance' does not apply to affray; ignored",
+                          "t.rib:21: warning: 'Quantize' does not apply to affray; ignored",
                           "t.rib:22: warning: request 'Imager' is not supported yet; ignored",
                           "t.rib:23: warning: request 'DepthOfField' is not supported yet; ignored",
-                          "t.rib:24: warning: request 'Shutter' is not supported yet; ignored",
+                          "t.rib:24: warning: 'Shutter' does not apply to affray; ignored",
                           "t.rib:30: warning: 'Attribute \"identifier\"' does not apply to affray; ignored",
                           "t.rib:31: warning: 'Attribute \"visibility\"' does not apply to affray; ignored",
                           "t.rib:32: warning: 'Attribute \"dice\"' does not apply to affray; ignored",
@@ -321,8 +338,7 @@ FrameEnd
                           "t.rib:34: warning: 'ShadingRate' does not apply: affray shades every ray hit; ignored",
                           "t.rib:35: warning: 'ShadingInterpolation' does not apply: affray shades every ray hit; "
                           "ignored",
-                          "t.rib:38: warning: request 'Illuminate' is not supported yet; ignored",
-                          "t.rib:42: warning: request 'Basis' is not supported yet; ignored",
-                          "t.rib:46: warning: 'Sphere' parameter 'Cs_ramp' is not supported yet; ignored",
+                          "t.rib:43: warning: 'Basis' does not apply to affray; ignored",
+                          "t.rib:47: warning: 'Sphere' parameter 'Cs_ramp' is not supported yet; ignored",
                       });
 }
