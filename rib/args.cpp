@@ -178,7 +178,8 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
 
 // A value against its declaration: strings for a string, numbers otherwise, and for a uniform or
 // constant parameter (the class by default) exactly the count the type holds. Varying classes
-// hold one value per vertex, face or corner, which only the primitive knows.
+// hold one value per vertex, face or corner, which only the primitive knows: a whole number of
+// values.
 bool RibArgChecks::CheckDeclared(const RibRequest& r, const RibArg& token, const RibParam& p) {
     RibDeclaration d;
     std::string problem;
@@ -191,12 +192,11 @@ bool RibArgChecks::CheckDeclared(const RibRequest& r, const RibArg& token, const
                               (strings ? "strings" : "numbers") + ", got " + (strings ? "numbers" : "strings"));
     const size_t count = strings ? p.value.strings.size() : p.value.numbers.size();
     const bool uniform = d.storage.empty() || d.storage == "uniform" || d.storage == "constant";
-    if (uniform ? count != d.UniformCount() : count % static_cast<size_t>(d.components) != 0)
+    const size_t each = d.UniformCount();  // one value of the declared type
+    if (uniform ? count != each : count % each != 0)
         return Fail(p.at, what + " is declared \"" + p.value.declaration + "\" and expects " +
-                              (uniform ? "" : "a multiple of ") +
-                              std::to_string(uniform ? d.UniformCount() : static_cast<size_t>(d.components)) +
-                              (strings ? " string" : " number") +
-                              ((uniform ? d.UniformCount() : d.components) == 1 ? "" : "s") + ", got " +
+                              (uniform ? "" : "a multiple of ") + std::to_string(each) +
+                              (strings ? " string" : " number") + (each == 1 ? "" : "s") + ", got " +
                               std::to_string(count));
     return true;
 }

@@ -179,6 +179,10 @@ TEST_CASE("Declare and inline declarations work on every parameter list", "[rend
     CHECK(ErrorsOf("WorldBegin\nSphere 1 -1 1 360 \"varying color Cs\" [1 0]\n") ==
           Messages{"t.rib:2: error: 'Sphere' parameter 'Cs' is declared \"varying color\" and expects a multiple of 3 "
                    "numbers, got 2"});
+    CHECK(
+        ErrorsOf("WorldBegin\nSphere 1 -1 1 360 \"vertex float[2] uv\" [1 2 3]\n") ==
+        Messages{"t.rib:2: error: 'Sphere' parameter 'uv' is declared \"vertex float[2]\" and expects a multiple of 2 "
+                 "numbers, got 3"});
     CHECK(ErrorsOf("WorldBegin\nAttribute \"user\" \"float[2] pair\" [1]\n") ==
           Messages{"t.rib:2: error: 'Attribute' parameter 'pair' is declared \"float[2]\" and expects 2 numbers, got "
                    "1"});
@@ -223,7 +227,7 @@ TEST_CASE("Options and attributes of other renderers warn once per name", "[rend
                       });
 }
 
-TEST_CASE("Illuminate turns lights on; turning one off warns", "[renderer][rib]") {
+TEST_CASE("Illuminate turns lights on, and turning one off warns", "[renderer][rib]") {
     Messages messages;
     std::optional<SceneDesc> scene = Parse(
         "WorldBegin\nLightSource \"pointlight\" \"k\"\nIlluminate \"k\" 1\nIlluminate 2 0\nIlluminate \"k\" "
