@@ -340,8 +340,9 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         if (patch.displacement) {
             const ShaderRef& ref = *patch.displacement;
             // The Displacement request in the RIB file (its line is read again only for a message).
+            const std::string& refFile = ref.file.empty() ? desc.path : ref.file;
             auto where = [&] {
-                return diag::Location(desc.path, ref.line, ref.column, diag::ReadLine(desc.path, ref.line));
+                return diag::Location(refFile, ref.line, ref.column, diag::ReadLine(refFile, ref.line));
             };
             std::string path = FindShader(ref.name, searchPath);
             if (path.empty()) {
@@ -388,7 +389,8 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
             std::string problem = UnboundedEverywhere(prim, *patch.displacement, eye, intervalCells);
             if (!problem.empty()) {
                 const ShaderRef& ref = *patch.displacement;
-                return fail({desc.path, ref.line, ref.column, diag::ReadLine(desc.path, ref.line)}, problem);
+                const std::string& refFile = ref.file.empty() ? desc.path : ref.file;
+                return fail({refFile, ref.line, ref.column, diag::ReadLine(refFile, ref.line)}, problem);
             }
         }
         prim.box = UnionBox(intervalCells);

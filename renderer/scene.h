@@ -30,6 +30,7 @@ struct ShaderRef {
     std::string name;
     std::vector<ParamValue> params;  ///< In file order; a repeated name replaces the earlier value.
     int line = 0, column = 0;        ///< Where the request starts in the RIB file, for diagnostics.
+    std::string file;                ///< The file of the request if not the scene's (ReadArchive), else "".
     /// Shader space: the current transform at the request (shader -> world, column vectors).
     glm::dmat4 shaderToWorld{1.0};
 };
@@ -103,6 +104,9 @@ struct CameraDesc {
     glm::dvec4 cropWindow{0.0, 1.0, 0.0, 1.0};
     double nearClip = 1e-10, farClip = 1e30;  ///< Clipping, camera-space depths (RI defaults)
     int xsamples = 2, ysamples = 2;           ///< PixelSamples (RI default 2 x 2)
+    /// Hider "hidden" "jitter": true places each sample at random in its stratum; false at the
+    /// stratum's centre (with PixelSamples 1 1, the ray through the pixel centre).
+    bool jitter = true;
     FilterDesc filter;
     double exposureGain = 1, exposureGamma = 1;  ///< Exposure: out = (gain * color)^(1/gamma)
 };
@@ -207,6 +211,7 @@ inline std::string ToString(const CameraDesc& c) {
             << c.screenWindow->w << ']';
     out << " cropwindow=[" << c.cropWindow.x << ' ' << c.cropWindow.y << ' ' << c.cropWindow.z << ' ' << c.cropWindow.w
         << "] clipping=" << c.nearClip << ' ' << c.farClip << " pixelsamples=" << c.xsamples << ' ' << c.ysamples
+        << (c.jitter ? "" : " jitter=0")
         << " filter=" << (c.filter.kind == FilterDesc::Kind::Box ? "box " : "gaussian ") << c.filter.xwidth << ' '
         << c.filter.ywidth << " exposure=" << c.exposureGain << ' ' << c.exposureGamma;
     return out.str();

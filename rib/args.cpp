@@ -2,11 +2,61 @@
 #include "rib/args.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <glm/gtc/type_ptr.hpp>
 #include <sstream>
 #include <unordered_map>
 
 namespace affray::rib {
+
+// "[class] type[n]": the classes and types of RI 3.2 section 3 (with prman's "int", "bool" and
+// the "facevertex" class).
+bool RibDeclaration::Parse(const std::string& text, RibDeclaration* out, std::string* problem) {
+    static const char* const kStorage[] = {"constant", "uniform", "varying", "vertex", "facevarying", "facevertex"};
+    static const std::pair<const char*, int> kTypes[] = {
+        {"float", 1}, {"integer", 1}, {"int", 1},    {"bool", 1},   {"string", 1},  {"color", 3},
+        {"point", 3}, {"vector", 3},  {"normal", 3}, {"hpoint", 4}, {"matrix", 16},
+    };
+    std::istringstream in(text);
+    std::vector<std::string> words;
+    for (std::string w; in >> w;) words.push_back(w);
+    RibDeclaration d;
+    size_t i = 0;
+    if (i < words.size() && std::find(std::begin(kStorage), std::end(kStorage), words[i]) != std::end(kStorage))
+        d.storage = words[i++];
+    if (i >= words.size()) {
+        *problem = "declaration \"" + text + "\" has no type";
+        return false;
+    }
+    std::string type = words[i++];
+    // The array size may be written "float[2]" or "float [2]".
+    if (i < words.size() && words[i].front() == '[') type += words[i++];
+    if (i < words.size()) {
+        *problem = "declaration \"" + text + "\" has words after its type";
+        return false;
+    }
+    if (size_t open = type.find('['); open != std::string::npos) {
+        const std::string size = type.substr(open + 1);
+        char* end = nullptr;
+        long n = std::strtol(size.c_str(), &end, 10);
+        if (size.empty() || end != size.c_str() + size.size() - 1 || *end != ']' || n < 1 || n > 65536) {
+            *problem = "declaration \"" + text + "\" needs a positive array size, as \"float[2]\"";
+            return false;
+        }
+        d.arraySize = static_cast<int>(n);
+        type.resize(open);
+    }
+    auto it = std::find_if(std::begin(kTypes), std::end(kTypes), [&](const auto& t) { return type == t.first; });
+    if (it == std::end(kTypes)) {
+        *problem = "declaration \"" + text + "\" has an unknown type '" + type +
+                   "' (expected float, integer, string, color, point, vector, normal, hpoint or matrix)";
+        return false;
+    }
+    d.type = type;
+    d.components = it->second;
+    *out = d;
+    return true;
+}
 
 bool RibArgChecks::Fail(RibPos at, const std::string& message) {
     m_errorAt = at;
@@ -106,6 +156,8 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
             size_t declBegin = text.find_first_not_of(" \t\n\r");
             size_t declEnd = text.find_last_not_of(" \t\n\r", start - 1);
             if (declBegin <= declEnd) p.value.declaration = text.substr(declBegin, declEnd + 1 - declBegin);
+        } else if (auto declared = m_declared.find(p.value.name); declared != m_declared.end()) {
+            p.value.declaration = declared->second;
         }
         if (i + 1 >= r.args.size())
             return Fail(token.at, Quote(r.name) + " parameter " + Quote(p.value.name) + " has no value");
@@ -113,6 +165,7 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
         p.value.numbers = value.numbers;
         p.value.strings = value.strings;
         p.at = value.at;
+        if (!p.value.declaration.empty() && !CheckDeclared(r, token, p)) return false;
         // An index by name keeps long parameter lists linear.
         auto [slot, isNew] = index.try_emplace(p.value.name, out->size());
         if (isNew)
@@ -120,6 +173,31 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
         else
             (*out)[slot->second] = std::move(p);
     }
+    return true;
+}
+
+// A value against its declaration: strings for a string, numbers otherwise, and for a uniform or
+// constant parameter (the class by default) exactly the count the type holds. Varying classes
+// hold one value per vertex, face or corner, which only the primitive knows: a whole number of
+// values.
+bool RibArgChecks::CheckDeclared(const RibRequest& r, const RibArg& token, const RibParam& p) {
+    RibDeclaration d;
+    std::string problem;
+    const std::string what = Quote(r.name) + " parameter " + Quote(p.value.name);
+    if (!RibDeclaration::Parse(p.value.declaration, &d, &problem)) return Fail(token.at, what + ": " + problem);
+    const bool strings = d.type == "string";
+    const bool empty = p.value.numbers.empty() && p.value.strings.empty();
+    if (!empty && strings != p.value.numbers.empty())
+        return Fail(p.at, what + " is declared \"" + p.value.declaration + "\" and expects " +
+                              (strings ? "strings" : "numbers") + ", got " + (strings ? "numbers" : "strings"));
+    const size_t count = strings ? p.value.strings.size() : p.value.numbers.size();
+    const bool uniform = d.storage.empty() || d.storage == "uniform" || d.storage == "constant";
+    const size_t each = d.UniformCount();  // one value of the declared type
+    if (uniform ? count != each : count % each != 0)
+        return Fail(p.at, what + " is declared \"" + p.value.declaration + "\" and expects " +
+                              (uniform ? "" : "a multiple of ") + std::to_string(each) +
+                              (strings ? " string" : " number") + (each == 1 ? "" : "s") + ", got " +
+                              std::to_string(count));
     return true;
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,19 @@ struct RibParam {
     RibPos at;
 };
 
+/// A parameter's declaration (RI 3.2 section 3: "[class] type['['n']']"), parsed.
+struct RibDeclaration {
+    std::string storage;  ///< constant, uniform, varying, vertex, facevarying, facevertex; "" if not given
+    std::string type;     ///< float, integer, int, string, color, point, vector, normal, hpoint, matrix, ...
+    int arraySize = 1;    ///< n of "type[n]"; 1 without brackets
+    int components = 1;   ///< numbers (or strings) per element: 3 for color and point, 16 for matrix
+
+    /// Parses `text`; on failure returns false with *problem saying why.
+    static bool Parse(const std::string& text, RibDeclaration* out, std::string* problem);
+    /// Values of a uniform (or constant) parameter: components * arraySize.
+    size_t UniformCount() const { return static_cast<size_t>(components) * static_cast<size_t>(arraySize); }
+};
+
 /// Argument checks for the RIB reader, which derives from this class. Messages name the request.
 class RibArgChecks {
   protected:
@@ -51,8 +65,13 @@ class RibArgChecks {
     /// A bare string as the first argument; `what` describes it ("a light shader name").
     bool LeadingString(const RibRequest& r, const char* what, std::string* out);
     /// Token-value pairs from args[first] on. The last word of a token is the name, the words
-    /// before it the inline declaration. A repeated name replaces the earlier value.
+    /// before it the inline declaration; a name without one takes its Declare'd declaration, if
+    /// any. A declared parameter must have values of its type (strings or numbers) and, unless
+    /// its class varies over a primitive, exactly as many as the type holds. A repeated name
+    /// replaces the earlier value.
     bool ParamList(const RibRequest& r, size_t first, std::vector<RibParam>* out);
+    /// `p` (the value of `token`) against its declaration, as ParamList describes.
+    bool CheckDeclared(const RibRequest& r, const RibArg& token, const RibParam& p);
     /// A parameter of exactly `count` numbers; `context` names the request ("'Surface \"matte\"'").
     bool ParamNumbers(const RibParam& p, const std::string& context, size_t count, double* out);
     /// A parameter of exactly 3 numbers.
@@ -67,6 +86,8 @@ class RibArgChecks {
 
     RibPos m_errorAt;
     std::string m_errorMessage;
+    /// Declare'd names and their declarations as written ("uniform float").
+    std::map<std::string, std::string> m_declared;
 };
 
 }  // namespace affray::rib

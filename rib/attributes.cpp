@@ -31,7 +31,7 @@ bool RibParser::DoAttribute(const RibRequest& r) {
              "'Attribute \"displacementbound\"' is not needed: affray bounds displacement "
              "exactly; ignored");
     else
-        Warn(r.at, "'Attribute \"" + name + "\"' is not supported; ignored");
+        Warn(r.at, "'Attribute \"" + name + "\"' does not apply to affray; ignored");
     return true;
 }
 
@@ -129,6 +129,7 @@ bool RibParser::DoDisplacement(const RibRequest& r) {
         m_state.displacement.reset();
         return true;
     }
+    shader.file = FileOf(r.at);
     shader.line = r.at.line;
     shader.column = r.at.column;
     shader.shaderToWorld = m_state.ctm;
@@ -175,6 +176,19 @@ bool RibParser::DoLightSource(const RibRequest& r) {
         m_scene.lights.push_back(light);
     else
         m_cameraLights.push_back(light);
+    return true;
+}
+
+// Illuminate handle on|off: every light shines on every surface, so turning one on changes
+// nothing; turning one off for some surfaces (light linking) is not supported and warns.
+bool RibParser::DoIlluminate(const RibRequest& r) {
+    if (r.args.size() != 2 || r.args[0].isArray || r.args[1].isArray || !r.args[1].NumericP())
+        return Fail(r.at, "'Illuminate' expects a light handle and 0 or 1");
+    const RibArg& handle = r.args[0];
+    const std::string name = handle.StringsP() ? handle.strings[0] : FormatNumber(handle.numbers[0]);
+    const double on = r.args[1].numbers[0];
+    if (on != 0 && on != 1) return Fail(r.args[1].at, "'Illuminate' expects 0 or 1, got " + FormatNumber(on));
+    if (on == 0) Warn(r.at, "'Illuminate' cannot turn a light off yet: every light lights every surface");
     return true;
 }
 

@@ -157,4 +157,36 @@ bool RibParser::DoCoordinateSystem(const RibRequest& r) {
     return true;
 }
 
+// CoordSysTransform replaces the current transform with a named space's: one that
+// CoordinateSystem defined, or "world", "camera" (and "object", "current", "shader", which are
+// the current space, so nothing changes). Screen spaces are projective and refused.
+bool RibParser::DoCoordSysTransform(const RibRequest& r) {
+    std::string name;
+    if (!LeadingString(r, "a coordinate system name", &name)) return false;
+    if (r.args.size() > 1) return Fail(r.at, "'CoordSysTransform' expects one string");
+    if (name == "object" || name == "current" || name == "shader") return true;
+    // The named space as the CTM holds it: object -> world inside the world block, object ->
+    // camera before it (and after WorldEnd, as ObjectToCamera says).
+    const bool inWorld = m_worldSeen && !m_worldEnded;
+    const glm::dmat4& worldToCamera = m_scene.camera.worldToCamera;
+    const auto named = m_scene.coordinateSystems.find(name);
+    const auto beforeWorld = m_cameraCoordinateSystems.find(name);
+    glm::dmat4 ctm;
+    if (name == "camera") {
+        ctm = inWorld ? glm::inverse(worldToCamera) : glm::dmat4(1.0);
+    } else if (name == "world") {
+        if (!m_worldSeen)
+            return Fail(r.at, "'CoordSysTransform \"world\"' before 'WorldBegin': world space is not known yet");
+        ctm = inWorld ? glm::dmat4(1.0) : worldToCamera;
+    } else if (named != m_scene.coordinateSystems.end()) {
+        ctm = inWorld ? named->second : worldToCamera * named->second;
+    } else if (beforeWorld != m_cameraCoordinateSystems.end()) {
+        ctm = beforeWorld->second;  // only before WorldBegin, which moves them to world space
+    } else {
+        return Fail(r.args[0].at, "'CoordSysTransform': no coordinate system " + Quote(name) +
+                                      " has been defined (by 'CoordinateSystem')");
+    }
+    return SetCtm(r, ctm);
+}
+
 }  // namespace affray::rib

@@ -11,10 +11,12 @@
 
 namespace affray::rib {
 
-/// A place in RIB text: line and column (in bytes) from 1.
+/// A place in RIB text: line and column (in bytes) from 1, and the file. The lexer leaves
+/// file 0; the reader numbers the files ReadArchive opens from 1 (see rib/parser.h).
 struct RibPos {
     int line = 1;
     int column = 1;
+    int file = 0;
 };
 
 /// One RIB token.

@@ -1,12 +1,14 @@
-// rib/parser.h: the RIB reader's state machine, shared by its two source files.
+// rib/parser.h: the RIB reader's state machine, shared by its source files.
 // Private to the reader: use rib/rib.h. rib.cpp holds dispatch, the block structure, options
-// and transforms; rib_attributes.cpp the shading attributes (with Sides and orientation) and
-// lights; rib_geometry.cpp the primitives and coordinate systems. The graphics state (CTM, color,
-// surface, displacement, sides, orientation) is saved by every Begin and restored by its End.
+// and transforms; attributes.cpp the shading attributes (with Sides and orientation) and lights;
+// geometry.cpp the primitives and coordinate systems; archive.cpp ReadArchive and retained
+// objects. The graphics state (CTM, color, surface, displacement, sides, orientation) is saved by
+// every Begin and restored by its End.
 #pragma once
 
 #include <glm/glm.hpp>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -23,8 +25,9 @@ namespace affray::rib {
 /// Builds a SceneDesc from the requests of one RIB text. Use once: construct, then Run().
 class RibParser : private RibArgChecks {
   public:
-    RibParser(std::string_view text, const std::string& path, diag::Report* report)
-        : m_reader(text), m_text(text), m_path(path), m_report(report) {
+    RibParser(std::string_view text, const std::string& path, diag::Report* report) : m_report(report) {
+        m_sources.push_back({path, nullptr, text});
+        m_readers.push_back({RibRequestReader(text), 0});
         m_scene.path = path;
         m_scene.camera.perspective = false;  // RI default without a Projection request
     }
@@ -52,11 +55,34 @@ class RibParser : private RibArgChecks {
         State saved;
     };
     using Handler = bool (RibParser::*)(const RibRequest&);
+    /// A file the reader has read: the scene (0) or an archive. RibPos::file indexes these.
+    struct Source {
+        std::string path;
+        std::unique_ptr<std::string> owned;  // an archive's text (the scene's is the caller's)
+        std::string_view text;
+    };
+    /// A file being read; the innermost ReadArchive is the last.
+    struct OpenReader {
+        RibRequestReader reader;
+        int file;
+    };
+    /// An ObjectBegin ... ObjectEnd definition: its requests, replayed by ObjectInstance.
+    struct ObjectDef {
+        RibPos at;
+        std::vector<RibRequest> requests;
+    };
 
     bool Dispatch(const RibRequest& r);
+    /// While an object is being defined: records `r` in it, or runs it if it acts at once
+    /// (ObjectEnd, ReadArchive, Declare). Requests an object cannot hold are errors.
+    bool Record(const RibRequest& r);
+    /// The path of file `file` of m_sources, for ShaderRef::file ("" for the scene itself).
+    std::string FileOf(const RibPos& at) const { return at.file == 0 ? std::string() : m_sources[at.file].path; }
     void Warn(RibPos at, const std::string& message);
     /// `at` as a diagnostic location, with its source line.
     diag::Location Where(RibPos at) const;
+    /// "line 3" for `at`, with " of FILE" if it is in another file than `from`.
+    std::string LineName(RibPos at, RibPos from) const;
     static const char* BlockName(Block kind, bool end);
     static bool FiniteP(const glm::dmat4& m);
     static bool FiniteP(const glm::dvec3& v);
@@ -94,7 +120,23 @@ class RibParser : private RibArgChecks {
     bool DoPixelFilter(const RibRequest& r);
     bool DoExposure(const RibRequest& r);
     bool DoOption(const RibRequest& r);
-    bool SetShaderSearchPath(const RibParam& p);
+    /// Option "searchpath" "shader" or "archive": a ':'-separated list into *path.
+    bool SetSearchPath(const RibParam& p, std::vector<std::string>* path);
+    bool DoHider(const RibRequest& r);
+    bool DoDeclare(const RibRequest& r);
+    bool DoShadingRate(const RibRequest& r);
+    bool DoShadingInterpolation(const RibRequest& r);
+    bool DoArchiveRecord(const RibRequest& r);
+    bool DoReadArchive(const RibRequest& r);
+    /// The file ReadArchive `name` names, as given in file `from`: an absolute path, else
+    /// relative to that file's directory, else to each Option "searchpath" "archive" directory.
+    /// Empty if none exists; *searched lists where it looked.
+    std::string FindArchive(const std::string& name, int from, std::string* searched) const;
+    bool DoObjectBegin(const RibRequest& r);
+    bool DoObjectEnd(const RibRequest& r);
+    bool DoObjectInstance(const RibRequest& r);
+    /// An object handle argument (a number or a string) as a key; false if there is none.
+    bool ObjectHandle(const RibRequest& r, std::string* out);
     bool DoFrameBegin(const RibRequest& r);
     bool DoFrameEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::Frame); }
     bool DoWorldBegin(const RibRequest& r);
@@ -118,9 +160,11 @@ class RibParser : private RibArgChecks {
     bool DoSurface(const RibRequest& r);
     bool DoDisplacement(const RibRequest& r);
     bool DoLightSource(const RibRequest& r);
+    bool DoIlluminate(const RibRequest& r);
     bool LightParams(const std::string& context, const std::vector<RibParam>& params, LightDesc* light);
     bool CheckSpotlight(const RibRequest& r, const std::string& context, const LightDesc& light);
     bool DoCoordinateSystem(const RibRequest& r);
+    bool DoCoordSysTransform(const RibRequest& r);
     bool DoPatch(const RibRequest& r);
     bool DoSphere(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Sphere); }
     bool DoCylinder(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Cylinder); }
@@ -131,11 +175,16 @@ class RibParser : private RibArgChecks {
     bool DoParaboloid(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Paraboloid); }
     bool DoVersion(const RibRequest&) { return true; }  // "version 3.03": nothing to check
 
-    RibRequestReader m_reader;
-    std::string_view m_text;
-    std::string m_path;
+    std::vector<Source> m_sources;
+    std::vector<OpenReader> m_readers;
     diag::Report* m_report;
-    std::set<std::string> m_warned;  // each distinct warning once
+    std::vector<std::string> m_archiveSearchPath;                 // Option "searchpath" "archive"
+    std::map<std::string, ObjectDef> m_objects;                   // by handle ("1" or the string)
+    std::optional<std::pair<std::string, ObjectDef>> m_defining;  // between ObjectBegin and ObjectEnd
+    int m_definingDepth = 0;                                      // Attribute/Transform blocks open in it
+    int m_instanceDepth = 0;                                      // ObjectInstance replays under way
+    std::optional<std::pair<RibPos, std::string>> m_errorNote;    // a note on the error, if any
+    std::set<std::string> m_warned;                               // each distinct warning once
 
     SceneDesc m_scene;
     State m_state;

@@ -2,8 +2,9 @@
 // Owns the meaning of each request (RI Spec 3.2), the options (here) and the graphics state: the
 // current transform (CTM), color, surface, displacement, sides and orientation, saved and
 // restored by the Begin/End blocks. To add a request: write a handler (attributes and lights in
-// rib_attributes.cpp, geometry in rib_geometry.cpp), list it in Dispatch(), and take it out of
-// kIgnored / kUnsupported. Handlers return false after Fail(); the first error ends the parse.
+// attributes.cpp, geometry in geometry.cpp, archives and objects in archive.cpp), list it in
+// Dispatch(), and take it out of kNoEffect / kIgnored / kUnsupported. Handlers return false after
+// Fail(); the first error ends the parse. Run() reads the innermost open file (see archive.cpp).
 // Longer than most files: the options are many small handlers that share the placement rules.
 //
 // Transform convention: RenderMan premultiplies row vectors, so "concatenate T" is, in GLM's
@@ -29,24 +30,29 @@ namespace affray::rib {
 namespace {
 
 // clang-format off
-// RI 3.2 requests whose absence changes only appearance, sampling or bookkeeping: skipped with one
-// warning per name.
+// RI 3.2 requests that tune what affray has no counterpart for (level of detail, dicing, bounds,
+// texture making, quantizing an image affray writes as floats, the shutter of motion affray
+// refuses): accepted with one warning per name.
+constexpr std::string_view kNoEffect[] = {
+    "Basis", "Begin", "Bound", "Detail", "DetailRange", "End", "ErrorHandler", "GeometricApproximation",
+    "MakeBump", "MakeCubeFaceEnvironment", "MakeLatLongEnvironment", "MakeShadow", "MakeTexture",
+    "PixelVariance", "Quantize", "RelativeDetail", "Shutter", "TransformPoints",
+};
+
+// RI 3.2 requests whose absence changes only appearance (shading, lighting, the lens): skipped
+// with one warning per name.
 constexpr std::string_view kIgnored[] = {
-    "ArchiveRecord", "AreaLightSource", "Atmosphere", "Basis", "Begin", "Bound", "ClippingPlane",
-    "ColorSamples", "Declare", "DepthOfField", "Detail", "DetailRange", "End", "ErrorHandler",
-    "Exterior", "GeometricApproximation", "Hider", "Illuminate", "Imager", "Interior", "MakeBump",
-    "MakeCubeFaceEnvironment", "MakeLatLongEnvironment", "MakeShadow", "MakeTexture", "Matte",
-    "PixelVariance", "Quantize", "RelativeDetail", "ShadingInterpolation", "ShadingRate",
-    "Shutter", "TextureCoordinates", "TransformPoints", "TrimCurve",
+    "AreaLightSource", "Atmosphere", "ClippingPlane", "ColorSamples", "DepthOfField", "Exterior",
+    "Imager", "Interior", "Matte", "TextureCoordinates", "TrimCurve",
 };
 
 // RI 3.2 requests that create or move geometry: ignoring them would render the wrong scene, so
 // they are errors until implemented.
 constexpr std::string_view kUnsupported[] = {
-    "Blobby", "CoordSysTransform", "Curves", "Deformation", "GeneralPolygon", "Geometry",
-    "MotionBegin", "MotionEnd", "NuPatch", "ObjectBegin", "ObjectEnd", "ObjectInstance",
-    "PatchMesh", "Perspective", "Points", "PointsGeneralPolygons", "PointsPolygons", "Polygon",
-    "Procedural", "ReadArchive", "Skew", "SolidBegin", "SolidEnd", "SubdivisionMesh",
+    "Blobby", "Curves", "Deformation", "GeneralPolygon", "Geometry",
+    "MotionBegin", "MotionEnd", "NuPatch", "PatchMesh", "Perspective", "Points",
+    "PointsGeneralPolygons", "PointsPolygons", "Polygon", "Procedural", "Skew", "SolidBegin",
+    "SolidEnd", "SubdivisionMesh",
 };
 // clang-format on
 
@@ -61,6 +67,29 @@ bool ContainsP(const std::string_view* begin, const std::string_view* end, std::
     return std::find(begin, end, name) != end;
 }
 
+// Why a refused request that is not a primitive cannot be skipped ("" for primitives).
+std::string UnsupportedReason(std::string_view name) {
+    if (name == "MotionBegin" || name == "MotionEnd")
+        return ": motion blocks move geometry during the shutter, and one instant of them is not the "
+               "scene";
+    if (name == "Deformation") return ": a deformation shader moves geometry";
+    if (name == "Perspective") return ": a projective transform (transforms must be affine)";
+    if (name == "Skew") return ": skipping the shear would move geometry";
+    if (name == "SolidBegin" || name == "SolidEnd")
+        return ": constructive solid geometry changes which surfaces are seen";
+    return "";
+}
+
+}  // namespace
+
+namespace {
+
+// Marks the request and its arguments as read from file `file` (RibPos::file).
+void StampFile(RibRequest* r, int file) {
+    r->at.file = file;
+    for (RibArg& arg : r->args) arg.at.file = file;
+}
+
 }  // namespace
 
 std::optional<SceneDesc> RibParser::Run() {
@@ -69,25 +98,37 @@ std::optional<SceneDesc> RibParser::Run() {
     RibPos at;
     bool ok = true;
     for (;;) {
-        RibRequestReader::Status status = m_reader.Next(&request, &message, &at);
-        if (status == RibRequestReader::Status::End) break;
+        OpenReader& current = m_readers.back();
+        RibRequestReader::Status status = current.reader.Next(&request, &message, &at);
+        if (status == RibRequestReader::Status::End) {
+            if (m_readers.size() == 1) break;
+            m_readers.pop_back();  // the end of an archive: back to the file that read it
+            continue;
+        }
         if (status == RibRequestReader::Status::Error) {
+            at.file = current.file;
             ok = Fail(at, message);
             break;
         }
-        if (!Dispatch(request)) {
+        StampFile(&request, current.file);
+        if (!(m_defining ? Record(request) : Dispatch(request))) {
             ok = false;
             break;
         }
     }
+    if (ok && m_defining) ok = Fail(m_defining->second.at, "'ObjectBegin' has no matching 'ObjectEnd'");
     if (ok && !m_blocks.empty()) {
         const OpenBlock& open = m_blocks.back();
         ok =
             Fail(open.at, Quote(BlockName(open.kind, false)) + " has no matching " + Quote(BlockName(open.kind, true)));
     }
-    if (ok && !m_worldSeen) ok = Fail(m_reader.LastPos(), "no 'WorldBegin': the file describes no scene");
+    if (ok && !m_worldSeen)
+        ok = Fail(m_readers.front().reader.LastPos(), "no 'WorldBegin': the file describes no scene");
     if (!ok) {
-        if (m_report) m_report->error(Where(m_errorAt), m_errorMessage);
+        if (m_report) {
+            m_report->error(Where(m_errorAt), m_errorMessage);
+            if (m_errorNote) m_report->note(Where(m_errorNote->first), m_errorNote->second);
+        }
         return std::nullopt;
     }
     return std::move(m_scene);
@@ -139,14 +180,29 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"Hyperboloid", &RibParser::DoHyperboloid},
         {"Paraboloid", &RibParser::DoParaboloid},
         {"version", &RibParser::DoVersion},
+        {"Hider", &RibParser::DoHider},
+        {"Declare", &RibParser::DoDeclare},
+        {"ShadingRate", &RibParser::DoShadingRate},
+        {"ShadingInterpolation", &RibParser::DoShadingInterpolation},
+        {"ArchiveRecord", &RibParser::DoArchiveRecord},
+        {"Illuminate", &RibParser::DoIlluminate},
+        {"ReadArchive", &RibParser::DoReadArchive},
+        {"ObjectBegin", &RibParser::DoObjectBegin},
+        {"ObjectEnd", &RibParser::DoObjectEnd},
+        {"ObjectInstance", &RibParser::DoObjectInstance},
+        {"CoordSysTransform", &RibParser::DoCoordSysTransform},
     };
     if (auto it = kHandlers.find(r.name); it != kHandlers.end()) return (this->*(it->second))(r);
+    if (ContainsP(std::begin(kNoEffect), std::end(kNoEffect), r.name)) {
+        Warn(r.at, Quote(r.name) + " does not apply to affray; ignored");
+        return true;
+    }
     if (ContainsP(std::begin(kIgnored), std::end(kIgnored), r.name)) {
         Warn(r.at, "request " + Quote(r.name) + " is not supported yet; ignored");
         return true;
     }
     if (ContainsP(std::begin(kUnsupported), std::end(kUnsupported), r.name))
-        return Fail(r.at, Quote(r.name) + " is not supported yet");
+        return Fail(r.at, Quote(r.name) + " is not supported yet" + UnsupportedReason(r.name));
     return Fail(r.at, "unknown RIB request " + Quote(r.name));
 }
 
@@ -156,7 +212,14 @@ void RibParser::Warn(RibPos at, const std::string& message) {
 }
 
 diag::Location RibParser::Where(RibPos at) const {
-    return {m_path, at.line, at.column, std::string(diag::LineOf(m_text, at.line))};
+    const Source& source = m_sources[static_cast<size_t>(at.file)];
+    return {source.path, at.line, at.column, std::string(diag::LineOf(source.text, at.line))};
+}
+
+std::string RibParser::LineName(RibPos at, RibPos from) const {
+    std::string text = "line " + std::to_string(at.line);
+    if (at.file != from.file) text += " of " + m_sources[static_cast<size_t>(at.file)].path;
+    return text;
 }
 
 const char* RibParser::BlockName(Block kind, bool end) {
@@ -211,8 +274,8 @@ bool RibParser::End(const RibRequest& r, Block kind) {
     if (!anyOpen) return Fail(r.at, Quote(r.name) + " without matching " + Quote(BlockName(kind, false)));
     const OpenBlock& open = m_blocks.back();
     if (open.kind != kind)
-        return Fail(r.at, Quote(r.name) + " does not match " + Quote(BlockName(open.kind, false)) + " on line " +
-                              std::to_string(open.at.line));
+        return Fail(r.at, Quote(r.name) + " does not match " + Quote(BlockName(open.kind, false)) + " on " +
+                              LineName(open.at, r.at));
     // TransformEnd restores only the transform; every other block restores all attributes.
     if (kind == Block::Transform)
         m_state.ctm = open.saved.ctm;
@@ -394,44 +457,6 @@ bool RibParser::DoExposure(const RibRequest& r) {
                     "'Exposure' gain and gamma must be positive, got " + FormatNumber(v[0]) + " " + FormatNumber(v[1]));
     m_scene.camera.exposureGain = v[0];
     m_scene.camera.exposureGamma = v[1];
-    return true;
-}
-
-bool RibParser::DoOption(const RibRequest& r) {
-    std::string name;
-    std::vector<RibParam> params;
-    if (!BeforeWorld(r) || !LeadingString(r, "an option name", &name) || !ParamList(r, 1, &params)) return false;
-    for (const RibParam& p : params) {
-        if (name == "searchpath" && p.value.name == "shader") {
-            if (!SetShaderSearchPath(p)) return false;
-        } else {
-            Warn(r.at, "'Option \"" + name + "\" \"" + p.value.name + "\"' is not supported; ignored");
-        }
-    }
-    if (params.empty()) Warn(r.at, "'Option \"" + name + "\"' is not supported; ignored");
-    return true;
-}
-
-// Option "searchpath" "shader" "dir1:dir2": '&' is the previous path and '@' the default, which
-// is the empty list (the renderer's own default), so '@' adds nothing. Empty entries are
-// skipped. Relative directories are kept as written; the renderer resolves them against the RIB
-// file's directory.
-bool RibParser::SetShaderSearchPath(const RibParam& p) {
-    if (p.value.strings.size() != 1 || !p.value.numbers.empty())
-        return Fail(p.at, "'Option \"searchpath\"' parameter 'shader' expects 1 string");
-    const std::string& text = p.value.strings[0];
-    std::vector<std::string> path;
-    for (size_t begin = 0;;) {
-        size_t end = std::min(text.find(':', begin), text.size());
-        std::string dir = text.substr(begin, end - begin);
-        if (dir == "&")
-            path.insert(path.end(), m_scene.shaderSearchPath.begin(), m_scene.shaderSearchPath.end());
-        else if (!dir.empty() && dir != "@")
-            path.push_back(dir);
-        if (end == text.size()) break;
-        begin = end + 1;
-    }
-    m_scene.shaderSearchPath = std::move(path);
     return true;
 }
 

@@ -1,14 +1,18 @@
 // rib/rib.h: reading a RIB file into a SceneDesc.
 // The reader follows the RenderMan Interface Specification 3.2 for the requests it implements:
 // options (Format, Projection, FrameAspectRatio, ScreenWindow, CropWindow, Clipping, PixelSamples,
-// PixelFilter box/gaussian, Exposure, Display with its mode checked, Option "searchpath"
-// "shader"), transforms and Begin/End scopes, CoordinateSystem, attributes (Color, Opacity 1 1 1,
-// Surface constant/matte/metal/plastic, Displacement, Sides, ReverseOrientation, Orientation),
-// lights (ambientlight, distantlight, pointlight, spotlight) and geometry (bilinear Patch, Sphere,
-// Cylinder, Cone, Disk, Torus, Hyperboloid, Paraboloid). Other RI 3.2 requests, other Option and
-// Attribute names, and unknown shaders are skipped with one warning per name, unless ignoring them
+// PixelFilter box/gaussian, Exposure, Display with its mode checked, Hider "hidden" "jitter",
+// Option "searchpath" "shader" and "archive"), Declare and inline declarations on every parameter
+// list, transforms and Begin/End scopes, CoordinateSystem, CoordSysTransform, attributes (Color,
+// Opacity 1 1 1, Surface constant/matte/metal/plastic, Displacement, Sides, ReverseOrientation,
+// Orientation, Illuminate on),
+// lights (ambientlight, distantlight, pointlight, spotlight), ReadArchive, retained objects
+// (ObjectBegin, ObjectEnd, ObjectInstance) and geometry (bilinear Patch, Sphere, Cylinder, Cone,
+// Disk, Torus, Hyperboloid, Paraboloid). Other RI 3.2 requests, other Option and Attribute names,
+// other hiders and unknown shaders are skipped with one warning per name, unless ignoring them
 // would change the geometry (other primitives, Skew, Perspective, MotionBegin, ...), which is an
-// error. Problems are reported through diag/diagnostic.h, at the line and column of the token.
+// error. Problems are reported through diag/diagnostic.h, at the file (the scene or an archive),
+// line and column of the token.
 #pragma once
 
 #include <optional>

@@ -204,6 +204,7 @@ Film::Film(const CameraDesc& camera, const DisplayChannels& channels, std::uint6
       m_crop(CropPixels(camera)),
       m_xsamples(std::max(camera.xsamples, 1)),
       m_ysamples(std::max(camera.ysamples, 1)),
+      m_jitter(camera.jitter),
       m_filter(camera.filter),
       m_halfX(std::max(camera.filter.xwidth, 1.0) / 2),
       m_halfY(std::max(camera.filter.ywidth, 1.0) / 2),
@@ -230,6 +231,7 @@ PixelRange Film::SampleRegion(const PixelRange& tile) const {
 
 glm::dvec2 Film::SamplePosition(int px, int py, int index) const {
     const int i = index % m_xsamples, j = index / m_xsamples;
+    if (!m_jitter) return {px + (i + 0.5) / m_xsamples, py + (j + 0.5) / m_ysamples};
     const std::uint64_t h = SampleHash(px, py, index, m_seed);
     // Two 32-bit halves as jitters in [0, 1): exact in a double, so a sample stays in its stratum.
     const double jx = static_cast<double>(h >> 32) * 0x1p-32;

@@ -117,7 +117,8 @@ class Film {
     PixelRange SampleRegion(const PixelRange& tile) const;
 
     /// The raster position of sample `index` of pixel (px, py): jittered within its stratum by
-    /// a hash of (px, py, index, seed), so it is the same whoever asks and when.
+    /// a hash of (px, py, index, seed), so it is the same whoever asks and when; at the stratum's
+    /// centre if the camera's jitter is off.
     glm::dvec2 SamplePosition(int px, int py, int index) const;
 
     /// Every sample of SampleRegion(tile), row by row over its pixels, then by index.
@@ -147,6 +148,7 @@ class Film {
     int m_xres, m_yres;
     PixelRange m_crop;
     int m_xsamples, m_ysamples;
+    bool m_jitter;
     FilterDesc m_filter;
     double m_halfX, m_halfY;  ///< Filter half-widths, pixels.
     int m_marginX, m_marginY;

@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <glm/gtc/matrix_transform.hpp>
 #include <random>
 #include <string>
 #include <vector>
@@ -268,8 +269,8 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
     REQUIRE(scene);
     std::vector<std::string> warnings = WarningsOf(error);
     REQUIRE(warnings.size() == 2);
-    CHECK(warnings[0] == "t.rib:1: warning: request 'ShadingRate' is not supported yet; ignored");
-    CHECK(warnings[1] == "t.rib:5: warning: 'Attribute \"identifier\"' is not supported; ignored");
+    CHECK(warnings[0] == "t.rib:1: warning: 'ShadingRate' does not apply: affray shades every ray hit; ignored");
+    CHECK(warnings[1] == "t.rib:5: warning: 'Attribute \"identifier\"' does not apply to affray; ignored");
 
     CHECK(ErrorOf("Fooo 1 2\n") == "t.rib:1: error: unknown RIB request 'Fooo'");
     CHECK(ErrorOf("WorldBegin\nPolygon \"P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n") ==
@@ -278,7 +279,11 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
           "t.rib:3: error: 'PointsPolygons' is not supported yet");
     CHECK(ErrorOf("WorldBegin\nPatch \"bicubic\" \"P\" [0 0 0]\nWorldEnd\n") ==
           "t.rib:2: error: 'Patch \"bicubic\"' is not supported yet");
-    CHECK(ErrorOf("Skew 45 0 1 0 1 0 0\n") == "t.rib:1: error: 'Skew' is not supported yet");
+    CHECK(ErrorOf("Skew 45 0 1 0 1 0 0\n") ==
+          "t.rib:1: error: 'Skew' is not supported yet: skipping the shear would move geometry");
+    CHECK(ErrorOf("WorldBegin\nMotionBegin [0 1]\n") ==
+          "t.rib:2: error: 'MotionBegin' is not supported yet: motion blocks move geometry during the shutter, "
+          "and one instant of them is not the scene");
 
     // Other ignored things: unknown shader parameters, light shaders and surface shaders.
     error = {};
@@ -680,9 +685,9 @@ TEST_CASE("RIB Option searchpath shader expands & and @", "[renderer][rib]") {
         &warnings);
     CHECK(scene.shaderSearchPath.empty());
     REQUIRE(warnings.size() == 3);
-    CHECK(warnings[0] == "t.rib:1: warning: 'Option \"searchpath\" \"texture\"' is not supported; ignored");
-    CHECK(warnings[1] == "t.rib:3: warning: 'Option \"limits\" \"bucketsize\"' is not supported; ignored");
-    CHECK(warnings[2] == "t.rib:4: warning: 'Option \"statistics\"' is not supported; ignored");
+    CHECK(warnings[0] == "t.rib:1: warning: 'Option \"searchpath\" \"texture\"' does not apply to affray; ignored");
+    CHECK(warnings[1] == "t.rib:3: warning: 'Option \"limits\"' does not apply to affray; ignored");
+    CHECK(warnings[2] == "t.rib:4: warning: 'Option \"statistics\"' does not apply to affray; ignored");
 }
 
 TEST_CASE("RIB CoordinateSystem stores object to world", "[renderer][rib]") {
@@ -716,6 +721,35 @@ TEST_CASE("RIB CoordinateSystem stores object to world", "[renderer][rib]") {
           "t.rib:3: error: 'CoordinateSystem' after 'WorldEnd'");
 }
 
+TEST_CASE("RIB CoordSysTransform makes a named space current", "[renderer][rib]") {
+    // world -> camera is Translate (0, 0, 5).
+    SceneDesc scene = Parsed(
+        "Translate 1 0 0\nCoordinateSystem \"eye1\"\nIdentity\nCoordSysTransform \"eye1\"\n"
+        "CoordinateSystem \"eye1again\"\nIdentity\nTranslate 0 0 5\n"
+        "WorldBegin\n"
+        "  Translate 1 2 3\n  CoordinateSystem \"a\"\n  Identity\n"
+        "  Rotate 90 0 0 1\n  CoordSysTransform \"a\"\n  Sphere 1 -1 1 360\n"
+        "  CoordSysTransform \"world\"\n  Sphere 1 -1 1 360\n"
+        "  CoordSysTransform \"camera\"\n  Sphere 1 -1 1 360\n"
+        "  Translate 0 0 1\n  CoordSysTransform \"object\"\n  Sphere 1 -1 1 360\n"
+        "  CoordSysTransform \"eye1\"\n  Sphere 1 -1 1 360\n"
+        "WorldEnd\n");
+    REQUIRE(scene.primitives.size() == 5);
+    CHECK(scene.primitives[0].objectToWorld == glm::translate(glm::dmat4(1.0), glm::dvec3(1, 2, 3)));
+    CHECK(scene.primitives[1].objectToWorld == glm::dmat4(1.0));
+    RequireVec(Apply(scene.primitives[2].objectToWorld, {0, 0, 0}), {0, 0, -5});  // the eye
+    RequireVec(Apply(scene.primitives[3].objectToWorld, {0, 0, 0}), {0, 0, -4});  // unchanged + 1
+    RequireVec(Apply(scene.primitives[4].objectToWorld, {0, 0, 0}), {1, 0, -5});  // camera (1, 0, 0)
+    RequireVec(Apply(scene.coordinateSystems.at("eye1again"), {0, 0, 0}), {1, 0, -5});
+
+    CHECK(ErrorOf("WorldBegin\nCoordSysTransform \"nowhere\"\nWorldEnd\n") ==
+          "t.rib:2: error: 'CoordSysTransform': no coordinate system 'nowhere' has been defined (by "
+          "'CoordinateSystem')");
+    CHECK(ErrorOf("CoordSysTransform \"world\"\n") ==
+          "t.rib:1: error: 'CoordSysTransform \"world\"' before 'WorldBegin': world space is not known yet");
+    CHECK(ErrorOf("CoordSysTransform \"a\" \"b\"\n") == "t.rib:1: error: 'CoordSysTransform' expects one string");
+}
+
 TEST_CASE("RIB Attribute and Opacity warn once and are ignored", "[renderer][rib]") {
     std::vector<std::string> warnings;
     SceneDesc scene = Parsed(
@@ -729,7 +763,7 @@ TEST_CASE("RIB Attribute and Opacity warn once and are ignored", "[renderer][rib
     CHECK(warnings[0] ==
           "t.rib:2: warning: 'Attribute \"displacementbound\"' is not needed: affray bounds "
           "displacement exactly; ignored");
-    CHECK(warnings[1] == "t.rib:4: warning: 'Attribute \"visibility\"' is not supported; ignored");
+    CHECK(warnings[1] == "t.rib:4: warning: 'Attribute \"visibility\"' does not apply to affray; ignored");
     CHECK(warnings[2] == "t.rib:7: warning: affray renders opaque surfaces only; Opacity ignored");
     CHECK(ErrorOf("WorldBegin\nOpacity 1 1\nWorldEnd\n") ==
           "t.rib:2: error: 'Opacity' expects 3 numbers (r g b), got 2");

@@ -165,6 +165,23 @@ TEST_CASE("Each sample lies in its own stratum of its pixel", "[film]") {
     }
 }
 
+TEST_CASE("Without jitter each sample lies at its stratum's centre", "[film]") {
+    // Hider "hidden" "jitter" [0]: with PixelSamples 1 1 the ray through each pixel centre.
+    CameraDesc one = MakeCamera(5, 4, FilterDesc::Kind::Box, 1, 1, 1);
+    one.jitter = false;
+    Film film(one, {}, 12345);
+    for (int py = 0; py < 4; ++py)
+        for (int px = 0; px < 5; ++px) CHECK(film.SamplePosition(px, py, 0) == glm::dvec2(px + 0.5, py + 0.5));
+    // 2 x 4 strata: centres at 1/4, 3/4 across and 1/8, 3/8, 5/8, 7/8 down, row by row.
+    CameraDesc many = MakeCamera(3, 3, FilterDesc::Kind::Box, 1, 2, 4);
+    many.jitter = false;
+    Film strata(many);
+    for (int k = 0; k < 8; ++k)
+        CHECK(strata.SamplePosition(2, 1, k) == glm::dvec2(2 + (k % 2 * 2 + 1) / 4.0, 1 + (k / 2 * 2 + 1) / 8.0));
+    // The seed no longer matters.
+    CHECK(Film(one, {}, 1).SamplePosition(3, 2, 0) == Film(one, {}, 2).SamplePosition(3, 2, 0));
+}
+
 TEST_CASE("Tile sample regions grow by the filter margin and stop at the image", "[film]") {
     CHECK(Film(MakeCamera(20, 20, FilterDesc::Kind::Box, 1)).marginX() == 0);
     CHECK(Film(MakeCamera(20, 20, FilterDesc::Kind::Gaussian, 2)).marginX() == 1);  // |p - q| < 1.5

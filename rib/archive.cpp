@@ -1,0 +1,181 @@
+// rib/archive.cpp: RIB requests that bring in requests from elsewhere: ReadArchive (another RIB
+// file, read in place) and retained objects (ObjectBegin, ObjectEnd, ObjectInstance). Rules
+// shared with rib.cpp are in rib/parser.h.
+//
+// Files: every file read gets a number in m_sources (the scene is 0), which its requests' RibPos
+// carry, so a diagnostic names the archive's own file:line:col. An archive is read by pushing a
+// reader for it; Run() reads the innermost reader until it ends.
+//
+// Objects (RI 3.2 section 5.6): the requests between ObjectBegin and ObjectEnd are recorded,
+// not run. ObjectInstance runs them inside an attribute block, so the object takes the graphics
+// state current at the instance (transform, color, shaders) and its own transforms and attributes
+// apply on top of it, as the spec says.
+#include <algorithm>
+#include <cerrno>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <system_error>
+
+#include "rib/parser.h"
+
+namespace affray::rib {
+namespace {
+
+// Requests an object definition cannot hold: options, frame and world blocks and lights (RI 3.2
+// allows only geometry, transforms and attributes in an object).
+constexpr std::string_view kNotInObject[] = {
+    "Format",       "Projection",  "Display",     "FrameAspectRatio", "ScreenWindow", "CropWindow",  "Clipping",
+    "PixelSamples", "PixelFilter", "Exposure",    "Option",           "Hider",        "FrameBegin",  "FrameEnd",
+    "WorldBegin",   "WorldEnd",    "LightSource", "AreaLightSource",  "ObjectBegin",  "MotionBegin", "CoordinateSystem",
+};
+
+constexpr int kMaxInstanceDepth = 32;  // objects instancing objects: deeper is a cycle
+
+// Reads a whole file; on failure returns false with *reason set.
+bool ReadFile(const std::string& path, std::string* text, std::string* reason) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        *reason = "it is a directory";
+        return false;
+    }
+    errno = 0;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        *reason = errno ? std::generic_category().message(errno) : "cannot open";
+        return false;
+    }
+    text->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) {
+        *reason = "read error";
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+std::string RibParser::FindArchive(const std::string& name, int from, std::string* searched) const {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path file(name);
+    if (file.is_absolute()) {
+        *searched = name;
+        return fs::is_regular_file(file, ec) ? name : std::string();
+    }
+    const fs::path here = fs::path(m_sources[static_cast<size_t>(from)].path).parent_path();
+    const fs::path sceneDir = fs::path(m_sources[0].path).parent_path();
+    std::vector<fs::path> dirs = {here};
+    for (const std::string& dir : m_archiveSearchPath)
+        dirs.push_back(fs::path(dir).is_absolute() ? fs::path(dir) : sceneDir / dir);
+    searched->clear();
+    for (const fs::path& dir : dirs) {
+        const fs::path candidate = dir / file;
+        *searched += (searched->empty() ? "" : ", ") + (dir.empty() ? std::string(".") : dir.string());
+        if (fs::is_regular_file(candidate, ec)) return candidate.string();
+    }
+    return {};
+}
+
+// ReadArchive "file": the file's requests, read here as if written in place.
+bool RibParser::DoReadArchive(const RibRequest& r) {
+    std::string name;
+    if (!LeadingString(r, "an archive file name", &name)) return false;
+    if (r.args.size() > 1) return Fail(r.args[1].at, "'ReadArchive' expects one string (a file name)");
+    std::string searched;
+    const std::string path = FindArchive(name, r.at.file, &searched);
+    if (path.empty()) return Fail(r.args[0].at, "archive " + Quote(name) + " not found (searched " + searched + ")");
+    // A file already being read would read itself for ever.
+    std::error_code ec;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
+    for (const OpenReader& open : m_readers) {
+        const std::string& openPath = m_sources[static_cast<size_t>(open.file)].path;
+        if (std::filesystem::weakly_canonical(openPath, ec) == canonical) {
+            std::string chain;
+            for (const OpenReader& o : m_readers) chain += m_sources[static_cast<size_t>(o.file)].path + " -> ";
+            return Fail(r.args[0].at, "'ReadArchive' cycle: " + chain + path);
+        }
+    }
+    auto text = std::make_unique<std::string>();
+    std::string reason;
+    if (!ReadFile(path, text.get(), &reason))
+        return Fail(r.args[0].at, "cannot read archive " + Quote(path) + ": " + reason);
+    if (text->size() >= 2 && static_cast<unsigned char>((*text)[0]) == 0x1f &&
+        static_cast<unsigned char>((*text)[1]) == 0x8b)
+        return Fail(r.args[0].at, "archive " + Quote(path) + " is gzip-compressed RIB, which is not supported yet");
+    const std::string_view view = *text;
+    m_sources.push_back({path, std::move(text), view});
+    m_readers.push_back({RibRequestReader(view), static_cast<int>(m_sources.size() - 1)});
+    return true;
+}
+
+bool RibParser::ObjectHandle(const RibRequest& r, std::string* out) {
+    if (r.args.size() != 1 || r.args[0].isArray)
+        return Fail(r.at, Quote(r.name) + " expects one object handle (a number or a string)");
+    const RibArg& handle = r.args[0];
+    *out = handle.StringsP() ? handle.strings[0] : FormatNumber(handle.numbers[0]);
+    return true;
+}
+
+bool RibParser::DoObjectBegin(const RibRequest& r) {
+    std::string handle;
+    if (!ObjectHandle(r, &handle)) return false;
+    if (m_worldEnded) return Fail(r.at, "'ObjectBegin' after 'WorldEnd'");
+    m_defining.emplace(handle, ObjectDef{r.at, {}});
+    m_definingDepth = 0;
+    return true;
+}
+
+bool RibParser::DoObjectEnd(const RibRequest& r) {
+    if (!NoArgs(r)) return false;
+    if (!m_defining) return Fail(r.at, "'ObjectEnd' without matching 'ObjectBegin'");
+    if (m_definingDepth != 0)
+        return Fail(r.at, "'ObjectEnd' inside an 'AttributeBegin' or 'TransformBegin' of the object");
+    // A handle defined again names the new definition (RI 3.2).
+    m_objects[m_defining->first] = std::move(m_defining->second);
+    m_defining.reset();
+    return true;
+}
+
+bool RibParser::Record(const RibRequest& r) {
+    if (r.name == "ObjectEnd") return DoObjectEnd(r);
+    if (r.name == "ReadArchive" || r.name == "Declare") return Dispatch(r);
+    if (std::find(std::begin(kNotInObject), std::end(kNotInObject), r.name) != std::end(kNotInObject))
+        return Fail(r.at, Quote(r.name) + " cannot be part of an object (started by 'ObjectBegin' on line " +
+                              std::to_string(m_defining->second.at.line) + ")");
+    if (r.name == "AttributeBegin" || r.name == "TransformBegin") ++m_definingDepth;
+    if (r.name == "AttributeEnd" || r.name == "TransformEnd") {
+        if (m_definingDepth == 0)
+            return Fail(r.at, Quote(r.name) + " inside an object closes a block opened outside it");
+        --m_definingDepth;
+    }
+    m_defining->second.requests.push_back(r);
+    return true;
+}
+
+bool RibParser::DoObjectInstance(const RibRequest& r) {
+    std::string handle;
+    if (!ObjectHandle(r, &handle) || !InsideWorld(r)) return false;
+    auto it = m_objects.find(handle);
+    if (it == m_objects.end()) return Fail(r.args[0].at, "no object " + Quote(handle) + " has been defined");
+    if (m_instanceDepth >= kMaxInstanceDepth)
+        return Fail(r.at, "objects instance each other more than " + std::to_string(kMaxInstanceDepth) +
+                              " deep (an object that instances itself?)");
+    // The object's requests inside an attribute block: the instance's graphics state, restored after.
+    const ObjectDef& object = it->second;
+    const State saved = m_state;
+    ++m_instanceDepth;
+    for (const RibRequest& request : object.requests) {
+        if (!Dispatch(request)) {
+            // Each level out replaces the note, so it ends at the outermost instance.
+            m_errorNote = {r.at, "in the instance of object " + Quote(handle) + " here"};
+            return false;
+        }
+    }
+    // Record() saw that the object's blocks close inside it, so m_blocks is as it was.
+    --m_instanceDepth;
+    m_state = saved;
+    return true;
+}
+
+}  // namespace affray::rib

@@ -1,0 +1,131 @@
+// rib/settings.cpp: RIB requests that set how to read or render the scene rather than what is in
+// it: Option (the search paths; other renderers' options warn), Hider, Declare, ShadingRate,
+// ShadingInterpolation and ArchiveRecord. Rules shared with rib.cpp are in rib/parser.h. Every
+// request that only tunes another renderer is accepted, its arguments checked, with one warning.
+#include <algorithm>
+
+#include "rib/parser.h"
+
+namespace affray::rib {
+
+// Option "searchpath" "shader" and "archive" are used; every other option tunes another
+// renderer (bucket sizes, statistics, caches...) and is ignored with one warning per name.
+bool RibParser::DoOption(const RibRequest& r) {
+    std::string name;
+    std::vector<RibParam> params;
+    if (!BeforeWorld(r) || !LeadingString(r, "an option name", &name) || !ParamList(r, 1, &params)) return false;
+    if (name != "searchpath") {
+        Warn(r.at, "'Option \"" + name + "\"' does not apply to affray; ignored");
+        return true;
+    }
+    for (const RibParam& p : params) {
+        if (p.value.name == "shader") {
+            if (!SetSearchPath(p, &m_scene.shaderSearchPath)) return false;
+        } else if (p.value.name == "archive") {
+            if (!SetSearchPath(p, &m_archiveSearchPath)) return false;
+        } else {
+            Warn(p.at, "'Option \"searchpath\" \"" + p.value.name + "\"' does not apply to affray; ignored");
+        }
+    }
+    return true;
+}
+
+// Option "searchpath" "shader" "dir1:dir2": '&' is the previous path and '@' the default, which
+// is the empty list (the renderer's own default), so '@' adds nothing. Empty entries are
+// skipped. Relative directories are kept as written; they are taken relative to the RIB file's
+// directory (the renderer does so for shaders, FindArchive for archives).
+bool RibParser::SetSearchPath(const RibParam& p, std::vector<std::string>* out) {
+    if (p.value.strings.size() != 1 || !p.value.numbers.empty())
+        return Fail(p.at, "'Option \"searchpath\"' parameter " + Quote(p.value.name) + " expects 1 string");
+    const std::string& text = p.value.strings[0];
+    std::vector<std::string> path;
+    for (size_t begin = 0;;) {
+        size_t end = std::min(text.find(':', begin), text.size());
+        std::string dir = text.substr(begin, end - begin);
+        if (dir == "&")
+            path.insert(path.end(), out->begin(), out->end());
+        else if (!dir.empty() && dir != "@")
+            path.push_back(dir);
+        if (end == text.size()) break;
+        begin = end + 1;
+    }
+    *out = std::move(path);
+    return true;
+}
+
+// Hider: affray has one hider, a ray tracer that takes each sample's nearest hit, which is what
+// "hidden" with "depthfilter" "min" computes. "jitter" places the samples; other hiders and
+// parameters change sampling or speed only and are ignored with a warning.
+bool RibParser::DoHider(const RibRequest& r) {
+    std::string name;
+    std::vector<RibParam> params;
+    if (!BeforeWorld(r) || !LeadingString(r, "a hider name", &name) || !ParamList(r, 1, &params)) return false;
+    if (name != "hidden")
+        Warn(r.at, "hider " + Quote(name) + " is not supported; rendering with affray's ray tracer (as \"hidden\")");
+    const std::string context = "'Hider \"" + name + "\"'";
+    for (const RibParam& p : params) {
+        if (p.value.name == "jitter") {
+            double jitter;
+            if (!ParamNumbers(p, context, 1, &jitter)) return false;
+            if (jitter != 0 && jitter != 1)
+                return Fail(p.at, context + " parameter 'jitter' must be 0 or 1, got " + FormatNumber(jitter));
+            m_scene.camera.jitter = jitter == 1;
+        } else if (p.value.name == "depthfilter") {
+            if (p.value.strings.size() != 1 || !p.value.numbers.empty())
+                return Fail(p.at, context + " parameter 'depthfilter' expects 1 string");
+            const std::string& filter = p.value.strings[0];
+            if (filter != "min")
+                Warn(p.at, context + " depthfilter " + Quote(filter) +
+                               " is not supported; depth is each sample's nearest hit (\"min\")");
+        } else {
+            Warn(p.at, context + " parameter " + Quote(p.value.name) + " is not supported; ignored");
+        }
+    }
+    return true;
+}
+
+// Declare "name" "declaration": later parameter lists may give `name` without a declaration.
+bool RibParser::DoDeclare(const RibRequest& r) {
+    if (r.args.size() != 2 || r.args[0].isArray || !r.args[0].StringsP() || r.args[1].isArray || !r.args[1].StringsP())
+        return Fail(r.at, "'Declare' expects 2 strings (name declaration)");
+    const std::string& name = r.args[0].strings[0];
+    const std::string& declaration = r.args[1].strings[0];
+    if (name.empty() || name.find_first_of(" \t\n\r") != std::string::npos)
+        return Fail(r.args[0].at, "'Declare' name " + Quote(name) + " must be one word");
+    RibDeclaration parsed;
+    std::string problem;
+    if (!RibDeclaration::Parse(declaration, &parsed, &problem)) return Fail(r.args[1].at, "'Declare': " + problem);
+    m_declared[name] = declaration;
+    return true;
+}
+
+// affray shades each ray hit exactly, so the micropolygon shading rate and its interpolation
+// have nothing to tune; the arguments are still checked.
+bool RibParser::DoShadingRate(const RibRequest& r) {
+    double rate;
+    if (!Numbers(r, 1, "size", &rate)) return false;
+    if (!(rate > 0)) return Fail(r.at, "'ShadingRate' must be positive, got " + FormatNumber(rate));
+    Warn(r.at, "'ShadingRate' does not apply: affray shades every ray hit; ignored");
+    return true;
+}
+
+bool RibParser::DoShadingInterpolation(const RibRequest& r) {
+    std::string type;
+    if (!LeadingString(r, "an interpolation type", &type)) return false;
+    if (r.args.size() > 1) return Fail(r.at, "'ShadingInterpolation' expects one string");
+    if (type != "constant" && type != "smooth")
+        return Fail(r.args[0].at,
+                    "unknown shading interpolation " + Quote(type) + " (expected \"constant\" or \"smooth\")");
+    Warn(r.at, "'ShadingInterpolation' does not apply: affray shades every ray hit; ignored");
+    return true;
+}
+
+// ArchiveRecord "comment"|"structure"|"verbatim" "text": a comment in the file, as # is.
+bool RibParser::DoArchiveRecord(const RibRequest& r) {
+    std::string type;
+    if (!LeadingString(r, "a record type", &type)) return false;
+    if (type == "verbatim") return Fail(r.at, "'ArchiveRecord \"verbatim\"' (RIB text in a string) is not supported");
+    return true;
+}
+
+}  // namespace affray::rib

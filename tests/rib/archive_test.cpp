@@ -1,0 +1,284 @@
+// tests/rib/archive_test.cpp: requests that bring in other requests (rib/archive.cpp): ReadArchive
+// (relative paths, the archive search path, cycles, missing files, diagnostics located in the
+// archive) and retained objects (ObjectBegin/End/Instance by number and by name, the instance's
+// transform and attributes), parsed and rendered.
+#include <catch2/catch.hpp>
+#include <string>
+#include <vector>
+
+#include "renderer/image/film.h"
+#include "renderer/render.h"
+#include "rib/rib.h"
+#include "tests/test_util.h"
+
+using namespace affray;
+using namespace affray::renderer;
+using affray::rib::ParseRib;
+using affray::rib::ReadRib;
+
+namespace {
+
+// A diagnostic as "file:line:col: kind: message", the file cut to its name.
+std::string Line(const diag::Diagnostic& d) {
+    static const char* const kKind[] = {"error", "warning", "note"};
+    return std::filesystem::path(d.where.file).filename().string() + ":" + std::to_string(d.where.line) + ":" +
+           std::to_string(d.where.column) + ": " + kKind[static_cast<int>(d.severity)] + ": " + d.message;
+}
+
+// The directory of the scene `dir` holds, as the reader names it in messages.
+std::string SceneDir(const test::TempDir& dir) {
+    return std::filesystem::path(dir.Path("scene.rib")).parent_path().string();
+}
+
+std::vector<std::string> Lines(const diag::Report& report) {
+    std::vector<std::string> out;
+    for (const diag::Diagnostic& d : report.all()) {
+        out.push_back(Line(d));
+        for (const diag::Diagnostic& note : d.notes) out.push_back(Line(note));
+    }
+    return out;
+}
+
+// An orthographic camera over [-2, 2]^2 looking down -z, 8 x 8 pixels of half a unit, one
+// sample at each pixel centre (Hider jitter 0).
+const char* const kCamera = R"(Format 8 8 1
+Projection "orthographic"
+ScreenWindow -2 2 -2 2
+PixelSamples 1 1
+PixelFilter "box" 1 1
+Hider "hidden" "jitter" [0]
+Scale 1 1 -1
+Translate 0 0 -5
+)";
+
+// A unit square in z = 0 with its lower left corner at the origin.
+const char* const kSquare = "Patch \"bilinear\" \"P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n";
+
+ImageBuffer Render(const SceneDesc& desc) {
+    diag::Report error;
+    PreparedScene prepared;
+    const bool ok = PrepareScene(desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error);
+    INFO(error);
+    REQUIRE(ok);
+    RenderOptions options;
+    options.threads = 2;
+    ImageBuffer image;
+    RenderStats stats;
+    RenderImage(prepared, options, &image, &stats);
+    return image;
+}
+
+// The alpha channel as 8 rows of '#' (covered) and '.' (empty), top row first.
+std::string Coverage(const ImageBuffer& image) {
+    std::string text;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const float a = image.rgba[(size_t(y) * image.width + x) * 4 + 3];
+            text += a == 1 ? '#' : a == 0 ? '.' : '?';
+        }
+        text += '\n';
+    }
+    return text;
+}
+
+}  // namespace
+
+TEST_CASE("ReadArchive reads a file in place, relative to the file that reads it", "[renderer][rib]") {
+    test::TempDir dir;
+    dir.Write("parts/square.rib", std::string("# the square\nColor 0 1 0\n") + kSquare);
+    dir.Write("parts/twice.rib", "ReadArchive \"square.rib\"\nTranslate -2 -2 0\nReadArchive \"square.rib\"\n");
+    const std::string scene =
+        dir.Write("scene.rib", std::string(kCamera) + "WorldBegin\nReadArchive \"parts/twice.rib\"\nWorldEnd\n");
+    diag::Report report;
+    std::optional<SceneDesc> desc = ReadRib(scene, &report);
+    INFO(report);
+    REQUIRE(desc);
+    CHECK(report.all().empty());
+    REQUIRE(desc->primitives.size() == 2);
+    CHECK(desc->primitives[0].color == glm::dvec3(0, 1, 0));
+    CHECK(desc->primitives[1].corners[0] == glm::dvec3(-2, -2, 0));
+    // The square at the origin covers pixels 4-5 across and rows 2-3; the moved one the corner.
+    CHECK(Coverage(Render(*desc)) ==
+          "........\n"
+          "........\n"
+          "....##..\n"
+          "....##..\n"
+          "........\n"
+          "........\n"
+          "##......\n"
+          "##......\n");
+}
+
+TEST_CASE("ReadArchive searches Option searchpath archive, relative to the scene", "[renderer][rib]") {
+    test::TempDir dir;
+    dir.Write("lib/a/square.rib", kSquare);
+    const std::string body = "WorldBegin\nReadArchive \"square.rib\"\nWorldEnd\n";
+    diag::Report report;
+    CHECK(ParseRib("Option \"searchpath\" \"archive\" \"none:lib/a\"\n" + body, dir.Path("scene.rib"), &report));
+    // '&' keeps the previous path.
+    CHECK(ParseRib("Option \"searchpath\" \"archive\" \"lib/a\"\nOption \"searchpath\" \"archive\" \"x:&\"\n" + body,
+                   dir.Path("scene.rib"), &report));
+    CHECK(ParseRib("Option \"searchpath\" \"archive\" \"" + dir.Path("lib/a") + "\"\n" + body, "/elsewhere/s.rib",
+                   &report));
+    CHECK(report.all().empty());
+    // Without the search path it is not found; the error lists where it looked.
+    CHECK_FALSE(ParseRib(body, dir.Path("scene.rib"), &report));
+    REQUIRE(report.all().size() == 1);
+    CHECK(Line(report.all()[0]) ==
+          "scene.rib:2:13: error: archive 'square.rib' not found (searched " + SceneDir(dir) + ")");
+}
+
+TEST_CASE("ReadArchive errors name the archive's own file, line and column", "[renderer][rib]") {
+    test::TempDir dir;
+    SECTION("an error inside an archive") {
+        dir.Write("bad.rib", "Color 1 0 0\n  Sphere 1 -1\n");
+        const std::string scene = dir.Write("scene.rib", "WorldBegin\nReadArchive \"bad.rib\"\nWorldEnd\n");
+        diag::Report report;
+        CHECK_FALSE(ReadRib(scene, &report));
+        REQUIRE(report.all().size() == 1);
+        CHECK(Line(report.all()[0]) ==
+              "bad.rib:2:3: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 2");
+        CHECK(report.all()[0].where.text == "  Sphere 1 -1");
+    }
+    SECTION("warnings inside an archive, and the scene goes on after it") {
+        dir.Write("warn.rib", "\nShadingRate 2\nAttribute \"identifier\" \"name\" \"a\"\n");
+        const std::string scene = dir.Write(
+            "scene.rib", "WorldBegin\nReadArchive \"warn.rib\"\nShadingRate 3\n" + std::string(kSquare) + "WorldEnd\n");
+        diag::Report report;
+        std::optional<SceneDesc> desc = ReadRib(scene, &report);
+        REQUIRE(desc);
+        CHECK(desc->primitives.size() == 1);
+        CHECK(desc->primitives[0].line == 4);
+        CHECK(Lines(report) ==
+              std::vector<std::string>{
+                  "warn.rib:2:1: warning: 'ShadingRate' does not apply: affray shades every ray hit; ignored",
+                  "warn.rib:3:1: warning: 'Attribute \"identifier\"' does not apply to affray; ignored"});
+    }
+    SECTION("an unterminated block in an archive") {
+        dir.Write("open.rib", "AttributeBegin\n");
+        const std::string scene = dir.Write("scene.rib", "WorldBegin\nReadArchive \"open.rib\"\nWorldEnd\n");
+        diag::Report report;
+        CHECK_FALSE(ReadRib(scene, &report));
+        CHECK(Lines(report) == std::vector<std::string>{
+                                   "scene.rib:3:1: error: 'WorldEnd' does not match 'AttributeBegin' on line 1 of " +
+                                   dir.Path("open.rib")});
+    }
+    SECTION("a missing archive and a directory") {
+        std::filesystem::create_directories(dir.Path("adir"));
+        const std::string scene = dir.Write("scene.rib", "WorldBegin\nReadArchive \"missing.rib\"\nWorldEnd\n");
+        diag::Report report;
+        CHECK_FALSE(ReadRib(scene, &report));
+        CHECK(Lines(report) == std::vector<std::string>{"scene.rib:2:13: error: archive 'missing.rib' not found "
+                                                        "(searched " +
+                                                        SceneDir(dir) + ")"});
+        CHECK_FALSE(ParseRib("ReadArchive \"adir\"\n", dir.Path("scene.rib"), &report));
+        CHECK_FALSE(ParseRib("ReadArchive 3\n", dir.Path("scene.rib"), &report));
+        CHECK(test::LastMessage(report).find("'ReadArchive' expects an archive file name as its first argument") !=
+              std::string::npos);
+    }
+    SECTION("cycles") {
+        dir.Write("a.rib", "ReadArchive \"b.rib\"\n");
+        dir.Write("b.rib", "\n ReadArchive \"a.rib\"\n");
+        const std::string scene = dir.Write("scene.rib", "WorldBegin\nReadArchive \"a.rib\"\nWorldEnd\n");
+        diag::Report report;
+        CHECK_FALSE(ReadRib(scene, &report));
+        REQUIRE(report.all().size() == 1);
+        CHECK(Line(report.all()[0]) == "b.rib:2:14: error: 'ReadArchive' cycle: " + scene + " -> " + dir.Path("a.rib") +
+                                           " -> " + dir.Path("b.rib") + " -> " + dir.Path("a.rib"));
+        dir.Write("self.rib", "ReadArchive \"self.rib\"\n");
+        CHECK_FALSE(ParseRib("ReadArchive \"self.rib\"\n", dir.Path("scene.rib"), &report));
+        CHECK(test::LastMessage(report).find("self.rib:1:13: error: 'ReadArchive' cycle") != std::string::npos);
+    }
+}
+
+TEST_CASE("Displacement shader errors inside an archive name the archive", "[renderer][rib]") {
+    test::TempDir dir;
+    dir.Write("part.rib", "\nDisplacement \"no_such_shader\"\n" + std::string(kSquare));
+    const std::string scene = dir.Write("scene.rib", "WorldBegin\nReadArchive \"part.rib\"\nWorldEnd\n");
+    diag::Report report;
+    std::optional<SceneDesc> desc = ReadRib(scene, &report);
+    REQUIRE(desc);
+    REQUIRE(desc->primitives.size() == 1);
+    CHECK(desc->primitives[0].displacement->file == dir.Path("part.rib"));
+    PreparedScene prepared;
+    CHECK_FALSE(PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &report));
+    REQUIRE(!report.all().empty());
+    CHECK(Line(report.all().back()).rfind("part.rib:2:1: error: shader 'no_such_shader' not found", 0) == 0);
+    CHECK(report.all().back().where.text == "Displacement \"no_such_shader\"");
+}
+
+TEST_CASE("ObjectInstance places a retained object with the instance's transform", "[renderer][rib]") {
+    // Object 1 (by number) is the square moved left; "pair" (by name) two squares, coloured inside.
+    const std::string rib = std::string(kCamera) +
+                            "ObjectBegin 1\n"
+                            "  Translate -1 0 0\n" +
+                            kSquare +
+                            "ObjectEnd\n"
+                            "WorldBegin\n"
+                            "  ObjectBegin \"pair\"\n"
+                            "    AttributeBegin\n      Color 1 0 0\n" +
+                            kSquare + "    AttributeEnd\n    Translate 0 -2 0\n" + kSquare +
+                            "  ObjectEnd\n"
+                            "  Color 0 0 1\n"
+                            "  ObjectInstance 1\n"
+                            "  TransformBegin\n    Translate 1 1 0\n    ObjectInstance \"pair\"\n  TransformEnd\n"
+                            "  ObjectInstance 1\n"  // the object's Translate did not leak out
+                            "WorldEnd\n";
+    diag::Report report;
+    std::optional<SceneDesc> desc = ParseRib(rib, "t.rib", &report);
+    INFO(report);
+    REQUIRE(desc);
+    CHECK(report.all().empty());
+    REQUIRE(desc->primitives.size() == 4);
+    CHECK(desc->primitives[0].corners[0] == glm::dvec3(-1, 0, 0));
+    CHECK(desc->primitives[0].color == glm::dvec3(0, 0, 1));  // the instance's colour
+    CHECK(desc->primitives[1].corners[0] == glm::dvec3(1, 1, 0));
+    CHECK(desc->primitives[1].color == glm::dvec3(1, 0, 0));  // the object's own colour
+    CHECK(desc->primitives[2].corners[0] == glm::dvec3(1, -1, 0));
+    CHECK(desc->primitives[2].color == glm::dvec3(0, 0, 1));
+    CHECK(desc->primitives[3].corners[0] == glm::dvec3(-1, 0, 0));
+    CHECK(desc->primitives[1].line == 17);  // where the object defines it
+    CHECK(Coverage(Render(*desc)) ==
+          "......##\n"
+          "......##\n"
+          "..##....\n"
+          "..##....\n"
+          "......##\n"
+          "......##\n"
+          "........\n"
+          "........\n");
+}
+
+TEST_CASE("Retained objects give exact errors", "[renderer][rib]") {
+    auto errors = [](const std::string& rib) {
+        diag::Report report;
+        CHECK_FALSE(ParseRib(rib, "t.rib", &report));
+        return Lines(report);
+    };
+    using Lines = std::vector<std::string>;
+    CHECK(errors("WorldBegin\nObjectInstance 3\nWorldEnd\n") ==
+          Lines{"t.rib:2:16: error: no object '3' has been defined"});
+    CHECK(errors("WorldBegin\nObjectBegin 1\nSphere 1 -1 1 360\n") ==
+          Lines{"t.rib:2:1: error: 'ObjectBegin' has no matching 'ObjectEnd'"});
+    CHECK(errors("WorldBegin\nObjectEnd\nWorldEnd\n") ==
+          Lines{"t.rib:2:1: error: 'ObjectEnd' without matching 'ObjectBegin'"});
+    CHECK(errors("WorldBegin\nObjectBegin 1\nLightSource \"pointlight\" 1\nObjectEnd\nWorldEnd\n") ==
+          Lines{"t.rib:3:1: error: 'LightSource' cannot be part of an object (started by 'ObjectBegin' on line 2)"});
+    CHECK(errors("WorldBegin\nObjectBegin 1\nAttributeBegin\nObjectEnd\nWorldEnd\n") ==
+          Lines{"t.rib:4:1: error: 'ObjectEnd' inside an 'AttributeBegin' or 'TransformBegin' of the object"});
+    CHECK(errors("WorldBegin\nAttributeBegin\nObjectBegin 1\nAttributeEnd\nObjectEnd\nWorldEnd\n") ==
+          Lines{"t.rib:4:1: error: 'AttributeEnd' inside an object closes a block opened outside it"});
+    CHECK(errors("WorldBegin\nObjectBegin\nObjectEnd\nWorldEnd\n") ==
+          Lines{"t.rib:2:1: error: 'ObjectBegin' expects one object handle (a number or a string)"});
+    CHECK(errors("ObjectBegin 1\nObjectEnd\nObjectInstance 1\nWorldBegin\nWorldEnd\n") ==
+          Lines{"t.rib:3:1: error: 'ObjectInstance' must come between 'WorldBegin' and 'WorldEnd'"});
+    // An error in an object is reported where the object says it, with a note at the instance.
+    CHECK(errors("WorldBegin\nObjectBegin 1\nSphere 1 2\nObjectEnd\n\nObjectInstance 1\nWorldEnd\n") ==
+          Lines{"t.rib:3:1: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 2",
+                "t.rib:6:1: note: in the instance of object '1' here"});
+    // An object redefined to instance itself recurses no further than the limit.
+    CHECK(errors("WorldBegin\nObjectBegin 1\nObjectEnd\nObjectBegin 1\nObjectInstance 1\nObjectEnd\n"
+                 "ObjectInstance 1\nWorldEnd\n")
+              .front() ==
+          "t.rib:5:1: error: objects instance each other more than 32 deep (an object that instances itself?)");
+}
