@@ -201,6 +201,10 @@ TEMPLATE_TEST_CASE("a clamp makes an unbounded value bounded again", "[vm][parti
     CHECK(range(abs(Min(u, T(-2.0)))).lo() == 2);
     CHECK(range(Min(abs(Min(u, T(-2.0))), T(5.0))).hi() == 5);
     CHECK_FALSE(range(Min(abs(Min(u, T(-2.0))), T(5.0))).isUnbounded());
+    // abs(u) is >= 0 or NaN, and fmax(NaN, -1) is -1: the NaN side joins the other operand.
+    CHECK(range(Max(abs(u), T(-1.0))).lo() == -1);
+    CHECK(range(Min(-abs(u), T(1.0))).hi() == 1);
+    CHECK(range(Max(T(-1.0), abs(u))).lo() == -1);
     // A clamp of a product or sum of unbounded values: nothing survives but the clamp.
     const T wild = (u + T(1.0)) * u;
     CHECK(range(Min(Max(wild, T(-0.5)), T(0.25))).lo() == -0.5);
