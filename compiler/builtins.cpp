@@ -112,9 +112,12 @@ const std::vector<Builtin>& Rows() {
          }},
         {"smoothstep", "fff",
          [](ValueOps& o, A a) {
-             // 0 below e0, 1 above e1, the cubic Hermite 3t^2 - 2t^3 between
+             // 0 below e0, 1 above e1, the cubic Hermite 3t^2 - 2t^3 between. t is in [0, 1] even
+             // where e0 == e1 (fmin/fmax drop the NaN of 0/0), and so is the cubic, rounding
+             // included: the outer clamp changes no value, it tells the bounds (issue 12).
              Value t = o.Clamp(o.Div(o.Sub(a[2], a[0]), o.Sub(a[1], a[0])), o.Constant(0.0), o.Constant(1.0));
-             return o.Mul(o.Map(IrOp::Sqr, t), o.Sub(o.Constant(3.0), o.Mul(o.Constant(2.0), t)));
+             Value h = o.Mul(o.Map(IrOp::Sqr, t), o.Sub(o.Constant(3.0), o.Mul(o.Constant(2.0), t)));
+             return o.Clamp(h, o.Constant(0.0), o.Constant(1.0));
          }},
         {"faceforward", "tt",
          [](ValueOps& o, A a) {

@@ -84,8 +84,15 @@ Value ValueOps::Length(const Value& a) {
 }
 
 Value ValueOps::Normalize(const Value& a) {
-    ValueId inverse = Scalar(IrOp::Div, m_ir.Const(1.0), Length(a).c[0]);
-    return Mul(a, Float(inverse));
+    // a*(1/|a|) componentwise, kept finite (issue 12): where |a| is not > 0 (the zero vector, or
+    // NaN) the zero vector, as OSL; and each component clamped to [-1, 1], where it lies but for
+    // rounding (fmin/fmax: a NaN component gives -1). 1/|a| is finite wherever |a| > 0 (|a| is at
+    // least the square root of the least subnormal), and a clamped component lies in [-1, 1]
+    // whatever the bound of a, so a vector renormalised again and again stays bounded.
+    const ValueId length = Length(a).c[0];
+    const Value positive = Float(Scalar(IrOp::Lt, m_ir.Const(0.0), length));
+    const Value inverse = SelectValue(positive, Float(Scalar(IrOp::Div, m_ir.Const(1.0), length)), Constant(0.0));
+    return Clamp(Mul(a, inverse), Constant(-1.0), Constant(1.0));
 }
 
 }  // namespace affray::compiler

@@ -11,7 +11,7 @@
 //
 //   offset  size  field
 //   0       8     magic "AFRAYBC\0"
-//   8       4     u32 format version (kBytecodeVersion = 2)
+//   8       4     u32 format version (kBytecodeVersion = 3)
 //   12      8     u64 file length L in bytes, this header and the final checksum included
 //   20      8     u64 header check: FNV-1a 64 of bytes 0..19
 //   28      ...   str shaderName, str sourcePath, u64 sourceHash (FNV-1a 64 of the source)
@@ -46,7 +46,7 @@
 namespace affray::vm {
 
 /// The only format version this affray writes and reads.
-static constexpr uint32_t kBytecodeVersion = 2;  // 2: control flow, noise, Ext words, flags
+static constexpr uint32_t kBytecodeVersion = 3;  // 2: control flow, noise, Ext words, flags; 3: tan (63)
 
 /// What an .afb file holds.
 struct BytecodeFile {

@@ -154,3 +154,31 @@ TEST_CASE("render: quadrics and patches share the BVH, and AOVs describe the nea
     CHECK(Channel(image, "Z")[0] == Approx(7).margin(1e-6));
     CHECK(Channel(image, "N.Z")[0] == Approx(1).margin(1e-9));
 }
+
+TEST_CASE("render: a crater field on a displaced sphere is bounded and renders", "[renderer][render]") {
+    test::TempDir dir;
+    // shaders/craters.sl: smoothstep edges from cellnoise that may coincide, in a min over 27
+    // cells. At frequency 12 every cell of the renderer's 8 x 8 check grid spans several lattice
+    // cells, where the smoothstep divides by a range containing 0: before issue 12 the sphere was
+    // refused ("cannot be bounded over any part of the patch"). Craters only push inwards, by at
+    // most Km: every hit lies between radius 1 - Km and 1.
+    const double km = 0.08;
+    PreparedScene prepared;
+    const ImageBuffer image = Render(dir,
+                                     std::string(kCamera) + "WorldBegin\nDisplacement \"craters\" \"Km\" [" +
+                                         std::to_string(km) + "] \"frequency\" [12]\nSphere 1 -1 1 360\nWorldEnd\n",
+                                     &prepared);
+    // The disc of radius 1 - Km is covered whatever the craters; the corners are empty.
+    CHECK(Covered(image) >= 32);
+    CHECK(Alpha(image, 0, 0) == 0.0f);
+    for (int y = 2; y <= 5; ++y)
+        for (int x = 2; x <= 5; ++x) {
+            const size_t i = size_t(y) * 8 + x;
+            INFO("pixel " << x << ", " << y);
+            REQUIRE(Alpha(image, x, y) == 1.0f);
+            const glm::dvec3 P(Channel(image, "P.X")[i], Channel(image, "P.Y")[i], Channel(image, "P.Z")[i]);
+            CHECK(glm::length(P) >= 1 - km - 1e-3);
+            CHECK(glm::length(P) <= 1 + 1e-3);
+            CHECK(P.z > 0);  // the near hemisphere, seen from +z
+        }
+}

@@ -99,8 +99,17 @@ Affine Affine::FromSymbol(double center, double radius, SymbolId id) {
     return r;
 }
 
+Affine Affine::UnboundedWithin(const Interval& range) {
+    if (!range.isUnbounded()) return FromInterval(range);
+    Affine r = Unbounded();
+    r.m_lo = range.lo();
+    r.m_hi = range.hi();
+    r.m_rangeCached = true;  // marks the partial range as set (range())
+    return r;
+}
+
 Affine Affine::FromInterval(const Interval& range) {
-    if (range.isUnbounded()) return Unbounded();
+    if (range.isUnbounded()) return UnboundedWithin(range);
     if (range.isPoint()) return Affine(range.lo());
     Affine r(range.mid());
     r.m_symbols[0] = NewSymbol();
@@ -153,7 +162,7 @@ double Affine::radius() const {
 }
 
 Interval Affine::range() const {
-    if (isUnbounded()) return Interval::Unbounded();
+    if (isUnbounded()) return m_rangeCached ? Interval::Extended(m_lo, m_hi) : Interval::Unbounded();
     if (m_rangeCached) return Interval(m_lo, m_hi);
     double r = radius();
     double lo = SubDown(m_center, r), hi = AddUp(m_center, r);
@@ -164,8 +173,9 @@ Interval Affine::range() const {
 }
 
 Affine Affine::Tighten(Affine r, const Interval& enclosure) {
+    // An unbounded form knows nothing: the enclosure is all there is (partial, or finite again).
+    if (r.isUnbounded()) return UnboundedWithin(enclosure);
     if (enclosure.isUnbounded()) return r;
-    if (r.isUnbounded()) return FromInterval(enclosure);
     r.m_rangeCached = false;
     r.m_lo = std::fmax(r.m_lo, enclosure.lo());
     r.m_hi = std::fmin(r.m_hi, enclosure.hi());
@@ -214,7 +224,7 @@ std::string Affine::toString() const {
 }
 
 Affine Affine::withExtraError(double extra) const {
-    if (isUnbounded()) return *this;
+    if (isUnbounded()) return Unbounded();
     Affine r = *this;
     r.resetEnclosure();
     r.m_error = AddUp(m_error, extra);
@@ -413,7 +423,7 @@ Affine Affine::MulForms(const Affine& x, const Affine& y) {
 
 // (x0 + X + E)^2 = x0^2 + 2*x0*X + 2*x0*E + (X + E)^2 with (X + E)^2 in [0, q], q = (r + e)^2.
 Affine sqr(const Affine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Affine::Unbounded();
     return Affine::Tighten(Affine::SqrForm(x), sqr(x.range()));
 }
 

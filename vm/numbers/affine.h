@@ -8,8 +8,11 @@
 //  - Containment: for every assignment of the symbols, the double result of the same operation
 //    (vm/numbers/number.h's scalar semantics) on any operand values the operand forms allow at that
 //    assignment lies in the result form, rounding of both computations included (vm/numbers/rounding.h).
-//  - Anything that can be NaN or infinite somewhere is the explicit Unbounded value, which
-//    propagates through every function.
+//  - Anything that can be NaN or infinite somewhere is unbounded: the explicit Unbounded value,
+//    or a partial one whose range() is a partial Interval (vm/numbers/interval.h: an infinite end,
+//    and maybe NaN), e.g. max(x, 0) for an Unbounded x. Functions take an unbounded operand as
+//    Unbounded except where its interval rule keeps a side (Min, Max, abs, Join, negation...);
+//    a result whose enclosure is finite is bounded again: that interval on a fresh symbol.
 //  - Terms are kept sorted by symbol id with no zero coefficient; when they do not fit in the
 //    active capacity (Capacity(), kCapacity unless a bench or test changed it), the smallest
 //    terms other than eps_u and eps_v are folded into e.
@@ -93,6 +96,9 @@ class Affine {
     static Affine FromInterval(const Interval& range);
     /// The explicit "unknown" value.
     static Affine Unbounded();
+    /// An unbounded value known to lie in `range` (a partial interval: [lo, hi] or NaN), or, if
+    /// `range` is bounded, that range on a fresh symbol.
+    static Affine UnboundedWithin(const Interval& range);
     /// Restarts this thread's fresh symbols at kFirstFreshSymbol. Call before bounding a region.
     static void BeginEvaluation();
     /// A fresh symbol id, unused in this evaluation on this thread.
@@ -109,7 +115,8 @@ class Affine {
     bool isUnbounded() const { return !(m_error <= kMaxFinite); }
     /// No terms and no error: an exact double.
     bool isConstant() const { return m_count == 0 && m_error == 0; }
-    /// The range [x0 - r, x0 + r] with r = sum |xi| + e, rounded outward.
+    /// The range [x0 - r, x0 + r] with r = sum |xi| + e, rounded outward; for an unbounded form,
+    /// Unbounded or its partial range.
     Interval range() const;
     /// sum |xi| + e, rounded up.
     double radius() const;
@@ -203,8 +210,8 @@ class Affine {
 
   private:
     /// `r` with its enclosure narrowed to `enclosure` (a valid interval bound of the same
-    /// scalar values) and its range cached; an unbounded form with a bounded enclosure becomes
-    /// the enclosure on a fresh symbol.
+    /// scalar values) and its range cached; an unbounded form becomes UnboundedWithin(enclosure)
+    /// (bounded again, on a fresh symbol, if the enclosure is finite).
     static Affine Tighten(Affine r, const Interval& enclosure);
     void copyFrom(const Affine& x) {
         m_center = x.m_center;

@@ -20,7 +20,7 @@ Affine Affine::FromFit(const Affine& x, const AffineFit& fit) { return FormOfFit
 // ReciprocalFit on a range > 0; a range < 0 by 1/x = -(1/(-x)). Encloses the real 1/t (callers
 // add the rounding of their scalar division).
 Affine Affine::Reciprocal(const Affine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Affine::Unbounded();
     Interval range = x.range();
     if (!(range.lo() > 0 || range.hi() < 0)) return Unbounded();
     if (range.hi() < 0) return -Reciprocal(-x);
@@ -56,23 +56,23 @@ Affine Affine::ConstantDivForm(double c, const Affine& x) {
 // --- sqrt, exp, log, sin, cos, abs, sign: the shared fits ----------------------------------------
 
 Affine Affine::SqrtForm(const Affine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Affine::Unbounded();
     if (x.isConstant()) return Affine(std::sqrt(x.m_center));  // sqrt is correctly rounded
     return FromFit(x, SqrtFit(x.range()));
 }
 
 Affine Affine::ExpForm(const Affine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Affine::Unbounded();
     return FromFit(x, ExpFit(x.range()));
 }
 
 Affine Affine::LogForm(const Affine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Affine::Unbounded();
     return FromFit(x, LogFit(x.range()));
 }
 
 Affine Affine::SinOrCos(const Affine& x, bool isCos) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Affine::Unbounded();
     return FromFit(x, SinCosFit(x.range(), isCos));
 }
 
@@ -80,19 +80,19 @@ Affine sin(const Affine& x) { return Affine::Tighten(Affine::SinOrCos(x, false),
 Affine cos(const Affine& x) { return Affine::Tighten(Affine::SinOrCos(x, true), cos(x.range())); }
 
 Affine Affine::TanForm(const Affine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Affine::Unbounded();
     return FromFit(x, TanFit(x.range()));
 }
 
 Affine tan(const Affine& x) { return Affine::Tighten(Affine::TanForm(x), tan(x.range())); }
 
 Affine Affine::AbsForm(const Affine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Affine::Unbounded();
     return FromFit(x, AbsFit(x.range()));
 }
 
 Affine Affine::SignForm(const Affine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Affine::Unbounded();
     return FromFit(x, SignFit(x.range()));
 }
 
@@ -133,7 +133,7 @@ Affine Affine::PowForms(const Affine& x, const Affine& y) {
 // --- asin, acos, atan ---------------------------------------------------------------------------
 
 Affine Affine::InverseTrigForm(const Affine& x, int which) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Affine::Unbounded();
     return FromFit(x, InverseTrigFit(x.range(), which));
 }
 

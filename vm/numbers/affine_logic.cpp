@@ -24,7 +24,7 @@ Affine Affine::FromTruth(Truth t) {
 // StepFit (vm/numbers/affine_fit.cpp): the exact constant where the range lies in one integer cell, x
 // itself past 2^52, else x plus the jump on a fresh symbol.
 Affine Affine::StepForm(const Affine& x, double (*f)(double), double gLo, double gHi) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Affine::Unbounded();
     return FromFit(x, StepFit(x.range(), f, gLo, gHi));
 }
 
@@ -122,8 +122,8 @@ Affine Affine::MinMaxForm(const Affine& a, const Affine& b, bool isMax) {
 
 // Where the sign of a - b is decided, the operand itself (exactly, correlations and all).
 // Otherwise the abs formula keeps the symbols of a and b in (a + b)/2; abs(a - b) is min-range
-// (>= 0) on a fresh symbol. Unbounded operands give Unbounded: fmin(NaN, b) = b, but an Unbounded
-// a may also be any finite value.
+// (>= 0) on a fresh symbol. An unbounded operand leaves the form unknown, and the result is the
+// interval rule's (fmin(NaN, b) = b): partial, or bounded again (min(max(x, 0), 1) in [0, 1]).
 Affine Min(const Affine& a, const Affine& b) {
     return Affine::Tighten(Affine::MinMaxForm(a, b, false), Min(a.range(), b.range()));
 }
@@ -138,7 +138,7 @@ Affine Max(const Affine& a, const Affine& b) {
 // D = max|h| (over h's whole range) of (a + b)/2, b likewise: m plus the independent error
 // JoinSlack (vm/numbers/affine_fit.h) contains both.
 Affine Join(const Affine& a, const Affine& b) {
-    if (a.isUnbounded() || b.isUnbounded()) return Affine::Unbounded();
+    if (a.isUnbounded() || b.isUnbounded()) return Affine::UnboundedWithin(Hull(a.range(), b.range()));
     Interval hull = Hull(a.range(), b.range());
     Affine m = (a + b) * 0.5;
     Affine h = (a - b) * 0.5;

@@ -71,8 +71,12 @@ double Interval::radius() const {
 }
 
 std::string Interval::toString() const {
-    if (isUnbounded()) return "unbounded";
-    char buf[64];
+    char buf[96];
+    if (m_lo == -kInfinity && m_hi == kInfinity) return "unbounded";
+    if (isUnbounded()) {
+        std::snprintf(buf, sizeof buf, "[%.17g, %.17g] or NaN", m_lo, m_hi);
+        return buf;
+    }
     std::snprintf(buf, sizeof buf, "[%.17g, %.17g]", m_lo, m_hi);
     return buf;
 }
@@ -116,7 +120,7 @@ Interval operator/(const Interval& a, const Interval& b) {
 }
 
 Interval sqr(const Interval& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Interval::Unbounded();
     if (x.m_lo >= 0) return Interval(MulDown(x.m_lo, x.m_lo), MulUp(x.m_hi, x.m_hi));
     if (x.m_hi <= 0) return Interval(MulDown(x.m_hi, x.m_hi), MulUp(x.m_lo, x.m_lo));
     double m = std::fmax(-x.m_lo, x.m_hi);
@@ -129,25 +133,27 @@ Interval sqrt(const Interval& x) {
 }
 
 Interval exp(const Interval& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Interval::Unbounded();
     double hi = LibmUp(std::exp(x.m_hi));
-    if (!(hi <= kMaxFinite)) return Interval::Unbounded();
-    return Interval(std::fmax(0.0, LibmDown(std::exp(x.m_lo))), hi);
+    const double lo = std::fmax(0.0, LibmDown(std::exp(x.m_lo)));
+    if (!(hi <= kMaxFinite)) return Interval::Extended(lo, kInfinity);  // overflow: keep the low side
+    return Interval(lo, hi);
 }
 
 Interval log(const Interval& x) {
-    // log(0) = -inf, log(negative) = NaN.
-    if (x.isUnbounded() || !(x.m_lo > 0)) return Interval::Unbounded();
+    // log(0) = -inf, log(negative) = NaN: the partial [-inf, log(hi)] where x reaches 0.
+    if (x.isUnbounded() || !(x.m_hi > 0)) return Interval::Unbounded();
+    if (!(x.m_lo > 0)) return Interval::Extended(-kInfinity, LibmUp(std::log(x.m_hi)));
     return Interval(LibmDown(std::log(x.m_lo)), LibmUp(std::log(x.m_hi)));
 }
 
 Interval sin(const Interval& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Interval::Unbounded();
     return TrigRange(x.m_lo, x.m_hi, std::sin(x.m_lo), std::sin(x.m_hi), 0.5);
 }
 
 Interval cos(const Interval& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Interval::Unbounded();
     return TrigRange(x.m_lo, x.m_hi, std::cos(x.m_lo), std::cos(x.m_hi), 0.0);
 }
 
@@ -160,7 +166,7 @@ Interval SinCosFromEnds(double a, double b, double fa, double fb, bool isCos) {
 // [tan(lo), tan(hi)]. A pole may lie inside: Unbounded (the doubles nearest a pole have tangents
 // near +-1.6e16, and either sign). A point is its own branch at any magnitude.
 Interval tan(const Interval& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Interval::Unbounded();
     if (x.isPoint()) return LibmEnclosure(std::tan(x.m_lo));
     if (std::fmax(std::fabs(x.m_lo), std::fabs(x.m_hi)) > kTrigAnalysisLimit) return Interval::Unbounded();
     double kLo, kHi;
@@ -170,13 +176,14 @@ Interval tan(const Interval& x) {
 }
 
 Interval abs(const Interval& x) {
-    if (x.isUnbounded() || x.m_lo >= 0) return x;
+    // |t| is monotone on each side of 0, and |+-inf| = inf keeps a partial x partial.
+    if (x.m_lo >= 0) return x;
     if (x.m_hi <= 0) return -x;
-    return Interval(0.0, std::fmax(-x.m_lo, x.m_hi));
+    return Interval::Extended(0.0, std::fmax(-x.m_lo, x.m_hi));
 }
 
 Interval sign(const Interval& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Interval::Unbounded();
     auto s = [](double t) { return t > 0 ? 1.0 : t < 0 ? -1.0 : 0.0; };
     return Interval(s(x.m_lo), s(x.m_hi));
 }
@@ -210,17 +217,17 @@ Interval pow(const Interval& x, const Interval& y) {
 
 // Monotone and exact on doubles: the images of the endpoints are the bounds.
 Interval floor(const Interval& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Interval::Unbounded();
     return Interval(std::floor(x.m_lo), std::floor(x.m_hi));
 }
 
 Interval ceil(const Interval& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Interval::Unbounded();
     return Interval(std::ceil(x.m_lo), std::ceil(x.m_hi));
 }
 
 Interval round(const Interval& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Interval::Unbounded();
     return Interval(std::round(x.m_lo), std::round(x.m_hi));
 }
 
@@ -246,7 +253,7 @@ Interval acos(const Interval& x) {
 }
 
 Interval atan(const Interval& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return Interval::Unbounded();
     return Interval(LibmDown(std::atan(x.m_lo)), LibmUp(std::atan(x.m_hi)));
 }
 
@@ -273,14 +280,21 @@ Interval atan2(const Interval& y, const Interval& x) {
 
 // --- Min, Max -----------------------------------------------------------------------------------
 
+// Min and Max are exact, and monotone in each operand, infinities included. An unbounded operand
+// may also be NaN, where fmin/fmax give the other operand: its whole range joins the result. The
+// result may be NaN only where both may be, and then it is partial (both have an infinite end).
 Interval Min(const Interval& a, const Interval& b) {
-    if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
-    return Interval(std::fmin(a.m_lo, b.m_lo), std::fmin(a.m_hi, b.m_hi));
+    double lo = std::fmin(a.m_lo, b.m_lo), hi = std::fmin(a.m_hi, b.m_hi);
+    if (a.isUnbounded()) hi = std::fmax(hi, b.m_hi);
+    if (b.isUnbounded()) hi = std::fmax(hi, a.m_hi);
+    return Interval::Extended(lo, hi);
 }
 
 Interval Max(const Interval& a, const Interval& b) {
-    if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
-    return Interval(std::fmax(a.m_lo, b.m_lo), std::fmax(a.m_hi, b.m_hi));
+    double lo = std::fmax(a.m_lo, b.m_lo), hi = std::fmax(a.m_hi, b.m_hi);
+    if (a.isUnbounded()) lo = std::fmin(lo, b.m_lo);
+    if (b.isUnbounded()) lo = std::fmin(lo, a.m_lo);
+    return Interval::Extended(lo, hi);
 }
 
 // --- Comparisons and logic ----------------------------------------------------------------------

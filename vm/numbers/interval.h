@@ -3,7 +3,12 @@
 // the double result of the same operation (vm/numbers/number.h's scalar semantics) at every point of the
 // operands, including the rounding of that double computation: bounds round outward (vm/numbers/rounding.h)
 // and transcendental bounds allow kLibmRel of slack. Anything that can be NaN or infinite somewhere
-// in the operands is the explicit Unbounded value, and Unbounded propagates through every function.
+// in the operands is unbounded: the explicit Unbounded value [-inf, +inf], or a *partial* one
+// (Extended) whose range [lo, hi] has an infinite end and which may also be NaN, e.g. [0, +inf]
+// for max(anything, 0). Most functions take any unbounded operand as Unbounded; those whose
+// scalar result keeps a side whatever their operand (Min, Max, abs, log and exp near their
+// limits, negation, Hull) keep the finite side, so that a later clamp (min(max(x, 0), 1), where
+// fmin/fmax drop a NaN operand) makes the value bounded again (issue 12).
 // Also owns enum Truth (the answer of TruthOf for every number type, here because every number
 // header includes this one) and its three-valued And/Or/Not. Comparisons and logic return the
 // point 1 or 0 where decided over the whole operand ranges, else [0, 1] (tests/vm/branch_test.cpp).
@@ -49,6 +54,16 @@ class Interval {
     Interval(double lo, double hi) : m_lo(lo), m_hi(hi) {
         if (!(lo <= hi && lo >= -kMaxFinite && hi <= kMaxFinite)) *this = Unbounded();
     }
+    /// [lo, hi] where lo may be -inf and hi +inf: a finite [lo, hi] is the usual interval; one
+    /// with an infinite end is unbounded (*partial*: it stands for [lo, hi] and NaN). NaN bounds,
+    /// lo > hi, lo = +inf or hi = -inf give Unbounded.
+    static Interval Extended(double lo, double hi) {
+        if (!(lo <= hi && lo < kInfinity && hi > -kInfinity)) return Unbounded();
+        Interval r;
+        r.m_lo = lo;
+        r.m_hi = hi;
+        return r;
+    }
     /// The explicit "unknown" value: contains every double, NaN and infinities included.
     static Interval Unbounded() {
         Interval r;
@@ -65,14 +80,16 @@ class Interval {
     double radius() const;
     /// hi - lo rounded up.
     double width() const { return SubUp(m_hi, m_lo); }
-    bool isUnbounded() const { return !(m_hi <= kMaxFinite); }
+    /// Unbounded or partial: an infinite end (the value may then also be NaN).
+    bool isUnbounded() const { return !(m_hi <= kMaxFinite && m_lo >= -kMaxFinite); }
     bool isPoint() const { return m_lo == m_hi; }
-    /// NaN and infinities are contained only in Unbounded.
-    bool contains(double x) const { return isUnbounded() || (x >= m_lo && x <= m_hi); }
-    /// "[lo, hi]" with round-trip precision, or "unbounded".
+    /// NaN is contained only in an unbounded interval, an infinity only in one with that end.
+    bool contains(double x) const { return std::isnan(x) ? isUnbounded() : x >= m_lo && x <= m_hi; }
+    /// "[lo, hi]" with round-trip precision, "unbounded", or "[lo, inf] or NaN" (partial).
     std::string toString() const;
 
-    friend Interval operator-(const Interval& a) { return FromBounds(-a.m_hi, -a.m_lo); }
+    /// Exact; a partial interval stays partial.
+    friend Interval operator-(const Interval& a) { return Extended(-a.m_hi, -a.m_lo); }
     friend Interval operator+(const Interval& a, const Interval& b) {
         return FromBounds(AddDown(a.m_lo, b.m_lo), AddUp(a.m_hi, b.m_hi));
     }
@@ -95,9 +112,10 @@ class Interval {
     friend Interval sqr(const Interval& x);
     /// Unbounded if x has negative values.
     friend Interval sqrt(const Interval& x);
-    /// Unbounded on overflow.
+    /// [exp(lo), +inf] (partial) on overflow.
     friend Interval exp(const Interval& x);
-    /// Unbounded unless x > 0.
+    /// [log(lo), log(hi)] for x > 0; [-inf, log(hi)] (partial: log(0) = -inf, log(x < 0) = NaN)
+    /// for a bounded x with hi > 0; else Unbounded.
     friend Interval log(const Interval& x);
     /// Exact extremum analysis within a period; [-1, 1] past 2*pi or beyond |x| = 1e8.
     friend Interval sin(const Interval& x);
@@ -105,16 +123,16 @@ class Interval {
     /// Increasing between poles: [tan(lo), tan(hi)] where no pole k*pi + pi/2 may lie in x, else
     /// Unbounded (as past |x| = 1e8, except for a point).
     friend Interval tan(const Interval& x);
+    /// Partial operands keep their finite side: abs([-inf, -2]) = [2, +inf].
     friend Interval abs(const Interval& x);
     /// The hull of the signs (-1, 0, 1) of the values.
     friend Interval sign(const Interval& x);
     /// x^y as std::pow: a constant integer y allows negative x (and, if y < 0, x must exclude 0);
     /// otherwise x >= 0 (x > 0 if y can be <= 0). Unbounded elsewhere and on overflow.
     friend Interval pow(const Interval& x, const Interval& y);
-    /// The smallest interval containing both.
+    /// The smallest interval containing both (partial if either is).
     friend Interval Hull(const Interval& a, const Interval& b) {
-        if (a.isUnbounded() || b.isUnbounded()) return Unbounded();
-        return Interval(std::fmin(a.m_lo, b.m_lo), std::fmax(a.m_hi, b.m_hi));
+        return Extended(std::fmin(a.m_lo, b.m_lo), std::fmax(a.m_hi, b.m_hi));
     }
 
     // Rounding, inverse trigonometry, min/max, comparisons and logic (interval.cpp).
@@ -129,7 +147,9 @@ class Interval {
     /// std::atan2(y, x) by quadrants: monotone in y and x away from the branch cut; [-pi, pi]
     /// (rounded outward) wherever y can be 0 and x <= 0 (a signed zero reaches both -pi and pi).
     friend Interval atan2(const Interval& y, const Interval& x);
-    /// std::fmin and std::fmax, endpoint by endpoint.
+    /// std::fmin and std::fmax, endpoint by endpoint; an unbounded operand may be NaN, where the
+    /// result is the other operand: min(Unbounded, [0, 1]) = [-inf, 1] (partial),
+    /// min([0, +inf], [0, 1]) = [0, 1] (bounded again).
     friend Interval Min(const Interval& a, const Interval& b);
     friend Interval Max(const Interval& a, const Interval& b);
     /// The point 1 (true) or 0 (false) where decided for every pair of values, else [0, 1];

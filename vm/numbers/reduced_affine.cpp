@@ -20,8 +20,16 @@ ReducedAffine ReducedAffine::FromSymbol(double center, double radius, int axis) 
     return Make(center, axis == kSymbolU ? radius : 0.0, axis == kSymbolV ? radius : 0.0, 0.0);
 }
 
+ReducedAffine ReducedAffine::UnboundedWithin(const Interval& range) {
+    if (!range.isUnbounded()) return FromInterval(range);
+    ReducedAffine r = Unbounded();
+    r.m_lo = range.lo();
+    r.m_hi = range.hi();
+    return r;
+}
+
 ReducedAffine ReducedAffine::FromInterval(const Interval& range) {
-    if (range.isUnbounded()) return Unbounded();
+    if (range.isUnbounded()) return UnboundedWithin(range);
     if (range.isPoint()) return ReducedAffine(range.lo());
     ReducedAffine r = Make(range.mid(), 0.0, 0.0, range.radius());
     if (r.isUnbounded()) return r;
@@ -66,7 +74,7 @@ std::string ReducedAffine::toString() const {
 }
 
 ReducedAffine ReducedAffine::withExtraError(double extra) const {
-    if (isUnbounded()) return *this;
+    if (isUnbounded()) return Unbounded();
     return Make(m_center, m_u, m_v, AddUp(m_error, extra));
 }
 
@@ -104,7 +112,7 @@ ReducedAffine ReducedAffine::FromFitTight(const ReducedAffine& x, const AffineFi
 
 // The real 1/x (callers add the rounding of their scalar division); Unbounded across 0.
 ReducedAffine ReducedAffine::Reciprocal(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     const Interval range = x.range();
     if (!(range.lo() > 0 || range.hi() < 0)) return Unbounded();
     if (range.hi() < 0) return -Reciprocal(-x);
@@ -156,58 +164,58 @@ ReducedAffine operator/(double c, const ReducedAffine& x) {
 // --- sqrt, exp, log, sin, cos, abs, sign, asin, acos, atan: the shared fits ----------------------
 
 ReducedAffine sqrt(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     if (x.isConstant()) return ReducedAffine(std::sqrt(x.m_center));  // sqrt is correctly rounded
     return ReducedAffine::FromFitTight(x, SqrtFit(x.range()), [](const Interval& r) { return sqrt(r); });
 }
 
 ReducedAffine exp(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     return ReducedAffine::FromFitTight(x, ExpFit(x.range()), [](const Interval& r) { return exp(r); });
 }
 
 ReducedAffine log(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     return ReducedAffine::FromFitTight(x, LogFit(x.range()), [](const Interval& r) { return log(r); });
 }
 
 ReducedAffine sin(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     return ReducedAffine::FromFitTight(x, SinCosFit(x.range(), false), [](const Interval& r) { return sin(r); });
 }
 
 ReducedAffine cos(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     return ReducedAffine::FromFitTight(x, SinCosFit(x.range(), true), [](const Interval& r) { return cos(r); });
 }
 
 ReducedAffine tan(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     return ReducedAffine::FromFitTight(x, TanFit(x.range()), [](const Interval& r) { return tan(r); });
 }
 
 ReducedAffine abs(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::UnboundedWithin(abs(x.range()));
     return ReducedAffine::FromFitTight(x, AbsFit(x.range()), [](const Interval& r) { return abs(r); });
 }
 
 ReducedAffine sign(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     return ReducedAffine::FromFitTight(x, SignFit(x.range()), [](const Interval& r) { return sign(r); });
 }
 
 ReducedAffine asin(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     return ReducedAffine::FromFitTight(x, InverseTrigFit(x.range(), 0), [](const Interval& r) { return asin(r); });
 }
 
 ReducedAffine acos(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     return ReducedAffine::FromFitTight(x, InverseTrigFit(x.range(), 1), [](const Interval& r) { return acos(r); });
 }
 
 ReducedAffine atan(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     return ReducedAffine::FromFitTight(x, InverseTrigFit(x.range(), 2), [](const Interval& r) { return atan(r); });
 }
 
@@ -270,20 +278,20 @@ ReducedAffine atan2(const ReducedAffine& y, const ReducedAffine& x) {
 // --- floor, ceil, round -------------------------------------------------------------------------
 
 ReducedAffine floor(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     auto f = [](double t) { return std::floor(t); };
     return ReducedAffine::FromFitTight(x, StepFit(x.range(), f, -1.0, 0.0), [](const Interval& r) { return floor(r); });
 }
 
 ReducedAffine ceil(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     auto f = [](double t) { return std::ceil(t); };
     return ReducedAffine::FromFitTight(x, StepFit(x.range(), f, 0.0, 1.0), [](const Interval& r) { return ceil(r); });
 }
 
 // std::round rounds halves away from zero: round(t) - t lies in [-1/2, 1/2] either way.
 ReducedAffine round(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     auto f = [](double t) { return std::round(t); };
     return ReducedAffine::FromFitTight(x, StepFit(x.range(), f, -0.5, 0.5), [](const Interval& r) { return round(r); });
 }
@@ -366,7 +374,7 @@ ReducedAffine Max(const ReducedAffine& a, const ReducedAffine& b) {
 // m = (a + b)/2 plus JoinSlack(max |(a - b)/2|, max |m|) of error, within the hull of the ranges
 // (vm/numbers/affine_logic.cpp's Join).
 ReducedAffine Join(const ReducedAffine& a, const ReducedAffine& b) {
-    if (a.isUnbounded() || b.isUnbounded()) return ReducedAffine::Unbounded();
+    if (a.isUnbounded() || b.isUnbounded()) return ReducedAffine::UnboundedWithin(Hull(a.range(), b.range()));
     const Interval hull = Hull(a.range(), b.range());
     const ReducedAffine m = (a + b) * 0.5;
     const ReducedAffine h = (a - b) * 0.5;

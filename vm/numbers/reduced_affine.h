@@ -12,8 +12,8 @@
 //  - Containment: for every eps_u and eps_v, the double result of the same operation (vm/numbers/number.h's
 //    scalar semantics) on any operand values the operand forms allow there lies in the result
 //    form there, rounding of both computations included (vm/numbers/rounding.h).
-//  - Anything that can be NaN or infinite somewhere is the explicit Unbounded value, which
-//    propagates through every function.
+//  - Anything that can be NaN or infinite somewhere is unbounded: Unbounded, or partial (an
+//    Unbounded whose [lo, hi] has a finite side, range() a partial Interval), as in vm::Affine.
 //  - Every result carries an *enclosure*: the interval-arithmetic result of the operation on its
 //    operands' ranges, rounded outward, intersected with the form's own range. range() is that
 //    intersection, computed once per operation and stored (m_lo, m_hi), so it costs nothing to
@@ -57,6 +57,8 @@ class ReducedAffine {
     /// center +- radius(range) in the error term, with the range as enclosure (a point gives the
     /// constant).
     static ReducedAffine FromInterval(const Interval& range);
+    /// An unbounded value known to lie in `range` (partial), or `range` itself if bounded.
+    static ReducedAffine UnboundedWithin(const Interval& range);
     /// The explicit "unknown" value.
     static ReducedAffine Unbounded() {
         ReducedAffine r;
@@ -76,7 +78,8 @@ class ReducedAffine {
     bool isConstant() const { return m_u == 0 && m_v == 0 && m_error == 0; }
     /// The form's range [x0 - r, x0 + r] (r = |a| + |b| + e, rounded outward) intersected with
     /// the enclosure.
-    Interval range() const { return Interval(m_lo, m_hi); }
+    /// The enclosure; for an unbounded form, Unbounded or its partial range.
+    Interval range() const { return isUnbounded() ? Interval::Extended(m_lo, m_hi) : Interval(m_lo, m_hi); }
     /// |a| + |b| + e, rounded up.
     double radius() const;
     /// The range of the form with eps_u = epsU and eps_v = epsV fixed, eps_err free.
@@ -187,9 +190,10 @@ class ReducedAffine {
         return r;
     }
     /// `r` with its range narrowed to [lo, hi], a valid bound of the same scalar values (an
-    /// interval result); an Unbounded r with a bounded [lo, hi] becomes that interval.
+    /// interval result, infinite ends allowed); an Unbounded r becomes UnboundedWithin([lo, hi]):
+    /// that interval if bounded, else partial.
     static ReducedAffine Tighten(ReducedAffine r, double lo, double hi) {
-        if (r.isUnbounded()) return lo >= -kMaxFinite && hi <= kMaxFinite ? FromInterval(Interval(lo, hi)) : r;
+        if (r.isUnbounded()) return UnboundedWithin(Interval::Extended(lo, hi));
         // (Comparisons, not std::fmax and fmin, which GCC calls in libm; no bound here is NaN.)
         lo = lo > r.m_lo ? lo : r.m_lo;
         hi = hi < r.m_hi ? hi : r.m_hi;
@@ -312,7 +316,7 @@ inline ReducedAffine ReducedAffine::MulForms(const ReducedAffine& x, const Reduc
 }
 
 inline ReducedAffine sqr(const ReducedAffine& x) {
-    if (x.isUnbounded()) return x;
+    if (x.isUnbounded()) return ReducedAffine::Unbounded();
     if (x.isConstant()) return ReducedAffine(x.m_center * x.m_center);
     return ReducedAffine::Tighten(ReducedAffine::SqrForm(x), sqr(x.range()));
 }
