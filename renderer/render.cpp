@@ -214,8 +214,7 @@ std::string UnboundedEverywhere(const Primitive& prim, const ShaderRef& ref, con
                                 const CellRanges& intervalCells) {
     for (int n = kGridCells; n <= kFinestCheckCells; n *= 2) {
         if (MeasurableSomewhere(BoundCellsIn<vm::Affine>(prim, eye, n))) return {};
-        if (MeasurableSomewhere(n == kGridCells ? intervalCells : BoundCellsIn<vm::Interval>(prim, eye, n)))
-            return {};
+        if (MeasurableSomewhere(n == kGridCells ? intervalCells : BoundCellsIn<vm::Interval>(prim, eye, n))) return {};
     }
     std::string culprits;
     for (const ParamValue& p : ref.params)

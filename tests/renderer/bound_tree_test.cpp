@@ -88,9 +88,13 @@ TEST_CASE("bound tree: the image is the same with any thread count and any cache
     CHECK(SameImage(one.image, starved.image));
     CHECK(starved.stats.cache.evictions > 0);
     CHECK(starved.stats.cache.evaluations > one.stats.cache.evaluations);
-    // Near the budget: blocks still held by rays under way are freed once those rays end.
-    INFO("peak " << starved.stats.cachePeakBytes << " bytes");
-    CHECK(starved.stats.cachePeakBytes <= 4 * tiny);
+    // Near the budget: blocks still held by rays under way are freed once those rays end. Checked
+    // with one thread: with several, a walker descheduled in mid-ray holds back every block retired
+    // meanwhile (epoch reclamation), so the peak depends on the machine's load.
+    const Result starvedAlone = RenderWith(1, tiny);
+    CHECK(SameImage(one.image, starvedAlone.image));
+    INFO("peak " << starvedAlone.stats.cachePeakBytes << " bytes");
+    CHECK(starvedAlone.stats.cachePeakBytes <= 4 * tiny);
     // Figures that do not depend on the cache: the regions tested per ray (same thread count, so
     // the same tiles and margins).
     const Result three = RenderWith(3, kDefaultCacheBytes);
