@@ -8,11 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <regex>
 
 #include "compiler/builtins.h"
 #include "compiler/builtins_color.h"
 #include "compiler/lowerer.h"
+#include "compiler/regex_match.h"
 
 namespace affray::compiler {
 
@@ -177,12 +177,13 @@ std::optional<Value> Lowerer::LowerExtraCall(const lang::Expr& e, Type expected)
             return std::nullopt;
         }
         if (Unknown(*pattern) || Unknown(*subject)) return m_ops.Constant(0.0);
-        try {
-            return m_ops.Constant(std::regex_search(*subject, std::regex(*pattern, std::regex::extended)) ? 1.0 : 0.0);
-        } catch (const std::regex_error&) {
-            m_diags.error(e.args[0]->loc, "invalid regular expression '" + *pattern + "'");
+        std::string error;
+        const std::optional<bool> found = RegexSearch(*pattern, *subject, &error);
+        if (!found) {
+            m_diags.error(e.args[0]->loc, error);
             return std::nullopt;
         }
+        return m_ops.Constant(*found ? 1.0 : 0.0);
     }
 
     if (name == "ctransform") {
