@@ -10,9 +10,9 @@ namespace affray::compiler {
 
 /// One of "rgb", "hsv", "hsl", "xyz" (also "XYZ"), "xyY", "YIQ".
 bool IsColorSpace(std::string_view space);
-/// The color `c`, given in `space`, in rgb.
-Value ColorToRgb(ValueOps& ops, std::string_view space, const Value& c);
-/// The rgb color `c` in `space`.
-Value RgbToColor(ValueOps& ops, std::string_view space, const Value& c);
+/// The color `in`, given in `space`, in rgb.
+Value ColorToRgb(ValueOps& o, std::string_view space, const Value& in);
+/// The rgb color `in` in `space`.
+Value RgbToColor(ValueOps& o, std::string_view space, const Value& in);
 
 }  // namespace affray::compiler

@@ -300,7 +300,7 @@ std::string RenderStats::ToJson() const {
         static_cast<unsigned long long>(camera.parallelogramHits) + shadow.parallelogramHits,
         static_cast<unsigned long long>(shadow.rays), perRay(shadow.regionsBounded, shadow.rays),
         perRay(shadow.regionsEvaluated, shadow.rays),
-        static_cast<unsigned long long>(camera.budgetExhausted + shadow.budgetExhausted),
+        static_cast<unsigned long long>(camera.budgetExhausted) + shadow.budgetExhausted,
         static_cast<unsigned long long>(camera.frontiers), perRay(camera.frontierRegions, camera.frontiers),
         double(cacheBudgetBytes) / (1 << 20), double(cachePeakBytes) / (1 << 20), double(cache.bytes) / (1 << 20),
         static_cast<unsigned long long>(cache.nodes), static_cast<unsigned long long>(cache.lookups), hitRate,

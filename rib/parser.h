@@ -120,8 +120,8 @@ class RibParser : private RibArgChecks {
     bool DoPixelFilter(const RibRequest& r);
     bool DoExposure(const RibRequest& r);
     bool DoOption(const RibRequest& r);
-    /// Option "searchpath" "shader" or "archive": a ':'-separated list into *path.
-    bool SetSearchPath(const RibParam& p, std::vector<std::string>* path);
+    /// Option "searchpath" "shader" or "archive": a ':'-separated list into *out.
+    bool SetSearchPath(const RibParam& p, std::vector<std::string>* out);
     bool DoHider(const RibRequest& r);
     bool DoDeclare(const RibRequest& r);
     bool DoShadingRate(const RibRequest& r);

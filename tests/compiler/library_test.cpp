@@ -137,7 +137,7 @@ TEST_CASE("Deriv of a function of u alone is its derivative, not 0/0 from Dv", "
     CHECK_THAT(PAt("P = point(Deriv(u * u, u), Deriv(v * u, v), 0);", 0.3, 0.4).y, WithinAbs(0.3, 1e-12));
 }
 
-TEST_CASE("match searches a regular expression; an invalid or overlong one is an error at the pattern",
+TEST_CASE("match searches a regular expression, and an invalid or overlong one is an error at the pattern",
           "[compiler][library]") {
     test::RequireVec(PAt("P = point(match(\"^ab+c$\", \"abbbc\"), match(\"x\", \"abc\"), match(\"b|z\", \"abc\"));"),
                      {1, 0, 1});
