@@ -7,7 +7,8 @@
 # (file:line:col: message [check]); exit 2 if clang-tidy-14 is not installed. A full run costs
 # about 46 CPU-minutes, most of it the static analyser on the Catch2 tests (over 20 minutes on two
 # idle cores, 78 on a loaded one), too long for CI's budget, so CI does not run it: run it before
-# sending a change, or lint one file with `clang-tidy-14 -p build-lint FILE`.
+# sending a change, or lint one file with
+# `clang-tidy-14 -p build-lint --extra-arg=-Wno-unknown-warning-option FILE`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD

@@ -193,8 +193,9 @@ Vec3<T> Interpreter<T>::OutputTriple(const ProgramOutput& out) const {
 template <class T>
 template <bool kRecord>
 void Interpreter<T>::RunOnce() {
-    // For T = double the std functions are the scalar semantics; other types find theirs by ADL.
-    using std::abs, std::cos, std::exp, std::log, std::pow, std::sin, std::sqrt;
+    // For T = double the std functions are the scalar semantics, except Sqrt, Pow and Div
+    // (vm/numbers/number.h); other types find theirs by ADL.
+    using std::abs, std::cos, std::exp, std::log, std::sin;
     using std::acos, std::asin, std::atan, std::atan2, std::ceil, std::floor, std::round, std::tan;
     T* R = m_registers.data();
     const double* K = m_program->constants.data();
@@ -228,19 +229,19 @@ void Interpreter<T>::RunOnce() {
             case Op::SubKR: A = K[in.b] - R[in.c]; break;
             case Op::MulRR: A = R[in.b] * R[in.c]; break;
             case Op::MulRK: A = R[in.b] * K[in.c]; break;
-            case Op::DivRR: A = R[in.b] / R[in.c]; break;
-            case Op::DivRK: A = R[in.b] / K[in.c]; break;
-            case Op::DivKR: A = K[in.b] / R[in.c]; break;
+            case Op::DivRR: A = Div(R[in.b], R[in.c]); break;
+            case Op::DivRK: A = Div(R[in.b], K[in.c]); break;
+            case Op::DivKR: A = Div(K[in.b], R[in.c]); break;
             case Op::Sqr: A = sqr(R[in.b]); break;
-            case Op::Sqrt: A = sqrt(R[in.b]); break;
+            case Op::Sqrt: A = Sqrt(R[in.b]); break;
             case Op::Exp: A = exp(R[in.b]); break;
             case Op::Log: A = log(R[in.b]); break;
             case Op::Sin: A = sin(R[in.b]); break;
             case Op::Cos: A = cos(R[in.b]); break;
             case Op::Abs: A = abs(R[in.b]); break;
             case Op::Sign: A = sign(R[in.b]); break;
-            case Op::PowRR: A = pow(R[in.b], R[in.c]); break;
-            case Op::PowRK: A = pow(R[in.b], T(K[in.c])); break;
+            case Op::PowRR: A = Pow(R[in.b], R[in.c]); break;
+            case Op::PowRK: A = Pow(R[in.b], T(K[in.c])); break;
             case Op::DerivU: A = DerivU(R[in.b]); break;
             case Op::DerivV: A = DerivV(R[in.b]); break;
             case Op::Floor:

@@ -61,7 +61,8 @@ TEST_CASE("Hider sets the jitter and accepts the depth filter", "[renderer][rib]
     REQUIRE(scene);
     CHECK_FALSE(scene->camera.jitter);
     CHECK(messages ==
-          Messages{"t.rib:1: warning: 'Hider \"hidden\"' depthfilter 'midpoint' is not supported; depth is each "
+          Messages{// NOLINTNEXTLINE(bugprone-suspicious-missing-comma): one message in two literals
+                   "t.rib:1: warning: 'Hider \"hidden\"' depthfilter 'midpoint' is not supported; depth is each "
                    "sample's nearest hit (\"min\")",
                    "t.rib:1: warning: 'Hider \"hidden\"' parameter 'sigma' is not supported; ignored",
                    "t.rib:2: warning: hider 'raytrace' is not supported; rendering with affray's ray tracer (as "
@@ -337,6 +338,7 @@ FrameEnd
                           "t.rib:30: warning: 'Attribute \"identifier\"' does not apply to affray; ignored",
                           "t.rib:31: warning: 'Attribute \"visibility\"' does not apply to affray; ignored",
                           "t.rib:32: warning: 'Attribute \"dice\"' does not apply to affray; ignored",
+                          // NOLINTNEXTLINE(bugprone-suspicious-missing-comma): one message in two literals
                           "t.rib:33: warning: 'Attribute \"displacementbound\"' is not needed: affray bounds "
                           "displacement exactly; ignored",
                           "t.rib:34: warning: 'ShadingRate' does not apply: affray shades every ray hit; ignored",

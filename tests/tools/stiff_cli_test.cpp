@@ -88,7 +88,7 @@ TEST_CASE("stiff cli: NaN, infinite and overflowing parameters in a scene name t
         CHECK_FALSE(fs::exists(exr));
     }
     // The same check catches NaN computed from finite values everywhere on the surface.
-    dir.Write("sqrtneg.sl", "displacement sqrtneg(float Km = 0.1) { P += Km * sqrt(-1 - u) * normalize(N); }\n");
+    dir.Write("sqrtneg.sl", "displacement sqrtneg(float Km = 0.1) { P += Km * log(-1 - u) * normalize(N); }\n");
     Output nan = Run("render " + dir.Write("nan.rib", WaveScene("Displacement \"sqrtneg\"")) + " -o " + exr);
     INFO(nan.out);
     CHECK(nan.status == 1);
@@ -124,7 +124,7 @@ TEST_CASE("stiff cli: NaN and infinite values for eval --param name the paramete
 TEST_CASE("stiff cli: a parameter default that folds to NaN or infinity is an error naming it", "[tools][stiff]") {
     test::TempDir dir;
     const std::string exr = dir.Path("out.exr");
-    for (const char* value : {"1 / 0", "-1 / 0", "0 / 0", "1e200 * 1e200", "log(0)", "sqrt(-1)"}) {
+    for (const char* value : {"1 / 0", "-1 / 0", "0 / 0", "1e200 * 1e200", "log(0)", "log(-1)", "pow(0, -0.5)"}) {
         const std::string sl = dir.Write("bad.sl", "displacement bad(float Km = 0.1; float k = " + std::string(value) +
                                                        ")\n{\n    P += Km * k * normalize(N);\n}\n");
         INFO(value);

@@ -154,7 +154,8 @@ constexpr Sample NoiseSample(RefFn f, int dims, int periods, double maxRadius) {
 // The scalar references, on the operand values in format order: vm/numbers/number.h's semantics of
 // double (std's functions, fmin/fmax with the first operand on a tie of -0 and +0, sign in {-1,
 // 0, 1} keeping a signed zero, comparisons 1 or 0 and false with NaN but !=, truth as "not 0",
-// NaN included), written from the opcodes' meanings rather than taken from the VM. The noise
+// NaN included; sqrt 0 below 0, pow of a negative base to a non-integer that of +0, division by
+// either zero that by +0), written from the opcodes' meanings rather than taken from the VM. The noise
 // functions have no second definition: vm's.
 namespace ref {
 double First(const double* x, uint8_t) { return x[0]; }
@@ -162,9 +163,9 @@ double Neg(const double* x, uint8_t) { return -x[0]; }
 double Add(const double* x, uint8_t) { return x[0] + x[1]; }
 double Sub(const double* x, uint8_t) { return x[0] - x[1]; }
 double Mul(const double* x, uint8_t) { return x[0] * x[1]; }
-double Div(const double* x, uint8_t) { return x[0] / x[1]; }
+double Div(const double* x, uint8_t) { return x[1] == 0 ? x[0] / 0.0 : x[0] / x[1]; }
 double Sqr(const double* x, uint8_t) { return x[0] * x[0]; }
-double Sqrt(const double* x, uint8_t) { return std::sqrt(x[0]); }
+double Sqrt(const double* x, uint8_t) { return x[0] < 0 ? 0.0 : std::sqrt(x[0]); }
 double Exp(const double* x, uint8_t) { return std::exp(x[0]); }
 double Log(const double* x, uint8_t) { return std::log(x[0]); }
 double Sin(const double* x, uint8_t) { return std::sin(x[0]); }
@@ -172,7 +173,10 @@ double Cos(const double* x, uint8_t) { return std::cos(x[0]); }
 double Tan(const double* x, uint8_t) { return std::tan(x[0]); }
 double Abs(const double* x, uint8_t) { return std::fabs(x[0]); }
 double Sign(const double* x, uint8_t) { return x[0] > 0 ? 1.0 : x[0] < 0 ? -1.0 : x[0]; }
-double Pow(const double* x, uint8_t) { return std::pow(x[0], x[1]); }
+double Pow(const double* x, uint8_t) {
+    const bool fraction = std::isfinite(x[1]) && std::trunc(x[1]) != x[1];
+    return std::pow(x[0] < 0 && (fraction || std::isnan(x[1])) ? 0.0 : x[0], x[1]);
+}
 double Floor(const double* x, uint8_t) { return std::floor(x[0]); }
 double Ceil(const double* x, uint8_t) { return std::ceil(x[0]); }
 double Round(const double* x, uint8_t) { return std::round(x[0]); }  // halves away from 0
@@ -218,6 +222,9 @@ bool AtZero(const double* x, double reach) { return std::fabs(x[0]) <= reach; }
 bool EitherAtZero(const double* x, double reach) { return std::fabs(x[0]) <= reach || std::fabs(x[1]) <= reach; }
 bool Tie(const double* x, double reach) { return std::fabs(x[0] - x[1]) <= 2 * reach; }
 bool AtInteger(const double* x, double reach) { return NearInteger(x[0], reach); }
+// pow: 0 as a base, and a negative base near an integer exponent, where it jumps between
+// x^n and pow(0, y) as the exponent moves.
+bool PowJump(const double* x, double reach) { return AtZero(x, reach) || (x[0] < 0 && NearInteger(x[1], reach)); }
 bool AtHalf(const double* x, double reach) { return NearHalf(x[0], reach); }
 // tan's poles (k + 1/2) pi, where |cos| is about the distance to the pole.
 bool AtPole(const double* x, double reach) { return std::fabs(std::cos(x[0])) <= 2 * reach; }
@@ -281,7 +288,7 @@ constexpr Sample SampleFor(Op op) {
         case Op::Abs: return Make(ref::Abs, 1, small).withKink(kink::AtZero);
         case Op::Sign: return Make(ref::Sign, 1, small).withKink(kink::AtZero);
         case Op::PowRR:
-        case Op::PowRK: return Make(ref::Pow, 2, base, exponent).withKink(kink::AtZero);
+        case Op::PowRK: return Make(ref::Pow, 2, base, exponent).withKink(kink::PowJump);
         case Op::DerivU: return Deriv(Kind::DerivU);
         case Op::DerivV: return Deriv(Kind::DerivV);
         case Op::Floor: return Make(ref::Floor, 1, steps).withKink(kink::AtInteger);

@@ -57,7 +57,7 @@ Affine Affine::ConstantDivForm(double c, const Affine& x) {
 
 Affine Affine::SqrtForm(const Affine& x) {
     if (x.isUnbounded()) return Affine::Unbounded();
-    if (x.isConstant()) return Affine(std::sqrt(x.m_center));  // sqrt is correctly rounded
+    if (x.isConstant()) return Affine(x.m_center < 0 ? 0.0 : std::sqrt(x.m_center));  // vm::sqrt, exact
     return FromFit(x, SqrtFit(x.range()));
 }
 

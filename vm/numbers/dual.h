@@ -55,11 +55,11 @@ template <class T>
 Dual<T> operator*(const Dual<T>& a, const Dual<T>& b) {
     return {a.v * b.v, a.du * b.v + a.v * b.du, a.dv * b.v + a.v * b.dv};
 }
-/// (a/b)' = (a' - (a/b) b') / b
+/// (a/b)' = (a' - (a/b) b') / b, every quotient by T's Div (a zero divisor is +0).
 template <class T>
 Dual<T> operator/(const Dual<T>& a, const Dual<T>& b) {
-    T q = a.v / b.v;
-    return {q, (a.du - q * b.du) / b.v, (a.dv - q * b.dv) / b.v};
+    T q = Div(a.v, b.v);
+    return {q, Div(a.du - q * b.du, b.v), Div(a.dv - q * b.dv, b.v)};
 }
 
 template <class T>
@@ -88,13 +88,13 @@ Dual<T> operator*(double c, const Dual<T>& a) {
 }
 template <class T>
 Dual<T> operator/(const Dual<T>& a, double c) {
-    return {a.v / c, a.du / c, a.dv / c};
+    return {Div(a.v, c), Div(a.du, c), Div(a.dv, c)};
 }
 /// (c/b)' = -(c/b) b' / b
 template <class T>
 Dual<T> operator/(double c, const Dual<T>& b) {
-    T q = c / b.v;
-    T k = -q / b.v;
+    T q = Div(c, b.v);
+    T k = Div(-q, b.v);
     return {q, k * b.du, k * b.dv};
 }
 
@@ -114,12 +114,12 @@ Dual<T> sqr(const Dual<T>& a) {
     return {sqr(a.v), k * a.du, k * a.dv};
 }
 /// sqrt(a)' = a' / (2 sqrt(a)): at a = 0 whatever T gives for 0.5/0 (inf, Unbounded), unless a'
-/// is exactly 0 (ChainScale).
+/// is exactly 0 (ChainScale); 0 where a < 0 (the VM's sqrt is 0 there).
 template <class T>
 Dual<T> sqrt(const Dual<T>& a) {
-    using std::sqrt;
-    T s = sqrt(a.v);
-    T k = 0.5 / s;
+    const T zero(0.0);
+    T s = Sqrt(a.v);
+    T k = Select(Less(a.v, zero), zero, Div(0.5, s));
     return {s, ChainScale(k, a.du), ChainScale(k, a.dv)};
 }
 template <class T>
@@ -168,16 +168,21 @@ Dual<T> sign(const Dual<T>& a) {
 }
 /// (a^b)' = b a^(b-1) a' + a^b log(a) b'. The log term is left out where b' is exactly zero, so a
 /// constant exponent never takes the log of a negative or zero base; the first term likewise
-/// where a' is (ChainScale: pow(max(0, x), 0.5) at x < 0).
+/// where a' is (ChainScale: pow(max(0, x), 0.5) at x < 0). Where a < 0 the VM's pow is constant
+/// in a unless b is an integer, and its log term is taken as 0 (pow(0, b) for a non-integer b;
+/// the derivative in b of a negative base to an integer power does not exist).
 template <class T>
 Dual<T> pow(const Dual<T>& a, const Dual<T>& b) {
-    using std::log, std::pow;
-    T p = pow(a.v, b.v);
-    T k = b.v * pow(a.v, b.v - 1.0);
+    using std::log;
+    const T zero(0.0);
+    const T negative = Less(a.v, zero);
+    T p = Pow(a.v, b.v);
+    T k = b.v * Pow(a.v, b.v - 1.0);
+    k = Select(negative, Select(Equal(floor(b.v), b.v), k, zero), k);
     T du = ChainScale(k, a.du), dv = ChainScale(k, a.dv);
     bool zu = IsExactlyZero(b.du), zv = IsExactlyZero(b.dv);
     if (!zu || !zv) {
-        T pl = p * log(a.v);
+        T pl = Select(negative, zero, p * log(a.v));
         if (!zu) du = du + pl * b.du;
         if (!zv) dv = dv + pl * b.dv;
     }
@@ -211,15 +216,15 @@ Dual<T> round(const Dual<T>& a) {
 /// asin(a)' = a' / sqrt(1 - a^2) (inf or Unbounded at |a| = 1 unless a' is exactly 0).
 template <class T>
 Dual<T> asin(const Dual<T>& a) {
-    using std::asin, std::sqrt;
-    T k = 1.0 / sqrt(1.0 - sqr(a.v));
+    using std::asin;
+    T k = Div(1.0, Sqrt(1.0 - sqr(a.v)));
     return {asin(a.v), ChainScale(k, a.du), ChainScale(k, a.dv)};
 }
 /// acos(a)' = -a' / sqrt(1 - a^2).
 template <class T>
 Dual<T> acos(const Dual<T>& a) {
-    using std::acos, std::sqrt;
-    T k = -1.0 / sqrt(1.0 - sqr(a.v));
+    using std::acos;
+    T k = Div(-1.0, Sqrt(1.0 - sqr(a.v)));
     return {acos(a.v), ChainScale(k, a.du), ChainScale(k, a.dv)};
 }
 /// atan(a)' = a' / (1 + a^2).

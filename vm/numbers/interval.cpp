@@ -103,7 +103,13 @@ Interval operator*(const Interval& a, const Interval& b) {
 
 Interval operator/(const Interval& a, const Interval& b) {
     if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
-    // x/0 is +-inf or NaN in the scalar semantics.
+    // A divisor [0, hi]: its zero is +0 (vm::Div), so a quotient of one sign keeps its finite side,
+    // x / hi, and reaches the infinity of its own sign. Otherwise x/0 is +-inf or NaN.
+    if (b.m_lo == 0 && b.m_hi > 0) {
+        if (a.m_lo > 0) return Interval::Extended(DivDown(a.m_lo, b.m_hi), kInfinity);
+        if (a.m_hi < 0) return Interval::Extended(-kInfinity, DivUp(a.m_hi, b.m_hi));
+        return Interval::Unbounded();
+    }
     if (b.m_lo <= 0 && b.m_hi >= 0) return Interval::Unbounded();
     // x/y is monotone in x and in y on each side of 0, so the extremes are the corners that the
     // signs pick (Moore's table): two directed quotients. A bound that is a zero keeps the scan of
@@ -127,9 +133,15 @@ Interval sqr(const Interval& x) {
     return Interval(0.0, MulUp(m, m));
 }
 
+// The scalar sqrt is 0 below 0 (vm/numbers/number.h): a negative part of the range adds 0. A
+// partial [lo, +inf] keeps its low side.
 Interval sqrt(const Interval& x) {
-    if (x.isUnbounded() || x.m_lo < 0) return Interval::Unbounded();
-    return Interval(SqrtDown(x.m_lo), SqrtUp(x.m_hi));
+    if (x.isUnbounded()) {
+        if (!(x.m_lo >= -kMaxFinite)) return Interval::Unbounded();
+        return Interval::Extended(x.m_lo < 0 ? 0.0 : SqrtDown(x.m_lo), kInfinity);
+    }
+    if (x.m_hi < 0) return Interval(0.0);
+    return Interval(x.m_lo < 0 ? 0.0 : SqrtDown(x.m_lo), SqrtUp(x.m_hi));
 }
 
 Interval exp(const Interval& x) {
@@ -204,8 +216,12 @@ Interval pow(const Interval& x, const Interval& y) {
         if (even) r = Interval(std::fmax(r.m_lo, 0.0), r.m_hi);
         return r;
     }
-    // Real exponent: needs x >= 0, and x > 0 where y can be < 0 (pow(0, y < 0) = inf).
-    // For x >= 0, x^y is monotone in x for fixed y and in y for fixed x, so the corners bound it.
+    // Real exponent: the scalar pow takes a negative base as 0 for a non-integer exponent
+    // (vm/numbers/number.h), so a constant one bounds pow over [max(lo, 0), max(hi, 0)]; a varying
+    // one may be an integer somewhere, where a negative base keeps its sign: Unbounded.
+    // For x >= 0, x^y is monotone in x for fixed y and in y for fixed x, so the corners bound it;
+    // x > 0 is needed where y can be < 0 (pow(0, y < 0) = inf).
+    if (x.m_lo < 0 && y.isPoint()) return pow(Interval(0.0, std::fmax(x.m_hi, 0.0)), y);
     if (x.m_lo < 0 || (x.m_lo == 0 && y.m_lo < 0)) return Interval::Unbounded();
     Interval r = Hull(Hull(boundOf(std::pow(x.m_lo, y.m_lo)), boundOf(std::pow(x.m_lo, y.m_hi))),
                       Hull(boundOf(std::pow(x.m_hi, y.m_lo)), boundOf(std::pow(x.m_hi, y.m_hi))));

@@ -1,10 +1,14 @@
 // vm/numbers/number.h: the Number concept: what the interpreter (and every templated built-in or base
 // surface) may ask of a number type, and nothing more.
 // Owns the concept, the double overloads that make double a Number (double is the scalar
-// semantics every other type bounds: sqr(x) = x*x, sqrt/exp/log/sin/cos/tan/pow/floor/ceil/round/
-// asin/acos/atan/atan2 = std's, abs = std::fabs, sign in {-1, 0, 1}, Min/Max = std::fmin/fmax
-// with the first operand on a tie (-0, +0), IEEE division), and NumberTraits for every type the
-// VM is instantiated on.
+// semantics every other type bounds: sqr(x) = x*x, exp/log/sin/cos/tan/floor/ceil/round/asin/acos/
+// atan/atan2 = std's, abs = std::fabs, sign in {-1, 0, 1}, Min/Max = std::fmin/fmax with the
+// first operand on a tie (-0, +0); three rules are the shading language's own, defined where
+// C leaves a NaN or a sign to chance (RSL leaves them undefined; OSL makes the same kind of
+// choice): sqrt(x < 0) = 0, pow(x < 0, non-integer y) = pow(0, y), and division by a zero
+// divisor takes it as +0 (Div). Each keeps a bound finite where the mathematics is: a sqrt in
+// the untaken arm of an undecided branch, a quotient by a distance that reaches 0 (issue 12).
+// Also NumberTraits for every type the VM is instantiated on.
 // Booleans are numbers of the same type: comparisons give 1 (true) or 0 (false), IEEE style (any
 // comparison with NaN is false except NotEqual); And/Or/Not read a value as true where it is != 0
 // (NaN too, as in C). A bounded type gives the exact 1 or 0 where decided over its whole range and
@@ -49,6 +53,30 @@ using std::tan;
 
 /// x*x.
 inline double sqr(double x) { return x * x; }
+/// The VM's sqrt, pow and division (the Sqrt, Pow, PowRR/RK, Div* opcodes): for double the rules
+/// below, for every other type its own sqrt, pow and operator/, which bound these rules.
+/// std::sqrt, but 0 for x < 0 (-0 and NaN stay as they are).
+inline double Sqrt(double x) { return x < 0 ? 0.0 : std::sqrt(x); }
+/// std::pow, but a negative base with a non-integer exponent is taken as +0: Pow(-4, 0.5) = 0,
+/// Pow(-4, -0.5) = +inf. An integer exponent (infinities count as integers) keeps std's sign rules.
+inline double Pow(double x, double y) { return x < 0 && std::floor(y) != y ? std::pow(0.0, y) : std::pow(x, y); }
+/// IEEE division, but a zero divisor is +0 whatever its sign: Div(1, -0) = +inf. A bound whose
+/// divisor range is [0, hi] then keeps its finite side (1 / [0, 2] is [0.5, +inf]).
+inline double Div(double a, double b) { return a / (b + 0.0); }
+template <class T>
+T Sqrt(const T& x) {
+    return sqrt(x);
+}
+template <class A, class B>
+auto Pow(const A& x, const B& y) {
+    return pow(x, y);
+}
+template <class A, class B>
+auto Div(const A& a, const B& b) {
+    return a / b;
+}
+template <class C, class T>
+T Select(const C& c, const T& a, const T& b);
 /// -1, 0 or 1 (a signed zero stays as it is; NaN stays NaN).
 inline double sign(double x) { return x > 0 ? 1.0 : x < 0 ? -1.0 : x; }
 /// std::fmin/fmax (a NaN operand gives the other one), and where the operands compare equal (-0

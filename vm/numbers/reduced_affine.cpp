@@ -165,7 +165,7 @@ ReducedAffine operator/(double c, const ReducedAffine& x) {
 
 ReducedAffine sqrt(const ReducedAffine& x) {
     if (x.isUnbounded()) return ReducedAffine::Unbounded();
-    if (x.isConstant()) return ReducedAffine(std::sqrt(x.m_center));  // sqrt is correctly rounded
+    if (x.isConstant()) return ReducedAffine(x.m_center < 0 ? 0.0 : std::sqrt(x.m_center));  // vm::sqrt, exact
     return ReducedAffine::FromFitTight(x, SqrtFit(x.range()), [](const Interval& r) { return sqrt(r); });
 }
 

@@ -176,8 +176,10 @@ TEST_CASE("Without jitter each sample lies at its stratum's centre", "[film]") {
     CameraDesc many = MakeCamera(3, 3, FilterDesc::Kind::Box, 1, 2, 4);
     many.jitter = false;
     Film strata(many);
-    for (int k = 0; k < 8; ++k)
-        CHECK(strata.SamplePosition(2, 1, k) == glm::dvec2(2 + (k % 2 * 2 + 1) / 4.0, 1 + (k / 2 * 2 + 1) / 8.0));
+    for (int k = 0; k < 8; ++k) {
+        const int column = k % 2, row = k / 2;
+        CHECK(strata.SamplePosition(2, 1, k) == glm::dvec2(2 + (column * 2 + 1) / 4.0, 1 + (row * 2 + 1) / 8.0));
+    }
     // The seed no longer matters.
     CHECK(Film(one, {}, 1).SamplePosition(3, 2, 0) == Film(one, {}, 2).SamplePosition(3, 2, 0));
 }

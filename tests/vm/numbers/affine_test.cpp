@@ -137,13 +137,13 @@ TEST_CASE("affine arithmetic contains the scalar result", "[vm][affine]") {
     Expect("x + y", CheckOp(1, n, g, r, r, BINARY(x + y)), 1.0, 1.01);
     Expect("x - y", CheckOp(2, n, g, r, r, BINARY(x - y)), 1.0, 1.01);
     Expect("x * y", CheckOp(3, n, g, r, r, BINARY(x * y)), 1.0, 1e300);
-    Expect("x / y", CheckOp(4, n, g, r, r, BINARY(x / y)), 0.3, 1e300);
+    Expect("x / y", CheckOp(4, n, g, r, r, BINARY(Div(x, y))), 0.3, 1e300);
     Expect("-x", CheckOp(5, n, g, r, r, UNARY(-x)), 1.0, 1.01);
     Expect("x + c", CheckOp(6, n, g, r, r, UNARY(x + 0.1)), 1.0, 1.01);
     Expect("c - x", CheckOp(7, n, g, r, r, UNARY(1e3 - x)), 1.0, 1.01);
     Expect("x * c", CheckOp(8, n, g, r, r, UNARY(x * 0.7)), 1.0, 1.01);
     Expect("x / c", CheckOp(9, n, g, r, r, UNARY(x / 3.0)), 1.0, 1.01);
-    Expect("c / x", CheckOp(10, n, g, r, r, UNARY(3.0 / x)), 0.3, 2.01);
+    Expect("c / x", CheckOp(10, n, g, r, r, UNARY(Div(3.0, x))), 0.3, 2.01);
     Expect("sqr", CheckOp(11, n, g, r, r, UNARY(sqr(x))), 1.0, 2.01);
 }
 
@@ -151,7 +151,7 @@ TEST_CASE("affine functions contain the scalar result", "[vm][affine]") {
     const int n = Samples(20000);
     RegionConfig g;
     RecipeConfig r;
-    Expect("sqrt", CheckOp(20, n, g, r, r, UNARY(sqrt(x))), 0.2, 2.01);
+    Expect("sqrt", CheckOp(20, n, g, r, r, UNARY(Sqrt(x))), 0.2, 2.01);
     Expect("log", CheckOp(21, n, g, r, r, UNARY(log(x))), 0.2, 2.01);
     Expect("abs", CheckOp(22, n, g, r, r, UNARY(abs(x))), 1.0, 1.01);
     Expect("sign", CheckOp(23, n, g, r, r, UNARY(sign(x))), 1.0, 1.01);
@@ -320,9 +320,9 @@ TEST_CASE("affine Unbounded comes from every NaN/inf source and propagates", "[v
     const double inf = std::numeric_limits<double>::infinity();
     // clang-format off
     std::vector<Affine> sources = {  // every way to NaN or infinity
-        Affine(std::nan("")), Affine(inf), Affine(-inf), sqrt(u - 0.75), log(u), log(u - 1.0),
+        Affine(std::nan("")), Affine(inf), Affine(-inf), log(u), log(u - 1.0),
         1.0 / (u - 0.5), u / (u - 0.25), u / 0.0, exp(u * 1000.0), exp(Affine(710.0)),
-        pow(u - 0.5, Affine(0.5)), pow(u, Affine(-1.0)), pow(u - 1.0, u),
+        pow(u - 0.5, Affine(-0.5)), pow(u, Affine(-1.0)), pow(u - 1.0, u),
         Affine(1e300) * Affine(1e300), u * 1e300 * 1e300, Affine::FromSymbol(1, inf, 0),
         Affine::Unbounded()};
     Affine U = Affine::Unbounded();

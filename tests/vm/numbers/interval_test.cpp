@@ -128,7 +128,7 @@ TEST_CASE("interval arithmetic contains the scalar result", "[vm][interval]") {
         CheckBinary(
             mul, x, y, [](auto a, auto b) { return a * b; }, g);
         CheckBinary(
-            div, x, y, [](auto a, auto b) { return a / b; }, g);
+            div, x, y, [](auto a, auto b) { return Div(a, b); }, g);
         CheckUnary(
             neg, x, [](auto a) { return -a; }, true, g);
         CheckUnary(
@@ -152,7 +152,7 @@ TEST_CASE("interval functions contain the scalar result and are tight", "[vm][in
         CheckUnary(
             sq, x, [](auto a) { return sqr(a); }, true, g);
         CheckUnary(
-            rt, x, [](auto a) { return sqrt(a); }, true, g);
+            rt, x, [](auto a) { return Sqrt(a); }, true, g);
         CheckUnary(
             ex, small, [](auto a) { return exp(a); }, true, g);
         CheckUnary(
@@ -287,12 +287,12 @@ TEST_CASE("interval pow contains the scalar result", "[vm][interval]") {
         Interval x = g.interval(-3, 1);
         double k = g.integer(-6, 6);
         CheckUnary(
-            integer, x, [k](auto a) { return pow(a, decltype(a)(k)); }, true, g);
+            integer, x, [k](auto a) { return Pow(a, decltype(a)(k)); }, true, g);
         double p = g.uniform(-3, 3);
         CheckUnary(
-            real, x, [p](auto a) { return pow(a, decltype(a)(p)); }, true, g);
+            real, x, [p](auto a) { return Pow(a, decltype(a)(p)); }, true, g);
         CheckBinary(
-            general, x, g.interval(-1, 0.5), [](auto a, auto b) { return pow(a, b); }, g);
+            general, x, g.interval(-1, 0.5), [](auto a, auto b) { return Pow(a, b); }, g);
     }
     Report("pow integer", integer);
     Report("pow real", real);
@@ -300,7 +300,9 @@ TEST_CASE("interval pow contains the scalar result", "[vm][interval]") {
     CHECK(pow(Interval(-2, 3), Interval(2)).lo() == 0);
     CHECK(pow(Interval(-2, -1), Interval(3)).hi() < -0.99);
     CHECK(pow(Interval(-2, 3), Interval(-1)).isUnbounded());
-    CHECK(pow(Interval(-2, 3), Interval(0.5)).isUnbounded());
+    CHECK(pow(Interval(-2, 3), Interval(0.5)).lo() == 0);  // a negative base to 0.5 is 0
+    CHECK(pow(Interval(-2, 3), Interval(0.5)).hi() < 1.7321);
+    CHECK(pow(Interval(-2, -1), Interval(-0.5)).isUnbounded());  // pow(0, -0.5)
     CHECK(pow(Interval(0, 3), Interval(-0.5)).isUnbounded());
     CHECK(pow(Interval(0, 3), Interval(0)).lo() == 1);
     CHECK(pow(Interval(0, 0), Interval(0.5)).hi() >= 0);
@@ -313,9 +315,9 @@ TEST_CASE("interval Unbounded comes from every NaN/inf source and propagates", "
     // clang-format off
     std::vector<Interval> sources = {  // every way to NaN or infinity
         Interval(std::nan("")), Interval(inf), Interval(0, inf), Interval(3, 1),
-        sqrt(Interval(-1e-300, 1)), log(Interval(0, 1)), log(Interval(-1, 1)), x / Interval(0, 1),
+        log(Interval(0, 1)), log(Interval(-1, 1)), x / Interval(0, 1),
         x / Interval(-1, 1), x / 0.0, exp(Interval(0, 710)), Interval(1e300) * 1e300,
-        pow(Interval(-1, 1), Interval(-2)), pow(Interval(-1, 1), Interval(0.5)),
+        pow(Interval(-1, 1), Interval(-2)), pow(Interval(-1, 1), Interval(-0.5)),
         Interval::Unbounded(), DerivU(x), DerivV(x)};
     // clang-format on
     for (const Interval& s : sources) CHECK(s.isUnbounded());

@@ -81,7 +81,15 @@ T TExp(const T& a) {
 }
 template <class T>
 T TDiv(const T& a, const T& b) {
-    return a / b;
+    return Div(a, b);
+}
+template <class T>
+T TSqrt(const T& a) {
+    return Sqrt(a);
+}
+template <class T>
+T TPow(const T& a, const T& b) {
+    return Pow(a, b);
 }
 template <class T>
 T TMul(const T& a, const T& b) {
@@ -97,7 +105,9 @@ double DAbs(double a) { return std::fabs(a); }
 double DNeg(double a) { return -a; }
 double DLog(double a) { return std::log(a); }
 double DExp(double a) { return std::exp(a); }
-double DDiv(double a, double b) { return a / b; }
+double DDiv(double a, double b) { return Div(a, b); }
+double DSqrt(double a) { return Sqrt(a); }
+double DPow(double a, double b) { return Pow(a, b); }
 double DMul(double a, double b) { return a * b; }
 double DAdd(double a, double b) { return a + b; }
 
@@ -121,6 +131,7 @@ std::vector<Sample<T>> Operands() {
     base.push_back(Apply<T>("exp", large, TExp<T>, DExp));
     base.push_back(Apply2<T>("div", base[4], zeroToFour, TDiv<T>, DDiv));
     base.push_back(Apply2<T>("div", base[1], acrossZero, TDiv<T>, DDiv));
+    base.push_back(Apply<T>("sqrt", acrossZero, TSqrt<T>, DSqrt));
     std::vector<Sample<T>> all = base;
     for (const auto& x : base) {
         all.push_back(Apply<T>("abs", x, TAbs<T>, DAbs));
@@ -151,16 +162,21 @@ TEMPLATE_TEST_CASE("partial bounds contain every scalar result, NaN and infiniti
     // Two independent sets, so that a binary operation's operands share no symbol (every pair of
     // their values is possible).
     const std::vector<Sample<T>> operands = Operands<T>(), others = Operands<T>();
-    for (const auto& x : operands) {
+    for (size_t i = 0; i < operands.size(); ++i) {
+        const auto& x = operands[i];
         CheckContains(x);
         CheckContains(Apply<T>("abs", x, TAbs<T>, DAbs));
         CheckContains(Apply<T>("neg", x, TNeg<T>, DNeg));
         CheckContains(Apply<T>("log", x, TLog<T>, DLog));
         CheckContains(Apply<T>("exp", x, TExp<T>, DExp));
+        CheckContains(Apply<T>("sqrt", x, TSqrt<T>, DSqrt));
+        if (i % 5 == 0)  // (a subset: the operands' value lists are long)
+            for (double p : {0.5, -0.5, 3.0, -2.0, 2.5})
+                CheckContains(Apply2<T>("pow", x, Sample<T>{ToString(p), T(p), {p}}, TPow<T>, DPow));
     }
     // Binary operations on a subset (the full square is large).
-    for (size_t i = 0; i < operands.size(); i += 7)
-        for (size_t j = 0; j < others.size(); j += 11) {
+    for (size_t i = 0; i < operands.size(); i += 9)
+        for (size_t j = 0; j < others.size(); j += 13) {
             const auto &a = operands[i], &b = others[j];
             CheckContains(Apply2<T>("min", a, b, TMin<T>, DMin));
             CheckContains(Apply2<T>("max", a, b, TMax<T>, DMax));
@@ -230,6 +246,72 @@ TEMPLATE_TEST_CASE("log near 0 keeps its bounded side", "[vm][partial]", Interva
     CHECK(e.isUnbounded());
     CHECK(e.lo() >= 0.99);
     CHECK(e.lo() <= 1);
+}
+
+TEST_CASE("the scalar sqrt, pow and division are defined where C's give NaN or a sign by chance", "[vm][partial]") {
+    CHECK(Sqrt(-4.0) == 0);
+    CHECK(Sqrt(4.0) == 2);
+    CHECK(std::signbit(Sqrt(-0.0)));
+    CHECK(std::isnan(Sqrt(kNaN)));
+    CHECK(Sqrt(-kInf) == 0);
+    CHECK(Pow(-4.0, 0.5) == 0);
+    CHECK(Pow(-4.0, -0.5) == kInf);
+    CHECK(Pow(-2.0, 3.0) == -8);
+    CHECK(Pow(-2.0, -2.0) == 0.25);
+    CHECK(Pow(-2.0, kInf) == kInf);
+    CHECK(Pow(4.0, 0.5) == 2);
+    CHECK(std::isnan(Pow(kNaN, 0.5)));
+    CHECK(std::isnan(Pow(-1.0, kNaN)));
+    CHECK(Div(1.0, -0.0) == kInf);
+    CHECK(Div(-1.0, -0.0) == -kInf);
+    CHECK(Div(1.0, 0.0) == kInf);
+    CHECK(std::signbit(Div(-0.0, 2.0)));
+    CHECK(std::isnan(Div(0.0, -0.0)));
+    CHECK(Div(1.0, -2.0) == -0.5);
+}
+
+TEMPLATE_TEST_CASE("sqrt and pow below 0, and a quotient by a range that reaches 0, stay bounded", "[vm][partial]",
+                   Interval, Affine, ReducedAffine, Dual<Interval>, Dual<Affine>) {
+    using T = TestType;
+    Affine::BeginEvaluation();
+    auto over = [](double lo, double hi) {
+        if constexpr (std::is_same_v<T, Interval> || std::is_same_v<T, Affine> || std::is_same_v<T, ReducedAffine>)
+            return Over<T>(lo, hi);
+        else {
+            using V = std::decay_t<decltype(ValueOf(T()))>;
+            return T(Over<V>(lo, hi), V(1.0), V(0.0));  // varies in u
+        }
+    };
+    auto range = [](const T& x) { return RangeOf(ValueOf(x)); };
+    // The dome of a rivet in the untaken arm: sqrt of [-1, 4] is [0, 2].
+    const Interval s = range(Sqrt(over(-1, 4)));
+    CHECK_FALSE(s.isUnbounded());
+    CHECK(s.lo() == 0);
+    CHECK(s.hi() >= 2);
+    CHECK(s.hi() < 2.001);
+    CHECK(range(Sqrt(over(-3, -1))).hi() == 0);
+    // pow of a negative base to a non-integer constant: the base taken as 0.
+    const Interval p = range(Pow(over(-1, 4), T(0.5)));
+    CHECK_FALSE(p.isUnbounded());
+    CHECK(p.lo() == 0);
+    CHECK(p.hi() < 2.001);
+    CHECK(range(Pow(over(-1, 4), T(-0.5))).isUnbounded());  // pow(0, -0.5) = inf
+    // The pimple: 0.05 / d for d in [0, 0.5] is [0.1, +inf] (a zero divisor is +0), and capped by
+    // min it is bounded again.
+    const Interval q = range(Div(T(0.05), over(0, 0.5)));
+    CHECK(q.isUnbounded());
+    CHECK(q.lo() <= 0.1);
+    CHECK(q.lo() > 0.0999);
+    CHECK(q.hi() == kInf);
+    const Interval capped = range(Min(Div(T(0.05), over(0, 0.5)), T(1.0)));
+    CHECK_FALSE(capped.isUnbounded());
+    CHECK(capped.lo() > 0.0999);
+    CHECK(capped.hi() >= 1);
+    CHECK(capped.hi() < 1.000001);
+    CHECK(range(Div(T(-1.0), over(0, 2))).hi() <= -0.5);
+    CHECK(range(Div(T(-1.0), over(0, 2))).lo() == -kInf);
+    CHECK(range(Div(over(-1, 1), over(0, 2))).lo() == -kInf);  // 0/0 is NaN
+    CHECK(range(Div(T(1.0), over(-2, 0))).isUnbounded());
 }
 
 TEST_CASE("partial intervals: construction, containment, printing", "[vm][partial]") {
