@@ -446,7 +446,21 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
     e.tLo = std::max(et.lo, lo);
     e.tHi = std::min(et.hi, hi);
     if (e.tLo > e.tHi) return false;
-    const double w1 = e1.width(), w2 = e2.width(), wt = et.width();
+    // The reachable part lies in the form's parallelogram and in the region's box as well: its
+    // extent along each axis of the ray frame is the smaller of the two. (A form may be far wider
+    // than its enclosure, e.g. after a steep fit whose interval range was clipped: the box then
+    // certifies a small region that the form alone never would.)
+    double w1 = e1.width(), w2 = e2.width(), wt = et.width();
+    if (b.boundedMask == 7u) {
+        const glm::dvec3 extent = b.hi - b.lo;
+        auto across = [&](const glm::dvec3& axis) {
+            return (std::fabs(axis.x) * extent.x + std::fabs(axis.y) * extent.y + std::fabs(axis.z) * extent.z) *
+                   (1 + 8 * kUlp);
+        };
+        w1 = std::min(w1, across(m_n1));
+        w2 = std::min(w2, across(m_n2));
+        wt = std::min(wt, across(m_dir));
+    }
     e.size = std::sqrt(w1 * w1 + w2 * w2 + wt * wt) * (1 + 1e-15);
     return true;
 }

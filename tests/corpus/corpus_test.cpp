@@ -151,9 +151,11 @@ void SmokeRender(const std::string& name, const std::string& primitive) {
     INFO("stats " << stats.ToJson());
     CHECK(hits > kWidth * kHeight / 20);
     for (float x : image.rgba) CHECK(std::isfinite(x));
-    if (stats.camera.budgetExhausted > 0 || stats.camera.depthLimitHits > 0)
-        WARN(name << " on " << primitive << ": " << stats.camera.budgetExhausted << " rays out of budget, "
-                  << stats.camera.depthLimitHits << " depth-limit hits");
+    // Every camera hit certified: none out of budget, none at the depth limit. (A form much wider
+    // than its box, as hexagons' and gear's steep fits give, once left regions at the depth limit
+    // with errors of 4 units; the intersector now takes the smaller of the two extents.)
+    CHECK(stats.camera.budgetExhausted == 0);
+    CHECK(stats.camera.depthLimitHits == 0);
 }
 
 }  // namespace
