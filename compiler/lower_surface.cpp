@@ -216,9 +216,9 @@ const Variable* Lowerer::ShaderParameter(const std::string& name) const {
 std::optional<Value> Lowerer::LowerQuery(const lang::Expr& e, const Value& nameArg, Variable& out) {
     std::optional<std::string> name = StringOf(nameArg);
     if (!name) {
-        m_diags.error(e.args[0]->loc, "the name '" + e.name +
-                                          "' looks up must be known when the shader is compiled (here it depends on "
-                                          "a condition)");
+        m_diags.error(e.args[0]->loc, "the name given to '" + e.name +
+                                          "' must be known when the shader is compiled (here it depends on a "
+                                          "condition)");
         return std::nullopt;
     }
     // A function nobody calls answers nothing (the instance is unknown there).
