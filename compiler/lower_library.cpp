@@ -1,7 +1,8 @@
 // compiler/lower_library.cpp: the built-ins that need more than a table row (builtins.cpp):
 // noise, pnoise and cellnoise (their result type comes from the context: `float noise(P)`,
 // `vector v = noise(P)`), the transforms (their space names are strings), spline (any number
-// of knots, an optional basis name) and filterstep (optional trailing parameter pairs).
+// of knots, an optional basis name), filterstep (optional trailing parameter pairs) and depth
+// (the instance's camera space and clipping planes).
 #include <algorithm>
 
 #include "compiler/lowerer.h"
