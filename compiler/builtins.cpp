@@ -47,6 +47,12 @@ int CallOperands(std::string_view rsl, std::string_view* name) {
     return 0;
 }
 
+Value Mix(ValueOps& o, const std::vector<Value>& a) {
+    // mix(x, y, t) = x*(1-t) + y*t (per component for a triple t)
+    Value oneMinusT = o.Sub(o.Constant(1.0), a[2]);
+    return o.Add(o.Mul(a[0], oneMinusT), o.Mul(a[1], a[2]));
+}
+
 const std::vector<Builtin>& Rows() {
     using A = const std::vector<Value>&;
     static const std::vector<Builtin> kRows = {
@@ -146,12 +152,11 @@ const std::vector<Builtin>& Rows() {
              const Value m = o.Translate(turn, o.Neg(a[2]));
              return o.Promote(o.TransformBy(m, a[0], Type::Point), a[0].type);
          }},
-        {"mix", "aaf",
-         [](ValueOps& o, A a) {
-             // mix(x, y, t) = x*(1-t) + y*t
-             Value oneMinusT = o.Sub(o.Constant(1.0), a[2]);
-             return o.Add(o.Mul(a[0], oneMinusT), o.Mul(a[1], a[2]));
-         }},
+        {"mix", "aaf", Mix},
+        // A color (or point, vector, normal) t mixes component by component (RSL 3.2, prman); the
+        // result has x and y's type (t's only when x and y are floats).
+        {"mix", "aac", Mix},
+        {"mix", "aat", Mix},
     };
     return kRows;
 }
@@ -183,11 +188,6 @@ const std::vector<Builtin>& Table() {
     return kBuiltins;
 }
 
-// Functions of RenderMan's library that affray does not implement yet: a clear error, not
-// "unknown function".
-// (The surface shaders' functions are in lower_surface.cpp.)
-const char* const kNotYet[] = {"depth"};
-
 bool ArgMatches(char pattern, Type type) {
     switch (pattern) {
         case 'f': return type == Type::Float;
@@ -217,7 +217,6 @@ std::string DescribePattern(const char* pattern) {
 std::vector<std::string> TableBuiltinNames() {
     std::vector<std::string> names;
     for (const Builtin& b : Table()) names.emplace_back(b.name);
-    names.insert(names.end(), std::begin(kNotYet), std::end(kNotYet));
     return names;
 }
 
@@ -227,12 +226,6 @@ std::optional<Value> LowerBuiltin(ValueOps& ops, const lang::Expr& call, const s
     for (const Builtin& b : Table())
         if (call.name == b.name) candidates.push_back(&b);
     if (candidates.empty()) {
-        for (const char* name : kNotYet) {
-            if (call.name == name) {
-                diags.error(call.loc, "function '" + call.name + "' is not supported yet");
-                return std::nullopt;
-            }
-        }
         diags.error(call.loc, "unknown function '" + call.name + "'");
         return std::nullopt;
     }
@@ -243,7 +236,8 @@ std::optional<Value> LowerBuiltin(ValueOps& ops, const lang::Expr& call, const s
         Type widest = Type::Float;
         for (size_t i = 0; i < args.size() && ok; ++i) {
             ok = ArgMatches(b->pattern[i], args[i].type);
-            if (IsTriple(args[i].type)) widest = args[i].type;
+            // Only the 'a' arguments decide the type they share (mix's color t does not).
+            if (b->pattern[i] == 'a' && IsTriple(args[i].type)) widest = args[i].type;
         }
         if (!ok) continue;
         // Promote float arguments where the pattern wants a triple.

@@ -18,7 +18,7 @@ namespace affray::compiler {
 std::optional<Value> LowerBuiltin(ValueOps& ops, const lang::Expr& call, const std::vector<Value>& args,
                                   lang::Diagnostics& diags);
 
-/// The names of the built-ins above: their rows, the opcode table's and those not supported yet.
+/// The names of the built-ins above: their rows and the opcode table's.
 std::vector<std::string> TableBuiltinNames();
 /// Every built-in function the compiler knows by name, sorted: the above and those the lowerer
 /// handles itself (noise, transform, spline, printf, diffuse...). docs/builtins.md lists them.

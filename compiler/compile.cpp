@@ -43,7 +43,7 @@ ParamInfo ParamFromProgram(const vm::ProgramParam& p) {
 
 CompileResult CompileSource(const std::string& path, const std::string& text,
                             const std::vector<ParamOverride>& overrides, const lang::PreprocessOptions& preprocess,
-                            const Spaces* spaces) {
+                            const Spaces* spaces, const SceneFacts* facts) {
     CompileResult result;
     lang::SourceFile file(path, text);
     lang::Diagnostics diags(file);
@@ -51,7 +51,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     std::optional<LoweredShader> lowered;
     // The generic programs are lowered with the instance's spaces too, only so that a scene's
     // CoordinateSystem names are known (their matrices are folded again into the instance).
-    if (!diags.hasErrors()) lowered = Lower(unit, diags, nullptr, nullptr, spaces);
+    if (!diags.hasErrors()) lowered = Lower(unit, diags, nullptr, nullptr, spaces, facts);
     result.diagnostics = diags.report();
     if (!lowered) return result;
 
@@ -102,7 +102,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
             BindParameters(shader.genericBound, numeric, &result.paramErrors);
         if (!values || !stringsOk) return result;
         lang::Diagnostics again(file);  // the same diagnostics as the generic lowering
-        std::optional<LoweredShader> instance = Lower(unit, again, &*values, &strings, spaces);
+        std::optional<LoweredShader> instance = Lower(unit, again, &*values, &strings, spaces, facts);
         if (!instance && again.hasErrors()) {
             // A string value can make code reachable that the defaults left out (a space name).
             result.diagnostics.add(again.report());
@@ -162,13 +162,14 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
 }
 
 CompileResult LoadShader(const std::string& path, const std::vector<ParamOverride>& overrides,
-                         const lang::PreprocessOptions& preprocess, const Spaces* spaces) {
+                         const lang::PreprocessOptions& preprocess, const Spaces* spaces, const SceneFacts* facts) {
     bool compiled = path.size() > 4 && path.compare(path.size() - 4, 4, ".afb") == 0;
-    return compiled ? LoadCompiledShader(path, overrides, spaces) : CompileFile(path, overrides, preprocess, spaces);
+    return compiled ? LoadCompiledShader(path, overrides, spaces)
+                    : CompileFile(path, overrides, preprocess, spaces, facts);
 }
 
 CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides,
-                          const lang::PreprocessOptions& preprocess, const Spaces* spaces) {
+                          const lang::PreprocessOptions& preprocess, const Spaces* spaces, const SceneFacts* facts) {
     lang::SourceFile file("", "");
     std::string error;
     if (!lang::SourceFile::Load(path, &file, &error)) {
@@ -176,7 +177,7 @@ CompileResult CompileFile(const std::string& path, const std::vector<ParamOverri
         result.diagnostics.error({path}, error);
         return result;
     }
-    return CompileSource(path, file.text(), overrides, preprocess, spaces);
+    return CompileSource(path, file.text(), overrides, preprocess, spaces, facts);
 }
 
 }  // namespace affray::compiler

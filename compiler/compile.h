@@ -45,7 +45,8 @@ struct CompileResult {
 /// at `path`, then specialises it with `overrides` bound to its
 /// parameters (defaults for the others).
 CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides = {},
-                          const lang::PreprocessOptions& preprocess = {}, const Spaces* spaces = nullptr);
+                          const lang::PreprocessOptions& preprocess = {}, const Spaces* spaces = nullptr,
+                          const SceneFacts* facts = nullptr);
 /// Loads a shader compiled earlier (`affray compile -o NAME.afb`): the generic programs from the
 /// file, checked by the loader and the verifier, then specialised with `overrides`. The result
 /// has no source text; its ParamInfo list is rebuilt from the programs.
@@ -53,14 +54,18 @@ CompileResult CompileFile(const std::string& path, const std::vector<ParamOverri
 /// anything else is an error (the source is needed).
 CompileResult LoadCompiledShader(const std::string& path, const std::vector<ParamOverride>& overrides = {},
                                  const Spaces* spaces = nullptr);
-/// A shader from either kind of file: `.afb` is loaded, anything else compiled.
+/// A shader from either kind of file: `.afb` is loaded, anything else compiled with `facts`
+/// (bytecode was compiled without a scene: its option(), attribute() and depth() are as there).
 CompileResult LoadShader(const std::string& path, const std::vector<ParamOverride>& overrides = {},
-                         const lang::PreprocessOptions& preprocess = {}, const Spaces* spaces = nullptr);
+                         const lang::PreprocessOptions& preprocess = {}, const Spaces* spaces = nullptr,
+                         const SceneFacts* facts = nullptr);
 /// Same as CompileFile, from text already in memory (`path` names it in diagnostics).
 /// `spaces`: the instance's coordinate spaces (compiler/spaces.h), folded into `bound` and
-/// `shade`; the generic programs compute every space as the identity.
+/// `shade`; the generic programs compute every space as the identity. `facts`: the instance's
+/// options and attributes (compiler/scene_facts.h), folded into all four programs.
 CompileResult CompileSource(const std::string& path, const std::string& text,
                             const std::vector<ParamOverride>& overrides = {},
-                            const lang::PreprocessOptions& preprocess = {}, const Spaces* spaces = nullptr);
+                            const lang::PreprocessOptions& preprocess = {}, const Spaces* spaces = nullptr,
+                            const SceneFacts* facts = nullptr);
 
 }  // namespace affray::compiler

@@ -23,13 +23,14 @@ using lang::ExprKind;
 using lang::SourceLoc;
 
 Lowerer::Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues,
-                 const std::map<std::string, std::string>* stringValues, const Spaces* spaces)
+                 const std::map<std::string, std::string>* stringValues, const Spaces* spaces, const SceneFacts* facts)
     : m_out(out),
       m_diags(diags),
       m_ops(out.ir),
       m_paramValues(paramValues),
       m_stringValues(stringValues),
-      m_spaces(spaces) {}
+      m_spaces(spaces),
+      m_facts(facts) {}
 
 Value Lowerer::StringValue(const std::string& text) {
     size_t index = 0;
@@ -637,7 +638,8 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
 
 std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
                                    const std::vector<std::vector<double>>* paramValues,
-                                   const std::map<std::string, std::string>* stringValues, const Spaces* spaces) {
+                                   const std::map<std::string, std::string>* stringValues, const Spaces* spaces,
+                                   const SceneFacts* facts) {
     if (unit.shaders.empty()) {
         if (!diags.hasErrors()) diags.error({1, 1}, "no shader definition in file");
         return std::nullopt;
@@ -651,7 +653,7 @@ std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diag
         return std::nullopt;
     }
     LoweredShader out;
-    Lowerer lowerer(out, diags, paramValues, stringValues, spaces);
+    Lowerer lowerer(out, diags, paramValues, stringValues, spaces, facts);
     if (!lowerer.Run(shader, unit.functions)) return std::nullopt;
     return out;
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "compiler/scene_facts.h"
 #include "compiler/spaces.h"
 #include "compiler/value_ops.h"
 #include "lang/ast.h"
@@ -45,12 +46,13 @@ struct LoweredShader {
 /// i-th declared parameter is index i of `params`), with constant defaults, unless
 /// `paramValues` gives every parameter's value: then they are constants, and every branch and
 /// loop they decide is folded while lowering (a shader instance's specialisation); string
-/// parameters take their value from `stringValues` when it names them, and named coordinate
-/// spaces their matrices from `spaces` (else the identity). Problems go
-/// to `diags`; returns nothing if there was any error.
+/// parameters take their value from `stringValues` when it names them, named coordinate
+/// spaces their matrices from `spaces` (else the identity), and option(), attribute() and
+/// depth() their values from `facts` (compiler/scene_facts.h). Problems go to `diags`; returns
+/// nothing if there was any error.
 std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
                                    const std::vector<std::vector<double>>* paramValues = nullptr,
                                    const std::map<std::string, std::string>* stringValues = nullptr,
-                                   const Spaces* spaces = nullptr);
+                                   const Spaces* spaces = nullptr, const SceneFacts* facts = nullptr);
 
 }  // namespace affray::compiler

@@ -89,7 +89,7 @@ std::vector<std::string> ExtraCallNames() { return {std::begin(kExtraCalls), std
 std::vector<std::string> KnownBuiltinNames() {
     std::vector<std::string> names = TableBuiltinNames();
     for (const char* n : {"noise", "pnoise", "cellnoise", "transform", "vtransform", "ntransform", "spline",
-                          "filterstep", "comp", "setcomp", "setxcomp", "setycomp", "setzcomp"})
+                          "filterstep", "depth", "comp", "setcomp", "setxcomp", "setycomp", "setzcomp"})
         names.emplace_back(n);
     for (const std::vector<std::string>& more : {ExtraCallNames(), SurfaceCallNames()})
         names.insert(names.end(), more.begin(), more.end());

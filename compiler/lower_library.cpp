@@ -1,7 +1,8 @@
 // compiler/lower_library.cpp: the built-ins that need more than a table row (builtins.cpp):
 // noise, pnoise and cellnoise (their result type comes from the context: `float noise(P)`,
 // `vector v = noise(P)`), the transforms (their space names are strings), spline (any number
-// of knots, an optional basis name) and filterstep (optional trailing parameter pairs).
+// of knots, an optional basis name), filterstep (optional trailing parameter pairs) and depth
+// (the instance's camera space and clipping planes).
 #include <algorithm>
 
 #include "compiler/lowerer.h"
@@ -50,7 +51,7 @@ const SplineBasis* FindSplineBasis(const std::string& name) {
 }
 
 bool Lowerer::IsLibraryCall(const std::string& name) const {
-    return IsNoise(name) || IsTransform(name) || name == "spline" || name == "filterstep";
+    return IsNoise(name) || IsTransform(name) || name == "spline" || name == "filterstep" || name == "depth";
 }
 
 std::optional<std::string> Lowerer::SpaceName(const Value& v, lang::SourceLoc loc) {
@@ -107,6 +108,31 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
         const Value inCurrent = ToCurrent(*from, typed, kind);
         if (!byMatrix) return FromCurrent(*to, inCurrent, kind);
         return m_ops.Promote(m_ops.TransformBy(toArg, inCurrent, kind), typed.type);
+    }
+
+    if (name == "depth") {
+        // depth(P): P's camera-space z, 0 at the near clipping plane and 1 at the far one (RI
+        // Spec 3.2 section 15.4), with the instance's planes (compiler/scene_facts.h).
+        if (args.size() != 1) {
+            m_diags.error(e.loc, "'depth' expects 1 argument, got " + std::to_string(args.size()));
+            return std::nullopt;
+        }
+        if (!IsSpatial(args[0].type) && args[0].type != Type::Float) {
+            m_diags.error(argLoc(0), "'depth' takes a point, not " + Article(args[0].type));
+            return std::nullopt;
+        }
+        double nearClip = kDefaultNearClip, farClip = kDefaultFarClip;
+        if (m_facts) {
+            if (auto it = m_facts->options.find("Clipping");
+                it != m_facts->options.end() && it->second.numbers.size() == 2) {
+                nearClip = it->second.numbers[0];
+                farClip = it->second.numbers[1];
+            }
+        }
+        const Value inCamera = FromCurrent("camera", m_ops.Promote(args[0], Type::Point), Type::Point);
+        // (z - near) / (far - near)
+        return m_ops.Div(m_ops.Sub(m_ops.Component(inCamera, 2), m_ops.Constant(nearClip)),
+                         m_ops.Constant(farClip - nearClip));
     }
 
     if (IsNoise(name)) {

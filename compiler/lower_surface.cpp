@@ -6,6 +6,11 @@
 // while checking a function nobody calls (CheckUncalledFunctions), nor in dead code. Likewise the surface globals exist only while checking such a
 // function. The light loops (illuminance, illuminate, solar) reach here as an `if` on a call of
 // their name (lang/parser.y), so their bodies are checked too.
+// The queries a displacement shader may run (option, attribute, rendererinfo, and displacement
+// reading the shader's own parameter) fold per instance instead: the scene's facts
+// (compiler/scene_facts.h) are constants of the instance, so each call is 1 and a store into its
+// output variable when the name is known and the variable's type (and array size) match, else 0
+// and no store (RI Spec 3.2 section 15.8; prman's rule for the types).
 // To add a function: a row in kSurfaceCalls (argument letters below, then the result).
 #include <cstring>
 
@@ -24,6 +29,9 @@ struct SurfaceCall {
     char result;
     /// Reads a texture file: a displacement shader may call it, but affray reads none yet.
     bool texture = false;
+    /// A query of the instance (name, output variable), folded (LowerQuery); the others are
+    /// errors where the displacement shader runs them.
+    bool query = false;
 };
 
 constexpr SurfaceCall kSurfaceCalls[] = {
@@ -41,9 +49,12 @@ constexpr SurfaceCall kSurfaceCalls[] = {
     {"lightsource", "so", 'f'},
     {"incident", "so", 'f'},
     {"opposite", "so", 'f'},
-    {"attribute", "so", 'f'},
-    {"option", "so", 'f'},
-    {"rendererinfo", "so", 'f'},
+    {"surface", "so", 'f'},
+    {"atmosphere", "so", 'f'},
+    {"attribute", "so", 'f', false, true},
+    {"option", "so", 'f', false, true},
+    {"rendererinfo", "so", 'f', false, true},
+    {"displacement", "so", 'f', false, true},
     {"illuminance", "?*", 'f'},
     {"illuminate", "t*", 'f'},
     {"solar", "*", 'f'},
@@ -64,6 +75,15 @@ const SurfaceCall* FindSurfaceCall(const std::string& name) {
     for (const SurfaceCall& c : kSurfaceCalls)
         if (name == c.name) return &c;
     return nullptr;
+}
+
+/// What rendererinfo() knows (RI Spec 3.2 table 15.6): the version as major, minor, release,
+/// patch (tools/main.cpp prints the same for `affray --version`).
+std::optional<FactValue> RendererInfo(const std::string& name) {
+    if (name == "renderer") return FactValue{{}, "affray"};
+    if (name == "version") return FactValue{{0, 1, 0, 0}, std::nullopt};
+    if (name == "versionstring") return FactValue{{}, "0.1.0"};
+    return std::nullopt;
 }
 
 const char* Describe(char letter) {
@@ -112,6 +132,8 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
         return std::nullopt;
     }
     bool ok = true;
+    std::optional<Value> firstValue;  // a query's name
+    Variable* output = nullptr;
     for (size_t i = 0; i < e.args.size(); ++i) {
         const lang::Expr& arg = *e.args[i];
         const char want = i < fixed ? call.args[i] : '?';
@@ -123,7 +145,9 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
                 ok = false;
             } else {
                 var->used = true;
-                var->assigned = true;
+                // A query writes only a known name; until then the variable keeps its state.
+                if (!call.query) var->assigned = true;
+                output = var;
             }
             continue;
         }
@@ -142,6 +166,7 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
             ok = false;
             continue;
         }
+        if (i == 0) firstValue = v;
         const Type t = v->type == Type::Bool ? Type::Float : v->type;
         const bool fits = want == '?' || (want == 's' && t == Type::String) || (want == 'f' && t == Type::Float) ||
                           (want == 't' && (IsSpatial(t) || t == Type::Float));
@@ -152,6 +177,7 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
         }
     }
     if (!ok) return std::nullopt;
+    if (call.query) return LowerQuery(e, *firstValue, *output);
     // Code that never runs (a function nobody calls, an arm a constant condition rules out, as
     // in `if (texname != "") ... texture(texname)` with the default "") may call it.
     const std::optional<double> alive = ir().ConstValue(m_state.alive);
@@ -168,6 +194,73 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
                         : call.result == 'x' && expected == Type::Color ? Type::Color
                                                                         : Type::Float;
     return m_ops.Promote(m_ops.Constant(0.0), result);
+}
+
+}  // namespace affray::compiler
+
+namespace affray::compiler {
+
+const Variable* Lowerer::ShaderParameter(const std::string& name) const {
+    // The shader's parameters are its scope 1; inside an inlined function, the outermost
+    // caller's scopes (which start after the globals) hold them.
+    const std::unordered_map<std::string, Variable>* params = nullptr;
+    if (m_externs.empty())
+        params = m_state.scopes.size() > 1 ? &m_state.scopes[1] : nullptr;
+    else if (!m_externs.front().callerScopes->empty())
+        params = &m_externs.front().callerScopes->front();
+    if (!params) return nullptr;
+    auto it = params->find(name);
+    return it == params->end() ? nullptr : &it->second;
+}
+
+std::optional<Value> Lowerer::LowerQuery(const lang::Expr& e, const Value& nameArg, Variable& out) {
+    std::optional<std::string> name = StringOf(nameArg);
+    if (!name) {
+        m_diags.error(e.args[0]->loc, "the name given to '" + e.name +
+                                          "' must be known when the shader is compiled (here it depends on a "
+                                          "condition)");
+        return std::nullopt;
+    }
+    // A function nobody calls answers nothing (the instance is unknown there).
+    const Value no = m_ops.Constant(0.0), yes = m_ops.Constant(1.0);
+    if (m_checkingOnly) return no;
+    if (e.name == "displacement") {
+        // The shader's own parameter: copied when its type (and array size) is the variable's.
+        const Variable* param = ShaderParameter(*name);
+        if (!param || param->type != out.type || param->arraySize != out.arraySize) return no;
+        if (out.arraySize >= 0) {
+            for (size_t k = 0; k < out.elements.size(); ++k)
+                out.elements[k] = Guard(param->elements[k], out.elements[k]);
+            out.assigned = true;
+        } else {
+            Store(out, param->value);
+        }
+        return yes;
+    }
+    std::optional<FactValue> fact;
+    if (e.name == "rendererinfo") {
+        fact = RendererInfo(*name);
+    } else if (m_facts) {
+        const auto& known = e.name == "option" ? m_facts->options : m_facts->attributes;
+        if (auto it = known.find(*name); it != known.end()) fact = it->second;
+    }
+    if (!fact) return no;
+    // The types must match: a string, a float, or a float array of the same size.
+    if (fact->text) {
+        if (out.type != Type::String || out.arraySize >= 0) return no;
+        Store(out, StringValue(*fact->text));
+        return yes;
+    }
+    const size_t count = fact->numbers.size();
+    if (out.type != Type::Float || (out.arraySize < 0 ? count != 1 : static_cast<size_t>(out.arraySize) != count))
+        return no;
+    if (out.arraySize < 0) {
+        Store(out, m_ops.Constant(fact->numbers[0]));
+    } else {
+        for (size_t k = 0; k < count; ++k) out.elements[k] = Guard(m_ops.Constant(fact->numbers[k]), out.elements[k]);
+        out.assigned = true;
+    }
+    return yes;
 }
 
 }  // namespace affray::compiler

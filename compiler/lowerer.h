@@ -69,7 +69,7 @@ const SplineBasis* FindSplineBasis(const std::string& name);
 class Lowerer {
   public:
     Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector<std::vector<double>>* paramValues,
-            const std::map<std::string, std::string>* stringValues, const Spaces* spaces);
+            const std::map<std::string, std::string>* stringValues, const Spaces* spaces, const SceneFacts* facts);
 
     bool Run(const lang::ShaderDef& shader, const std::vector<std::shared_ptr<lang::FunctionDef>>& functions);
 
@@ -150,6 +150,11 @@ class Lowerer {
     static Type SurfaceGlobalType(const std::string& name);
     /// Declares the surface globals in `scope` (while checking a function nobody calls).
     void AddSurfaceGlobals(std::unordered_map<std::string, Variable>& scope);
+    /// option, attribute, rendererinfo, displacement (name, out): 1 and `out` written when the
+    /// instance knows `name` with out's type, else 0 (folded; `nameArg` is the lowered name).
+    std::optional<Value> LowerQuery(const lang::Expr& e, const Value& nameArg, Variable& out);
+    /// The shader's parameter `name` as it is now, or null (also inside inlined functions).
+    const Variable* ShaderParameter(const std::string& name) const;
 
     // --- statements and control flow (lower_flow.cpp)
     void LowerStmt(const lang::Stmt& s);
@@ -210,6 +215,8 @@ class Lowerer {
     const std::map<std::string, std::string>* m_stringValues;
     /// The instance's coordinate spaces, or null (all the identity).
     const Spaces* m_spaces;
+    /// The instance's options and attributes, or null (no scene).
+    const SceneFacts* m_facts;
     std::vector<std::string> m_strings;
     /// Functions by visibility: (scope depth at definition, definition), innermost last.
     std::vector<std::pair<size_t, const lang::FunctionDef*>> m_functions;

@@ -20,7 +20,7 @@ std::string ReadAll(const std::string& path) {
 }
 
 std::string Key(const std::string& path, const std::string& bytes, const std::vector<ParamOverride>& overrides,
-                const lang::PreprocessOptions& preprocess, const Spaces* spaces) {
+                const lang::PreprocessOptions& preprocess, const Spaces* spaces, const SceneFacts* facts) {
     // The path is part of the key too: #include "x.h" resolves next to the including file.
     std::string key = path + '\n' + std::to_string(vm::HashSource(bytes)) + '\n' + std::to_string(bytes.size());
     for (const std::string& d : preprocess.includeDirs) key += "\n-I" + d;
@@ -34,15 +34,27 @@ std::string Key(const std::string& path, const std::string& bytes, const std::ve
         key += "\nspace " + name + ":";
         for (double x : t.toCurrent) key += std::to_string(std::bit_cast<uint64_t>(x)) + ",";
     }
+    auto addFacts = [&](const char* kind, const std::map<std::string, FactValue>& named) {
+        for (const auto& [name, value] : named) {
+            key += std::string("\n") + kind + " " + name + "=";
+            for (double x : value.numbers) key += std::to_string(std::bit_cast<uint64_t>(x)) + ",";
+            if (value.text) key += "\"" + *value.text + "\"";
+        }
+    };
+    if (facts) {
+        addFacts("option", facts->options);
+        addFacts("attribute", facts->attributes);
+    }
     return key;
 }
 
 }  // namespace
 
 CompileResult ShaderCache::Load(const std::string& path, const std::vector<ParamOverride>& overrides,
-                                const lang::PreprocessOptions& preprocess, const Spaces* spaces) {
+                                const lang::PreprocessOptions& preprocess, const Spaces* spaces,
+                                const SceneFacts* facts) {
     const std::string bytes = ReadAll(path);
-    const std::string key = Key(path, bytes, overrides, preprocess, spaces);
+    const std::string key = Key(path, bytes, overrides, preprocess, spaces, facts);
     if (!bytes.empty()) {
         auto it = m_compiled.find(key);
         if (it != m_compiled.end()) {
@@ -53,7 +65,7 @@ CompileResult ShaderCache::Load(const std::string& path, const std::vector<Param
         }
     }
     ++m_misses;
-    CompileResult result = LoadShader(path, overrides, preprocess, spaces);
+    CompileResult result = LoadShader(path, overrides, preprocess, spaces, facts);
     if (result.ok() && !bytes.empty()) m_compiled.emplace(key, *result.shader);
     return result;
 }

@@ -14,11 +14,12 @@ namespace affray::compiler {
 
 class ShaderCache {
   public:
-    /// LoadShader(path, overrides, preprocess, spaces), or the result of an earlier call whose
-    /// file had the same bytes and whose overrides, options and spaces were the same. Failures
-    /// are not kept.
+    /// LoadShader(path, overrides, preprocess, spaces, facts), or the result of an earlier call
+    /// whose file had the same bytes and whose overrides, options, spaces and facts were the
+    /// same. Failures are not kept.
     CompileResult Load(const std::string& path, const std::vector<ParamOverride>& overrides,
-                       const lang::PreprocessOptions& preprocess, const Spaces* spaces = nullptr);
+                       const lang::PreprocessOptions& preprocess, const Spaces* spaces = nullptr,
+                       const SceneFacts* facts = nullptr);
 
     int hits() const { return m_hits; }
     int misses() const { return m_misses; }

@@ -515,6 +515,10 @@ primary
   | STRING %prec SPACE_STRING       { $$ = ctx.String(@1, $1); }
   | IDENT                           { $$ = ctx.Ident(@1, $1); }
   | IDENT '(' args ')'              { $$ = ctx.Call(@1, $1, $3); }
+  // The message-passing functions surface("Kd", kd) and displacement("Km", km) share their
+  // names with shader kinds; in an expression they are calls (compiler/lower_surface.cpp).
+  | SURFACE '(' args ')'            { $$ = ctx.Call(@1, "surface", $3); }
+  | DISPLACEMENT '(' args ')'       { $$ = ctx.Call(@1, "displacement", $3); }
   | primary '[' expr ']'            { $$ = ctx.Index(@2, $1, $3); }
   | '(' expr ')'                    { $$ = $2; }
   | '(' expr ',' arg_list ')'       { $$ = ctx.Tuple(@1, $2, $4); }

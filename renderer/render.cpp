@@ -275,6 +275,23 @@ compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveDesc& patch) {
     return spaces;
 }
 
+/// The options and attributes a shader on `patch` may query (option(), attribute(), depth()):
+/// those of RI Spec 3.2 tables 15.4 and 15.5 that the scene holds.
+compiler::SceneFacts FactsOf(const SceneDesc& scene, const PrimitiveDesc& patch) {
+    const CameraDesc& camera = scene.camera;
+    const double frameAspect = camera.frameAspectRatio.value_or(camera.xres * camera.pixelAspect / camera.yres);
+    compiler::SceneFacts facts;
+    auto numbers = [](std::vector<double> values) { return compiler::FactValue{std::move(values), std::nullopt}; };
+    facts.options["Format"] = numbers({double(camera.xres), double(camera.yres), camera.pixelAspect});
+    facts.options["DeviceResolution"] = facts.options["Format"];
+    facts.options["FrameAspectRatio"] = numbers({frameAspect});
+    const glm::dvec4& crop = camera.cropWindow;
+    facts.options["CropWindow"] = numbers({crop[0], crop[1], crop[2], crop[3]});
+    facts.options["Clipping"] = numbers({camera.nearClip, camera.farClip});
+    facts.attributes["Sides"] = numbers({patch.twoSided ? 2.0 : 1.0});
+    return facts;
+}
+
 }  // namespace
 
 std::string RenderStats::ToJson() const {
@@ -360,7 +377,8 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                     overrides.push_back(compiler::ParamOverride::String(p.name, p.strings[0]));
             }
             const compiler::Spaces spaces = SpacesOf(desc, patch);
-            compiler::CompileResult result = cache.Load(path, overrides, preprocess, &spaces);
+            const compiler::SceneFacts facts = FactsOf(desc, patch);
+            compiler::CompileResult result = cache.Load(path, overrides, preprocess, &spaces, &facts);
             // The shader's own diagnostics (its warnings too), then what the scene asked of it.
             if (report) report->add(result.diagnostics);
             if (!result.ok()) {

@@ -1,7 +1,8 @@
 // tests/compiler/library_test.cpp: RenderMan's library as the compiler knows it. docs/builtins.md
 // lists every built-in (a built-in missing from the table, or a row naming none, fails here);
 // the values of the built-ins composed in compiler/lower_extras.cpp and builtins_color.cpp; the
-// surface shaders' functions (compiler/lower_surface.cpp) accepted until they are called.
+// surface shaders' functions (compiler/lower_surface.cpp) accepted until they are called; the
+// queries folded per instance (option, attribute, rendererinfo, displacement) and depth.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 
 #include "compiler/builtins.h"
 #include "compiler/regex_match.h"
+#include "compiler/shader_cache.h"
 #include "tests/test_util.h"
 
 using namespace affray;
@@ -153,4 +155,151 @@ TEST_CASE("match searches a regular expression, and an invalid or overlong one i
     CHECK(overlong.diagnostics.format().find("error: 'match' takes strings of at most 1000 characters") !=
           std::string::npos);
     CHECK(Compile("displacement t() { P += match(\"a*\", \"" + longText.substr(1) + "\") * N; }").ok());
+}
+
+TEST_CASE("mix with a color or point t mixes component by component", "[compiler][library]") {
+    // x (1 - t) + y t per component; the result has x and y's type.
+    test::RequireVec(PAt("color c = mix(color(0, 0, 0), color(1, 2, 4), color(0.5, 0.25, 1));\n"
+                         "P = point(comp(c, 0), comp(c, 1), comp(c, 2));"),
+                     {0.5, 0.5, 4});
+    test::RequireVec(PAt("P = mix(point(0, 0, 0), point(2, 2, 2), color(0, 0.5, 1));"), {0, 1, 2});
+    test::RequireVec(PAt("P = mix(point(2, 2, 2), point 0, vector(0, 0.5, 1));"), {2, 1, 0});
+    test::RequireVec(PAt("color c = mix(1, 3, color(0, 0.5, 1)); P = point(comp(c, 0), comp(c, 1), comp(c, 2));"),
+                     {1, 2, 3});
+    // A float t still takes the float form, and mixing a point into a color is no version.
+    test::RequireVec(PAt("P = mix(point(0, 0, 0), point(2, 4, 6), 0.5);"), {1, 2, 3});
+    compiler::CompileResult wrong = Compile("displacement t() { color c = mix(P, P, color 1); P += c; }");
+    CHECK_FALSE(wrong.ok());
+}
+
+namespace {
+
+/// Camera space 5 units behind the world origin along -z (world z = 0 is at camera depth 5).
+compiler::Spaces CameraBehind() {
+    compiler::SpaceTransform camera;
+    camera.toCurrent = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, -5, 0, 0, 0, 1};
+    camera.fromCurrent = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 5, 0, 0, 0, 1};
+    return {{"camera", camera}};
+}
+
+compiler::SceneFacts Facts(double nearClip, double farClip) {
+    compiler::SceneFacts facts;
+    facts.options["Clipping"] = {{nearClip, farClip}, std::nullopt};
+    facts.options["Format"] = {{640, 480, 1}, std::nullopt};
+    facts.attributes["Sides"] = {{1}, std::nullopt};
+    return facts;
+}
+
+/// P of `body` compiled with the spaces of CameraBehind and `facts` (none: no scene).
+glm::dvec3 PWith(const std::string& body, const compiler::SceneFacts* facts, double u = 0.5, double v = 0.25) {
+    const compiler::Spaces spaces = CameraBehind();
+    compiler::CompileResult r = compiler::CompileSource(
+        "s.sl", "displacement s(float Km = 0.5; float arr[2] = {3, 4}) {\n" + body + "\n}\n", {}, {}, &spaces, facts);
+    INFO(r.diagnostics.format());
+    REQUIRE(r.ok());
+    return test::PointOnSquare(r.shader->shade, u, v);  // P = (u, v, 0) there
+}
+
+}  // namespace
+
+TEST_CASE("depth is camera-space z between the instance's clipping planes", "[compiler][library]") {
+    const compiler::SceneFacts facts = Facts(1, 9);
+    // World z = 0 is camera depth 5: (5 - 1) / (9 - 1).
+    CHECK_THAT(PWith("P = point(depth(P), 0, 0);", &facts).x, WithinAbs(0.5, 1e-15));
+    // The far plane (camera depth 9) is 1, the near one (1) is 0, and past them it goes on.
+    test::RequireVec(PWith("P = point(depth(point(0, 0, 4)), depth(point(0, 0, -4)), depth(point(1, 2, 7)));", &facts),
+                     {1, 0, 1.375});
+    // Without a scene: RenderMan's default planes, 1e-10 and 1e30.
+    CHECK_THAT(PWith("P = point(depth(P), 0, 0);", nullptr).x, WithinAbs((5 - 1e-10) / (1e30 - 1e-10), 1e-40));
+    CHECK_FALSE(Compile("displacement t() { P += depth(1, 2) * N; }").ok());
+    CHECK_FALSE(Compile("displacement t() { P += depth(\"x\") * N; }").ok());
+    // The shader cache tells instances with other planes apart.
+    test::TempDir dir;
+    dir.Write("d.sl", "displacement d() { P = point(depth(P), 0, 0); }");
+    compiler::ShaderCache cache;
+    const compiler::Spaces spaces = CameraBehind();
+    const compiler::SceneFacts other = Facts(1, 5);
+    CHECK_THAT(test::PointOnSquare(cache.Load(dir.Path("d.sl"), {}, {}, &spaces, &facts).shader->shade, 0, 0).x,
+               WithinAbs(0.5, 1e-15));
+    CHECK_THAT(test::PointOnSquare(cache.Load(dir.Path("d.sl"), {}, {}, &spaces, &other).shader->shade, 0, 0).x,
+               WithinAbs(1, 1e-15));
+    CHECK(cache.misses() == 2);
+}
+
+TEST_CASE("option, attribute and rendererinfo fold per instance", "[compiler][library]") {
+    const compiler::SceneFacts facts = Facts(1, 9);
+    // Known with the right type: 1, and the variable written.
+    test::RequireVec(PWith("float f[3]; float k = option(\"Format\", f); P = point(k, f[0], f[1] + f[2]);", &facts),
+                     {1, 640, 481});
+    test::RequireVec(PWith("float c[2]; float k = option(\"Clipping\", c); P = point(k, c[0], c[1]);", &facts),
+                     {1, 1, 9});
+    test::RequireVec(PWith("float s = 7; float k = attribute(\"Sides\", s); P = point(k, s, 0);", &facts), {1, 1, 0});
+    // Unknown, or the wrong type or array size: 0, and the variable unchanged.
+    test::RequireVec(PWith("float f[2] = {5, 6}; float k = option(\"Format\", f); P = point(k, f[0], f[1]);", &facts),
+                     {0, 5, 6});
+    test::RequireVec(
+        PWith("float x = 5; float k = option(\"Format\", x) + option(\"Nope\", x); P = point(k, x, 0);", &facts),
+        {0, 5, 0});
+    test::RequireVec(PWith("string s = \"-\"; float k = attribute(\"Sides\", s); P = point(k, 0, 0);", &facts),
+                     {0, 0, 0});
+    test::RequireVec(PWith("float x = 5; float k = attribute(\"identifier:name\", x); P = point(k, x, 0);", &facts),
+                     {0, 5, 0});
+    // Without a scene, no option or attribute is known.
+    test::RequireVec(PWith("float f[3] = {1, 2, 3}; float k = option(\"Format\", f); P = point(k, f[0], 0);", nullptr),
+                     {0, 1, 0});
+    // rendererinfo is the same everywhere; a string it writes folds like any constant string.
+    test::RequireVec(PWith("string r, vs; float ver[4];\n"
+                           "float k = rendererinfo(\"renderer\", r) + rendererinfo(\"version\", ver) +\n"
+                           "          rendererinfo(\"versionstring\", vs) + rendererinfo(\"nope\", r);\n"
+                           "P = point(k, match(\"^affray$\", r), ver[1] + match(\"^0[.]1\", vs));",
+                           nullptr),
+                     {3, 1, 2});
+    // A branch on the answer folds: the arm that does not apply leaves no code.
+    test::RequireVec(
+        PWith("float f[3]; if (option(\"Format\", f) == 1) P = point(f[0] / 640, 0, 0); else P = 0;", &facts),
+        {1, 0, 0});
+    // The name must be a string known when the shader is compiled.
+    CHECK_FALSE(Compile("displacement t() { float x; P += option(1, x) * N; }").ok());
+    compiler::CompileResult varying =
+        Compile("displacement t() { float x; string s = u > 0.5 ? \"a\" : \"b\"; P += option(s, x) * N; }");
+    CHECK_FALSE(varying.ok());
+}
+
+TEST_CASE("displacement() reads the shader's own parameters", "[compiler][library]") {
+    test::RequireVec(PWith("float k = 0; float r = displacement(\"Km\", k); P = point(r, k, 0);", nullptr),
+                     {1, 0.5, 0});
+    test::RequireVec(PWith("float a[2]; float r = displacement(\"arr\", a); P = point(r, a[0], a[1]);", nullptr),
+                     {1, 3, 4});
+    // The wrong type, array size or name: 0, and the variable unchanged.
+    test::RequireVec(PWith("color c = 2; float r = displacement(\"Km\", c) + displacement(\"nope\", c);\n"
+                           "float a[3] = {7, 8, 9}; r += displacement(\"arr\", a); P = point(r, comp(c, 0), a[0]);",
+                           nullptr),
+                     {0, 2, 7});
+    // From a helper function too: the shader's parameter, not the helper's of that name.
+    const std::string helper = "float km(float Km) { float k = 0; displacement(\"Km\", k); return k + Km; }\n";
+    compiler::CompileResult r =
+        compiler::CompileSource("s.sl", helper + "displacement s(float Km = 0.5) { P = point(km(10), 0, 0); }\n", {});
+    REQUIRE(r.ok());
+    CHECK_THAT(test::PointOnSquare(r.shader->shade, 0, 0).x, WithinAbs(10.5, 1e-15));
+}
+
+TEST_CASE("surface, displacement and atmosphere parse as calls and check like surface functions",
+          "[compiler][library]") {
+    // In a helper nobody calls: type-checked, accepted; `surface name()` still defines a shader.
+    const std::string helper =
+        "float kd() { float k = 1; surface(\"Kd\", k); atmosphere(\"d\", k); lightsource(\"i\", k); "
+        "displacement(\"Km\", k); return k; }\n";
+    CHECK(Compile(helper + "displacement t() { P += N; }").ok());
+    compiler::CompileResult called = Compile(helper + "displacement t() { P += kd() * N; }");
+    REQUIRE_FALSE(called.ok());
+    CHECK(called.diagnostics.format().find("'surface' is a function of surface and light shaders") !=
+          std::string::npos);
+    CHECK(called.diagnostics.format().find("'atmosphere' is a function of surface and light shaders") !=
+          std::string::npos);
+    CHECK(called.diagnostics.format().find("'displacement'") == std::string::npos);
+    CHECK_FALSE(Compile("float f() { return surface(\"Kd\"); }\ndisplacement t() { P += N; }").ok());
+    CHECK_FALSE(Compile("float f() { return surface(1, 2); }\ndisplacement t() { P += N; }").ok());
+    // A surface shader still parses (and is refused for its kind).
+    compiler::CompileResult surfaceShader = Compile("surface s() { float k; surface(\"Kd\", k); }");
+    CHECK(surfaceShader.diagnostics.format().find("surface shaders are not supported yet") != std::string::npos);
 }

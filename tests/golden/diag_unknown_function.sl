@@ -9,5 +9,6 @@ displacement t() {
     P += noize(P) * N;
     P += environment("sky.env", N);
     P += texture("bumps.tx") * N;
-    P += depth(P) * N;
+    float kd;
+    P += surface("Kd", kd) * N;
 }

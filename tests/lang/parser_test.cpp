@@ -150,6 +150,17 @@ TEST_CASE("calls, numbers, strings and the dot operator", "[lang]") {
     CHECK(Value("\"a\\\"b\\n\\t\\\\\"") == "\"a\\\"b\\n\\t\\\\\"");
 }
 
+TEST_CASE("surface() and displacement() are calls in an expression, shader kinds at the top", "[lang]") {
+    CHECK(Value("surface(\"Kd\", k) + displacement(\"Km\", k)") ==
+          "(+ (call surface \"Kd\" k) (call displacement \"Km\" k))");
+    const std::string unit = Unit(
+        "float f() { surface(\"Kd\", k); return displacement(\"Km\", k); }\n"
+        "surface s() { }\ndisplacement d() { }\n");
+    CHECK(unit.find("(call surface") != std::string::npos);
+    CHECK(unit.find("(call displacement") != std::string::npos);
+    CHECK(Run("surface s() { } displacement d() { }").unit.shaders.size() == 2);
+}
+
 TEST_CASE("shader parameters share a type across commas", "[lang]") {
     CHECK(Tree("displacement d(float a = 1, b = 2; point c = 0;) {}") ==
           "(displacement d (params (float a 1) (float b 2) (point c 0)) (body))");

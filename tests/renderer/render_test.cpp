@@ -1,6 +1,7 @@
 // tests/renderer/render_test.cpp: scene preparation and the tile loop (renderer/render.*) on tiny
 // scenes whose answers are known by hand: clipping planes, one-sided surfaces, the shader search
-// path, named coordinate systems seen by shaders, quadrics in the BVH, and AOVs.
+// path, named coordinate systems, clipping planes and format seen by shaders, quadrics in the BVH,
+// and AOVs.
 #include "renderer/render.h"
 
 #include <catch2/catch.hpp>
@@ -125,6 +126,22 @@ TEST_CASE("render: shaders are found on the scene's search path and see its coor
     PreparedScene prepared;
     CHECK_FALSE(PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error));
     CHECK(error.format().find("shader 'lifted' not found") != std::string::npos);
+}
+
+TEST_CASE("render: shaders see the scene's clipping planes and format through depth() and option()",
+          "[renderer][render]") {
+    test::TempDir dir;
+    // The patch is at camera depth 5; with Clipping 1 9 its depth() is 0.5, and Format 8 8 1
+    // makes the factor 1: lifted by 0.5 towards the camera.
+    dir.Write("mine/deep.sl",
+              "displacement deep() { float f[3]; float k = option(\"Format\", f);\n"
+              "  P += vector(0, 0, depth(P) * k * f[0] / 8); }");
+    const std::string world =
+        "Clipping 1 9\nOption \"searchpath\" \"shader\" [\"mine:&\"]\nWorldBegin\nDisplacement \"deep\"\n"
+        "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n";
+    const ImageBuffer image = Render(dir, std::string(kCamera) + world);
+    REQUIRE(Covered(image) == 64);
+    for (float depth : Channel(image, "Z")) CHECK(depth == Approx(4.5).margin(0.02));
 }
 
 TEST_CASE("render: quadrics and patches share the BVH, and AOVs describe the nearest hit", "[renderer][render]") {

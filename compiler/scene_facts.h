@@ -1,0 +1,37 @@
+// compiler/scene_facts.h: what the scene tells the compiler about one shader instance besides its
+// parameter values and coordinate spaces (compiler/spaces.h): the options and attributes that
+// option(), attribute() and depth() read (RI Spec 3.2, section 15.8, tables 15.4 and 15.5).
+// affray compiles each instance with its facts, so these calls fold to constants
+// (compiler/lower_surface.cpp). Without a scene (`affray compile`, `affray eval`) there are no
+// facts: option() and attribute() return 0, depth() uses RenderMan's default clipping planes.
+// To add a fact: fill it in the renderer (renderer/render.cpp, FactsOf) under its RI name; the
+// compiler reads any name it is given.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace affray::compiler {
+
+/// One option or attribute: a float or an array of floats, or a string.
+struct FactValue {
+    std::vector<double> numbers;      // a float is one number, a float[n] n of them
+    std::optional<std::string> text;  // a string's value (then `numbers` is empty)
+    bool operator==(const FactValue&) const = default;
+};
+
+struct SceneFacts {
+    /// option() data by name: "Format" {xres, yres, pixel aspect}, "Clipping" {near, far}...
+    std::map<std::string, FactValue> options;
+    /// attribute() data by name: "Sides" {1 or 2}, "identifier:name"...
+    std::map<std::string, FactValue> attributes;
+};
+
+/// RenderMan's default clipping planes (RI_EPSILON and RI_INFINITY as affray's scene has them),
+/// which depth() uses when the facts have no "Clipping".
+inline constexpr double kDefaultNearClip = 1e-10;
+inline constexpr double kDefaultFarClip = 1e30;
+
+}  // namespace affray::compiler
