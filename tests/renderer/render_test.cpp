@@ -182,3 +182,108 @@ TEST_CASE("render: a crater field on a displaced sphere is bounded and renders",
             CHECK(P.z > 0);  // the near hemisphere, seen from +z
         }
 }
+
+namespace {
+
+// A perspective view of a displaced twisted sheet, 48 x 36, for comparing base surfaces.
+const char* const kSheetCamera = R"(Format 48 36 1
+Projection "perspective" "fov" [40]
+Display "t.exr" "file" "rgba,st"
+Translate 0 0 3.1
+Rotate -130 1 0 0
+WorldBegin
+LightSource "distantlight" 1 "intensity" [1.1] "from" [-3 1.5 1.1] "to" [0 0 0]
+Displacement "wave" "Km" [0.08] "frequency" [5] "decay" [2]
+)";
+
+/// A twisted bilinear sheet at (u, v), as text "x y z".
+std::string SheetPoint(double u, double v) {
+    const glm::dvec3 c[4] = {{-1, -1, 0}, {1, -1, 0.3}, {-1.1, 1, -0.2}, {0.9, 1.2, 0.4}};
+    const glm::dvec3 p = c[0] * (1 - u) * (1 - v) + c[1] * u * (1 - v) + c[2] * (1 - u) * v + c[3] * u * v;
+    std::ostringstream out;
+    out.precision(17);
+    out << p.x << ' ' << p.y << ' ' << p.z << ' ';
+    return out.str();
+}
+
+/// The sheet's points at u = i / (nu - 1), v = j / (nv - 1), u fastest, as a RIB array.
+std::string SheetPoints(int nu, int nv) {
+    std::string text = "\"P\" [";
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) text += SheetPoint(double(i) / (nu - 1), double(j) / (nv - 1));
+    return text + "]\n";
+}
+
+/// The largest difference of two images' RGBA and st, and how many pixels differ by more than 0.01.
+void CompareImages(const ImageBuffer& a, const ImageBuffer& b, double* maxDiff, int* differing) {
+    REQUIRE(a.rgba.size() == b.rgba.size());
+    *maxDiff = 0;
+    *differing = 0;
+    for (size_t i = 0; i < a.rgba.size() / 4; ++i) {
+        double d = 0;
+        for (int c = 0; c < 4; ++c) d = std::max(d, double(std::fabs(a.rgba[4 * i + c] - b.rgba[4 * i + c])));
+        for (const char* channel : {"st.s", "st.t"})
+            d = std::max(d, double(std::fabs(Channel(a, channel)[i] - Channel(b, channel)[i])));
+        *maxDiff = std::max(*maxDiff, d);
+        *differing += d > 0.01;
+    }
+}
+
+}  // namespace
+
+TEST_CASE("render: bezier patches and patch meshes on a bilinear sheet render as the bilinear patch",
+          "[renderer][render][bicubic]") {
+    test::TempDir dir;
+    const std::string camera = kSheetCamera;
+    const ImageBuffer reference = Render(dir, camera + "Patch \"bilinear\" " + SheetPoints(2, 2) + "WorldEnd\n");
+    CHECK(Covered(reference) > 48 * 36 / 3);
+    // P = c00 + c10 u + c01 v + c11 u v in the power basis, whose "points" are the coefficients of
+    // [u^3 u^2 u 1] x [v^3 v^2 v 1]: u^a v^b at index 4 (3 - b) + (3 - a).
+    const glm::dvec3 c[4] = {{-1, -1, 0}, {1, -1, 0.3}, {-1.1, 1, -0.2}, {0.9, 1.2, 0.4}};
+    glm::dvec3 coeff[16] = {};
+    coeff[15] = c[0], coeff[14] = c[1] - c[0], coeff[11] = c[2] - c[0], coeff[10] = c[0] - c[1] - c[2] + c[3];
+    std::ostringstream power;
+    power.precision(17);
+    for (const glm::dvec3& x : coeff) power << x.x << ' ' << x.y << ' ' << x.z << ' ';
+    const std::pair<const char*, std::string> variants[] = {
+        {"a bezier patch", "Patch \"bicubic\" " + SheetPoints(4, 4)},
+        // 2 x 1 patches: the shader sees the mesh's (u,v), so the ripples match across the seam.
+        {"a bezier patch mesh", "PatchMesh \"bicubic\" 7 \"nonperiodic\" 4 \"nonperiodic\" " + SheetPoints(7, 4)},
+        {"a bilinear patch mesh", "PatchMesh \"bilinear\" 3 \"nonperiodic\" 4 \"nonperiodic\" " + SheetPoints(3, 4)},
+        {"a power-basis patch", "Basis \"power\" 4 \"power\" 4\nPatch \"bicubic\" \"P\" [" + power.str() + "]\n"},
+    };
+    for (const auto& [name, geometry] : variants) {
+        INFO(name);
+        const std::string text = camera + geometry + "WorldEnd\n";
+        const ImageBuffer image = Render(dir, text);
+        double maxDiff;
+        int differing;
+        CompareImages(reference, image, &maxDiff, &differing);
+        INFO("largest difference " << maxDiff << ", " << differing << " pixels differ by more than 0.01");
+        CHECK(differing <= 2);
+        CHECK(Covered(image) == Covered(reference));
+    }
+}
+
+TEST_CASE("render: scenes/wavy_sheet.rib, a displaced bicubic patch mesh, renders", "[renderer][render][bicubic]") {
+    std::ifstream file(test::SourceDir() + "/scenes/wavy_sheet.rib");
+    std::stringstream text;
+    text << file.rdbuf();
+    affray::diag::Report error;
+    std::optional<SceneDesc> desc = ParseRib(text.str(), test::SourceDir() + "/scenes/wavy_sheet.rib", &error);
+    INFO(error);
+    REQUIRE(desc);
+    REQUIRE(desc->primitives.size() == 12);  // 4 x 3 b-spline patches
+    desc->camera.xres = 48, desc->camera.yres = 36;
+    desc->camera.xsamples = desc->camera.ysamples = 1;
+    PreparedScene prepared;
+    REQUIRE(PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error));
+    RenderOptions options;
+    options.threads = 2;
+    ImageBuffer image;
+    RenderStats stats;
+    RenderImage(prepared, options, &image, &stats);
+    CHECK(Covered(image) > 48 * 36 / 4);
+    for (float x : image.rgba) CHECK(std::isfinite(x));
+    CHECK(stats.camera.depthLimitHits == 0);
+}
