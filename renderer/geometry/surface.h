@@ -31,18 +31,19 @@ inline constexpr double kParametricStep = 1.0 / 1024.0;
 
 /// The value of the surface parameter `axis` (0 = u, 1 = v) over [lo, hi] as a T: a point for
 /// double (lo == hi), the range for Interval, lo..hi on the symbol of u or v for Affine, and with
-/// unit derivative along its own axis for Dual<T>.
+/// derivative `rate` along its own axis for Dual<T> (1: the parameter itself; a patch of a mesh
+/// gives its own parameter the rate ds/du of the mesh's, PatchParameters).
 template <class T>
 struct SurfaceParameterOf;
 
 template <>
 struct SurfaceParameterOf<double> {
-    static double Make(double lo, double, int) { return lo; }
+    static double Make(double lo, double, int, double = 1) { return lo; }
 };
 
 template <>
 struct SurfaceParameterOf<Interval> {
-    static Interval Make(double lo, double hi, int) { return Interval(lo, hi); }
+    static Interval Make(double lo, double hi, int, double = 1) { return Interval(lo, hi); }
 };
 
 /// The centre c and radius r with which a region's parameter [lo, hi] becomes c + r * eps: both
@@ -56,7 +57,7 @@ inline void RegionParameter(double lo, double hi, double* c, double* r) {
 
 template <>
 struct SurfaceParameterOf<Affine> {
-    static Affine Make(double lo, double hi, int axis) {
+    static Affine Make(double lo, double hi, int axis, double = 1) {
         double c, r;
         RegionParameter(lo, hi, &c, &r);
         return Affine::FromSymbol(c, r, axis == 0 ? Affine::kSymbolU : Affine::kSymbolV);
@@ -65,7 +66,7 @@ struct SurfaceParameterOf<Affine> {
 
 template <>
 struct SurfaceParameterOf<vm::ReducedAffine> {
-    static vm::ReducedAffine Make(double lo, double hi, int axis) {
+    static vm::ReducedAffine Make(double lo, double hi, int axis, double = 1) {
         double c, r;
         RegionParameter(lo, hi, &c, &r);
         using vm::ReducedAffine;
@@ -75,8 +76,8 @@ struct SurfaceParameterOf<vm::ReducedAffine> {
 
 template <class T>
 struct SurfaceParameterOf<Dual<T>> {
-    static Dual<T> Make(double lo, double hi, int axis) {
-        return Dual<T>(SurfaceParameterOf<T>::Make(lo, hi, axis), T(axis == 0 ? 1.0 : 0.0), T(axis == 1 ? 1.0 : 0.0));
+    static Dual<T> Make(double lo, double hi, int axis, double rate = 1) {
+        return Dual<T>(SurfaceParameterOf<T>::Make(lo, hi, axis), T(axis == 0 ? rate : 0.0), T(axis == 1 ? rate : 0.0));
     }
 };
 
@@ -91,25 +92,27 @@ Vec3<T> Constant(const glm::dvec3& p) {
 }
 
 /// The parameters of the region [s0,s1] x [t0,t1] of a patch that covers `range` of its mesh:
-/// the mesh's u, v (what the shader reads and differentiates along) and the patch's own s, t
-/// (what the patch is evaluated at), with ds/du and dt/dv to carry its tangents to the mesh's.
+/// the patch's own s, t (what the patch is evaluated at, on the symbols eps_u, eps_v exactly as
+/// RegionParameter maps the region, which the intersector relies on) and the mesh's u, v (what
+/// the shader reads; Dual derivatives are along them), with ds/du and dt/dv to carry the
+/// patch's tangents to the mesh's parameters. For a lone patch u is s and v is t.
 template <class T>
 struct PatchParameters {
-    T u, v, s, t;
-    double dsdu = 1, dtdv = 1;
+    double dsdu, dtdv;
+    T s, t, u, v;
 
     PatchParameters(const ParameterRange& range, double s0, double s1, double t0, double t1)
-        : u(SurfaceParameterOf<T>::Make(range.U(s0), range.U(s1), 0)),
-          v(SurfaceParameterOf<T>::Make(range.V(t0), range.V(t1), 1)),
-          s(u),
-          t(v) {
+        : dsdu(range.unitP() ? 1.0 : 1.0 / (range.u1 - range.u0)),
+          dtdv(range.unitP() ? 1.0 : 1.0 / (range.v1 - range.v0)),
+          s(SurfaceParameterOf<T>::Make(s0, s1, 0, dsdu)),
+          t(SurfaceParameterOf<T>::Make(t0, t1, 1, dtdv)),
+          u(s),
+          v(t) {
         if (range.unitP()) return;
-        // s = (u - u0) / (u1 - u0): affine in u, so an affine s keeps u's symbol and a dual s
-        // gets ds/du as its derivative.
-        dsdu = 1.0 / (range.u1 - range.u0);
-        dtdv = 1.0 / (range.v1 - range.v0);
-        s = (u + -range.u0) * dsdu;
-        t = (v + -range.v0) * dtdv;
+        // u = u0 + s (u1 - u0): affine in s, so an affine u keeps s's symbol (with the rounding
+        // in its error term) and a dual u has derivative (u1 - u0) ds/du = 1 (up to rounding).
+        u = s * (range.u1 - range.u0) + range.u0;
+        v = t * (range.v1 - range.v0) + range.v0;
     }
 };
 

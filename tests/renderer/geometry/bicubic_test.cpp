@@ -185,3 +185,46 @@ TEST_CASE("bicubic: on part of a mesh, u and v are the mesh's and the tangents a
         CHECK_THAT(p[c].dv, WithinAbs(f.dPdv[c] / 0.2, 1e-9));
     }
 }
+
+TEST_CASE("bicubic: the predefined bases are RenderMan's", "[renderer][bicubic]") {
+    // Along u with the other direction's basis "power" and points on its constant term: the curve
+    // U M g of four control values g. Each basis is pinned by what it interpolates.
+    auto curve = [](const CubicBasis& b, const double g[4], double u, int derivative) {
+        const double U[4] = {u * u * u, u * u, u, 1}, Ud[4] = {3 * u * u, 2 * u, 1, 0};
+        double sum = 0;
+        for (int a = 0; a < 4; ++a)
+            for (int k = 0; k < 4; ++k) sum += (derivative ? Ud : U)[a] * b.m[4 * a + k] * g[k];
+        return sum;
+    };
+    const double g[4] = {1.5, -2, 4, 0.25};
+    const CubicBasis bezier = *CubicBasis::Named("bezier"), bspline = *CubicBasis::Named("b-spline"),
+                     catmull = *CubicBasis::Named("catmull-rom"), hermite = *CubicBasis::Named("hermite"),
+                     power = *CubicBasis::Named("power");
+    CHECK(bezier.step == 3);
+    CHECK(bspline.step == 1);
+    CHECK(catmull.step == 1);
+    CHECK(hermite.step == 2);
+    CHECK(power.step == 4);
+    CHECK_FALSE(CubicBasis::Named("bspline"));
+    // Bezier: the end points, and the end tangents 3 (g1 - g0), 3 (g3 - g2).
+    CHECK(curve(bezier, g, 0, 0) == Approx(g[0]));
+    CHECK(curve(bezier, g, 1, 0) == Approx(g[3]));
+    CHECK(curve(bezier, g, 0, 1) == Approx(3 * (g[1] - g[0])));
+    CHECK(curve(bezier, g, 1, 1) == Approx(3 * (g[3] - g[2])));
+    // B-spline: (g0 + 4 g1 + g2) / 6 at 0, and the next such average at 1.
+    CHECK(curve(bspline, g, 0, 0) == Approx((g[0] + 4 * g[1] + g[2]) / 6));
+    CHECK(curve(bspline, g, 1, 0) == Approx((g[1] + 4 * g[2] + g[3]) / 6));
+    CHECK(curve(bspline, g, 0, 1) == Approx((g[2] - g[0]) / 2));
+    // Catmull-Rom: through g1 and g2, with tangents (g2 - g0) / 2 and (g3 - g1) / 2.
+    CHECK(curve(catmull, g, 0, 0) == Approx(g[1]));
+    CHECK(curve(catmull, g, 1, 0) == Approx(g[2]));
+    CHECK(curve(catmull, g, 0, 1) == Approx((g[2] - g[0]) / 2));
+    CHECK(curve(catmull, g, 1, 1) == Approx((g[3] - g[1]) / 2));
+    // Hermite on RI's (point0, vector0, point1, vector1).
+    CHECK(curve(hermite, g, 0, 0) == Approx(g[0]));
+    CHECK(curve(hermite, g, 0, 1) == Approx(g[1]));
+    CHECK(curve(hermite, g, 1, 0) == Approx(g[2]));
+    CHECK(curve(hermite, g, 1, 1) == Approx(g[3]));
+    // Power: the coefficients of u^3, u^2, u, 1.
+    CHECK(curve(power, g, 0.5, 0) == Approx(g[0] / 8 + g[1] / 4 + g[2] / 2 + g[3]));
+}
