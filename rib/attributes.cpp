@@ -43,7 +43,7 @@ bool RibParser::DoBasis(const RibRequest& r) {
         return Fail(r.at,
                     "'Basis' expects 4 arguments (ubasis ustep vbasis vstep), got " + std::to_string(r.args.size()));
     CubicBasis bases[2];
-    for (int axis = 0; axis < 2; ++axis) {
+    for (size_t axis = 0; axis < 2; ++axis) {
         const RibArg& basis = r.args[2 * axis];
         const RibArg& step = r.args[2 * axis + 1];
         const std::string which = axis == 0 ? "u" : "v";
