@@ -26,7 +26,10 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, c
                                                  {Global::dv, {kParametricStep, 0, 0}}};
     if (base.kind != BaseSurface::Kind::BilinearPatch) return out;
     const BilinearPatch& patch = base.patch;
-    glm::dvec3 a = patch.a(), b = patch.b(), n = patch.flatNormal();
+    // The tangents along the mesh's (u,v), as SetPatchGlobals scales them.
+    const double dsdu = base.range.unitP() ? 1.0 : 1.0 / (base.range.u1 - base.range.u0);
+    const double dtdv = base.range.unitP() ? 1.0 : 1.0 / (base.range.v1 - base.range.v0);
+    glm::dvec3 a = patch.a() * dsdu, b = patch.b() * dtdv, n = patch.flatNormal();
     if (base.flipNormal) n = -n;
     if (patch.flat() && std::isfinite(glm::dot(n, n))) {
         // The same tangents and normal everywhere, the values SetPatchGlobals would give.
@@ -345,10 +348,17 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
     searchPath.insert(searchPath.end(), shaderPaths.begin(), shaderPaths.end());
     for (const PrimitiveDesc& patch : desc.primitives) {
         Primitive prim;
-        if (patch.shape == PrimitiveDesc::Shape::BilinearPatch)
-            prim.base = BaseSurface(BilinearPatch{patch.corners}, patch.flipNormal);
-        else
-            prim.base = BaseSurface(PlacedQuadric{patch.quadric, patch.objectToWorld}, patch.flipNormal);
+        switch (patch.shape) {
+            case PrimitiveDesc::Shape::BilinearPatch:
+                prim.base = BaseSurface(BilinearPatch{patch.corners}, patch.flipNormal, patch.range);
+                break;
+            case PrimitiveDesc::Shape::BicubicPatch:
+                prim.base = BaseSurface(patch.bicubic, patch.flipNormal, patch.range);
+                break;
+            case PrimitiveDesc::Shape::Quadric:
+                prim.base = BaseSurface(PlacedQuadric{patch.quadric, patch.objectToWorld}, patch.flipNormal);
+                break;
+        }
         prim.surface = patch.surface;
         prim.color = patch.color;
         prim.twoSided = patch.twoSided;
@@ -486,7 +496,9 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
     value.z = (scene.desc.camera.worldToCamera * glm::dvec4(ray.origin + nh.hit.t * ray.dir, 1.0)).z;
     value.N = at.N;
     value.P = at.P;
-    value.st = {nh.hit.u, nh.hit.v};
+    // The mesh's (u,v), which the shader saw: the hit's are the patch's own.
+    const ParameterRange& range = scene.primitives[nh.primitive].base.range;
+    value.st = {range.U(nh.hit.u), range.V(nh.hit.v)};
     value.err = nh.hit.error;
     return value;
 }

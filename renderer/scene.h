@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/geometry/bicubic.h"
 #include "renderer/geometry/quadric.h"
 
 namespace affray::renderer {
@@ -60,10 +61,13 @@ struct LightDesc {
 /// One geometric primitive with its shading attributes: a bilinear patch (corners already in
 /// world space) or a quadric (in object space, placed by objectToWorld).
 struct PrimitiveDesc {
-    enum class Shape { BilinearPatch, Quadric } shape = Shape::BilinearPatch;
+    enum class Shape { BilinearPatch, Quadric, BicubicPatch } shape = Shape::BilinearPatch;
     std::array<glm::dvec3, 4> corners{};  ///< Patch: world space, RenderMan order u0v0, u1v0, u0v1, u1v1.
     Quadric quadric;                      ///< Quadric: its request's arguments (object space).
-    glm::dvec3 color{1.0};                ///< The RIB Color (Cs) in effect.
+    BicubicPatch bicubic;                 ///< Bicubic patch: world space, power basis.
+    /// Patches: the part of the mesh's (u,v) this patch covers ([0,1]^2 for a lone Patch).
+    ParameterRange range;
+    glm::dvec3 color{1.0};  ///< The RIB Color (Cs) in effect.
     SurfaceDesc surface;
     std::optional<ShaderRef> displacement;
     int line = 0, column = 0;  ///< Where the request starts in the RIB file, for diagnostics.
@@ -186,9 +190,16 @@ inline std::string ToString(const PrimitiveDesc& p) {
     if (p.shape == PrimitiveDesc::Shape::BilinearPatch) {
         text = "patch line " + std::to_string(p.line) + ":";
         for (const glm::dvec3& c : p.corners) text += " " + ToString(c);
+    } else if (p.shape == PrimitiveDesc::Shape::BicubicPatch) {
+        text = "patch line " + std::to_string(p.line) + ": " + ToString(p.bicubic);
     } else {
         text = std::string(Quadric::Name(p.quadric.kind)) + " line " + std::to_string(p.line) + ": " +
                ToString(p.quadric) + " objectToWorld=" + ToString(p.objectToWorld);
+    }
+    if (!p.range.unitP()) {
+        std::ostringstream range;
+        range << " uv=[" << p.range.u0 << ' ' << p.range.u1 << ' ' << p.range.v0 << ' ' << p.range.v1 << ']';
+        text += range.str();
     }
     if (!p.twoSided) text += " sides=1";
     if (p.flipNormal) text += " flipnormal";

@@ -16,6 +16,7 @@
 namespace affray::rib {
 
 using renderer::CameraDesc;
+using renderer::CubicBasis;
 using renderer::FilterDesc;
 using renderer::LightDesc;
 using renderer::ParamValue;

@@ -1,5 +1,5 @@
 // rib/attributes.cpp: RIB requests for attributes and lights (Color, Opacity, Surface,
-// Displacement, Attribute, Sides, ReverseOrientation, Orientation, LightSource). Rules shared with
+// Displacement, Attribute, Sides, ReverseOrientation, Orientation, Basis, LightSource). Rules shared with
 // rib.cpp are in rib_parser.h. Light positions are transformed with the CTM current at the request.
 #include <cmath>
 
@@ -32,6 +32,44 @@ bool RibParser::DoAttribute(const RibRequest& r) {
              "exactly; ignored");
     else
         Warn(r.at, "'Attribute \"" + name + "\"' does not apply to affray; ignored");
+    return true;
+}
+
+// Basis ubasis ustep vbasis vstep: each basis a predefined name or 16 numbers (row-major, as
+// RiBasis takes them), each step a positive integer (the control points between a patch mesh's
+// patches). Attribute state: AttributeEnd restores the bases of its AttributeBegin.
+bool RibParser::DoBasis(const RibRequest& r) {
+    if (r.args.size() != 4)
+        return Fail(r.at,
+                    "'Basis' expects 4 arguments (ubasis ustep vbasis vstep), got " + std::to_string(r.args.size()));
+    CubicBasis bases[2];
+    for (size_t axis = 0; axis < 2; ++axis) {
+        const RibArg& basis = r.args[2 * axis];
+        const RibArg& step = r.args[2 * axis + 1];
+        const std::string which = axis == 0 ? "u" : "v";
+        if (!basis.isArray && basis.StringsP()) {
+            std::optional<CubicBasis> named = CubicBasis::Named(basis.strings[0]);
+            if (!named)
+                return Fail(basis.at, "'Basis': unknown " + which + " basis " + Quote(basis.strings[0]) +
+                                          " (expected " + CubicBasis::NameList() + ", or 16 numbers)");
+            bases[axis] = *named;
+        } else if (basis.isArray && basis.NumericP() && basis.numbers.size() == 16) {
+            for (int i = 0; i < 16; ++i) {
+                if (!std::isfinite(basis.numbers[i]))
+                    return Fail(basis.at, "'Basis': the " + which + " basis matrix must be finite");
+                bases[axis].m[i] = basis.numbers[i];
+            }
+        } else {
+            return Fail(basis.at, "'Basis': the " + which + " basis must be a name (" + CubicBasis::NameList() +
+                                      ") or an array of 16 numbers, got " + basis.Describe());
+        }
+        if (step.isArray || !step.NumericP() || step.numbers.size() != 1 || !(step.numbers[0] >= 1) ||
+            step.numbers[0] != std::floor(step.numbers[0]) || step.numbers[0] > 1e6)
+            return Fail(step.at, "'Basis': the " + which + " step must be a positive integer, got " + step.Describe());
+        bases[axis].step = static_cast<int>(step.numbers[0]);
+    }
+    m_state.uBasis = bases[0];
+    m_state.vBasis = bases[1];
     return true;
 }
 

@@ -1,4 +1,4 @@
-// rib/geometry.cpp: RIB requests that place geometry: Patch, the quadrics (Sphere,
+// rib/geometry.cpp: RIB requests that place geometry: Patch, PatchMesh, the quadrics (Sphere,
 // Cylinder, Cone, Disk, Torus, Hyperboloid, Paraboloid) and CoordinateSystem. Rules shared with
 // rib.cpp are in rib_parser.h. Every primitive takes the graphics state current at its request;
 // its orientation is resolved here into PrimitiveDesc::flipNormal, since the camera transform it
@@ -30,35 +30,35 @@ void RibParser::SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) co
     p->flipNormal = FlipNormalP();
 }
 
-bool RibParser::DoPatch(const RibRequest& r) {
-    std::string type;
-    if (!LeadingString(r, "a patch type", &type)) return false;
-    if (type == "bicubic") return Fail(r.at, "'Patch \"bicubic\"' is not supported yet");
-    if (type != "bilinear")
-        return Fail(r.args[0].at, "unknown patch type " + Quote(type) + " (expected \"bilinear\" or \"bicubic\")");
-    std::vector<RibParam> params;
-    if (!ParamList(r, 1, &params) || !InsideWorld(r)) return false;
-
-    const std::string context = "'Patch \"bilinear\"'";
-    std::array<glm::dvec3, 4> corners{};
+bool RibParser::PatchPoints(const RibRequest& r, const std::vector<RibParam>& params, const std::string& context,
+                            size_t count, bool rational, bool heights, std::vector<glm::dvec3>* out) {
+    out->assign(count, glm::dvec3(0.0));
+    std::vector<double> v;
     bool havePosition = false;
     for (const RibParam& p : params) {
         const std::string& n = p.value.name;
         if (n == "P") {
-            double v[12];
-            if (!ParamNumbers(p, context, 12, v)) return false;
-            for (size_t i = 0; i < 4; ++i) corners[i] = glm::dvec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+            v.resize(3 * count);
+            if (!ParamNumbers(p, context, 3 * count, v.data())) return false;
+            for (size_t i = 0; i < count; ++i) (*out)[i] = glm::dvec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
         } else if (n == "Pw") {  // homogeneous points
-            double v[16];
-            if (!ParamNumbers(p, context, 16, v)) return false;
-            for (size_t i = 0; i < 4; ++i) {
-                if (v[4 * i + 3] == 0) return Fail(p.at, context + " parameter 'Pw' has a zero w");
-                corners[i] = glm::dvec3(v[4 * i], v[4 * i + 1], v[4 * i + 2]) / v[4 * i + 3];
+            v.resize(4 * count);
+            if (!ParamNumbers(p, context, 4 * count, v.data())) return false;
+            for (size_t i = 0; i < count; ++i) {
+                const double w = v[4 * i + 3];
+                if (!rational && w != 1)
+                    return Fail(p.at, context + " parameter 'Pw': point " + std::to_string(i) +
+                                          " has w = " + FormatNumber(w) +
+                                          "; rational bicubic patches are not supported yet (every w must be 1)");
+                if (w == 0) return Fail(p.at, context + " parameter 'Pw' has a zero w");
+                (*out)[i] = glm::dvec3(v[4 * i], v[4 * i + 1], v[4 * i + 2]) / w;
             }
-        } else if (n == "Pz") {  // heights over the unit square (x = u, y = v)
-            double z[4];
-            if (!ParamNumbers(p, context, 4, z)) return false;
-            for (int i = 0; i < 4; ++i) corners[i] = glm::dvec3(i & 1, i >> 1, z[i]);
+        } else if (n == "Pz" && heights) {  // heights over the unit square (x = u, y = v)
+            v.resize(count);
+            if (!ParamNumbers(p, context, count, v.data())) return false;
+            for (size_t i = 0; i < count; ++i) (*out)[i] = glm::dvec3(double(i & 1), double(i >> 1), v[i]);
+        } else if (n == "Pz") {
+            return Fail(p.at, context + " parameter 'Pz' is supported on 'Patch \"bilinear\"' only; give \"P\"");
         } else {
             Warn(p.at, context + " parameter " + Quote(n) + " is not supported yet; ignored");
             continue;
@@ -66,15 +66,130 @@ bool RibParser::DoPatch(const RibRequest& r) {
         havePosition = true;
     }
     if (!havePosition) return Fail(r.at, context + " needs a \"P\" parameter");
+    return true;
+}
 
+bool RibParser::AddBilinear(const RibRequest& r, const std::string& context, const std::array<glm::dvec3, 4>& corners,
+                            const renderer::ParameterRange& range) {
     PrimitiveDesc patch;
     for (int i = 0; i < 4; ++i) {
         patch.corners[i] = TransformPoint(m_state.ctm, corners[i]);
         if (!FiniteP(patch.corners[i]))
             return Fail(r.at, context + " corner " + std::to_string(i) + " overflows in world space");
     }
+    patch.range = range;
     SetPrimitiveAttributes(r, &patch);
     m_scene.primitives.push_back(std::move(patch));
+    return true;
+}
+
+bool RibParser::AddBicubic(const RibRequest& r, const std::string& context, const std::array<glm::dvec3, 16>& points,
+                           const renderer::ParameterRange& range) {
+    PrimitiveDesc patch;
+    patch.shape = PrimitiveDesc::Shape::BicubicPatch;
+    patch.bicubic = renderer::BicubicPatch::FromControlPoints(points, m_state.uBasis, m_state.vBasis, m_state.ctm);
+    if (!patch.bicubic.FiniteP()) return Fail(r.at, context + " overflows in world space");
+    patch.range = range;
+    SetPrimitiveAttributes(r, &patch);
+    m_scene.primitives.push_back(std::move(patch));
+    return true;
+}
+
+bool RibParser::DoPatch(const RibRequest& r) {
+    std::string type;
+    if (!LeadingString(r, "a patch type", &type)) return false;
+    if (type != "bilinear" && type != "bicubic")
+        return Fail(r.args[0].at, "unknown patch type " + Quote(type) + " (expected \"bilinear\" or \"bicubic\")");
+    std::vector<RibParam> params;
+    if (!ParamList(r, 1, &params) || !InsideWorld(r)) return false;
+
+    const bool bicubic = type == "bicubic";
+    const std::string context = "'Patch \"" + type + "\"'";
+    std::vector<glm::dvec3> points;
+    if (!PatchPoints(r, params, context, bicubic ? 16 : 4, !bicubic, !bicubic, &points)) return false;
+    if (bicubic) {
+        std::array<glm::dvec3, 16> g;
+        std::copy(points.begin(), points.end(), g.begin());
+        return AddBicubic(r, context, g, {});
+    }
+    return AddBilinear(r, context, {points[0], points[1], points[2], points[3]}, {});
+}
+
+// PatchMesh type nu uwrap nv vwrap ...: nu x nv control points (u fastest) cut into patches as
+// RI 3.2 section 5.2 says. Per direction, with n points and wrap mode periodic or not:
+//   bilinear: n - 1 patches (n if periodic), patch i on points i, i + 1;
+//   bicubic:  (n - 4) / step + 1 patches (n / step if periodic), patch i on points i * step + 0..3;
+// indices taken modulo n when periodic (the first points repeat). Patch i of m covers the mesh's
+// u from i / m to (i + 1) / m: u and v span the whole mesh.
+bool RibParser::DoPatchMesh(const RibRequest& r) {
+    std::string type;
+    if (!LeadingString(r, "a patch type", &type)) return false;
+    if (type != "bilinear" && type != "bicubic")
+        return Fail(r.args[0].at, "unknown patch type " + Quote(type) + " (expected \"bilinear\" or \"bicubic\")");
+    const bool bicubic = type == "bicubic";
+    const std::string context = "'PatchMesh \"" + type + "\"'";
+    if (r.args.size() < 5)
+        return Fail(r.at, context + " expects nu uwrap nv vwrap after the type, got " +
+                              std::to_string(r.args.size() - 1) + " arguments");
+    int n[2], patches[2], step[2] = {1, 1};
+    bool periodic[2];
+    if (bicubic) step[0] = m_state.uBasis.step, step[1] = m_state.vBasis.step;
+    for (int axis = 0; axis < 2; ++axis) {
+        const RibArg& count = r.args[1 + 2 * axis];
+        const RibArg& wrap = r.args[2 + 2 * axis];
+        const std::string name = axis == 0 ? "nu" : "nv", wrapName = axis == 0 ? "uwrap" : "vwrap";
+        if (count.isArray || !count.NumericP() || count.numbers.size() != 1 || !(count.numbers[0] >= 1) ||
+            count.numbers[0] != std::floor(count.numbers[0]) || count.numbers[0] > 1e6)
+            return Fail(count.at, context + ": " + name + " must be a positive integer, got " + count.Describe());
+        if (wrap.isArray || !wrap.StringsP() || (wrap.strings[0] != "periodic" && wrap.strings[0] != "nonperiodic"))
+            return Fail(wrap.at,
+                        context + ": " + wrapName + " must be \"periodic\" or \"nonperiodic\", got " + wrap.Describe());
+        n[axis] = static_cast<int>(count.numbers[0]);
+        periodic[axis] = wrap.strings[0] == "periodic";
+        // The number of patches, and what the count must satisfy for it to be whole.
+        const std::string stepText = std::to_string(step[axis]);
+        if (!bicubic) {
+            if (n[axis] < 2) return Fail(count.at, context + ": " + name + " must be at least 2");
+            patches[axis] = periodic[axis] ? n[axis] : n[axis] - 1;
+        } else if (periodic[axis]) {
+            if (n[axis] % step[axis] != 0)
+                return Fail(count.at, context + ": a periodic mesh needs " + name + " a multiple of the " +
+                                          (axis == 0 ? "u" : "v") + " step " + stepText + ", got " +
+                                          std::to_string(n[axis]));
+            patches[axis] = n[axis] / step[axis];
+        } else {
+            if (n[axis] < 4 || (n[axis] - 4) % step[axis] != 0)
+                return Fail(count.at, context + ": a nonperiodic mesh needs " + name + " = 4 + k * " + stepText +
+                                          " (the " + (axis == 0 ? "u" : "v") + " step), got " +
+                                          std::to_string(n[axis]));
+            patches[axis] = (n[axis] - 4) / step[axis] + 1;
+        }
+    }
+    std::vector<RibParam> params;
+    if (!ParamList(r, 5, &params) || !InsideWorld(r)) return false;
+    std::vector<glm::dvec3> points;
+    if (!PatchPoints(r, params, context, size_t(n[0]) * size_t(n[1]), !bicubic, false, &points)) return false;
+
+    auto point = [&](int i, int j) {
+        // Periodic indices wrap; nonperiodic ones stay in range by the counts checked above.
+        return points[size_t(j % n[1]) * size_t(n[0]) + size_t(i % n[0])];
+    };
+    for (int pv = 0; pv < patches[1]; ++pv)
+        for (int pu = 0; pu < patches[0]; ++pu) {
+            const renderer::ParameterRange range{double(pu) / patches[0], double(pu + 1) / patches[0],
+                                                 double(pv) / patches[1], double(pv + 1) / patches[1]};
+            bool ok;
+            if (bicubic) {
+                std::array<glm::dvec3, 16> g;
+                for (int b = 0; b < 4; ++b)
+                    for (int a = 0; a < 4; ++a) g[4 * b + a] = point(pu * step[0] + a, pv * step[1] + b);
+                ok = AddBicubic(r, context, g, range);
+            } else {
+                ok = AddBilinear(r, context,
+                                 {point(pu, pv), point(pu + 1, pv), point(pu, pv + 1), point(pu + 1, pv + 1)}, range);
+            }
+            if (!ok) return false;
+        }
     return true;
 }
 

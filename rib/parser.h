@@ -2,10 +2,11 @@
 // Private to the reader: use rib/rib.h. rib.cpp holds dispatch, the block structure, options
 // and transforms; attributes.cpp the shading attributes (with Sides and orientation) and lights;
 // geometry.cpp the primitives and coordinate systems; archive.cpp ReadArchive and retained
-// objects. The graphics state (CTM, color, surface, displacement, sides, orientation) is saved by
+// objects. The graphics state (CTM, color, surface, displacement, sides, orientation, basis) is saved by
 // every Begin and restored by its End.
 #pragma once
 
+#include <array>
 #include <glm/glm.hpp>
 #include <map>
 #include <memory>
@@ -47,6 +48,8 @@ class RibParser : private RibArgChecks {
         /// (RI 3.2 section 4.2: a transform that flips one flips the other, so only Orientation
         /// and ReverseOrientation change this).
         bool insideOut = false;
+        /// Basis: the bicubic patches' u and v bases with their steps (RI default bezier 3).
+        CubicBasis uBasis = CubicBasis::Bezier(), vBasis = CubicBasis::Bezier();
     };
     enum class Block { Frame, World, Attribute, Transform };
     struct OpenBlock {
@@ -165,7 +168,22 @@ class RibParser : private RibArgChecks {
     bool CheckSpotlight(const RibRequest& r, const std::string& context, const LightDesc& light);
     bool DoCoordinateSystem(const RibRequest& r);
     bool DoCoordSysTransform(const RibRequest& r);
+    bool DoBasis(const RibRequest& r);
     bool DoPatch(const RibRequest& r);
+    bool DoPatchMesh(const RibRequest& r);
+    /// The control points of a patch or patch mesh of `count` points from "P" or "Pw" (and "Pz"
+    /// if `heights` is given: the point i of a bilinear patch at (i & 1, i >> 1)); `rational`
+    /// says whether "Pw" may have w != 1 (divided out, as a bilinear patch does) or not (an
+    /// error: rational bicubic patches are not supported). Other parameters are warned about.
+    bool PatchPoints(const RibRequest& r, const std::vector<RibParam>& params, const std::string& context, size_t count,
+                     bool rational, bool heights, std::vector<glm::dvec3>* out);
+    /// Adds a bilinear patch (corners in object space) covering `range` of its mesh.
+    bool AddBilinear(const RibRequest& r, const std::string& context, const std::array<glm::dvec3, 4>& corners,
+                     const renderer::ParameterRange& range);
+    /// Adds a bicubic patch (16 control points in object space, the current bases) covering
+    /// `range` of its mesh.
+    bool AddBicubic(const RibRequest& r, const std::string& context, const std::array<glm::dvec3, 16>& points,
+                    const renderer::ParameterRange& range);
     bool DoSphere(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Sphere); }
     bool DoCylinder(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Cylinder); }
     bool DoCone(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Cone); }

@@ -34,7 +34,7 @@ namespace {
 // texture making, quantizing an image affray writes as floats, the shutter of motion affray
 // refuses): accepted with one warning per name.
 constexpr std::string_view kNoEffect[] = {
-    "Basis", "Begin", "Bound", "Detail", "DetailRange", "End", "ErrorHandler", "GeometricApproximation",
+    "Begin", "Bound", "Detail", "DetailRange", "End", "ErrorHandler", "GeometricApproximation",
     "MakeBump", "MakeCubeFaceEnvironment", "MakeLatLongEnvironment", "MakeShadow", "MakeTexture",
     "PixelVariance", "Quantize", "RelativeDetail", "Shutter", "TransformPoints",
 };
@@ -50,7 +50,7 @@ constexpr std::string_view kIgnored[] = {
 // they are errors until implemented.
 constexpr std::string_view kUnsupported[] = {
     "Blobby", "Curves", "Deformation", "GeneralPolygon", "Geometry",
-    "MotionBegin", "MotionEnd", "NuPatch", "PatchMesh", "Perspective", "Points",
+    "MotionBegin", "MotionEnd", "NuPatch", "Perspective", "Points",
     "PointsGeneralPolygons", "PointsPolygons", "Polygon", "Procedural", "Skew", "SolidBegin",
     "SolidEnd", "SubdivisionMesh",
 };
@@ -171,7 +171,9 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"Surface", &RibParser::DoSurface},
         {"Displacement", &RibParser::DoDisplacement},
         {"LightSource", &RibParser::DoLightSource},
+        {"Basis", &RibParser::DoBasis},
         {"Patch", &RibParser::DoPatch},
+        {"PatchMesh", &RibParser::DoPatchMesh},
         {"Sphere", &RibParser::DoSphere},
         {"Cylinder", &RibParser::DoCylinder},
         {"Cone", &RibParser::DoCone},

@@ -126,24 +126,37 @@ inline compiler::CompiledShader CompileOrThrow(const std::string& source,
     return std::move(*r.shader);
 }
 
-/// Runs `program` with number type N over [u0,u1] x [v0,v1] of the unit square; returns output
-/// `name` (P or N).
+/// Runs `program` with number type N over [u0,u1] x [v0,v1] of `surface`; returns output `name`
+/// (P or N).
+template <class N>
+vm::Vec3<N> EvalOnSurface(const vm::Program& program, const renderer::BaseSurface& surface, double u0, double u1,
+                          double v0, double v1, const char* name = "P") {
+    vm::Interpreter<N> interp(program);
+    return renderer::EvaluateOnSurface(interp, surface, u0, u1, v0, v1, glm::dvec3(0.0), *program.findOutput(name));
+}
+
+/// EvalOnSurface on the unit square.
 template <class N>
 vm::Vec3<N> EvalOnSquare(const vm::Program& program, double u0, double u1, double v0, double v1,
                          const char* name = "P") {
-    vm::Interpreter<N> interp(program);
-    return renderer::EvaluateOnPatch(interp, renderer::BilinearPatch::UnitSquare(), u0, u1, v0, v1, glm::dvec3(0.0),
-                                     *program.findOutput(name));
+    return EvalOnSurface<N>(program, renderer::BilinearPatch::UnitSquare(), u0, u1, v0, v1, name);
 }
 
-/// The displaced P at one point, in doubles (through duals if the program takes derivatives).
-inline glm::dvec3 PointOnSquare(const vm::Program& program, double u, double v, const char* name = "P") {
+/// The displaced P at one point of `surface`, in doubles (through duals if the program takes
+/// derivatives).
+inline glm::dvec3 PointOnSurface(const vm::Program& program, const renderer::BaseSurface& surface, double u, double v,
+                                 const char* name = "P") {
     if (program.usesDerivatives()) {
-        auto p = EvalOnSquare<vm::Dual<double>>(program, u, u, v, v, name);
+        auto p = EvalOnSurface<vm::Dual<double>>(program, surface, u, u, v, v, name);
         return {p.x.v, p.y.v, p.z.v};
     }
-    auto p = EvalOnSquare<double>(program, u, u, v, v, name);
+    auto p = EvalOnSurface<double>(program, surface, u, u, v, v, name);
     return {p.x, p.y, p.z};
+}
+
+/// PointOnSurface on the unit square.
+inline glm::dvec3 PointOnSquare(const vm::Program& program, double u, double v, const char* name = "P") {
+    return PointOnSurface(program, renderer::BilinearPatch::UnitSquare(), u, v, name);
 }
 
 }  // namespace affray::test

@@ -1,4 +1,6 @@
 // renderer/geometry/surface.h: base surfaces and the shader globals they supply, for every number type.
+// A new base surface kind gets its frame template in its own header (quadric.h, bicubic.h), a
+// case in BaseSurface and SetSurfaceGlobals, and a Shape in the scene (scene.h).
 // A base surface is evaluated over a (u,v) *region* with the same templated code whatever the
 // number type: doubles at a point, intervals or affine forms over a region (a bound), duals for
 // exact derivatives. So the displaced point P' = shader(base(u,v)) is bounded by one machinery.
@@ -9,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "renderer/geometry/bicubic.h"
 #include "renderer/geometry/quadric.h"
 #include "vm/interpreter.h"
 #include "vm/numbers/number.h"
@@ -28,18 +31,19 @@ inline constexpr double kParametricStep = 1.0 / 1024.0;
 
 /// The value of the surface parameter `axis` (0 = u, 1 = v) over [lo, hi] as a T: a point for
 /// double (lo == hi), the range for Interval, lo..hi on the symbol of u or v for Affine, and with
-/// unit derivative along its own axis for Dual<T>.
+/// derivative `rate` along its own axis for Dual<T> (1: the parameter itself; a patch of a mesh
+/// gives its own parameter the rate ds/du of the mesh's, PatchParameters).
 template <class T>
 struct SurfaceParameterOf;
 
 template <>
 struct SurfaceParameterOf<double> {
-    static double Make(double lo, double, int) { return lo; }
+    static double Make(double lo, double, int, double = 1) { return lo; }
 };
 
 template <>
 struct SurfaceParameterOf<Interval> {
-    static Interval Make(double lo, double hi, int) { return Interval(lo, hi); }
+    static Interval Make(double lo, double hi, int, double = 1) { return Interval(lo, hi); }
 };
 
 /// The centre c and radius r with which a region's parameter [lo, hi] becomes c + r * eps: both
@@ -53,7 +57,7 @@ inline void RegionParameter(double lo, double hi, double* c, double* r) {
 
 template <>
 struct SurfaceParameterOf<Affine> {
-    static Affine Make(double lo, double hi, int axis) {
+    static Affine Make(double lo, double hi, int axis, double = 1) {
         double c, r;
         RegionParameter(lo, hi, &c, &r);
         return Affine::FromSymbol(c, r, axis == 0 ? Affine::kSymbolU : Affine::kSymbolV);
@@ -62,7 +66,7 @@ struct SurfaceParameterOf<Affine> {
 
 template <>
 struct SurfaceParameterOf<vm::ReducedAffine> {
-    static vm::ReducedAffine Make(double lo, double hi, int axis) {
+    static vm::ReducedAffine Make(double lo, double hi, int axis, double = 1) {
         double c, r;
         RegionParameter(lo, hi, &c, &r);
         using vm::ReducedAffine;
@@ -72,8 +76,8 @@ struct SurfaceParameterOf<vm::ReducedAffine> {
 
 template <class T>
 struct SurfaceParameterOf<Dual<T>> {
-    static Dual<T> Make(double lo, double hi, int axis) {
-        return Dual<T>(SurfaceParameterOf<T>::Make(lo, hi, axis), T(axis == 0 ? 1.0 : 0.0), T(axis == 1 ? 1.0 : 0.0));
+    static Dual<T> Make(double lo, double hi, int axis, double rate = 1) {
+        return Dual<T>(SurfaceParameterOf<T>::Make(lo, hi, axis), T(axis == 0 ? rate : 0.0), T(axis == 1 ? rate : 0.0));
     }
 };
 
@@ -86,6 +90,31 @@ template <class T>
 Vec3<T> Constant(const glm::dvec3& p) {
     return {T(p.x), T(p.y), T(p.z)};
 }
+
+/// The parameters of the region [s0,s1] x [t0,t1] of a patch that covers `range` of its mesh:
+/// the patch's own s, t (what the patch is evaluated at, on the symbols eps_u, eps_v exactly as
+/// RegionParameter maps the region, which the intersector relies on) and the mesh's u, v (what
+/// the shader reads; Dual derivatives are along them), with ds/du and dt/dv to carry the
+/// patch's tangents to the mesh's parameters. For a lone patch u is s and v is t.
+template <class T>
+struct PatchParameters {
+    double dsdu, dtdv;
+    T s, t, u, v;
+
+    PatchParameters(const ParameterRange& range, double s0, double s1, double t0, double t1)
+        : dsdu(range.unitP() ? 1.0 : 1.0 / (range.u1 - range.u0)),
+          dtdv(range.unitP() ? 1.0 : 1.0 / (range.v1 - range.v0)),
+          s(SurfaceParameterOf<T>::Make(s0, s1, 0, dsdu)),
+          t(SurfaceParameterOf<T>::Make(t0, t1, 1, dtdv)),
+          u(s),
+          v(t) {
+        if (range.unitP()) return;
+        // u = u0 + s (u1 - u0): affine in s, so an affine u keeps s's symbol (with the rounding
+        // in its error term) and a dual u has derivative (u1 - u0) ds/du = 1 (up to rounding).
+        u = s * (range.u1 - range.u0) + range.u0;
+        v = t * (range.v1 - range.v0) + range.v0;
+    }
+};
 
 /// RenderMan's bilinear patch: corners in the order (u0,v0), (u1,v0), (u0,v1), (u1,v1).
 struct BilinearPatch {
@@ -146,21 +175,24 @@ void SetFrameGlobals(vm::Interpreter<T>& interp, const T& u, const T& v, const S
 }
 
 /// Starts a new evaluation for the interpreter `interp` over the patch region [u0,u1] x [v0,v1]
-/// (a point when the bounds are equal): writes the globals its program reads; `eye` is the
-/// camera position E. For affine types this restarts the fresh symbols, so the values of an
-/// earlier evaluation must not be combined with this one's.
+/// (a point when the bounds are equal) of a patch that covers `range` of its mesh: writes the
+/// globals its program reads; `eye` is the camera position E. For affine types this restarts the
+/// fresh symbols, so the values of an earlier evaluation must not be combined with this one's.
 template <class T>
 void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, double u0, double u1, double v0, double v1,
-                     const glm::dvec3& eye, bool flipNormal = false) {
+                     const glm::dvec3& eye, bool flipNormal = false, const ParameterRange& range = {}) {
     if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
-    T u = SurfaceParameter<T>(u0, u1, 0);
-    T v = SurfaceParameter<T>(v0, v1, 1);
-    // P = c0 + a*u + b*v + d*u*v, each coordinate a combination with double coefficients (zero
+    const PatchParameters<T> param(range, u0, u1, v0, v1);
+    const T& s = param.s;
+    const T& t = param.t;
+    // P = c0 + a*s + b*t + d*s*t, each coordinate a combination with double coefficients (zero
     // terms skipped: for an axis-aligned patch most are, and every skipped product is work saved
-    // in every region bound).
-    const glm::dvec3 c0 = patch.corners[0], a = patch.a(), b = patch.b(), d = patch.d();
+    // in every region bound). The tangents along the mesh's u, v are those along s, t times
+    // ds/du, dt/dv (1 for a lone patch).
+    const glm::dvec3 c0 = patch.corners[0], a = patch.a() * param.dsdu, b = patch.b() * param.dtdv,
+                     d = patch.d() * param.dsdu, e = patch.d() * param.dtdv;
     const bool twisted = !patch.flat();
-    T uv = twisted ? u * v : T(0.0);
+    T st = twisted ? s * t : T(0.0);
     auto combine = [](double k0, double ku, const T& x, double kv, const T& y) {
         T r(k0);
         if (ku != 0) r = r + x * ku;
@@ -169,14 +201,26 @@ void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, dou
     };
     SurfaceFrame<T> frame;
     for (int i = 0; i < 3; ++i) {
-        frame.P[i] = combine(c0[i], a[i], u, b[i], v);
-        if (twisted && d[i] != 0) frame.P[i] = frame.P[i] + uv * d[i];
-        frame.dPdu[i] = twisted ? combine(a[i], d[i], v, 0.0, v) : T(a[i]);
-        frame.dPdv[i] = twisted ? combine(b[i], d[i], u, 0.0, u) : T(b[i]);
+        frame.P[i] = combine(c0[i], patch.a()[i], s, patch.b()[i], t);
+        if (twisted && patch.d()[i] != 0) frame.P[i] = frame.P[i] + st * patch.d()[i];
+        frame.dPdu[i] = twisted ? combine(a[i], d[i], t, 0.0, t) : T(a[i]);
+        frame.dPdv[i] = twisted ? combine(b[i], e[i], s, 0.0, s) : T(b[i]);
     }
     // A flat patch has one normal: computed in doubles, so its bound stays exact.
     const glm::dvec3 flatNormal = patch.flatNormal();
-    SetFrameGlobals(interp, u, v, frame, twisted ? nullptr : &flatNormal, eye, flipNormal);
+    SetFrameGlobals(interp, param.u, param.v, frame, twisted ? nullptr : &flatNormal, eye, flipNormal);
+}
+
+/// SetPatchGlobals for a bicubic patch that covers `range` of its mesh.
+template <class T>
+void SetBicubicGlobals(vm::Interpreter<T>& interp, const BicubicPatch& patch, double u0, double u1, double v0,
+                       double v1, const glm::dvec3& eye, bool flipNormal = false, const ParameterRange& range = {}) {
+    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
+    const PatchParameters<T> param(range, u0, u1, v0, v1);
+    SurfaceFrame<T> frame = BicubicFrame(patch, param.s, param.t);
+    if (param.dsdu != 1) frame.dPdu = frame.dPdu * param.dsdu;
+    if (param.dtdv != 1) frame.dPdv = frame.dPdv * param.dtdv;
+    SetFrameGlobals(interp, param.u, param.v, frame, nullptr, eye, flipNormal);
 }
 
 /// A quadric placed in the world by an affine object-to-world matrix (GLM's column-major).
@@ -235,28 +279,40 @@ void SetQuadricGlobals(vm::Interpreter<T>& interp, const PlacedQuadric& placed, 
     SetFrameGlobals(interp, u, v, world, nullptr, eye, flipNormal);
 }
 
-/// A base surface for the intersector and the shading: a bilinear patch or a placed quadric,
-/// with the orientation of its normal.
+/// A base surface for the intersector and the shading: a bilinear or bicubic patch (with the part
+/// of its mesh's (u,v) it covers) or a placed quadric, with the orientation of its normal.
 struct BaseSurface {
-    enum class Kind { BilinearPatch, Quadric } kind = Kind::BilinearPatch;
+    enum class Kind { BilinearPatch, Quadric, BicubicPatch } kind = Kind::BilinearPatch;
     BilinearPatch patch{};
     PlacedQuadric quadric{};
+    BicubicPatch bicubic{};
+    ParameterRange range{};  ///< Patches only; a quadric's (u,v) is always [0,1]^2.
     bool flipNormal = false;
 
     BaseSurface() = default;
     // Implicit on purpose: a patch is a base surface (as in every caller of the intersector).
-    BaseSurface(const BilinearPatch& p, bool flip = false) : kind(Kind::BilinearPatch), patch(p), flipNormal(flip) {}
+    BaseSurface(const BilinearPatch& p, bool flip = false, const ParameterRange& r = {})
+        : kind(Kind::BilinearPatch), patch(p), range(r), flipNormal(flip) {}
     BaseSurface(const PlacedQuadric& q, bool flip = false) : kind(Kind::Quadric), quadric(q), flipNormal(flip) {}
+    BaseSurface(const BicubicPatch& p, bool flip = false, const ParameterRange& r = {})
+        : kind(Kind::BicubicPatch), bicubic(p), range(r), flipNormal(flip) {}
 };
 
-/// SetPatchGlobals or SetQuadricGlobals, as `surface` is.
+/// SetPatchGlobals, SetBicubicGlobals or SetQuadricGlobals, as `surface` is.
 template <class T>
 void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, double u0, double u1, double v0,
                        double v1, const glm::dvec3& eye) {
-    if (surface.kind == BaseSurface::Kind::BilinearPatch)
-        SetPatchGlobals(interp, surface.patch, u0, u1, v0, v1, eye, surface.flipNormal);
-    else
-        SetQuadricGlobals(interp, surface.quadric, u0, u1, v0, v1, eye, surface.flipNormal);
+    switch (surface.kind) {
+        case BaseSurface::Kind::BilinearPatch:
+            SetPatchGlobals(interp, surface.patch, u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
+            break;
+        case BaseSurface::Kind::BicubicPatch:
+            SetBicubicGlobals(interp, surface.bicubic, u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
+            break;
+        case BaseSurface::Kind::Quadric:
+            SetQuadricGlobals(interp, surface.quadric, u0, u1, v0, v1, eye, surface.flipNormal);
+            break;
+    }
 }
 
 /// Runs `interp`'s program over the region [u0,u1] x [v0,v1] of `surface` and returns its triple

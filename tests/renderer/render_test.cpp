@@ -8,6 +8,7 @@
 
 #include "renderer/image/film.h"
 #include "rib/rib.h"
+#include "tests/test_random.h"
 #include "tests/test_util.h"
 
 using namespace affray;
@@ -198,4 +199,143 @@ TEST_CASE("render: a crater field on a displaced sphere is bounded and renders",
             CHECK(glm::length(P) <= 1 + 1e-3);
             CHECK(P.z > 0);  // the near hemisphere, seen from +z
         }
+}
+
+namespace {
+
+// A perspective view of a displaced twisted sheet, 48 x 36, for comparing base surfaces.
+const char* const kSheetCamera = R"(Format 48 36 1
+Projection "perspective" "fov" [40]
+Display "t.exr" "file" "rgba,st,P,err"
+Translate 0 0 3.1
+Rotate -130 1 0 0
+WorldBegin
+LightSource "distantlight" 1 "intensity" [1.1] "from" [-3 1.5 1.1] "to" [0 0 0]
+Displacement "wave" "Km" [0.08] "frequency" [5] "decay" [2]
+)";
+
+/// A twisted bilinear sheet at (u, v), as text "x y z".
+std::string SheetPoint(double u, double v) {
+    const glm::dvec3 c[4] = {{-1, -1, 0}, {1, -1, 0.3}, {-1.1, 1, -0.2}, {0.9, 1.2, 0.4}};
+    const glm::dvec3 p = c[0] * (1 - u) * (1 - v) + c[1] * u * (1 - v) + c[2] * (1 - u) * v + c[3] * u * v;
+    std::ostringstream out;
+    out.precision(17);
+    out << p.x << ' ' << p.y << ' ' << p.z << ' ';
+    return out.str();
+}
+
+/// The sheet's points at u = i / (nu - 1), v = j / (nv - 1), u fastest, as a RIB array.
+std::string SheetPoints(int nu, int nv) {
+    std::string text = "\"P\" [";
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) text += SheetPoint(double(i) / (nu - 1), double(j) / (nv - 1));
+    return text + "]\n";
+}
+
+/// How two renders of one surface differ: pixels hit by one only, pixels hit by both whose points
+/// lie farther apart than the two hits' certified errors allow, and pixels whose RGBA or st
+/// differ by more than 0.01.
+struct ImageDifference {
+    int coverage = 0, beyondError = 0, differing = 0;
+};
+
+ImageDifference Compare(const ImageBuffer& a, const ImageBuffer& b) {
+    REQUIRE(a.rgba.size() == b.rgba.size());
+    ImageDifference out;
+    auto P = [](const ImageBuffer& im, size_t i) {
+        return glm::dvec3(Channel(im, "P.X")[i], Channel(im, "P.Y")[i], Channel(im, "P.Z")[i]);
+    };
+    for (size_t i = 0; i < a.rgba.size() / 4; ++i) {
+        double d = 0;
+        for (int c = 0; c < 4; ++c) d = std::max(d, double(std::fabs(a.rgba[4 * i + c] - b.rgba[4 * i + c])));
+        for (const char* channel : {"st.s", "st.t"})
+            d = std::max(d, double(std::fabs(Channel(a, channel)[i] - Channel(b, channel)[i])));
+        out.differing += d > 0.01;
+        const bool hitA = a.rgba[4 * i + 3] == 1, hitB = b.rgba[4 * i + 3] == 1;
+        out.coverage += hitA != hitB;
+        // float AOVs: a little slack for their rounding.
+        if (hitA && hitB)
+            out.beyondError += glm::length(P(a, i) - P(b, i)) > Channel(a, "err")[i] + Channel(b, "err")[i] + 1e-5;
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("render: bezier patches and patch meshes on a bilinear sheet render as the bilinear patch",
+          "[renderer][render][bicubic]") {
+    test::TempDir dir;
+    const std::string camera = kSheetCamera;
+    const ImageBuffer reference = Render(dir, camera + "Patch \"bilinear\" " + SheetPoints(2, 2) + "WorldEnd\n");
+    CHECK(Covered(reference) > 48 * 36 / 3);
+    // P = c00 + c10 u + c01 v + c11 u v in the power basis, whose "points" are the coefficients of
+    // [u^3 u^2 u 1] x [v^3 v^2 v 1]: u^a v^b at index 4 (3 - b) + (3 - a).
+    const glm::dvec3 c[4] = {{-1, -1, 0}, {1, -1, 0.3}, {-1.1, 1, -0.2}, {0.9, 1.2, 0.4}};
+    glm::dvec3 coeff[16] = {};
+    coeff[15] = c[0], coeff[14] = c[1] - c[0], coeff[11] = c[2] - c[0], coeff[10] = c[0] - c[1] - c[2] + c[3];
+    std::ostringstream power;
+    power.precision(17);
+    for (const glm::dvec3& x : coeff) power << x.x << ' ' << x.y << ' ' << x.z << ' ';
+    const std::pair<const char*, std::string> variants[] = {
+        {"a bezier patch", "Patch \"bicubic\" " + SheetPoints(4, 4)},
+        // 2 x 1 patches: the shader sees the mesh's (u,v), so the ripples match across the seam.
+        {"a bezier patch mesh", "PatchMesh \"bicubic\" 7 \"nonperiodic\" 4 \"nonperiodic\" " + SheetPoints(7, 4)},
+        {"a bilinear patch mesh", "PatchMesh \"bilinear\" 3 \"nonperiodic\" 4 \"nonperiodic\" " + SheetPoints(3, 4)},
+        {"a power-basis patch", "Basis \"power\" 4 \"power\" 4\nPatch \"bicubic\" \"P\" [" + power.str() + "]\n"},
+    };
+    for (const auto& [name, geometry] : variants) {
+        INFO(name);
+        const ImageBuffer image = Render(dir, camera + geometry + "WorldEnd\n");
+        const ImageDifference diff = Compare(reference, image);
+        INFO(diff.coverage << " pixels hit by one render only, " << diff.beyondError
+                           << " hit farther apart than their certified errors, " << diff.differing
+                           << " differ by more than 0.01");
+        if (std::string(name).find("mesh") == std::string::npos) {
+            // One patch over the same (u,v): the same regions, the same hits, up to rounding.
+            CHECK(diff.differing <= 2);
+            CHECK(diff.coverage == 0);
+        } else {
+            // A mesh's patches are subdivided on their own, so the final regions and the hits in
+            // them differ, within the hits' certified errors; a ray that grazes a crest or an edge
+            // within its tolerance may count as a hit in one render only.
+            CHECK(diff.coverage <= 48 * 36 / 100);
+            CHECK(diff.beyondError <= 2);
+            CHECK(diff.differing <= 48 * 36 / 20);
+        }
+    }
+}
+
+TEST_CASE("render: scenes/wavy_sheet.rib, a displaced bicubic patch mesh, renders", "[renderer][render][bicubic]") {
+    std::ifstream file(test::SourceDir() + "/scenes/wavy_sheet.rib");
+    std::stringstream text;
+    text << file.rdbuf();
+    affray::diag::Report error;
+    std::optional<SceneDesc> desc = ParseRib(text.str(), test::SourceDir() + "/scenes/wavy_sheet.rib", &error);
+    INFO(error);
+    REQUIRE(desc);
+    REQUIRE(desc->primitives.size() == 12);  // 4 x 3 b-spline patches
+    desc->camera.xres = 48, desc->camera.yres = 36;
+    desc->camera.xsamples = desc->camera.ysamples = 1;
+    PreparedScene prepared;
+    REQUIRE(PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error));
+    // Each patch's BVH box holds its displaced points (the patches' corners included).
+    test::Rng rng(5);
+    for (const Primitive& prim : prepared.primitives) {
+        CHECK(prim.base.kind == BaseSurface::Kind::BicubicPatch);
+        for (int k = 0; k < 40; ++k) {
+            const double u = k < 4 ? (k & 1) : rng.uniform(0, 1), v = k < 4 ? (k >> 1) : rng.uniform(0, 1);
+            const glm::dvec3 p = test::PointOnSurface(prim.bound, prim.base, u, v);
+            INFO("patch line " << prim.line << " at (" << u << ", " << v << ")");
+            CHECK(glm::all(glm::lessThanEqual(prim.box.lo, p)));
+            CHECK(glm::all(glm::lessThanEqual(p, prim.box.hi)));
+        }
+    }
+    RenderOptions options;
+    options.threads = 2;
+    ImageBuffer image;
+    RenderStats stats;
+    RenderImage(prepared, options, &image, &stats);
+    CHECK(Covered(image) > 48 * 36 / 4);
+    for (float x : image.rgba) CHECK(std::isfinite(x));
+    CHECK(stats.camera.depthLimitHits == 0);
 }

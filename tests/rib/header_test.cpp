@@ -344,7 +344,6 @@ FrameEnd
                           "t.rib:34: warning: 'ShadingRate' does not apply: affray shades every ray hit; ignored",
                           "t.rib:35: warning: 'ShadingInterpolation' does not apply: affray shades every ray hit; "
                           "ignored",
-                          "t.rib:43: warning: 'Basis' does not apply to affray; ignored",
                           "t.rib:47: warning: 'Sphere' parameter 'Cs_ramp' is not supported yet; ignored",
                       });
 }

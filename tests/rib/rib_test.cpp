@@ -278,7 +278,7 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
     CHECK(ErrorOf("WorldBegin\n\nPointsPolygons [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n") ==
           "t.rib:3: error: 'PointsPolygons' is not supported yet");
     CHECK(ErrorOf("WorldBegin\nPatch \"bicubic\" \"P\" [0 0 0]\nWorldEnd\n") ==
-          "t.rib:2: error: 'Patch \"bicubic\"' is not supported yet");
+          "t.rib:2: error: 'Patch \"bicubic\"' parameter 'P' expects 48 numbers, got 3");
     CHECK(ErrorOf("Skew 45 0 1 0 1 0 0\n") ==
           "t.rib:1: error: 'Skew' is not supported yet: skipping the shear would move geometry");
     CHECK(ErrorOf("WorldBegin\nMotionBegin [0 1]\n") ==
