@@ -1,8 +1,8 @@
 // rib/parser.h: the RIB reader's state machine, shared by its source files.
 // Private to the reader: use rib/rib.h. rib.cpp holds dispatch, the block structure, options
-// and transforms; attributes.cpp the shading attributes (with Sides and orientation) and lights;
-// geometry.cpp the primitives and coordinate systems; archive.cpp ReadArchive and retained
-// objects. The graphics state (CTM, color, surface, displacement, sides, orientation, the lights
+// and transforms; frames.cpp frames, world blocks and shadow passes; attributes.cpp the shading
+// attributes (with Sides and orientation) and lights; geometry.cpp the primitives and coordinate
+// systems; archive.cpp ReadArchive and retained objects. The graphics state (CTM, color, surface, displacement, sides, orientation, the lights
 // that are on) is saved by every Begin and restored by its End; the options by FrameBegin and
 // FrameEnd (FrameDefaults).
 #pragma once
@@ -159,6 +159,8 @@ class RibParser : private RibArgChecks {
     bool DoWorldEnd(const RibRequest& r);
     /// Why the current frame renders no image (a shadow or depth map pass), or "".
     std::string SkipReason() const;
+    /// Whether a Display of type `type` writes a shadow or depth map (another renderer's).
+    static bool ShadowMapTypeP(std::string_view type);
     /// MakeShadow, MakeTexture and the other Make* requests: their arguments checked, skipped with a note.
     bool DoMake(const RibRequest& r);
     bool DoAttributeBegin(const RibRequest& r) { return NoArgs(r) && Begin(r, Block::Attribute); }

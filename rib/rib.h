@@ -17,8 +17,9 @@
 // Frames: each world block is one frame, a SceneDesc. Options before the first FrameBegin are
 // defaults for every frame; options, lights and coordinate systems given inside a frame last
 // until its FrameEnd. A frame that only makes a shadow or depth map for a scanline renderer
-// (Display type "zfile", "shadow" or "deepshadow", or mode "z") is read, checked and marked
-// skipped, with a note; so are MakeShadow, MakeTexture and the other Make* requests.
+// (Display type "zfile", "shadow" or "deepshadow", or mode "z" to a file that is not OpenEXR)
+// is read, checked and marked skipped, with a note; so are MakeShadow, MakeTexture and the other
+// Make* requests.
 #pragma once
 
 #include <optional>

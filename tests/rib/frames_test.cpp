@@ -140,6 +140,7 @@ TEST_CASE("frames: shadow passes are recognised by Display type or a depth-only 
     CHECK(skipped(R"(Display "a.dsm" "deepshadow" "deepopacity")").empty() == false);
     CHECK(skipped(R"(Display "a.z" "zfile" "rgbz")") != "");
     CHECK(skipped(R"(Display "a.tif" "file" "z")") != "");
+    CHECK(skipped(R"(Display "a.exr" "openexr" "z")") == "");    // affray's depth image
     CHECK(skipped(R"(Display "a.exr" "file" "rgba,Z")") == "");  // the Z AOV is an image
     CHECK(skipped("") == "");
 
@@ -167,7 +168,7 @@ WorldEnd
               "3: 'MakeLatLongEnvironment' makes a texture map, which affray's shaders cannot read yet: skipped",
               "4: 'MakeShadow' makes a shadow map for a scanline renderer; affray traces shadows: skipped"});
     CHECK(ErrorOf("MakeShadow 1 2\nWorldBegin\nWorldEnd\n") ==
-          "1: 'MakeShadow' expects an image file name as its first argument");
+          "1: 'MakeShadow' expects an image file name as its first argument, found number 1");
 }
 
 TEST_CASE("frames: errors in the frame structure name their line", "[rib]") {
