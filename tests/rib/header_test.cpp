@@ -228,7 +228,7 @@ TEST_CASE("Options and attributes of other renderers warn once per name", "[rend
                       });
 }
 
-TEST_CASE("Illuminate turns lights on and off; an unknown handle warns", "[renderer][rib]") {
+TEST_CASE("Illuminate turns lights on and off, and an unknown handle warns", "[renderer][rib]") {
     Messages messages;
     std::optional<SceneDesc> scene = Parse(
         "WorldBegin\nLightSource \"pointlight\" \"k\"\nIlluminate \"k\" 1\nIlluminate 2 0\nIlluminate \"k\" "

@@ -44,7 +44,7 @@ std::array<float, 4> PixelOf(const std::string& path, int x, int y) {
 
 }  // namespace
 
-TEST_CASE("frames cli: every image frame renders to its Display; the shadow pass is skipped", "[tools]") {
+TEST_CASE("frames cli: every image frame renders to its Display and the shadow pass is skipped", "[tools]") {
     test::TempDir dir;
     const std::string scene = dir.Write("frames.rib", ThreeFrames(dir));
     test::CliOutput r = Render(scene);
@@ -66,7 +66,7 @@ TEST_CASE("frames cli: every image frame renders to its Display; the shadow pass
     CHECK(PixelOf(dir.Path("two.exr"), 0, 0)[3] == 0);
 }
 
-TEST_CASE("frames cli: -o numbers the frames; --frame renders one", "[tools]") {
+TEST_CASE("frames cli: -o numbers the frames and --frame renders one", "[tools]") {
     test::TempDir dir;
     const std::string scene = dir.Write("frames.rib", ThreeFrames(dir));
     test::CliOutput r = Render(scene + " -o " + dir.Path("out.exr") + " --png " + dir.Path("out.png"));
