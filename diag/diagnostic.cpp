@@ -117,6 +117,16 @@ void Report::note(Location where, std::string message) {
         m_list.push_back(std::move(n));
 }
 
+void Report::notice(Location where, std::string message) {
+    Diagnostic n{Severity::Note, std::move(where), std::move(message), {}};
+    for (const Diagnostic& e : m_list)
+        if (e.severity == Severity::Note && e.where.line == n.where.line && e.where.column == n.where.column &&
+            e.where.file == n.where.file && e.message == n.message)
+            return;
+    m_repeating = false;
+    m_list.push_back(std::move(n));
+}
+
 void Report::add(Diagnostic d) {
     if (d.severity == Severity::Note) {
         note(std::move(d.where), std::move(d.message));
@@ -145,7 +155,10 @@ void Report::add(const Report& other) {
         Diagnostic copy = d;
         std::vector<Diagnostic> notes = std::move(copy.notes);
         copy.notes.clear();
-        add(std::move(copy));
+        if (copy.severity == Severity::Note)
+            notice(std::move(copy.where), std::move(copy.message));  // a notice stays on its own
+        else
+            add(std::move(copy));
         for (Diagnostic& n : notes) note(std::move(n.where), std::move(n.message));
     }
     // Errors past the other's limit were counted there but not kept: count them here too.

@@ -64,6 +64,9 @@ class Report {
     }
     /// A note on the last error or warning (a note before any stands alone).
     void note(Location where, std::string message);
+    /// A note of its own, attached to no other diagnostic (something skipped on purpose). The
+    /// same notice at the same place again is kept once.
+    void notice(Location where, std::string message);
 
     /// Adds `d`. The same error or warning at the same place again (an unrolled loop body, an
     /// inlined function lowered once per call) is kept once, and so are the notes after it.

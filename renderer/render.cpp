@@ -5,11 +5,13 @@
 // the statistics are sums and maxima, which do not either.
 #include "renderer/render.h"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <thread>
 
 #include "compiler/shader_cache.h"
@@ -155,7 +157,7 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
         });
         return blocked;
     };
-    return ShadeSurface(prim.surface, prim.color, sp, scene.lights, occluded);
+    return ShadeSurface(prim.surface, prim.color, sp, scene.lightSets[prim.lightSet], occluded);
 }
 
 /// The largest magnitude a bound of P may reach for the intersector to measure it: the ray-frame
@@ -346,6 +348,21 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
     for (const std::string& dir : desc.shaderSearchPath)
         searchPath.push_back(std::filesystem::path(dir).is_absolute() ? dir : (ribDir / dir).string());
     searchPath.insert(searchPath.end(), shaderPaths.begin(), shaderPaths.end());
+    // The distinct light lists of the primitives (Illuminate), numbered in order of first use
+    // after set 0, every light.
+    std::map<std::vector<int>, int> lightSetKeys;
+    std::vector<int> allLights(desc.lights.size());
+    for (size_t i = 0; i < allLights.size(); ++i) allLights[i] = static_cast<int>(i);
+    lightSetKeys[allLights] = 0;
+    auto lightSetOf = [&](const PrimitiveDesc& p) {
+        if (!p.lights) return 0;
+        std::vector<int> key;
+        for (int light : *p.lights)
+            if (light >= 0 && static_cast<size_t>(light) < desc.lights.size()) key.push_back(light);
+        std::sort(key.begin(), key.end());
+        key.erase(std::unique(key.begin(), key.end()), key.end());
+        return lightSetKeys.emplace(key, static_cast<int>(lightSetKeys.size())).first->second;
+    };
     for (const PrimitiveDesc& patch : desc.primitives) {
         Primitive prim;
         switch (patch.shape) {
@@ -362,6 +379,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         prim.surface = patch.surface;
         prim.color = patch.color;
         prim.twoSided = patch.twoSided;
+        prim.lightSet = lightSetOf(patch);
         prim.line = patch.line;
         if (patch.displacement) {
             const ShaderRef& ref = *patch.displacement;
@@ -429,6 +447,9 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
     out->shadersCompiled = cache.misses();
     out->shadersReused = cache.hits();
     out->lights = desc.lights;
+    out->lightSets.resize(lightSetKeys.size());
+    for (const auto& [key, index] : lightSetKeys)
+        for (int light : key) out->lightSets[static_cast<size_t>(index)].push_back(desc.lights[size_t(light)]);
     if (out->lights.empty()) {
         // No lights: a key light from behind the camera, and a little ambient, so that something shows.
         glm::dmat4 cameraToWorld = glm::inverse(desc.camera.worldToCamera);
@@ -443,6 +464,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         ambient.kind = LightDesc::Kind::Ambient;
         ambient.intensity = 0.05;
         out->lights.push_back(ambient);
+        out->lightSets = {out->lights};  // for every primitive, whatever its Illuminate said
     }
     return true;
 }

@@ -78,7 +78,8 @@ struct Primitive {
     SurfaceDesc surface;
     glm::dvec3 color{1.0};
     bool twoSided = true;
-    int line = 0;  // the RIB request
+    int lightSet = 0;  // the lights that illuminate it: PreparedScene::lightSets[lightSet]
+    int line = 0;      // the RIB request
     /// The displaced surface's bound over its whole (u,v) domain, for the BVH; infinite if the
     /// bound overflows somewhere.
     Box box;
@@ -89,6 +90,9 @@ struct PreparedScene {
     std::vector<Primitive> primitives;
     std::unique_ptr<Bvh> bvh;       // over the primitives' boxes
     std::vector<LightDesc> lights;  // the scene's, or a default key light if it has none
+    /// The distinct sets of lights that illuminate primitives (Illuminate): each a subset of
+    /// `lights` in its order; [0] is all of them.
+    std::vector<std::vector<LightDesc>> lightSets;
     /// Shader instances compiled, and those that reused a compilation (same file bytes, same
     /// parameter values: compiler/shader_cache.h).
     int shadersCompiled = 0, shadersReused = 0;

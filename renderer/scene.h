@@ -75,6 +75,10 @@ struct PrimitiveDesc {
     glm::dmat4 objectToWorld{1.0};
     /// Sides: false for "Sides 1" (seen from behind, the surface is invisible).
     bool twoSided = true;
+    /// The lights that illuminate the primitive, as indices into SceneDesc::lights: the light list
+    /// of the graphics state at the request (RI 3.2: a light is on from its LightSource, Illuminate
+    /// turns it on or off, AttributeEnd restores the list). Unset: every light of the scene.
+    std::optional<std::vector<int>> lights;
     /// Whether RenderMan's normal is the negation of dPdu x dPdv computed in world space. A
     /// primitive's natural normal is dPdu x dPdv in object space carried to world as a normal
     /// (by the inverse transpose, which keeps a sphere's normals outward under any placement);
@@ -115,9 +119,16 @@ struct CameraDesc {
     double exposureGain = 1, exposureGamma = 1;  ///< Exposure: out = (gain * color)^(1/gamma)
 };
 
-/// Everything a render needs from one RIB file.
+/// Everything a render needs from one frame of a RIB file: the world block with the options in
+/// effect at its WorldBegin.
 struct SceneDesc {
     std::string path;  ///< The RIB file, for messages.
+    /// FrameBegin's number, if the world is inside a FrameBegin/FrameEnd block.
+    std::optional<int> frame;
+    int frameLine = 0;  ///< The line of the FrameBegin (or of the WorldBegin outside a frame).
+    /// Why the frame renders no image ("" when it does): a shadow or depth map pass of a scanline
+    /// renderer, whose maps affray does not need since it traces its shadows.
+    std::string skipped;
     CameraDesc camera;
     std::string displayName = "out.exr";
     std::string displayType = "file";  ///< Display "name" "type" "mode", kept for tools.
@@ -202,6 +213,11 @@ inline std::string ToString(const PrimitiveDesc& p) {
         text += range.str();
     }
     if (!p.twoSided) text += " sides=1";
+    if (p.lights) {
+        text += " lights=[";
+        for (size_t i = 0; i < p.lights->size(); ++i) text += (i ? " " : "") + std::to_string((*p.lights)[i]);
+        text += "]";
+    }
     if (p.flipNormal) text += " flipnormal";
     text += " color=" + ToString(p.color) + " " + ToString(p.surface);
     if (p.displacement) text += " displacement " + ToString(*p.displacement);
@@ -229,8 +245,11 @@ inline std::string ToString(const CameraDesc& c) {
 }
 
 inline std::string ToString(const SceneDesc& s) {
-    std::string text = "scene " + s.path + "\n  camera " + ToString(s.camera) + "\n  display \"" + s.displayName +
-                       "\" \"" + s.displayType + "\" \"" + s.displayMode + "\"\n";
+    std::string text = "scene " + s.path;
+    if (s.frame) text += " frame " + std::to_string(*s.frame);
+    if (!s.skipped.empty()) text += " skipped (" + s.skipped + ")";
+    text += "\n  camera " + ToString(s.camera) + "\n  display \"" + s.displayName + "\" \"" + s.displayType + "\" \"" +
+            s.displayMode + "\"\n";
     for (const LightDesc& l : s.lights) text += "  light " + ToString(l) + "\n";
     for (const auto& [name, m] : s.coordinateSystems) text += "  coordinatesystem " + name + " " + ToString(m) + "\n";
     for (const std::string& dir : s.shaderSearchPath) text += "  searchpath shader " + dir + "\n";

@@ -1,11 +1,39 @@
 // rib/attributes.cpp: RIB requests for attributes and lights (Color, Opacity, Surface,
-// Displacement, Attribute, Sides, ReverseOrientation, Orientation, Basis, LightSource). Rules shared with
-// rib.cpp are in rib_parser.h. Light positions are transformed with the CTM current at the request.
+// Displacement, Attribute, Sides, ReverseOrientation, Orientation, Basis, LightSource,
+// Illuminate). Rules shared with rib.cpp are in rib/parser.h. Light positions are transformed with
+// the CTM current at the request. A new light shader goes in kLightShaders (and LightParams if it
+// has new parameters).
+#include <algorithm>
 #include <cmath>
 
 #include "rib/parser.h"
 
 namespace affray::rib {
+
+namespace {
+
+// The light shaders affray knows: RI 3.2's standard ones, and the shadow-map versions of them
+// that scanline-era scenes use (shadowspot, shadowpoint, shadowdistant), which affray renders
+// as the standard light with traced shadows.
+struct LightShader {
+    std::string_view name;
+    LightDesc::Kind kind;
+    bool shadowMapped;  // reads shadow maps: its map parameters are accepted and ignored
+};
+constexpr LightShader kLightShaders[] = {
+    {"ambientlight", LightDesc::Kind::Ambient, false}, {"distantlight", LightDesc::Kind::Distant, false},
+    {"pointlight", LightDesc::Kind::Point, false},     {"spotlight", LightDesc::Kind::Spot, false},
+    {"shadowdistant", LightDesc::Kind::Distant, true}, {"shadowpoint", LightDesc::Kind::Point, true},
+    {"shadowspot", LightDesc::Kind::Spot, true},
+};
+
+// The parameters through which light shaders read shadow maps (shadowname; shadowpoint's six
+// cube faces) and filter them (samples, width, blur, bias...). affray traces its shadows instead.
+constexpr std::string_view kShadowMapParams[] = {
+    "shadowname", "sfpx",   "sfnx",   "sfpy", "sfny", "sfpz",       "sfnz",       "samples",
+    "width",      "swidth", "twidth", "blur", "bias", "shadowbias", "shadowblur", "shadowsamples"};
+
+}  // namespace
 
 bool RibParser::DoColor(const RibRequest& r) {
     double v[3];
@@ -189,20 +217,24 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     light.line = r.at.line;
     const RibArg& handle = r.args[1];
     light.handle = handle.StringsP() ? handle.strings[0] : FormatNumber(handle.numbers[0]);
-    if (name == "ambientlight")
-        light.kind = LightDesc::Kind::Ambient;
-    else if (name == "distantlight")
-        light.kind = LightDesc::Kind::Distant;
-    else if (name == "pointlight")
-        light.kind = LightDesc::Kind::Point;
-    else if (name == "spotlight")
-        light.kind = LightDesc::Kind::Spot;
-    else {
+    const LightShader* shader = nullptr;
+    for (const LightShader& known : kLightShaders)
+        if (known.name == name) shader = &known;
+    if (!shader) {
         Warn(r.at, "light source " + Quote(name) + " is not supported yet; ignored");
+        m_lightHandles[light.handle] = -1;  // Illuminate may still name it
         return true;
     }
+    light.kind = shader->kind;
+    const std::string standard = shader->kind == LightDesc::Kind::Distant ? "distantlight"
+                                 : shader->kind == LightDesc::Kind::Point ? "pointlight"
+                                                                          : "spotlight";
+    if (shader->shadowMapped)
+        Note(r.at, "light source " + Quote(name) + " renders as " + Quote(standard) +
+                       " with traced shadows; its shadow map parameters (shadowname, samples, width, blur, bias, "
+                       "...) are ignored");
     const std::string context = "'LightSource \"" + name + "\"'";
-    if (!LightParams(context, params, &light)) return false;
+    if (!LightParams(context, params, shader->shadowMapped, &light)) return false;
     if (light.kind == LightDesc::Kind::Spot && !CheckSpotlight(r, context, light)) return false;
     // from/to are points in the current space; before WorldBegin that is camera space, which is
     // mapped to world space once the camera transform is known.
@@ -210,15 +242,19 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     light.to = TransformPoint(m_state.ctm, light.to);
     bool aimed = light.kind == LightDesc::Kind::Distant || light.kind == LightDesc::Kind::Spot;
     if (aimed && light.from == light.to) return Fail(r.at, context + " 'from' and 'to' must differ");
+    // Its index: lights given before WorldBegin come first in the frame's list (DoWorldBegin).
+    const int index = static_cast<int>(m_scene.lights.size() + m_cameraLights.size());
     if (m_worldSeen)
         m_scene.lights.push_back(light);
     else
         m_cameraLights.push_back(light);
+    m_lightHandles[light.handle] = index;
+    m_state.lights.push_back(index);  // on from its declaration, in the current attribute block
     return true;
 }
 
-// Illuminate handle on|off: every light shines on every surface, so turning one on changes
-// nothing; turning one off for some surfaces (light linking) is not supported and warns.
+// Illuminate handle on|off: turns the light on or off in the current attributes, so for the
+// primitives that follow until the enclosing AttributeEnd restores the list (RI 3.2).
 bool RibParser::DoIlluminate(const RibRequest& r) {
     if (r.args.size() != 2 || r.args[0].isArray || r.args[1].isArray || !r.args[1].NumericP())
         return Fail(r.at, "'Illuminate' expects a light handle and 0 or 1");
@@ -226,18 +262,37 @@ bool RibParser::DoIlluminate(const RibRequest& r) {
     const std::string name = handle.StringsP() ? handle.strings[0] : FormatNumber(handle.numbers[0]);
     const double on = r.args[1].numbers[0];
     if (on != 0 && on != 1) return Fail(r.args[1].at, "'Illuminate' expects 0 or 1, got " + FormatNumber(on));
-    if (on == 0) Warn(r.at, "'Illuminate' cannot turn a light off yet: every light lights every surface");
+    auto it = m_lightHandles.find(name);
+    if (it == m_lightHandles.end()) {
+        Warn(r.args[0].at, "'Illuminate': no light source has the handle " + Quote(name) + "; ignored");
+        return true;
+    }
+    if (it->second < 0) return true;  // a light shader affray skipped
+    std::vector<int>& lights = m_state.lights;
+    auto at = std::lower_bound(lights.begin(), lights.end(), it->second);
+    const bool isOn = at != lights.end() && *at == it->second;
+    if (on == 1 && !isOn) lights.insert(at, it->second);
+    if (on == 0 && isOn) lights.erase(at);
     return true;
 }
 
 // The parameters of the RI 3.2 light shaders; each light takes only its own.
-bool RibParser::LightParams(const std::string& context, const std::vector<RibParam>& params, LightDesc* light) {
+// A shadow-map light shader, or a standard one given "shadowname" (some renderers' standard lights
+// read one), takes its map parameters, which are ignored with one note.
+bool RibParser::LightParams(const std::string& context, const std::vector<RibParam>& params, bool shadowMapped,
+                            LightDesc* light) {
     using Kind = LightDesc::Kind;
     const bool spot = light->kind == Kind::Spot;
     for (const RibParam& p : params) {
         const std::string& n = p.value.name;
+        const bool mapParam =
+            std::find(std::begin(kShadowMapParams), std::end(kShadowMapParams), n) != std::end(kShadowMapParams);
         bool ok = true;
-        if (n == "intensity")
+        if (mapParam && shadowMapped)
+            continue;  // noted once at the request
+        else if (n == "shadowname")
+            Note(p.at, context + " parameter 'shadowname' names a shadow map; affray traces its shadows: ignored");
+        else if (n == "intensity")
             ok = ParamNumbers(p, context, 1, &light->intensity);
         else if (n == "lightcolor")
             ok = ParamVector(p, context, &light->color);

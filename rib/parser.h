@@ -1,9 +1,10 @@
 // rib/parser.h: the RIB reader's state machine, shared by its source files.
 // Private to the reader: use rib/rib.h. rib.cpp holds dispatch, the block structure, options
-// and transforms; attributes.cpp the shading attributes (with Sides and orientation) and lights;
-// geometry.cpp the primitives and coordinate systems; archive.cpp ReadArchive and retained
-// objects. The graphics state (CTM, color, surface, displacement, sides, orientation, basis) is saved by
-// every Begin and restored by its End.
+// and transforms; frames.cpp frames, world blocks and shadow passes; attributes.cpp the shading
+// attributes (with Sides and orientation) and lights; geometry.cpp the primitives and coordinate
+// systems; archive.cpp ReadArchive and retained objects. The graphics state (CTM, color, surface,
+// displacement, sides, orientation, basis, the lights that are on) is saved by every Begin and
+// restored by its End; the options by FrameBegin and FrameEnd (FrameDefaults).
 #pragma once
 
 #include <array>
@@ -33,9 +34,10 @@ class RibParser : private RibArgChecks {
         m_scene.camera.perspective = false;  // RI default without a Projection request
     }
 
-    /// Parses everything; on failure reports the first error and returns nothing. Warnings are
-    /// reported as they are found, each distinct one once.
-    std::optional<SceneDesc> Run();
+    /// Parses everything into one scene per world block (see rib.h); on failure reports the first
+    /// error and returns nothing. Warnings and notes are reported as they are found, each distinct
+    /// one once.
+    std::optional<std::vector<SceneDesc>> Run();
 
   private:
     struct State {
@@ -50,6 +52,18 @@ class RibParser : private RibArgChecks {
         bool insideOut = false;
         /// Basis: the bicubic patches' u and v bases with their steps (RI default bezier 3).
         CubicBasis uBasis = CubicBasis::Bezier(), vBasis = CubicBasis::Bezier();
+        /// The lights that are on (Illuminate), as sorted indices into the frame's lights: every
+        /// light is on from its LightSource.
+        std::vector<int> lights;
+    };
+    /// What FrameEnd restores: the options and camera-space lights and coordinate systems in
+    /// effect at FrameBegin (the graphics state is restored by the block itself).
+    struct FrameDefaults {
+        SceneDesc scene;
+        std::vector<std::string> archiveSearchPath;
+        std::vector<LightDesc> cameraLights;
+        std::map<std::string, glm::dmat4> cameraCoordinateSystems;
+        std::map<std::string, int> lightHandles;
     };
     enum class Block { Frame, World, Attribute, Transform };
     struct OpenBlock {
@@ -82,6 +96,8 @@ class RibParser : private RibArgChecks {
     /// The path of file `file` of m_sources, for ShaderRef::file ("" for the scene itself).
     std::string FileOf(const RibPos& at) const { return at.file == 0 ? std::string() : m_sources[at.file].path; }
     void Warn(RibPos at, const std::string& message);
+    /// A note of its own (a request affray skips on purpose), each distinct one once.
+    void Note(RibPos at, const std::string& message);
     /// `at` as a diagnostic location, with its source line.
     diag::Location Where(RibPos at) const;
     /// "line 3" for `at`, with " of FILE" if it is in another file than `from`.
@@ -141,9 +157,15 @@ class RibParser : private RibArgChecks {
     /// An object handle argument (a number or a string) as a key; false if there is none.
     bool ObjectHandle(const RibRequest& r, std::string* out);
     bool DoFrameBegin(const RibRequest& r);
-    bool DoFrameEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::Frame); }
+    bool DoFrameEnd(const RibRequest& r);
     bool DoWorldBegin(const RibRequest& r);
-    bool DoWorldEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::World); }
+    bool DoWorldEnd(const RibRequest& r);
+    /// Why the current frame renders no image (a shadow or depth map pass), or "".
+    std::string SkipReason() const;
+    /// Whether a Display of type `type` writes a shadow or depth map (another renderer's).
+    static bool ShadowMapTypeP(std::string_view type);
+    /// MakeShadow, MakeTexture and the other Make* requests: their arguments checked, skipped with a note.
+    bool DoMake(const RibRequest& r);
     bool DoAttributeBegin(const RibRequest& r) { return NoArgs(r) && Begin(r, Block::Attribute); }
     bool DoAttributeEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::Attribute); }
     bool DoTransformBegin(const RibRequest& r) { return NoArgs(r) && Begin(r, Block::Transform); }
@@ -164,7 +186,10 @@ class RibParser : private RibArgChecks {
     bool DoDisplacement(const RibRequest& r);
     bool DoLightSource(const RibRequest& r);
     bool DoIlluminate(const RibRequest& r);
-    bool LightParams(const std::string& context, const std::vector<RibParam>& params, LightDesc* light);
+    /// The parameters of a light shader; `shadowMapped` accepts (and ignores) those of the
+    /// shadow-map light shaders too.
+    bool LightParams(const std::string& context, const std::vector<RibParam>& params, bool shadowMapped,
+                     LightDesc* light);
     bool CheckSpotlight(const RibRequest& r, const std::string& context, const LightDesc& light);
     bool DoCoordinateSystem(const RibRequest& r);
     bool DoCoordSysTransform(const RibRequest& r);
@@ -207,7 +232,11 @@ class RibParser : private RibArgChecks {
     SceneDesc m_scene;
     State m_state;
     std::vector<OpenBlock> m_blocks;
-    bool m_worldSeen = false;
+    std::vector<SceneDesc> m_frames;               // one per world block ended
+    std::optional<FrameDefaults> m_frameDefaults;  // inside FrameBegin ... FrameEnd
+    std::map<std::string, int> m_lightHandles;     // light handle -> index into the frame's lights; -1: ignored
+    size_t m_primitivesStamped = 0;                // primitives given their lights (see Dispatch)
+    bool m_worldSeen = false;                      // in the current frame (or the file, outside frames)
     bool m_worldEnded = false;
     std::vector<LightDesc> m_cameraLights;  // lights given before WorldBegin, in camera space
     // CoordinateSystem given before WorldBegin: object -> camera, mapped to world at WorldBegin.

@@ -5,6 +5,7 @@
 // attributes.cpp, geometry in geometry.cpp, archives and objects in archive.cpp), list it in
 // Dispatch(), and take it out of kNoEffect / kIgnored / kUnsupported. Handlers return false after
 // Fail(); the first error ends the parse. Run() reads the innermost open file (see archive.cpp).
+// Frames and world blocks, and the requests that only serve shadow passes, are in frames.cpp.
 // Longer than most files: the options are many small handlers that share the placement rules.
 //
 // Transform convention: RenderMan premultiplies row vectors, so "concatenate T" is, in GLM's
@@ -31,11 +32,10 @@ namespace {
 
 // clang-format off
 // RI 3.2 requests that tune what affray has no counterpart for (level of detail, dicing, bounds,
-// texture making, quantizing an image affray writes as floats, the shutter of motion affray
-// refuses): accepted with one warning per name.
+// quantizing an image affray writes as floats, the shutter of motion affray refuses): accepted
+// with one warning per name. The Make* requests are skipped with a note (DoMake).
 constexpr std::string_view kNoEffect[] = {
     "Begin", "Bound", "Detail", "DetailRange", "End", "ErrorHandler", "GeometricApproximation",
-    "MakeBump", "MakeCubeFaceEnvironment", "MakeLatLongEnvironment", "MakeShadow", "MakeTexture",
     "PixelVariance", "Quantize", "RelativeDetail", "Shutter", "TransformPoints",
 };
 
@@ -55,6 +55,10 @@ constexpr std::string_view kUnsupported[] = {
     "SolidEnd", "SubdivisionMesh",
 };
 // clang-format on
+
+// RI 3.2 requests that make texture, environment and shadow maps from images (DoMake).
+constexpr std::string_view kMakeRequests[] = {"MakeBump", "MakeCubeFaceEnvironment", "MakeLatLongEnvironment",
+                                              "MakeShadow", "MakeTexture"};
 
 constexpr int kMaxResolution = 65536;
 constexpr int kMaxPixelSamples = 64;  // per axis: 4096 rays a pixel is already far past useful
@@ -92,7 +96,7 @@ void StampFile(RibRequest* r, int file) {
 
 }  // namespace
 
-std::optional<SceneDesc> RibParser::Run() {
+std::optional<std::vector<SceneDesc>> RibParser::Run() {
     RibRequest request;
     std::string message;
     RibPos at;
@@ -122,7 +126,7 @@ std::optional<SceneDesc> RibParser::Run() {
         ok =
             Fail(open.at, Quote(BlockName(open.kind, false)) + " has no matching " + Quote(BlockName(open.kind, true)));
     }
-    if (ok && !m_worldSeen)
+    if (ok && m_frames.empty())
         ok = Fail(m_readers.front().reader.LastPos(), "no 'WorldBegin': the file describes no scene");
     if (!ok) {
         if (m_report) {
@@ -131,7 +135,7 @@ std::optional<SceneDesc> RibParser::Run() {
         }
         return std::nullopt;
     }
-    return std::move(m_scene);
+    return std::move(m_frames);
 }
 
 bool RibParser::Dispatch(const RibRequest& r) {
@@ -194,7 +198,16 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"ObjectInstance", &RibParser::DoObjectInstance},
         {"CoordSysTransform", &RibParser::DoCoordSysTransform},
     };
-    if (auto it = kHandlers.find(r.name); it != kHandlers.end()) return (this->*(it->second))(r);
+    if (auto it = kHandlers.find(r.name); it != kHandlers.end()) {
+        if (!(this->*(it->second))(r)) return false;
+        // Every primitive takes the lights on at its request (RI 3.2: the light list is an
+        // attribute). Stamped here, for every geometry request alike; an ObjectInstance's
+        // primitives were stamped by the replayed requests, with the state of the instance.
+        for (; m_primitivesStamped < m_scene.primitives.size(); ++m_primitivesStamped)
+            m_scene.primitives[m_primitivesStamped].lights = m_state.lights;
+        return true;
+    }
+    if (ContainsP(std::begin(kMakeRequests), std::end(kMakeRequests), r.name)) return DoMake(r);
     if (ContainsP(std::begin(kNoEffect), std::end(kNoEffect), r.name)) {
         Warn(r.at, Quote(r.name) + " does not apply to affray; ignored");
         return true;
@@ -211,6 +224,11 @@ bool RibParser::Dispatch(const RibRequest& r) {
 void RibParser::Warn(RibPos at, const std::string& message) {
     if (!m_warned.insert(message).second) return;
     if (m_report) m_report->warning(Where(at), message);
+}
+
+void RibParser::Note(RibPos at, const std::string& message) {
+    if (!m_warned.insert(message).second) return;
+    if (m_report) m_report->notice(Where(at), message);
 }
 
 diag::Location RibParser::Where(RibPos at) const {
@@ -351,9 +369,12 @@ bool RibParser::DoDisplay(const RibRequest& r) {
         return true;
     }
     if (name.empty()) return Fail(r.args[0].at, "'Display' name must not be empty");
-    // The mode is checked here so that a typo fails before a long render, not after it.
+    // The mode is checked here so that a typo fails before a long render, not after it; a shadow
+    // map's mode (another renderer's) is not, since that frame is skipped.
+    const std::string& type = r.args[1].strings[0];
     const std::string& mode = r.args[2].strings[0];
-    for (size_t begin = 0;;) {
+    const bool shadowMap = ShadowMapTypeP(type);
+    for (size_t begin = 0; !shadowMap;) {
         size_t end = std::min(mode.find(',', begin), mode.size());
         std::string_view group = std::string_view(mode).substr(begin, end - begin);
         if (!ContainsP(std::begin(kDisplayGroups), std::end(kDisplayGroups), group))
@@ -365,10 +386,9 @@ bool RibParser::DoDisplay(const RibRequest& r) {
         begin = end + 1;
     }
     m_scene.displayName = name;
-    m_scene.displayType = r.args[1].strings[0];
+    m_scene.displayType = type;
     m_scene.displayMode = mode;
-    const std::string& type = m_scene.displayType;
-    if (type != "file" && type != "openexr" && type != "exr")
+    if (type != "file" && type != "openexr" && type != "exr" && !shadowMap)
         Warn(r.at, "display type " + Quote(type) + " is not supported; writing an OpenEXR file");
     return true;
 }
@@ -462,46 +482,6 @@ bool RibParser::DoExposure(const RibRequest& r) {
     return true;
 }
 
-// ---- blocks ----
-
-bool RibParser::DoFrameBegin(const RibRequest& r) {
-    if (r.args.size() > 1 || (r.args.size() == 1 && (r.args[0].isArray || !r.args[0].NumericP())))
-        return Fail(r.at, "'FrameBegin' expects one frame number");
-    if (!m_blocks.empty())
-        return Fail(r.at, "'FrameBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) + " on line " +
-                              std::to_string(m_blocks.back().at.line));
-    if (m_worldSeen) return Fail(r.at, "a second frame is not supported yet");
-    return Begin(r, Block::Frame);
-}
-
-bool RibParser::DoWorldBegin(const RibRequest& r) {
-    if (!NoArgs(r)) return false;
-    if (m_worldSeen) return Fail(r.at, "a second 'WorldBegin' (several frames) is not supported yet");
-    if (!m_blocks.empty() && m_blocks.back().kind != Block::Frame)
-        return Fail(r.at, "'WorldBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) + " on line " +
-                              std::to_string(m_blocks.back().at.line));
-    // The CTM now is world -> camera; it must be invertible for rays to be generated.
-    glm::dmat4 worldToCamera = m_state.ctm;
-    double det = glm::determinant(worldToCamera);
-    glm::dmat4 cameraToWorld = glm::inverse(worldToCamera);
-    if (!(std::fabs(det) > 0) || !std::isfinite(det) || !FiniteP(cameraToWorld))
-        return Fail(r.at, "the camera transform (the transform at 'WorldBegin') is singular");
-    m_scene.camera.worldToCamera = worldToCamera;
-    for (LightDesc light : m_cameraLights) {
-        light.from = TransformPoint(cameraToWorld, light.from);
-        light.to = TransformPoint(cameraToWorld, light.to);
-        m_scene.lights.push_back(light);
-    }
-    m_cameraLights.clear();
-    for (const auto& [name, objectToCamera] : m_cameraCoordinateSystems)
-        m_scene.coordinateSystems[name] = cameraToWorld * objectToCamera;
-    m_cameraCoordinateSystems.clear();
-    m_worldSeen = true;
-    Begin(r, Block::World);
-    m_state.ctm = glm::dmat4(1.0);
-    return true;
-}
-
 // ---- transforms ----
 
 bool RibParser::DoTransform(const RibRequest& r) {
@@ -533,7 +513,8 @@ bool RibParser::DoScale(const RibRequest& r) {
     return Numbers(r, 3, "sx sy sz", v) && SetCtm(r, glm::scale(m_state.ctm, glm::dvec3(v[0], v[1], v[2])));
 }
 
-std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& pathForMessages, diag::Report* report) {
+std::optional<std::vector<SceneDesc>> ParseRibFrames(std::string_view text, const std::string& pathForMessages,
+                                                     diag::Report* report) {
     if (text.size() >= 2 && static_cast<unsigned char>(text[0]) == 0x1f &&
         static_cast<unsigned char>(text[1]) == 0x8b) {
         if (report) report->error({pathForMessages, 1, 1, {}}, "gzip-compressed RIB is not supported yet");
@@ -543,8 +524,8 @@ std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& path
     return parser.Run();
 }
 
-std::optional<SceneDesc> ReadRib(const std::string& path, diag::Report* report) {
-    auto fail = [&](const std::string& reason) -> std::optional<SceneDesc> {
+std::optional<std::vector<SceneDesc>> ReadRibFrames(const std::string& path, diag::Report* report) {
+    auto fail = [&](const std::string& reason) -> std::optional<std::vector<SceneDesc>> {
         if (report) report->error({path}, "cannot read file: " + reason);
         return std::nullopt;
     };
@@ -555,7 +536,28 @@ std::optional<SceneDesc> ReadRib(const std::string& path, diag::Report* report) 
     if (!in) return fail(errno ? std::generic_category().message(errno) : "cannot open");
     std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     if (in.bad()) return fail("read error");
-    return ParseRib(text, path, report);
+    return ParseRibFrames(text, path, report);
+}
+
+namespace {
+
+std::optional<SceneDesc> FirstImage(std::optional<std::vector<SceneDesc>> frames, const std::string& path,
+                                    diag::Report* report) {
+    if (!frames) return std::nullopt;
+    for (SceneDesc& frame : *frames)
+        if (frame.skipped.empty()) return std::move(frame);
+    if (report) report->error({path}, "no frame of the file renders an image");
+    return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& pathForMessages, diag::Report* report) {
+    return FirstImage(ParseRibFrames(text, pathForMessages, report), pathForMessages, report);
+}
+
+std::optional<SceneDesc> ReadRib(const std::string& path, diag::Report* report) {
+    return FirstImage(ReadRibFrames(path, report), path, report);
 }
 
 }  // namespace affray::rib

@@ -13,6 +13,13 @@
 // would change the geometry (other primitives, Skew, Perspective, MotionBegin, ...), which is an
 // error. Problems are reported through diag/diagnostic.h, at the file (the scene or an archive),
 // line and column of the token.
+//
+// Frames: each world block is one frame, a SceneDesc. Options before the first FrameBegin are
+// defaults for every frame; options, lights and coordinate systems given inside a frame last
+// until its FrameEnd. A frame that only makes a shadow or depth map for a scanline renderer
+// (Display type "zfile", "shadow" or "deepshadow", or mode "z" to a file that is not OpenEXR)
+// is read, checked and marked skipped, with a note; so are MakeShadow, MakeTexture and the other
+// Make* requests.
 #pragma once
 
 #include <optional>
@@ -27,13 +34,22 @@ namespace affray::rib {
 
 using renderer::SceneDesc;
 
-/// Parses RIB text. On success returns the scene (with path = pathForMessages), with any warnings
-/// in *report (may be null). On failure returns nullopt with the first error in *report; parsing
-/// stops there. Never throws on bad input.
+/// Parses RIB text into its frames, in file order (one for a file without FrameBegin), skipped
+/// frames included (SceneDesc::skipped says why; their primitives are dropped). Each scene has
+/// path = pathForMessages. Warnings and notes go to *report (may be null). On failure returns
+/// nullopt with the first error in *report; parsing stops there. Never throws on bad input.
+std::optional<std::vector<SceneDesc>> ParseRibFrames(std::string_view text, const std::string& pathForMessages,
+                                                     diag::Report* report);
+
+/// Reads and parses the RIB file at `path`, as ParseRibFrames. A file that cannot be read gives an
+/// error at `path`: "cannot read file: reason".
+std::optional<std::vector<SceneDesc>> ReadRibFrames(const std::string& path, diag::Report* report);
+
+/// ParseRibFrames for callers that render one image: the first frame that is not skipped. A file
+/// whose every frame is skipped is an error at `pathForMessages`.
 std::optional<SceneDesc> ParseRib(std::string_view text, const std::string& pathForMessages, diag::Report* report);
 
-/// Reads and parses the RIB file at `path`, as ParseRib. A file that cannot be read gives an
-/// error at `path`: "cannot read file: reason".
+/// ReadRibFrames's first frame that is not skipped, as ParseRib.
 std::optional<SceneDesc> ReadRib(const std::string& path, diag::Report* report);
 
 }  // namespace affray::rib

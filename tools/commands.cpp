@@ -1,6 +1,7 @@
 // tools/commands.cpp: what `affray compile`, `affray eval` and `affray render` do.
 #include "tools/commands.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -146,21 +147,37 @@ int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
     return diag::kExitSuccess;
 }
 
-int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
+std::string FrameOutputPath(const std::string& path, int frame) {
+    char number[16];
+    std::snprintf(number, sizeof number, ".%04d", frame);
+    const size_t slash = path.find_last_of('/');
+    const size_t dot = path.find_last_of('.');
+    const bool hasExtension = dot != std::string::npos && (slash == std::string::npos || dot > slash + 1);
+    if (!hasExtension) return path + number;
+    return path.substr(0, dot) + number + path.substr(dot);
+}
+
+namespace {
+
+/// "frame 2 (line 9)", or "the scene" for a world outside frames.
+std::string FrameName(const renderer::SceneDesc& frame) {
+    if (!frame.frame) return "the scene";
+    return "frame " + std::to_string(*frame.frame) + " (line " + std::to_string(frame.frameLine) + ")";
+}
+
+/// Renders one frame to `outputPath` (and `pngPath` if not empty); prints the frame's shader
+/// diagnostics and, with --stats, its figures.
+int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::string& outputPath,
+                const std::string& pngPath, FILE* out, FILE* err) {
     diag::Report report;
-    std::optional<renderer::SceneDesc> scene = rib::ReadRib(cmd.scenePath, &report);
-    if (!scene) {
-        Print(report, err);
-        return diag::kExitBadInput;
-    }
     std::filesystem::path ribDir = std::filesystem::path(cmd.scenePath).parent_path();
     if (ribDir.empty()) ribDir = ".";
     std::vector<std::string> shaderPaths = {ribDir.string(), (ribDir / ".." / "shaders").string(), "shaders"};
-    if (cmd.crop) scene->camera.cropWindow = glm::dvec4((*cmd.crop)[0], (*cmd.crop)[1], (*cmd.crop)[2], (*cmd.crop)[3]);
-    if (cmd.samples > 0) scene->camera.xsamples = scene->camera.ysamples = cmd.samples;
+    if (cmd.crop) scene.camera.cropWindow = glm::dvec4((*cmd.crop)[0], (*cmd.crop)[1], (*cmd.crop)[2], (*cmd.crop)[3]);
+    if (cmd.samples > 0) scene.camera.xsamples = scene.camera.ysamples = cmd.samples;
     renderer::PreparedScene prepared;
-    const bool preparedOk = renderer::PrepareScene(*scene, shaderPaths, cmd.preprocess, &prepared, &report);
-    // The scene's and the shaders' warnings are printed before the render starts.
+    const bool preparedOk = renderer::PrepareScene(scene, shaderPaths, cmd.preprocess, &prepared, &report);
+    // The shaders' warnings are printed before the render starts.
     Print(report, err);
     if (!preparedOk) return diag::kExitBadInput;
     renderer::RenderOptions options;
@@ -176,10 +193,9 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     renderer::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
-    std::string outputPath = cmd.outputPath.empty() ? scene->displayName : cmd.outputPath;
     diag::Report output;
     if (!renderer::WriteExr(outputPath, image, &output) ||
-        (!cmd.pngPath.empty() && !renderer::WritePngPreview(cmd.pngPath, image, &output))) {
+        (!pngPath.empty() && !renderer::WritePngPreview(pngPath, image, &output))) {
         Print(output, err);
         return diag::kExitOutput;
     }
@@ -187,6 +203,7 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
         // The render's figures, then each shader instance's instruction counts.
         std::string json = stats.ToJson();
         json.pop_back();
+        if (scene.frame) json.insert(1, "\"frame\":" + std::to_string(*scene.frame) + ",");
         json += ",\"shader_compilations\":" + std::to_string(prepared.shadersCompiled) +
                 ",\"shader_compilations_reused\":" + std::to_string(prepared.shadersReused) + ",\"shaders\":[";
         bool first = true;
@@ -199,6 +216,71 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
             first = false;
         }
         std::fprintf(out, "%s]}\n", json.c_str());
+        std::fflush(out);
+    }
+    return diag::kExitSuccess;
+}
+
+}  // namespace
+
+int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
+    diag::Report report;
+    std::optional<std::vector<renderer::SceneDesc>> frames = rib::ReadRibFrames(cmd.scenePath, &report);
+    // The scene's warnings and notes, before anything renders.
+    Print(report, err);
+    if (!frames) return diag::kExitBadInput;
+
+    // The frames to render: every one, or those --frame names; skipped ones (shadow passes) not.
+    std::vector<const renderer::SceneDesc*> chosen;
+    for (const renderer::SceneDesc& frame : *frames)
+        if (!cmd.frame || frame.frame == cmd.frame) chosen.push_back(&frame);
+    if (chosen.empty()) {
+        std::string known;
+        for (const renderer::SceneDesc& frame : *frames)
+            if (frame.frame)
+                known += (known.empty() ? "" : ", ") + std::to_string(*frame.frame) + " on line " +
+                         std::to_string(frame.frameLine);
+        const std::string message = "--frame " + std::to_string(*cmd.frame) + ": the scene has no frame " +
+                                    std::to_string(*cmd.frame) +
+                                    (known.empty() ? " (it has no FrameBegin)" : " (its frames: " + known + ")");
+        std::fputs(diag::Format({diag::Severity::Error, {cmd.scenePath}, message, {}}).c_str(), err);
+        return diag::kExitUsage;
+    }
+    std::erase_if(chosen, [](const renderer::SceneDesc* frame) { return !frame->skipped.empty(); });
+    if (chosen.empty()) {
+        const std::string message = cmd.frame ? "frame " + std::to_string(*cmd.frame) + " renders no image"
+                                              : "no frame of the scene renders an image";
+        std::fputs(diag::Format({diag::Severity::Note, {cmd.scenePath}, message + ": nothing written", {}}).c_str(),
+                   err);
+        return diag::kExitSuccess;
+    }
+
+    // Each frame's files: -o or its Display name, numbered when several frames would share it.
+    std::vector<std::string> outputs, pngs;
+    for (const renderer::SceneDesc* frame : chosen) {
+        auto base = [&](const renderer::SceneDesc* f) {
+            return cmd.outputPath.empty() ? f->displayName : cmd.outputPath;
+        };
+        const bool shared = std::count_if(chosen.begin(), chosen.end(),
+                                          [&](const renderer::SceneDesc* f) { return base(f) == base(frame); }) > 1;
+        const int number = frame->frame.value_or(0);
+        outputs.push_back(shared ? FrameOutputPath(base(frame), number) : base(frame));
+        pngs.push_back(cmd.pngPath.empty() || chosen.size() == 1 ? cmd.pngPath : FrameOutputPath(cmd.pngPath, number));
+    }
+    for (size_t i = 0; i < chosen.size(); ++i)
+        for (size_t j = 0; j < i; ++j)
+            if (outputs[i] == outputs[j] || (!pngs[i].empty() && pngs[i] == pngs[j])) {
+                const std::string message = FrameName(*chosen[j]) + " and " + FrameName(*chosen[i]) +
+                                            " would both write " + (outputs[i] == outputs[j] ? outputs[i] : pngs[i]) +
+                                            "; give the frames different numbers or Display names";
+                std::fputs(diag::Format({diag::Severity::Error, {cmd.scenePath}, message, {}}).c_str(), err);
+                return diag::kExitBadInput;
+            }
+
+    // Frame by frame: an error stops the run, and the frames written before it stay complete.
+    for (size_t i = 0; i < chosen.size(); ++i) {
+        const int status = RenderFrame(cmd, *chosen[i], outputs[i], pngs[i], out, err);
+        if (status != diag::kExitSuccess) return status;
     }
     return diag::kExitSuccess;
 }

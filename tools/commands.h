@@ -50,6 +50,7 @@ struct RenderCommand {
     uint64_t regionBudget = renderer::kDefaultRegionBudget;
     size_t cacheBytes = renderer::kDefaultCacheBytes;
     int rayGroupPixels = renderer::kDefaultRayGroupPixels;
+    std::optional<int> frame;  // --frame N: only the frames numbered N (FrameBegin N)
 };
 
 struct DiffCommand {
@@ -60,7 +61,14 @@ int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err);
 /// Prints {"pixels":..,"rmse":..,"max":..} over the RGB channels of `test` against `reference`.
 int RunDiff(const DiffCommand& cmd, FILE* out, FILE* err);
 int RunEval(const EvalCommand& cmd, FILE* out, FILE* err);
+/// Renders every frame of the scene that is not skipped (or those --frame picks), each to its
+/// Display name or to -o; when several frames would write one file name, each frame's number is
+/// inserted before the extension (FrameOutputPath).
 int RunRender(const RenderCommand& cmd, FILE* out, FILE* err);
+
+/// `path` with frame number `frame` inserted before its extension, as 4 digits at least:
+/// ("out.exr", 7) -> "out.0007.exr"; ("dir.v2/out", 7) -> "dir.v2/out.0007".
+std::string FrameOutputPath(const std::string& path, int frame);
 
 /// Prints `report` to `err` in the one format.
 void Print(const diag::Report& report, FILE* err);

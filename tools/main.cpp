@@ -22,7 +22,7 @@ const char* const kUsage =
     "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS] [-I DIR] [-D NAME[=VALUE]]\n"
     "                [--bounds affine|reduced|interval] [--max-depth N] [--stats] [--png PREVIEW.png] [--quiet]\n"
     "                [--crop XMIN,XMAX,YMIN,YMAX] [--samples N] [--region-budget N] [--cache-mb MB]\n"
-    "                [--ray-groups PIXELS]\n"
+    "                [--ray-groups PIXELS] [--frame N]\n"
     "  affray compile SHADER.sl [-o OUT.afb] [--disasm] [--stats] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
     "              [--mode scalar|affine|interval] [-I DIR] [-D NAME[=VALUE]]\n"
@@ -206,6 +206,8 @@ int Render(Args& args) {
             cmd.samples = ParseInt(args.Value(a), a, 1, 64);
         else if (a == "--region-budget")
             cmd.regionBudget = ParseInt(args.Value(a), a, 1, 1 << 30);
+        else if (a == "--frame")
+            cmd.frame = ParseInt(args.Value(a), a, -1000000000, 1000000000);
         else if (a == "--ray-groups")
             cmd.rayGroupPixels = ParseInt(args.Value(a), a, 0, 256);
         else if (a == "--cache-mb") {

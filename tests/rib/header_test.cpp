@@ -228,16 +228,16 @@ TEST_CASE("Options and attributes of other renderers warn once per name", "[rend
                       });
 }
 
-TEST_CASE("Illuminate turns lights on, and turning one off warns", "[renderer][rib]") {
+TEST_CASE("Illuminate turns lights on and off, and an unknown handle warns", "[renderer][rib]") {
     Messages messages;
     std::optional<SceneDesc> scene = Parse(
         "WorldBegin\nLightSource \"pointlight\" \"k\"\nIlluminate \"k\" 1\nIlluminate 2 0\nIlluminate \"k\" "
-        "0\nWorldEnd\n",
+        "0\nSphere 1 -1 1 360\nWorldEnd\n",
         &messages);
     REQUIRE(scene);
     CHECK(scene->lights.size() == 1);
-    CHECK(messages ==
-          Messages{"t.rib:4: warning: 'Illuminate' cannot turn a light off yet: every light lights every surface"});
+    CHECK(scene->primitives.at(0).lights == std::vector<int>{});  // (tests/rib/frames_test.cpp has more)
+    CHECK(messages == Messages{"t.rib:4: warning: 'Illuminate': no light source has the handle '2'; ignored"});
     CHECK(ErrorsOf("WorldBegin\nIlluminate \"k\"\n") ==
           Messages{"t.rib:2: error: 'Illuminate' expects a light handle and 0 or 1"});
     CHECK(ErrorsOf("WorldBegin\nIlluminate \"k\" 2\n") ==

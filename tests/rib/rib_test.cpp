@@ -358,7 +358,7 @@ TEST_CASE("Malformed RIB gives exact errors with the line", "[renderer][rib]") {
     CHECK(ErrorOf("WorldBegin\nFormat 10 10 1\nWorldEnd\n") ==
           "t.rib:2: error: 'Format' is an option and must come before 'WorldBegin'");
     CHECK(ErrorOf("WorldBegin\nWorldEnd\nWorldBegin\nWorldEnd\n") ==
-          "t.rib:3: error: a second 'WorldBegin' (several frames) is not supported yet");
+          "t.rib:3: error: a second 'WorldBegin' outside frames; give each world its own 'FrameBegin'/'FrameEnd'");
     CHECK(ErrorOf("Scale 0 1 1\nWorldBegin\nWorldEnd\n") ==
           "t.rib:2: error: the camera transform (the transform at 'WorldBegin') is singular");
     CHECK(ErrorOf("Format 64 64 1\n") == "t.rib:1: error: no 'WorldBegin': the file describes no scene");
@@ -645,7 +645,8 @@ TEST_CASE("RIB camera options give exact errors", "[renderer][rib]") {
 TEST_CASE("RIB Display modes follow the channel grammar", "[renderer][rib]") {
     for (const char* mode : {"rgb", "rgba", "rgbz", "rgbaz", "r", "z", "rgba,Z,N,P,st,cost,err", "a,g"}) {
         INFO(mode);
-        SceneDesc scene = Parsed(std::string("Display \"o.exr\" \"file\" \"") + mode + "\"\nWorldBegin\nWorldEnd\n");
+        // (OpenEXR: "z" alone to a "file" is a depth map pass, tests/rib/frames_test.cpp)
+        SceneDesc scene = Parsed(std::string("Display \"o.exr\" \"openexr\" \"") + mode + "\"\nWorldBegin\nWorldEnd\n");
         CHECK(scene.displayMode == mode);
     }
     CHECK(ErrorOf("Display \"o.exr\" \"file\" \"rgba,Ci\"\n") ==
