@@ -330,6 +330,8 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         Primitive prim;
         if (patch.shape == PrimitiveDesc::Shape::BilinearPatch)
             prim.base = BaseSurface(BilinearPatch{patch.corners}, patch.flipNormal);
+        else if (patch.shape == PrimitiveDesc::Shape::MeshPiece)
+            prim.base = BaseSurface(patch.piece, patch.flipNormal);
         else
             prim.base = BaseSurface(PlacedQuadric{patch.quadric, patch.objectToWorld}, patch.flipNormal);
         prim.surface = patch.surface;

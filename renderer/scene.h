@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/geometry/mesh.h"
 #include "renderer/geometry/quadric.h"
 
 namespace affray::renderer {
@@ -58,11 +59,13 @@ struct LightDesc {
 };
 
 /// One geometric primitive with its shading attributes: a bilinear patch (corners already in
-/// world space) or a quadric (in object space, placed by objectToWorld).
+/// world space), a quadric (in object space, placed by objectToWorld) or one piece of a polygon
+/// face (world space; renderer/geometry/mesh.h).
 struct PrimitiveDesc {
-    enum class Shape { BilinearPatch, Quadric } shape = Shape::BilinearPatch;
+    enum class Shape { BilinearPatch, Quadric, MeshPiece } shape = Shape::BilinearPatch;
     std::array<glm::dvec3, 4> corners{};  ///< Patch: world space, RenderMan order u0v0, u1v0, u0v1, u1v1.
     Quadric quadric;                      ///< Quadric: its request's arguments (object space).
+    MeshPiece piece;                      ///< MeshPiece: a triangle or quad of a polygon face.
     glm::dvec3 color{1.0};                ///< The RIB Color (Cs) in effect.
     SurfaceDesc surface;
     std::optional<ShaderRef> displacement;
@@ -186,6 +189,8 @@ inline std::string ToString(const PrimitiveDesc& p) {
     if (p.shape == PrimitiveDesc::Shape::BilinearPatch) {
         text = "patch line " + std::to_string(p.line) + ":";
         for (const glm::dvec3& c : p.corners) text += " " + ToString(c);
+    } else if (p.shape == PrimitiveDesc::Shape::MeshPiece) {
+        text = "polygon line " + std::to_string(p.line) + ": " + ToString(p.piece);
     } else {
         text = std::string(Quadric::Name(p.quadric.kind)) + " line " + std::to_string(p.line) + ": " +
                ToString(p.quadric) + " objectToWorld=" + ToString(p.objectToWorld);

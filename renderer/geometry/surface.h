@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "renderer/geometry/mesh.h"
 #include "renderer/geometry/quadric.h"
 #include "vm/interpreter.h"
 #include "vm/numbers/number.h"
@@ -235,26 +236,53 @@ void SetQuadricGlobals(vm::Interpreter<T>& interp, const PlacedQuadric& placed, 
     SetFrameGlobals(interp, u, v, world, nullptr, eye, flipNormal);
 }
 
-/// A base surface for the intersector and the shading: a bilinear patch or a placed quadric,
-/// with the orientation of its normal.
+/// SetPatchGlobals for a region of a polygon mesh's piece (renderer/geometry/mesh.h). N is the
+/// normalised interpolated vertex normal if the mesh has "N" (never flipped by the orientation:
+/// the user's normals say where the outside is), else the face normal; Ng is the face normal.
+template <class T>
+void SetMeshPieceGlobals(vm::Interpreter<T>& interp, const MeshPiece& piece, double u0, double u1, double v0, double v1,
+                         const glm::dvec3& eye, bool flipNormal = false) {
+    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
+    const T u = SurfaceParameter<T>(u0, u1, 0);
+    const T v = SurfaceParameter<T>(v0, v1, 1);
+    const SurfaceFrame<T> frame = MeshPieceFrame(piece, u, v);
+    SetFrameGlobals(interp, u, v, frame, piece.hasNormals ? nullptr : &piece.faceNormal, eye,
+                    !piece.hasNormals && flipNormal);
+    const vm::Program& program = interp.program();
+    if (piece.hasST && (program.readsGlobal(vm::Global::s) || program.readsGlobal(vm::Global::t))) {
+        T s, t;
+        MeshPieceST(piece, u, v, &s, &t);
+        interp.SetGlobal(vm::Global::s, s);
+        interp.SetGlobal(vm::Global::t, t);
+    }
+    if (piece.hasNormals && program.readsGlobal(vm::Global::Ng))
+        interp.SetGlobal(vm::Global::Ng, Constant<T>(flipNormal ? -piece.faceNormal : piece.faceNormal));
+}
+
+/// A base surface for the intersector and the shading: a bilinear patch, a placed quadric or a
+/// polygon mesh's piece, with the orientation of its normal.
 struct BaseSurface {
-    enum class Kind { BilinearPatch, Quadric } kind = Kind::BilinearPatch;
+    enum class Kind { BilinearPatch, Quadric, MeshPiece } kind = Kind::BilinearPatch;
     BilinearPatch patch{};
     PlacedQuadric quadric{};
+    MeshPiece piece{};
     bool flipNormal = false;
 
     BaseSurface() = default;
     // Implicit on purpose: a patch is a base surface (as in every caller of the intersector).
     BaseSurface(const BilinearPatch& p, bool flip = false) : kind(Kind::BilinearPatch), patch(p), flipNormal(flip) {}
     BaseSurface(const PlacedQuadric& q, bool flip = false) : kind(Kind::Quadric), quadric(q), flipNormal(flip) {}
+    BaseSurface(const MeshPiece& m, bool flip = false) : kind(Kind::MeshPiece), piece(m), flipNormal(flip) {}
 };
 
-/// SetPatchGlobals or SetQuadricGlobals, as `surface` is.
+/// SetPatchGlobals, SetQuadricGlobals or SetMeshPieceGlobals, as `surface` is.
 template <class T>
 void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, double u0, double u1, double v0,
                        double v1, const glm::dvec3& eye) {
     if (surface.kind == BaseSurface::Kind::BilinearPatch)
         SetPatchGlobals(interp, surface.patch, u0, u1, v0, v1, eye, surface.flipNormal);
+    else if (surface.kind == BaseSurface::Kind::MeshPiece)
+        SetMeshPieceGlobals(interp, surface.piece, u0, u1, v0, v1, eye, surface.flipNormal);
     else
         SetQuadricGlobals(interp, surface.quadric, u0, u1, v0, v1, eye, surface.flipNormal);
 }
