@@ -84,7 +84,10 @@ bool RibParser::DoPointsGeneralPolygons(const RibRequest& r) {
 bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::vector<int> loopSizes,
                             std::vector<int> corners, size_t first, bool indexed) {
     std::vector<RibParam> params;
-    if (!ParamList(r, first, &params) || !InsideWorld(r)) return false;
+    m_uniformVaries = true;
+    const bool listed = ParamList(r, first, &params);
+    m_uniformVaries = false;
+    if (!listed || !InsideWorld(r)) return false;
     const std::string context = Quote(r.name);
     const size_t nLoops = static_cast<size_t>(std::accumulate(loops.begin(), loops.end(), 0LL));
     if (nLoops != loopSizes.size() && !(r.name == "Polygon"))
