@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "renderer/geometry/bicubic.h"
+#include "renderer/geometry/mesh.h"
 #include "renderer/geometry/quadric.h"
 
 namespace affray::renderer {
@@ -59,12 +60,14 @@ struct LightDesc {
 };
 
 /// One geometric primitive with its shading attributes: a bilinear patch (corners already in
-/// world space) or a quadric (in object space, placed by objectToWorld).
+/// world space), a quadric (in object space, placed by objectToWorld) or one piece of a polygon
+/// face (world space; renderer/geometry/mesh.h).
 struct PrimitiveDesc {
-    enum class Shape { BilinearPatch, Quadric, BicubicPatch } shape = Shape::BilinearPatch;
+    enum class Shape { BilinearPatch, Quadric, BicubicPatch, MeshPiece } shape = Shape::BilinearPatch;
     std::array<glm::dvec3, 4> corners{};  ///< Patch: world space, RenderMan order u0v0, u1v0, u0v1, u1v1.
     Quadric quadric;                      ///< Quadric: its request's arguments (object space).
     BicubicPatch bicubic;                 ///< Bicubic patch: world space, power basis.
+    MeshPiece piece;                      ///< MeshPiece: a triangle or quad of a polygon face.
     /// Patches: the part of the mesh's (u,v) this patch covers ([0,1]^2 for a lone Patch).
     ParameterRange range;
     glm::dvec3 color{1.0};  ///< The RIB Color (Cs) in effect.
@@ -203,6 +206,8 @@ inline std::string ToString(const PrimitiveDesc& p) {
         for (const glm::dvec3& c : p.corners) text += " " + ToString(c);
     } else if (p.shape == PrimitiveDesc::Shape::BicubicPatch) {
         text = "patch line " + std::to_string(p.line) + ": " + ToString(p.bicubic);
+    } else if (p.shape == PrimitiveDesc::Shape::MeshPiece) {
+        text = "polygon line " + std::to_string(p.line) + ": " + ToString(p.piece);
     } else {
         text = std::string(Quadric::Name(p.quadric.kind)) + " line " + std::to_string(p.line) + ": " +
                ToString(p.quadric) + " objectToWorld=" + ToString(p.objectToWorld);

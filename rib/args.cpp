@@ -191,7 +191,7 @@ bool RibArgChecks::CheckDeclared(const RibRequest& r, const RibArg& token, const
         return Fail(p.at, what + " is declared \"" + p.value.declaration + "\" and expects " +
                               (strings ? "strings" : "numbers") + ", got " + (strings ? "numbers" : "strings"));
     const size_t count = strings ? p.value.strings.size() : p.value.numbers.size();
-    const bool uniform = d.storage.empty() || d.storage == "uniform" || d.storage == "constant";
+    const bool uniform = d.storage == "constant" || ((d.storage.empty() || d.storage == "uniform") && !m_uniformVaries);
     const size_t each = d.UniformCount();  // one value of the declared type
     if (uniform ? count != each : count % each != 0)
         return Fail(p.at, what + " is declared \"" + p.value.declaration + "\" and expects " +

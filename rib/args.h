@@ -89,6 +89,9 @@ class RibArgChecks {
     std::string m_errorMessage;
     /// Declare'd names and their declarations as written ("uniform float").
     std::map<std::string, std::string> m_declared;
+    /// Set while a polygon mesh reads its parameter list: its uniform values are one per face,
+    /// so ParamList checks only that they are whole values (the mesh checks their count).
+    bool m_uniformVaries = false;
 };
 
 }  // namespace affray::rib

@@ -216,6 +216,20 @@ class RibParser : private RibArgChecks {
     bool DoTorus(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Torus); }
     bool DoHyperboloid(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Hyperboloid); }
     bool DoParaboloid(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Paraboloid); }
+    // The polygon requests (rib/polygons.cpp): each reads its counts and indices, then MeshRequest
+    // checks them and the parameter list and adds the mesh's pieces.
+    bool DoPolygon(const RibRequest& r);
+    bool DoGeneralPolygon(const RibRequest& r);
+    bool DoPointsPolygons(const RibRequest& r);
+    bool DoPointsGeneralPolygons(const RibRequest& r);
+    /// Integers in argument `index` of `r` (an array or one bare number), each at least `least`;
+    /// `what` names them for messages ("nverts").
+    bool IntArray(const RibRequest& r, size_t index, const char* what, int least, std::vector<int>* out);
+    /// A polygon mesh request with its faces' loop counts, loop sizes and corner indices (`points`
+    /// < 0: the corners are the points in order, as Polygon gives them) and its parameter list
+    /// from argument `first`.
+    bool MeshRequest(const RibRequest& r, std::vector<int> loops, std::vector<int> loopSizes, std::vector<int> corners,
+                     size_t first, bool indexed);
     bool DoVersion(const RibRequest&) { return true; }  // "version 3.03": nothing to check
 
     std::vector<Source> m_sources;

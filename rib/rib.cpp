@@ -49,10 +49,8 @@ constexpr std::string_view kIgnored[] = {
 // RI 3.2 requests that create or move geometry: ignoring them would render the wrong scene, so
 // they are errors until implemented.
 constexpr std::string_view kUnsupported[] = {
-    "Blobby", "Curves", "Deformation", "GeneralPolygon", "Geometry",
-    "MotionBegin", "MotionEnd", "NuPatch", "Perspective", "Points",
-    "PointsGeneralPolygons", "PointsPolygons", "Polygon", "Procedural", "Skew", "SolidBegin",
-    "SolidEnd", "SubdivisionMesh",
+    "Blobby", "Curves", "Deformation", "Geometry", "MotionBegin", "MotionEnd", "NuPatch",
+    "Perspective", "Points", "Procedural", "Skew", "SolidBegin", "SolidEnd", "SubdivisionMesh",
 };
 // clang-format on
 
@@ -185,6 +183,10 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"Torus", &RibParser::DoTorus},
         {"Hyperboloid", &RibParser::DoHyperboloid},
         {"Paraboloid", &RibParser::DoParaboloid},
+        {"Polygon", &RibParser::DoPolygon},
+        {"GeneralPolygon", &RibParser::DoGeneralPolygon},
+        {"PointsPolygons", &RibParser::DoPointsPolygons},
+        {"PointsGeneralPolygons", &RibParser::DoPointsGeneralPolygons},
         {"version", &RibParser::DoVersion},
         {"Hider", &RibParser::DoHider},
         {"Declare", &RibParser::DoDeclare},

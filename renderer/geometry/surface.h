@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "renderer/geometry/bicubic.h"
+#include "renderer/geometry/mesh.h"
 #include "renderer/geometry/quadric.h"
 #include "vm/interpreter.h"
 #include "vm/numbers/number.h"
@@ -279,14 +280,39 @@ void SetQuadricGlobals(vm::Interpreter<T>& interp, const PlacedQuadric& placed, 
     SetFrameGlobals(interp, u, v, world, nullptr, eye, flipNormal);
 }
 
+/// SetPatchGlobals for a region of a polygon mesh's piece (renderer/geometry/mesh.h). N is the
+/// normalised interpolated vertex normal if the mesh has "N" (never flipped by the orientation:
+/// the user's normals say where the outside is), else the face normal; Ng is the face normal.
+template <class T>
+void SetMeshPieceGlobals(vm::Interpreter<T>& interp, const MeshPiece& piece, double u0, double u1, double v0, double v1,
+                         const glm::dvec3& eye, bool flipNormal = false) {
+    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
+    const T u = SurfaceParameter<T>(u0, u1, 0);
+    const T v = SurfaceParameter<T>(v0, v1, 1);
+    const SurfaceFrame<T> frame = MeshPieceFrame(piece, u, v);
+    SetFrameGlobals(interp, u, v, frame, piece.hasNormals ? nullptr : &piece.faceNormal, eye,
+                    !piece.hasNormals && flipNormal);
+    const vm::Program& program = interp.program();
+    if (piece.hasST && (program.readsGlobal(vm::Global::s) || program.readsGlobal(vm::Global::t))) {
+        T s, t;
+        MeshPieceST(piece, u, v, &s, &t);
+        interp.SetGlobal(vm::Global::s, s);
+        interp.SetGlobal(vm::Global::t, t);
+    }
+    if (piece.hasNormals && program.readsGlobal(vm::Global::Ng))
+        interp.SetGlobal(vm::Global::Ng, Constant<T>(flipNormal ? -piece.faceNormal : piece.faceNormal));
+}
+
 /// A base surface for the intersector and the shading: a bilinear or bicubic patch (with the part
-/// of its mesh's (u,v) it covers) or a placed quadric, with the orientation of its normal.
+/// of its mesh's (u,v) it covers), a placed quadric or a polygon mesh's piece, with the
+/// orientation of its normal.
 struct BaseSurface {
-    enum class Kind { BilinearPatch, Quadric, BicubicPatch } kind = Kind::BilinearPatch;
+    enum class Kind { BilinearPatch, Quadric, BicubicPatch, MeshPiece } kind = Kind::BilinearPatch;
     BilinearPatch patch{};
     PlacedQuadric quadric{};
     BicubicPatch bicubic{};
-    ParameterRange range{};  ///< Patches only; a quadric's (u,v) is always [0,1]^2.
+    MeshPiece piece{};
+    ParameterRange range{};  ///< Patches only; a quadric's or mesh piece's (u,v) is always [0,1]^2.
     bool flipNormal = false;
 
     BaseSurface() = default;
@@ -296,9 +322,10 @@ struct BaseSurface {
     BaseSurface(const PlacedQuadric& q, bool flip = false) : kind(Kind::Quadric), quadric(q), flipNormal(flip) {}
     BaseSurface(const BicubicPatch& p, bool flip = false, const ParameterRange& r = {})
         : kind(Kind::BicubicPatch), bicubic(p), range(r), flipNormal(flip) {}
+    BaseSurface(const MeshPiece& m, bool flip = false) : kind(Kind::MeshPiece), piece(m), flipNormal(flip) {}
 };
 
-/// SetPatchGlobals, SetBicubicGlobals or SetQuadricGlobals, as `surface` is.
+/// SetPatchGlobals, SetBicubicGlobals, SetQuadricGlobals or SetMeshPieceGlobals, as `surface` is.
 template <class T>
 void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, double u0, double u1, double v0,
                        double v1, const glm::dvec3& eye) {
@@ -311,6 +338,9 @@ void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, d
             break;
         case BaseSurface::Kind::Quadric:
             SetQuadricGlobals(interp, surface.quadric, u0, u1, v0, v1, eye, surface.flipNormal);
+            break;
+        case BaseSurface::Kind::MeshPiece:
+            SetMeshPieceGlobals(interp, surface.piece, u0, u1, v0, v1, eye, surface.flipNormal);
             break;
     }
 }
