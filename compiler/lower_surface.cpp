@@ -177,7 +177,11 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
         }
     }
     if (!ok) return std::nullopt;
-    if (call.query) return LowerQuery(e, *firstValue, *output);
+    if (call.query) {
+        // A query's row is (name, output variable): both are set once its arguments check.
+        if (!firstValue || !output) return std::nullopt;
+        return LowerQuery(e, *firstValue, *output);
+    }
     // Code that never runs (a function nobody calls, an arm a constant condition rules out, as
     // in `if (texname != "") ... texture(texname)` with the default "") may call it.
     const std::optional<double> alive = ir().ConstValue(m_state.alive);
