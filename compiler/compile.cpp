@@ -125,7 +125,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         if (!vm::Verify(*p, &error))
             throw std::logic_error("compiler emitted an invalid program for " + path + ": " + error);
     }
-    result.shader = std::move(shader);
+    result.shader = std::make_shared<const CompiledShader>(std::move(shader));
     return result;
 }
 
@@ -157,7 +157,7 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
         }
     }
     if (!SpecialiseShader(shader, overrides, &result.paramErrors)) return result;
-    result.shader = std::move(shader);
+    result.shader = std::make_shared<const CompiledShader>(std::move(shader));
     return result;
 }
 

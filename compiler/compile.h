@@ -4,6 +4,7 @@
 // intersector evaluates millions of times), the *shade program* computes P and N.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,12 +34,14 @@ struct CompiledShader {
 };
 
 struct CompileResult {
-    std::optional<CompiledShader> shader;
+    /// The compiled shader, shared (never changed once made): a shader cache and every primitive
+    /// of a mesh that uses the instance hold the one copy.
+    std::shared_ptr<const CompiledShader> shader;
     /// Errors and warnings (diag/diagnostic.h); print them with diagnostics.format().
     diag::Report diagnostics;
     /// Problems with the parameter overrides, each a full sentence.
     std::vector<std::string> paramErrors;
-    bool ok() const { return shader.has_value(); }
+    bool ok() const { return shader != nullptr; }
 };
 
 /// Preprocesses (C preprocessor: #include, #define, #if...) and compiles the shader in the file

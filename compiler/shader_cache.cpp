@@ -66,7 +66,7 @@ CompileResult ShaderCache::Load(const std::string& path, const std::vector<Param
     }
     ++m_misses;
     CompileResult result = LoadShader(path, overrides, preprocess, spaces, facts);
-    if (result.ok() && !bytes.empty()) m_compiled.emplace(key, *result.shader);
+    if (result.ok() && !bytes.empty()) m_compiled.emplace(key, result.shader);
     return result;
 }
 

@@ -16,7 +16,7 @@ class ShaderCache {
   public:
     /// LoadShader(path, overrides, preprocess, spaces, facts), or the result of an earlier call
     /// whose file had the same bytes and whose overrides, options, spaces and facts were the
-    /// same. Failures are not kept.
+    /// same (the one shared shader, not a copy). Failures are not kept.
     CompileResult Load(const std::string& path, const std::vector<ParamOverride>& overrides,
                        const lang::PreprocessOptions& preprocess, const Spaces* spaces = nullptr,
                        const SceneFacts* facts = nullptr);
@@ -25,7 +25,7 @@ class ShaderCache {
     int misses() const { return m_misses; }
 
   private:
-    std::map<std::string, CompiledShader> m_compiled;
+    std::map<std::string, std::shared_ptr<const CompiledShader>> m_compiled;
     int m_hits = 0, m_misses = 0;
 };
 

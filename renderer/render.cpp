@@ -9,6 +9,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -189,8 +190,18 @@ CellRanges BoundCellsIn(const Primitive& prim, const glm::dvec3& eye, int n) {
     return prim.bound.usesDerivatives() ? BoundCells<vm::Dual<B>>(prim, eye, n) : BoundCells<B>(prim, eye, n);
 }
 
-/// The grid the PrepareScene checks and the BVH boxes use.
+/// The grid the PrepareScene checks and the BVH boxes use: kGridCells across for a scene of a few
+/// primitives, coarser for many (a mesh of thousands of faces), so that the whole scene costs
+/// about kGridCells^2 * kGridPrimitives bounds, and never fewer than 2 x 2 cells per primitive.
+/// A coarser grid only loosens a primitive's box (its bound's union over fewer cells), never the
+/// bounds the intersector tests.
 constexpr int kGridCells = 8;
+constexpr size_t kGridPrimitives = 64;
+int GridCellsFor(size_t primitives) {
+    if (primitives <= kGridPrimitives) return kGridCells;
+    const double n = kGridCells * std::sqrt(double(kGridPrimitives) / double(primitives));
+    return std::max(2, static_cast<int>(n));
+}
 
 /// Whether P's bound is measurable (finite, within kMeasurableLimit) over at least one cell.
 bool MeasurableSomewhere(const CellRanges& cells) {
@@ -208,18 +219,20 @@ bool MeasurableSomewhere(const CellRanges& cells) {
 /// for a surface that no coarser grid could bound).
 constexpr int kFinestCheckCells = 64;
 
-/// An error if no cell of the grids of the patch, kGridCells across and then twice, four and eight
-/// times finer, has a measurable bound in either bounding mode (`intervalCells` are the interval
-/// bounds of the first grid): every region would then survive the ray test down to the depth
+/// An error if no cell of the grids of the patch, `cells` across and then twice, four and eight...
+/// times finer up to kFinestCheckCells, has a measurable bound in either bounding mode
+/// (`intervalCells` are the interval bounds of the first grid, looked at first as they are already
+/// paid for): every region would then survive the ray test down to the depth
 /// limit, 4^depth regions per ray, a render that never ends. A shader whose bound is unbounded
 /// where a region straddles a branch (a square root on the side not taken) is bounded on finer
 /// cells, so one grid is not enough. Names the instance's parameters that are large enough to be
 /// the cause. Empty if the surface can be bounded somewhere.
-std::string UnboundedEverywhere(const Primitive& prim, const ShaderRef& ref, const glm::dvec3& eye,
+std::string UnboundedEverywhere(const Primitive& prim, const ShaderRef& ref, const glm::dvec3& eye, int cells,
                                 const CellRanges& intervalCells) {
-    for (int n = kGridCells; n <= kFinestCheckCells; n *= 2) {
+    if (MeasurableSomewhere(intervalCells)) return {};
+    for (int n = cells; n <= kFinestCheckCells; n *= 2) {
         if (MeasurableSomewhere(BoundCellsIn<vm::Affine>(prim, eye, n))) return {};
-        if (MeasurableSomewhere(n == kGridCells ? intervalCells : BoundCellsIn<vm::Interval>(prim, eye, n))) return {};
+        if (n != cells && MeasurableSomewhere(BoundCellsIn<vm::Interval>(prim, eye, n))) return {};
     }
     std::string culprits;
     for (const ParamValue& p : ref.params)
@@ -415,7 +428,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                 if (result.paramErrors.empty()) fail(where(), "cannot compile shader '" + ref.name + "'");
                 return false;
             }
-            prim.shader = std::make_shared<compiler::CompiledShader>(std::move(*result.shader));
+            prim.shader = result.shader;
             for (const std::string& name : prim.shader->genericBound.spaces) {
                 if (spaces.count(name) && !IsAffine(spaces.at(name).toCurrent))
                     return fail(where(), "shader '" + ref.name + "' uses coordinate space '" + name +
@@ -430,17 +443,35 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(prim.base, eye);
         prim.bound = *compiler::Specialise(prim.bound, {}, &unused, constants);
         prim.shade = *compiler::Specialise(prim.shade, {}, &unused, constants);
-        const CellRanges intervalCells = BoundCellsIn<vm::Interval>(prim, eye, kGridCells);
-        if (patch.displacement) {
-            std::string problem = UnboundedEverywhere(prim, *patch.displacement, eye, intervalCells);
-            if (!problem.empty()) {
-                const ShaderRef& ref = *patch.displacement;
-                const std::string& refFile = ref.file.empty() ? desc.path : ref.file;
-                return fail({refFile, ref.line, ref.column, diag::ReadLine(refFile, ref.line)}, problem);
-            }
-        }
-        prim.box = UnionBox(intervalCells);
         out->primitives.push_back(std::move(prim));
+    }
+
+    // Each primitive's box, and the check that its displaced surface can be bounded somewhere:
+    // a shader run over a grid of cells per primitive, the costly part of preparing a scene of
+    // many primitives, spread over the machine's threads (each primitive on its own).
+    const int cells = GridCellsFor(out->primitives.size());
+    std::vector<std::string> problems(out->primitives.size());
+    std::atomic<size_t> next{0};
+    auto boxWorker = [&] {
+        for (size_t i = next++; i < out->primitives.size(); i = next++) {
+            Primitive& prim = out->primitives[i];
+            const CellRanges intervalCells = BoundCellsIn<vm::Interval>(prim, eye, cells);
+            if (const PrimitiveDesc& patch = desc.primitives[i]; patch.displacement)
+                problems[i] = UnboundedEverywhere(prim, *patch.displacement, eye, cells, intervalCells);
+            prim.box = UnionBox(intervalCells);
+        }
+    };
+    const size_t nThreads = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()),
+                                             std::max<size_t>(1, out->primitives.size() / 16));
+    std::vector<std::thread> workers;
+    for (size_t t = 1; t < nThreads; ++t) workers.emplace_back(boxWorker);
+    boxWorker();
+    for (std::thread& t : workers) t.join();
+    for (size_t i = 0; i < problems.size(); ++i) {
+        if (problems[i].empty()) continue;
+        const ShaderRef& ref = *desc.primitives[i].displacement;
+        const std::string& refFile = ref.file.empty() ? desc.path : ref.file;
+        return fail({refFile, ref.line, ref.column, diag::ReadLine(refFile, ref.line)}, problems[i]);
     }
     std::vector<Box> boxes;
     for (const Primitive& prim : out->primitives) boxes.push_back(prim.box);

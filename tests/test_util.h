@@ -123,7 +123,7 @@ inline compiler::CompiledShader CompileOrThrow(const std::string& source,
                                                const std::vector<compiler::ParamOverride>& params = {}) {
     compiler::CompileResult r = compiler::CompileSource("test.sl", source, params);
     if (!r.ok()) throw std::runtime_error("does not compile:\n" + r.diagnostics.format());
-    return std::move(*r.shader);
+    return *r.shader;
 }
 
 /// Runs `program` with number type N over [u0,u1] x [v0,v1] of `surface`; returns output `name`

@@ -200,19 +200,37 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
         return diag::kExitOutput;
     }
     if (cmd.stats) {
-        // The render's figures, then each shader instance's instruction counts.
+        // The render's figures, then each shader instance's instruction counts: one entry per
+        // instance and specialised program size, with the number of primitives that share it (a
+        // mesh of a thousand faces is one entry, not a thousand).
         std::string json = stats.ToJson();
         json.pop_back();
         if (scene.frame) json.insert(1, "\"frame\":" + std::to_string(*scene.frame) + ",");
         json += ",\"shader_compilations\":" + std::to_string(prepared.shadersCompiled) +
                 ",\"shader_compilations_reused\":" + std::to_string(prepared.shadersReused) + ",\"shaders\":[";
-        bool first = true;
+        struct Entry {
+            const compiler::CompiledShader* shader;
+            size_t bound, shade;
+            int primitives;
+        };
+        std::vector<Entry> entries;
         for (const renderer::Primitive& prim : prepared.primitives) {
             if (!prim.shader) continue;
-            json += std::string(first ? "" : ",") + "{\"name\":\"" + prim.shader->name + "\"," +
-                    InstructionCounts(*prim.shader) +
-                    ",\"bound_on_surface\":" + std::to_string(prim.bound.code.size()) +
-                    ",\"shade_on_surface\":" + std::to_string(prim.shade.code.size()) + "}";
+            const Entry key{prim.shader.get(), prim.bound.code.size(), prim.shade.code.size(), 1};
+            auto same = std::find_if(entries.begin(), entries.end(), [&](const Entry& e) {
+                return e.shader == key.shader && e.bound == key.bound && e.shade == key.shade;
+            });
+            if (same == entries.end())
+                entries.push_back(key);
+            else
+                ++same->primitives;
+        }
+        bool first = true;
+        for (const Entry& e : entries) {
+            json += std::string(first ? "" : ",") + "{\"name\":\"" + e.shader->name + "\"," +
+                    InstructionCounts(*e.shader) + ",\"bound_on_surface\":" + std::to_string(e.bound) +
+                    ",\"shade_on_surface\":" + std::to_string(e.shade) +
+                    ",\"primitives\":" + std::to_string(e.primitives) + "}";
             first = false;
         }
         std::fprintf(out, "%s]}\n", json.c_str());

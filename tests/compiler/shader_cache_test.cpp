@@ -29,6 +29,9 @@ TEST_CASE("the shader cache reuses a compilation only for the same bytes and val
     CHECK(cache.hits() == 1);
     CHECK(cache.misses() == 2);
     CHECK_THAT(HeightOf(*b.shader), WithinAbs(2, 0));
+    // A hit is the shader compiled before, shared, not a copy (a mesh's faces hold one).
+    CHECK(b.shader == a.shader);
+    CHECK(c.shader != a.shader);
     CHECK_THAT(HeightOf(*c.shader), WithinAbs(3, 0));
 
     // The same name with other bytes is another shader: never served stale.

@@ -67,7 +67,7 @@ compiler::CompiledShader Compile(const std::string& path) {
     compiler::CompileResult r = compiler::CompileFile(path);
     INFO(path << "\n" << r.diagnostics);
     REQUIRE(r.ok());
-    return std::move(*r.shader);
+    return *r.shader;
 }
 
 /// P at (u, v) in the point type N (double or Dual<double>), as doubles.

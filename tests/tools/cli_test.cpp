@@ -278,6 +278,9 @@ WorldEnd
     Output render = Run("render " + (dir / "s.rib").string() + " -o " + (dir / "s.exr").string() + " --stats");
     REQUIRE(render.status == 0);
     CHECK(render.out.find("\"shader_compilations\":2,\"shader_compilations_reused\":1") != std::string::npos);
+    // The two patches of the "down" instance are one entry of the shader list, counted twice.
+    CHECK(render.out.find("\"primitives\":2}") != std::string::npos);
+    CHECK(render.out.find("\"primitives\":1}") != std::string::npos);
     fs::remove_all(dir);
 }
 
