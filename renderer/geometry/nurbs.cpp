@@ -193,10 +193,17 @@ std::vector<std::array<double, kMaxNurbsOrder>> KnotVector::SpanBasis(const Span
 
 std::vector<NurbsSpan> SplitNurbs(const NurbsSurface& surface, const glm::dmat4& objectToWorld) {
     const KnotVector &ku = surface.u, &kv = surface.v;
+    // Equal weights w0 (every "P" NuPatch): sum N = 1 makes the surface the polynomial sum N Pw / w0,
+    // so W is set to 1 exactly rather than summed from basis polynomials that only cancel to
+    // rounding (their noise grows with the degree).
+    const bool polynomial = std::all_of(surface.points.begin(), surface.points.end(),
+                                        [&](const glm::dvec4& p) { return p.w == surface.points[0].w; });
     std::vector<glm::dvec4> world(surface.points.size()), size(surface.points.size());
     for (size_t i = 0; i < world.size(); ++i) {
-        world[i] = PlaceHomogeneous(objectToWorld, surface.points[i]);
-        size[i] = PlaceSize(objectToWorld, surface.points[i]);
+        const glm::dvec4 p =
+            polynomial ? glm::dvec4(glm::dvec3(surface.points[i]) / surface.points[i].w, 1.0) : surface.points[i];
+        world[i] = PlaceHomogeneous(objectToWorld, p);
+        size[i] = PlaceSize(objectToWorld, p);
     }
     const std::vector<KnotVector::Span> spansU = ku.Spans(), spansV = kv.Spans();
     std::vector<NurbsSpan> out;
@@ -256,6 +263,8 @@ std::vector<NurbsSpan> SplitNurbs(const NurbsSurface& surface, const glm::dmat4&
             } else if (st && st->storage == NurbsST::Storage::Constant) {
                 p.st[0] = st->values[0];
             }
+            if (polynomial)
+                for (size_t i = 0; i < count; ++i) p.c[i].w = i == 0 ? 1.0 : 0.0, sizes[i].w = 0;
             p.Simplify(sizes);
             span.range = ParameterRange{su.lo, su.hi, sv.lo, sv.hi};
             out.push_back(std::move(span));
