@@ -372,7 +372,7 @@ TEST_CASE("nurbs: trim curves keep the odd-winding side, flattened within their 
     CHECK(trim.RemovedP(0.45, 0.55, 0.45, 0.55));
 }
 
-TEST_CASE("nurbs: rays through a trimmed hole miss, beside it hit; shadow rays pass the hole", "[renderer][nurbs]") {
+TEST_CASE("nurbs: rays through a trimmed hole miss, beside it hit, shadow rays pass the hole", "[renderer][nurbs]") {
     // The unit square z = 0 as a degree (1, 1) NuPatch, and a hole of radius 0.25 at its centre.
     NurbsSurface square;
     square.u = square.v = KnotVector{2, 2, {0, 0, 1, 1}, 0, 1};
