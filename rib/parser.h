@@ -2,7 +2,7 @@
 // Private to the reader: use rib/rib.h. rib.cpp holds dispatch, the block structure, options
 // and transforms; frames.cpp frames, world blocks and shadow passes; attributes.cpp the shading
 // attributes (with Sides and orientation) and lights; geometry.cpp the primitives and coordinate
-// systems; archive.cpp ReadArchive and retained objects. The graphics state (CTM, color, surface,
+// systems; nurbs.cpp NuPatch and TrimCurve; archive.cpp ReadArchive and retained objects. The graphics state (CTM, color, surface,
 // displacement, sides, orientation, basis, the lights that are on) is saved by every Begin and
 // restored by its End; the options by FrameBegin and FrameEnd (FrameDefaults).
 #pragma once
