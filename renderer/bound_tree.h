@@ -134,6 +134,8 @@ class BoundTree {
     BoundTree(const BoundTree&) = delete;
     BoundTree& operator=(const BoundTree&) = delete;
 
+    /// The surface the hierarchy bounds.
+    const BaseSurface& surface() const { return m_surface; }
     /// A new evaluator for this surface, for one thread.
     std::unique_ptr<RegionEvaluator> MakeEvaluator() const;
 

@@ -486,6 +486,7 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
     double best = tMax;
     bool found = false;
     const int maxDepth = m_tree.maxDepth();
+    const BaseSurface& surface = m_tree.surface();
     // Measures the entry in the stack's next slot against the ray, with its bound `b`: it stays
     // on the stack if the ray can meet it.
     auto measure = [&](const RegionBound& b) {
@@ -520,7 +521,9 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
             ++stats.budgetExhausted;
             const Entry* nearest = nullptr;
             for (size_t i = 0; i < m_top; ++i)
-                if (const Entry& r = m_stack[i]; r.tLo <= best && (!nearest || r.tLo < nearest->tLo)) nearest = &r;
+                if (const Entry& r = m_stack[i];
+                    r.tLo <= best && (!nearest || r.tLo < nearest->tLo) && surface.KeptP(r.hu, r.hv))
+                    nearest = &r;
             if (nearest) {
                 best = std::max(nearest->tLo, tMin);
                 found = true;
@@ -534,6 +537,8 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
         const bool small = r.size <= tolerance.At(r.tLo);
         const bool atLimit = r.levelU >= maxDepth && r.levelV >= maxDepth;
         if (small || atLimit) {
+            // A trimmed NuPatch has no surface where the hit would be: the search goes on.
+            if (!surface.KeptP(r.hu, r.hv)) continue;
             double tHit = 0, error = 0;
             if (std::isfinite(r.size)) {
                 // The bound's t range meets [tMin, best] (checked when measured and popped).

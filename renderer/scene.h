@@ -15,6 +15,7 @@
 
 #include "renderer/geometry/bicubic.h"
 #include "renderer/geometry/mesh.h"
+#include "renderer/geometry/nurbs.h"
 #include "renderer/geometry/quadric.h"
 
 namespace affray::renderer {
@@ -63,11 +64,13 @@ struct LightDesc {
 /// world space), a quadric (in object space, placed by objectToWorld) or one piece of a polygon
 /// face (world space; renderer/geometry/mesh.h).
 struct PrimitiveDesc {
-    enum class Shape { BilinearPatch, Quadric, BicubicPatch, MeshPiece } shape = Shape::BilinearPatch;
-    std::array<glm::dvec3, 4> corners{};  ///< Patch: world space, RenderMan order u0v0, u1v0, u0v1, u1v1.
-    Quadric quadric;                      ///< Quadric: its request's arguments (object space).
-    BicubicPatch bicubic;                 ///< Bicubic patch: world space, power basis.
-    MeshPiece piece;                      ///< MeshPiece: a triangle or quad of a polygon face.
+    enum class Shape { BilinearPatch, Quadric, BicubicPatch, MeshPiece, RationalPatch } shape = Shape::BilinearPatch;
+    std::array<glm::dvec3, 4> corners{};     ///< Patch: world space, RenderMan order u0v0, u1v0, u0v1, u1v1.
+    Quadric quadric;                         ///< Quadric: its request's arguments (object space).
+    BicubicPatch bicubic;                    ///< Bicubic patch: world space, power basis.
+    MeshPiece piece;                         ///< MeshPiece: a triangle or quad of a polygon face.
+    RationalPatch rational;                  ///< Rational Patch/PatchMesh or NuPatch span: world space.
+    std::shared_ptr<const TrimCurves> trim;  ///< NuPatch spans: the TrimCurve in effect, or null.
     /// Patches: the part of the mesh's (u,v) this patch covers ([0,1]^2 for a lone Patch).
     ParameterRange range;
     glm::dvec3 color{1.0};  ///< The RIB Color (Cs) in effect.
@@ -206,6 +209,9 @@ inline std::string ToString(const PrimitiveDesc& p) {
         for (const glm::dvec3& c : p.corners) text += " " + ToString(c);
     } else if (p.shape == PrimitiveDesc::Shape::BicubicPatch) {
         text = "patch line " + std::to_string(p.line) + ": " + ToString(p.bicubic);
+    } else if (p.shape == PrimitiveDesc::Shape::RationalPatch) {
+        text = "patch line " + std::to_string(p.line) + ": " + ToString(p.rational);
+        if (p.trim) text += " trimmed (" + std::to_string(p.trim->loops.size()) + " loops)";
     } else if (p.shape == PrimitiveDesc::Shape::MeshPiece) {
         text = "polygon line " + std::to_string(p.line) + ": " + ToString(p.piece);
     } else {

@@ -54,6 +54,16 @@ bool RibParser::DoAttribute(const RibRequest& r) {
     std::vector<RibParam> params;
     if (!LeadingString(r, "an attribute name", &name) || !ParamList(r, 1, &params)) return false;
     // The intersector bounds displaced surfaces exactly, so no user bound is needed.
+    if (name == "trimcurve") {
+        // Attribute "trimcurve" "sense" "inside"|"outside": which side of the trim loops NuPatches keep.
+        for (const RibParam& p : params) {
+            if (p.value.name != "sense" || p.value.strings.size() != 1 ||
+                (p.value.strings[0] != "inside" && p.value.strings[0] != "outside"))
+                return Fail(p.at, "'Attribute \"trimcurve\"' takes \"sense\" \"inside\" or \"outside\"");
+            m_state.trimKeepInside = p.value.strings[0] == "inside";
+        }
+        return true;
+    }
     if (name == "displacementbound")
         Warn(r.at,
              "'Attribute \"displacementbound\"' is not needed: affray bounds displacement "

@@ -1,4 +1,4 @@
-// rib/geometry.cpp: RIB requests that place geometry: Patch, PatchMesh, the quadrics (Sphere,
+// rib/geometry.cpp: RIB requests that place geometry: Patch, PatchMesh (rational with "Pw"), the quadrics (Sphere,
 // Cylinder, Cone, Disk, Torus, Hyperboloid, Paraboloid) and CoordinateSystem. Rules shared with
 // rib.cpp are in rib_parser.h. Every primitive takes the graphics state current at its request;
 // its orientation is resolved here into PrimitiveDesc::flipNormal, since the camera transform it
@@ -31,8 +31,9 @@ void RibParser::SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) co
 }
 
 bool RibParser::PatchPoints(const RibRequest& r, const std::vector<RibParam>& params, const std::string& context,
-                            size_t count, bool rational, bool heights, std::vector<glm::dvec3>* out) {
-    out->assign(count, glm::dvec3(0.0));
+                            size_t count, bool heights, std::vector<glm::dvec4>* out, bool* rational) {
+    out->assign(count, glm::dvec4(0, 0, 0, 1));
+    *rational = false;
     std::vector<double> v;
     bool havePosition = false;
     for (const RibParam& p : params) {
@@ -40,23 +41,23 @@ bool RibParser::PatchPoints(const RibRequest& r, const std::vector<RibParam>& pa
         if (n == "P") {
             v.resize(3 * count);
             if (!ParamNumbers(p, context, 3 * count, v.data())) return false;
-            for (size_t i = 0; i < count; ++i) (*out)[i] = glm::dvec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-        } else if (n == "Pw") {  // homogeneous points
+            for (size_t i = 0; i < count; ++i) (*out)[i] = glm::dvec4(v[3 * i], v[3 * i + 1], v[3 * i + 2], 1.0);
+        } else if (n == "Pw") {  // homogeneous points (x w, y w, z w, w): a rational patch
             v.resize(4 * count);
             if (!ParamNumbers(p, context, 4 * count, v.data())) return false;
             for (size_t i = 0; i < count; ++i) {
                 const double w = v[4 * i + 3];
-                if (!rational && w != 1)
-                    return Fail(p.at, context + " parameter 'Pw': point " + std::to_string(i) +
-                                          " has w = " + FormatNumber(w) +
-                                          "; rational bicubic patches are not supported yet (every w must be 1)");
-                if (w == 0) return Fail(p.at, context + " parameter 'Pw' has a zero w");
-                (*out)[i] = glm::dvec3(v[4 * i], v[4 * i + 1], v[4 * i + 2]) / w;
+                // The patch divides by the weighted sum of the w; positive weights keep it > 0.
+                if (!(w > 0) || !std::isfinite(w))
+                    return Fail(p.at, context + " parameter 'Pw': point " + std::to_string(i) + " has w = " +
+                                          FormatNumber(w) + "; the weights of a rational patch must be positive");
+                (*out)[i] = glm::dvec4(v[4 * i], v[4 * i + 1], v[4 * i + 2], w);
+                *rational = *rational || w != 1;
             }
         } else if (n == "Pz" && heights) {  // heights over the unit square (x = u, y = v)
             v.resize(count);
             if (!ParamNumbers(p, context, count, v.data())) return false;
-            for (size_t i = 0; i < count; ++i) (*out)[i] = glm::dvec3(double(i & 1), double(i >> 1), v[i]);
+            for (size_t i = 0; i < count; ++i) (*out)[i] = glm::dvec4(double(i & 1), double(i >> 1), v[i], 1.0);
         } else if (n == "Pz") {
             return Fail(p.at, context + " parameter 'Pz' is supported on 'Patch \"bilinear\"' only; give \"P\"");
         } else {
@@ -105,14 +106,34 @@ bool RibParser::DoPatch(const RibRequest& r) {
 
     const bool bicubic = type == "bicubic";
     const std::string context = "'Patch \"" + type + "\"'";
-    std::vector<glm::dvec3> points;
-    if (!PatchPoints(r, params, context, bicubic ? 16 : 4, !bicubic, !bicubic, &points)) return false;
+    std::vector<glm::dvec4> points;
+    bool rational;
+    if (!PatchPoints(r, params, context, bicubic ? 16 : 4, !bicubic, &points, &rational)) return false;
+    return AddPatch(r, context, bicubic, rational, points, {});
+}
+
+// A patch of homogeneous control points: on the bilinear or bicubic fast path when every w is 1,
+// else a rational patch (renderer/geometry/nurbs.h).
+bool RibParser::AddPatch(const RibRequest& r, const std::string& context, bool bicubic, bool rational,
+                         const std::vector<glm::dvec4>& points, const renderer::ParameterRange& range) {
+    auto point = [&](size_t i) { return glm::dvec3(points[i]); };
     if (bicubic) {
-        std::array<glm::dvec3, 16> g;
+        std::array<glm::dvec4, 16> g;
         std::copy(points.begin(), points.end(), g.begin());
-        return AddBicubic(r, context, g, {});
+        if (rational)
+            return AddRational(r, context,
+                               renderer::RationalPatch::Bicubic(g, m_state.uBasis, m_state.vBasis, m_state.ctm), range,
+                               nullptr);
+        std::array<glm::dvec3, 16> p;
+        for (size_t i = 0; i < 16; ++i) p[i] = point(i);
+        return AddBicubic(r, context, p, range);
     }
-    return AddBilinear(r, context, {points[0], points[1], points[2], points[3]}, {});
+    if (rational) {
+        std::array<glm::dvec4, 4> corners;
+        for (size_t i = 0; i < 4; ++i) corners[i] = renderer::PlaceHomogeneous(m_state.ctm, points[i]);
+        return AddRational(r, context, renderer::RationalPatch::Bilinear(corners), range, nullptr);
+    }
+    return AddBilinear(r, context, {point(0), point(1), point(2), point(3)}, range);
 }
 
 // PatchMesh type nu uwrap nv vwrap ...: nu x nv control points (u fastest) cut into patches as
@@ -167,8 +188,9 @@ bool RibParser::DoPatchMesh(const RibRequest& r) {
     }
     std::vector<RibParam> params;
     if (!ParamList(r, 5, &params) || !InsideWorld(r)) return false;
-    std::vector<glm::dvec3> points;
-    if (!PatchPoints(r, params, context, size_t(n[0]) * size_t(n[1]), !bicubic, false, &points)) return false;
+    std::vector<glm::dvec4> points;
+    bool rational;
+    if (!PatchPoints(r, params, context, size_t(n[0]) * size_t(n[1]), false, &points, &rational)) return false;
 
     auto point = [&](int i, int j) {
         // Periodic indices wrap; nonperiodic ones stay in range by the counts checked above.
@@ -178,17 +200,14 @@ bool RibParser::DoPatchMesh(const RibRequest& r) {
         for (int pu = 0; pu < patches[0]; ++pu) {
             const renderer::ParameterRange range{double(pu) / patches[0], double(pu + 1) / patches[0],
                                                  double(pv) / patches[1], double(pv + 1) / patches[1]};
-            bool ok;
+            std::vector<glm::dvec4> g;
             if (bicubic) {
-                std::array<glm::dvec3, 16> g;
                 for (int b = 0; b < 4; ++b)
-                    for (int a = 0; a < 4; ++a) g[4 * b + a] = point(pu * step[0] + a, pv * step[1] + b);
-                ok = AddBicubic(r, context, g, range);
+                    for (int a = 0; a < 4; ++a) g.push_back(point(pu * step[0] + a, pv * step[1] + b));
             } else {
-                ok = AddBilinear(r, context,
-                                 {point(pu, pv), point(pu + 1, pv), point(pu, pv + 1), point(pu + 1, pv + 1)}, range);
+                g = {point(pu, pv), point(pu + 1, pv), point(pu, pv + 1), point(pu + 1, pv + 1)};
             }
-            if (!ok) return false;
+            if (!AddPatch(r, context, bicubic, rational, g, range)) return false;
         }
     return true;
 }

@@ -2,7 +2,7 @@
 // Private to the reader: use rib/rib.h. rib.cpp holds dispatch, the block structure, options
 // and transforms; frames.cpp frames, world blocks and shadow passes; attributes.cpp the shading
 // attributes (with Sides and orientation) and lights; geometry.cpp the primitives and coordinate
-// systems; archive.cpp ReadArchive and retained objects. The graphics state (CTM, color, surface,
+// systems; nurbs.cpp NuPatch and TrimCurve; archive.cpp ReadArchive and retained objects. The graphics state (CTM, color, surface,
 // displacement, sides, orientation, basis, the lights that are on) is saved by every Begin and
 // restored by its End; the options by FrameBegin and FrameEnd (FrameDefaults).
 #pragma once
@@ -55,6 +55,10 @@ class RibParser : private RibArgChecks {
         /// The lights that are on (Illuminate), as sorted indices into the frame's lights: every
         /// light is on from its LightSource.
         std::vector<int> lights;
+        /// TrimCurve: the trim loops of the NuPatches that follow (null: none), and
+        /// Attribute "trimcurve" "sense": whether the inside of the loops is kept ("inside").
+        std::shared_ptr<const renderer::TrimCurves> trim;
+        bool trimKeepInside = true;
     };
     /// What FrameEnd restores: the options and camera-space lights and coordinate systems in
     /// effect at FrameBegin (the graphics state is restored by the block itself).
@@ -196,12 +200,21 @@ class RibParser : private RibArgChecks {
     bool DoBasis(const RibRequest& r);
     bool DoPatch(const RibRequest& r);
     bool DoPatchMesh(const RibRequest& r);
-    /// The control points of a patch or patch mesh of `count` points from "P" or "Pw" (and "Pz"
-    /// if `heights` is given: the point i of a bilinear patch at (i & 1, i >> 1)); `rational`
-    /// says whether "Pw" may have w != 1 (divided out, as a bilinear patch does) or not (an
-    /// error: rational bicubic patches are not supported). Other parameters are warned about.
+    /// The homogeneous control points of a patch or patch mesh of `count` points from "P" (w = 1)
+    /// or "Pw" (w > 0; *rational if some w != 1), and "Pz" if `heights` is given (the point i of
+    /// a bilinear patch at (i & 1, i >> 1)). Other parameters are warned about.
     bool PatchPoints(const RibRequest& r, const std::vector<RibParam>& params, const std::string& context, size_t count,
-                     bool rational, bool heights, std::vector<glm::dvec3>* out);
+                     bool heights, std::vector<glm::dvec4>* out, bool* rational);
+    /// Adds a bilinear (4 points) or bicubic (16, the current bases) patch of homogeneous control
+    /// points in object space covering `range` of its mesh: rational if `rational`.
+    bool AddPatch(const RibRequest& r, const std::string& context, bool bicubic, bool rational,
+                  const std::vector<glm::dvec4>& points, const renderer::ParameterRange& range);
+    /// Adds a rational patch (world space) covering `range` of its surface, cut by `trim`.
+    bool AddRational(const RibRequest& r, const std::string& context, const renderer::RationalPatch& patch,
+                     const renderer::ParameterRange& range, std::shared_ptr<const renderer::TrimCurves> trim);
+    /// NuPatch and TrimCurve (rib/nurbs.cpp).
+    bool DoNuPatch(const RibRequest& r);
+    bool DoTrimCurve(const RibRequest& r);
     /// Adds a bilinear patch (corners in object space) covering `range` of its mesh.
     bool AddBilinear(const RibRequest& r, const std::string& context, const std::array<glm::dvec3, 4>& corners,
                      const renderer::ParameterRange& range);

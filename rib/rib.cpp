@@ -43,13 +43,13 @@ constexpr std::string_view kNoEffect[] = {
 // with one warning per name.
 constexpr std::string_view kIgnored[] = {
     "AreaLightSource", "Atmosphere", "ClippingPlane", "ColorSamples", "DepthOfField", "Exterior",
-    "Imager", "Interior", "Matte", "TextureCoordinates", "TrimCurve",
+    "Imager", "Interior", "Matte", "TextureCoordinates",
 };
 
 // RI 3.2 requests that create or move geometry: ignoring them would render the wrong scene, so
 // they are errors until implemented.
 constexpr std::string_view kUnsupported[] = {
-    "Blobby", "Curves", "Deformation", "Geometry", "MotionBegin", "MotionEnd", "NuPatch",
+    "Blobby", "Curves", "Deformation", "Geometry", "MotionBegin", "MotionEnd",
     "Perspective", "Points", "Procedural", "Skew", "SolidBegin", "SolidEnd", "SubdivisionMesh",
 };
 // clang-format on
@@ -176,6 +176,8 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"Basis", &RibParser::DoBasis},
         {"Patch", &RibParser::DoPatch},
         {"PatchMesh", &RibParser::DoPatchMesh},
+        {"NuPatch", &RibParser::DoNuPatch},
+        {"TrimCurve", &RibParser::DoTrimCurve},
         {"Sphere", &RibParser::DoSphere},
         {"Cylinder", &RibParser::DoCylinder},
         {"Cone", &RibParser::DoCone},

@@ -13,6 +13,7 @@
 
 #include "renderer/geometry/bicubic.h"
 #include "renderer/geometry/mesh.h"
+#include "renderer/geometry/nurbs.h"
 #include "renderer/geometry/quadric.h"
 #include "vm/interpreter.h"
 #include "vm/numbers/number.h"
@@ -224,6 +225,26 @@ void SetBicubicGlobals(vm::Interpreter<T>& interp, const BicubicPatch& patch, do
     SetFrameGlobals(interp, param.u, param.v, frame, nullptr, eye, flipNormal);
 }
 
+/// SetPatchGlobals for a rational patch (or a NuPatch span) that covers `range` of its surface's
+/// (u,v); s and t are its "st" if it has one, else u and v.
+template <class T>
+void SetRationalGlobals(vm::Interpreter<T>& interp, const RationalPatch& patch, double u0, double u1, double v0,
+                        double v1, const glm::dvec3& eye, bool flipNormal = false, const ParameterRange& range = {}) {
+    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
+    const PatchParameters<T> param(range, u0, u1, v0, v1);
+    SurfaceFrame<T> frame = RationalFrame(patch, param.s, param.t);
+    if (param.dsdu != 1) frame.dPdu = frame.dPdu * param.dsdu;
+    if (param.dtdv != 1) frame.dPdv = frame.dPdv * param.dtdv;
+    SetFrameGlobals(interp, param.u, param.v, frame, nullptr, eye, flipNormal);
+    const vm::Program& program = interp.program();
+    if (patch.hasST && (program.readsGlobal(vm::Global::s) || program.readsGlobal(vm::Global::t))) {
+        T s, t;
+        RationalST(patch, param.s, param.t, &s, &t);
+        interp.SetGlobal(vm::Global::s, s);
+        interp.SetGlobal(vm::Global::t, t);
+    }
+}
+
 /// A quadric placed in the world by an affine object-to-world matrix (GLM's column-major).
 struct PlacedQuadric {
     Quadric quadric;
@@ -307,11 +328,15 @@ void SetMeshPieceGlobals(vm::Interpreter<T>& interp, const MeshPiece& piece, dou
 /// of its mesh's (u,v) it covers), a placed quadric or a polygon mesh's piece, with the
 /// orientation of its normal.
 struct BaseSurface {
-    enum class Kind { BilinearPatch, Quadric, BicubicPatch, MeshPiece } kind = Kind::BilinearPatch;
+    enum class Kind { BilinearPatch, Quadric, BicubicPatch, MeshPiece, RationalPatch } kind = Kind::BilinearPatch;
     BilinearPatch patch{};
     PlacedQuadric quadric{};
     BicubicPatch bicubic{};
     MeshPiece piece{};
+    RationalPatch rational{};
+    /// NuPatch spans only: the trim curves (in the range's (u,v)) whose trimmed side the
+    /// intersector never reports a hit on; null if untrimmed.
+    std::shared_ptr<const TrimCurves> trim;
     ParameterRange range{};  ///< Patches only; a quadric's or mesh piece's (u,v) is always [0,1]^2.
     bool flipNormal = false;
 
@@ -323,9 +348,15 @@ struct BaseSurface {
     BaseSurface(const BicubicPatch& p, bool flip = false, const ParameterRange& r = {})
         : kind(Kind::BicubicPatch), bicubic(p), range(r), flipNormal(flip) {}
     BaseSurface(const MeshPiece& m, bool flip = false) : kind(Kind::MeshPiece), piece(m), flipNormal(flip) {}
+    BaseSurface(const RationalPatch& p, bool flip = false, const ParameterRange& r = {},
+                std::shared_ptr<const TrimCurves> t = nullptr)
+        : kind(Kind::RationalPatch), rational(p), trim(std::move(t)), range(r), flipNormal(flip) {}
+    /// Whether the surface is kept at the point (s, t) of its own [0,1]^2 (false where trimmed).
+    bool KeptP(double s, double t) const { return !trim || trim->KeptP(range.U(s), range.V(t)); }
 };
 
-/// SetPatchGlobals, SetBicubicGlobals, SetQuadricGlobals or SetMeshPieceGlobals, as `surface` is.
+/// SetPatchGlobals, SetBicubicGlobals, SetQuadricGlobals, SetMeshPieceGlobals or SetRationalGlobals,
+/// as `surface` is.
 template <class T>
 void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, double u0, double u1, double v0,
                        double v1, const glm::dvec3& eye) {
@@ -341,6 +372,9 @@ void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, d
             break;
         case BaseSurface::Kind::MeshPiece:
             SetMeshPieceGlobals(interp, surface.piece, u0, u1, v0, v1, eye, surface.flipNormal);
+            break;
+        case BaseSurface::Kind::RationalPatch:
+            SetRationalGlobals(interp, surface.rational, u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
             break;
     }
 }

@@ -193,10 +193,10 @@ TEST_CASE("rib patches: bad bases, counts, sizes and rational points are errors 
     CHECK(ErrorOf("Patch \"bicubic\" \"Pz\" [1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16]") ==
           "t.rib:2: 'Patch \"bicubic\"' parameter 'Pz' is supported on 'Patch \"bilinear\"' only; give \"P\"");
     std::string pw = "Patch \"bicubic\" \"Pw\" [";
-    for (int i = 0; i < 16; ++i) pw += i == 5 ? "0 0 0 2 " : "0 0 0 1 ";
+    for (int i = 0; i < 16; ++i) pw += i == 5 ? "0 0 0 -2 " : "0 0 0 1 ";
     CHECK(ErrorOf(pw + "]") ==
-          "t.rib:2: 'Patch \"bicubic\"' parameter 'Pw': point 5 has w = 2; rational bicubic patches are not "
-          "supported yet (every w must be 1)");
+          "t.rib:2: 'Patch \"bicubic\"' parameter 'Pw': point 5 has w = -2; the weights of a rational patch must be "
+          "positive");
     CHECK(ErrorOf("Patch \"trilinear\" " + p16) ==
           "t.rib:2: unknown patch type 'trilinear' (expected \"bilinear\" or \"bicubic\")");
     // PatchMesh counts against the basis step and the wrap mode.

@@ -256,7 +256,8 @@ TEST_CASE("RIB defaults and variants", "[renderer][rib]") {
         "t.rib", &error);
     INFO(error);
     REQUIRE(scene);
-    RequireVec(scene->primitives[0].corners[0], {1, 0, 0});
+    REQUIRE(scene->primitives[0].shape == PrimitiveDesc::Shape::RationalPatch);
+    RequireVec(scene->primitives[0].rational.At(0, 0), {1, 0, 0});
     RequireVec(scene->primitives[1].corners[3], {1, 1, 4});
 }
 
@@ -274,7 +275,7 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
 
     CHECK(ErrorOf("Fooo 1 2\n") == "t.rib:1: error: unknown RIB request 'Fooo'");
     CHECK(ErrorOf("WorldBegin\nNuPatch 2 2 [0 0 1 1] 0 1\nWorldEnd\n") ==
-          "t.rib:2: error: 'NuPatch' is not supported yet");
+          "t.rib:2: error: 'NuPatch' expects nu uorder uknot umin umax nv vorder vknot vmin vmax, got 5 arguments");
     CHECK(
         ErrorOf("WorldBegin\n\nSubdivisionMesh \"catmull-clark\" [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n") ==
         "t.rib:3: error: 'SubdivisionMesh' is not supported yet");
