@@ -373,6 +373,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                 prim.base = BaseSurface(patch.bicubic, patch.flipNormal, patch.range);
                 break;
             case PrimitiveDesc::Shape::MeshPiece: prim.base = BaseSurface(patch.piece, patch.flipNormal); break;
+            case PrimitiveDesc::Shape::SubdivPatch: prim.base = BaseSurface(patch.subdiv, patch.flipNormal); break;
             case PrimitiveDesc::Shape::Quadric:
                 prim.base = BaseSurface(PlacedQuadric{patch.quadric, patch.objectToWorld}, patch.flipNormal);
                 break;

@@ -187,6 +187,7 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"GeneralPolygon", &RibParser::DoGeneralPolygon},
         {"PointsPolygons", &RibParser::DoPointsPolygons},
         {"PointsGeneralPolygons", &RibParser::DoPointsGeneralPolygons},
+        {"SubdivisionMesh", &RibParser::DoSubdivisionMesh},
         {"version", &RibParser::DoVersion},
         {"Hider", &RibParser::DoHider},
         {"Declare", &RibParser::DoDeclare},

@@ -14,6 +14,7 @@
 #include "renderer/geometry/bicubic.h"
 #include "renderer/geometry/mesh.h"
 #include "renderer/geometry/quadric.h"
+#include "renderer/geometry/subdivision.h"
 #include "vm/interpreter.h"
 #include "vm/numbers/number.h"
 #include "vm/numbers/vec3.h"
@@ -303,15 +304,35 @@ void SetMeshPieceGlobals(vm::Interpreter<T>& interp, const MeshPiece& piece, dou
         interp.SetGlobal(vm::Global::Ng, Constant<T>(flipNormal ? -piece.faceNormal : piece.faceNormal));
 }
 
+/// SetPatchGlobals for a region of a subdivision mesh's patch (renderer/geometry/subdivision.h):
+/// N is the geometric normal of a regular patch, the shared normal field of an approximated one,
+/// both flipped by the orientation; s, t are the mesh's "st" if it has one, else u, v.
+template <class T>
+void SetSubdivGlobals(vm::Interpreter<T>& interp, const SubdivPatch& patch, double u0, double u1, double v0, double v1,
+                      const glm::dvec3& eye, bool flipNormal = false) {
+    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
+    const T u = SurfaceParameter<T>(u0, u1, 0);
+    const T v = SurfaceParameter<T>(v0, v1, 1);
+    SetFrameGlobals(interp, u, v, SubdivPatchFrame(patch, u, v), nullptr, eye, flipNormal);
+    const vm::Program& program = interp.program();
+    if (patch.hasST && (program.readsGlobal(vm::Global::s) || program.readsGlobal(vm::Global::t))) {
+        T s, t;
+        SubdivPatchST(patch, u, v, &s, &t);
+        interp.SetGlobal(vm::Global::s, s);
+        interp.SetGlobal(vm::Global::t, t);
+    }
+}
+
 /// A base surface for the intersector and the shading: a bilinear or bicubic patch (with the part
-/// of its mesh's (u,v) it covers), a placed quadric or a polygon mesh's piece, with the
-/// orientation of its normal.
+/// of its mesh's (u,v) it covers), a placed quadric, a polygon mesh's piece or a subdivision
+/// mesh's patch, with the orientation of its normal.
 struct BaseSurface {
-    enum class Kind { BilinearPatch, Quadric, BicubicPatch, MeshPiece } kind = Kind::BilinearPatch;
+    enum class Kind { BilinearPatch, Quadric, BicubicPatch, MeshPiece, SubdivPatch } kind = Kind::BilinearPatch;
     BilinearPatch patch{};
     PlacedQuadric quadric{};
     BicubicPatch bicubic{};
     MeshPiece piece{};
+    SubdivPatch subdiv{};
     ParameterRange range{};  ///< Patches only; a quadric's or mesh piece's (u,v) is always [0,1]^2.
     bool flipNormal = false;
 
@@ -323,6 +344,7 @@ struct BaseSurface {
     BaseSurface(const BicubicPatch& p, bool flip = false, const ParameterRange& r = {})
         : kind(Kind::BicubicPatch), bicubic(p), range(r), flipNormal(flip) {}
     BaseSurface(const MeshPiece& m, bool flip = false) : kind(Kind::MeshPiece), piece(m), flipNormal(flip) {}
+    BaseSurface(const SubdivPatch& p, bool flip = false) : kind(Kind::SubdivPatch), subdiv(p), flipNormal(flip) {}
 };
 
 /// SetPatchGlobals, SetBicubicGlobals, SetQuadricGlobals or SetMeshPieceGlobals, as `surface` is.
@@ -341,6 +363,9 @@ void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, d
             break;
         case BaseSurface::Kind::MeshPiece:
             SetMeshPieceGlobals(interp, surface.piece, u0, u1, v0, v1, eye, surface.flipNormal);
+            break;
+        case BaseSurface::Kind::SubdivPatch:
+            SetSubdivGlobals(interp, surface.subdiv, u0, u1, v0, v1, eye, surface.flipNormal);
             break;
     }
 }
