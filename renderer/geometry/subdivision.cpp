@@ -2,7 +2,8 @@
 // of the refined mesh (renderer/geometry/subdivision.h: the file head there gives the rules).
 // Layout: the topology of one level (half-edges are face corners), one refinement step, the
 // per-vertex limit data (positions and Bezier edge points), then the faces' Bezier nets, the
-// shared edge normal curves and the patches.
+// shared edge normal curves and the patches. Longer than 600 lines because every step works on
+// the same private half-edge types (Level, Topology, Ring); split it by step if it grows.
 #include "renderer/geometry/subdivision.h"
 
 #include <algorithm>
