@@ -389,6 +389,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
             case PrimitiveDesc::Shape::RationalPatch:
                 prim.base = BaseSurface(patch.rational, patch.flipNormal, patch.range, patch.trim);
                 break;
+            case PrimitiveDesc::Shape::SubdivPatch: prim.base = BaseSurface(patch.subdiv, patch.flipNormal); break;
             case PrimitiveDesc::Shape::Quadric:
                 prim.base = BaseSurface(PlacedQuadric{patch.quadric, patch.objectToWorld}, patch.flipNormal);
                 break;

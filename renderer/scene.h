@@ -17,6 +17,7 @@
 #include "renderer/geometry/mesh.h"
 #include "renderer/geometry/nurbs.h"
 #include "renderer/geometry/quadric.h"
+#include "renderer/geometry/subdivision.h"
 
 namespace affray::renderer {
 
@@ -64,13 +65,21 @@ struct LightDesc {
 /// world space), a quadric (in object space, placed by objectToWorld) or one piece of a polygon
 /// face (world space; renderer/geometry/mesh.h).
 struct PrimitiveDesc {
-    enum class Shape { BilinearPatch, Quadric, BicubicPatch, MeshPiece, RationalPatch } shape = Shape::BilinearPatch;
+    enum class Shape {
+        BilinearPatch,
+        Quadric,
+        BicubicPatch,
+        MeshPiece,
+        RationalPatch,
+        SubdivPatch
+    } shape = Shape::BilinearPatch;
     std::array<glm::dvec3, 4> corners{};     ///< Patch: world space, RenderMan order u0v0, u1v0, u0v1, u1v1.
     Quadric quadric;                         ///< Quadric: its request's arguments (object space).
     BicubicPatch bicubic;                    ///< Bicubic patch: world space, power basis.
     MeshPiece piece;                         ///< MeshPiece: a triangle or quad of a polygon face.
     RationalPatch rational;                  ///< Rational Patch/PatchMesh or NuPatch span: world space.
     std::shared_ptr<const TrimCurves> trim;  ///< NuPatch spans: the TrimCurve in effect, or null.
+    SubdivPatch subdiv;                      ///< SubdivPatch: one patch of a subdivision mesh.
     /// Patches: the part of the mesh's (u,v) this patch covers ([0,1]^2 for a lone Patch).
     ParameterRange range;
     glm::dvec3 color{1.0};  ///< The RIB Color (Cs) in effect.
@@ -214,6 +223,8 @@ inline std::string ToString(const PrimitiveDesc& p) {
         if (p.trim) text += " trimmed (" + std::to_string(p.trim->loops.size()) + " loops)";
     } else if (p.shape == PrimitiveDesc::Shape::MeshPiece) {
         text = "polygon line " + std::to_string(p.line) + ": " + ToString(p.piece);
+    } else if (p.shape == PrimitiveDesc::Shape::SubdivPatch) {
+        text = "subdivision line " + std::to_string(p.line) + ": " + ToString(p.subdiv);
     } else {
         text = std::string(Quadric::Name(p.quadric.kind)) + " line " + std::to_string(p.line) + ": " +
                ToString(p.quadric) + " objectToWorld=" + ToString(p.objectToWorld);

@@ -243,6 +243,8 @@ class RibParser : private RibArgChecks {
     /// from argument `first`.
     bool MeshRequest(const RibRequest& r, std::vector<int> loops, std::vector<int> loopSizes, std::vector<int> corners,
                      size_t first, bool indexed);
+    /// SubdivisionMesh (rib/subdivision.cpp): its counts, tags and parameters checked, its patches added.
+    bool DoSubdivisionMesh(const RibRequest& r);
     bool DoVersion(const RibRequest&) { return true; }  // "version 3.03": nothing to check
 
     std::vector<Source> m_sources;

@@ -50,7 +50,7 @@ constexpr std::string_view kIgnored[] = {
 // they are errors until implemented.
 constexpr std::string_view kUnsupported[] = {
     "Blobby", "Curves", "Deformation", "Geometry", "MotionBegin", "MotionEnd",
-    "Perspective", "Points", "Procedural", "Skew", "SolidBegin", "SolidEnd", "SubdivisionMesh",
+    "Perspective", "Points", "Procedural", "Skew", "SolidBegin", "SolidEnd",
 };
 // clang-format on
 
@@ -189,6 +189,7 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"GeneralPolygon", &RibParser::DoGeneralPolygon},
         {"PointsPolygons", &RibParser::DoPointsPolygons},
         {"PointsGeneralPolygons", &RibParser::DoPointsGeneralPolygons},
+        {"SubdivisionMesh", &RibParser::DoSubdivisionMesh},
         {"version", &RibParser::DoVersion},
         {"Hider", &RibParser::DoHider},
         {"Declare", &RibParser::DoDeclare},

@@ -15,6 +15,7 @@
 #include "renderer/geometry/mesh.h"
 #include "renderer/geometry/nurbs.h"
 #include "renderer/geometry/quadric.h"
+#include "renderer/geometry/subdivision.h"
 #include "vm/interpreter.h"
 #include "vm/numbers/number.h"
 #include "vm/numbers/vec3.h"
@@ -324,11 +325,37 @@ void SetMeshPieceGlobals(vm::Interpreter<T>& interp, const MeshPiece& piece, dou
         interp.SetGlobal(vm::Global::Ng, Constant<T>(flipNormal ? -piece.faceNormal : piece.faceNormal));
 }
 
+/// SetPatchGlobals for a region of a subdivision mesh's patch (renderer/geometry/subdivision.h):
+/// N is the geometric normal of a regular patch, the shared normal field of an approximated one,
+/// both flipped by the orientation; s, t are the mesh's "st" if it has one, else u, v.
+template <class T>
+void SetSubdivGlobals(vm::Interpreter<T>& interp, const SubdivPatch& patch, double u0, double u1, double v0, double v1,
+                      const glm::dvec3& eye, bool flipNormal = false) {
+    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
+    const T u = SurfaceParameter<T>(u0, u1, 0);
+    const T v = SurfaceParameter<T>(v0, v1, 1);
+    SetFrameGlobals(interp, u, v, SubdivPatchFrame(patch, u, v), nullptr, eye, flipNormal);
+    const vm::Program& program = interp.program();
+    if (patch.hasST && (program.readsGlobal(vm::Global::s) || program.readsGlobal(vm::Global::t))) {
+        T s, t;
+        SubdivPatchST(patch, u, v, &s, &t);
+        interp.SetGlobal(vm::Global::s, s);
+        interp.SetGlobal(vm::Global::t, t);
+    }
+}
+
 /// A base surface for the intersector and the shading: a bilinear or bicubic patch (with the part
-/// of its mesh's (u,v) it covers), a placed quadric or a polygon mesh's piece, with the
-/// orientation of its normal.
+/// of its mesh's (u,v) it covers), a placed quadric, a polygon mesh's piece or a subdivision
+/// mesh's patch, with the orientation of its normal.
 struct BaseSurface {
-    enum class Kind { BilinearPatch, Quadric, BicubicPatch, MeshPiece, RationalPatch } kind = Kind::BilinearPatch;
+    enum class Kind {
+        BilinearPatch,
+        Quadric,
+        BicubicPatch,
+        MeshPiece,
+        RationalPatch,
+        SubdivPatch
+    } kind = Kind::BilinearPatch;
     BilinearPatch patch{};
     PlacedQuadric quadric{};
     BicubicPatch bicubic{};
@@ -337,6 +364,7 @@ struct BaseSurface {
     /// NuPatch spans only: the trim curves (in the range's (u,v)) whose trimmed side the
     /// intersector never reports a hit on; null if untrimmed.
     std::shared_ptr<const TrimCurves> trim;
+    SubdivPatch subdiv{};
     ParameterRange range{};  ///< Patches only; a quadric's or mesh piece's (u,v) is always [0,1]^2.
     bool flipNormal = false;
 
@@ -353,6 +381,7 @@ struct BaseSurface {
         : kind(Kind::RationalPatch), rational(p), trim(std::move(t)), range(r), flipNormal(flip) {}
     /// Whether the surface is kept at the point (s, t) of its own [0,1]^2 (false where trimmed).
     bool KeptP(double s, double t) const { return !trim || trim->KeptP(range.U(s), range.V(t)); }
+    BaseSurface(const SubdivPatch& p, bool flip = false) : kind(Kind::SubdivPatch), subdiv(p), flipNormal(flip) {}
 };
 
 /// SetPatchGlobals, SetBicubicGlobals, SetQuadricGlobals, SetMeshPieceGlobals or SetRationalGlobals,
@@ -375,6 +404,8 @@ void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, d
             break;
         case BaseSurface::Kind::RationalPatch:
             SetRationalGlobals(interp, surface.rational, u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
+        case BaseSurface::Kind::SubdivPatch:
+            SetSubdivGlobals(interp, surface.subdiv, u0, u1, v0, v1, eye, surface.flipNormal);
             break;
     }
 }

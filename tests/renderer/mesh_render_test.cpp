@@ -7,10 +7,7 @@
 #include <map>
 #include <sstream>
 
-#include "renderer/image/film.h"
-#include "renderer/render.h"
-#include "rib/rib.h"
-#include "tests/test_util.h"
+#include "tests/renderer/render_coverage.h"
 
 using namespace affray;
 using namespace affray::renderer;
@@ -55,35 +52,6 @@ std::string SphereMeshRib(int levels) {
     return out.str();
 }
 
-ImageBuffer Render(const test::TempDir& dir, const std::string& rib) {
-    affray::diag::Report error;
-    std::optional<SceneDesc> desc = rib::ParseRib(rib, dir.Path("scene.rib"), &error);
-    INFO(error);
-    REQUIRE(desc);
-    desc->camera.xsamples = desc->camera.ysamples = 1;
-    desc->camera.jitter = false;
-    desc->camera.filter = FilterDesc{FilterDesc::Kind::Box, 1, 1};
-    PreparedScene prepared;
-    const bool ok = PrepareScene(*desc, {dir.Path(".")}, {}, &prepared, &error);
-    INFO(error);
-    REQUIRE(ok);
-    RenderOptions options;
-    options.threads = 2;
-    ImageBuffer image;
-    RenderStats stats;
-    RenderImage(prepared, options, &image, &stats);
-    CHECK(stats.camera.depthLimitHits == 0);
-    return image;
-}
-
-const std::vector<float>& Z(const ImageBuffer& image) {
-    for (const auto& [n, values] : image.extraChannels)
-        if (n == "Z") return values;
-    FAIL("no Z channel");
-    static std::vector<float> none;
-    return none;
-}
-
 }  // namespace
 
 TEST_CASE("mesh render: a closed displaced mesh with vertex normals stops every ray its base stops",
@@ -101,19 +69,10 @@ WorldBegin
 Sides 1
 )";
     const std::string mesh = SphereMeshRib(1);
-    const ImageBuffer base = Render(dir, head + mesh + "WorldEnd\n");
-    const ImageBuffer displaced = Render(dir, head + "Displacement \"outward\"\n" + mesh + "WorldEnd\n");
-    const std::vector<float>&zBase = Z(base), &zDisplaced = Z(displaced);
-    int covered = 0, misses = 0, farther = 0;
-    for (size_t i = 0; i < zBase.size(); ++i) {
-        if (base.rgba[4 * i + 3] == 0) continue;
-        ++covered;
-        if (displaced.rgba[4 * i + 3] == 0)
-            ++misses;
-        else if (zDisplaced[i] > zBase[i])
-            ++farther;
-    }
-    CHECK(covered > 300);
-    CHECK(misses == 0);
-    CHECK(farther == 0);
+    const ImageBuffer base = test::RenderRib(dir, head + mesh + "WorldEnd\n");
+    const ImageBuffer displaced = test::RenderRib(dir, head + "Displacement \"outward\"\n" + mesh + "WorldEnd\n");
+    const test::Coverage c = test::CompareCoverage(base, displaced);
+    CHECK(c.covered > 300);
+    CHECK(c.misses == 0);
+    CHECK(c.farther == 0);
 }

@@ -276,9 +276,7 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
     CHECK(ErrorOf("Fooo 1 2\n") == "t.rib:1: error: unknown RIB request 'Fooo'");
     CHECK(ErrorOf("WorldBegin\nNuPatch 2 2 [0 0 1 1] 0 1\nWorldEnd\n") ==
           "t.rib:2: error: 'NuPatch' expects nu uorder uknot umin umax nv vorder vknot vmin vmax, got 5 arguments");
-    CHECK(
-        ErrorOf("WorldBegin\n\nSubdivisionMesh \"catmull-clark\" [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n") ==
-        "t.rib:3: error: 'SubdivisionMesh' is not supported yet");
+    CHECK(ErrorOf("WorldBegin\n\nPoints \"P\" [0 0 0]\nWorldEnd\n") == "t.rib:3: error: 'Points' is not supported yet");
     CHECK(ErrorOf("WorldBegin\nPatch \"bicubic\" \"P\" [0 0 0]\nWorldEnd\n") ==
           "t.rib:2: error: 'Patch \"bicubic\"' parameter 'P' expects 48 numbers, got 3");
     CHECK(ErrorOf("Skew 45 0 1 0 1 0 0\n") ==

@@ -1,0 +1,265 @@
+// rib/subdivision.cpp: RI Spec 3.2 section 5.5, SubdivisionMesh "catmull-clark" nvertices vertices
+// [tags nargs intargs floatargs] parameterlist. The mesh becomes a renderer::SubdivisionMesh in
+// world space, which renderer::BuildSubdivisionPatches refines and turns into patches, one
+// primitive each (renderer/geometry/subdivision.h). Tags: "hole" (face indices), "crease" (a
+// chain of vertices, one sharpness), "corner" (vertices, one sharpness or one each),
+// "interpolateboundary" (no argument, or one integer: 0 none, 1 edges and corners, 2 edges only);
+// any other tag is warned about once and ignored. Parameters: "P" or "Pw" (w must be 1), "st" or
+// "s" and "t" together (any storage class); "N" means nothing on a subdivision surface (its
+// normal is the limit surface's) and is ignored with a warning, as in PRMan; other variables
+// are checked against their counts, then ignored with a warning.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+
+#include "rib/parser.h"
+
+namespace affray::rib {
+
+using renderer::SubdivisionMesh;
+using renderer::SubdivST;
+
+namespace {
+
+std::string StandardSubdivDeclaration(const std::string& name) {
+    if (name == "P") return "vertex point";
+    if (name == "Pw") return "vertex hpoint";
+    if (name == "N") return "varying normal";
+    if (name == "st") return "varying float[2]";
+    if (name == "s" || name == "t") return "varying float";
+    if (name == "Cs" || name == "Os") return "varying color";
+    return "";
+}
+
+SubdivST::Storage SubdivStorageOf(const std::string& storage) {
+    if (storage == "constant") return SubdivST::Storage::Constant;
+    if (storage == "uniform" || storage.empty()) return SubdivST::Storage::Uniform;
+    if (storage == "varying") return SubdivST::Storage::Varying;
+    if (storage == "vertex") return SubdivST::Storage::Vertex;
+    return SubdivST::Storage::FaceVarying;
+}
+
+}  // namespace
+
+bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
+    const std::string context = Quote(r.name);
+    std::string scheme;
+    if (!LeadingString(r, "a subdivision scheme name", &scheme)) return false;
+    if (scheme != "catmull-clark")
+        return Fail(r.args[0].at, context + " scheme " + Quote(scheme) + " is not supported (only \"catmull-clark\")");
+    std::vector<int> nvertices, vertices;
+    if (!IntArray(r, 1, "nvertices", 3, &nvertices) || !IntArray(r, 2, "vertices", 0, &vertices)) return false;
+    // The tags come as four arrays, or not at all (the parameter list's tokens are bare strings).
+    size_t first = 3;
+    std::vector<std::string> tags;
+    std::vector<int> nargs, intargs;
+    std::vector<double> floatargs;
+    if (r.args.size() > 3 && r.args[3].isArray) {
+        if (r.args.size() < 7 || !r.args[3].StringsP())
+            return Fail(r.args[3].at,
+                        context + " expects the arrays tags, nargs, intargs and floatargs after vertices");
+        tags = r.args[3].strings;
+        for (size_t i = 4; i < 7; ++i)
+            if (!r.args[i].isArray || !r.args[i].NumericP())
+                return Fail(r.args[i].at, context + " expects an array of numbers as argument " +
+                                              std::to_string(i + 1) + ", found " + r.args[i].Describe());
+        nargs.clear();
+        for (double x : r.args[4].numbers) {
+            if (x != std::floor(x) || x < 0 || x > 1e9)
+                return Fail(r.args[4].at, context + " nargs must be integers of at least 0");
+            nargs.push_back(static_cast<int>(x));
+        }
+        for (double x : r.args[5].numbers) {
+            if (x != std::floor(x) || std::fabs(x) > 1e9)
+                return Fail(r.args[5].at, context + " intargs must be integers, got " + FormatNumber(x));
+            intargs.push_back(static_cast<int>(x));
+        }
+        floatargs = r.args[6].numbers;
+        first = 7;
+    }
+    std::vector<RibParam> params;
+    m_uniformVaries = true;
+    const bool listed = ParamList(r, first, &params);
+    m_uniformVaries = false;
+    if (!listed || !InsideWorld(r)) return false;
+
+    // Counts and indices.
+    const size_t nFaces = nvertices.size();
+    const size_t nCorners = static_cast<size_t>(std::accumulate(nvertices.begin(), nvertices.end(), 0LL));
+    if (vertices.size() != nCorners)
+        return Fail(r.args[2].at, context + " nvertices add up to " + std::to_string(nCorners) +
+                                      " vertices, but the vertices array has " + std::to_string(vertices.size()));
+    const RibParam* position = nullptr;
+    for (const RibParam& p : params)
+        if (p.value.name == "P" || (p.value.name == "Pw" && !position)) position = &p;
+    if (!position) return Fail(r.at, context + " needs a \"P\" parameter");
+    const size_t width = position->value.name == "P" ? 3 : 4;
+    const size_t nPoints = position->value.numbers.size() / width;
+    if (!position->value.strings.empty() || position->value.numbers.size() % width != 0 || nPoints == 0)
+        return Fail(position->at, context + " parameter " + Quote(position->value.name) + " expects a multiple of " +
+                                      std::to_string(width) + " numbers, got " +
+                                      std::to_string(position->value.numbers.size()));
+    for (int v : vertices)
+        if (static_cast<size_t>(v) >= nPoints)
+            return Fail(r.args[2].at, context + " vertex index " + std::to_string(v) + " is out of range (" +
+                                          Quote(position->value.name) + " has " + std::to_string(nPoints) + " points)");
+
+    SubdivisionMesh mesh;
+    mesh.faceSizes = nvertices;
+    mesh.faceVerts = vertices;
+
+    // Tags: each takes nargs[2i] integers and nargs[2i + 1] floats, in order.
+    if (nargs.size() != 2 * tags.size())
+        return Fail(r.args[4].at, context + " has " + std::to_string(tags.size()) + " tags, so nargs needs " +
+                                      std::to_string(2 * tags.size()) + " entries, got " +
+                                      std::to_string(nargs.size()));
+    size_t intAt = 0, floatAt = 0;
+    std::set<std::pair<int, int>> edges;
+    for (size_t f = 0, c = 0; f < nFaces; c += static_cast<size_t>(nvertices[f]), ++f)
+        for (int k = 0; k < nvertices[f]; ++k) {
+            const int a = vertices[c + static_cast<size_t>(k)];
+            const int b = vertices[c + static_cast<size_t>((k + 1) % nvertices[f])];
+            edges.insert(std::minmax(a, b));
+        }
+    for (size_t i = 0; i < tags.size(); ++i) {
+        const size_t ni = static_cast<size_t>(nargs[2 * i]), nf = static_cast<size_t>(nargs[2 * i + 1]);
+        if (intAt + ni > intargs.size() || floatAt + nf > floatargs.size())
+            return Fail(r.args[4].at, context + " nargs ask for more arguments than intargs and floatargs hold (tag " +
+                                          Quote(tags[i]) + ")");
+        const std::vector<int> ints(intargs.begin() + static_cast<long>(intAt),
+                                    intargs.begin() + static_cast<long>(intAt + ni));
+        const std::vector<double> floats(floatargs.begin() + static_cast<long>(floatAt),
+                                         floatargs.begin() + static_cast<long>(floatAt + nf));
+        intAt += ni;
+        floatAt += nf;
+        const std::string tag = context + " tag " + Quote(tags[i]);
+        auto checkVertices = [&]() {
+            for (int v : ints)
+                if (v < 0 || static_cast<size_t>(v) >= nPoints)
+                    return Fail(r.args[5].at, tag + " vertex index " + std::to_string(v) + " is out of range");
+            return true;
+        };
+        if (tags[i] == "hole") {
+            for (int f : ints) {
+                if (f < 0 || static_cast<size_t>(f) >= nFaces)
+                    return Fail(r.args[5].at, tag + " face index " + std::to_string(f) + " is out of range (" +
+                                                  std::to_string(nFaces) + " faces)");
+                mesh.holes.push_back(f);
+            }
+        } else if (tags[i] == "crease") {
+            if (ints.size() < 2 || floats.size() != 1)
+                return Fail(r.args[4].at, tag + " expects at least 2 vertex indices and 1 sharpness, got " +
+                                              std::to_string(ints.size()) + " and " + std::to_string(floats.size()));
+            if (!checkVertices()) return false;
+            for (size_t k = 0; k + 1 < ints.size(); ++k)
+                if (!edges.count(std::minmax(ints[k], ints[k + 1])))
+                    return Fail(r.args[5].at, tag + " joins vertices " + std::to_string(ints[k]) + " and " +
+                                                  std::to_string(ints[k + 1]) + ", which share no edge");
+            mesh.creases.push_back({ints, floats[0]});
+        } else if (tags[i] == "corner") {
+            if (floats.size() != 1 && floats.size() != ints.size())
+                return Fail(r.args[4].at,
+                            tag + " expects 1 sharpness or one per vertex, got " + std::to_string(floats.size()));
+            if (!checkVertices()) return false;
+            for (size_t k = 0; k < ints.size(); ++k)
+                mesh.corners.emplace_back(ints[k], floats.size() == 1 ? floats[0] : floats[k]);
+        } else if (tags[i] == "interpolateboundary") {
+            const int mode = ints.empty() ? 1 : ints[0];
+            if (ints.size() > 1 || mode < 0 || mode > 2)
+                return Fail(r.args[5].at, tag + " expects no argument or one of 0, 1, 2");
+            mesh.boundary = mode == 0   ? renderer::SubdivBoundary::None
+                            : mode == 1 ? renderer::SubdivBoundary::EdgesAndCorners
+                                        : renderer::SubdivBoundary::EdgesOnly;
+        } else {
+            Warn(r.args[3].at, tag + " is not supported; ignored");
+        }
+    }
+
+    // Primitive variables against their storage classes.
+    const RibParam *sParam = nullptr, *tParam = nullptr;
+    for (const RibParam& p : params) {
+        const std::string& name = p.value.name;
+        const std::string declared =
+            p.value.declaration.empty() ? StandardSubdivDeclaration(name) : p.value.declaration;
+        if (declared.empty()) {
+            Warn(p.at, context + " parameter " + Quote(name) + " is not declared; ignored");
+            continue;
+        }
+        RibDeclaration d;
+        std::string problem;
+        if (!RibDeclaration::Parse(declared, &d, &problem)) return Fail(p.at, context + " parameter: " + problem);
+        const SubdivST::Storage storage = SubdivStorageOf(d.storage);
+        size_t values = 1;
+        switch (storage) {
+            case SubdivST::Storage::Constant: values = 1; break;
+            case SubdivST::Storage::Uniform: values = nFaces; break;
+            case SubdivST::Storage::Varying:
+            case SubdivST::Storage::Vertex: values = nPoints; break;
+            case SubdivST::Storage::FaceVarying: values = nCorners; break;
+        }
+        const size_t each = d.UniformCount();
+        const size_t got = d.type == "string" ? p.value.strings.size() : p.value.numbers.size();
+        if (got != values * each)
+            return Fail(p.at, context + " parameter " + Quote(name) + " (" + declared + ") expects " +
+                                  std::to_string(values) + " value" + (values == 1 ? "" : "s") + " of " +
+                                  std::to_string(each) + (each == 1 ? " number" : " numbers") + ", got " +
+                                  std::to_string(got) + (got == 1 ? " number" : " numbers"));
+        if (name == "P" || name == "Pw") continue;
+        if (name == "N") {
+            Warn(p.at, context +
+                           " parameter \"N\" has no meaning on a subdivision surface (its normal is the limit "
+                           "surface's); ignored");
+        } else if (name == "st" && each == 2) {
+            SubdivST st{storage, {}};
+            for (size_t k = 0; k < values; ++k)
+                st.values.emplace_back(p.value.numbers[2 * k], p.value.numbers[2 * k + 1]);
+            mesh.st = st;
+        } else if ((name == "s" || name == "t") && each == 1) {
+            (name == "s" ? sParam : tParam) = &p;
+        } else {
+            Warn(p.at, context + " parameter " + Quote(name) + " is not supported yet; ignored");
+        }
+    }
+    if (!mesh.st && (sParam || tParam)) {
+        // "s" and "t" together make st; one alone cannot be mixed with the patch's own parameter.
+        if (!sParam || !tParam || sParam->value.declaration != tParam->value.declaration)
+            Warn((sParam ? sParam : tParam)->at,
+                 context + " parameters \"s\" and \"t\" are used only together, with the same storage class; ignored");
+        else {
+            RibDeclaration d;
+            std::string problem;
+            const std::string declared =
+                sParam->value.declaration.empty() ? "varying float" : sParam->value.declaration;
+            RibDeclaration::Parse(declared, &d, &problem);
+            SubdivST st{SubdivStorageOf(d.storage), {}};
+            for (size_t k = 0; k < sParam->value.numbers.size(); ++k)
+                st.values.emplace_back(sParam->value.numbers[k], tParam->value.numbers[k]);
+            mesh.st = st;
+        }
+    }
+    for (size_t i = 0; i < nPoints; ++i) {
+        const double* v = position->value.numbers.data() + width * i;
+        if (width == 4 && v[3] != 1)
+            return Fail(position->at, context + " parameter 'Pw' has w = " + FormatNumber(v[3]) + " at point " +
+                                          std::to_string(i) + ": rational subdivision meshes are not supported");
+        mesh.points.push_back(TransformPoint(m_state.ctm, glm::dvec3(v[0], v[1], v[2])));
+        if (!FiniteP(mesh.points.back()))
+            return Fail(position->at, context + " point " + std::to_string(i) + " overflows in world space");
+    }
+
+    renderer::SubdivisionResult result;
+    if (std::string problem = renderer::BuildSubdivisionPatches(mesh, &result); !problem.empty())
+        return Fail(r.at, context + " " + problem);
+    for (const renderer::SubdivPatch& patch : result.patches) {
+        if (!patch.geometry.FiniteP()) return Fail(r.at, context + " has a patch that overflows in world space");
+        PrimitiveDesc prim;
+        prim.shape = PrimitiveDesc::Shape::SubdivPatch;
+        prim.subdiv = patch;
+        SetPrimitiveAttributes(r, &prim);
+        m_scene.primitives.push_back(std::move(prim));
+    }
+    return true;
+}
+
+}  // namespace affray::rib
