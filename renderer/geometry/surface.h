@@ -404,6 +404,7 @@ void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, d
             break;
         case BaseSurface::Kind::RationalPatch:
             SetRationalGlobals(interp, surface.rational, u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
+            break;
         case BaseSurface::Kind::SubdivPatch:
             SetSubdivGlobals(interp, surface.subdiv, u0, u1, v0, v1, eye, surface.flipNormal);
             break;
