@@ -42,7 +42,8 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SCENES = {"wave": "scenes/wave.rib", "terrain": "scenes/terrain.rib", "needles": "scenes/needles.rib"}
+SCENES = {"wave": "scenes/wave.rib", "terrain": "scenes/terrain.rib", "needles": "scenes/needles.rib",
+          "creature": "scenes/creature.rib"}  # creature: a displaced SubdivisionMesh (issue 15)
 # The CSV's columns: the first nine as before; then peak memory and process time (every row) and
 # the tessellation baseline's (its rows only; affray's rows leave them empty, and the
 # tessellation rows leave regions_per_ray, max_certified_error and depth_limit_hits empty; their
