@@ -11,6 +11,26 @@ namespace affray::rib {
 
 // "[class] type[n]": the classes and types of RI 3.2 section 3 (with prman's "int", "bool" and
 // the "facevertex" class).
+renderer::StorageClass RibDeclaration::Storage() const {
+    using renderer::StorageClass;
+    if (storage == "constant") return StorageClass::Constant;
+    if (storage == "uniform" || storage.empty()) return StorageClass::Uniform;
+    if (storage == "varying") return StorageClass::Varying;
+    if (storage == "vertex") return StorageClass::Vertex;
+    return StorageClass::FaceVarying;  // facevarying, facevertex
+}
+
+std::string StandardDeclaration(const std::string& name) {
+    if (name == "P") return "vertex point";
+    if (name == "Pw") return "vertex hpoint";
+    if (name == "N") return "varying normal";
+    if (name == "Np") return "uniform normal";
+    if (name == "st") return "varying float[2]";
+    if (name == "s" || name == "t") return "varying float";
+    if (name == "Cs" || name == "Os") return "varying color";
+    return "";
+}
+
 bool RibDeclaration::Parse(const std::string& text, RibDeclaration* out, std::string* problem) {
     static const char* const kStorage[] = {"constant", "uniform", "varying", "vertex", "facevarying", "facevertex"};
     static const std::pair<const char*, int> kTypes[] = {

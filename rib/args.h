@@ -41,9 +41,16 @@ struct RibDeclaration {
 
     /// Parses `text`; on failure returns false with *problem saying why.
     static bool Parse(const std::string& text, RibDeclaration* out, std::string* problem);
+    /// The storage class `storage` names ("" is uniform, RI's default; "facevertex" is
+    /// facevarying); Parse admits no other name.
+    renderer::StorageClass Storage() const;
     /// Values of a uniform (or constant) parameter: components * arraySize.
     size_t UniformCount() const { return static_cast<size_t>(components) * static_cast<size_t>(arraySize); }
 };
+
+/// The declaration RenderMan predeclares for a standard primitive variable ("vertex point" for
+/// "P", "varying float[2]" for "st"...), or "" for a name it does not predeclare.
+std::string StandardDeclaration(const std::string& name);
 
 /// Argument checks for the RIB reader, which derives from this class. Messages name the request.
 class RibArgChecks {

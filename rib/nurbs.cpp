@@ -13,6 +13,7 @@ namespace affray::rib {
 
 using renderer::KnotVector;
 using renderer::NurbsST;
+using renderer::StorageClass;
 using renderer::TrimCurves;
 
 bool RibParser::AddRational(const RibRequest& r, const std::string& context, const renderer::RationalPatch& patch,
@@ -27,19 +28,6 @@ bool RibParser::AddRational(const RibRequest& r, const std::string& context, con
     m_scene.primitives.push_back(std::move(prim));
     return true;
 }
-
-namespace {
-
-/// The storage class of a NuPatch's texture coordinates from their declaration.
-std::optional<NurbsST::Storage> StorageOf(const std::string& storage) {
-    if (storage == "constant") return NurbsST::Storage::Constant;
-    if (storage == "uniform") return NurbsST::Storage::Uniform;
-    if (storage == "varying" || storage.empty()) return NurbsST::Storage::Varying;
-    if (storage == "vertex") return NurbsST::Storage::Vertex;
-    return std::nullopt;
-}
-
-}  // namespace
 
 // NuPatch nu uorder uknot umin umax nv vorder vknot vmin vmax ...parameters
 bool RibParser::DoNuPatch(const RibRequest& r) {
@@ -114,21 +102,22 @@ bool RibParser::DoNuPatch(const RibRequest& r) {
         for (const RibParam* p : parts) {
             if (!p) continue;
             const std::string declared =
-                p->value.declaration.empty() ? (st ? "varying float[2]" : "varying float") : p->value.declaration;
+                p->value.declaration.empty() ? StandardDeclaration(p->value.name) : p->value.declaration;
             RibDeclaration d;
             std::string problem;
             if (!RibDeclaration::Parse(declared, &d, &problem)) return Fail(p->at, context + " parameter: " + problem);
-            const std::optional<NurbsST::Storage> storage = StorageOf(d.storage);
+            const std::optional<StorageClass> storage =
+                d.Storage() == StorageClass::FaceVarying ? std::nullopt : std::optional(d.Storage());
             if (!storage)
                 return Fail(p->at, context + " parameter " + Quote(p->value.name) + ": storage class " +
                                        Quote(d.storage) + " is not defined on a NuPatch");
             if (p == parts[1] && *storage != coords.storage)
                 return Fail(p->at, context + " parameters 's' and 't' must have the same storage class");
             coords.storage = *storage;
-            const size_t entries = *storage == NurbsST::Storage::Constant  ? 1
-                                   : *storage == NurbsST::Storage::Uniform ? segU * segV
-                                   : *storage == NurbsST::Storage::Varying ? (segU + 1) * (segV + 1)
-                                                                           : nPoints;
+            const size_t entries = *storage == StorageClass::Constant  ? 1
+                                   : *storage == StorageClass::Uniform ? segU * segV
+                                   : *storage == StorageClass::Varying ? (segU + 1) * (segV + 1)
+                                                                       : nPoints;
             const size_t each = st ? 2 : 1;
             if (d.UniformCount() != each)
                 return Fail(p->at, context + " parameter " + Quote(p->value.name) + " must be " +

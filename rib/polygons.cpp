@@ -13,33 +13,9 @@
 
 namespace affray::rib {
 
-using renderer::MeshStorage;
 using renderer::MeshVariable;
 using renderer::PolygonMesh;
-
-namespace {
-
-/// The declaration RenderMan predeclares for a standard primitive variable, or "".
-std::string StandardDeclaration(const std::string& name) {
-    if (name == "P") return "vertex point";
-    if (name == "Pw") return "vertex hpoint";
-    if (name == "N") return "varying normal";
-    if (name == "Np") return "uniform normal";
-    if (name == "st") return "varying float[2]";
-    if (name == "s" || name == "t") return "varying float";
-    if (name == "Cs" || name == "Os") return "varying color";
-    return "";
-}
-
-MeshStorage StorageOf(const std::string& storage) {
-    if (storage == "constant") return MeshStorage::Constant;
-    if (storage == "uniform" || storage.empty()) return MeshStorage::Uniform;
-    if (storage == "varying") return MeshStorage::Varying;
-    if (storage == "vertex") return MeshStorage::Vertex;
-    return MeshStorage::FaceVarying;  // facevarying, facevertex
-}
-
-}  // namespace
+using renderer::StorageClass;
 
 bool RibParser::IntArray(const RibRequest& r, size_t index, const char* what, int least, std::vector<int>* out) {
     if (index >= r.args.size() || !r.args[index].strings.empty() || r.args[index].numbers.empty())
@@ -145,14 +121,14 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
         RibDeclaration d;
         std::string problem;
         if (!RibDeclaration::Parse(declared, &d, &problem)) return Fail(p.at, context + " parameter: " + problem);
-        const MeshStorage storage = StorageOf(d.storage);
+        const StorageClass storage = d.Storage();
         size_t values = 1;
         switch (storage) {
-            case MeshStorage::Constant: values = 1; break;
-            case MeshStorage::Uniform: values = mesh.loops.size(); break;
-            case MeshStorage::Varying:
-            case MeshStorage::Vertex: values = nPoints; break;
-            case MeshStorage::FaceVarying: values = nCorners; break;
+            case StorageClass::Constant: values = 1; break;
+            case StorageClass::Uniform: values = mesh.loops.size(); break;
+            case StorageClass::Varying:
+            case StorageClass::Vertex: values = nPoints; break;
+            case StorageClass::FaceVarying: values = nCorners; break;
         }
         const size_t each = d.UniformCount();
         const size_t got = d.type == "string" ? p.value.strings.size() : p.value.numbers.size();

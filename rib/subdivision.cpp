@@ -17,30 +17,9 @@
 
 namespace affray::rib {
 
+using renderer::StorageClass;
 using renderer::SubdivisionMesh;
 using renderer::SubdivST;
-
-namespace {
-
-std::string StandardSubdivDeclaration(const std::string& name) {
-    if (name == "P") return "vertex point";
-    if (name == "Pw") return "vertex hpoint";
-    if (name == "N") return "varying normal";
-    if (name == "st") return "varying float[2]";
-    if (name == "s" || name == "t") return "varying float";
-    if (name == "Cs" || name == "Os") return "varying color";
-    return "";
-}
-
-SubdivST::Storage SubdivStorageOf(const std::string& storage) {
-    if (storage == "constant") return SubdivST::Storage::Constant;
-    if (storage == "uniform" || storage.empty()) return SubdivST::Storage::Uniform;
-    if (storage == "varying") return SubdivST::Storage::Varying;
-    if (storage == "vertex") return SubdivST::Storage::Vertex;
-    return SubdivST::Storage::FaceVarying;
-}
-
-}  // namespace
 
 bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     const std::string context = Quote(r.name);
@@ -180,8 +159,7 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     const RibParam *sParam = nullptr, *tParam = nullptr;
     for (const RibParam& p : params) {
         const std::string& name = p.value.name;
-        const std::string declared =
-            p.value.declaration.empty() ? StandardSubdivDeclaration(name) : p.value.declaration;
+        const std::string declared = p.value.declaration.empty() ? StandardDeclaration(name) : p.value.declaration;
         if (declared.empty()) {
             Warn(p.at, context + " parameter " + Quote(name) + " is not declared; ignored");
             continue;
@@ -189,14 +167,14 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
         RibDeclaration d;
         std::string problem;
         if (!RibDeclaration::Parse(declared, &d, &problem)) return Fail(p.at, context + " parameter: " + problem);
-        const SubdivST::Storage storage = SubdivStorageOf(d.storage);
+        const StorageClass storage = d.Storage();
         size_t values = 1;
         switch (storage) {
-            case SubdivST::Storage::Constant: values = 1; break;
-            case SubdivST::Storage::Uniform: values = nFaces; break;
-            case SubdivST::Storage::Varying:
-            case SubdivST::Storage::Vertex: values = nPoints; break;
-            case SubdivST::Storage::FaceVarying: values = nCorners; break;
+            case StorageClass::Constant: values = 1; break;
+            case StorageClass::Uniform: values = nFaces; break;
+            case StorageClass::Varying:
+            case StorageClass::Vertex: values = nPoints; break;
+            case StorageClass::FaceVarying: values = nCorners; break;
         }
         const size_t each = d.UniformCount();
         const size_t got = d.type == "string" ? p.value.strings.size() : p.value.numbers.size();
@@ -232,7 +210,7 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
             const std::string declared =
                 sParam->value.declaration.empty() ? "varying float" : sParam->value.declaration;
             RibDeclaration::Parse(declared, &d, &problem);
-            SubdivST st{SubdivStorageOf(d.storage), {}};
+            SubdivST st{d.Storage(), {}};
             for (size_t k = 0; k < sParam->value.numbers.size(); ++k)
                 st.values.emplace_back(sParam->value.numbers[k], tParam->value.numbers[k]);
             mesh.st = st;

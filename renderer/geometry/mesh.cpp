@@ -35,11 +35,11 @@ glm::dvec3 NewellNormal(const PolygonMesh& mesh, const std::vector<Corner>& loop
 double Fetch(const MeshVariable& var, int face, const Corner& c, int k) {
     size_t index = 0;
     switch (var.storage) {
-        case MeshStorage::Constant: index = 0; break;
-        case MeshStorage::Uniform: index = static_cast<size_t>(face); break;
-        case MeshStorage::Varying:
-        case MeshStorage::Vertex: index = static_cast<size_t>(c.point); break;
-        case MeshStorage::FaceVarying: index = static_cast<size_t>(c.faceCorner); break;
+        case StorageClass::Constant: index = 0; break;
+        case StorageClass::Uniform: index = static_cast<size_t>(face); break;
+        case StorageClass::Varying:
+        case StorageClass::Vertex: index = static_cast<size_t>(c.point); break;
+        case StorageClass::FaceVarying: index = static_cast<size_t>(c.faceCorner); break;
     }
     return var.values[index * static_cast<size_t>(var.components) + static_cast<size_t>(k)];
 }

@@ -35,6 +35,7 @@
 
 #include <glm/glm.hpp>
 
+#include "renderer/geometry/primvar.h"
 #include "renderer/geometry/quadric.h"
 #include "vm/numbers/number.h"
 #include "vm/numbers/vec3.h"
@@ -58,13 +59,10 @@ struct MeshPiece {
     int face = 0;  ///< The face's index in its mesh, for messages and tests.
 };
 
-/// How a primitive variable's values map onto a mesh (RI Spec 3.2 section 4.1, table 4.1).
-enum class MeshStorage { Constant, Uniform, Varying, Vertex, FaceVarying };
-
 /// A primitive variable of a polygon mesh: `components` numbers per value, values by storage
 /// class (one; one per face; one per point for Varying and Vertex; one per face corner).
 struct MeshVariable {
-    MeshStorage storage = MeshStorage::Vertex;
+    StorageClass storage = StorageClass::Vertex;
     int components = 1;
     std::vector<double> values;
 };

@@ -221,7 +221,7 @@ std::vector<NurbsSpan> SplitNurbs(const NurbsSurface& surface, const glm::dmat4&
             const NurbsST* st = surface.st ? &*surface.st : nullptr;
             if (st) {
                 p.hasST = true;
-                p.stHomogeneous = st->storage == NurbsST::Storage::Vertex;
+                p.stHomogeneous = st->storage == StorageClass::Vertex;
                 p.st.assign(count, glm::dvec2(0.0));
             }
             // The control points of the span, each times its two basis polynomials.
@@ -239,7 +239,7 @@ std::vector<NurbsSpan> SplitNurbs(const NurbsSurface& surface, const glm::dmat4&
                                 p.st[p.Index(i, j)] += weight * world[index].w * st->values[index];
                         }
                 }
-            if (st && st->storage == NurbsST::Storage::Varying) {
+            if (st && st->storage == StorageClass::Varying) {
                 // Bilinear in the whole segment between its corner values: along u the corner weights
                 // 1 - f and f, f = (u - t_k) / (t_k+1 - t_k) affine in the span's x.
                 auto weights = [](const KnotVector& kn, const KnotVector::Span& s, double w[2][2]) {
@@ -257,10 +257,10 @@ std::vector<NurbsSpan> SplitNurbs(const NurbsSurface& surface, const glm::dmat4&
                         for (int i = 0; i < 2; ++i)
                             for (int j = 0; j < 2; ++j) p.st[p.Index(i, j)] += wu[a][i] * wv[b][j] * value;
                     }
-            } else if (st && st->storage == NurbsST::Storage::Uniform) {
+            } else if (st && st->storage == StorageClass::Uniform) {
                 const int segU = su.k - ku.order + 1, segV = sv.k - kv.order + 1, across = ku.n - ku.order + 1;
                 p.st[0] = st->values[static_cast<size_t>(segV * across + segU)];
-            } else if (st && st->storage == NurbsST::Storage::Constant) {
+            } else if (st && st->storage == StorageClass::Constant) {
                 p.st[0] = st->values[0];
             }
             if (polynomial)

@@ -24,6 +24,7 @@
 #include <glm/glm.hpp>
 
 #include "renderer/geometry/bicubic.h"
+#include "renderer/geometry/primvar.h"
 #include "renderer/geometry/quadric.h"
 #include "vm/numbers/vec3.h"
 
@@ -173,7 +174,7 @@ struct KnotVector {
 /// entry (constant: 1 entry; uniform: one per segment; varying: one per segment corner; vertex:
 /// one per control point).
 struct NurbsST {
-    enum class Storage { Constant, Uniform, Varying, Vertex } storage = Storage::Vertex;
+    StorageClass storage = StorageClass::Vertex;  ///< never FaceVarying
     std::vector<glm::dvec2> values;
 };
 

@@ -487,16 +487,16 @@ Level FirstLevel(const SubdivisionMesh& mesh) {
             if (c.sharpness > 0) level.sharp[std::minmax(c.chain[i], c.chain[i + 1])] = c.sharpness;
     if (mesh.st) {
         const SubdivST& st = *mesh.st;
-        if (st.storage == SubdivST::Storage::Vertex) {
+        if (st.storage == StorageClass::Vertex) {
             level.stVertex = Lift(st.values);
         } else {
             for (int f = 0; f < level.Faces(); ++f)
                 for (int h = level.start[f]; h < level.start[f + 1]; ++h) {
                     size_t i = 0;
                     switch (st.storage) {
-                        case SubdivST::Storage::Constant: i = 0; break;
-                        case SubdivST::Storage::Uniform: i = static_cast<size_t>(f); break;
-                        case SubdivST::Storage::Varying: i = static_cast<size_t>(level.verts[h]); break;
+                        case StorageClass::Constant: i = 0; break;
+                        case StorageClass::Uniform: i = static_cast<size_t>(f); break;
+                        case StorageClass::Varying: i = static_cast<size_t>(level.verts[h]); break;
                         default: i = static_cast<size_t>(h); break;
                     }
                     level.stCorner.push_back(st.values[i]);

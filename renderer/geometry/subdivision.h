@@ -60,6 +60,7 @@
 #include <glm/glm.hpp>
 
 #include "renderer/geometry/bicubic.h"
+#include "renderer/geometry/primvar.h"
 #include "renderer/geometry/quadric.h"
 #include "vm/numbers/number.h"
 #include "vm/numbers/vec3.h"
@@ -85,7 +86,7 @@ enum class SubdivBoundary {
 
 /// A primitive variable "st" of a subdivision mesh: 2 numbers per value, by storage class.
 struct SubdivST {
-    enum class Storage { Constant, Uniform, Varying, Vertex, FaceVarying } storage = Storage::Vertex;
+    StorageClass storage = StorageClass::Vertex;
     std::vector<glm::dvec2> values;
 };
 

@@ -225,18 +225,17 @@ WorldEnd
     CHECK(lights[4].kind == LightDesc::Kind::Point);
     // One note per shadow-map shader and one per standard light given a shadowname; unknown
     // shaders keep their warning.
+    // Each note's tail, shared: whole strings below, no literal split over lines.
+    const std::string mapIgnored =
+        " with traced shadows; its shadow map parameters (shadowname, samples, width, "
+        "blur, bias, ...) are ignored";
+    const std::string traced = "' parameter 'shadowname' names a shadow map; affray traces its shadows: ignored";
     CHECK(Messages(report, Severity::Note) ==
-          std::vector<std::string>{
-              "2: light source 'shadowspot' renders as 'spotlight' with traced shadows; its shadow map parameters "
-              "(shadowname, samples, width, blur, bias, ...) are ignored",
-              "5: light source 'shadowpoint' renders as 'pointlight' with traced shadows; its shadow map "
-              "parameters (shadowname, samples, width, blur, bias, ...) are ignored",
-              "7: light source 'shadowdistant' renders as 'distantlight' with traced shadows; its shadow map "
-              "parameters (shadowname, samples, width, blur, bias, ...) are ignored",
-              "8: 'LightSource \"spotlight\"' parameter 'shadowname' names a shadow map; affray traces its "
-              "shadows: ignored",
-              "9: 'LightSource \"pointlight\"' parameter 'shadowname' names a shadow map; affray traces its "
-              "shadows: ignored"});
+          std::vector<std::string>{"2: light source 'shadowspot' renders as 'spotlight'" + mapIgnored,
+                                   "5: light source 'shadowpoint' renders as 'pointlight'" + mapIgnored,
+                                   "7: light source 'shadowdistant' renders as 'distantlight'" + mapIgnored,
+                                   "8: 'LightSource \"spotlight\"" + traced,
+                                   "9: 'LightSource \"pointlight\"" + traced});
     CHECK(Messages(report, Severity::Warning) ==
           std::vector<std::string>{"11: light source 'arealight' is not supported yet; ignored"});
     // The standard lights take no other shadow-map parameter.

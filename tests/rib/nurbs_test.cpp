@@ -8,31 +8,17 @@
 #include <vector>
 
 #include "rib/rib.h"
+#include "tests/rib/rib_test_util.h"
 #include "tests/test_util.h"
 
 using namespace affray::renderer;
 using namespace affray::rib;
+using namespace affray::test;
 using Catch::Matchers::Contains;
 
 namespace {
 
-std::vector<PrimitiveDesc> Primitives(const std::string& world) {
-    affray::diag::Report report;
-    std::optional<SceneDesc> scene = ParseRib("WorldBegin\n" + world + "\nWorldEnd\n", "t.rib", &report);
-    INFO(report);
-    REQUIRE(scene);
-    return scene->primitives;
-}
-
-std::string ErrorOf(const std::string& world) {
-    affray::diag::Report report;
-    std::optional<SceneDesc> scene = ParseRib("WorldBegin\n" + world + "\nWorldEnd\n", "t.rib", &report);
-    if (scene) return "";
-    for (const affray::diag::Diagnostic& d : report.all())
-        if (d.severity == affray::diag::Severity::Error)
-            return d.where.file + ":" + std::to_string(d.where.line) + ": " + d.message;
-    return "(no error reported)";
-}
+std::vector<PrimitiveDesc> Primitives(const std::string& world) { return ParseWorld(world).primitives; }
 
 /// A 4 x 3 control grid "P" of a bicubic-by-quadratic NuPatch over knots [0 0 0 0 1 1 1 1] (u,
 /// 1 span) x [0 0 0 0.5 1 1 1]... as text.
@@ -160,55 +146,57 @@ TEST_CASE("rib nurbs: rational Patch and PatchMesh", "[rib][nurbs]") {
 
 TEST_CASE("rib nurbs: bad knots, orders, counts, ranges and weights are errors at their line", "[rib][nurbs]") {
     const std::string p4 = "\"P\" [0 0 0 1 0 0 0 1 0 1 1 0]";
-    CHECK(ErrorOf("NuPatch 2 2 [0 1 0 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4) ==
-          "t.rib:2: 'NuPatch': the u knot vector decreases at knot 2 (1 then 0)");
-    CHECK(ErrorOf("NuPatch 2 2 [0 0 1 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4) ==
-          "t.rib:2: 'NuPatch': the u knot vector needs n + order = 4 knots, got 5");
-    CHECK(ErrorOf("NuPatch 2 3 [0 0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4) ==
-          "t.rib:2: 'NuPatch': the u direction has 2 control points, fewer than its order 3");
-    CHECK(ErrorOf("NuPatch 2 2 [0 0 1 1] 0 1 2 12 [0 0 1 1] 0 1 " + p4) ==
-          "t.rib:2: 'NuPatch': the v order must be 2 to 11 (degree 1 to 10), got 12");
-    CHECK(ErrorOf("NuPatch 2 1 [0 0 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4) ==
-          "t.rib:2: 'NuPatch': the u order must be 2 to 11 (degree 1 to 10), got 1");
-    CHECK(ErrorOf("NuPatch 2 2 [0 0 1 1] 0 1.5 2 2 [0 0 1 1] 0 1 " + p4) ==
-          "t.rib:2: 'NuPatch': the u range umin 0, umax 1.5 must be increasing and within the knots' parameter "
+    CHECK(WorldError("NuPatch 2 2 [0 1 0 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4) ==
+          "t.rib:2: error: 'NuPatch': the u knot vector decreases at knot 2 (1 then 0)");
+    CHECK(WorldError("NuPatch 2 2 [0 0 1 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4) ==
+          "t.rib:2: error: 'NuPatch': the u knot vector needs n + order = 4 knots, got 5");
+    CHECK(WorldError("NuPatch 2 3 [0 0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4) ==
+          "t.rib:2: error: 'NuPatch': the u direction has 2 control points, fewer than its order 3");
+    CHECK(WorldError("NuPatch 2 2 [0 0 1 1] 0 1 2 12 [0 0 1 1] 0 1 " + p4) ==
+          "t.rib:2: error: 'NuPatch': the v order must be 2 to 11 (degree 1 to 10), got 12");
+    CHECK(WorldError("NuPatch 2 1 [0 0 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4) ==
+          "t.rib:2: error: 'NuPatch': the u order must be 2 to 11 (degree 1 to 10), got 1");
+    CHECK(WorldError("NuPatch 2 2 [0 0 1 1] 0 1.5 2 2 [0 0 1 1] 0 1 " + p4) ==
+          "t.rib:2: error: 'NuPatch': the u range umin 0, umax 1.5 must be increasing and within the knots' parameter "
           "range [0, 1]");
-    CHECK(ErrorOf("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0.5 0.5 " + p4) ==
-          "t.rib:2: 'NuPatch': the v range vmin 0.5, vmax 0.5 must be increasing and within the knots' parameter "
-          "range [0, 1]");
-    CHECK(ErrorOf("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"P\" [0 0 0 1 0 0]") ==
-          "t.rib:2: 'NuPatch' parameter 'P' expects 12 numbers, got 6");
-    CHECK(ErrorOf("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"Pw\" [0 0 0 1 1 0 0 1 0 1 0 0 1 1 0 1]") ==
-          "t.rib:2: 'NuPatch' parameter 'Pw': point 2 has w = 0; NURBS weights must be positive");
-    CHECK(ErrorOf("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"Cs\" [1 1 1]") ==
-          "t.rib:2: 'NuPatch' needs a \"P\" or \"Pw\" parameter");
-    CHECK(ErrorOf("NuPatch 2 2 [0 0 1 1] 0 1 2 2") ==
-          "t.rib:2: 'NuPatch' expects nu uorder uknot umin umax nv vorder vknot vmin vmax, got 7 arguments");
-    CHECK(ErrorOf("NuPatch 2.5 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4) ==
-          "t.rib:2: 'NuPatch': nu must be a positive integer, got number 2.5");
-    CHECK(ErrorOf("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4 + " \"st\" [0 0 1 1]") ==
-          "t.rib:2: 'NuPatch' parameter 'st' expects 8 numbers, got 4");
-    CHECK(ErrorOf("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4 + " \"s\" [0 0 1 1]") ==
-          "t.rib:2: 'NuPatch' needs both \"s\" and \"t\" (or \"st\"): one alone is not supported");
-    CHECK(ErrorOf("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4 + " \"facevarying float[2] st\" [0 0 1 1]") ==
-          "t.rib:2: 'NuPatch' parameter 'st': storage class 'facevarying' is not defined on a NuPatch");
+    CHECK(
+        WorldError("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0.5 0.5 " + p4) ==
+        "t.rib:2: error: 'NuPatch': the v range vmin 0.5, vmax 0.5 must be increasing and within the knots' parameter "
+        "range [0, 1]");
+    CHECK(WorldError("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"P\" [0 0 0 1 0 0]") ==
+          "t.rib:2: error: 'NuPatch' parameter 'P' expects 12 numbers, got 6");
+    CHECK(WorldError("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"Pw\" [0 0 0 1 1 0 0 1 0 1 0 0 1 1 0 1]") ==
+          "t.rib:2: error: 'NuPatch' parameter 'Pw': point 2 has w = 0; NURBS weights must be positive");
+    CHECK(WorldError("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"Cs\" [1 1 1]") ==
+          "t.rib:2: error: 'NuPatch' needs a \"P\" or \"Pw\" parameter");
+    CHECK(WorldError("NuPatch 2 2 [0 0 1 1] 0 1 2 2") ==
+          "t.rib:2: error: 'NuPatch' expects nu uorder uknot umin umax nv vorder vknot vmin vmax, got 7 arguments");
+    CHECK(WorldError("NuPatch 2.5 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4) ==
+          "t.rib:2: error: 'NuPatch': nu must be a positive integer, got number 2.5");
+    CHECK(WorldError("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4 + " \"st\" [0 0 1 1]") ==
+          "t.rib:2: error: 'NuPatch' parameter 'st' expects 8 numbers, got 4");
+    CHECK(WorldError("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4 + " \"s\" [0 0 1 1]") ==
+          "t.rib:2: error: 'NuPatch' needs both \"s\" and \"t\" (or \"st\"): one alone is not supported");
+    CHECK(WorldError("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 " + p4 + " \"facevarying float[2] st\" [0 0 1 1]") ==
+          "t.rib:2: error: 'NuPatch' parameter 'st': storage class 'facevarying' is not defined on a NuPatch");
     // Rational patches need positive weights.
-    CHECK(ErrorOf("Patch \"bilinear\" \"Pw\" [0 0 0 1  1 0 0 -1  0 1 0 1  1 1 0 1]") ==
-          "t.rib:2: 'Patch \"bilinear\"' parameter 'Pw': point 1 has w = -1; the weights of a rational patch must be "
+    CHECK(WorldError("Patch \"bilinear\" \"Pw\" [0 0 0 1  1 0 0 -1  0 1 0 1  1 1 0 1]") ==
+          "t.rib:2: error: 'Patch \"bilinear\"' parameter 'Pw': point 1 has w = -1; the weights of a rational patch "
+          "must be "
           "positive");
     // TrimCurve: counts and knots.
-    CHECK(ErrorOf("TrimCurve [1] [2] [0 0 1 1] [0] [1] [2] [0 1] [0 1] [1 1 1]") ==
-          "t.rib:2: 'TrimCurve' w has 3 values; the curves need 2");
-    CHECK(ErrorOf("TrimCurve [1] [2] [0 0 1 1 1] [0] [1] [2] [0 1] [0 1] [1 1]") ==
-          "t.rib:2: 'TrimCurve' knot has 5 values; the curves need 4");
-    CHECK(ErrorOf("TrimCurve [1] [2] [0 1 0 1] [0] [1] [2] [0 1] [0 1] [1 1]") ==
-          "t.rib:2: 'TrimCurve': the trim curve 0 knot vector decreases at knot 2 (1 then 0)");
-    CHECK(ErrorOf("TrimCurve [1] [2] [0 0 1 1] [0] [1] [2] [0 1] [0 1] [1 0]") ==
-          "t.rib:2: 'TrimCurve' point 1 has w = 0; trim curve weights must be positive");
-    CHECK(ErrorOf("TrimCurve [2] [2] [0 0 1 1] [0] [1] [2] [0 1] [0 1] [1 1]") ==
-          "t.rib:2: 'TrimCurve' order has 1 values; the curves need 2");
-    CHECK(ErrorOf("TrimCurve [1] [2] [0 0 1 1]") ==
-          "t.rib:2: 'TrimCurve' expects ncurves order knot min max n u v w, got 3 arguments");
-    CHECK_THAT(ErrorOf("Attribute \"trimcurve\" \"sense\" \"sideways\""),
+    CHECK(WorldError("TrimCurve [1] [2] [0 0 1 1] [0] [1] [2] [0 1] [0 1] [1 1 1]") ==
+          "t.rib:2: error: 'TrimCurve' w has 3 values; the curves need 2");
+    CHECK(WorldError("TrimCurve [1] [2] [0 0 1 1 1] [0] [1] [2] [0 1] [0 1] [1 1]") ==
+          "t.rib:2: error: 'TrimCurve' knot has 5 values; the curves need 4");
+    CHECK(WorldError("TrimCurve [1] [2] [0 1 0 1] [0] [1] [2] [0 1] [0 1] [1 1]") ==
+          "t.rib:2: error: 'TrimCurve': the trim curve 0 knot vector decreases at knot 2 (1 then 0)");
+    CHECK(WorldError("TrimCurve [1] [2] [0 0 1 1] [0] [1] [2] [0 1] [0 1] [1 0]") ==
+          "t.rib:2: error: 'TrimCurve' point 1 has w = 0; trim curve weights must be positive");
+    CHECK(WorldError("TrimCurve [2] [2] [0 0 1 1] [0] [1] [2] [0 1] [0 1] [1 1]") ==
+          "t.rib:2: error: 'TrimCurve' order has 1 values; the curves need 2");
+    CHECK(WorldError("TrimCurve [1] [2] [0 0 1 1]") ==
+          "t.rib:2: error: 'TrimCurve' expects ncurves order knot min max n u v w, got 3 arguments");
+    CHECK_THAT(WorldError("Attribute \"trimcurve\" \"sense\" \"sideways\""),
                Contains("'Attribute \"trimcurve\"' takes \"sense\" \"inside\" or \"outside\""));
 }

@@ -8,32 +8,17 @@
 #include <vector>
 
 #include "rib/rib.h"
+#include "tests/rib/rib_test_util.h"
 #include "tests/test_util.h"
 
 using namespace affray::renderer;
 using namespace affray::rib;
+using namespace affray::test;
 using Catch::Matchers::Contains;
 
 namespace {
 
-std::vector<PrimitiveDesc> Primitives(const std::string& world) {
-    affray::diag::Report report;
-    std::optional<SceneDesc> scene = ParseRib("WorldBegin\n" + world + "\nWorldEnd\n", "t.rib", &report);
-    INFO(report);
-    REQUIRE(scene);
-    return scene->primitives;
-}
-
-/// The first error for `world` inside a world block, as "t.rib:LINE: message".
-std::string ErrorOf(const std::string& world) {
-    affray::diag::Report report;
-    std::optional<SceneDesc> scene = ParseRib("WorldBegin\n" + world + "\nWorldEnd\n", "t.rib", &report);
-    if (scene) return "";
-    for (const affray::diag::Diagnostic& d : report.all())
-        if (d.severity == affray::diag::Severity::Error)
-            return d.where.file + ":" + std::to_string(d.where.line) + ": " + d.message;
-    return "(no error reported)";
-}
+std::vector<PrimitiveDesc> Primitives(const std::string& world) { return ParseWorld(world).primitives; }
 
 /// n points (i, j, i * j + k) of an nu-wide grid, u fastest, and the RIB "P" array.
 std::vector<glm::dvec3> Grid(int nu, int nv, double k = 0) {
@@ -180,41 +165,45 @@ TEST_CASE("rib patches: PatchMesh is split into its patches, each on its part of
 
 TEST_CASE("rib patches: bad bases, counts, sizes and rational points are errors at their line", "[rib][bicubic]") {
     const std::string p16 = PArray(Grid(4, 4));
-    CHECK(ErrorOf("Basis \"bspline\" 1 \"bezier\" 3") ==
-          "t.rib:2: 'Basis': unknown u basis 'bspline' (expected \"bezier\", \"b-spline\", \"catmull-rom\", "
+    CHECK(WorldError("Basis \"bspline\" 1 \"bezier\" 3") ==
+          "t.rib:2: error: 'Basis': unknown u basis 'bspline' (expected \"bezier\", \"b-spline\", \"catmull-rom\", "
           "\"hermite\" or \"power\", or 16 numbers)");
-    CHECK_THAT(ErrorOf("Basis \"bezier\" 0 \"bezier\" 3"), Contains("t.rib:2: 'Basis': the u step must be a positive"));
-    CHECK_THAT(ErrorOf("Basis \"bezier\" 3 \"bezier\" 1.5"), Contains("'Basis': the v step must be a positive"));
-    CHECK_THAT(ErrorOf("Basis \"bezier\" 3 [1 2 3] 1"), Contains("'Basis': the v basis must be a name"));
-    CHECK(ErrorOf("Basis \"bezier\" 3") == "t.rib:2: 'Basis' expects 4 arguments (ubasis ustep vbasis vstep), got 2");
-    CHECK(ErrorOf("Patch \"bicubic\" \"P\" [0 0 0]") ==
-          "t.rib:2: 'Patch \"bicubic\"' parameter 'P' expects 48 numbers, got 3");
-    CHECK(ErrorOf("Patch \"bicubic\" \"Cs\" [1 1 1]") == "t.rib:2: 'Patch \"bicubic\"' needs a \"P\" parameter");
-    CHECK(ErrorOf("Patch \"bicubic\" \"Pz\" [1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16]") ==
-          "t.rib:2: 'Patch \"bicubic\"' parameter 'Pz' is supported on 'Patch \"bilinear\"' only; give \"P\"");
+    CHECK_THAT(WorldError("Basis \"bezier\" 0 \"bezier\" 3"),
+               Contains("t.rib:2: error: 'Basis': the u step must be a positive"));
+    CHECK_THAT(WorldError("Basis \"bezier\" 3 \"bezier\" 1.5"), Contains("'Basis': the v step must be a positive"));
+    CHECK_THAT(WorldError("Basis \"bezier\" 3 [1 2 3] 1"), Contains("'Basis': the v basis must be a name"));
+    CHECK(WorldError("Basis \"bezier\" 3") ==
+          "t.rib:2: error: 'Basis' expects 4 arguments (ubasis ustep vbasis vstep), got 2");
+    CHECK(WorldError("Patch \"bicubic\" \"P\" [0 0 0]") ==
+          "t.rib:2: error: 'Patch \"bicubic\"' parameter 'P' expects 48 numbers, got 3");
+    CHECK(WorldError("Patch \"bicubic\" \"Cs\" [1 1 1]") ==
+          "t.rib:2: error: 'Patch \"bicubic\"' needs a \"P\" parameter");
+    CHECK(WorldError("Patch \"bicubic\" \"Pz\" [1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16]") ==
+          "t.rib:2: error: 'Patch \"bicubic\"' parameter 'Pz' is supported on 'Patch \"bilinear\"' only; give \"P\"");
     std::string pw = "Patch \"bicubic\" \"Pw\" [";
     for (int i = 0; i < 16; ++i) pw += i == 5 ? "0 0 0 -2 " : "0 0 0 1 ";
-    CHECK(ErrorOf(pw + "]") ==
-          "t.rib:2: 'Patch \"bicubic\"' parameter 'Pw': point 5 has w = -2; the weights of a rational patch must be "
+    CHECK(WorldError(pw + "]") ==
+          "t.rib:2: error: 'Patch \"bicubic\"' parameter 'Pw': point 5 has w = -2; the weights of a rational patch "
+          "must be "
           "positive");
-    CHECK(ErrorOf("Patch \"trilinear\" " + p16) ==
-          "t.rib:2: unknown patch type 'trilinear' (expected \"bilinear\" or \"bicubic\")");
+    CHECK(WorldError("Patch \"trilinear\" " + p16) ==
+          "t.rib:2: error: unknown patch type 'trilinear' (expected \"bilinear\" or \"bicubic\")");
     // PatchMesh counts against the basis step and the wrap mode.
     const std::string p20 = PArray(Grid(5, 4));
-    CHECK(ErrorOf("PatchMesh \"bicubic\" 5 \"nonperiodic\" 4 \"nonperiodic\" " + p20) ==
-          "t.rib:2: 'PatchMesh \"bicubic\"': a nonperiodic mesh needs nu = 4 + k * 3 (the u step), got 5");
-    CHECK(ErrorOf("PatchMesh \"bicubic\" 4 \"nonperiodic\" 5 \"periodic\" " + p20) ==
-          "t.rib:2: 'PatchMesh \"bicubic\"': a periodic mesh needs nv a multiple of the v step 3, got 5");
-    CHECK(ErrorOf("PatchMesh \"bicubic\" 4 \"nonperiodic\" 4 \"nonperiodic\" " + p20) ==
-          "t.rib:2: 'PatchMesh \"bicubic\"' parameter 'P' expects 48 numbers, got 60");
-    CHECK_THAT(ErrorOf("PatchMesh \"bicubic\" 4 \"closed\" 4 \"nonperiodic\" " + p16),
-               Contains("t.rib:2: 'PatchMesh \"bicubic\"': uwrap must be \"periodic\" or \"nonperiodic\""));
-    CHECK_THAT(ErrorOf("PatchMesh \"bilinear\" 2.5 \"periodic\" 4 \"nonperiodic\" " + p16),
+    CHECK(WorldError("PatchMesh \"bicubic\" 5 \"nonperiodic\" 4 \"nonperiodic\" " + p20) ==
+          "t.rib:2: error: 'PatchMesh \"bicubic\"': a nonperiodic mesh needs nu = 4 + k * 3 (the u step), got 5");
+    CHECK(WorldError("PatchMesh \"bicubic\" 4 \"nonperiodic\" 5 \"periodic\" " + p20) ==
+          "t.rib:2: error: 'PatchMesh \"bicubic\"': a periodic mesh needs nv a multiple of the v step 3, got 5");
+    CHECK(WorldError("PatchMesh \"bicubic\" 4 \"nonperiodic\" 4 \"nonperiodic\" " + p20) ==
+          "t.rib:2: error: 'PatchMesh \"bicubic\"' parameter 'P' expects 48 numbers, got 60");
+    CHECK_THAT(WorldError("PatchMesh \"bicubic\" 4 \"closed\" 4 \"nonperiodic\" " + p16),
+               Contains("t.rib:2: error: 'PatchMesh \"bicubic\"': uwrap must be \"periodic\" or \"nonperiodic\""));
+    CHECK_THAT(WorldError("PatchMesh \"bilinear\" 2.5 \"periodic\" 4 \"nonperiodic\" " + p16),
                Contains("'PatchMesh \"bilinear\"': nu must be a positive integer"));
-    CHECK(ErrorOf("PatchMesh \"bilinear\" 1 \"periodic\" 4 \"nonperiodic\" " + p16) ==
-          "t.rib:2: 'PatchMesh \"bilinear\"': nu must be at least 2");
-    CHECK(ErrorOf("PatchMesh \"bicubic\" 4 \"nonperiodic\"") ==
-          "t.rib:2: 'PatchMesh \"bicubic\"' expects nu uwrap nv vwrap after the type, got 2 arguments");
-    CHECK(ErrorOf("PatchMesh \"bicubic\" 4 \"nonperiodic\" 4 \"nonperiodic\"") ==
-          "t.rib:2: 'PatchMesh \"bicubic\"' needs a \"P\" parameter");
+    CHECK(WorldError("PatchMesh \"bilinear\" 1 \"periodic\" 4 \"nonperiodic\" " + p16) ==
+          "t.rib:2: error: 'PatchMesh \"bilinear\"': nu must be at least 2");
+    CHECK(WorldError("PatchMesh \"bicubic\" 4 \"nonperiodic\"") ==
+          "t.rib:2: error: 'PatchMesh \"bicubic\"' expects nu uwrap nv vwrap after the type, got 2 arguments");
+    CHECK(WorldError("PatchMesh \"bicubic\" 4 \"nonperiodic\" 4 \"nonperiodic\"") ==
+          "t.rib:2: error: 'PatchMesh \"bicubic\"' needs a \"P\" parameter");
 }

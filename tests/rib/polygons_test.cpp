@@ -6,37 +6,14 @@
 #include <string>
 
 #include "rib/rib.h"
+#include "tests/rib/rib_test_util.h"
 #include "tests/test_util.h"
 
 using namespace affray::renderer;
 using namespace affray::rib;
+using namespace affray::test;
 
 namespace {
-
-std::string Short(const affray::diag::Diagnostic& d) {
-    static const char* const kKind[] = {"error", "warning", "note"};
-    return d.where.file + ":" + std::to_string(d.where.line) + ": " + kKind[static_cast<int>(d.severity)] + ": " +
-           d.message;
-}
-
-/// The scene of `world` (the body of a world block), which must parse.
-SceneDesc Parse(const std::string& world, affray::diag::Report* report = nullptr) {
-    affray::diag::Report local;
-    affray::diag::Report& r = report ? *report : local;
-    std::optional<SceneDesc> scene = ParseRib("WorldBegin\n" + world + "WorldEnd\n", "t.rib", &r);
-    INFO(r);
-    REQUIRE(scene);
-    return *scene;
-}
-
-/// The error for `world` (the body of a world block, starting on line 2), as "t.rib:N: error: ...".
-std::string ErrorOf(const std::string& world) {
-    affray::diag::Report report;
-    if (ParseRib("WorldBegin\n" + world + "WorldEnd\n", "t.rib", &report)) return "";
-    for (const affray::diag::Diagnostic& d : report.all())
-        if (d.severity == affray::diag::Severity::Error) return Short(d);
-    return "(no error reported)";
-}
 
 const MeshPiece& PieceOf(const SceneDesc& scene, size_t i) {
     REQUIRE(i < scene.primitives.size());
@@ -49,7 +26,7 @@ const MeshPiece& PieceOf(const SceneDesc& scene, size_t i) {
 TEST_CASE("rib polygons: Polygon, GeneralPolygon, PointsPolygons, PointsGeneralPolygons make pieces",
           "[rib][polygons]") {
     SECTION("Polygon: a quad in world space, one piece") {
-        const SceneDesc s = Parse("Translate 0 0 2\nPolygon \"P\" [0 0 0  1 0 0  1 1 0  0 1 0]\n");
+        const SceneDesc s = ParseWorld("Translate 0 0 2\nPolygon \"P\" [0 0 0  1 0 0  1 1 0  0 1 0]\n");
         REQUIRE(s.primitives.size() == 1);
         const MeshPiece& p = PieceOf(s, 0);
         CHECK_FALSE(p.triangle);
@@ -63,11 +40,11 @@ TEST_CASE("rib polygons: Polygon, GeneralPolygon, PointsPolygons, PointsGeneralP
     }
     SECTION("GeneralPolygon with a hole") {
         const SceneDesc s =
-            Parse("GeneralPolygon [4 4] \"P\" [0 0 0  4 0 0  4 4 0  0 4 0   1 1 0  1 3 0  3 3 0  3 1 0]\n");
+            ParseWorld("GeneralPolygon [4 4] \"P\" [0 0 0  4 0 0  4 4 0  0 4 0   1 1 0  1 3 0  3 3 0  3 1 0]\n");
         CHECK(s.primitives.size() == 8);
     }
     SECTION("PointsPolygons with vertex normals, facevarying st and uniform s") {
-        const SceneDesc s = Parse(
+        const SceneDesc s = ParseWorld(
             "Scale 2 1 1\n"
             "PointsPolygons [3 3] [0 1 2  0 2 3] \"P\" [0 0 0  1 0 0  1 1 0  0 1 0]\n"
             "  \"N\" [0 0 1  1 0 1  0 0 1  0 0 1]\n"
@@ -85,7 +62,7 @@ TEST_CASE("rib polygons: Polygon, GeneralPolygon, PointsPolygons, PointsGeneralP
     }
     SECTION("PointsGeneralPolygons: a face with a hole beside a triangle, uniform and constant variables") {
         affray::diag::Report report;
-        const SceneDesc s = Parse(
+        const SceneDesc s = ParseWorld(
             "PointsGeneralPolygons [2 1] [4 3 3] [0 1 2 3  4 5 6  0 7 1]\n"
             "  \"P\" [0 0 0  4 0 0  4 4 0  0 4 0  1 1 0  2 3 0  3 1 0  2 -2 0]\n"
             "  \"uniform float s\" [0.25 0.75] \"constant float t\" [0.5] \"Cs\" [1 0 0 0 1 0 0 0 1 1 1 1 0 0 0 "
@@ -96,42 +73,42 @@ TEST_CASE("rib polygons: Polygon, GeneralPolygon, PointsPolygons, PointsGeneralP
         CHECK(last.face == 1);
         CHECK(last.st[0] == glm::dvec2(0.75, 0.5));
         REQUIRE(report.all().size() == 1);
-        CHECK(Short(report.all()[0]) ==
+        CHECK(ShortDiagnostic(report.all()[0]) ==
               "t.rib:4: warning: 'PointsGeneralPolygons' parameter 'Cs' is not supported "
               "yet; ignored");
     }
 }
 
 TEST_CASE("rib polygons: wrong counts and indices are errors with the line", "[rib][polygons]") {
-    CHECK(ErrorOf("Polygon \"P\" [0 0 0  1 0 0]\n") == "t.rib:2: error: 'Polygon' needs at least 3 points, got 2");
-    CHECK(ErrorOf("Polygon \"P\" [0 0 0  1 0 0  1 1]\n") ==
+    CHECK(WorldError("Polygon \"P\" [0 0 0  1 0 0]\n") == "t.rib:2: error: 'Polygon' needs at least 3 points, got 2");
+    CHECK(WorldError("Polygon \"P\" [0 0 0  1 0 0  1 1]\n") ==
           "t.rib:2: error: 'Polygon' parameter 'P' expects a multiple of 3 numbers, got 8");
-    CHECK(ErrorOf("Polygon \"N\" [0 0 1]\n") == "t.rib:2: error: 'Polygon' needs a \"P\" parameter");
-    CHECK(ErrorOf("\nPolygon \"P\" [0 0 0  1 0 0  1 1 0] \"N\" [0 0 1 0 0 1]\n") ==
+    CHECK(WorldError("Polygon \"N\" [0 0 1]\n") == "t.rib:2: error: 'Polygon' needs a \"P\" parameter");
+    CHECK(WorldError("\nPolygon \"P\" [0 0 0  1 0 0  1 1 0] \"N\" [0 0 1 0 0 1]\n") ==
           "t.rib:3: error: 'Polygon' parameter 'N' (varying normal) expects 3 values of 3 numbers, got 6 numbers");
-    CHECK(ErrorOf("GeneralPolygon [3 3] \"P\" [0 0 0  1 0 0  1 1 0]\n") ==
+    CHECK(WorldError("GeneralPolygon [3 3] \"P\" [0 0 0  1 0 0  1 1 0]\n") ==
           "t.rib:2: error: 'GeneralPolygon' has 6 vertices (by nverts) but 3 points in 'P'");
-    CHECK(ErrorOf("PointsPolygons [3] [0 1 3] \"P\" [0 0 0  1 0 0  1 1 0]\n") ==
+    CHECK(WorldError("PointsPolygons [3] [0 1 3] \"P\" [0 0 0  1 0 0  1 1 0]\n") ==
           "t.rib:2: error: 'PointsPolygons' vertex index 3 is out of range ('P' has 3 points)");
-    CHECK(ErrorOf("PointsPolygons [3 3] [0 1 2] \"P\" [0 0 0  1 0 0  1 1 0]\n") ==
+    CHECK(WorldError("PointsPolygons [3 3] [0 1 2] \"P\" [0 0 0  1 0 0  1 1 0]\n") ==
           "t.rib:2: error: 'PointsPolygons' nverts add up to 6 vertices, but the vertices array has 3");
-    CHECK(ErrorOf("PointsPolygons [2] [0 1] \"P\" [0 0 0  1 0 0]\n") ==
+    CHECK(WorldError("PointsPolygons [2] [0 1] \"P\" [0 0 0  1 0 0]\n") ==
           "t.rib:2: error: 'PointsPolygons' nverts must be integers of at least 3, got 2");
-    CHECK(ErrorOf("PointsPolygons [3] [0 1 -2] \"P\" [0 0 0  1 0 0  1 1 0]\n") ==
+    CHECK(WorldError("PointsPolygons [3] [0 1 -2] \"P\" [0 0 0  1 0 0  1 1 0]\n") ==
           "t.rib:2: error: 'PointsPolygons' vertices must be integers of at least 0, got -2");
-    CHECK(ErrorOf("PointsPolygons [3] [0 1 2] \"P\" [0 0 0  1 0 0  1 1 0] \"uniform float s\" [1 2]\n") ==
+    CHECK(WorldError("PointsPolygons [3] [0 1 2] \"P\" [0 0 0  1 0 0  1 1 0] \"uniform float s\" [1 2]\n") ==
           "t.rib:2: error: 'PointsPolygons' parameter 's' (uniform float) expects 1 value of 1 number, got 2 numbers");
-    CHECK(ErrorOf("PointsPolygons [3] [0 1 2] \"P\" [0 0 0  1 0 0  1 1 0] \"facevarying float[2] st\" [1 2]\n") ==
+    CHECK(WorldError("PointsPolygons [3] [0 1 2] \"P\" [0 0 0  1 0 0  1 1 0] \"facevarying float[2] st\" [1 2]\n") ==
           "t.rib:2: error: 'PointsPolygons' parameter 'st' (facevarying float[2]) expects 3 values of 2 numbers, got "
           "2 numbers");
-    CHECK(ErrorOf("Polygon \"P\" [0 0 0  1 0 0  1 1 0]\n"
-                  "PointsGeneralPolygons [1 1] [3] [0 1 2] \"P\" [0 0 0  1 0 0  1 1 0]\n") ==
+    CHECK(WorldError("Polygon \"P\" [0 0 0  1 0 0  1 1 0]\n"
+                     "PointsGeneralPolygons [1 1] [3] [0 1 2] \"P\" [0 0 0  1 0 0  1 1 0]\n") ==
           "t.rib:3: error: 'PointsGeneralPolygons' nloops add up to 2 loops, but nverts has 1 entries");
-    CHECK(ErrorOf("PointsPolygons [3] [0 1 2] \"P\" [0 0 0  1 1 1  2 2 2]\n") ==
+    CHECK(WorldError("PointsPolygons [3] [0 1 2] \"P\" [0 0 0  1 1 1  2 2 2]\n") ==
           "t.rib:2: error: 'PointsPolygons' face 0 is degenerate: its outline has no area (its corners are "
           "collinear or coincide)");
-    CHECK(ErrorOf("PointsPolygons [3] [0 1 2] \"P\" [0 0 0  1 0 0  0 1 0] \"N\" [0 0 1  0 0 0  0 0 1]\n") ==
+    CHECK(WorldError("PointsPolygons [3] [0 1 2] \"P\" [0 0 0  1 0 0  0 1 0] \"N\" [0 0 1  0 0 0  0 0 1]\n") ==
           "t.rib:2: error: 'PointsPolygons' normal 1 is zero or not finite");
-    CHECK(ErrorOf("PointsPolygons [3] \"P\" [0 0 0  1 0 0  0 1 0]\n") ==
+    CHECK(WorldError("PointsPolygons [3] \"P\" [0 0 0  1 0 0  0 1 0]\n") ==
           "t.rib:2: error: 'PointsPolygons' expects an array of integers vertices as argument 2");
 }

@@ -6,35 +6,14 @@
 #include <string>
 
 #include "rib/rib.h"
+#include "tests/rib/rib_test_util.h"
 #include "tests/test_util.h"
 
 using namespace affray::renderer;
 using namespace affray::rib;
+using namespace affray::test;
 
 namespace {
-
-std::string Short(const affray::diag::Diagnostic& d) {
-    static const char* const kKind[] = {"error", "warning", "note"};
-    return d.where.file + ":" + std::to_string(d.where.line) + ": " + kKind[static_cast<int>(d.severity)] + ": " +
-           d.message;
-}
-
-SceneDesc Parse(const std::string& world, affray::diag::Report* report = nullptr) {
-    affray::diag::Report local;
-    affray::diag::Report& r = report ? *report : local;
-    std::optional<SceneDesc> scene = ParseRib("WorldBegin\n" + world + "WorldEnd\n", "t.rib", &r);
-    INFO(r);
-    REQUIRE(scene);
-    return *scene;
-}
-
-std::string ErrorOf(const std::string& world) {
-    affray::diag::Report report;
-    if (ParseRib("WorldBegin\n" + world + "WorldEnd\n", "t.rib", &report)) return "";
-    for (const affray::diag::Diagnostic& d : report.all())
-        if (d.severity == affray::diag::Severity::Error) return Short(d);
-    return "(no error reported)";
-}
 
 const char* const kCube = "[4 4 4 4 4 4] [0 2 3 1 4 5 7 6 0 1 5 4 2 6 7 3 0 4 6 2 1 3 7 5]";
 const char* const kCubeP = "\"P\" [-1 -1 -1 1 -1 -1 -1 1 -1 1 1 -1 -1 -1 1 1 -1 1 -1 1 1 1 1 1]";
@@ -43,8 +22,8 @@ const char* const kCubeP = "\"P\" [-1 -1 -1 1 -1 -1 -1 1 -1 1 1 -1 -1 -1 1 1 -1 
 
 TEST_CASE("rib subdivision: SubdivisionMesh makes patches with its tags", "[rib][subdivision]") {
     SECTION("a cube: 16 patches per face, in world space") {
-        const SceneDesc s =
-            Parse(std::string("Translate 0 0 5\nSubdivisionMesh \"catmull-clark\" ") + kCube + " " + kCubeP + "\n");
+        const SceneDesc s = ParseWorld(std::string("Translate 0 0 5\nSubdivisionMesh \"catmull-clark\" ") + kCube +
+                                       " " + kCubeP + "\n");
         REQUIRE(s.primitives.size() == 96u);
         for (const PrimitiveDesc& p : s.primitives) {
             REQUIRE(p.shape == PrimitiveDesc::Shape::SubdivPatch);
@@ -55,11 +34,11 @@ TEST_CASE("rib subdivision: SubdivisionMesh makes patches with its tags", "[rib]
     }
     SECTION("tags: a hole, a crease, a corner, an unknown tag (warned about)") {
         affray::diag::Report report;
-        const SceneDesc s = Parse(std::string("SubdivisionMesh \"catmull-clark\" ") + kCube +
-                                      " [\"hole\" \"crease\" \"corner\" \"bumpy\"] [1 0 2 1 1 1 0 0] [3 0 1 6] "
-                                      "[2 10] " +
-                                      kCubeP + " \"N\" [0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1]\n",
-                                  &report);
+        const SceneDesc s = ParseWorld(std::string("SubdivisionMesh \"catmull-clark\" ") + kCube +
+                                           " [\"hole\" \"crease\" \"corner\" \"bumpy\"] [1 0 2 1 1 1 0 0] [3 0 1 6] "
+                                           "[2 10] " +
+                                           kCubeP + " \"N\" [0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1]\n",
+                                       &report);
         CHECK(s.primitives.size() == 80u);
         int warnings = 0;
         for (const affray::diag::Diagnostic& d : report.all())
@@ -74,7 +53,7 @@ TEST_CASE("rib subdivision: SubdivisionMesh makes patches with its tags", "[rib]
               "1 0 0 1 0 1 1 0 1]"}) {
             INFO(st);
             const SceneDesc s =
-                Parse(std::string("SubdivisionMesh \"catmull-clark\" ") + kCube + " " + kCubeP + " " + st + "\n");
+                ParseWorld(std::string("SubdivisionMesh \"catmull-clark\" ") + kCube + " " + kCubeP + " " + st + "\n");
             REQUIRE(!s.primitives.empty());
             for (const PrimitiveDesc& p : s.primitives) {
                 CHECK(p.subdiv.hasST);
@@ -91,33 +70,33 @@ TEST_CASE("rib subdivision: SubdivisionMesh makes patches with its tags", "[rib]
 
 TEST_CASE("rib subdivision: wrong meshes are errors at their place", "[rib][subdivision]") {
     const std::string cube = std::string(kCube) + " ";
-    CHECK(ErrorOf("SubdivisionMesh \"loop\" [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\n") ==
+    CHECK(WorldError("SubdivisionMesh \"loop\" [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\n") ==
           "t.rib:2: error: 'SubdivisionMesh' scheme 'loop' is not supported (only \"catmull-clark\")");
-    CHECK(ErrorOf("SubdivisionMesh \"catmull-clark\" [3 3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\n") ==
+    CHECK(WorldError("SubdivisionMesh \"catmull-clark\" [3 3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\n") ==
           "t.rib:2: error: 'SubdivisionMesh' nvertices add up to 6 vertices, but the vertices array has 3");
-    CHECK(ErrorOf("SubdivisionMesh \"catmull-clark\" [3] [0 1 7] \"P\" [0 0 0 1 0 0 0 1 0]\n") ==
+    CHECK(WorldError("SubdivisionMesh \"catmull-clark\" [3] [0 1 7] \"P\" [0 0 0 1 0 0 0 1 0]\n") ==
           "t.rib:2: error: 'SubdivisionMesh' vertex index 7 is out of range ('P' has 3 points)");
-    CHECK(ErrorOf("SubdivisionMesh \"catmull-clark\" [3] [0 1 2]\n") ==
+    CHECK(WorldError("SubdivisionMesh \"catmull-clark\" [3] [0 1 2]\n") ==
           "t.rib:2: error: 'SubdivisionMesh' needs a \"P\" parameter");
-    CHECK(ErrorOf("SubdivisionMesh \"catmull-clark\" [3] [0 1 2] \"Pw\" [0 0 0 1 1 0 0 1 0 1 0 2]\n") ==
+    CHECK(WorldError("SubdivisionMesh \"catmull-clark\" [3] [0 1 2] \"Pw\" [0 0 0 1 1 0 0 1 0 1 0 2]\n") ==
           "t.rib:2: error: 'SubdivisionMesh' parameter 'Pw' has w = 2 at point 2: rational subdivision meshes are "
           "not supported");
-    CHECK(ErrorOf("SubdivisionMesh \"catmull-clark\" " + cube + "[\"hole\"] [1 0] [6] [] " + kCubeP + "\n") ==
+    CHECK(WorldError("SubdivisionMesh \"catmull-clark\" " + cube + "[\"hole\"] [1 0] [6] [] " + kCubeP + "\n") ==
           "t.rib:2: error: 'SubdivisionMesh' tag 'hole' face index 6 is out of range (6 faces)");
-    CHECK(ErrorOf("SubdivisionMesh \"catmull-clark\" " + cube + "[\"crease\"] [2 1] [0 7] [1] " + kCubeP + "\n") ==
+    CHECK(WorldError("SubdivisionMesh \"catmull-clark\" " + cube + "[\"crease\"] [2 1] [0 7] [1] " + kCubeP + "\n") ==
           "t.rib:2: error: 'SubdivisionMesh' tag 'crease' joins vertices 0 and 7, which share no edge");
-    CHECK(ErrorOf("SubdivisionMesh \"catmull-clark\" " + cube + "[\"crease\"] [2 0] [0 1] [] " + kCubeP + "\n") ==
+    CHECK(WorldError("SubdivisionMesh \"catmull-clark\" " + cube + "[\"crease\"] [2 0] [0 1] [] " + kCubeP + "\n") ==
           "t.rib:2: error: 'SubdivisionMesh' tag 'crease' expects at least 2 vertex indices and 1 sharpness, got 2 "
           "and 0");
-    CHECK(ErrorOf("SubdivisionMesh \"catmull-clark\" " + cube + "[\"crease\"] [2] [0 1] [1] " + kCubeP + "\n") ==
+    CHECK(WorldError("SubdivisionMesh \"catmull-clark\" " + cube + "[\"crease\"] [2] [0 1] [1] " + kCubeP + "\n") ==
           "t.rib:2: error: 'SubdivisionMesh' has 1 tags, so nargs needs 2 entries, got 1");
-    CHECK(ErrorOf("SubdivisionMesh \"catmull-clark\" " + cube + "[\"corner\"] [3 1] [0 1] [1] " + kCubeP + "\n") ==
+    CHECK(WorldError("SubdivisionMesh \"catmull-clark\" " + cube + "[\"corner\"] [3 1] [0 1] [1] " + kCubeP + "\n") ==
           "t.rib:2: error: 'SubdivisionMesh' nargs ask for more arguments than intargs and floatargs hold (tag "
           "'corner')");
-    CHECK(ErrorOf("SubdivisionMesh \"catmull-clark\" [4 4] [0 1 2 3 0 1 2 3] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]\n") ==
+    CHECK(WorldError("SubdivisionMesh \"catmull-clark\" [4 4] [0 1 2 3 0 1 2 3] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]\n") ==
           "t.rib:2: error: 'SubdivisionMesh' edge 0-1 is used twice in the same direction (a non-manifold edge, or "
           "faces of opposite orientation)");
-    CHECK(ErrorOf("SubdivisionMesh \"catmull-clark\" " + cube + kCubeP + " \"st\" [0 0]\n") ==
+    CHECK(WorldError("SubdivisionMesh \"catmull-clark\" " + cube + kCubeP + " \"st\" [0 0]\n") ==
           "t.rib:2: error: 'SubdivisionMesh' parameter 'st' (varying float[2]) expects 8 values of 2 numbers, got 2 "
           "numbers");
 }

@@ -16,9 +16,9 @@
 
 using namespace affray;
 using renderer::MeshPiece;
-using renderer::MeshStorage;
 using renderer::MeshVariable;
 using renderer::PolygonMesh;
+using renderer::StorageClass;
 
 namespace {
 
@@ -56,7 +56,7 @@ void AverageNormals(PolygonMesh* mesh) {
         for (int k = 0; k < size; ++k) sum[mesh->corners[c + k]] += glm::normalize(n);
         c += size;
     }
-    MeshVariable normals{MeshStorage::Vertex, 3, {}};
+    MeshVariable normals{StorageClass::Vertex, 3, {}};
     for (const glm::dvec3& n : sum) {
         const glm::dvec3 u = glm::normalize(n);
         normals.values.insert(normals.values.end(), {u.x, u.y, u.z});
@@ -67,6 +67,7 @@ void AverageNormals(PolygonMesh* mesh) {
 /// A cube [-1, 1]^3, faces counter-clockwise seen from outside.
 PolygonMesh Cube() {
     std::vector<glm::dvec3> p;
+    p.reserve(8);
     for (int i = 0; i < 8; ++i) p.emplace_back(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
     return Faces(p, {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}});
 }
@@ -146,8 +147,8 @@ TEST_CASE("mesh: a triangle is a bilinear piece with one edge collapsed, a conve
 TEMPLATE_TEST_CASE("mesh: every number type evaluates a piece at a point as double does", "[renderer][mesh]",
                    vm::Interval, vm::Affine, vm::ReducedAffine, vm::Dual<double>, vm::Dual<vm::Affine>) {
     PolygonMesh mesh = Faces({{0, 0, 0}, {2, 0, 0}, {2.5, 1, 0.5}, {0, 1, 1}}, {{0, 1, 2}, {0, 1, 2, 3}});
-    mesh.normals = MeshVariable{MeshStorage::Vertex, 3, {0, 0, 1, 0.2, 0, 1, 0, 0.3, 1, -0.1, 0.1, 1}};
-    mesh.st = MeshVariable{MeshStorage::FaceVarying, 2, {0, 0, 1, 0, 1, 1, 0, 0, 0.5, 0, 0.5, 0.5, 0, 0.5}};
+    mesh.normals = MeshVariable{StorageClass::Vertex, 3, {0, 0, 1, 0.2, 0, 1, 0, 0.3, 1, -0.1, 0.1, 1}};
+    mesh.st = MeshVariable{StorageClass::FaceVarying, 2, {0, 0, 1, 0, 1, 1, 0, 0, 0.5, 0, 0.5, 0.5, 0, 0.5}};
     for (const MeshPiece& piece : Split(mesh)) {
         for (double u : {0.0, 0.25, 0.9, 1.0})
             for (double v : {0.0, 0.5, 1.0}) {
@@ -192,8 +193,8 @@ TEST_CASE("mesh: a displacement shader's bounds over a triangle and a quad conta
     const compiler::CompiledShader shader = test::CompileOrThrow(source);
     const vm::ProgramOutput& out = *shader.bound.findOutput("P");
     PolygonMesh mesh = Faces({{0, 0, 0}, {2, 0, 0}, {2.5, 1, 0.5}, {0, 1, 1}}, {{0, 1, 3}, {0, 1, 2, 3}});
-    mesh.normals = MeshVariable{MeshStorage::Vertex, 3, {0, 0, 1, 0.5, 0, 1, 0, 0.5, 1, -0.4, 0.3, 1}};
-    mesh.st = MeshVariable{MeshStorage::FaceVarying, 2, {0, 0, 1, 0, 1, 1, 0, 0, 0.5, 0, 0.5, 0.5, 0, 0.5}};
+    mesh.normals = MeshVariable{StorageClass::Vertex, 3, {0, 0, 1, 0.5, 0, 1, 0, 0.5, 1, -0.4, 0.3, 1}};
+    mesh.st = MeshVariable{StorageClass::FaceVarying, 2, {0, 0, 1, 0, 1, 1, 0, 0, 0.5, 0, 0.5, 0.5, 0, 0.5}};
     const std::vector<MeshPiece> pieces = Split(mesh);
     REQUIRE(pieces.size() == 2);
     vm::Interpreter<double> point(shader.bound);
@@ -292,6 +293,7 @@ namespace {
 int EdgeRayMisses(const PolygonMesh& mesh, const vm::Program& program, int* rays) {
     const std::vector<MeshPiece> pieces = Split(mesh);
     std::vector<std::unique_ptr<renderer::SurfaceIntersector>> intersectors;
+    intersectors.reserve(pieces.size());
     for (const MeshPiece& p : pieces)
         intersectors.push_back(renderer::MakeSurfaceIntersector(renderer::BaseSurface(p), program, glm::dvec3(0.0),
                                                                 renderer::BoundMode::Affine, 30));

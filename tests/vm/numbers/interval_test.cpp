@@ -15,7 +15,6 @@
 #include "vm/numbers/number.h"
 
 using namespace affray::vm;
-using affray::test::Rng;
 using affray::test::Samples;
 using affray::test::Tally;
 
@@ -48,8 +47,9 @@ struct Gen {
         // The doubles nearest to the extrema k*pi/2 of sin and cos inside x.
         if (x.hi() - x.lo() < 100 && std::fabs(x.lo()) < 1e9) {
             const double halfPi = 1.5707963267948966;
-            for (double k = std::ceil(x.lo() / halfPi); k * halfPi <= x.hi(); k += 1)
-                if (x.contains(k * halfPi)) p.push_back(k * halfPi);
+            const auto first = static_cast<long long>(std::ceil(x.lo() / halfPi));
+            for (long long k = first; double(k) * halfPi <= x.hi(); ++k)
+                if (x.contains(double(k) * halfPi)) p.push_back(double(k) * halfPi);
         }
         for (int i = 0; i < random; ++i) p.push_back(std::fmin(x.hi(), uniform(x.lo(), x.hi())));
         return p;
