@@ -243,6 +243,17 @@ class RibParser : private RibArgChecks {
     /// from argument `first`.
     bool MeshRequest(const RibRequest& r, std::vector<int> loops, std::vector<int> loopSizes, std::vector<int> corners,
                      size_t first, bool indexed);
+    /// Values a mesh-like primitive holds per storage class (RI Spec 3.2 table 4.1).
+    struct PrimvarCounts {
+        size_t faces, points, corners;
+        size_t Of(renderer::StorageClass s) const;
+    };
+    /// A primitive variable of a mesh (polygons, subdivision) against its declaration, inline or
+    /// standard, and its value count against `counts`. False after a Fail; *declared false, with a
+    /// warning, for a parameter that has no declaration (the caller skips it). `context` names the
+    /// request in messages.
+    bool MeshPrimvar(const RibParam& p, const std::string& context, const PrimvarCounts& counts, RibDeclaration* d,
+                     bool* declared);
     /// SubdivisionMesh (rib/subdivision.cpp): its counts, tags and parameters checked, its patches added.
     bool DoSubdivisionMesh(const RibRequest& r);
     bool DoVersion(const RibRequest&) { return true; }  // "version 3.03": nothing to check

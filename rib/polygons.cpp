@@ -113,30 +113,13 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
     const glm::dmat3 normalToWorld = glm::transpose(glm::inverse(glm::dmat3(m_state.ctm)));
     for (const RibParam& p : params) {
         const std::string& name = p.value.name;
-        const std::string declared = p.value.declaration.empty() ? StandardDeclaration(name) : p.value.declaration;
-        if (declared.empty()) {
-            Warn(p.at, context + " parameter " + Quote(name) + " is not declared; ignored");
-            continue;
-        }
         RibDeclaration d;
-        std::string problem;
-        if (!RibDeclaration::Parse(declared, &d, &problem)) return Fail(p.at, context + " parameter: " + problem);
+        bool declared;
+        const PrimvarCounts counts{mesh.loops.size(), nPoints, nCorners};
+        if (!MeshPrimvar(p, context, counts, &d, &declared)) return false;
+        if (!declared) continue;
         const StorageClass storage = d.Storage();
-        size_t values = 1;
-        switch (storage) {
-            case StorageClass::Constant: values = 1; break;
-            case StorageClass::Uniform: values = mesh.loops.size(); break;
-            case StorageClass::Varying:
-            case StorageClass::Vertex: values = nPoints; break;
-            case StorageClass::FaceVarying: values = nCorners; break;
-        }
-        const size_t each = d.UniformCount();
-        const size_t got = d.type == "string" ? p.value.strings.size() : p.value.numbers.size();
-        if (got != values * each)
-            return Fail(p.at, context + " parameter " + Quote(name) + " (" + declared + ") expects " +
-                                  std::to_string(values) + " value" + (values == 1 ? "" : "s") + " of " +
-                                  std::to_string(each) + (each == 1 ? " number" : " numbers") + ", got " +
-                                  std::to_string(got) + (got == 1 ? " number" : " numbers"));
+        const size_t values = counts.Of(storage), each = d.UniformCount();
         MeshVariable var{storage, static_cast<int>(each), p.value.numbers};
         if (name == "P" || name == "Pw") continue;  // read below
         if (name == "N" && each == 3) {
@@ -178,6 +161,38 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
         SetPrimitiveAttributes(r, &prim);
         m_scene.primitives.push_back(std::move(prim));
     }
+    return true;
+}
+
+size_t RibParser::PrimvarCounts::Of(StorageClass s) const {
+    switch (s) {
+        case StorageClass::Constant: return 1;
+        case StorageClass::Uniform: return faces;
+        case StorageClass::Varying:
+        case StorageClass::Vertex: return points;
+        case StorageClass::FaceVarying: return corners;
+    }
+    return 1;
+}
+
+bool RibParser::MeshPrimvar(const RibParam& p, const std::string& context, const PrimvarCounts& counts,
+                            RibDeclaration* d, bool* declared) {
+    const std::string& name = p.value.name;
+    const std::string declaration = p.value.declaration.empty() ? StandardDeclaration(name) : p.value.declaration;
+    *declared = !declaration.empty();
+    if (!*declared) {
+        Warn(p.at, context + " parameter " + Quote(name) + " is not declared; ignored");
+        return true;
+    }
+    std::string problem;
+    if (!RibDeclaration::Parse(declaration, d, &problem)) return Fail(p.at, context + " parameter: " + problem);
+    const size_t values = counts.Of(d->Storage()), each = d->UniformCount();
+    const size_t got = d->type == "string" ? p.value.strings.size() : p.value.numbers.size();
+    if (got != values * each)
+        return Fail(p.at, context + " parameter " + Quote(name) + " (" + declaration + ") expects " +
+                              std::to_string(values) + " value" + (values == 1 ? "" : "s") + " of " +
+                              std::to_string(each) + (each == 1 ? " number" : " numbers") + ", got " +
+                              std::to_string(got) + (got == 1 ? " number" : " numbers"));
     return true;
 }
 

@@ -159,30 +159,13 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     const RibParam *sParam = nullptr, *tParam = nullptr;
     for (const RibParam& p : params) {
         const std::string& name = p.value.name;
-        const std::string declared = p.value.declaration.empty() ? StandardDeclaration(name) : p.value.declaration;
-        if (declared.empty()) {
-            Warn(p.at, context + " parameter " + Quote(name) + " is not declared; ignored");
-            continue;
-        }
         RibDeclaration d;
-        std::string problem;
-        if (!RibDeclaration::Parse(declared, &d, &problem)) return Fail(p.at, context + " parameter: " + problem);
+        bool declared;
+        const PrimvarCounts counts{nFaces, nPoints, nCorners};
+        if (!MeshPrimvar(p, context, counts, &d, &declared)) return false;
+        if (!declared) continue;
         const StorageClass storage = d.Storage();
-        size_t values = 1;
-        switch (storage) {
-            case StorageClass::Constant: values = 1; break;
-            case StorageClass::Uniform: values = nFaces; break;
-            case StorageClass::Varying:
-            case StorageClass::Vertex: values = nPoints; break;
-            case StorageClass::FaceVarying: values = nCorners; break;
-        }
-        const size_t each = d.UniformCount();
-        const size_t got = d.type == "string" ? p.value.strings.size() : p.value.numbers.size();
-        if (got != values * each)
-            return Fail(p.at, context + " parameter " + Quote(name) + " (" + declared + ") expects " +
-                                  std::to_string(values) + " value" + (values == 1 ? "" : "s") + " of " +
-                                  std::to_string(each) + (each == 1 ? " number" : " numbers") + ", got " +
-                                  std::to_string(got) + (got == 1 ? " number" : " numbers"));
+        const size_t values = counts.Of(storage), each = d.UniformCount();
         if (name == "P" || name == "Pw") continue;
         if (name == "N") {
             Warn(p.at, context +

@@ -226,6 +226,18 @@ void SetBicubicGlobals(vm::Interpreter<T>& interp, const BicubicPatch& patch, do
     SetFrameGlobals(interp, param.u, param.v, frame, nullptr, eye, flipNormal);
 }
 
+/// Sets s and t from a primitive's own "st", computed by st(&s, &t) only if the program reads
+/// either (they replace the u, v that SetFrameGlobals gave them).
+template <class T, class ST>
+void SetSTGlobals(vm::Interpreter<T>& interp, ST&& st) {
+    const vm::Program& program = interp.program();
+    if (!program.readsGlobal(vm::Global::s) && !program.readsGlobal(vm::Global::t)) return;
+    T s, t;
+    st(&s, &t);
+    interp.SetGlobal(vm::Global::s, s);
+    interp.SetGlobal(vm::Global::t, t);
+}
+
 /// SetPatchGlobals for a rational patch (or a NuPatch span) that covers `range` of its surface's
 /// (u,v); s and t are its "st" if it has one, else u and v.
 template <class T>
@@ -237,13 +249,7 @@ void SetRationalGlobals(vm::Interpreter<T>& interp, const RationalPatch& patch, 
     if (param.dsdu != 1) frame.dPdu = frame.dPdu * param.dsdu;
     if (param.dtdv != 1) frame.dPdv = frame.dPdv * param.dtdv;
     SetFrameGlobals(interp, param.u, param.v, frame, nullptr, eye, flipNormal);
-    const vm::Program& program = interp.program();
-    if (patch.hasST && (program.readsGlobal(vm::Global::s) || program.readsGlobal(vm::Global::t))) {
-        T s, t;
-        RationalST(patch, param.s, param.t, &s, &t);
-        interp.SetGlobal(vm::Global::s, s);
-        interp.SetGlobal(vm::Global::t, t);
-    }
+    if (patch.hasST) SetSTGlobals(interp, [&](T* s, T* t) { RationalST(patch, param.s, param.t, s, t); });
 }
 
 /// A quadric placed in the world by an affine object-to-world matrix (GLM's column-major).
@@ -314,14 +320,8 @@ void SetMeshPieceGlobals(vm::Interpreter<T>& interp, const MeshPiece& piece, dou
     const SurfaceFrame<T> frame = MeshPieceFrame(piece, u, v);
     SetFrameGlobals(interp, u, v, frame, piece.hasNormals ? nullptr : &piece.faceNormal, eye,
                     !piece.hasNormals && flipNormal);
-    const vm::Program& program = interp.program();
-    if (piece.hasST && (program.readsGlobal(vm::Global::s) || program.readsGlobal(vm::Global::t))) {
-        T s, t;
-        MeshPieceST(piece, u, v, &s, &t);
-        interp.SetGlobal(vm::Global::s, s);
-        interp.SetGlobal(vm::Global::t, t);
-    }
-    if (piece.hasNormals && program.readsGlobal(vm::Global::Ng))
+    if (piece.hasST) SetSTGlobals(interp, [&](T* s, T* t) { MeshPieceST(piece, u, v, s, t); });
+    if (piece.hasNormals && interp.program().readsGlobal(vm::Global::Ng))
         interp.SetGlobal(vm::Global::Ng, Constant<T>(flipNormal ? -piece.faceNormal : piece.faceNormal));
 }
 
@@ -335,13 +335,7 @@ void SetSubdivGlobals(vm::Interpreter<T>& interp, const SubdivPatch& patch, doub
     const T u = SurfaceParameter<T>(u0, u1, 0);
     const T v = SurfaceParameter<T>(v0, v1, 1);
     SetFrameGlobals(interp, u, v, SubdivPatchFrame(patch, u, v), nullptr, eye, flipNormal);
-    const vm::Program& program = interp.program();
-    if (patch.hasST && (program.readsGlobal(vm::Global::s) || program.readsGlobal(vm::Global::t))) {
-        T s, t;
-        SubdivPatchST(patch, u, v, &s, &t);
-        interp.SetGlobal(vm::Global::s, s);
-        interp.SetGlobal(vm::Global::t, t);
-    }
+    if (patch.hasST) SetSTGlobals(interp, [&](T* s, T* t) { SubdivPatchST(patch, u, v, s, t); });
 }
 
 /// A base surface for the intersector and the shading: a bilinear or bicubic patch (with the part

@@ -11,6 +11,7 @@
 #include "renderer/geometry/mesh.h"
 #include "renderer/geometry/surface.h"
 #include "renderer/intersect.h"
+#include "tests/renderer/edge_rays.h"
 #include "tests/test_random.h"
 #include "tests/test_util.h"
 
@@ -297,8 +298,7 @@ int EdgeRayMisses(const PolygonMesh& mesh, const vm::Program& program, int* rays
     for (const MeshPiece& p : pieces)
         intersectors.push_back(renderer::MakeSurfaceIntersector(renderer::BaseSurface(p), program, glm::dvec3(0.0),
                                                                 renderer::BoundMode::Affine, 30));
-    renderer::IntersectStats stats;
-    int misses = 0;
+    test::EdgeRays probe(std::move(intersectors));
     for (const MeshPiece& piece : pieces) {
         const int order[] = {0, 1, 3, 2};
         const int n = piece.triangle ? 3 : 4;
@@ -309,28 +309,12 @@ int EdgeRayMisses(const PolygonMesh& mesh, const vm::Program& program, int* rays
                 const glm::dvec3 normal = piece.hasNormals
                                               ? glm::normalize((1 - lambda) * piece.N[i] + lambda * piece.N[j])
                                               : piece.faceNormal;
-                // Along the normal and tilted towards the edge's neighbours.
-                const glm::dvec3 along = glm::normalize(piece.P[j] - piece.P[i]);
-                const glm::dvec3 side = glm::normalize(glm::cross(normal, along));
-                for (const glm::dvec3& tilt : {glm::dvec3(0.0), 0.4 * side, -0.4 * side, 0.3 * along}) {
-                    const glm::dvec3 dir = glm::normalize(normal + tilt);
-                    const renderer::Ray ray{target + 4.0 * dir, -dir};
-                    double best = INFINITY, error = 0;
-                    for (auto& intersector : intersectors) {
-                        renderer::Hit hit;
-                        if (intersector->Intersect(ray, 0, best, {1e-5, 0}, false, &hit, stats))
-                            best = hit.t, error = hit.error;
-                    }
-                    ++*rays;
-                    if (!(best <= 4.0 + error + 1e-9)) {
-                        if (misses++ < 3)
-                            UNSCOPED_INFO("miss: " << ToString(ray) << " at " << ToString(piece) << " t=" << best);
-                    }
-                }
+                probe.At(target, normal, glm::normalize(piece.P[j] - piece.P[i]), [&] { return ToString(piece); });
             }
         }
     }
-    return misses;
+    *rays += probe.rays;
+    return probe.misses;
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "renderer/geometry/subdivision.h"
 #include "renderer/geometry/surface.h"
 #include "renderer/intersect.h"
+#include "tests/renderer/edge_rays.h"
 #include "tests/test_random.h"
 #include "tests/test_util.h"
 #include "tests/vm/shader_containment.h"
@@ -320,31 +321,17 @@ int EdgeRayMisses(const std::vector<SubdivPatch>& patches, const vm::Program& pr
     for (const SubdivPatch& p : patches)
         intersectors.push_back(renderer::MakeSurfaceIntersector(renderer::BaseSurface(p), program, glm::dvec3(0.0),
                                                                 renderer::BoundMode::Affine, 30));
-    renderer::IntersectStats stats;
-    int misses = 0;
+    test::EdgeRays probe(std::move(intersectors));
     for (const SubdivPatch& p : patches)
         for (int k = 0; k < 4; ++k)
             for (double t : {0.0, 0.125, 0.5, 0.7, 0.999}) {
                 const glm::dvec2 uv = EdgeParam(k, t), uvNext = EdgeParam(k, t + 0.001);
                 const glm::dvec3 target = p.geometry.At(uv.x, uv.y);
-                const glm::dvec3 normal = NormalAt(p, uv.x, uv.y);
-                const glm::dvec3 along = glm::normalize(p.geometry.At(uvNext.x, uvNext.y) - target);
-                const glm::dvec3 side = glm::normalize(glm::cross(normal, along));
-                for (const glm::dvec3& tilt : {glm::dvec3(0.0), 0.4 * side, -0.4 * side, 0.3 * along}) {
-                    const glm::dvec3 dir = glm::normalize(normal + tilt);
-                    const renderer::Ray ray{target + 4.0 * dir, -dir};
-                    double best = INFINITY, error = 0;
-                    for (auto& intersector : intersectors) {
-                        renderer::Hit hit;
-                        if (intersector->Intersect(ray, 0, best, {1e-5, 0}, false, &hit, stats))
-                            best = hit.t, error = hit.error;
-                    }
-                    ++*rays;
-                    if (!(best <= 4.0 + error + 1e-9) && misses++ < 3)
-                        UNSCOPED_INFO("miss: " << ToString(ray) << " at " << ToString(p) << " t=" << best);
-                }
+                probe.At(target, NormalAt(p, uv.x, uv.y), glm::normalize(p.geometry.At(uvNext.x, uvNext.y) - target),
+                         [&] { return ToString(p); });
             }
-    return misses;
+    *rays += probe.rays;
+    return probe.misses;
 }
 
 }  // namespace
