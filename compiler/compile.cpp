@@ -29,6 +29,12 @@ std::string ParamTypeName(const ParamInfo& p) {
     return std::string(ToString(p.type)) + (p.arraySize >= 0 ? "[" + std::to_string(p.arraySize) + "]" : "");
 }
 
+/// The slot table the programs of one lowering share (null if it reads no texture).
+std::shared_ptr<const vm::TextureSlots> TexturesOf(const LoweredShader& lowered) {
+    if (lowered.textures.empty()) return nullptr;
+    return std::make_shared<const vm::TextureSlots>(lowered.textures);
+}
+
 ParamInfo ParamFromProgram(const vm::ProgramParam& p) {
     ParamInfo info{p.name, Type::Float, p.defaults, false};
     const size_t bracket = p.type.find('[');
@@ -68,10 +74,12 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     try {
         shader.genericBound = Emit(lowered->ir, {{"P", lowered->finalP}}, params);
         shader.genericShade = Emit(lowered->ir, {{"P", lowered->finalP}, {"N", lowered->finalN}}, params);
+        auto genericTextures = TexturesOf(*lowered);
         for (vm::Program* p : {&shader.genericBound, &shader.genericShade}) {
             p->shaderName = shader.name;
             p->sourcePath = path;
             p->spaces = lowered->spaces;
+            p->textures = genericTextures;
         }
         // The instance: lowered again with its parameter values as constants, so that the
         // branches and loops they decide fold during lowering (bytecode specialisation cannot
@@ -112,9 +120,11 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         shader.stringParams = lowered->stringParams;
         shader.bound = Emit(instance->ir, {{"P", instance->finalP}}, {});
         shader.shade = Emit(instance->ir, {{"P", instance->finalP}, {"N", instance->finalN}}, {});
+        auto instanceTextures = TexturesOf(*instance);
         for (vm::Program* p : {&shader.bound, &shader.shade}) {
             p->shaderName = shader.name;
             p->sourcePath = path;
+            p->textures = instanceTextures;
         }
     } catch (const std::length_error& e) {
         result.diagnostics.error({path}, e.what());
@@ -155,6 +165,15 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
                                          path + "' is compiled bytecode");
             return result;
         }
+        // A texture option computed from a parameter was fixed at its default when compiled.
+        if (shader.genericBound.textures)
+            for (const vm::TextureSlot& slot : *shader.genericBound.textures)
+                if (std::count(slot.dependsOn.begin(), slot.dependsOn.end(), o.name)) {
+                    result.paramErrors.push_back(
+                        "parameter '" + o.name + "' sets an option of the lookup of texture '" + slot.path +
+                        "', fixed when '" + path + "' was compiled: use the shader's source (.sl)");
+                    return result;
+                }
     }
     if (!SpecialiseShader(shader, overrides, &result.paramErrors)) return result;
     result.shader = std::make_shared<const CompiledShader>(std::move(shader));

@@ -95,7 +95,7 @@ ValueId IrBuilder::Select(ValueId c, ValueId a, ValueId b, int line) {
     return Create(n);
 }
 
-ValueId IrBuilder::Noise(IrOp op, const std::vector<ValueId>& operands, int channel, int line) {
+ValueId IrBuilder::Call(IrOp op, const std::vector<ValueId>& operands, int channel, int line) {
     IrNode n;
     n.op = op;
     n.count = static_cast<uint8_t>(operands.size());

@@ -41,7 +41,7 @@ constexpr IrOp IrOpOf(vm::Operation f) { return static_cast<IrOp>(static_cast<in
 static_assert(OperationOf(IrOp::Neg) == vm::Operation::Neg && OperationOf(IrOp::CellNoise) == vm::Operation::CellNoise);
 
 const char* ToString(IrOp op);
-/// 0 for leaves, else the operand count; -1 for the noise functions (1 to 8 operands).
+/// 0 for leaves, else the operand count; -1 for the noise and texture functions (1 to 8 operands).
 int Arity(IrOp op);
 inline bool IsUnary(IrOp op) { return Arity(op) == 1; }
 inline bool IsBinary(IrOp op) { return Arity(op) == 2; }
@@ -57,7 +57,7 @@ inline constexpr int kMaxIrOperands = 8;
 struct IrNode {
     IrOp op = IrOp::Const;
     uint8_t count = 0;    // operands in `in`
-    uint8_t channel = 0;  // the noise functions' seed
+    uint8_t channel = 0;  // the noise functions' seed, the texture functions' slot
     // Operands (value ids). Global: in[0] = vm::Global index, in[1] = component; Param:
     // in[0] = parameter index, in[1] = component.
     std::array<uint32_t, kMaxIrOperands> in{};
@@ -75,8 +75,10 @@ class IrBuilder {
     ValueId Binary(IrOp op, ValueId a, ValueId b, int line);
     /// c != 0 ? a : b.
     ValueId Select(ValueId c, ValueId a, ValueId b, int line);
-    /// A noise function of `operands` (coordinates, then periods for PNoise) on `channel`.
-    ValueId Noise(IrOp op, const std::vector<ValueId>& operands, int channel, int line);
+    /// An operation of up to kMaxIrOperands operands with a channel: a noise function of
+    /// `operands` (coordinates, then periods for PNoise) on noise channel `channel`, or a texture
+    /// lookup of (s, t) or four corners through texture slot `channel`.
+    ValueId Call(IrOp op, const std::vector<ValueId>& operands, int channel, int line);
 
     const IrNode& node(ValueId v) const { return m_nodes[v]; }
     size_t size() const { return m_nodes.size(); }

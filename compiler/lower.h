@@ -40,6 +40,8 @@ struct LoweredShader {
     std::vector<std::string> stringParams;
     /// The coordinate spaces the shader names, "current" aside (sorted, once each).
     std::vector<std::string> spaces;
+    /// The texture lookups' slots (IR Texture nodes name theirs by their channel).
+    std::vector<vm::TextureSlot> textures;
 };
 
 /// Checks and lowers the one displacement shader in `unit`. Parameters stay IR Param nodes (the

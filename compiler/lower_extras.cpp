@@ -248,7 +248,7 @@ std::optional<Value> Lowerer::LowerExtraCall(const lang::Expr& e, Type expected)
             const ValueId w = ir().Const(static_cast<double>(3 * site + c));
             const std::vector<ValueId> at = {ir().Binary(IrOp::Mul, u, scale, Line()),
                                              ir().Binary(IrOp::Mul, v, scale, Line()), w};
-            out.c[c] = ir().Noise(IrOp::CellNoise, at, 0, Line());
+            out.c[c] = ir().Call(IrOp::CellNoise, at, 0, Line());
         }
         return out;
     }

@@ -175,8 +175,7 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
         // channels, anything else the float.
         const Type result = IsTriple(expected) ? expected : Type::Float;
         Value out{result, {}};
-        for (int c = 0; c < 3; ++c)
-            out.c[c] = IsTriple(result) || c == 0 ? ir().Noise(op, operands, c, line) : out.c[0];
+        for (int c = 0; c < 3; ++c) out.c[c] = IsTriple(result) || c == 0 ? ir().Call(op, operands, c, line) : out.c[0];
         return out;
     }
 

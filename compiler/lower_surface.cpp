@@ -27,7 +27,8 @@ struct SurfaceCall {
     const char* args;
     /// 'c' color, 'f' float, 'x' float or color as the context wants (texture, environment).
     char result;
-    /// Reads a texture file: a displacement shader may call it, but affray reads none yet.
+    /// Reads a texture file (environment, shadow, bump, textureinfo; texture() itself is lowered
+    /// by LowerTexture): a displacement shader may call it, but affray reads none of these yet.
     bool texture = false;
     /// A query of the instance (name, output variable), folded (LowerQuery); the others are
     /// errors where the displacement shader runs them.
@@ -131,6 +132,7 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
                                  " argument" + (fixed == 1 ? "" : "s") + ", got " + std::to_string(e.args.size()));
         return std::nullopt;
     }
+    if (e.name == "texture") return LowerTexture(e, expected);
     bool ok = true;
     std::optional<Value> firstValue;  // a query's name
     Variable* output = nullptr;
@@ -187,7 +189,7 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
     const std::optional<double> alive = ir().ConstValue(m_state.alive);
     if (!m_checkingOnly && !(alive && *alive == 0.0)) {
         if (call.texture)
-            m_diags.error(e.loc, "function '" + e.name + "' is not supported yet: affray reads no texture files");
+            m_diags.error(e.loc, "function '" + e.name + "' is not supported yet: affray reads texture() maps only");
         else
             m_diags.error(
                 e.loc,

@@ -153,6 +153,13 @@ class Lowerer {
     /// option, attribute, rendererinfo, displacement (name, out): 1 and `out` written when the
     /// instance knows `name` with out's type, else 0 (folded; `nameArg` is the lowered name).
     std::optional<Value> LowerQuery(const lang::Expr& e, const Value& nameArg, Variable& out);
+    /// texture(): lowered to texture slots and the Texture opcodes (lower_texture.cpp).
+    std::optional<Value> LowerTexture(const lang::Expr& e, Type expected);
+    /// The constant value of `v`, taking a parameter as its default (whose name is added to
+    /// *params), or nothing if it varies over the surface.
+    std::optional<double> OptionValue(ValueId v, std::vector<std::string>* params) const;
+    /// The index of `slot` in LoweredShader::textures (added if new), or nothing if full.
+    std::optional<int> TextureSlotIndex(const vm::TextureSlot& slot);
     /// The shader's parameter `name` as it is now, or null (also inside inlined functions).
     const Variable* ShaderParameter(const std::string& name) const;
 

@@ -27,6 +27,9 @@ struct SceneFacts {
     std::map<std::string, FactValue> options;
     /// attribute() data by name: "Sides" {1 or 2}, "identifier:name"...
     std::map<std::string, FactValue> attributes;
+    /// Where texture() looks for a relative file name first (Option "searchpath" "texture"),
+    /// before the shader's directory and the working directory.
+    std::vector<std::string> textureSearchPath;
 };
 
 /// RenderMan's default clipping planes (RI_EPSILON and RI_INFINITY as affray's scene has them),

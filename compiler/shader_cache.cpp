@@ -44,6 +44,7 @@ std::string Key(const std::string& path, const std::string& bytes, const std::ve
     if (facts) {
         addFacts("option", facts->options);
         addFacts("attribute", facts->attributes);
+        for (const std::string& d : facts->textureSearchPath) key += "\ntexture path " + d;
     }
     return key;
 }

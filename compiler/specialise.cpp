@@ -134,6 +134,7 @@ std::optional<vm::Program> Specialise(const vm::Program& program, const std::vec
     }
     out.shaderName = program.shaderName;
     out.sourcePath = program.sourcePath;
+    out.textures = program.textures;
     return out;
 }
 

@@ -307,6 +307,12 @@ compiler::SceneFacts FactsOf(const SceneDesc& scene, const PrimitiveDesc& patch)
     facts.options["CropWindow"] = numbers({crop[0], crop[1], crop[2], crop[3]});
     facts.options["Clipping"] = numbers({camera.nearClip, camera.farClip});
     facts.attributes["Sides"] = numbers({patch.twoSided ? 2.0 : 1.0});
+    // Option "searchpath" "texture", relative directories taken from the RIB file's, then that
+    // directory itself.
+    const std::filesystem::path ribDir = std::filesystem::path(scene.path).parent_path();
+    for (const std::string& dir : scene.textureSearchPath)
+        facts.textureSearchPath.push_back(std::filesystem::path(dir).is_absolute() ? dir : (ribDir / dir).string());
+    facts.textureSearchPath.push_back(ribDir.string());
     return facts;
 }
 

@@ -155,6 +155,9 @@ struct SceneDesc {
     /// Option "searchpath" "shader": directories in order, '&' already expanded to the previous
     /// value and '@' to the default. Empty: the renderer's default search path.
     std::vector<std::string> shaderSearchPath;
+    /// Option "searchpath" "texture", likewise: where texture() looks for a relative file name,
+    /// before the RIB file's directory, the shader's and the working directory.
+    std::vector<std::string> textureSearchPath;
     /// CoordinateSystem names, each the current transform at its request (object -> world).
     std::map<std::string, glm::dmat4> coordinateSystems;
 };
@@ -275,6 +278,7 @@ inline std::string ToString(const SceneDesc& s) {
     for (const LightDesc& l : s.lights) text += "  light " + ToString(l) + "\n";
     for (const auto& [name, m] : s.coordinateSystems) text += "  coordinatesystem " + name + " " + ToString(m) + "\n";
     for (const std::string& dir : s.shaderSearchPath) text += "  searchpath shader " + dir + "\n";
+    for (const std::string& dir : s.textureSearchPath) text += "  searchpath texture " + dir + "\n";
     for (const PrimitiveDesc& p : s.primitives) text += "  " + ToString(p) + "\n";
     return text;
 }

@@ -2,7 +2,7 @@
 // The reader follows the RenderMan Interface Specification 3.2 for the requests it implements:
 // options (Format, Projection, FrameAspectRatio, ScreenWindow, CropWindow, Clipping, PixelSamples,
 // PixelFilter box/gaussian, Exposure, Display with its mode checked, Hider "hidden" "jitter",
-// Option "searchpath" "shader" and "archive"), Declare and inline declarations on every parameter
+// Option "searchpath" "shader", "texture" and "archive"), Declare and inline declarations on every parameter
 // list, transforms and Begin/End scopes, CoordinateSystem, CoordSysTransform, attributes (Color,
 // Opacity 1 1 1, Surface constant/matte/metal/plastic, Displacement, Sides, ReverseOrientation,
 // Orientation, Illuminate on),

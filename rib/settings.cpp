@@ -8,7 +8,7 @@
 
 namespace affray::rib {
 
-// Option "searchpath" "shader" and "archive" are used; every other option tunes another
+// Option "searchpath" "shader", "texture" and "archive" are used; every other option tunes another
 // renderer (bucket sizes, statistics, caches...) and is ignored with one warning per name.
 bool RibParser::DoOption(const RibRequest& r) {
     std::string name;
@@ -23,6 +23,8 @@ bool RibParser::DoOption(const RibRequest& r) {
             if (!SetSearchPath(p, &m_scene.shaderSearchPath)) return false;
         } else if (p.value.name == "archive") {
             if (!SetSearchPath(p, &m_archiveSearchPath)) return false;
+        } else if (p.value.name == "texture") {
+            if (!SetSearchPath(p, &m_scene.textureSearchPath)) return false;
         } else {
             Warn(p.at, "'Option \"searchpath\" \"" + p.value.name + "\"' does not apply to affray; ignored");
         }

@@ -11,9 +11,11 @@
 #include <atomic>
 #include <bit>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <system_error>
 
 #include "vm/verify.h"
@@ -145,6 +147,22 @@ void WriteProgram(Writer& w, const char* tag, const Program& p) {
     }
     w.Count(p.spaces.size());
     for (const std::string& space : p.spaces) w.Str(space);
+    w.Count(p.textures ? p.textures->size() : 0);
+    if (p.textures)
+        for (const TextureSlot& slot : *p.textures) {
+            const texture::LookupOptions& o = slot.options;
+            w.Str(slot.path);
+            w.I32(o.channel);
+            w.U8(static_cast<uint8_t>(o.swrap));
+            w.U8(static_cast<uint8_t>(o.twrap));
+            w.U8(static_cast<uint8_t>(o.filter));
+            w.U8(slot.fillIfMissing ? 1 : 0);
+            w.F64(o.sblur);
+            w.F64(o.tblur);
+            w.F64(o.fill);
+            w.Count(slot.dependsOn.size());
+            for (const std::string& name : slot.dependsOn) w.Str(name);
+        }
 }
 
 const char* kRunsPastEnd = "corrupt file (a field runs past the end of the data)";
@@ -209,6 +227,43 @@ bool ReadProgram(Reader& r, const std::string& tag, Program* p, std::string* err
     }
     p->spaces.resize(r.Count(4));  // smallest: an empty name
     for (std::string& space : p->spaces) space = r.Str();
+    // Smallest texture slot: an empty path (4), channel (4), four bytes, three doubles (24), no
+    // parameter names (4).
+    const uint32_t nTextures = r.Count(40);
+    if (nTextures > static_cast<uint32_t>(kMaxTextureSlots))
+        return Fail(error, where + "too many texture slots (" + std::to_string(nTextures) + ")");
+    if (nTextures > 0) {
+        auto slots = std::make_shared<TextureSlots>(nTextures);
+        for (TextureSlot& slot : *slots) {
+            texture::LookupOptions& o = slot.options;
+            slot.path = r.Str();
+            o.channel = r.I32();
+            const uint8_t swrap = r.U8(), twrap = r.U8(), filter = r.U8(), fill = r.U8();
+            o.sblur = r.F64();
+            o.tblur = r.F64();
+            o.fill = r.F64();
+            slot.dependsOn.resize(r.Count(4));
+            for (std::string& name : slot.dependsOn) name = r.Str();
+            if (r.failed()) break;
+            if (o.channel < 0 || swrap > 2 || twrap > 2 || filter > 3 || fill > 1 || !std::isfinite(o.sblur) ||
+                !std::isfinite(o.tblur) || !(o.sblur >= 0) || !(o.tblur >= 0))
+                return Fail(error, where + "texture slot of '" + slot.path + "' has bad options");
+            o.swrap = static_cast<texture::Wrap>(swrap);
+            o.twrap = static_cast<texture::Wrap>(twrap);
+            o.filter = static_cast<texture::Filter>(filter);
+            slot.fillIfMissing = fill != 0;
+        }
+        if (!r.failed()) {
+            // The maps are read now, as when the shader was compiled: a file that cannot be read is
+            // an error unless its lookup gave a fill.
+            for (TextureSlot& slot : *slots) {
+                std::string why;
+                slot.map = texture::Open(slot.path, &why);
+                if (!slot.map && !slot.fillIfMissing) return Fail(error, where + why);
+            }
+            p->textures = std::move(slots);
+        }
+    }
     if (r.failed()) return Fail(error, kRunsPastEnd);
 
     std::string problem;

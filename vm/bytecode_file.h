@@ -11,7 +11,7 @@
 //
 //   offset  size  field
 //   0       8     magic "AFRAYBC\0"
-//   8       4     u32 format version (kBytecodeVersion = 3)
+//   8       4     u32 format version (kBytecodeVersion = 4)
 //   12      8     u64 file length L in bytes, this header and the final checksum included
 //   20      8     u64 header check: FNV-1a 64 of bytes 0..19
 //   28      ...   str shaderName, str sourcePath, u64 sourceHash (FNV-1a 64 of the source)
@@ -30,6 +30,10 @@
 //     u32  param count, then per param: str name, str type, i32 size, u16 firstRegister,
 //          u32 default count, then per default: u64 binary64 bits
 //     u32  space count, then per space: str name (the coordinate spaces the shader names)
+//     u32  texture slot count (<= 256), then per slot: str path, i32 channel, u8 swrap, u8 twrap,
+//          u8 filter (texture::Wrap and texture::Filter numbers), u8 fill-if-missing (0 or 1),
+//          u64 sblur, u64 tblur, u64 fill (binary64 bits), u32 count then str names of the
+//          parameters the options depend on. The loader reads each map again.
 //
 // The header check and the length let a reader tell a truncated file ("truncated file") from a
 // damaged one ("corrupt file (checksum mismatch)"); the checksum is tested before any field
@@ -46,7 +50,8 @@
 namespace affray::vm {
 
 /// The only format version this affray writes and reads.
-static constexpr uint32_t kBytecodeVersion = 3;  // 2: control flow, noise, Ext words, flags; 3: tan (63)
+// 2: control flow, noise, Ext words, flags; 3: tan (63); 4: texture slots, Texture2 and Texture8.
+static constexpr uint32_t kBytecodeVersion = 4;
 
 /// What an .afb file holds.
 struct BytecodeFile {

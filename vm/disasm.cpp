@@ -49,7 +49,10 @@ std::string DisassembleInstr(const Program& program, const Instr* in, size_t ava
             out += "r" + std::to_string(x);
         }
     }
-    if (in->flags != 0) out += "  [channel " + std::to_string(in->flags) + "]";
+    if (OperationOf(in->op) == Operation::Texture)
+        out += "  [texture " + std::to_string(in->flags) + "]";
+    else if (in->flags != 0)
+        out += "  [channel " + std::to_string(in->flags) + "]";
     return out;
 }
 
@@ -73,6 +76,15 @@ std::string Disassemble(const Program& program, const std::string& sourceText) {
         for (int i = 0; i < o.size; ++i) out << " r" << o.registers[i];
         out << "\n";
     }
+    if (program.textures)
+        for (size_t i = 0; i < program.textures->size(); ++i) {
+            const TextureSlot& slot = (*program.textures)[i];
+            const texture::LookupOptions& o = slot.options;
+            out << "; texture " << i << " = \"" << slot.path << "\" channel " << o.channel << ", wrap "
+                << texture::WrapName(o.swrap) << " " << texture::WrapName(o.twrap) << ", filter "
+                << texture::FilterName(o.filter) << ", blur " << FormatNumber(o.sblur) << " " << FormatNumber(o.tblur)
+                << ", fill " << FormatNumber(o.fill) << (slot.map ? "" : " (no map: the fill)") << "\n";
+        }
     int lastLine = -1;
     for (size_t pc = 0; pc < program.code.size(); ++pc) {
         int line = pc < program.lines.size() ? program.lines[pc] : 0;

@@ -9,6 +9,7 @@
 
 #include "vm/interpreter.h"
 #include "vm/numbers/noise.h"
+#include "vm/texture_lookup.h"
 
 #ifdef AFFRAY_TRACE_VM
 #include <cstdio>
@@ -210,7 +211,7 @@ void Interpreter<T>::RunOnce() {
     for (size_t pc = 0; pc < size; ++pc) {
         const Instr& in = code[pc];
         T& A = R[in.a];
-        // The operands of a noise function: R[B], R[C], then the Ext words' registers.
+        // The operands of a noise or texture function: R[B], R[C], then the Ext words' registers.
         auto noiseArgs = [&](int count, T* args) {
             for (int i = 0; i < count; ++i) args[i] = R[OperandOf(&in, i + 1)];
         };
@@ -310,6 +311,13 @@ void Interpreter<T>::RunOnce() {
                 break;
             }
             case Op::Tan: A = tan(R[in.b]); break;
+            case Op::Texture2: A = TextureLookup((*m_program->textures)[in.flags], R[in.b], R[in.c]); break;
+            case Op::Texture8: {
+                T args[8];
+                noiseArgs(8, args);
+                A = TextureLookupQuad((*m_program->textures)[in.flags], args);
+                break;
+            }
         }
         if constexpr (kRecord) {
             if (std::isnan(constant)) constant = detail::ResultConstant(in.op, A);

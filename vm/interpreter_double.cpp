@@ -11,6 +11,8 @@ double RunScalarOpcode(Op op, const double* operands, uint8_t flags) {
     const int n = OperandCount(op);
     if (FormOf(op) != OperandForm::RR || OperationOf(op) == Operation::None)
         throw std::logic_error(std::string("RunScalarOpcode: not an all-register operation: ") + Info(op).name);
+    if (OperationOf(op) == Operation::Texture)
+        throw std::logic_error("RunScalarOpcode: a texture lookup needs its program's texture slots");
     // R[i] := K[i] for each operand, then the opcode reading R[0..n-1] into R[n].
     Program program;
     program.constants.assign(operands, operands + n);

@@ -6,7 +6,8 @@
 // Encoding: every instruction is 8 bytes,
 //
 //   bits  0..7   op      (MAXARG_OP = 255)
-//   bits  8..15  flags   (the noise functions' seed, which picks an independent channel; else 0)
+//   bits  8..15  flags   (the noise functions' seed, which picks an independent channel; the
+//                        texture functions' slot in Program::textures; else 0)
 //   bits 16..31  A       destination register
 //   bits 32..47  B       first operand: a register R[B] or a constant K[B]
 //   bits 48..63  C       second operand: a register R[C] or a constant K[C]
@@ -49,7 +50,8 @@ enum OperationFlag : uint8_t {
 // The operations of the VM: each is implemented by one opcode per operand form (below). The
 // compiler's IR operations are these plus its leaves (compiler/ir.h), and every fact a consumer
 // needs about an operation is a column here.
-//  X(name, operands (-1: varies, the noise functions), flags, RSL spelling)
+//  X(name, operands (-1: varies, the noise and texture functions), flags, RSL spelling)
+// Texture is not foldable: its value depends on a file, read when the program is made.
 #define AFFRAY_OPERATIONS(X)                                              \
     X(Neg, 1, kFoldable, "-x")                                            \
     X(Sqr, 1, kFoldable, "x * x")                                         \
@@ -87,7 +89,8 @@ enum OperationFlag : uint8_t {
     X(Select, 3, kFoldable, "c ? x : y")                                  \
     X(Noise, -1, kFoldable, "noise(p)")                                   \
     X(PNoise, -1, kFoldable, "pnoise(p, period)")                         \
-    X(CellNoise, -1, kFoldable, "cellnoise(p)")
+    X(CellNoise, -1, kFoldable, "cellnoise(p)")                           \
+    X(Texture, -1, 0, "texture(name, s, t)")
 
 enum class Operation : uint8_t {
     None,  // not an operation: LoadK, Move, Ext
@@ -102,7 +105,7 @@ inline constexpr int kOperationCount = 1 AFFRAY_OPERATIONS(AFFRAY_OPERATION_COUN
 
 struct OperationInfo {
     const char* name;
-    int operands;  // -1: varies with the opcode (the noise functions)
+    int operands;  // -1: varies with the opcode (the noise and texture functions)
     uint8_t flags;
     const char* rsl;
 };
@@ -181,7 +184,9 @@ constexpr bool Has(Operation f, OperationFlag flag) { return (Info(f).flags & fl
     X(CellNoise2, 60, "wrr", CellNoise, "R[A] := cellnoise(R[B], R[C])")                             \
     X(CellNoise3, 61, "wrrr--", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D])")                    \
     X(CellNoise4, 62, "wrrrr-", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D], R[E])")              \
-    X(Tan, 63, "wr-", Tan, "R[A] := tan(R[B])")
+    X(Tan, 63, "wr-", Tan, "R[A] := tan(R[B])")                                                      \
+    X(Texture2, 64, "wrr", Texture, "R[A] := texture(slot flags; s = R[B], t = R[C])")               \
+    X(Texture8, 65, "wrrrrrrrr", Texture, "R[A] := texture(slot flags; corners s1, t1 ... s4, t4)")
 
 enum class Op : uint8_t {
 #define AFFRAY_OP_ENUM(name, number, format, operation, meaning) name = number,
@@ -198,7 +203,7 @@ inline constexpr int kMaxConstants = 1 << 16;
 
 struct Instr {
     Op op;
-    uint8_t flags = 0;  // reserved; always 0 for now
+    uint8_t flags = 0;  // a noise channel or a texture slot (see the encoding above); else 0
     uint16_t a = 0, b = 0, c = 0;
 };
 static_assert(sizeof(Instr) == 8, "instructions are 8 bytes (see the encoding above)");

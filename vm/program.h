@@ -5,9 +5,11 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "texture/texture.h"
 #include "vm/opcodes.h"
 
 namespace affray::vm {
@@ -59,6 +61,23 @@ struct ProgramParam {
     std::vector<double> defaults;  // size values
 };
 
+/// What one texture lookup of a program reads: the file, the options of its call site (the
+/// channel included: a color lookup takes three slots, one per channel), and the map, read when
+/// the program was made (compiled or loaded). A slot without a map (the file was missing and the
+/// call gave a "fill") gives the fill value.
+struct TextureSlot {
+    std::string path;
+    texture::LookupOptions options;
+    /// The call gave a "fill": a file that cannot be read is then a warning, not an error.
+    bool fillIfMissing = false;
+    /// The parameters whose defaults gave these options (a generic program's: the options of an
+    /// instance are its own); specialising the program with another value of one is refused.
+    std::vector<std::string> dependsOn;
+    std::shared_ptr<const texture::TextureMap> map;
+};
+using TextureSlots = std::vector<TextureSlot>;
+inline constexpr int kMaxTextureSlots = 256;  // the flags byte of Texture2 and Texture8
+
 struct Program {
     std::string shaderName;
     std::string sourcePath;
@@ -76,6 +95,10 @@ struct Program {
     /// Coordinate spaces the shader names (other than "current"). A generic program computes
     /// them as the identity; an instance compiled from source has their matrices folded in.
     std::vector<std::string> spaces;
+    /// The texture lookups' slots (Texture2 and Texture8 name theirs in the flags byte): shared,
+    /// never changed once made, by the programs of one compilation and the pruned programs made
+    /// from them. Null if the program reads no texture.
+    std::shared_ptr<const TextureSlots> textures;
 
     Program() { globalRegisters.fill(kNoRegister); }
 

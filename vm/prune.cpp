@@ -135,6 +135,7 @@ void Pruner::Prune(const Program& program, const Decisions& decisions, Program* 
     out->shaderName = program.shaderName;
     out->sourcePath = program.sourcePath;
     out->spaces = program.spaces;
+    out->textures = program.textures;
     as.Finish(outputs, program.params, !program.lines.empty(), out);
 }
 

@@ -19,6 +19,8 @@ bool Verify(const Program& program, std::string* error) {
     if (!program.lines.empty() && program.lines.size() != program.code.size())
         return Fail(error, "line table length differs from code length");
 
+    if (program.textures && program.textures->size() > static_cast<size_t>(kMaxTextureSlots))
+        return Fail(error, "too many texture slots");
     std::vector<bool> written(nRegs, false);
     for (int g = 0; g < kGlobalCount; ++g) {
         uint16_t base = program.globalRegisters[g];
@@ -49,6 +51,8 @@ bool Verify(const Program& program, std::string* error) {
         if (pc + words > program.code.size()) return Fail(error, where + "its operand words are missing");
         for (int w = 1; w < words; ++w)
             if (program.code[pc + w].op != Op::Ext) return Fail(error, where + "its operand words are missing");
+        if (OperationOf(in.op) == Operation::Texture && (!program.textures || in.flags >= program.textures->size()))
+            return Fail(error, where + "texture slot " + std::to_string(in.flags) + " out of range");
         // Reads first, then the write: an instruction may overwrite one of its own operands.
         for (int i = 0; format[i]; ++i) {
             uint16_t x = OperandOf(&in, i);

@@ -153,8 +153,8 @@ TEST_CASE("compiler diagnostics are exact", "[compiler]") {
     CHECK(Diagnose("displacement t() {\n  P += frob(2);\n}\n") ==
           "test.sl:2:8: error: unknown function 'frob'\n      P += frob(2);\n           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += texture(\"x\");\n}\n") ==
-          "test.sl:2:8: error: function 'texture' is not supported yet: affray reads no texture files\n      P += "
-          "texture(\"x\");\n           ^\n");
+          "test.sl:2:16: error: cannot find texture 'x' (looked in the working directory)\n      P += "
+          "texture(\"x\");\n                   ^\n");
     CHECK(Diagnose("displacement t() {\n  float x;\n  P += x + color(1, 0, 0);\n}\n") ==
           "test.sl:3:8: warning: variable 'x' is used before it is assigned a value (it is 0 here)\n"
           "      P += x + color(1, 0, 0);\n           ^\n"

@@ -403,7 +403,7 @@ TEST_CASE("unknown and unsupported functions and types", "[compiler][diagnostics
           "      P += noize(P);\n"
           "           ^\n");
     CHECK(Diagnose("displacement t() {\n  P += environment(\"x\", N);\n}\n") ==
-          "test.sl:2:8: error: function 'environment' is not supported yet: affray reads no texture files\n"
+          "test.sl:2:8: error: function 'environment' is not supported yet: affray reads texture() maps only\n"
           "      P += environment(\"x\", N);\n"
           "           ^\n");
     CHECK(Diagnose("surface t() {\n  P += 1;\n}\n") ==

@@ -292,10 +292,19 @@ class CaseRunner {
     /// A ray checked against the height-field march with `steps` samples of the part of the ray
     /// over the patch.
     void BruteForceRay(const Ray& ray, const Tolerance& tol, int steps) {
+        double t0, t1;
+        if (!m_field.FootInside(ray, 0.0, &t0, &t1) || !std::isfinite(t1)) {
+            Hit hit;
+            Trace(ray, tol, &hit);
+            return;
+        }
+        BruteForceSegment(ray, tol, t0, t1, steps);
+    }
+
+    /// The same over the part [t0, t1] of the ray only (where a thin feature lies).
+    void BruteForceSegment(const Ray& ray, const Tolerance& tol, double t0, double t1, int steps) {
         Hit hit;
         bool found = Trace(ray, tol, &hit);
-        double t0, t1;
-        if (!m_field.FootInside(ray, 0.0, &t0, &t1) || !std::isfinite(t1)) return;
         Crossing c = MarchForCrossing(m_field, ray, t0, t1, steps);
         if (c.tb < 0) return;
         ++m_report.bruteForceHits;
@@ -719,4 +728,46 @@ TEST_CASE("stiff: a wall 1e-4 thick covers every pixel of its projected rectangl
     CHECK(inside > 500);
     CHECK(missed == 0);
     CHECK(stats.camera.depthLimitHits == 0);
+}
+
+TEST_CASE("stiff: a ridge one texel wide in a 4096-texel map is hit in every pixel, from every angle",
+          "[renderer][stiff][texture]") {
+    // tests/scenes/stiff/ridge.rib: texel column 2048 of ridge.exr is 1, the others 0; with the
+    // bilinear lookup the height is a tent 0.2 high over s in [2047.5, 2049.5] / 4096, about a
+    // quarter of a pixel wide here.
+    StiffScene scene = LoadStiff("ridge");
+    CaseRunner run(scene, 0, 0.2);
+    const double sLo = 2047.5 / 4096, sHi = 2049.5 / 4096;
+    // Every pixel's centre ray, marched finely over the part of it whose foot is on the tent.
+    const renderer::CameraDesc& desc = scene.prepared.desc.camera;
+    int onRidge = 0;
+    for (int y = 0; y < desc.yres; ++y)
+        for (int x = 0; x < desc.xres; ++x) {
+            const Ray ray = scene.camera->GenerateRay(x + 0.5, y + 0.5);
+            const glm::dvec3 o = run.field().Locate(ray.origin), d = run.field().Locate(ray.origin + ray.dir) - o;
+            if (d.x == 0) continue;
+            double t0 = (sLo - o.x) / d.x, t1 = (sHi - o.x) / d.x;
+            if (t0 > t1) std::swap(t0, t1);
+            double f0, f1;
+            if (!run.field().FootInside(ray, 0.0, &f0, &f1)) continue;
+            t0 = std::max({t0, f0, 0.0});
+            t1 = std::min(t1, f1);
+            if (!(t0 < t1)) continue;
+            const int before = run.report().bruteForceHits;
+            run.BruteForceSegment(ray, scene.CameraTolerance(), t0, t1, 400);
+            onRidge += run.report().bruteForceHits - before;
+        }
+    INFO(onRidge << " pixels see the ridge");
+    CHECK(onRidge >= 100);
+    // Rays aimed at points of the tent's flanks and crest from every side, 1 to 89 degrees above
+    // the patch, each from 3 units away.
+    std::mt19937_64 rng(47);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const Tolerance tol{scene.CameraTolerance().At(3), 0};
+    for (int i = 0; i < 240; ++i) {
+        const double u = sLo + (sHi - sLo) * unit(rng), v = 0.02 + 0.96 * unit(rng);
+        const glm::dvec3 dir = DirectionAtElevation(1 + 88 * unit(rng), 2 * M_PI * unit(rng), run.field().Normal());
+        run.AimedRay(run.field().Surface(u, v) + 3.0 * dir, u, v, tol);
+    }
+    RequireSound(run.report(), 300, 20000);
 }

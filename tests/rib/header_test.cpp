@@ -217,7 +217,7 @@ TEST_CASE("Options and attributes of other renderers warn once per name", "[rend
     CHECK(messages == Messages{
                           "t.rib:1: warning: 'Option \"limits\"' does not apply to affray; ignored",
                           "t.rib:3: warning: 'Option \"statistics\"' does not apply to affray; ignored",
-                          "t.rib:4: warning: 'Option \"searchpath\" \"texture\"' does not apply to affray; ignored",
+
                           "t.rib:5: warning: 'Option \"searchpath\" \"procedural\"' does not apply to affray; ignored",
                           "t.rib:6: warning: 'Option \"user\"' does not apply to affray; ignored",
                           "t.rib:8: warning: 'Attribute \"identifier\"' does not apply to affray; ignored",
@@ -325,7 +325,7 @@ FrameEnd
     CHECK(scene->camera.xsamples == 3);
     CHECK(scene->camera.jitter);
     CHECK(messages == Messages{
-                          "t.rib:6: warning: 'Option \"searchpath\" \"texture\"' does not apply to affray; ignored",
+
                           "t.rib:7: warning: 'Option \"limits\"' does not apply to affray; ignored",
                           "t.rib:8: warning: 'Option \"statistics\"' does not apply to affray; ignored",
                           "t.rib:9: warning: 'Option \"trace\"' does not apply to affray; ignored",

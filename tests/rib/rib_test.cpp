@@ -661,7 +661,7 @@ TEST_CASE("RIB Display modes follow the channel grammar", "[renderer][rib]") {
     CHECK(ErrorOf("Display \"o.exr\" \"file\" \"RGB\"\n").find("unknown channel group 'RGB'") != std::string::npos);
 }
 
-TEST_CASE("RIB Option searchpath shader expands & and @", "[renderer][rib]") {
+TEST_CASE("RIB Option searchpath shader and texture expand & and @", "[renderer][rib]") {
     using Path = std::vector<std::string>;
     CHECK(Parsed("WorldBegin WorldEnd").shaderSearchPath.empty());  // the renderer's default
     CHECK(Parsed("Option \"searchpath\" \"shader\" [\"shaders:/opt/sl\"]\nWorldBegin WorldEnd").shaderSearchPath ==
@@ -681,14 +681,16 @@ TEST_CASE("RIB Option searchpath shader expands & and @", "[renderer][rib]") {
 
     std::vector<std::string> warnings;
     SceneDesc scene = Parsed(
-        "Option \"searchpath\" \"texture\" \"t\"\nOption \"searchpath\" \"texture\" \"u\"\n"
+        "Option \"searchpath\" \"texture\" \"t\"\nOption \"searchpath\" \"texture\" \"&:u\"\n"
+        "Option \"searchpath\" \"procedural\" \"p\"\n"
         "Option \"limits\" \"bucketsize\" [16 16]\nOption \"statistics\"\nWorldBegin WorldEnd",
         &warnings);
     CHECK(scene.shaderSearchPath.empty());
+    CHECK(scene.textureSearchPath == Path{"t", "u"});
     REQUIRE(warnings.size() == 3);
-    CHECK(warnings[0] == "t.rib:1: warning: 'Option \"searchpath\" \"texture\"' does not apply to affray; ignored");
-    CHECK(warnings[1] == "t.rib:3: warning: 'Option \"limits\"' does not apply to affray; ignored");
-    CHECK(warnings[2] == "t.rib:4: warning: 'Option \"statistics\"' does not apply to affray; ignored");
+    CHECK(warnings[0] == "t.rib:3: warning: 'Option \"searchpath\" \"procedural\"' does not apply to affray; ignored");
+    CHECK(warnings[1] == "t.rib:4: warning: 'Option \"limits\"' does not apply to affray; ignored");
+    CHECK(warnings[2] == "t.rib:5: warning: 'Option \"statistics\"' does not apply to affray; ignored");
 }
 
 TEST_CASE("RIB CoordinateSystem stores object to world", "[renderer][rib]") {

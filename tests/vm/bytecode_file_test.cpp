@@ -12,6 +12,7 @@
 #include <random>
 
 #include "tests/test_util.h"
+#include "tests/texture/texture_test_util.h"
 #include "vm/bytecode_file.h"
 #include "vm/verify.h"
 
@@ -75,6 +76,24 @@ void RequireSameProgram(const vm::Program& a, const vm::Program& b) {
         CHECK(p.firstRegister == q.firstRegister);
         REQUIRE(p.defaults.size() == q.defaults.size());
         for (size_t j = 0; j < p.defaults.size(); ++j) CHECK(Bits(p.defaults[j]) == Bits(q.defaults[j]));
+    }
+    REQUIRE(bool(a.textures) == bool(b.textures));
+    if (!a.textures) return;
+    REQUIRE(a.textures->size() == b.textures->size());
+    for (size_t i = 0; i < a.textures->size(); ++i) {
+        const vm::TextureSlot &x = (*a.textures)[i], &y = (*b.textures)[i];
+        INFO("texture slot " << i);
+        CHECK(x.path == y.path);
+        CHECK(x.options.channel == y.options.channel);
+        CHECK(x.options.swrap == y.options.swrap);
+        CHECK(x.options.twrap == y.options.twrap);
+        CHECK(x.options.filter == y.options.filter);
+        CHECK(Bits(x.options.sblur) == Bits(y.options.sblur));
+        CHECK(Bits(x.options.tblur) == Bits(y.options.tblur));
+        CHECK(Bits(x.options.fill) == Bits(y.options.fill));
+        CHECK(x.fillIfMissing == y.fillIfMissing);
+        CHECK(x.dependsOn == y.dependsOn);
+        CHECK(bool(x.map) == bool(y.map));
     }
 }
 
@@ -165,7 +184,7 @@ TEST_CASE("layout: little-endian fields at documented offsets, exact doubles", "
                             std::numeric_limits<double>::denorm_min()};
     file.bound.code = {vm::Instr{vm::Op::LoadK, 0, 0, 3, 0}};
     const std::string bytes = vm::SaveBytecode(file);
-    CHECK(bytes.substr(0, 12) == std::string("AFRAYBC\0\3\0\0\0", 12));  // magic, version 3
+    CHECK(bytes.substr(0, 12) == std::string("AFRAYBC\0\4\0\0\0", 12));  // magic, version 4
     uint64_t length = 0;
     for (int i = 7; i >= 0; --i) length = (length << 8) | static_cast<uint8_t>(bytes[12 + i]);
     CHECK(length == bytes.size());
@@ -354,4 +373,56 @@ TEST_CASE("files are written atomically and read back", "[vm][bytecode]") {
         CHECK(test::LastMessage(error) == (dir / "short.afb").string() + ": error: truncated file");
     }
     fs::remove_all(dir);
+}
+
+TEST_CASE("texture slots: kept field for field, maps read again, bad slots refused", "[vm][bytecode][texture]") {
+    test::TempDir dir;
+    const std::string map = dir.Path("map.exr");
+    {
+        // A 2x2 map beside the shader, and a lookup of a missing map with a fill.
+        const std::string shader = dir.Write("t.sl",
+                                             "displacement t(float b = 0.5) {\n"
+                                             "  P += texture(\"map.exr\"[0], s, t, \"blur\", b) * N;\n"
+                                             "  P += texture(\"gone.exr\", s, t, \"fill\", 2) * N;\n}\n");
+        test::tex::WriteImage(map, 2, 2, 1, {0, 1, 2, 3});
+        compiler::CompileResult r = compiler::CompileFile(shader);
+        INFO(r.diagnostics.format());
+        REQUIRE(r.ok());
+        vm::BytecodeFile file;
+        file.bound = r.shader->genericBound;
+        file.shade = r.shader->genericShade;
+        const std::string bytes = vm::SaveBytecode(file);
+        vm::BytecodeFile loaded;
+        std::string error;
+        REQUIRE(vm::LoadBytecode(bytes, &loaded, &error));
+        RequireSameProgram(file.bound, loaded.bound);
+        REQUIRE(loaded.bound.textures->size() == 2);
+        CHECK((*loaded.bound.textures)[0].map);
+        CHECK((*loaded.bound.textures)[0].dependsOn == std::vector<std::string>{"b"});
+        CHECK_FALSE((*loaded.bound.textures)[1].map);  // its fill stands in
+        CHECK(vm::SaveBytecode(loaded) == bytes);
+
+        // The map gone: an error naming it (the other slot has a fill, so it loads without).
+        std::filesystem::remove(map);
+        CHECK(LoadError(bytes).find("program 'bound': cannot") == 0);
+        CHECK(LoadError(bytes).find("map.exr") != std::string::npos);
+        test::tex::WriteImage(map, 2, 2, 1, {0, 1, 2, 3});
+
+        // A slot the code names that the table lacks, and options out of range.
+        auto edited = [&](auto edit) {
+            vm::BytecodeFile f = file;
+            auto slots = std::make_shared<vm::TextureSlots>(*f.bound.textures);
+            edit(*slots, f.bound);
+            f.bound.textures = slots;
+            return vm::SaveBytecode(f);
+        };
+        CHECK(LoadError(edited([](vm::TextureSlots& s, vm::Program&) {
+                  s.pop_back();
+              })).find("texture slot 1 out of range") != std::string::npos);
+        CHECK(LoadError(edited([](vm::TextureSlots& s, vm::Program&) { s[0].options.sblur = -1; })) ==
+              "program 'bound': texture slot of '" + (*file.bound.textures)[0].path + "' has bad options");
+        CHECK(LoadError(edited([](vm::TextureSlots& s, vm::Program&) {
+                  s[0].options.filter = static_cast<texture::Filter>(9);
+              })).find("has bad options") != std::string::npos);
+    }
 }

@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "tests/test_random.h"
+#include "texture/texture.h"
 #include "vm/interpreter.h"
 #include "vm/numbers/noise.h"
 #include "vm/verify.h"
@@ -151,6 +152,44 @@ constexpr Sample NoiseSample(RefFn f, int dims, int periods, double maxRadius) {
     return s;
 }
 
+/// The texture slots every texture sample reads (the flags byte picks one): a 16x16 map of two
+/// channels with random texels, and a 1x1 map, under every wrap mode and filter, with blur, a
+/// channel the map lacks and a missing map (both the fill value).
+const std::shared_ptr<const vm::TextureSlots>& TestTextures() {
+    static const std::shared_ptr<const vm::TextureSlots> slots = [] {
+        test::Rng rng(0x7E47);
+        std::vector<float> texels(16 * 16 * 2);
+        for (float& x : texels) x = static_cast<float>(rng.chance(0.1) ? rng.uniform(-40, 40) : rng.uniform(0, 1));
+        auto map = texture::TextureMap::FromPixels(16, 16, 2, texels);
+        auto tiny = texture::TextureMap::FromPixels(1, 1, 1, {0.75f}, texture::Wrap::Clamp, texture::Wrap::Clamp);
+        using W = texture::Wrap;
+        using F = texture::Filter;
+        auto slot = [&](std::shared_ptr<const texture::TextureMap> m, int channel, W s, W t, F f, double blur,
+                        double fill) {
+            vm::TextureSlot x;
+            x.path = m ? m->name() : "missing.exr";
+            x.map = std::move(m);
+            x.options = {
+                .channel = channel, .swrap = s, .twrap = t, .filter = f, .sblur = blur, .tblur = blur, .fill = fill};
+            x.fillIfMissing = !x.map;
+            return x;
+        };
+        auto out = std::make_shared<vm::TextureSlots>();
+        out->push_back(slot(map, 0, W::Periodic, W::Periodic, F::Box, 0, 0));
+        out->push_back(slot(map, 1, W::Clamp, W::Black, F::Box, 0, 0.5));
+        out->push_back(slot(map, 0, W::Black, W::Periodic, F::CatmullRom, 0, 0));
+        out->push_back(slot(map, 1, W::Periodic, W::Clamp, F::Gaussian, 0.25, 0));
+        out->push_back(slot(map, 0, W::Black, W::Black, F::Triangle, 0.25, 0));
+        out->push_back(slot(map, 0, W::Clamp, W::Clamp, F::Box, 0.25, 0));
+        out->push_back(slot(map, 2, W::Periodic, W::Periodic, F::Box, 0, 0.25));
+        out->push_back(slot(nullptr, 0, W::Periodic, W::Periodic, F::Box, 0, -3));
+        out->push_back(slot(tiny, 0, W::Clamp, W::Clamp, F::CatmullRom, 0, 0));
+        return out;
+    }();
+    return slots;
+}
+constexpr int kTextureSlots = 9;
+
 // The scalar references, on the operand values in format order: vm/numbers/number.h's semantics of
 // double (std's functions, fmin/fmax with the first operand on a tie of -0 and +0, sign in {-1,
 // 0, 1} keeping a signed zero, comparisons 1 or 0 and false with NaN but !=, truth as "not 0",
@@ -212,6 +251,17 @@ template <int kDims>
 double CellNoise(const double* x, uint8_t channel) {
     return vm::CellNoise<double>(x, kDims, channel);
 }
+// The texture lookups have no second definition either: texture::Sample's (tested against
+// brute-force lookups in tests/texture/).
+double Texture2(const double* x, uint8_t slot) {
+    const vm::TextureSlot& t = (*TestTextures())[slot];
+    return texture::Sample(t.map.get(), t.options, 0, x[0], x[1]);
+}
+double Texture8(const double* x, uint8_t slot) {
+    const vm::TextureSlot& t = (*TestTextures())[slot];
+    const double s[4] = {x[0], x[2], x[4], x[6]}, tt[4] = {x[1], x[3], x[5], x[7]};
+    return texture::SampleQuad(t.map.get(), t.options, 0, s, tt);
+}
 }  // namespace ref
 
 // The kinks (see KinkFn).
@@ -246,7 +296,43 @@ bool CellFace(const double* x, double reach) {
         if (NearInteger(x[i], reach)) return true;
     return false;
 }
+// A lookup in the 16-texel test map is piecewise smooth between texel centres and edges (and
+// the blurred ones' taps, a quarter of the map wide in four steps, land on them too): kinks
+// where s or t is a multiple of 1/32.
+bool TexelGrid(const double* x, double reach) {
+    for (int i = 0; i < 2; ++i)
+        if (NearInteger(32 * x[i], 32 * reach)) return true;
+    return false;
+}
+// The four-corner lookup averages lookups at taps that move with the corners (convex
+// combinations, so no farther than `reach`): a kink where one of them is on the grid above.
+bool QuadTexelGrid(const double* x, double reach) {
+    for (int j = 0; j < texture::kQuadTaps; ++j)
+        for (int i = 0; i < texture::kQuadTaps; ++i) {
+            const double u = (i + 0.5) / texture::kQuadTaps, v = (j + 0.5) / texture::kQuadTaps;
+            double tap[2];
+            for (int k = 0; k < 2; ++k)
+                tap[k] = (1 - v) * ((1 - u) * x[k] + u * x[2 + k]) + v * ((1 - u) * x[4 + k] + u * x[6 + k]);
+            if (TexelGrid(tap, reach)) return true;
+        }
+    return false;
+}
 }  // namespace kink
+
+/// Texture samples: coordinates within a few map widths (wrap modes matter), regions up to half
+/// the map wide; the flags byte draws a slot of TestTextures().
+constexpr Sample TextureSample(RefFn f, int arity) {
+    Sample s;
+    s.kind = Kind::Plain;
+    s.arity = arity;
+    s.ref = f;
+    for (int i = 0; i < arity; ++i) s.dom[i] = Domain{.lo = -1.25, .hi = 2.25, .pInt = 0.1, .maxRadius = 0.5};
+    s.channels = kTextureSlots;
+    // Steps of 2^-18 or more: a lookup rounds at the magnitude of its texels (up to 40 here), not
+    // of its value, so smaller steps drown the differences in rounding; no singularity to avoid.
+    s.stepFloor = 1;
+    return s;
+}
 
 /// The sample of every opcode; Ext (the pseudo-op) has none. No default: -Wswitch names a
 /// missing opcode, and the static_assert below catches it without warnings too.
@@ -333,6 +419,8 @@ constexpr Sample SampleFor(Op op) {
         case Op::CellNoise3: return NoiseSample(ref::CellNoise<3>, 3, 0, 3).withKink(kink::CellFace<3>);
         case Op::CellNoise4: return NoiseSample(ref::CellNoise<4>, 4, 0, 3).withKink(kink::CellFace<4>);
         case Op::Tan: return Make(ref::Tan, 1, D{.lo = -1e4, .hi = 1e4, .maxRadius = 2}).withKink(kink::AtPole);
+        case Op::Texture2: return TextureSample(ref::Texture2, 2).withKink(kink::TexelGrid);
+        case Op::Texture8: return TextureSample(ref::Texture8, 8).withKink(kink::QuadTexelGrid);
     }
     return Sample();
 }
@@ -520,6 +608,7 @@ void BuildProgram(Case& c) {
     }
     p.code.insert(p.code.end(), words.begin(), words.end());
     p.constants = c.constants;
+    if (vm::OperationOf(c.op) == vm::Operation::Texture) p.textures = TestTextures();
     vm::ProgramOutput out;
     out.name = "x";
     out.size = 1;
@@ -775,7 +864,7 @@ double Round8(double x) {
 
 /// Compares the dual's derivative along the seeds with central differences of the reference:
 /// Richardson extrapolations from steps h, h/2 and h/4 (h a power of two, 2^-18 of the smallest
-/// moving operand's magnitude clamped to [stepFloor, 1]; a point where a perturbed operand is not
+/// moving operand's magnitude clamped to [stepFloor, 1], or max(2^-12, stepFloor) if it is 0; a point where a perturbed operand is not
 /// exact is skipped) must agree with each other (else the function is not smooth enough there:
 /// skipped) and with the dual.
 void CheckDerivative(const Sample& s, const Case& c, const PointValues& p, const double* seed, double dual,
@@ -789,7 +878,8 @@ void CheckDerivative(const Sample& s, const Case& c, const PointValues& p, const
         }
         if (seed[k] == 0) continue;
         smax = std::max(smax, std::fabs(seed[k]));
-        const double scale = p.x[k] == 0 ? 0x1p-12 : std::clamp(std::fabs(p.x[k]), s.stepFloor, 1.0);
+        const double scale =
+            p.x[k] == 0 ? std::max(0x1p-12, s.stepFloor) : std::clamp(std::fabs(p.x[k]), s.stepFloor, 1.0);
         h = std::min(h, scale / std::fabs(seed[k]));
     }
     const double f0 = s.ref(p.x, c.channel);
@@ -1187,6 +1277,8 @@ bool SafeToRun(const vm::Program& p, std::string* why) {
         if (pc + words > p.code.size()) return no("missing Ext words");
         for (size_t w = 1; w < words; ++w)
             if (p.code[pc + w].op != Op::Ext) return no("not an Ext word");
+        if (vm::OperationOf(in.op) == vm::Operation::Texture && (!p.textures || in.flags >= p.textures->size()))
+            return no("texture slot " + std::to_string(in.flags));
         int write = -1;
         for (int i = 0; format[i]; ++i) {
             const vm::Instr& word = p.code[pc + i / 3];
@@ -1267,6 +1359,7 @@ TEST_CASE("conformance: the verifier over every opcode value, and what it accept
             }
             p.params.push_back(param);
         }
+        if (rng.chance(0.8)) p.textures = TestTextures();
         const int nk = rng.integer(0, 4);  // (no constants: every K operand is out of range)
         for (int i = 0; i < nk; ++i) p.constants.push_back(rng.chance(0.5) ? rng.pick(kEdges) : rng.uniform(-5, 5));
         auto readable = [&]() -> uint16_t {
@@ -1285,6 +1378,11 @@ TEST_CASE("conformance: the verifier over every opcode value, and what it accept
                             : kind < 0.98 ? rng.integer(vm::kOpCount, 255)
                                           : static_cast<int>(Op::Ext);
             vm::Instr head{static_cast<Op>(opv), static_cast<uint8_t>(rng.integer(0, 255)), 0, 0, 0};
+            if (opv < vm::kOpCount && vm::OperationOf(head.op) == vm::Operation::Texture) {
+                // Mostly a slot of the table, if there is one; else out of range.
+                if (rng.chance(0.9)) head.flags = static_cast<uint8_t>(rng.integer(0, kTextureSlots - 1));
+                if (!p.textures || head.flags >= p.textures->size()) valid = false;
+            }
             if (opv >= vm::kOpCount || head.op == Op::Ext || rng.chance(0.02)) {
                 // A garbage word.
                 invalidOp |= opv >= vm::kOpCount;

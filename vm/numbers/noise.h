@@ -418,43 +418,6 @@ struct LocalForm {
     }
 };
 
-/// A T holding the range r: on a fresh symbol for Affine, so that the bound stays correlated with
-/// itself wherever a shader reuses it; in the error term for ReducedAffine; the value r with
-/// unknown (Unbounded) derivatives for a Dual. Unbounded r gives the unknown value, derivatives
-/// included; a double, which holds one value, is r if r is a point, else NaN (the paths that
-/// spread a range never run on a double).
-template <class T>
-struct Spread;
-template <>
-struct Spread<double> {
-    static double Of(const Interval& r) {
-        return r.isPoint() && !r.isUnbounded() ? r.lo() : std::numeric_limits<double>::quiet_NaN();
-    }
-};
-template <>
-struct Spread<Interval> {
-    static Interval Of(const Interval& r) { return r; }
-};
-template <>
-struct Spread<Affine> {
-    static Affine Of(const Interval& r) { return Affine::FromInterval(r); }
-};
-template <>
-struct Spread<ReducedAffine> {
-    static ReducedAffine Of(const Interval& r) { return ReducedAffine::FromInterval(r); }
-};
-template <class B>
-struct Spread<Dual<B>> {
-    static Dual<B> Of(const Interval& r) {
-        const B unknown = Spread<B>::Of(Interval::Unbounded());
-        return {Spread<B>::Of(r), unknown, unknown};
-    }
-};
-template <class T>
-T SpreadOf(const Interval& r) {
-    return Spread<T>::Of(r);
-}
-
 /// One cell's noise value before the final clamp, raw * NoiseScale(dims) + 0.5, over a region by
 /// LocalForm (see the head comment): p the noise coordinates, k the cell, g[o] the gradients of
 /// its corners. Contains the double value at every double point of the region that lies in this

@@ -1,0 +1,239 @@
+// tests/texture/texture_file_test.cpp: maps read from files (texture/texture_file.cpp): every
+// format's texels equal OpenImageIO's own float reading (EXR, PNG, JPEG, scanline TIFF, a tiled
+// and MIP-mapped TIFF as maketx writes), the wrap modes and non-finite texels of a file, the map
+// cache (same file, same map; a rewritten file, a new one; a missing file, null and a message),
+// and the tile cache under a tiny budget, from one thread and from several.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <thread>
+
+#include "tests/test_random.h"
+#include "tests/texture/texture_test_util.h"
+#include "texture/texture.h"
+
+using namespace affray::texture;
+using affray::test::Rng;
+using namespace affray::test::tex;
+
+namespace {
+
+/// Opens `path` and checks its size, channels and every texel against OIIO's float reading, and
+/// its pyramid against that of a map from the same pixels.
+std::shared_ptr<const TextureMap> OpenAndCompare(const std::string& path) {
+    std::string error;
+    auto map = Open(path, &error);
+    INFO(error);
+    REQUIRE(map);
+    int w = 0, h = 0, ch = 0;
+    const std::vector<float> ref = ReadImage(path, &w, &h, &ch);
+    REQUIRE(map->width() == w);
+    REQUIRE(map->height() == h);
+    REQUIRE(map->channels() == ch);
+    int64_t mismatches = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < ch; ++c)
+                if (map->Texel(x, y, c) != ref[(static_cast<size_t>(y) * w + x) * ch + c]) ++mismatches;
+    CHECK(mismatches == 0);
+    auto pixels = TextureMap::FromPixels(w, h, ch, ref);
+    Rng rng(16100);
+    for (int i = 0; i < 200; ++i) {
+        const int64_t x0 = rng.integer(-w, 2 * w), y0 = rng.integer(-h, 2 * h);
+        const int64_t x1 = x0 + rng.integer(0, 2 * w), y1 = y0 + rng.integer(0, 2 * h);
+        const int c = rng.integer(0, ch - 1);
+        const Wrap sw = RandomWrap(rng), tw = RandomWrap(rng);
+        const Range a = map->RangeOfTexels(x0, x1, y0, y1, c, sw, tw);
+        const Range b = pixels->RangeOfTexels(x0, x1, y0, y1, c, sw, tw);
+        CHECK((a.lo == b.lo && a.hi == b.hi));
+    }
+    return map;
+}
+
+std::vector<float> Gradient(int w, int h, int ch, Rng& rng) {
+    std::vector<float> t(static_cast<size_t>(w) * h * ch);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < ch; ++c)
+                t[(static_cast<size_t>(y) * w + x) * ch + c] =
+                    static_cast<float>(std::clamp(0.5 * x / w + 0.3 * y / h + 0.2 * rng.uniform(0, 1), 0.0, 1.0));
+    return t;
+}
+
+}  // namespace
+
+TEST_CASE("texture file: every format reads as OpenImageIO reads it", "[texture]") {
+    ScratchDir dir;
+    Rng rng(16101);
+    SECTION("EXR, float, one and three channels") {
+        for (int ch : {1, 3}) {
+            const std::string path = dir.path("f" + std::to_string(ch) + ".exr");
+            WriteImage(path, 70, 45, ch, RandomTexels(rng, 70 * 45 * ch));
+            auto map = OpenAndCompare(path);
+            CHECK(map->name() == path);
+            CHECK(map->swrap() == Wrap::Periodic);
+            CHECK(map->nonFiniteTexels() == 0);
+        }
+    }
+    SECTION("PNG, 8 bits") {
+        const std::string path = dir.path("a.png");
+        WriteImage(path, 33, 20, 3, Gradient(33, 20, 3, rng), ImageLayout(OIIO::TypeDesc::UINT8));
+        auto map = OpenAndCompare(path);
+        CHECK(map->Texel(0, 0, 0) * 255.0f == Approx(std::round(map->Texel(0, 0, 0) * 255.0f)));
+    }
+    SECTION("JPEG") {
+        const std::string path = dir.path("a.jpg");
+        WriteImage(path, 40, 30, 3, Gradient(40, 30, 3, rng), ImageLayout(OIIO::TypeDesc::UINT8));
+        OpenAndCompare(path);
+    }
+    SECTION("TIFF, scanlines, 16 bits, with wrap modes") {
+        const std::string path = dir.path("a.tif");
+        ImageLayout layout(OIIO::TypeDesc::UINT16);
+        layout.wrapmodes = "clamp,black";
+        WriteImage(path, 130, 70, 2, Gradient(130, 70, 2, rng), layout);
+        auto map = OpenAndCompare(path);
+        CHECK(map->swrap() == Wrap::Clamp);
+        CHECK(map->twrap() == Wrap::Black);
+    }
+    SECTION("TIFF, tiled and MIP-mapped (maketx's .tx), level 0 read") {
+        const std::string path = dir.path("a.tx");
+        ImageLayout layout;
+        layout.format = OIIO::TypeDesc::FLOAT;
+        layout.tile = 64;
+        layout.mipmap = true;
+        layout.wrapmodes = "black";
+        const int w = 150, h = 100;
+        WriteImage(path, w, h, 1, RandomTexels(rng, w * h), layout);
+        {
+            auto in = OIIO::ImageInput::open(path);
+            REQUIRE(in);
+            CHECK(in->spec().tile_width == 64);
+            CHECK(in->seek_subimage(0, 1));  // the file has a second MIP level
+        }
+        auto map = OpenAndCompare(path);
+        CHECK(map->swrap() == Wrap::Black);
+        CHECK(map->twrap() == Wrap::Black);
+    }
+    SECTION("EXR, tiled 32, with non-finite texels") {
+        const std::string path = dir.path("nan.exr");
+        std::vector<float> t = RandomTexels(rng, 100 * 90);
+        t[5] = std::numeric_limits<float>::quiet_NaN();
+        t[777] = std::numeric_limits<float>::infinity();
+        t[8999] = -std::numeric_limits<float>::infinity();
+        ImageLayout layout;
+        layout.tile = 32;
+        WriteImage(path, 100, 90, 1, t, layout);
+        std::string error;
+        auto map = Open(path, &error);
+        REQUIRE(map);
+        CHECK(map->nonFiniteTexels() == 3);
+        CHECK(map->Texel(5, 0, 0) == 0.0f);
+        CHECK(map->Texel(77, 7, 0) == 0.0f);
+        CHECK(map->Texel(99, 89, 0) == 0.0f);
+        CHECK(map->Texel(6, 0, 0) == t[6]);
+        const Range r = map->RangeOfTexels(0, 99, 0, 89, 0, Wrap::Clamp, Wrap::Clamp);
+        CHECK((std::isfinite(r.lo) && std::isfinite(r.hi)));
+    }
+}
+
+TEST_CASE("texture file: the map cache, rewritten files, missing and broken files", "[texture]") {
+    ScratchDir dir;
+    Rng rng(16102);
+    const std::string path = dir.path("c.exr");
+    WriteImage(path, 16, 16, 1, std::vector<float>(256, 0.5f));
+    std::string error;
+    auto a = Open(path, &error);
+    REQUIRE(a);
+    CHECK(Open(path, &error) == a);
+    CHECK(a->Texel(3, 3, 0) == 0.5f);
+
+    // Rewritten, with a modification time surely different: a new map of the new texels.
+    const auto before = std::filesystem::last_write_time(path);
+    WriteImage(path, 16, 16, 1, std::vector<float>(256, 0.75f));
+    std::filesystem::last_write_time(path, before + std::chrono::seconds(10));
+    auto b = Open(path, &error);
+    REQUIRE(b);
+    CHECK(b != a);
+    CHECK(b->Texel(3, 3, 0) == 0.75f);
+    CHECK(a->Texel(3, 3, 0) == 0.5f);  // the old map stays whole for those still holding it
+    CHECK(Open(path, &error) == b);
+
+    const std::string missing = dir.path("missing.exr");
+    error.clear();
+    CHECK_FALSE(Open(missing, &error));
+    CHECK(error.find("cannot read texture '" + missing + "'") == 0);
+    CHECK(error.find('\n') == std::string::npos);
+
+    const std::string text = dir.path("text.exr");
+    std::ofstream(text) << "not an image\n";
+    error.clear();
+    CHECK_FALSE(Open(text, &error));
+    CHECK(error.find(text) != std::string::npos);
+}
+
+TEST_CASE("texture file: tiles under a tiny budget give the same lookups, from several threads", "[texture]") {
+    ScratchDir dir;
+    Rng rng(16103);
+    const int n = 1024;
+    const std::vector<float> texels = RandomTexels(rng, static_cast<size_t>(n) * n);
+    const std::string tiled = dir.path("big.exr"), scan = dir.path("big.tif");
+    ImageLayout layout;
+    layout.tile = 64;
+    WriteImage(tiled, n, n, 1, texels, layout);
+    WriteImage(scan, n, n, 1, texels);
+    auto pixels = TextureMap::FromPixels(n, n, 1, texels);
+
+    const size_t budget = TileMemoryBudget();
+    SetTileMemoryBudget(64 << 10);
+    const CacheStats before = Stats();
+    std::string error;
+    auto map = Open(tiled, &error);
+    REQUIRE(map);
+    auto scanMap = Open(scan, &error);
+    REQUIRE(scanMap);
+
+    // Random points (a tile each) and a coherent walk, with every filter.
+    std::vector<std::pair<double, double>> points;
+    for (int i = 0; i < 3000; ++i) points.emplace_back(rng.uniform(-0.2, 1.2), rng.uniform(-0.2, 1.2));
+    for (int i = 0; i < 3000; ++i) points.emplace_back(0.1 + i * 2.5e-4, 0.7 - i * 1e-4);
+    LookupOptions o;
+    int64_t differ = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        o.filter = static_cast<Filter>(i % 4);
+        o.swrap = static_cast<Wrap>(i % 3);
+        const auto [s, t] = points[i];
+        const double want = Sample(pixels.get(), o, 0, s, t);
+        if (Sample(map.get(), o, 0, s, t) != want) ++differ;
+        if (i % 8 == 0 && Sample(scanMap.get(), o, 0, s, t) != want) ++differ;
+    }
+    CHECK(differ == 0);
+    const CacheStats after = Stats();
+    CHECK(after.tilesRead > before.tilesRead);
+    CHECK(after.tilesDropped > before.tilesDropped);
+    CHECK(after.residentBytes <= (64 << 10) + (64 * 64 * 4 + 256) * 2);
+    CHECK(map->residentBytes() < static_cast<size_t>(n) * n);  // the pyramid and a few tiles
+
+    // Several threads sampling the same map under the budget give the same values.
+    SetTileMemoryBudget(256 << 10);
+    std::vector<double> want(points.size());
+    o = LookupOptions();
+    o.filter = Filter::CatmullRom;
+    for (size_t i = 0; i < points.size(); ++i) want[i] = Sample(pixels.get(), o, 0, points[i].first, points[i].second);
+    std::vector<int64_t> threadDiffer(3, 0);
+    std::vector<std::thread> threads;
+    for (int k = 0; k < 3; ++k) {
+        threads.emplace_back([&, k] {
+            for (size_t j = 0; j < points.size(); ++j) {
+                const size_t i = (j * (k + 1) * 7919) % points.size();  // each thread its own order
+                if (Sample(map.get(), o, 0, points[i].first, points[i].second) != want[i]) ++threadDiffer[k];
+            }
+        });
+    }
+    for (std::thread& t : threads) t.join();
+    for (int64_t d : threadDiffer) CHECK(d == 0);
+
+    SetTileMemoryBudget(budget);
+    CHECK(TileMemoryBudget() == budget);
+}
