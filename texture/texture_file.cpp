@@ -235,6 +235,20 @@ std::vector<std::pair<int, std::shared_ptr<Tile>>> FileSource::readTiles(int ind
     }
     if (!ok) std::fill(texels.begin(), texels.end(), 0.0f);
     ZeroNonFinite(texels.data(), texels.size());
+    // Each texel into its block's range in the pyramid: a no-op for the file the pyramid was built
+    // from, and what keeps lookups inside the bounds if the file changed under the open map.
+    const PyramidLevel& blocks = map->m_levels[0];
+    const size_t plane = static_cast<size_t>(blocks.width) * blocks.height * 2;
+    for (int y = y0; y < y1; ++y) {
+        float* row = texels.data() + static_cast<size_t>(y - y0) * (x1 - x0) * channels;
+        const float* blockRow = blocks.minMax.data() + static_cast<size_t>(y >> kBlockBits) * blocks.width * 2;
+        for (int x = x0; x < x1; ++x)
+            for (int c = 0; c < channels; ++c) {
+                const float* b = blockRow + c * plane + (x >> kBlockBits) * 2;
+                float& v = row[static_cast<size_t>(x - x0) * channels + c];
+                v = std::clamp(v, b[0], b[1]);
+            }
+    }
     std::vector<std::pair<int, std::shared_ptr<Tile>>> tiles;
     const size_t row = static_cast<size_t>(x1 - x0) * channels;
     for (int t = first; t <= last; ++t) {

@@ -55,7 +55,12 @@ inline void WriteImage(const std::string& path, int width, int height, int chann
     OIIO::ImageSpec spec(width, height, channels, layout.format);
     if (layout.tile) spec.tile_width = spec.tile_height = layout.tile;
     if (!layout.wrapmodes.empty()) spec.attribute("wrapmodes", layout.wrapmodes);
-    const bool mipmap = layout.mipmap && out->supports("mipmap");
+    // OIIO's TIFF writer takes no MIP levels as such: like maketx, it writes them as subimages
+    // of a "Plain Texture", which its reader reads as MIP levels.
+    const bool asMipLevels = out->supports("mipmap");
+    REQUIRE((!layout.mipmap || asMipLevels || out->supports("multiimage")));
+    if (layout.mipmap && !asMipLevels) spec.attribute("textureformat", "Plain Texture");
+    const bool mipmap = layout.mipmap;
     REQUIRE(out->open(path, spec));
     REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, texels.data()));
     if (mipmap) {
@@ -74,7 +79,9 @@ inline void WriteImage(const std::string& path, int width, int height, int chann
                                   c];
             OIIO::ImageSpec s(nw, nh, channels, layout.format);
             if (layout.tile) s.tile_width = s.tile_height = layout.tile;
-            REQUIRE(out->open(path, s, OIIO::ImageOutput::AppendMIPLevel));
+            if (!asMipLevels) s.attribute("textureformat", "Plain Texture");
+            REQUIRE(out->open(path, s,
+                              asMipLevels ? OIIO::ImageOutput::AppendMIPLevel : OIIO::ImageOutput::AppendSubimage));
             REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, next.data()));
             level = std::move(next);
             w = nw;
