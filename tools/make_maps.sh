@@ -15,9 +15,13 @@ cd "$(dirname "$0")/.."
 out=shaders/maps
 mkdir -p "$out"
 command -v oiiotool >/dev/null || { echo "make_maps.sh: oiiotool is missing (apt-get install openimageio-tools)" >&2; exit 2; }
-oiiotool --pattern checker:width=32:height=32:color1=0:color2=1 256x256 1 --blur 17x17 \
+# Both maps tile (their periodic wrap shows no seam): the checker is blurred on a larger canvas
+# and cut at a multiple of its period; the noise is enlarged as a 3x3 mosaic of itself and cut
+# from the middle.
+oiiotool --pattern checker:width=32:height=32:color1=0:color2=1 320x320 1 --blur 17x17 --cut 256x256+32+32 \
     --chnames Y -d half --compression zip -o "$out/tiles.exr"
-oiiotool --pattern noise:type=uniform:min=0:max=1:mono=1:seed=7 16x16 1 --resize:filter=catmull-rom 128x128 \
+oiiotool --pattern noise:type=uniform:min=0:max=1:mono=1:seed=7 16x16 1 --dup --dup --dup --dup --dup --dup --dup \
+    --dup --mosaic 3x3 --resize:filter=catmull-rom 384x384 --cut 128x128+128+128 \
     --chnames Y -d half --compression zip -o "$out/blobs.exr"
 oiiotool --pattern constant:color=0 4096x4096 1 --box:color=1:fill=1 2048,0,2048,4095 \
     --chnames Y -d half --compression zip -o tests/scenes/stiff/ridge.exr
