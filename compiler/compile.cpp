@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "compiler/emit.h"
@@ -27,6 +28,14 @@ bool SpecialiseShader(CompiledShader& shader, const std::vector<ParamOverride>& 
 /// A parameter's type as the bytecode names it: "point", or "float[3]" for an array.
 std::string ParamTypeName(const ParamInfo& p) {
     return std::string(ToString(p.type)) + (p.arraySize >= 0 ? "[" + std::to_string(p.arraySize) + "]" : "");
+}
+
+/// Adds to *to the diagnostics of `from` that it does not hold yet.
+void AddNew(const diag::Report& from, diag::Report* to) {
+    std::set<std::string> seen;
+    for (const diag::Diagnostic& d : to->all()) seen.insert(diag::Format(d));
+    for (const diag::Diagnostic& d : from.all())
+        if (seen.insert(diag::Format(d)).second) to->add(d);
 }
 
 /// The slot table the programs of one lowering share (null if it reads no texture).
@@ -109,13 +118,13 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         std::optional<std::vector<std::vector<double>>> values =
             BindParameters(shader.genericBound, numeric, &result.paramErrors);
         if (!values || !stringsOk) return result;
-        lang::Diagnostics again(file);  // the same diagnostics as the generic lowering
+        lang::Diagnostics again(file);  // the same diagnostics as the generic lowering, and more
         std::optional<LoweredShader> instance = Lower(unit, again, &*values, &strings, spaces, facts);
-        if (!instance && again.hasErrors()) {
-            // A string value can make code reachable that the defaults left out (a space name).
-            result.diagnostics.add(again.report());
-            return result;
-        }
+        // A string value can make code reachable that the defaults left out (a space name), and
+        // the instance reads its texture maps (the generic lowering reports none): its
+        // diagnostics that the generic lowering did not give.
+        AddNew(again.report(), &result.diagnostics);
+        if (!instance && again.hasErrors()) return result;
         if (!instance) throw std::logic_error("lowering " + path + " with its parameter values failed");
         shader.stringParams = lowered->stringParams;
         shader.bound = Emit(instance->ir, {{"P", instance->finalP}}, {});

@@ -33,10 +33,15 @@ std::optional<std::string> ResolveTexture(const std::string& name, const std::st
                                           const SceneFacts* facts, std::string* where) {
     namespace fs = std::filesystem;
     std::error_code ec;
+    auto isFile = [&](const fs::path& p) { return fs::exists(p, ec) && !fs::is_directory(p, ec); };
     const fs::path given(name);
+    if (name.empty()) {
+        *where = "the name is empty";
+        return std::nullopt;
+    }
     if (given.is_absolute()) {
         *where = "no such file";
-        if (fs::exists(given, ec)) return name;
+        if (isFile(given)) return name;
         return std::nullopt;
     }
     std::vector<fs::path> dirs;
@@ -45,9 +50,9 @@ std::optional<std::string> ResolveTexture(const std::string& name, const std::st
     dirs.push_back(fs::path(shaderPath).parent_path());
     for (const fs::path& dir : dirs) {
         const fs::path candidate = dir / given;
-        if (fs::exists(candidate, ec)) return candidate.lexically_normal().string();
+        if (isFile(candidate)) return candidate.lexically_normal().string();
     }
-    if (fs::exists(given, ec)) return name;
+    if (isFile(given)) return name;
     *where = "looked in ";
     for (const fs::path& dir : dirs)
         if (!dir.empty()) *where += "'" + dir.string() + "', ";
@@ -214,14 +219,19 @@ std::optional<Value> Lowerer::LowerTexture(const lang::Expr& e, Type expected) {
         map = texture::Open(path, &why);
     else
         why = "cannot find texture '" + *name + "' (" + why + ")";
-    if (!map && !hasFill) {
+    // The generic programs are lowered with the parameters' defaults, whose map the scene may
+    // replace: a map they cannot read is the instance's to report (compile.cpp lowers it with the
+    // same defaults when the scene gives no other), and the generic slot has no map.
+    const bool generic = m_paramValues == nullptr;
+    if (!map && !hasFill && !generic) {
         m_diags.error(nameArg.loc, why);
         return std::nullopt;
     }
-    if (!map) m_diags.warning(nameArg.loc, why + "; its lookups give the fill value " + FormatFill(options.fill));
+    if (!map && !generic)
+        m_diags.warning(nameArg.loc, why + "; its lookups give the fill value " + FormatFill(options.fill));
     options.swrap = swrap.value_or(map ? map->swrap() : texture::Wrap::Periodic);
     options.twrap = twrap.value_or(map ? map->twrap() : texture::Wrap::Periodic);
-    if (map && channel >= map->channels())
+    if (map && channel >= map->channels() && !generic)
         m_diags.warning(nameArg.loc, "texture '" + path + "' has " + std::to_string(map->channels()) +
                                          " channel(s): channel " + std::to_string(channel) + " gives the fill value");
 
