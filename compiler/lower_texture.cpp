@@ -138,7 +138,7 @@ std::optional<Value> Lowerer::LowerTexture(const lang::Expr& e, Type expected) {
         coords = {ir().Global(vm::Global::s, 0), ir().Global(vm::Global::t, 0)};
     } else if (coords.size() != 2 && coords.size() != 8 && ok) {
         m_diags.error(e.loc, "texture() takes s and t, four corners (8 floats) or no coordinates, got " +
-                                 std::to_string(coords.size()) + " floats");
+                                 std::to_string(coords.size()) + (coords.size() == 1 ? " float" : " floats"));
         ok = false;
     }
     // The parameters: ("name", value) pairs.
@@ -220,9 +220,12 @@ std::optional<Value> Lowerer::LowerTexture(const lang::Expr& e, Type expected) {
     else
         why = "cannot find texture '" + *name + "' (" + why + ")";
     // The generic programs are lowered with the parameters' defaults, whose map the scene may
-    // replace: a map they cannot read is the instance's to report (compile.cpp lowers it with the
-    // same defaults when the scene gives no other), and the generic slot has no map.
-    const bool generic = m_paramValues == nullptr;
+    // replace: a map named by a parameter that they cannot read is the instance's to report
+    // (compile.cpp lowers it with the same defaults when the scene gives no other), and the
+    // generic slot has no map. A literal name is every instance's: reported here, with the
+    // shader's other errors.
+    const bool literal = (indexed ? *nameArg.args[0] : nameArg).kind == lang::ExprKind::String;
+    const bool generic = m_paramValues == nullptr && !literal;
     if (!map && !hasFill && !generic) {
         m_diags.error(nameArg.loc, why);
         return std::nullopt;

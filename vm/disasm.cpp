@@ -1,6 +1,7 @@
 // vm/disasm.cpp: the disassembler, driven by the operand formats in vm/opcodes.h.
 #include "vm/disasm.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -34,7 +35,7 @@ std::string DisassembleInstr(const Program& program, const Instr* in, size_t ava
     const OpInfo& info = Info(in->op);
     if (static_cast<size_t>(WordCount(info.format)) > available) return std::string(info.name) + " <operands missing>";
     std::string out = info.name;
-    out.resize(8, ' ');
+    out.resize(std::max<size_t>(8, out.size() + 1), ' ');  // a name of 8 letters or more keeps a space
     bool first = true;
     for (int i = 0; info.format[i]; ++i) {
         char kind = info.format[i];
