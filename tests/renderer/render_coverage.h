@@ -16,8 +16,9 @@
 namespace affray::test {
 
 /// Renders `rib` (one sample per pixel at its centre, box filter, 2 threads) with shaders from
-/// `dir`; no ray may reach the depth limit.
-inline renderer::ImageBuffer RenderRib(const TempDir& dir, const std::string& rib) {
+/// `dir`; no ray may reach the depth limit. The render's statistics go to *stats if given.
+inline renderer::ImageBuffer RenderRib(const TempDir& dir, const std::string& rib,
+                                       renderer::RenderStats* stats = nullptr) {
     affray::diag::Report error;
     std::optional<renderer::SceneDesc> desc = rib::ParseRib(rib, dir.Path("scene.rib"), &error);
     INFO(error);
@@ -32,9 +33,10 @@ inline renderer::ImageBuffer RenderRib(const TempDir& dir, const std::string& ri
     renderer::RenderOptions options;
     options.threads = 2;
     renderer::ImageBuffer image;
-    renderer::RenderStats stats;
-    renderer::RenderImage(prepared, options, &image, &stats);
-    CHECK(stats.camera.depthLimitHits == 0);
+    renderer::RenderStats own;
+    if (!stats) stats = &own;
+    renderer::RenderImage(prepared, options, &image, stats);
+    CHECK(stats->camera.depthLimitHits == 0);
     return image;
 }
 

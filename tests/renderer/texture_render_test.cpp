@@ -9,14 +9,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <vector>
 
-#include "renderer/image/film.h"
-#include "renderer/render.h"
-#include "rib/rib.h"
-#include "tests/test_util.h"
+#include "tests/renderer/render_coverage.h"
 #include "tests/texture/texture_test_util.h"
 
 using namespace affray;
@@ -42,27 +38,18 @@ struct Rendered {
     renderer::RenderStats stats;
 };
 
-Rendered RenderWithMap(const test::tex::ScratchDir& dir, const std::string& map) {
-    const std::string rib = "Format 40 30 1\nPixelSamples 1 1\nProjection \"perspective\" \"fov\" [40]\n"
-                            "Translate 0 0 1.3\nRotate -120 1 0 0\nWorldBegin\n"
-                            "LightSource \"distantlight\" 1 \"from\" [-1 -2 3] \"to\" [0 0 0]\n"
-                            "Displacement \"heights\" \"string map\" [\"" +
-                            map +
-                            "\"]\n"
-                            "Patch \"bilinear\" \"P\" [-0.5 -0.5 0  0.5 -0.5 0  -0.5 0.5 0  0.5 0.5 0]\nWorldEnd\n";
-    affray::diag::Report error;
-    std::optional<renderer::SceneDesc> desc = rib::ParseRib(rib, dir.path("scene.rib"), &error);
-    INFO(error);
-    REQUIRE(desc);
-    desc->camera.jitter = false;
-    renderer::PreparedScene prepared;
-    const bool ok = renderer::PrepareScene(*desc, {dir.path("")}, {}, &prepared, &error);
-    INFO(error);
-    REQUIRE(ok);
-    renderer::RenderOptions options;
-    options.threads = 2;
+/// The plane displaced by `map`, rendered (one sample per pixel, no ray at the depth limit).
+Rendered RenderWithMap(const test::TempDir& dir, const std::string& map) {
+    const std::string rib =
+        "Format 40 30 1\nProjection \"perspective\" \"fov\" [40]\n"
+        "Translate 0 0 1.3\nRotate -120 1 0 0\nWorldBegin\n"
+        "LightSource \"distantlight\" 1 \"from\" [-1 -2 3] \"to\" [0 0 0]\n"
+        "Displacement \"heights\" \"string map\" [\"" +
+        map +
+        "\"]\n"
+        "Patch \"bilinear\" \"P\" [-0.5 -0.5 0  0.5 -0.5 0  -0.5 0.5 0  0.5 0.5 0]\nWorldEnd\n";
     Rendered r;
-    renderer::RenderImage(prepared, options, &r.image, &r.stats);
+    r.image = test::RenderRib(dir, rib, &r.stats);
     return r;
 }
 
@@ -77,13 +64,11 @@ double Rmse(const renderer::ImageBuffer& a, const renderer::ImageBuffer& b) {
 }  // namespace
 
 TEST_CASE("texture render: one map in every format displaces a plane with certified hits", "[renderer][texture]") {
-    test::tex::ScratchDir dir;
-    {
-        std::ofstream(dir.path("heights.sl"))
-            << "displacement heights(string map = \"\"; float Km = 0.12) {\n"
-               "    P += Km * texture(map, s, t) * normalize(N);\n"
-               "    N = calculatenormal(P);\n}\n";
-    }
+    test::TempDir dir;
+    dir.Write("heights.sl",
+              "displacement heights(string map = \"\"; float Km = 0.12) {\n"
+              "    P += Km * texture(map, s, t) * normalize(N);\n"
+              "    N = calculatenormal(P);\n}\n");
     const std::vector<float> texels = Bumps();
     auto layout = [](OIIO::TypeDesc format, int tile) {
         test::tex::ImageLayout l;
@@ -92,7 +77,7 @@ TEST_CASE("texture render: one map in every format displaces a plane with certif
         return l;
     };
     auto write = [&](const char* name, OIIO::TypeDesc format, int tile = 0) {
-        test::tex::WriteImage(dir.path(name), kMapSize, kMapSize, 1, texels, layout(format, tile));
+        test::tex::WriteImage(dir.Path(name), kMapSize, kMapSize, 1, texels, layout(format, tile));
     };
     write("float.exr", OIIO::TypeDesc::FLOAT);
     write("tiled.exr", OIIO::TypeDesc::FLOAT, 16);
@@ -108,8 +93,8 @@ TEST_CASE("texture render: one map in every format displaces a plane with certif
         config.attribute("wrapmodes", "periodic,periodic");
         std::stringstream errors;
         INFO(errors.str());
-        REQUIRE(OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, dir.path("float.exr"),
-                                                 dir.path("maketx.tx"), config, &errors));
+        REQUIRE(OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, dir.Path("float.exr"),
+                                                 dir.Path("maketx.tx"), config, &errors));
     }
 
     const Rendered reference = RenderWithMap(dir, "float.exr");
