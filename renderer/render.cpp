@@ -19,6 +19,7 @@
 #include "renderer/geometry/camera.h"
 #include "renderer/image/film.h"
 #include "renderer/shade.h"
+#include "texture/texture.h"
 
 namespace affray::renderer {
 
@@ -316,6 +317,30 @@ compiler::SceneFacts FactsOf(const SceneDesc& scene, const PrimitiveDesc& patch)
     return facts;
 }
 
+/// The scene's MakeTexture requests, in order (relative paths from the RIB file's directory); a
+/// texture newer than its picture is kept, as make would.
+void MakeTextures(const SceneDesc& desc, diag::Report* report) {
+    namespace fs = std::filesystem;
+    const fs::path ribDir = fs::path(desc.path).parent_path();
+    for (const SceneDesc::MakeTextureDesc& m : desc.makeTextures) {
+        auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? fs::path(p) : ribDir / p; };
+        const fs::path picture = resolve(m.picture), texture = resolve(m.texture);
+        std::error_code ec, ec2;
+        const auto made = fs::last_write_time(texture, ec), source = fs::last_write_time(picture, ec2);
+        if (!ec && !ec2 && made >= source) continue;
+        texture::Wrap swrap = texture::Wrap::Periodic, twrap = texture::Wrap::Periodic;
+        texture::ParseWrap(m.swrap, &swrap);
+        texture::ParseWrap(m.twrap, &twrap);
+        std::string error;
+        // As a renderer's texture maker does, a failure is reported and the render goes on: a
+        // shader that reads the texture then fails to compile, naming the file.
+        if (!texture::MakeTexture(picture.string(), texture.string(), swrap, twrap, &error) && report) {
+            const std::string& file = m.file.empty() ? desc.path : m.file;
+            report->warning({file, m.line, m.column, diag::ReadLine(file, m.line)}, error);
+        }
+    }
+}
+
 }  // namespace
 
 std::string RenderStats::ToJson() const {
@@ -359,6 +384,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
     };
     out->desc = desc;
     out->primitives.clear();
+    MakeTextures(desc, report);
     const glm::dvec3 eye = Camera(desc.camera).Position();
     compiler::ShaderCache cache;
     // The scene's search path first, relative directories taken from the RIB file's.

@@ -158,6 +158,16 @@ struct SceneDesc {
     /// Option "searchpath" "texture", likewise: where texture() looks for a relative file name,
     /// before the RIB file's directory, the shader's and the working directory.
     std::vector<std::string> textureSearchPath;
+    /// MakeTexture requests, in file order: PrepareScene makes each texture (a tiled, mip-mapped
+    /// TIFF) before it compiles the shaders that may read it. Paths as written: relative ones are
+    /// taken from the RIB file's directory.
+    struct MakeTextureDesc {
+        std::string picture, texture;
+        std::string swrap = "periodic", twrap = "periodic";  ///< "black", "clamp" or "periodic"
+        int line = 0, column = 0;                            ///< The request in the RIB file, for diagnostics.
+        std::string file;  ///< The request's file if not the scene's (ReadArchive), else "".
+    };
+    std::vector<MakeTextureDesc> makeTextures;
     /// CoordinateSystem names, each the current transform at its request (object -> world).
     std::map<std::string, glm::dmat4> coordinateSystems;
 };
@@ -279,6 +289,8 @@ inline std::string ToString(const SceneDesc& s) {
     for (const auto& [name, m] : s.coordinateSystems) text += "  coordinatesystem " + name + " " + ToString(m) + "\n";
     for (const std::string& dir : s.shaderSearchPath) text += "  searchpath shader " + dir + "\n";
     for (const std::string& dir : s.textureSearchPath) text += "  searchpath texture " + dir + "\n";
+    for (const SceneDesc::MakeTextureDesc& m : s.makeTextures)
+        text += "  maketexture " + m.picture + " " + m.texture + " " + m.swrap + " " + m.twrap + "\n";
     for (const PrimitiveDesc& p : s.primitives) text += "  " + ToString(p) + "\n";
     return text;
 }

@@ -113,20 +113,59 @@ bool RibParser::DoWorldEnd(const RibRequest& r) {
     if (!NoArgs(r) || !End(r, Block::World)) return false;
     SceneDesc frame = m_scene;
     if (!frame.skipped.empty()) frame.primitives.clear();
+    // A texture is made when its request is read, as in RenderMan: every frame after it has it.
+    frame.makeTextures = m_madeTextures;
     m_frames.push_back(std::move(frame));
     return true;
 }
 
 // MakeShadow, MakeTexture, MakeBump, MakeLatLongEnvironment, MakeCubeFaceEnvironment: they turn
-// images into maps that shaders of a scanline renderer read. affray traces shadows and its
-// shaders read no textures, so each is skipped with a note (its file names are not checked).
+// images into maps. MakeTexture "picture" "texture" "swrap" "twrap" "filter" swidth twidth
+// [params] is recorded for every frame from there on (RenderMan makes the file when it reads the
+// request), and PrepareScene makes the texture (the filter and widths shape a scanline renderer's
+// resampling and are not used; a failure is a warning). affray traces shadows and its shaders read
+// no environment or bump maps, so the others are skipped with a note (their file names are not
+// checked).
 bool RibParser::DoMake(const RibRequest& r) {
     std::string picture;
     if (!LeadingString(r, "an image file name", &picture)) return false;
-    if (r.name == "MakeShadow")
+    if (r.name == "MakeShadow") {
         Note(r.at, "'MakeShadow' makes a shadow map for a scanline renderer; affray traces shadows: skipped");
-    else
-        Note(r.at, Quote(r.name) + " makes a texture map, which affray's shaders cannot read yet: skipped");
+        return true;
+    }
+    if (r.name != "MakeTexture") {
+        Note(r.at, Quote(r.name) + " makes a map that affray's shaders cannot read yet: skipped");
+        return true;
+    }
+    // The texture name and the wrap modes, strings; the filter's name and widths.
+    const char* what[] = {"a texture file name", "an s wrap mode", "a t wrap mode", "a filter name"};
+    std::string strings[4];
+    for (size_t i = 1; i <= 4; ++i) {
+        if (r.args.size() <= i || r.args[i].isArray || r.args[i].strings.size() != 1)
+            return Fail(i < r.args.size() ? r.args[i].at : r.at,
+                        "'MakeTexture' argument " + std::to_string(i + 1) + " must be " + what[i - 1]);
+        strings[i - 1] = r.args[i].strings[0];
+    }
+    for (size_t i = 5; i <= 6; ++i)
+        if (r.args.size() <= i || r.args[i].isArray || r.args[i].numbers.size() != 1)
+            return Fail(i < r.args.size() ? r.args[i].at : r.at,
+                        "'MakeTexture' argument " + std::to_string(i + 1) + " must be a filter width");
+    std::vector<RibParam> params;
+    if (!ParamList(r, 7, &params)) return false;
+    SceneDesc::MakeTextureDesc make;
+    make.picture = picture;
+    make.texture = strings[0];
+    for (int i = 0; i < 2; ++i) {
+        const std::string& w = strings[1 + i];
+        if (w != "periodic" && w != "clamp" && w != "black")
+            return Fail(r.args[2 + i].at, "'MakeTexture' wrap mode " + Quote(w) + " is not periodic, clamp or black");
+        (i == 0 ? make.swrap : make.twrap) = w;
+    }
+    for (const RibParam& p : params) Warn(p.at, "'MakeTexture' parameter " + Quote(p.value.name) + " ignored");
+    make.line = r.at.line;
+    make.column = r.at.column;
+    make.file = FileOf(r.at);
+    m_madeTextures.push_back(make);
     return true;
 }
 

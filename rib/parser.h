@@ -262,6 +262,7 @@ class RibParser : private RibArgChecks {
     std::vector<OpenReader> m_readers;
     diag::Report* m_report;
     std::vector<std::string> m_archiveSearchPath;                 // Option "searchpath" "archive"
+    std::vector<SceneDesc::MakeTextureDesc> m_madeTextures;       // MakeTexture requests so far
     std::map<std::string, ObjectDef> m_objects;                   // by handle ("1" or the string)
     std::optional<std::pair<std::string, ObjectDef>> m_defining;  // between ObjectBegin and ObjectEnd
     int m_definingDepth = 0;                                      // Attribute/Transform blocks open in it

@@ -33,7 +33,7 @@ namespace {
 // clang-format off
 // RI 3.2 requests that tune what affray has no counterpart for (level of detail, dicing, bounds,
 // quantizing an image affray writes as floats, the shutter of motion affray refuses): accepted
-// with one warning per name. The Make* requests are skipped with a note (DoMake).
+// with one warning per name. The Make* requests are DoMake's.
 constexpr std::string_view kNoEffect[] = {
     "Begin", "Bound", "Detail", "DetailRange", "End", "ErrorHandler", "GeometricApproximation",
     "PixelVariance", "Quantize", "RelativeDetail", "Shutter", "TransformPoints",

@@ -18,8 +18,8 @@
 // defaults for every frame; options, lights and coordinate systems given inside a frame last
 // until its FrameEnd. A frame that only makes a shadow or depth map for a scanline renderer
 // (Display type "zfile", "shadow" or "deepshadow", or mode "z" to a file that is not OpenEXR)
-// is read, checked and marked skipped, with a note; so are MakeShadow, MakeTexture and the other
-// Make* requests.
+// is read, checked and marked skipped, with a note; so are MakeShadow and the other Make*
+// requests but MakeTexture, which every later frame records (SceneDesc::makeTextures).
 #pragma once
 
 #include <optional>

@@ -142,6 +142,11 @@ Range RangeOverQuad(const TextureMap* map, const LookupOptions& options, int off
 void SlopeOver(const TextureMap* map, const LookupOptions& options, int offset, Range s, Range t, double* sSlope,
                double* tSlope);
 
+/// RenderMan's MakeTexture: writes `picture` (any image OpenImageIO reads) to `output` as a tiled,
+/// mip-mapped texture (maketx's TIFF) with the wrap modes in its "wrapmodes". False with *error
+/// set (one line) if the picture cannot be read or the output written; nothing is left behind.
+bool MakeTexture(const std::string& picture, const std::string& output, Wrap swrap, Wrap twrap, std::string* error);
+
 /// The process-wide cache of maps read from files. Open returns the map of `path` (read once per
 /// file and modification time: a file changed on disk is read again), or null with *error set
 /// (the file is missing, unreadable, or no image).

@@ -118,3 +118,45 @@ TEST_CASE("texture render: one map in every format displaces a plane with certif
         if (c.rmse == 0) CHECK(r.image.rgba == reference.image.rgba);
     }
 }
+
+TEST_CASE("texture render: MakeTexture makes a tiled, mip-mapped texture that a shader reads",
+          "[renderer][texture][rib]") {
+    test::TempDir dir;
+    dir.Write("heights.sl",
+              "displacement heights(string map = \"\"; float Km = 0.12) {\n"
+              "    P += Km * texture(map, s, t) * normalize(N);\n}\n");
+    std::vector<float> texels = Bumps();
+    test::tex::ImageLayout bytes;
+    bytes.format = OIIO::TypeDesc::UINT8;
+    test::tex::WriteImage(dir.Path("picture.png"), kMapSize, kMapSize, 1, texels, bytes);
+    const std::string scene = "MakeTexture \"picture.png\" \"made.tx\" \"clamp\" \"black\" \"gaussian\" 2 2\n";
+    Rendered made;
+    made.image = test::RenderRib(dir,
+                                 scene +
+                                     "Format 40 30 1\nProjection \"perspective\" \"fov\" [40]\n"
+                                     "Translate 0 0 1.3\nRotate -120 1 0 0\nWorldBegin\n"
+                                     "Displacement \"heights\" \"string map\" [\"made.tx\"]\n"
+                                     "Patch \"bilinear\" \"P\" [-0.5 -0.5 0  0.5 -0.5 0  -0.5 0.5 0  0.5 0.5 0]\n"
+                                     "WorldEnd\n",
+                                 &made.stats);
+    // The file: tiled, mip-mapped, the wrap modes of the request; texels those of the picture.
+    auto in = OIIO::ImageInput::open(dir.Path("made.tx"));
+    REQUIRE(in);
+    CHECK(in->spec().tile_width > 0);
+    CHECK(in->seek_subimage(0, 1));
+    CHECK(in->spec(0, 0).get_string_attribute("wrapmodes") == "clamp,black");
+    in->close();
+    std::string error;
+    auto map = texture::Open(dir.Path("made.tx"), &error);
+    REQUIRE(map);
+    CHECK(map->swrap() == texture::Wrap::Clamp);
+    CHECK(map->twrap() == texture::Wrap::Black);
+    int w = 0, h = 0, c = 0;
+    const std::vector<float> picture = test::tex::ReadImage(dir.Path("picture.png"), &w, &h, &c);
+    for (int y = 0; y < h; y += 7)
+        for (int x = 0; x < w; x += 5) CHECK(map->Texel(x, y, 0) == picture[static_cast<size_t>(y) * w + x]);
+    CHECK(made.stats.camera.depthLimitHits == 0);
+    size_t hits = 0;
+    for (size_t i = 3; i < made.image.rgba.size(); i += 4) hits += made.image.rgba[i] > 0;
+    CHECK(hits > 500);
+}

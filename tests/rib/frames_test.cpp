@@ -151,24 +151,44 @@ TEST_CASE("frames: shadow passes are recognised by Display type or a depth-only 
     CHECK(Messages(report, Severity::Error) == std::vector<std::string>{"0: no frame of the file renders an image"});
 }
 
-TEST_CASE("frames: the Make* requests are skipped with one note each", "[rib]") {
+TEST_CASE("frames: MakeTexture is kept for every later frame, the other Make* requests skipped with a note", "[rib]") {
     Report report;
-    Frames(R"(MakeTexture "a.tif" "a.tex" "periodic" "periodic" "gaussian" 2 2
-MakeTexture "b.tif" "b.tex" "periodic" "periodic" "gaussian" 2 2
+    const std::vector<SceneDesc> frames = Frames(R"(MakeTexture "a.tif" "a.tex" "periodic" "clamp" "gaussian" 2 2
+FrameBegin 1
+MakeTexture "b.tif" "b.tex" "black" "periodic" "gaussian" 2 2 "float quality" [1]
 MakeLatLongEnvironment "sky.tif" "sky.env" "gaussian" 2 2
 MakeShadow "key.z" "key.shd"
 WorldBegin
 WorldEnd
+FrameEnd
+FrameBegin 2
+WorldBegin
+WorldEnd
+FrameEnd
 )",
-           &report);
-    CHECK(Messages(report, Severity::Warning).empty());
+                                                 &report);
+    CHECK(Messages(report, Severity::Warning) ==
+          std::vector<std::string>{"3: 'MakeTexture' parameter 'quality' ignored"});
     CHECK(Messages(report, Severity::Note) ==
           std::vector<std::string>{
-              "1: 'MakeTexture' makes a texture map, which affray's shaders cannot read yet: skipped",
-              "3: 'MakeLatLongEnvironment' makes a texture map, which affray's shaders cannot read yet: skipped",
-              "4: 'MakeShadow' makes a shadow map for a scanline renderer; affray traces shadows: skipped"});
+              "4: 'MakeLatLongEnvironment' makes a map that affray's shaders cannot read yet: skipped",
+              "5: 'MakeShadow' makes a shadow map for a scanline renderer; affray traces shadows: skipped"});
+    REQUIRE(frames.size() == 2);
+    for (const SceneDesc& frame : frames) {
+        REQUIRE(frame.makeTextures.size() == 2);
+        const SceneDesc::MakeTextureDesc &a = frame.makeTextures[0], &b = frame.makeTextures[1];
+        CHECK((a.picture == "a.tif" && a.texture == "a.tex" && a.swrap == "periodic" && a.twrap == "clamp"));
+        CHECK((b.picture == "b.tif" && b.texture == "b.tex" && b.swrap == "black" && b.twrap == "periodic"));
+        CHECK((a.line == 1 && b.line == 3));
+    }
     CHECK(ErrorOf("MakeShadow 1 2\nWorldBegin\nWorldEnd\n") ==
           "1: 'MakeShadow' expects an image file name as its first argument, found number 1");
+    CHECK(ErrorOf("MakeTexture \"a.tif\" \"a.tex\" \"mirror\" \"clamp\" \"box\" 1 1\nWorldBegin\nWorldEnd\n") ==
+          "1: 'MakeTexture' wrap mode 'mirror' is not periodic, clamp or black");
+    CHECK(ErrorOf("MakeTexture \"a.tif\" \"a.tex\" \"clamp\" \"clamp\"\nWorldBegin\nWorldEnd\n") ==
+          "1: 'MakeTexture' argument 5 must be a filter name");
+    CHECK(ErrorOf("MakeTexture \"a.tif\" \"a.tex\" \"clamp\" \"clamp\" \"box\" 1 \"x\"\nWorldBegin\nWorldEnd\n") ==
+          "1: 'MakeTexture' argument 7 must be a filter width");
 }
 
 TEST_CASE("frames: errors in the frame structure name their line", "[rib]") {
