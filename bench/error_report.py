@@ -43,7 +43,10 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = {"wave": "scenes/wave.rib", "terrain": "scenes/terrain.rib", "needles": "scenes/needles.rib",
-          "creature": "scenes/creature.rib"}  # creature: a displaced SubdivisionMesh (issue 15)
+          "creature": "scenes/creature.rib",  # creature: a displaced SubdivisionMesh (issue 15)
+          # texture maps (issue 16): a ridge one texel wide in a 4096-texel map, and the gallery
+          # (a mesh, a plane and a map with noise)
+          "ridge": "tests/scenes/stiff/ridge.rib", "textured": "scenes/textured.rib"}
 # The CSV's columns: the first nine as before; then peak memory and process time (every row) and
 # the tessellation baseline's (its rows only; affray's rows leave them empty, and the
 # tessellation rows leave regions_per_ray, max_certified_error and depth_limit_hits empty; their
@@ -109,12 +112,16 @@ def diff(affray, reference, test):
 
 
 def sized_scene(path, width, height, directory):
-    """A copy of the scene at `width` x `height` (its aspect ratio kept by the camera's fov)."""
+    """A copy of the scene at `width` x `height` (its aspect ratio kept by the camera's fov), in
+    `directory`, reading shaders and maps from the original's directory first."""
     with open(os.path.join(ROOT, path)) as f:
         text = f.read()
     text, count = re.subn(r"^Format\s+\d+\s+\d+\s+[\d.]+", f"Format {width} {height} 1", text, flags=re.M)
     if count != 1:
         sys.exit(f"{path}: expected one Format line")
+    # The copy finds the shaders and maps beside the original first, as the original does.
+    here = os.path.dirname(os.path.join(ROOT, path))
+    text = f'Option "searchpath" "shader" ["{here}:@"] "texture" ["{here}"]\n' + text
     copy = os.path.join(directory, os.path.basename(path))
     with open(copy, "w") as f:
         f.write(text)

@@ -339,15 +339,8 @@ double SampleQuad(const TextureMap* map, const LookupOptions& options, int offse
     Lookup k;
     if (!Prepare(map, options, offset, &k)) return options.fill;
     double sum = 0;
-    for (int j = 0; j < kQuadTaps; ++j) {
-        const double v = (j + 0.5) / kQuadTaps;
-        for (int i = 0; i < kQuadTaps; ++i) {
-            const double u = (i + 0.5) / kQuadTaps;
-            const double ps = (1 - v) * ((1 - u) * s[0] + u * s[1]) + v * ((1 - u) * s[2] + u * s[3]);
-            const double pt = (1 - v) * ((1 - u) * t[0] + u * t[1]) + v * ((1 - u) * t[2] + u * t[3]);
-            sum += Evaluate<false>(k, ps, pt, nullptr, nullptr);
-        }
-    }
+    detail::ForEachQuadTap(
+        s, t, [&](double ps, double pt, const double*) { sum += Evaluate<false>(k, ps, pt, nullptr, nullptr); });
     return sum / (kQuadTaps * kQuadTaps);
 }
 

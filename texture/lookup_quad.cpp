@@ -1,8 +1,9 @@
 // texture/lookup_quad.cpp: the derivatives of the four-corner lookup (SampleQuadGrad), which the
 // dual numbers take through the chain rule (vm/texture_lookup.h). Written on the public lookups:
-// the taps are SampleQuad's (lookup.cpp), in its order, and SampleGrad's value is Sample's bit
-// for bit, so the value is SampleQuad's (tests/vm/conformance_test.cpp checks it on every draw).
+// the taps are SampleQuad's (detail::ForEachQuadTap), in its order, and SampleGrad's value is
+// Sample's bit for bit, so the value is SampleQuad's (tests/vm/conformance_test.cpp checks it on every draw).
 #include "texture/texture.h"
+#include "texture/texture_impl.h"
 
 namespace affray::texture {
 
@@ -11,24 +12,17 @@ double SampleQuadGrad(const TextureMap* map, const LookupOptions& options, int o
     for (int i = 0; i < 4; ++i) dS[i] = dT[i] = 0;
     const int64_t channel = static_cast<int64_t>(options.channel) + offset;
     if (!map || channel < 0 || channel >= map->channels()) return options.fill;
-    double sum = 0;
     constexpr double kTaps = kQuadTaps * kQuadTaps;
-    for (int j = 0; j < kQuadTaps; ++j) {
-        const double v = (j + 0.5) / kQuadTaps;
-        for (int i = 0; i < kQuadTaps; ++i) {
-            const double u = (i + 0.5) / kQuadTaps;
-            const double ps = (1 - v) * ((1 - u) * s[0] + u * s[1]) + v * ((1 - u) * s[2] + u * s[3]);
-            const double pt = (1 - v) * ((1 - u) * t[0] + u * t[1]) + v * ((1 - u) * t[2] + u * t[3]);
-            double gs = 0, gt = 0;
-            sum += SampleGrad(map, options, offset, ps, pt, &gs, &gt);
-            // The tap moves with corner k by its bilinear weight.
-            const double w[4] = {(1 - v) * (1 - u), (1 - v) * u, v * (1 - u), v * u};
-            for (int k = 0; k < 4; ++k) {
-                dS[k] += w[k] * gs / kTaps;
-                dT[k] += w[k] * gt / kTaps;
-            }
+    double sum = 0;
+    detail::ForEachQuadTap(s, t, [&](double ps, double pt, const double* w) {
+        double gs = 0, gt = 0;
+        sum += SampleGrad(map, options, offset, ps, pt, &gs, &gt);
+        // The tap moves with corner k by its bilinear weight.
+        for (int k = 0; k < 4; ++k) {
+            dS[k] += w[k] * gs / kTaps;
+            dT[k] += w[k] * gt / kTaps;
         }
-    }
+    });
     return sum / kTaps;
 }
 

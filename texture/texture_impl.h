@@ -94,4 +94,22 @@ class MapImpl final : public TextureMap {
     int m_tilesX, m_tilesY;
 };
 
+/// The four-corner lookup's taps, in the order SampleQuad sums them: the kQuadTaps x kQuadTaps
+/// points (u, v) = ((i + 0.5) / kQuadTaps, (j + 0.5) / kQuadTaps) of the bilinear quadrilateral of
+/// the corners (1 and 2 along s, then 3 and 4). visit(ps, pt, w) gets each tap's place and the
+/// corners' bilinear weights there.
+template <class Visit>
+void ForEachQuadTap(const double s[4], const double t[4], Visit&& visit) {
+    for (int j = 0; j < kQuadTaps; ++j) {
+        const double v = (j + 0.5) / kQuadTaps;
+        for (int i = 0; i < kQuadTaps; ++i) {
+            const double u = (i + 0.5) / kQuadTaps;
+            const double ps = (1 - v) * ((1 - u) * s[0] + u * s[1]) + v * ((1 - u) * s[2] + u * s[3]);
+            const double pt = (1 - v) * ((1 - u) * t[0] + u * t[1]) + v * ((1 - u) * t[2] + u * t[3]);
+            const double w[4] = {(1 - v) * (1 - u), (1 - v) * u, v * (1 - u), v * u};
+            visit(ps, pt, w);
+        }
+    }
+}
+
 }  // namespace affray::texture::detail
