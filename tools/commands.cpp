@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 
@@ -12,6 +13,7 @@
 #include "renderer/image/png_writer.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
+#include "texture/texture.h"
 #include "tools/progress.h"
 #include "vm/bytecode_file.h"
 #include "vm/disasm.h"
@@ -175,6 +177,8 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     std::vector<std::string> shaderPaths = {ribDir.string(), (ribDir / ".." / "shaders").string(), "shaders"};
     if (cmd.crop) scene.camera.cropWindow = glm::dvec4((*cmd.crop)[0], (*cmd.crop)[1], (*cmd.crop)[2], (*cmd.crop)[3]);
     if (cmd.samples > 0) scene.camera.xsamples = scene.camera.ysamples = cmd.samples;
+    if (cmd.textureBytes) texture::SetTileMemoryBudget(*cmd.textureBytes);
+    const texture::CacheStats texturesBefore = texture::Stats();
     renderer::PreparedScene prepared;
     const bool preparedOk = renderer::PrepareScene(scene, shaderPaths, cmd.preprocess, &prepared, &report);
     // The shaders' warnings are printed before the render starts.
@@ -206,6 +210,17 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
         std::string json = stats.ToJson();
         json.pop_back();
         if (scene.frame) json.insert(1, "\"frame\":" + std::to_string(*scene.frame) + ",");
+        // The texture tiles this frame read and dropped, and what all maps hold now.
+        const texture::CacheStats textures = texture::Stats();
+        char texturesJson[256];
+        std::snprintf(
+            texturesJson, sizeof texturesJson,
+            ",\"textures\":{\"budget_mb\":%.1f,\"tiles_read\":%lld,\"tiles_dropped\":%lld,\"resident_mb\":%.2f}",
+            double(texture::TileMemoryBudget()) / (1 << 20),
+            static_cast<long long>(textures.tilesRead - texturesBefore.tilesRead),
+            static_cast<long long>(textures.tilesDropped - texturesBefore.tilesDropped),
+            double(textures.residentBytes) / (1 << 20));
+        json += texturesJson;
         json += ",\"shader_compilations\":" + std::to_string(prepared.shadersCompiled) +
                 ",\"shader_compilations_reused\":" + std::to_string(prepared.shadersReused) + ",\"shaders\":[";
         struct Entry {

@@ -49,6 +49,7 @@ struct RenderCommand {
     int samples = 0;                            // --samples N: N x N per pixel (0: the scene's)
     uint64_t regionBudget = renderer::kDefaultRegionBudget;
     size_t cacheBytes = renderer::kDefaultCacheBytes;
+    std::optional<size_t> textureBytes;  // --texture-mb: the texture tiles' budget (else the default)
     int rayGroupPixels = renderer::kDefaultRayGroupPixels;
     std::optional<int> frame;  // --frame N: only the frames numbered N (FrameBegin N)
 };

@@ -22,7 +22,7 @@ const char* const kUsage =
     "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS] [-I DIR] [-D NAME[=VALUE]]\n"
     "                [--bounds affine|reduced|interval] [--max-depth N] [--stats] [--png PREVIEW.png] [--quiet]\n"
     "                [--crop XMIN,XMAX,YMIN,YMAX] [--samples N] [--region-budget N] [--cache-mb MB]\n"
-    "                [--ray-groups PIXELS] [--frame N]\n"
+    "                [--texture-mb MB] [--ray-groups PIXELS] [--frame N]\n"
     "  affray compile SHADER.sl [-o OUT.afb] [--disasm] [--stats] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
     "              [--mode scalar|affine|interval] [-I DIR] [-D NAME[=VALUE]]\n"
@@ -214,6 +214,10 @@ int Render(Args& args) {
             const double mb = ParseNumber(args.Value(a), a);
             if (!(mb >= 0 && mb <= 1 << 20)) throw UsageError{"--cache-mb takes a size in MiB from 0 to 1048576"};
             cmd.cacheBytes = static_cast<size_t>(mb * (1 << 20));
+        } else if (a == "--texture-mb") {
+            const double mb = ParseNumber(args.Value(a), a);
+            if (!(mb >= 0 && mb <= 1 << 20)) throw UsageError{"--texture-mb takes a size in MiB from 0 to 1048576"};
+            cmd.textureBytes = static_cast<size_t>(mb * (1 << 20));
         } else if (a == "--crop") {
             std::vector<double> c = ParseNumbers(args.Value(a), a);
             if (c.size() != 4 || !(0 <= c[0] && c[0] < c[1] && c[1] <= 1 && 0 <= c[2] && c[2] < c[3] && c[3] <= 1))
