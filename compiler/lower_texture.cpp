@@ -187,9 +187,17 @@ std::optional<Value> Lowerer::LowerTexture(const lang::Expr& e, Type expected) {
             m_diags.warning(keyArg.loc, "unknown texture parameter '" + p + "' ignored");
             continue;
         }
-        std::optional<double> k = value->type == Type::Float || value->type == Type::Bool
-                                      ? OptionValue(value->c[0], &dependsOn)
-                                      : std::nullopt;
+        const bool isFloat = value->type == Type::Float || value->type == Type::Bool;
+        if (p == "width" || p == "swidth" || p == "twidth" || p == "samples") {
+            // No effect (see the header), so any float will do, varying ones too.
+            if (!isFloat) {
+                m_diags.error(valueArg.loc,
+                              "texture parameter '" + p + "' must be a float, not " + Article(value->type));
+                ok = false;
+            }
+            continue;
+        }
+        std::optional<double> k = isFloat ? OptionValue(value->c[0], &dependsOn) : std::nullopt;
         if (!k || !std::isfinite(*k) || (p != "fill" && *k < 0)) {
             m_diags.error(valueArg.loc, "texture parameter '" + p + "' must be a constant " +
                                             (p == "fill" ? "float" : "float >= 0") +
