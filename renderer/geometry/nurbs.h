@@ -99,8 +99,9 @@ void Polynomial(int degreeU, int degreeV, const Coef& coef, const T& s, const T&
     }
     *value = Horner(a, zero, kOne, degreeV, t);
     if (ds) *ds = Horner(da, dzero, kOne, degreeV, t);
-    // d/dt of sum a_j t^j = sum j a_j t^(j-1).
-    if (dt) *dt = Horner(a + 1, zero + 1, kPower + 1, degreeV - 1, t);
+    // d/dt of sum a_j t^j = sum j a_j t^(j-1); 0 for a polynomial constant in t (Horner of degree -1,
+    // and no degreeV - 1 to overflow, nor zero[j] read that the loop above did not set).
+    if (dt) *dt = degreeV > 0 ? Horner(a + 1, zero + 1, kPower + 1, degreeV - 1, t) : T(0.0);
 }
 
 }  // namespace nurbs_detail
