@@ -64,7 +64,7 @@ bool RibParser::DoNuPatch(const RibRequest& r) {
 
     renderer::NurbsSurface surface{k[0], k[1], {}, std::nullopt};
     const size_t nPoints = size_t(k[0].n) * size_t(k[1].n);
-    const size_t segU = size_t(k[0].n - k[0].order + 1), segV = size_t(k[1].n - k[1].order + 1);
+    const size_t segU = size_t(k[0].n) - size_t(k[0].order) + 1, segV = size_t(k[1].n) - size_t(k[1].order) + 1;
     const RibParam *position = nullptr, *st = nullptr, *s = nullptr, *t = nullptr;
     for (const RibParam& p : params) {
         const std::string& n = p.value.name;

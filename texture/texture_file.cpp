@@ -244,7 +244,7 @@ std::vector<std::pair<int, std::shared_ptr<Tile>>> FileSource::readTiles(int ind
         const float* blockRow = blocks.minMax.data() + static_cast<size_t>(y >> kBlockBits) * blocks.width * 2;
         for (int x = x0; x < x1; ++x)
             for (int c = 0; c < channels; ++c) {
-                const float* b = blockRow + c * plane + (x >> kBlockBits) * 2;
+                const float* b = blockRow + c * plane + static_cast<size_t>(x >> kBlockBits) * 2;
                 float& v = row[static_cast<size_t>(x - x0) * channels + c];
                 v = std::clamp(v, b[0], b[1]);
             }

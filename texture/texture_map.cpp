@@ -106,7 +106,7 @@ void PyramidBuilder::AddRows(int y0, int rows, const float* texels) {
             float* mm = m_level0.minMax.data() + c * plane + blockRow * 2;
             for (int x = 0; x < m_width; ++x) {
                 const float v = row[static_cast<size_t>(x) * m_channels + c];
-                float* b = mm + (x >> kBlockBits) * 2;
+                float* b = mm + static_cast<size_t>(x >> kBlockBits) * 2;
                 b[0] = std::min(b[0], v);
                 b[1] = std::max(b[1], v);
             }

@@ -114,7 +114,7 @@ B TextureLookupQuad(const TextureSlot& slot, const B* c) {
     double sc[4], tc[4], sRadius = 0, tRadius = 0;
     Interval sBox, tBox;
     bool bounded = true;
-    for (int i = 0; i < 4; ++i) {
+    for (size_t i = 0; i < 4; ++i) {
         const Interval rs = RangeOf(c[2 * i]), rt = RangeOf(c[2 * i + 1]);
         s[i] = texture_detail::RangeFrom(rs);
         t[i] = texture_detail::RangeFrom(rt);
@@ -145,7 +145,7 @@ inline Dual<double> TextureLookupQuad(const TextureSlot& slot, const Dual<double
     const double v = texture::SampleQuadGrad(slot.map.get(), slot.options, 0, s, t, dS, dT);
     auto term = [](double slope, double d) { return d == 0 ? 0.0 : slope * d; };
     double du = 0, dv = 0;
-    for (int i = 0; i < 4; ++i) {
+    for (size_t i = 0; i < 4; ++i) {
         du += term(dS[i], c[2 * i].du) + term(dT[i], c[2 * i + 1].du);
         dv += term(dS[i], c[2 * i].dv) + term(dT[i], c[2 * i + 1].dv);
     }

@@ -127,7 +127,7 @@ std::string KnotVector::Problem(const std::string& name) const {
             << "), got " << order;
     } else if (n < order) {
         out << "the " << name << " direction has " << n << " control points, fewer than its order " << order;
-    } else if (knots.size() != static_cast<size_t>(n + order)) {
+    } else if (knots.size() != static_cast<size_t>(n) + static_cast<size_t>(order)) {
         out << "the " << name << " knot vector needs n + order = " << n + order << " knots, got " << knots.size();
     } else {
         for (size_t i = 0; i < knots.size(); ++i) {
@@ -215,7 +215,7 @@ std::vector<NurbsSpan> SplitNurbs(const NurbsSurface& surface, const glm::dmat4&
             RationalPatch& p = span.patch;
             p.degreeU = ku.order - 1;
             p.degreeV = kv.order - 1;
-            const size_t count = static_cast<size_t>(ku.order * kv.order);
+            const size_t count = static_cast<size_t>(ku.order) * static_cast<size_t>(kv.order);
             p.c.assign(count, glm::dvec4(0.0));
             std::vector<glm::dvec4> sizes(count, glm::dvec4(0.0));
             const NurbsST* st = surface.st ? &*surface.st : nullptr;
@@ -253,13 +253,16 @@ std::vector<NurbsSpan> SplitNurbs(const NurbsSurface& surface, const glm::dmat4&
                 const int segU = su.k - ku.order + 1, segV = sv.k - kv.order + 1, across = ku.n - ku.order + 2;
                 for (int b = 0; b < 2; ++b)
                     for (int a = 0; a < 2; ++a) {
-                        const glm::dvec2 value = st->values[static_cast<size_t>((segV + b) * across + segU + a)];
+                        const glm::dvec2 value =
+                            st->values[static_cast<size_t>(segV + b) * static_cast<size_t>(across) +
+                                       static_cast<size_t>(segU + a)];
                         for (int i = 0; i < 2; ++i)
                             for (int j = 0; j < 2; ++j) p.st[p.Index(i, j)] += wu[a][i] * wv[b][j] * value;
                     }
             } else if (st && st->storage == StorageClass::Uniform) {
                 const int segU = su.k - ku.order + 1, segV = sv.k - kv.order + 1, across = ku.n - ku.order + 1;
-                p.st[0] = st->values[static_cast<size_t>(segV * across + segU)];
+                p.st[0] =
+                    st->values[static_cast<size_t>(segV) * static_cast<size_t>(across) + static_cast<size_t>(segU)];
             } else if (st && st->storage == StorageClass::Constant) {
                 p.st[0] = st->values[0];
             }
@@ -307,7 +310,8 @@ void FlattenTrimCurve(const KnotVector& k, const std::vector<glm::dvec3>& uvw, d
         // The homogeneous curve of the span as polynomials in x.
         std::array<glm::dvec3, kMaxNurbsOrder> c{};
         for (int a = 0; a < k.order; ++a)
-            for (int m = 0; m < k.order; ++m) c[m] += basis[a][m] * uvw[static_cast<size_t>(span.k - k.order + 1 + a)];
+            for (int m = 0; m < k.order; ++m)
+                c[m] += basis[a][m] * uvw[static_cast<size_t>(span.k - k.order + 1) + static_cast<size_t>(a)];
         auto at = [&](double x) {
             glm::dvec3 h = c[k.order - 1];
             for (int m = k.order - 2; m >= 0; --m) h = h * x + c[m];

@@ -44,15 +44,17 @@ struct RationalPatch {
     bool stHomogeneous = false;  ///< st is divided by W (vertex "st" of a rational NuPatch)
     std::vector<glm::dvec2> st;  ///< coefficients as c's (if hasST)
 
-    /// The patch of 4 homogeneous corners (world space; RenderMan order u0v0, u1v0, u0v1, u1v1).
-    static RationalPatch Bilinear(const std::array<glm::dvec4, 4>& corners);
+    /// The patch of the 4 homogeneous corners `q` (world space; RenderMan order u0v0, u1v0, u0v1, u1v1).
+    static RationalPatch Bilinear(const std::array<glm::dvec4, 4>& q);
     /// The bicubic patch of 16 homogeneous control points `points` (object space, u fastest, w
     /// in their 4th coordinate and x, y, z multiplied by it, as RI "Pw" gives them) with the
     /// given bases, placed by `objectToWorld` (affine).
     static RationalPatch Bicubic(const std::array<glm::dvec4, 16>& points, const CubicBasis& uBasis,
                                  const CubicBasis& vBasis, const glm::dmat4& objectToWorld);
 
-    size_t Index(int i, int j) const { return static_cast<size_t>((degreeV + 1) * i + j); }
+    size_t Index(int i, int j) const {
+        return static_cast<size_t>(degreeV + 1) * static_cast<size_t>(i) + static_cast<size_t>(j);
+    }
     /// Zeroes coefficients within rounding noise of zero (relative to `size`, the sums of the
     /// terms' absolute values that made them) and, if W is then constant, divides it out.
     void Simplify(const std::vector<glm::dvec4>& size);
@@ -97,8 +99,9 @@ void Polynomial(int degreeU, int degreeV, const Coef& coef, const T& s, const T&
     }
     *value = Horner(a, zero, kOne, degreeV, t);
     if (ds) *ds = Horner(da, dzero, kOne, degreeV, t);
-    // d/dt of sum a_j t^j = sum j a_j t^(j-1).
-    if (dt) *dt = Horner(a + 1, zero + 1, kPower + 1, degreeV - 1, t);
+    // d/dt of sum a_j t^j = sum j a_j t^(j-1); 0 for a polynomial constant in t (Horner of degree -1,
+    // and no degreeV - 1 to overflow, nor zero[j] read that the loop above did not set).
+    if (dt) *dt = degreeV > 0 ? Horner(a + 1, zero + 1, kPower + 1, degreeV - 1, t) : T(0.0);
 }
 
 }  // namespace nurbs_detail

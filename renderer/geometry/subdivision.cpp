@@ -466,6 +466,7 @@ BicubicPatch PatchOf(const Net& points, bool bspline) {
 
 std::vector<glm::dvec3> Lift(const std::vector<glm::dvec2>& st) {
     std::vector<glm::dvec3> out;
+    out.reserve(st.size());
     for (const glm::dvec2& p : st) out.emplace_back(p, 0.0);
     return out;
 }

@@ -70,7 +70,7 @@ TEST_CASE("texture file: every format reads as OpenImageIO reads it", "[texture]
     SECTION("EXR, float, one and three channels") {
         for (int ch : {1, 3}) {
             const std::string path = dir.path("f" + std::to_string(ch) + ".exr");
-            WriteImage(path, 70, 45, ch, RandomTexels(rng, 70 * 45 * ch));
+            WriteImage(path, 70, 45, ch, RandomTexels(rng, size_t{70} * 45 * ch));
             auto map = OpenAndCompare(path);
             CHECK(map->name() == path);
             CHECK(map->swrap() == Wrap::Periodic);
@@ -105,7 +105,7 @@ TEST_CASE("texture file: every format reads as OpenImageIO reads it", "[texture]
         layout.mipmap = true;
         layout.wrapmodes = "black";
         const int w = 150, h = 100;
-        WriteImage(path, w, h, 1, RandomTexels(rng, w * h), layout);
+        WriteImage(path, w, h, 1, RandomTexels(rng, static_cast<size_t>(w) * h), layout);
         {
             auto in = OIIO::ImageInput::open(path);
             REQUIRE(in);
@@ -118,7 +118,7 @@ TEST_CASE("texture file: every format reads as OpenImageIO reads it", "[texture]
     }
     SECTION("EXR, tiled 32, with non-finite texels") {
         const std::string path = dir.path("nan.exr");
-        std::vector<float> t = RandomTexels(rng, 100 * 90);
+        std::vector<float> t = RandomTexels(rng, size_t{100} * 90);
         t[5] = std::numeric_limits<float>::quiet_NaN();
         t[777] = std::numeric_limits<float>::infinity();
         t[8999] = -std::numeric_limits<float>::infinity();
@@ -166,10 +166,10 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
         const std::string changing = dir.path("changing.exr");
         ImageLayout layout;
         layout.tile = 16;
-        WriteImage(changing, 64, 64, 1, RandomTexels(rng, 64 * 64), layout);
+        WriteImage(changing, 64, 64, 1, RandomTexels(rng, size_t{64} * 64), layout);
         auto before = Open(changing, &error);
         REQUIRE(before);
-        WriteImage(changing, 64, 64, 1, std::vector<float>(64 * 64, 100.0f), layout);
+        WriteImage(changing, 64, 64, 1, std::vector<float>(size_t{64} * 64, 100.0f), layout);
         const Range all = before->RangeOfTexels(0, 63, 0, 63, 0, Wrap::Clamp, Wrap::Clamp);
         int outside = 0;
         for (int y = 0; y < 64; ++y)
@@ -183,9 +183,10 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
 
     // Threads opening one file at once share one reading of it.
     const std::string shared = dir.path("shared.exr");
-    WriteImage(shared, 40, 40, 2, RandomTexels(rng, 40 * 40 * 2));
+    WriteImage(shared, 40, 40, 2, RandomTexels(rng, size_t{40} * 40 * 2));
     std::vector<std::shared_ptr<const TextureMap>> opened(3);
     std::vector<std::thread> threads;
+    threads.reserve(3);
     for (int k = 0; k < 3; ++k)
         threads.emplace_back([&, k] {
             std::string e;
@@ -232,6 +233,7 @@ TEST_CASE("texture file: tiles under a tiny budget give the same lookups, from s
 
     // Random points (a tile each) and a coherent walk, with every filter.
     std::vector<std::pair<double, double>> points;
+    points.reserve(1000);
     for (int i = 0; i < 1000; ++i) points.emplace_back(rng.uniform(-0.2, 1.2), rng.uniform(-0.2, 1.2));
     for (int i = 0; i < 3000; ++i) points.emplace_back(0.1 + i * 2.5e-4, 0.7 - i * 1e-4);
     LookupOptions o;
@@ -259,6 +261,7 @@ TEST_CASE("texture file: tiles under a tiny budget give the same lookups, from s
     for (size_t i = 0; i < points.size(); ++i) want[i] = Sample(pixels.get(), o, 0, points[i].first, points[i].second);
     std::vector<int64_t> threadDiffer(3, 0);
     std::vector<std::thread> threads;
+    threads.reserve(3);
     for (int k = 0; k < 3; ++k) {
         threads.emplace_back([&, k] {
             for (size_t j = 0; j < points.size(); ++j) {

@@ -212,7 +212,7 @@ TEST_CASE("texture: maps from pixels, texels, non-finite texels, bilinear formul
     // The header's formula, bit for bit, at random points of a random map.
     Rng rng(16001);
     const int w = 7, h = 5;
-    auto m = TextureMap::FromPixels(w, h, 1, RandomTexels(rng, w * h));
+    auto m = TextureMap::FromPixels(w, h, 1, RandomTexels(rng, static_cast<size_t>(w) * h));
     LookupOptions o;
     o.swrap = Wrap::Periodic;
     o.twrap = Wrap::Clamp;
@@ -276,7 +276,7 @@ TEST_CASE("texture: fill value for missing maps, channels and coordinates out of
 TEST_CASE("texture: blur and four-corner lookups average their taps", "[texture]") {
     Rng rng(16002);
     const int w = 6, h = 5;
-    auto m = TextureMap::FromPixels(w, h, 1, RandomTexels(rng, w * h));
+    auto m = TextureMap::FromPixels(w, h, 1, RandomTexels(rng, static_cast<size_t>(w) * h));
     LookupOptions o;
     o.sblur = 0.3;
     o.tblur = 0.2;
@@ -328,7 +328,7 @@ TEST_CASE("texture: RangeOfTexels contains the brute-force range through every w
         const int w = rng.integer(1, 40), h = rng.integer(1, 40);
         auto m = TextureMap::FromPixels(w, h, 1, RandomTexels(rng, static_cast<size_t>(w) * h));
         const Wrap sw = RandomWrap(rng), tw = RandomWrap(rng);
-        auto interval = [&](int size, Wrap wrap, int64_t* lo, int64_t* hi) {
+        auto interval = [&](int64_t size, Wrap wrap, int64_t* lo, int64_t* hi) {
             const int kind = rng.integer(0, 5);
             if (kind == 0 && wrap != Wrap::Black) {  // huge: any int64 (brute force sees a few periods)
                 *lo = rng.integer<int64_t>(INT64_MIN, INT64_MAX - 1);

@@ -40,7 +40,7 @@ class ScratchDir {
 
 /// How an image is laid out in its file.
 struct ImageLayout {
-    ImageLayout(OIIO::TypeDesc f = OIIO::TypeDesc::FLOAT) : format(f) {}
+    ImageLayout(const OIIO::TypeDesc& f = OIIO::TypeDesc::FLOAT) : format(f) {}
     OIIO::TypeDesc format;
     int tile = 0;         // tile size, 0 for scanlines
     bool mipmap = false;  // write the coarser levels too (a .tx-like file)

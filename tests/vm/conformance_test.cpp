@@ -158,7 +158,7 @@ constexpr Sample NoiseSample(RefFn f, int dims, int periods, double maxRadius) {
 const std::shared_ptr<const vm::TextureSlots>& TestTextures() {
     static const std::shared_ptr<const vm::TextureSlots> slots = [] {
         test::Rng rng(0x7E47);
-        std::vector<float> texels(16 * 16 * 2);
+        std::vector<float> texels(size_t{16} * 16 * 2);
         for (float& x : texels) x = static_cast<float>(rng.chance(0.1) ? rng.uniform(-40, 40) : rng.uniform(0, 1));
         auto map = texture::TextureMap::FromPixels(16, 16, 2, texels);
         auto tiny = texture::TextureMap::FromPixels(1, 1, 1, {0.75f}, texture::Wrap::Clamp, texture::Wrap::Clamp);

@@ -49,7 +49,7 @@ glm::dvec3 Reference(const NurbsSurface& s, double u, double v) {
         const double nv = Basis(s.v.knots, j, s.v.order, v, sv);
         if (nv == 0) continue;
         for (int i = 0; i < s.u.n; ++i)
-            sum += Basis(s.u.knots, i, s.u.order, u, su) * nv * s.points[size_t(j * s.u.n + i)];
+            sum += Basis(s.u.knots, i, s.u.order, u, su) * nv * s.points[size_t(j) * size_t(s.u.n) + size_t(i)];
     }
     return glm::dvec3(sum) / sum.w;
 }
@@ -427,6 +427,7 @@ TEST_CASE("nurbs: rays aimed at the seams of a displaced NuPatch hit", "[rendere
     const compiler::CompiledShader ripple =
         test::CompileOrThrow("displacement d() { P += 0.02 * sin(30 * xcomp(P)) * normalize(N); }");
     std::vector<std::unique_ptr<renderer::SurfaceIntersector>> intersectors;
+    intersectors.reserve(spans.size());
     for (const renderer::NurbsSpan& span : spans)
         intersectors.push_back(renderer::MakeSurfaceIntersector(renderer::BaseSurface(span.patch, false, span.range),
                                                                 ripple.bound, glm::dvec3(0.5, 0.5, 3),

@@ -36,6 +36,7 @@ SubdivisionMesh Mesh(std::vector<glm::dvec3> points, const std::vector<std::vect
 /// The cube [-1, 1]^3, counter-clockwise from outside: eight valence-3 vertices.
 SubdivisionMesh Cube() {
     std::vector<glm::dvec3> p;
+    p.reserve(8);
     for (int i = 0; i < 8; ++i) p.emplace_back(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
     return Mesh(p, {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}});
 }
@@ -163,19 +164,20 @@ TEST_CASE("subdivision: a regular mesh's patches are its B-spline patches", "[re
     const int n = 7, m = 5;
     const SubdivisionResult r = Build(Torus(n, m, &grid));
     CHECK(r.levels == 0);
-    REQUIRE(r.patches.size() == size_t(n * m));
+    REQUIRE(r.patches.size() == size_t(n) * size_t(m));
     CHECK(r.regularPatches == n * m);
     test::Rng rng(3);
     for (int j = 0; j < m; ++j)
         for (int i = 0; i < n; ++i) {
-            const SubdivPatch& p = r.patches[size_t(j * n + i)];
+            const SubdivPatch& p = r.patches[size_t(j) * size_t(n) + size_t(i)];
             for (int s = 0; s < 4; ++s) {
                 const double u = rng.uniform(0, 1), v = rng.uniform(0, 1);
                 const auto wu = BSplineWeights(u), wv = BSplineWeights(v);
                 glm::dvec3 want(0.0);
                 for (int a = 0; a < 4; ++a)
                     for (int b = 0; b < 4; ++b)
-                        want += wu[a] * wv[b] * grid[size_t(((j - 1 + b + m) % m) * n + (i - 1 + a + n) % n)];
+                        want +=
+                            wu[a] * wv[b] * grid[size_t((j - 1 + b + m) % m) * size_t(n) + size_t((i - 1 + a + n) % n)];
                 CHECK(glm::length(p.geometry.At(u, v) - want) < 1e-12);
             }
         }
@@ -247,7 +249,7 @@ TEST_CASE("subdivision: neighbours share points and normal directions along ever
                         }
                     }
             }
-        CHECK(edges == int(2 * 2 * r.patches.size()));  // each of the 2 |F| edges, from both sides
+        CHECK(edges == 2 * 2 * int(r.patches.size()));  // each of the 2 |F| edges, from both sides
         CHECK(worstP < 1e-12 * scale);
         CHECK(worstN < 1e-12);
     }
@@ -318,6 +320,7 @@ namespace {
 /// and the point, so the ray must hit it no farther. Returns the number of rays that do not.
 int EdgeRayMisses(const std::vector<SubdivPatch>& patches, const vm::Program& program, int* rays) {
     std::vector<std::unique_ptr<renderer::SurfaceIntersector>> intersectors;
+    intersectors.reserve(patches.size());
     for (const SubdivPatch& p : patches)
         intersectors.push_back(renderer::MakeSurfaceIntersector(renderer::BaseSurface(p), program, glm::dvec3(0.0),
                                                                 renderer::BoundMode::Affine, 30));
@@ -367,10 +370,10 @@ TEST_CASE("subdivision: holes, boundaries, creases and corners", "[renderer][sub
         const SubdivisionResult none = Build(grid);
         // Without the tag, control faces with a boundary vertex only shape the surface: the
         // inner 2 x 2 faces are left, 16 patches each.
-        CHECK(none.patches.size() == 4u * 16u);
+        CHECK(none.patches.size() == size_t{4} * 16);
         grid.boundary = renderer::SubdivBoundary::EdgesAndCorners;
         const SubdivisionResult r = Build(grid);
-        CHECK(r.patches.size() == 16u * 16u);
+        CHECK(r.patches.size() == size_t{16} * 16);
         // The boundary curve is the cubic B-spline of the boundary vertices (the corners
         // interpolated): its points at the boundary vertices are (a + 4 v + b) / 6.
         const std::vector<glm::dvec3>& p = grid.points;
