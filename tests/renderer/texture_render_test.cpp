@@ -70,14 +70,11 @@ TEST_CASE("texture render: one map in every format displaces a plane with certif
               "    P += Km * texture(map, s, t) * normalize(N);\n"
               "    N = calculatenormal(P);\n}\n");
     const std::vector<float> texels = Bumps();
-    auto layout = [](OIIO::TypeDesc format, int tile) {
-        test::tex::ImageLayout l;
-        l.format = format;
-        l.tile = tile;
-        return l;
-    };
-    auto write = [&](const char* name, OIIO::TypeDesc format, int tile = 0) {
-        test::tex::WriteImage(dir.Path(name), kMapSize, kMapSize, 1, texels, layout(format, tile));
+    auto write = [&](const char* name, const OIIO::TypeDesc& format, int tile = 0) {
+        test::tex::ImageLayout layout;
+        layout.format = format;
+        layout.tile = tile;
+        test::tex::WriteImage(dir.Path(name), kMapSize, kMapSize, 1, texels, layout);
     };
     write("float.exr", OIIO::TypeDesc::FLOAT);
     write("tiled.exr", OIIO::TypeDesc::FLOAT, 16);
