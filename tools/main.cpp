@@ -1,9 +1,11 @@
 // tools/main.cpp: the `affray` command line. Only argument parsing lives here; each subcommand's
 // work is in tools/commands.cpp.
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <new>
 #include <sstream>
 #include <stdexcept>
@@ -229,6 +231,13 @@ int Render(Args& args) {
             SetInput(&cmd.scenePath, a);
     }
     if (cmd.scenePath.empty()) throw UsageError{"render: missing SCENE.rib"};
+    // -o writes OpenEXR whatever the name: another image format's name would hide that.
+    std::string extension = std::filesystem::path(cmd.outputPath).extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* other : {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".tga", ".hdr"})
+        if (extension == other)
+            throw UsageError{"-o writes OpenEXR: name the file .exr, not '" + cmd.outputPath +
+                             "' (--png writes an 8-bit preview)"};
     return affray::tools::RunRender(cmd, stdout, stderr);
 }
 

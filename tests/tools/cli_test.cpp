@@ -98,6 +98,8 @@ TEST_CASE("cli: parameters, bad parameters and bad command lines", "[tools]") {
     CHECK(Run("render").status == 2);
     CHECK(Run("frobnicate").status == 2);
     CHECK(Run("render x.rib --tolerance -1").status == 2);
+    CHECK(Run("render x.rib -o out.png").status == 2);  // -o writes OpenEXR (--png a preview)
+    CHECK(Run("render x.rib -o out.TIF").status == 2);
 }
 
 TEST_CASE("cli: compile exits 0 or prints diagnostics and exits 1", "[tools]") {
