@@ -242,6 +242,9 @@ std::optional<Value> Lowerer::LowerTexture(const lang::Expr& e, Type expected) {
         m_diags.warning(nameArg.loc, why + "; its lookups give the fill value " + FormatFill(options.fill));
     options.swrap = swrap.value_or(map ? map->swrap() : texture::Wrap::Periodic);
     options.twrap = twrap.value_or(map ? map->twrap() : texture::Wrap::Periodic);
+    if (map && map->nonFiniteTexels() > 0 && !generic)
+        m_diags.warning(nameArg.loc, "texture '" + path + "' has " + std::to_string(map->nonFiniteTexels()) +
+                                         " texels that are NaN or infinite: they are read as 0");
     if (map && channel >= map->channels() && !generic)
         m_diags.warning(nameArg.loc, "texture '" + path + "' has " + std::to_string(map->channels()) +
                                          " channel(s): channel " + std::to_string(channel) + " gives the fill value");

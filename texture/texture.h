@@ -1,6 +1,6 @@
 // texture/texture.h: texture maps for displacement, read through OpenImageIO and bounded by
 // min/max pyramids (issue 16). The stage sits beside the number types: it knows doubles and
-// closed ranges only; vm/numbers/texture_lookup.h turns these into the lookups of every number
+// closed ranges only; vm/texture_lookup.h turns these into the lookups of every number
 // type the VM runs.
 //
 // Semantics (double is the reference, as everywhere in affray):

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include "tests/test_util.h"
 #include "tests/texture/texture_test_util.h"
@@ -242,4 +243,16 @@ TEST_CASE("texture(): compiled bytecode keeps its slots and reads the maps again
     std::filesystem::remove(dir.path("ramp.exr"));
     loaded = compiler::LoadCompiledShader(afb);
     CHECK(loaded.ok());
+}
+
+TEST_CASE("texture(): a map with NaN or infinite texels reads them as 0, with a warning", "[compiler][texture]") {
+    test::tex::ScratchDir dir;
+    const float inf = std::numeric_limits<float>::infinity();
+    test::tex::WriteImage(dir.path("bad.exr"), 2, 1, 1, {std::numeric_limits<float>::quiet_NaN(), inf});
+    compiler::CompileResult r = CompileIn(dir, R"(displacement d() { P += texture("bad.exr", s, t) * normalize(N); })");
+    INFO(r.diagnostics.format());
+    REQUIRE(r.ok());
+    CHECK(r.diagnostics.format().find("has 2 texels that are NaN or infinite: they are read as 0") !=
+          std::string::npos);
+    CHECK(ZAt(r.shader->bound, 0.25, 0.5) == 0);
 }

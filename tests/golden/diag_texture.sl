@@ -11,4 +11,6 @@ displacement t(float b = 0.1) {
     P += texture(map, P, t) * N;
     P += texture(map, s, t, "lerp", 1, "blur", b) * N;
     P += texture("nowhere.exr", s, t) * N;
+    P += texture(format("%f", s), s, t) * N;
+    P += texture(map, s, t, "width", "wide") * N;
 }
