@@ -294,6 +294,12 @@ compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveDesc& patch) {
     return spaces;
 }
 
+/// `path` as the scene names it: as written if absolute, else from the RIB file's directory.
+std::string FromSceneDir(const SceneDesc& scene, const std::string& path) {
+    const std::filesystem::path p(path);
+    return p.is_absolute() ? path : (std::filesystem::path(scene.path).parent_path() / p).string();
+}
+
 /// The options and attributes a shader on `patch` may query (option(), attribute(), depth()):
 /// those of RI Spec 3.2 tables 15.4 and 15.5 that the scene holds.
 compiler::SceneFacts FactsOf(const SceneDesc& scene, const PrimitiveDesc& patch) {
@@ -310,10 +316,8 @@ compiler::SceneFacts FactsOf(const SceneDesc& scene, const PrimitiveDesc& patch)
     facts.attributes["Sides"] = numbers({patch.twoSided ? 2.0 : 1.0});
     // Option "searchpath" "texture", relative directories taken from the RIB file's, then that
     // directory itself.
-    const std::filesystem::path ribDir = std::filesystem::path(scene.path).parent_path();
-    for (const std::string& dir : scene.textureSearchPath)
-        facts.textureSearchPath.push_back(std::filesystem::path(dir).is_absolute() ? dir : (ribDir / dir).string());
-    facts.textureSearchPath.push_back(ribDir.string());
+    for (const std::string& dir : scene.textureSearchPath) facts.textureSearchPath.push_back(FromSceneDir(scene, dir));
+    facts.textureSearchPath.push_back(std::filesystem::path(scene.path).parent_path().string());
     return facts;
 }
 
@@ -321,10 +325,8 @@ compiler::SceneFacts FactsOf(const SceneDesc& scene, const PrimitiveDesc& patch)
 /// texture newer than its picture is kept, as make would.
 void MakeTextures(const SceneDesc& desc, diag::Report* report) {
     namespace fs = std::filesystem;
-    const fs::path ribDir = fs::path(desc.path).parent_path();
     for (const SceneDesc::MakeTextureDesc& m : desc.makeTextures) {
-        auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() ? fs::path(p) : ribDir / p; };
-        const fs::path picture = resolve(m.picture), texture = resolve(m.texture);
+        const fs::path picture = FromSceneDir(desc, m.picture), texture = FromSceneDir(desc, m.texture);
         std::error_code ec, ec2;
         const auto made = fs::last_write_time(texture, ec), source = fs::last_write_time(picture, ec2);
         if (!ec && !ec2 && made >= source) continue;
@@ -389,9 +391,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
     compiler::ShaderCache cache;
     // The scene's search path first, relative directories taken from the RIB file's.
     std::vector<std::string> searchPath;
-    const std::filesystem::path ribDir = std::filesystem::path(desc.path).parent_path();
-    for (const std::string& dir : desc.shaderSearchPath)
-        searchPath.push_back(std::filesystem::path(dir).is_absolute() ? dir : (ribDir / dir).string());
+    for (const std::string& dir : desc.shaderSearchPath) searchPath.push_back(FromSceneDir(desc, dir));
     searchPath.insert(searchPath.end(), shaderPaths.begin(), shaderPaths.end());
     // The distinct light lists of the primitives (Illuminate), numbered in order of first use
     // after set 0, every light.
