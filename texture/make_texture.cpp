@@ -3,11 +3,9 @@
 // modes recorded in the file (texture() reads them as the lookups' defaults). affray's lookups
 // read any image directly, so the conversion matters only to scenes whose shaders name the made
 // file.
-#include <OpenImageIO/imagebufalgo.h>
-
 #include <filesystem>
-#include <sstream>
 
+#include "texture/image_io.h"
 #include "texture/texture.h"
 
 namespace affray::texture {
@@ -19,15 +17,11 @@ bool MakeTexture(const std::string& picture, const std::string& output, Wrap swr
         *error = "cannot make texture '" + output + "': image '" + picture + "' does not exist";
         return false;
     }
-    OIIO::ImageSpec config;
-    config.attribute("wrapmodes", std::string(WrapName(swrap)) + "," + WrapName(twrap));
-    std::ostringstream messages;
-    if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, picture, output, config, &messages)) {
-        std::string text = messages.str();
-        while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-        for (char& c : text)
-            if (c == '\n') c = ' ';
-        *error = "cannot make texture '" + output + "' from '" + picture + "': " + text;
+    std::string why;
+    const io::ImageIo* images = io::Get(&why);
+    if (!images ||
+        !images->MakeTx(picture, output, std::string(WrapName(swrap)) + "," + WrapName(twrap), std::nullopt, &why)) {
+        *error = "cannot make texture '" + output + "' from '" + picture + "': " + why;
         fs::remove(output, ec);  // nothing half-written left behind
         return false;
     }

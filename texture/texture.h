@@ -1,4 +1,4 @@
-// texture/texture.h: texture maps for displacement, read through OpenImageIO and bounded by
+// texture/texture.h: texture maps for displacement, read through OpenImageIO (image_io.h) and bounded by
 // min/max pyramids (issue 16). The stage sits beside the number types: it knows doubles and
 // closed ranges only; vm/texture_lookup.h turns these into the lookups of every number
 // type the VM runs.

@@ -2,8 +2,6 @@
 // pyramid build when a file is opened, level-0 texels in tiles read on demand, the process-wide
 // tile budget with least-recently-used eviction, the per-thread tile cache that keeps most texel
 // reads free of locks, and the process-wide cache of maps keyed by path and modification time.
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <array>
 #include <filesystem>
@@ -13,6 +11,7 @@
 #include <system_error>
 #include <utility>
 
+#include "texture/image_io.h"
 #include "texture/texture_impl.h"
 
 namespace affray::texture {
@@ -45,10 +44,9 @@ struct Slot {
 /// The open image of a file map and its tile slots.
 class FileSource {
   public:
-    std::mutex inputMutex;  // OIIO reads through one ImageInput, one read at a time
-    std::unique_ptr<OIIO::ImageInput> input;
+    std::mutex inputMutex;  // one read at a time through the reader
+    std::unique_ptr<io::ImageReader> input;
     MapImpl* map = nullptr;
-    int originX = 0, originY = 0, originZ = 0;
     int fileTileWidth = 0, fileTileHeight = 0;  // 0: a scanline file
     std::unique_ptr<Slot[]> slots;
     int slotCount = 0;
@@ -161,13 +159,6 @@ struct ThreadTiles {
 };
 thread_local ThreadTiles t_tiles;
 
-/// The one-line form of an OIIO message.
-std::string OneLine(std::string s) {
-    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
-    for (size_t p; (p = s.find('\n')) != std::string::npos;) s.replace(p, 1, "; ");
-    return s.empty() ? "unknown error" : s;
-}
-
 }  // namespace
 
 FileSource::~FileSource() {
@@ -185,8 +176,7 @@ bool FileSource::readRegion(int x0, int x1, int y0, int y1, float* out) {
             band.resize(row * (y1 - y0));
             dst = band.data();
         }
-        if (!input->read_scanlines(0, 0, originY + y0, originY + y1, originZ, 0, channels, OIIO::TypeDesc::FLOAT, dst))
-            return false;
+        if (!input->readScanlines(y0, y1, dst)) return false;
         if (dst != out) {
             const size_t width = static_cast<size_t>(x1 - x0) * channels;
             for (int y = 0; y < y1 - y0; ++y)
@@ -202,9 +192,7 @@ bool FileSource::readRegion(int x0, int x1, int y0, int y1, float* out) {
     std::vector<float> region;
     if (!aligned) region.resize(static_cast<size_t>(ax1 - ax0) * (ay1 - ay0) * channels);
     float* dst = aligned ? out : region.data();
-    if (!input->read_tiles(0, 0, originX + ax0, originX + ax1, originY + ay0, originY + ay1, originZ, originZ + 1, 0,
-                           channels, OIIO::TypeDesc::FLOAT, dst))
-        return false;
+    if (!input->readTiles(ax0, ax1, ay0, ay1, dst)) return false;
     if (!aligned) {
         const size_t row = static_cast<size_t>(ax1 - ax0) * channels, width = static_cast<size_t>(x1 - x0) * channels;
         for (int y = y0; y < y1; ++y)
@@ -229,7 +217,7 @@ std::vector<std::pair<int, std::shared_ptr<Tile>>> FileSource::readTiles(int ind
         if (!ok) {
             // A file changed or damaged since it was opened: its texels read as 0 (the map's
             // pyramid, from the first reading, still bounds them).
-            input->geterror();
+            input->error();  // clears the reader's message
             ++readFailures;
         }
     }
@@ -332,16 +320,19 @@ namespace {
 /// Reads a file's header and builds its pyramid, streaming the image in bands of rows.
 std::shared_ptr<const TextureMap> ReadMap(const std::string& path, std::string* error) {
     auto fail = [&](const std::string& message) -> std::shared_ptr<const TextureMap> {
-        if (error) *error = "cannot read texture '" + path + "': " + OneLine(message);
+        if (error) *error = "cannot read texture '" + path + "': " + message;
         return nullptr;
     };
-    std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
-    if (!input) return fail(OIIO::geterror());
-    const OIIO::ImageSpec spec = input->spec(0, 0);
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return fail("the image has no pixels");
+    std::string why;
+    const io::ImageIo* images = io::Get(&why);
+    if (!images) return fail(why);
+    std::unique_ptr<io::ImageReader> input = images->Open(path, &why);
+    if (!input) return fail(why);
+    const io::ImageHeader spec = input->header();
+    if (spec.width <= 0 || spec.height <= 0 || spec.channels <= 0) return fail("the image has no pixels");
 
     Wrap swrap = Wrap::Periodic, twrap = Wrap::Periodic;
-    const std::string modes = spec.get_string_attribute("wrapmodes");
+    const std::string& modes = spec.wrapmodes;
     if (!modes.empty()) {
         const size_t comma = modes.find(',');
         const std::string s = modes.substr(0, comma), t = comma == std::string::npos ? s : modes.substr(comma + 1);
@@ -349,27 +340,24 @@ std::shared_ptr<const TextureMap> ReadMap(const std::string& path, std::string* 
         if (!ParseWrap(t, &twrap)) twrap = Wrap::Periodic;
     }
 
-    auto map = std::make_shared<MapImpl>(spec.width, spec.height, spec.nchannels, path, swrap, twrap);
+    auto map = std::make_shared<MapImpl>(spec.width, spec.height, spec.channels, path, swrap, twrap);
     auto source = std::make_unique<FileSource>();
     source->map = map.get();
-    source->originX = spec.x;
-    source->originY = spec.y;
-    source->originZ = spec.z;
-    source->fileTileWidth = spec.tile_width > 0 && spec.tile_height > 0 ? spec.tile_width : 0;
-    source->fileTileHeight = source->fileTileWidth ? spec.tile_height : 0;
+    source->fileTileWidth = spec.tileWidth;
+    source->fileTileHeight = spec.tileHeight;
     source->input = std::move(input);
 
     // Bands: whole rows of file tiles, a multiple of the pyramid's blocks, about 64 rows high.
     int band = source->fileTileHeight ? source->fileTileHeight : kTileSize;
     if (source->fileTileHeight)
         while (band % kBlockSize != 0 || band < kTileSize) band += source->fileTileHeight;
-    PyramidBuilder builder(spec.width, spec.height, spec.nchannels);
+    PyramidBuilder builder(spec.width, spec.height, spec.channels);
     std::vector<float> texels;
     int64_t nonFinite = 0;
     for (int y0 = 0; y0 < spec.height; y0 += band) {
         const int y1 = std::min(y0 + band, spec.height);
-        texels.resize(static_cast<size_t>(spec.width) * (y1 - y0) * spec.nchannels);
-        if (!source->readRegion(0, spec.width, y0, y1, texels.data())) return fail(source->input->geterror());
+        texels.resize(static_cast<size_t>(spec.width) * (y1 - y0) * spec.channels);
+        if (!source->readRegion(0, spec.width, y0, y1, texels.data())) return fail(source->input->error());
         nonFinite += ZeroNonFinite(texels.data(), texels.size());
         builder.AddRows(y0, y1 - y0, texels.data());
     }
@@ -404,7 +392,7 @@ std::shared_ptr<const TextureMap> Open(const std::string& path, std::string* err
     std::error_code ec;
     const auto mtime = std::filesystem::last_write_time(path, ec);
     if (ec) {
-        // Let OIIO say why (it names a missing file as such); the map is not cached.
+        // Let the reader say why (OIIO names a missing file as such); the map is not cached.
         return ReadMap(path, error);
     }
     MapCache& cache = MapCache::Get();

@@ -4,7 +4,6 @@
 // displacing a plane seen obliquely. Every render converges (no ray at the depth limit, certified
 // errors finite), and the images agree: bit for bit between the formats that keep the texels
 // exactly, within the quantisation of the half, 8-bit and lossy ones.
-#include <OpenImageIO/imagebufalgo.h>
 
 #include <catch2/catch.hpp>
 
@@ -70,28 +69,26 @@ TEST_CASE("texture render: one map in every format displaces a plane with certif
               "    P += Km * texture(map, s, t) * normalize(N);\n"
               "    N = calculatenormal(P);\n}\n");
     const std::vector<float> texels = Bumps();
-    auto write = [&](const char* name, const OIIO::TypeDesc& format, int tile = 0) {
+    auto write = [&](const char* name, test::tex::PixelFormat format, int tile = 0) {
         test::tex::ImageLayout layout;
         layout.format = format;
         layout.tile = tile;
         test::tex::WriteImage(dir.Path(name), kMapSize, kMapSize, 1, texels, layout);
     };
-    write("float.exr", OIIO::TypeDesc::FLOAT);
-    write("tiled.exr", OIIO::TypeDesc::FLOAT, 16);
-    write("float.tif", OIIO::TypeDesc::FLOAT);
-    write("half.exr", OIIO::TypeDesc::HALF);
-    write("bytes.png", OIIO::TypeDesc::UINT8);
-    write("lossy.jpg", OIIO::TypeDesc::UINT8);
+    write("float.exr", test::tex::PixelFormat::Float);
+    write("tiled.exr", test::tex::PixelFormat::Float, 16);
+    write("float.tif", test::tex::PixelFormat::Float);
+    write("half.exr", test::tex::PixelFormat::Half);
+    write("bytes.png", test::tex::PixelFormat::UInt8);
+    write("lossy.jpg", test::tex::PixelFormat::UInt8);
     // The .tx a pipeline gets from maketx: tiled, mip-mapped TIFF, texels kept as float.
     {
-        OIIO::ImageSpec config;
-        config.format = OIIO::TypeDesc::FLOAT;
         // maketx writes "black" wrap modes unless told: the lookups follow the file's.
-        config.attribute("wrapmodes", "periodic,periodic");
-        std::stringstream errors;
-        INFO(errors.str());
-        REQUIRE(OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, dir.Path("float.exr"),
-                                                 dir.Path("maketx.tx"), config, &errors));
+        std::string error;
+        const bool made = test::tex::Images().MakeTx(dir.Path("float.exr"), dir.Path("maketx.tx"), "periodic,periodic",
+                                                     test::tex::PixelFormat::Float, &error);
+        INFO(error);
+        REQUIRE(made);
     }
 
     const Rendered reference = RenderWithMap(dir, "float.exr");
@@ -124,7 +121,7 @@ TEST_CASE("texture render: MakeTexture makes a tiled, mip-mapped texture that a 
               "    P += Km * texture(map, s, t) * normalize(N);\n}\n");
     std::vector<float> texels = Bumps();
     test::tex::ImageLayout bytes;
-    bytes.format = OIIO::TypeDesc::UINT8;
+    bytes.format = test::tex::PixelFormat::UInt8;
     test::tex::WriteImage(dir.Path("picture.png"), kMapSize, kMapSize, 1, texels, bytes);
     const std::string scene = "MakeTexture \"picture.png\" \"made.tx\" \"clamp\" \"black\" \"gaussian\" 2 2\n";
     Rendered made;
@@ -137,12 +134,10 @@ TEST_CASE("texture render: MakeTexture makes a tiled, mip-mapped texture that a 
                                      "WorldEnd\n",
                                  &made.stats);
     // The file: tiled, mip-mapped, the wrap modes of the request; texels those of the picture.
-    auto in = OIIO::ImageInput::open(dir.Path("made.tx"));
-    REQUIRE(in);
-    CHECK(in->spec().tile_width > 0);
-    CHECK(in->seek_subimage(0, 1));
-    CHECK(in->spec(0, 0).get_string_attribute("wrapmodes") == "clamp,black");
-    in->close();
+    const texture::io::ImageHeader header = test::tex::ReadHeader(dir.Path("made.tx"));
+    CHECK(header.tileWidth > 0);
+    CHECK(header.mipLevels > 1);
+    CHECK(header.wrapmodes == "clamp,black");
     std::string error;
     auto map = texture::Open(dir.Path("made.tx"), &error);
     REQUIRE(map);
@@ -156,4 +151,25 @@ TEST_CASE("texture render: MakeTexture makes a tiled, mip-mapped texture that a 
     size_t hits = 0;
     for (size_t i = 3; i < made.image.rgba.size(); i += 4) hits += made.image.rgba[i] > 0;
     CHECK(hits > 500);
+}
+
+TEST_CASE("texture render: only a scene that reads an image loads the image module", "[renderer][texture]") {
+    // OpenImageIO is a module loaded on first use (texture/image_io.h): a scene without maps
+    // must not pay its start-up. CTest runs each test case in a process of its own.
+    REQUIRE_FALSE(texture::io::Loaded());
+    test::TempDir dir;
+    dir.Write("bumps.sl", "displacement bumps(float Km = 0.05) {\n    P += Km * noise(P * 4) * normalize(N);\n}\n");
+    const std::string head = "Format 16 12 1\nProjection \"perspective\" \"fov\" [40]\nTranslate 0 0 3\nWorldBegin\n";
+    test::RenderRib(dir, head + "Displacement \"bumps\"\nSphere 1 -1 1 360\nWorldEnd\n");
+    CHECK_FALSE(texture::io::Loaded());
+
+    test::tex::WriteImage(dir.Path("map.exr"), 8, 8, 1, std::vector<float>(64, 0.5f));
+    CHECK(texture::io::Loaded());
+    dir.Write("heights.sl",
+              "displacement heights(string map = \"\") {\n    P += 0.1 * texture(map, s, t) * normalize(N);\n}\n");
+    const renderer::ImageBuffer image = test::RenderRib(
+        dir, head + "Displacement \"heights\" \"string map\" [\"map.exr\"]\nSphere 1 -1 1 360\nWorldEnd\n");
+    size_t hits = 0;
+    for (size_t i = 3; i < image.rgba.size(); i += 4) hits += image.rgba[i] > 0;
+    CHECK(hits > 20);
 }

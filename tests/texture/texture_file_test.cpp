@@ -79,18 +79,18 @@ TEST_CASE("texture file: every format reads as OpenImageIO reads it", "[texture]
     }
     SECTION("PNG, 8 bits") {
         const std::string path = dir.path("a.png");
-        WriteImage(path, 33, 20, 3, Gradient(33, 20, 3, rng), ImageLayout(OIIO::TypeDesc::UINT8));
+        WriteImage(path, 33, 20, 3, Gradient(33, 20, 3, rng), ImageLayout(PixelFormat::UInt8));
         auto map = OpenAndCompare(path);
         CHECK(map->Texel(0, 0, 0) * 255.0f == Approx(std::round(map->Texel(0, 0, 0) * 255.0f)));
     }
     SECTION("JPEG") {
         const std::string path = dir.path("a.jpg");
-        WriteImage(path, 40, 30, 3, Gradient(40, 30, 3, rng), ImageLayout(OIIO::TypeDesc::UINT8));
+        WriteImage(path, 40, 30, 3, Gradient(40, 30, 3, rng), ImageLayout(PixelFormat::UInt8));
         OpenAndCompare(path);
     }
     SECTION("TIFF, scanlines, 16 bits, with wrap modes") {
         const std::string path = dir.path("a.tif");
-        ImageLayout layout(OIIO::TypeDesc::UINT16);
+        ImageLayout layout(PixelFormat::UInt16);
         layout.wrapmodes = "clamp,black";
         WriteImage(path, 130, 70, 2, Gradient(130, 70, 2, rng), layout);
         auto map = OpenAndCompare(path);
@@ -100,18 +100,15 @@ TEST_CASE("texture file: every format reads as OpenImageIO reads it", "[texture]
     SECTION("TIFF, tiled and MIP-mapped (maketx's .tx), level 0 read") {
         const std::string path = dir.path("a.tx");
         ImageLayout layout;
-        layout.format = OIIO::TypeDesc::FLOAT;
+        layout.format = PixelFormat::Float;
         layout.tile = 64;
         layout.mipmap = true;
         layout.wrapmodes = "black";
         const int w = 150, h = 100;
         WriteImage(path, w, h, 1, RandomTexels(rng, static_cast<size_t>(w) * h), layout);
-        {
-            auto in = OIIO::ImageInput::open(path);
-            REQUIRE(in);
-            CHECK(in->spec().tile_width == 64);
-            CHECK(in->seek_subimage(0, 1));  // the file has a second MIP level
-        }
+        const affray::texture::io::ImageHeader header = ReadHeader(path);
+        CHECK(header.tileWidth == 64);
+        CHECK(header.mipLevels > 1);
         auto map = OpenAndCompare(path);
         CHECK(map->swrap() == Wrap::Black);
         CHECK(map->twrap() == Wrap::Black);

@@ -1,0 +1,151 @@
+// texture/image_io_oiio.cpp: the image-file module (libaffray_image_io.so), the only code of
+// affray that calls OpenImageIO. texture/image_io.h says why it is a module.
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <sstream>
+
+#include "texture/image_io.h"
+
+namespace affray::texture::io {
+namespace {
+
+/// An OIIO message on one line.
+std::string OneLine(std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    for (size_t p; (p = s.find('\n')) != std::string::npos;) s.replace(p, 1, "; ");
+    return s.empty() ? "unknown error" : s;
+}
+
+OIIO::TypeDesc TypeOf(PixelFormat f) {
+    switch (f) {
+        case PixelFormat::Half: return OIIO::TypeDesc::HALF;
+        case PixelFormat::UInt8: return OIIO::TypeDesc::UINT8;
+        case PixelFormat::UInt16: return OIIO::TypeDesc::UINT16;
+        case PixelFormat::Float: break;
+    }
+    return OIIO::TypeDesc::FLOAT;
+}
+
+class OiioReader final : public ImageReader {
+  public:
+    OiioReader(std::unique_ptr<OIIO::ImageInput> input, const ImageHeader& header)
+        : m_input(std::move(input)), m_header(header) {}
+    const ImageHeader& header() const override { return m_header; }
+    bool readScanlines(int y0, int y1, float* out) override {
+        return m_input->read_scanlines(0, 0, m_header.y + y0, m_header.y + y1, m_header.z, 0, m_header.channels,
+                                       OIIO::TypeDesc::FLOAT, out);
+    }
+    bool readTiles(int x0, int x1, int y0, int y1, float* out) override {
+        return m_input->read_tiles(0, 0, m_header.x + x0, m_header.x + x1, m_header.y + y0, m_header.y + y1, m_header.z,
+                                   m_header.z + 1, 0, m_header.channels, OIIO::TypeDesc::FLOAT, out);
+    }
+    std::string error() override { return OneLine(m_input->geterror()); }
+
+  private:
+    std::unique_ptr<OIIO::ImageInput> m_input;
+    ImageHeader m_header;
+};
+
+class OiioImageIo final : public ImageIo {
+  public:
+    std::unique_ptr<ImageReader> Open(const std::string& path, std::string* error) const override {
+        std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
+        if (!input) {
+            *error = OneLine(OIIO::geterror());
+            return nullptr;
+        }
+        const OIIO::ImageSpec spec = input->spec(0, 0);
+        ImageHeader h;
+        h.width = spec.width;
+        h.height = spec.height;
+        h.channels = spec.nchannels;
+        h.x = spec.x;
+        h.y = spec.y;
+        h.z = spec.z;
+        if (spec.tile_width > 0 && spec.tile_height > 0) {
+            h.tileWidth = spec.tile_width;
+            h.tileHeight = spec.tile_height;
+        }
+        h.wrapmodes = spec.get_string_attribute("wrapmodes");
+        while (input->seek_subimage(0, h.mipLevels)) ++h.mipLevels;
+        if (!input->seek_subimage(0, 0)) {
+            *error = OneLine(input->geterror());
+            return nullptr;
+        }
+        return std::make_unique<OiioReader>(std::move(input), h);
+    }
+
+    bool MakeTx(const std::string& picture, const std::string& output, const std::string& wrapmodes,
+                std::optional<PixelFormat> format, std::string* error) const override {
+        OIIO::ImageSpec config;
+        if (format) config.format = TypeOf(*format);
+        config.attribute("wrapmodes", wrapmodes);
+        std::ostringstream messages;
+        if (OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, picture, output, config, &messages))
+            return true;
+        *error = OneLine(messages.str());
+        return false;
+    }
+
+    bool Write(const std::string& path, int width, int height, int channels, const float* texels,
+               const WriteLayout& layout, std::string* error) const override {
+        auto fail = [&](const std::string& why) {
+            *error = "cannot write '" + path + "': " + OneLine(why);
+            return false;
+        };
+        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+        if (!out) return fail(OIIO::geterror());
+        OIIO::ImageSpec spec(width, height, channels, TypeOf(layout.format));
+        if (layout.tile) spec.tile_width = spec.tile_height = layout.tile;
+        if (!layout.wrapmodes.empty()) spec.attribute("wrapmodes", layout.wrapmodes);
+        // OIIO's TIFF writer takes no MIP levels as such: like maketx, it writes them as subimages
+        // of a "Plain Texture", which its reader reads as MIP levels.
+        const bool asMipLevels = out->supports("mipmap");
+        if (layout.mipmap && !asMipLevels && !out->supports("multiimage"))
+            return fail("the format stores no MIP levels");
+        if (layout.mipmap && !asMipLevels) spec.attribute("textureformat", "Plain Texture");
+        if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, texels)) return fail(out->geterror());
+        if (layout.mipmap) {
+            std::vector<float> level(texels, texels + static_cast<size_t>(width) * height * channels);
+            int w = width, h = height;
+            while (w > 1 || h > 1) {
+                const int nw = std::max(1, w / 2), nh = std::max(1, h / 2);
+                std::vector<float> next(static_cast<size_t>(nw) * nh * channels);
+                for (int y = 0; y < nh; ++y)
+                    for (int x = 0; x < nw; ++x)
+                        for (int c = 0; c < channels; ++c) {
+                            double sum = 0;
+                            for (int dy = 0; dy < 2; ++dy)
+                                for (int dx = 0; dx < 2; ++dx)
+                                    sum += level[(static_cast<size_t>(std::min(2 * y + dy, h - 1)) * w +
+                                                  std::min(2 * x + dx, w - 1)) *
+                                                     channels +
+                                                 c];
+                            next[(static_cast<size_t>(y) * nw + x) * channels + c] = static_cast<float>(sum / 4);
+                        }
+                OIIO::ImageSpec s(nw, nh, channels, TypeOf(layout.format));
+                if (layout.tile) s.tile_width = s.tile_height = layout.tile;
+                if (!asMipLevels) s.attribute("textureformat", "Plain Texture");
+                if (!out->open(path, s,
+                               asMipLevels ? OIIO::ImageOutput::AppendMIPLevel : OIIO::ImageOutput::AppendSubimage) ||
+                    !out->write_image(OIIO::TypeDesc::FLOAT, next.data()))
+                    return fail(out->geterror());
+                level = std::move(next);
+                w = nw;
+                h = nh;
+            }
+        }
+        if (!out->close()) return fail(out->geterror());
+        return true;
+    }
+};
+
+}  // namespace
+}  // namespace affray::texture::io
+
+extern "C" __attribute__((visibility("default"))) const affray::texture::io::ImageIo* affray_image_io(int abi) {
+    static const affray::texture::io::OiioImageIo io;
+    return abi == affray::texture::io::kAbi ? &io : nullptr;
+}
