@@ -35,8 +35,8 @@ Rotate -130 1 0 0
 WorldBegin
   LightSource "ambientlight" 1 "intensity" [0.06]
   LightSource "distantlight" 2 "intensity" [1.1] "from" [-3 1.5 1.1] "to" [0 0 0]
-  Color [)" << color
-        << R"(]
+  Color [)"
+        << color << R"(]
   Surface "plastic"
   AttributeBegin
     Displacement "wave" "Km" [0.06] "frequency" [6] "decay" [2.5]
@@ -62,8 +62,8 @@ struct SceneDir {
         std::filesystem::copy_file(test::SourceDir() + "/shaders/wave.sl", dir.Path("wave.sl"));
     }
     std::string Render(const std::string& output, const std::string& extra, int* status) const {
-        test::CliOutput out = test::RunCli(
-            "render " + Quote(dir.Path("scene.rib")) + " -o " + Quote(output) + " --quiet " + extra, true);
+        test::CliOutput out =
+            test::RunCli("render " + Quote(dir.Path("scene.rib")) + " -o " + Quote(output) + " --quiet " + extra, true);
         *status = out.status;
         return out.out;
     }
@@ -249,7 +249,9 @@ TEST_CASE("faults: a checkpoint whose last tile is cut short resumes without it,
     REQUIRE(scene.Render(reference, "", &status).empty());
     REQUIRE(status == 0);
     if (!Interrupted(scene, output, 3)) {
-        WARN("skipped: " "the render finished before the signal");
+        WARN(
+            "skipped: "
+            "the render finished before the signal");
         return;
     };
     const int tiles = CheckpointTiles(checkpoint);
@@ -301,12 +303,14 @@ TEST_CASE("faults: an output that cannot be written is an error naming it, befor
     }
     SECTION("a directory without write permission") {
         if (::geteuid() == 0) {
-        WARN("skipped: " "root may write anywhere");
-        return;
-    };
+            WARN(
+                "skipped: "
+                "root may write anywhere");
+            return;
+        };
         std::filesystem::create_directory(scene.dir.Path("ro"));
-        std::filesystem::permissions(scene.dir.Path("ro"), std::filesystem::perms::owner_read |
-                                                               std::filesystem::perms::owner_exec);
+        std::filesystem::permissions(scene.dir.Path("ro"),
+                                     std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
         const std::string text = scene.Render(scene.dir.Path("ro/out.exr"), "", &status);
         CHECK(status == 3);
         CHECK(text.find("ro/out.exr: error: cannot write file: Permission denied") != std::string::npos);
@@ -338,9 +342,10 @@ TEST_CASE("faults: a full disk is an error naming the output, with nothing left 
     while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
     const int status = pclose(pipe);
     INFO(out);
-    if (!WIFEXITED(status) || WEXITSTATUS(status) == 99 || out.find("unshare:") != std::string::npos)
-        {
-        WARN("skipped: " "cannot mount a tmpfs here");
+    if (!WIFEXITED(status) || WEXITSTATUS(status) == 99 || out.find("unshare:") != std::string::npos) {
+        WARN(
+            "skipped: "
+            "cannot mount a tmpfs here");
         return;
     };
     CHECK(WEXITSTATUS(status) == 3);
