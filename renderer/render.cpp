@@ -2,7 +2,9 @@
 // Each thread owns its intersectors and shading interpreters (they hold registers), takes tiles
 // from a shared counter, traces the samples the film asks for (renderer/image/film.h) and resolves
 // only its tile's pixels: the image does not depend on the thread count or the tile order, and
-// the statistics are sums and maxima, which do not either.
+// the statistics are sums and maxima, which do not either. Tiles a TileStore holds (a resumed
+// render's checkpoint) are copied in instead of rendered, each finished tile is handed to it, and
+// the stop flag (a signal) is checked between samples: a tile stopped part way is dropped whole.
 #include "renderer/render.h"
 
 #include <algorithm>

@@ -33,7 +33,7 @@ class RenderProgress {
 };
 
 /// Keeps a render's finished tiles outside it and gives back those an earlier, interrupted render
-/// of the same image finished (the command line's checkpoint file, renderer/image/checkpoint.h).
+/// of the same image finished (the command line's checkpoint file, renderer/checkpoint.h).
 class TileStore {
   public:
     virtual ~TileStore() = default;

@@ -1,9 +1,10 @@
 // tests/tools/faults_cli_test.cpp: `affray render` under faults, end to end (issue 17): a render
 // killed by SIGINT or SIGTERM writes no image and leaves no temporary file but its checkpoint,
 // `--resume` then renders the missing tiles and writes the uninterrupted render's file byte for
-// byte; a checkpoint of another scene, of other options, or damaged is refused; an output that
-// cannot be written (missing directory, a directory, a full disk) is an error naming it, with
-// nothing left behind.
+// byte (after SIGKILL too, which only the checkpoint's tile-by-tile writes survive); a checkpoint
+// of another scene, of other options, or damaged is refused; an output that cannot be written
+// (missing directory, a directory, no permission, a read-only or full disk: a real 64 KiB tmpfs)
+// is an error naming it, with nothing left behind.
 #include <catch2/catch.hpp>
 
 #include <fcntl.h>
@@ -143,12 +144,17 @@ void KillAndResume(const SceneDir& scene, int signal, const std::string& referen
     const std::string stderrText = test::ReadText(log);
     INFO("stderr: " << stderrText);
     REQUIRE(tiles >= 2);
-    // Stopped by the signal, not finished first (the scene is slow enough), nor killed by it.
-    REQUIRE(WIFEXITED(status));
-    CHECK(WEXITSTATUS(status) == 128 + signal);
-    CHECK(stderrText.find(std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
-                          ": no image written") != std::string::npos);
-    CHECK(stderrText.find("--resume") != std::string::npos);
+    if (signal == SIGKILL) {
+        // Killed outright: the tiles written before it are in the file all the same.
+        REQUIRE(WIFSIGNALED(status));
+    } else {
+        // Stopped by the signal, not finished first (the scene is slow enough), nor killed by it.
+        REQUIRE(WIFEXITED(status));
+        CHECK(WEXITSTATUS(status) == 128 + signal);
+        CHECK(stderrText.find(std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
+                              ": no image written") != std::string::npos);
+        CHECK(stderrText.find("--resume") != std::string::npos);
+    }
     // No image and no temporary file; the checkpoint holds the finished tiles.
     CHECK_FALSE(std::filesystem::exists(output));
     CHECK_FALSE(HasTemporary(scene.dir.Path("")));
@@ -179,6 +185,8 @@ TEST_CASE("faults: SIGINT and SIGTERM stop a render, and --resume writes the uni
     CHECK_FALSE(std::filesystem::exists(reference + ".checkpoint"));
     KillAndResume(scene, SIGINT, reference);
     KillAndResume(scene, SIGTERM, reference);
+    // SIGKILL cannot be caught: each tile is written as it finishes, so those are kept.
+    KillAndResume(scene, SIGKILL, reference);
 }
 
 TEST_CASE("faults: --resume refuses the checkpoint of another scene, other options, or a damaged one",
@@ -353,5 +361,19 @@ TEST_CASE("faults: a full disk is an error naming the output, with nothing left 
     // The checkpoint could not be written either: a warning, and the render went on.
     CHECK(out.find("out.exr.checkpoint: warning: cannot write the checkpoint: No space left on device") !=
           std::string::npos);
+    CHECK(out.find("listing:\n") != std::string::npos);
+
+    // A read-only file system: refused before the render, as a directory without permission is.
+    const std::string readOnly = "mount -t tmpfs -o ro tmpfs " + Quote(disk) + " || exit 99; " + AFFRAY_CLI +
+                                 " render " + Quote(scene.dir.Path("scene.rib")) + " -o " + Quote(disk + "/out.exr") +
+                                 " --quiet; status=$?; echo \"listing:$(ls -A " + Quote(disk) + ")\"; exit $status";
+    pipe = popen(("unshare -rm sh -c " + Quote(readOnly) + " 2>&1").c_str(), "r");
+    REQUIRE(pipe);
+    out.clear();
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+    const int roStatus = pclose(pipe);
+    INFO(out);
+    CHECK(WEXITSTATUS(roStatus) == 3);
+    CHECK(out.find("out.exr: error: cannot write file: Read-only file system") != std::string::npos);
     CHECK(out.find("listing:\n") != std::string::npos);
 }
