@@ -4,9 +4,11 @@
 #include <sys/stat.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include "vm/bytecode_file.h"
@@ -51,17 +53,33 @@ std::string ReadFileBytes(const std::string& path) {
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-/// A texture file by size and modification time (nanoseconds).
+/// A file's name without its directories: the identity must not change with the directory a
+/// render is started from, or the one a farm machine mounts the project at.
+std::string FileName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+/// A texture file by name, size and modification time (nanoseconds).
 std::string FileStamp(const std::string& path) {
     struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) return "missing " + path;
-    return path + " size=" + std::to_string(st.st_size) + " mtime=" + std::to_string(st.st_mtim.tv_sec) + "." +
-           std::to_string(st.st_mtim.tv_nsec);
+    if (::stat(path.c_str(), &st) != 0) return "missing " + FileName(path);
+    return FileName(path) + " size=" + std::to_string(st.st_size) + " mtime=" + std::to_string(st.st_mtim.tv_sec) +
+           "." + std::to_string(st.st_mtim.tv_nsec);
 }
 
 void AddTextures(const vm::Program& program, Fnv128* h) {
     if (!program.textures) return;
     for (const vm::TextureSlot& slot : *program.textures) h->Field("texture", FileStamp(slot.path));
+}
+
+/// `program` with its file paths cut to file names (FileName).
+vm::Program WithoutDirectories(const vm::Program& program) {
+    vm::Program copy = program;
+    copy.sourcePath = FileName(copy.sourcePath);
+    if (copy.textures) {
+        auto slots = std::make_shared<vm::TextureSlots>(*copy.textures);
+        for (vm::TextureSlot& slot : *slots) slot.path = FileName(slot.path);
+        copy.textures = slots;
+    }
+    return copy;
 }
 
 std::string Number(double x) {
@@ -98,7 +116,9 @@ RenderIdentity IdentifyRender(const PreparedScene& scene, const RenderOptions& o
     Fnv128 h;
     h.Field("affray render identity", "1");
     h.Field("rib", ReadFileBytes(scene.desc.path));
-    h.Field("scene", ToString(scene.desc));
+    SceneDesc desc = scene.desc;
+    desc.path = FileName(desc.path);
+    h.Field("scene", ToString(desc));
     for (const Primitive& prim : scene.primitives) {
         if (!prim.shader) {
             h.Field("primitive", "no shader");
@@ -106,10 +126,10 @@ RenderIdentity IdentifyRender(const PreparedScene& scene, const RenderOptions& o
         }
         vm::BytecodeFile programs;
         programs.shaderName = prim.shader->name;
-        programs.sourcePath = prim.shader->sourcePath;
+        programs.sourcePath = FileName(prim.shader->sourcePath);
         programs.sourceHash = vm::HashSource(prim.shader->sourceText);
-        programs.bound = prim.bound;
-        programs.shade = prim.shade;
+        programs.bound = WithoutDirectories(prim.bound);
+        programs.shade = WithoutDirectories(prim.shade);
         h.Field("primitive", vm::SaveBytecode(programs));
         h.Field("source", prim.shader->sourceText);
         AddTextures(prim.bound, &h);

@@ -8,7 +8,9 @@
 //            such as --crop and --samples), each primitive's specialised bound and shade programs
 //            (SaveBytecode: so the shader sources, -D/-I and included files count through what
 //            they compiled to) with its shader's source text, and every texture file a program
-//            reads, by size and modification time (not content: maps can be large).
+//            reads, by size and modification time (not content: maps can be large). File paths
+//            count by their file names only, so the identity is the same whichever directory
+//            the render starts in, or wherever a farm machine mounts the project.
 //   options  the render options that change pixels, as canonical "name=value" lines (so a
 //            mismatch can be named): resolution, crop, samples, frame, display mode, tolerance,
 //            bounds, max depth, region budget and ray groups. Options that do not change pixels

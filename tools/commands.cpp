@@ -267,6 +267,8 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
 }  // namespace
 
 int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
+    // From here SIGINT and SIGTERM only set a flag, which the render checks (tools/interrupt.h).
+    Interrupts interrupts;
     diag::Report report;
     std::optional<std::vector<renderer::SceneDesc>> frames = rib::ReadRibFrames(cmd.scenePath, &report);
     // The scene's warnings and notes, before anything renders.
@@ -321,8 +323,7 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
             }
 
     // Frame by frame: an error stops the run, and the frames written before it stay complete.
-    // SIGINT and SIGTERM stop it too, after the frame being rendered is given up (tools/interrupt.h).
-    Interrupts interrupts;
+    // SIGINT and SIGTERM stop it too, giving up the frame being rendered.
     for (size_t i = 0; i < chosen.size(); ++i) {
         const int status = RenderFrame(cmd, *chosen[i], outputs[i], pngs[i], out, err);
         if (status != diag::kExitSuccess) return status;

@@ -214,6 +214,9 @@ TEST_CASE("checkpoint: the render identity changes with the scene, the shader an
     CHECK(base.scene.size() == 32);
     CHECK(base.Hash().size() == 32);
     CHECK(IdentifyRender(Prepare(dir), options).Hash() == base.Hash());  // the same scene again
+    // The same scene in another directory (a farm machine's mount, another working directory).
+    test::TempDir elsewhere;
+    CHECK(IdentifyRender(Prepare(elsewhere), options).Hash() == base.Hash());
 
     // Options that do not change pixels do not change it.
     RenderOptions same = options;
