@@ -638,7 +638,7 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
         });
     auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
 
-    std::atomic<size_t> nextTile{0};
+    std::atomic<size_t> nextTile{0}, tilesDone{0};
     std::vector<IntersectStats> cameraStats(nThreads), shadowStats(nThreads);
     std::vector<uint64_t> cameraRays(nThreads);
     // One bound hierarchy per primitive, shared by every thread and ray of this render.
@@ -683,6 +683,7 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
             if (stopped()) break;
             film.ResolveTile(tiles[i], samples, values, image);
             if (options.tileStore) options.tileStore->Finished(tiles[i], *image);
+            ++tilesDone;
             if (options.progress) options.progress->TileDone();
         }
         cameraStats[index] = ts.cameraStats;
@@ -704,7 +705,8 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
         stats->shadow.Merge(shadowStats[i]);
         stats->cameraRays += cameraRays[i];
     }
-    stats->stopped = stopped();
+    // A stop after the last tile stops nothing: the image is whole.
+    stats->stopped = tilesDone != tiles.size();
     stats->tilesRestored = restored;
     stats->width = cam.xres;
     stats->height = cam.yres;

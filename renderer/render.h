@@ -88,7 +88,7 @@ struct RenderStats {
     size_t cacheBudgetBytes = 0;
     uint64_t cachePeakBytes = 0;  // the most the hierarchies held together
     int width = 0, height = 0;
-    bool stopped = false;   // RenderOptions::stop was set: some tiles are missing from the image
+    bool stopped = false;   // RenderOptions::stop was set in time: some tiles are missing from the image
     int tilesRestored = 0;  // tiles the TileStore gave back instead of being rendered
 
     /// The one-line JSON of `affray render --stats`.
