@@ -2,7 +2,9 @@
 // Each thread owns its intersectors and shading interpreters (they hold registers), takes tiles
 // from a shared counter, traces the samples the film asks for (renderer/image/film.h) and resolves
 // only its tile's pixels: the image does not depend on the thread count or the tile order, and
-// the statistics are sums and maxima, which do not either.
+// the statistics are sums and maxima, which do not either. Tiles a TileStore holds (a resumed
+// render's checkpoint) are copied in instead of rendered, each finished tile is handed to it, and
+// the stop flag (a signal) is checked between samples: a tile stopped part way is dropped whole.
 #include "renderer/render.h"
 
 #include <algorithm>
@@ -593,7 +595,22 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
     return value;
 }
 
+int RenderThreads(const RenderOptions& options) {
+    return options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 }  // namespace
+
+int RenderTileSize(const CameraDesc& camera, const RenderOptions& options) {
+    int tileSize = std::max(1, options.tileSize);
+    if (options.fixedTileSize) return tileSize;
+    // Smaller tiles for small images, so that every thread gets work (four tiles each at least),
+    // down to 8 pixels: below that the filter margins each tile traces again cost too much.
+    const Film film(camera);
+    const int nThreads = RenderThreads(options);
+    while (tileSize > 8 && static_cast<int>(film.Tiles(tileSize).size()) < 4 * nThreads) tileSize /= 2;
+    return tileSize;
+}
 
 void RenderImage(const PreparedScene& scene, const RenderOptions& options, ImageBuffer* image, RenderStats* stats) {
     auto start = std::chrono::steady_clock::now();
@@ -606,15 +623,22 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     const Film film(cam, channels);
     *image = film.MakeImage();
     const Tolerance tol{options.tolerancePixels * camera.PixelWidth(), options.tolerancePixels * camera.PixelAngle()};
-    const int nThreads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-    // Smaller tiles for small images, so that every thread gets work (four tiles each at least),
-    // down to 8 pixels: below that the filter margins each tile traces again cost too much.
-    int tileSize = std::max(1, options.tileSize);
-    std::vector<PixelRange> tiles = film.Tiles(tileSize);
-    while (tileSize > 8 && static_cast<int>(tiles.size()) < 4 * nThreads) tiles = film.Tiles(tileSize /= 2);
+    const int nThreads = RenderThreads(options);
+    std::vector<PixelRange> tiles = film.Tiles(RenderTileSize(cam, options));
+    if (options.reverseTileOrder) std::reverse(tiles.begin(), tiles.end());
     if (options.progress) options.progress->Begin(static_cast<int>(tiles.size()));
+    // Tiles an interrupted render finished come back from the store, and are not rendered again.
+    int restored = 0;
+    if (options.tileStore)
+        std::erase_if(tiles, [&](const PixelRange& tile) {
+            if (!options.tileStore->Restore(tile, image)) return false;
+            ++restored;
+            if (options.progress) options.progress->TileDone();
+            return true;
+        });
+    auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
 
-    std::atomic<size_t> nextTile{0};
+    std::atomic<size_t> nextTile{0}, tilesDone{0};
     std::vector<IntersectStats> cameraStats(nThreads), shadowStats(nThreads);
     std::vector<uint64_t> cameraRays(nThreads);
     // One bound hierarchy per primitive, shared by every thread and ray of this render.
@@ -632,11 +656,11 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
         std::vector<SampleValue> values;
         std::vector<std::pair<int64_t, uint32_t>> order;  // (block, sample index)
         RayGroup group;
-        for (size_t i = nextTile++; i < tiles.size(); i = nextTile++) {
+        for (size_t i = nextTile++; i < tiles.size() && !stopped(); i = nextTile++) {
             film.TileSamples(tiles[i], &samples);
             values.resize(samples.size());
             if (side <= 0) {
-                for (size_t k = 0; k < samples.size(); ++k)
+                for (size_t k = 0; k < samples.size() && !stopped(); ++k)
                     values[k] = TraceSample(scene, ts, camera, samples[k].raster, tol, eye, nullptr);
             } else {
                 // Block by block (the tile's margin reaches into its neighbours' blocks).
@@ -645,6 +669,7 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
                     order.emplace_back(int64_t(samples[k].py / side) * blocksX + samples[k].px / side, uint32_t(k));
                 std::sort(order.begin(), order.end());
                 for (const auto& [block, k] : order) {
+                    if (stopped()) break;
                     const int bx = int(block % blocksX), by = int(block / blocksX);
                     if (group.id != uint64_t(block) + 1) group = BlockGroup(camera, side, bx, by, blocksX);
                     // A sample outside its pixel (never, with the film's stratified samples) goes alone.
@@ -654,7 +679,11 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
                     values[k] = TraceSample(scene, ts, camera, p, tol, eye, inBlock ? &group : nullptr);
                 }
             }
+            // A stopped tile's samples are incomplete: it is left out, neither resolved nor kept.
+            if (stopped()) break;
             film.ResolveTile(tiles[i], samples, values, image);
+            if (options.tileStore) options.tileStore->Finished(tiles[i], *image);
+            ++tilesDone;
             if (options.progress) options.progress->TileDone();
         }
         cameraStats[index] = ts.cameraStats;
@@ -676,6 +705,9 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
         stats->shadow.Merge(shadowStats[i]);
         stats->cameraRays += cameraRays[i];
     }
+    // A stop after the last tile stops nothing: the image is whole.
+    stats->stopped = tilesDone != tiles.size();
+    stats->tilesRestored = restored;
     stats->width = cam.xres;
     stats->height = cam.yres;
     stats->wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -2,6 +2,7 @@
 // camera rays through the guaranteed intersector, shading with shadows, threads over rows.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <string>
@@ -10,6 +11,7 @@
 #include "compiler/compile.h"
 #include "renderer/geometry/bvh.h"
 #include "renderer/image/exr_writer.h"
+#include "renderer/image/film.h"
 #include "renderer/intersect.h"
 #include "renderer/scene.h"
 
@@ -30,6 +32,20 @@ class RenderProgress {
     virtual void Finish() = 0;
 };
 
+/// Keeps a render's finished tiles outside it and gives back those an earlier, interrupted render
+/// of the same image finished (the command line's checkpoint file, renderer/checkpoint.h).
+class TileStore {
+  public:
+    virtual ~TileStore() = default;
+    /// Before any tile is rendered, on the calling thread: copies the tile's pixels, every
+    /// channel, into `image` (from Film::MakeImage) and returns true if the store has them; the
+    /// tile is then not rendered. False: the tile is rendered.
+    virtual bool Restore(const PixelRange& tile, ImageBuffer* image) = 0;
+    /// The tile's pixels in `image` are final. Called from the worker threads as each tile is
+    /// finished (so it must be thread-safe); other threads meanwhile write other tiles' pixels.
+    virtual void Finished(const PixelRange& tile, const ImageBuffer& image) = 0;
+};
+
 /// The side of a block of pixels whose camera rays are traced as a group (`--ray-groups`).
 inline constexpr int kDefaultRayGroupPixels = 8;
 
@@ -41,6 +57,16 @@ struct RenderOptions {
     size_t cacheBytes = kDefaultCacheBytes;        // the bound hierarchies' memory budget (renderer/bound_tree.h)
     uint64_t regionBudget = kDefaultRegionBudget;  // per ray (renderer/intersect.h)
     int tileSize = 32;                             // pixels per side (less for small images)
+    /// Cut the image into tiles of exactly tileSize (a resumed render must cut it as the
+    /// interrupted one did), not smaller ones for small images (RenderTileSize).
+    bool fixedTileSize = false;
+    /// Take the tiles last first: the image must not depend on the order (a test option).
+    bool reverseTileOrder = false;
+    /// Set, by a signal handler say, to stop the render: the workers check it between samples and
+    /// give up their unfinished tiles; RenderStats::stopped is then true and the image incomplete.
+    const std::atomic<bool>* stop = nullptr;
+    /// Where finished tiles are kept and restored from (null: nowhere).
+    TileStore* tileStore = nullptr;
     /// Camera rays are traced in groups of this many pixels per side, which share the walk of the
     /// bound hierarchies' top levels (RayGroup); blocks of the whole image, so the image does not
     /// depend on the tiles. 0: every ray alone.
@@ -62,6 +88,8 @@ struct RenderStats {
     size_t cacheBudgetBytes = 0;
     uint64_t cachePeakBytes = 0;  // the most the hierarchies held together
     int width = 0, height = 0;
+    bool stopped = false;   // RenderOptions::stop was set in time: some tiles are missing from the image
+    int tilesRestored = 0;  // tiles the TileStore gave back instead of being rendered
 
     /// The one-line JSON of `affray render --stats`.
     std::string ToJson() const;
@@ -110,6 +138,12 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, c
 /// (may be null); on error returns false with an error there at the Displacement request.
 bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,
                   const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report);
+
+/// The side of the tiles RenderImage cuts `camera`'s image (its crop) into with `options`:
+/// options.tileSize, halved for small images down to 8 pixels so that every thread gets four
+/// tiles at least; exactly options.tileSize if options.fixedTileSize. The image's pixels do not
+/// depend on it.
+int RenderTileSize(const CameraDesc& camera, const RenderOptions& options);
 
 /// Renders the prepared scene into `image`: full resolution, RGBA plus the AOVs the Display mode
 /// asks for, pixels outside the CropWindow zero (renderer/image/film.h), row 0 at the top.

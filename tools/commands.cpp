@@ -14,6 +14,8 @@
 #include "renderer/render.h"
 #include "rib/rib.h"
 #include "texture/texture.h"
+#include "tools/frame_output.h"
+#include "tools/interrupt.h"
 #include "tools/progress.h"
 #include "vm/bytecode_file.h"
 #include "vm/disasm.h"
@@ -192,14 +194,22 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     options.regionBudget = cmd.regionBudget;
     options.cacheBytes = cmd.cacheBytes;
     options.rayGroupPixels = cmd.rayGroupPixels;
+    options.reverseTileOrder = cmd.reverseTiles;
+    // Outputs checked, checkpoint started or resumed, signals stop the render.
+    FrameOutput files(outputPath, pngPath);
+    if (const int status = files.Begin(cmd.resume, prepared, &options, err); status != diag::kExitSuccess)
+        return status;
     ProgressBar bar(Progress::ShouldShow(cmd.quiet, stderr));
     options.progress = &bar;
     renderer::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
+    if (const int status = files.AfterRender(stats, err); status != diag::kExitSuccess) return status;
     diag::Report output;
-    if (!renderer::WriteExr(outputPath, image, &output) ||
-        (!pngPath.empty() && !renderer::WritePngPreview(pngPath, image, &output))) {
+    const bool written = renderer::WriteExr(outputPath, image, &output) &&
+                         (pngPath.empty() || renderer::WritePngPreview(pngPath, image, &output));
+    files.Finish();
+    if (!written) {
         Print(output, err);
         return diag::kExitOutput;
     }
@@ -257,6 +267,8 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
 }  // namespace
 
 int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
+    // From here SIGINT and SIGTERM only set a flag, which the render checks (tools/interrupt.h).
+    Interrupts interrupts;
     diag::Report report;
     std::optional<std::vector<renderer::SceneDesc>> frames = rib::ReadRibFrames(cmd.scenePath, &report);
     // The scene's warnings and notes, before anything renders.
@@ -311,6 +323,7 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
             }
 
     // Frame by frame: an error stops the run, and the frames written before it stay complete.
+    // SIGINT and SIGTERM stop it too, giving up the frame being rendered.
     for (size_t i = 0; i < chosen.size(); ++i) {
         const int status = RenderFrame(cmd, *chosen[i], outputs[i], pngs[i], out, err);
         if (status != diag::kExitSuccess) return status;

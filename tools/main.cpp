@@ -24,13 +24,29 @@ const char* const kUsage =
     "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS] [-I DIR] [-D NAME[=VALUE]]\n"
     "                [--bounds affine|reduced|interval] [--max-depth N] [--stats] [--png PREVIEW.png] [--quiet]\n"
     "                [--crop XMIN,XMAX,YMIN,YMAX] [--samples N] [--region-budget N] [--cache-mb MB]\n"
-    "                [--texture-mb MB] [--ray-groups PIXELS] [--frame N]\n"
+    "                [--texture-mb MB] [--ray-groups PIXELS] [--frame N] [--resume]\n"
     "  affray compile SHADER.sl [-o OUT.afb] [--disasm] [--stats] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
     "              [--mode scalar|affine|interval] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray diff REFERENCE.exr TEST.exr   (RMSE and largest error of TEST's RGB, as JSON)\n"
     "  affray opcodes   (the VM's instruction set, as a Markdown table)\n"
     "  affray --help | --version\n";
+
+/// `affray render --help`: the usage, then what render does with its files.
+const char* const kRenderHelp =
+    "\n"
+    "affray render writes OUT.exr (or the scene's Display name) and, with --png, an 8-bit preview;\n"
+    "each file is written to a temporary name beside it and renamed, so it is whole or absent.\n"
+    "\n"
+    "Interrupted renders:\n"
+    "  While it runs, finished tiles are appended to OUT.exr.checkpoint. SIGINT (Ctrl-C) or SIGTERM\n"
+    "  stops the render: no image is written, the checkpoint is kept, and the exit status is 130\n"
+    "  (SIGINT) or 143 (SIGTERM). The checkpoint is removed once the image is written.\n"
+    "  --resume      continue from OUT.exr.checkpoint: render only the missing tiles, and write the\n"
+    "                image an uninterrupted render writes, bit for bit. A checkpoint of another scene\n"
+    "                (RIB, shader or texture) or of other options (resolution, crop, samples,\n"
+    "                tolerance, bounds...) is refused; --threads, --cache-mb and --texture-mb may differ.\n"
+    "  Without --resume, an existing checkpoint is overwritten.\n";
 
 struct UsageError {
     std::string message;
@@ -179,6 +195,11 @@ int Render(Args& args) {
     affray::tools::RenderCommand cmd;
     while (!args.Done()) {
         std::string a = args.Next();
+        if (a == "--help" || a == "-h") {
+            std::fputs(kUsage, stdout);
+            std::fputs(kRenderHelp, stdout);
+            return affray::diag::kExitSuccess;
+        }
         if (a == "-o")
             cmd.outputPath = args.Value(a);
         else if (a == "--threads")
@@ -210,7 +231,15 @@ int Render(Args& args) {
             cmd.regionBudget = ParseInt(args.Value(a), a, 1, 1 << 30);
         else if (a == "--frame")
             cmd.frame = ParseInt(args.Value(a), a, -1000000000, 1000000000);
-        else if (a == "--ray-groups")
+        else if (a == "--resume")
+            cmd.resume = true;
+        else if (a == "--tile-order") {
+            // For tests of determinism; not in the usage text.
+            const std::string order = args.Value(a);
+            if (order != "forward" && order != "reverse")
+                throw UsageError{"--tile-order takes forward or reverse, got '" + order + "'"};
+            cmd.reverseTiles = order == "reverse";
+        } else if (a == "--ray-groups")
             cmd.rayGroupPixels = ParseInt(args.Value(a), a, 0, 256);
         else if (a == "--cache-mb") {
             const double mb = ParseNumber(args.Value(a), a);

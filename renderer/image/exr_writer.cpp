@@ -1,24 +1,20 @@
 // renderer/image/exr_writer.cpp: OpenEXR output and input (format and atomicity rules in exr_writer.h).
 #include "renderer/image/exr_writer.h"
 
+#include "renderer/image/atomic_file.h"
+
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <cerrno>
+#include <algorithm>
 #include <cstdint>
-#include <cstdio>
 #include <exception>
-#include <filesystem>
 #include <set>
 #include <stdexcept>
-#include <system_error>
 
 namespace affray::renderer {
 namespace {
@@ -26,12 +22,6 @@ namespace {
 constexpr const char* kRgbaNames[4] = {"R", "G", "B", "A"};
 // Refuse images this large (pixels): a corrupt header must not make us allocate without bound.
 constexpr int64_t kMaxPixels = int64_t(1) << 28;
-
-// A temporary name beside `path`, unique within this process and across processes.
-std::string TemporaryPath(const std::string& path) {
-    static std::atomic<unsigned> counter{0};
-    return path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-}
 
 // Checks sizes and channel names before any file is touched; returns "" if the image is valid.
 std::string ValidateImage(const ImageBuffer& image) {
@@ -53,16 +43,27 @@ std::string ValidateImage(const ImageBuffer& image) {
     return "";
 }
 
-// Flushes a closed file's data to disk so the rename cannot expose an empty file after a crash.
-void SyncFile(const std::string& path) {
-    int fd = ::open(path.c_str(), O_RDONLY);
-    if (fd < 0) return;
-    ::fsync(fd);
-    ::close(fd);
-}
+/// An OpenEXR output stream into memory: the file is encoded whole, then written by
+/// WriteFileAtomically, whose error checks then cover every byte.
+class MemoryStream : public Imf::OStream {
+  public:
+    MemoryStream(const std::string& name) : Imf::OStream(name.c_str()) {}
+    void write(const char c[], int n) override {
+        if (m_pos + size_t(n) > m_bytes.size()) m_bytes.resize(m_pos + size_t(n));
+        std::copy(c, c + n, m_bytes.begin() + static_cast<std::ptrdiff_t>(m_pos));
+        m_pos += size_t(n);
+    }
+    uint64_t tellp() override { return m_pos; }
+    void seekp(uint64_t pos) override { m_pos = pos; }
+    const std::string& bytes() const { return m_bytes; }
 
-// Writes the image to `file` (a new file). Throws what OpenEXR throws.
-void WriteExrFile(const std::string& file, const ImageBuffer& image) {
+  private:
+    std::string m_bytes;
+    size_t m_pos = 0;
+};
+
+// Encodes the image as an OpenEXR file into `out`. Throws what OpenEXR throws.
+void EncodeExr(const ImageBuffer& image, MemoryStream& out) {
     Imf::Header header(image.width, image.height);
     for (const char* name : kRgbaNames) header.channels().insert(name, Imf::Channel(Imf::HALF));
     for (const auto& channel : image.extraChannels) header.channels().insert(channel.first, Imf::Channel(Imf::FLOAT));
@@ -80,10 +81,10 @@ void WriteExrFile(const std::string& file, const ImageBuffer& image) {
         frameBuffer.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(values.data())),
                                             sizeof(float), sizeof(float) * image.width));
 
-    Imf::OutputFile out(file.c_str(), header);
-    out.setFrameBuffer(frameBuffer);
-    out.writePixels(image.height);
-}  // the file is closed here, before the caller renames it
+    Imf::OutputFile file(out, header);
+    file.setFrameBuffer(frameBuffer);
+    file.writePixels(image.height);
+}  // the file's offset table is written here, when `file` closes
 
 }  // namespace
 
@@ -101,25 +102,14 @@ bool WriteExr(const std::string& path, const ImageBuffer& image, diag::Report* r
     if (path.empty()) return fail("empty file name");
     if (std::string reason = ValidateImage(image); !reason.empty()) return fail(reason);
 
-    std::filesystem::path directory = std::filesystem::path(path).parent_path();
-    if (directory.empty()) directory = ".";
-    std::error_code ec;
-    if (!std::filesystem::is_directory(directory, ec))
-        return fail("directory '" + directory.string() + "' does not exist");
-
-    std::string temporary = TemporaryPath(path);
+    MemoryStream encoded(path);
     try {
-        WriteExrFile(temporary, image);
+        EncodeExr(image, encoded);
     } catch (const std::exception& e) {
-        std::filesystem::remove(temporary, ec);
         return fail(e.what());
     }
-    SyncFile(temporary);
-    if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-        std::string reason = std::generic_category().message(errno);
-        std::filesystem::remove(temporary, ec);
-        return fail(reason);
-    }
+    std::string reason;
+    if (!WriteFileAtomically(path, encoded.bytes(), &reason)) return fail(reason);
     return true;
 }
 

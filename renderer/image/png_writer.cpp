@@ -2,16 +2,13 @@
 // scanlines, IEND (PNG specification, ISO/IEC 15948), chunk CRCs from zlib.
 #include "renderer/image/png_writer.h"
 
+#include "renderer/image/atomic_file.h"
+
 #include <zlib.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
 #include <vector>
-
-#include <unistd.h>
 
 namespace affray::renderer {
 
@@ -71,18 +68,9 @@ bool WritePngPreview(const std::string& path, const ImageBuffer& image, diag::Re
     PutChunk(file, "IDAT", packed);
     PutChunk(file, "IEND", {});
 
-    std::string tmp = path + ".tmp." + std::to_string(::getpid());
-    FILE* f = std::fopen(tmp.c_str(), "wb");
-    int err = f ? 0 : errno;
-    if (f && std::fwrite(file.data(), 1, file.size(), f) != file.size()) err = errno ? errno : EIO;
-    if (f && std::fclose(f) != 0 && err == 0) err = errno;
-    std::error_code ec;
-    if (err == 0) std::filesystem::rename(tmp, path, ec);
-    if (err != 0 || ec) {
-        const std::string reason = ec ? ec.message() : std::generic_category().message(err);
-        std::filesystem::remove(tmp, ec);
+    std::string reason;
+    if (!WriteFileAtomically(path, std::string_view(reinterpret_cast<const char*>(file.data()), file.size()), &reason))
         return fail(reason);
-    }
     return true;
 }
 

@@ -1,0 +1,176 @@
+// renderer/render_identity.cpp: the identity of a render (what it covers: render_identity.h).
+#include "renderer/render_identity.h"
+
+#include <sys/stat.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "vm/bytecode_file.h"
+
+namespace affray::renderer {
+namespace {
+
+__extension__ using Uint128 = unsigned __int128;
+
+/// FNV-1a with the 128-bit parameters (offset basis 144066263297769815596495629667062367629,
+/// prime 2^88 + 2^8 + 0x3b).
+class Fnv128 {
+  public:
+    void Add(std::string_view bytes) {
+        for (unsigned char c : bytes) {
+            m_h ^= c;
+            m_h *= kPrime;
+        }
+    }
+    /// A named field, framed by its length, so that no two sequences of fields hash alike.
+    void Field(std::string_view name, std::string_view bytes) {
+        Add(name);
+        const std::string length = ":" + std::to_string(bytes.size()) + ":";
+        Add(length);
+        Add(bytes);
+    }
+    std::string Hex() const {
+        char text[33];
+        std::snprintf(text, sizeof text, "%016llx%016llx", static_cast<unsigned long long>(m_h >> 64),
+                      static_cast<unsigned long long>(m_h));
+        return text;
+    }
+
+  private:
+    static constexpr Uint128 kPrime = (Uint128(1) << 88) + (1 << 8) + 0x3b;
+    Uint128 m_h = (Uint128(0x6c62272e07bb0142ULL) << 64) | 0x62b821756295c58dULL;
+};
+
+std::string ReadFileBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return "unreadable file " + path;
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// A file's name without its directories: the identity must not change with the directory a
+/// render is started from, or the one a farm machine mounts the project at.
+std::string FileName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+/// A texture file by name, size and modification time (nanoseconds).
+std::string FileStamp(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return "missing " + FileName(path);
+    return FileName(path) + " size=" + std::to_string(st.st_size) + " mtime=" + std::to_string(st.st_mtim.tv_sec) +
+           "." + std::to_string(st.st_mtim.tv_nsec);
+}
+
+void AddTextures(const vm::Program& program, Fnv128* h) {
+    if (!program.textures) return;
+    for (const vm::TextureSlot& slot : *program.textures) h->Field("texture", FileStamp(slot.path));
+}
+
+/// `program` with its file paths cut to file names (FileName).
+vm::Program WithoutDirectories(const vm::Program& program) {
+    vm::Program copy = program;
+    copy.sourcePath = FileName(copy.sourcePath);
+    if (copy.textures) {
+        auto slots = std::make_shared<vm::TextureSlots>(*copy.textures);
+        for (vm::TextureSlot& slot : *slots) slot.path = FileName(slot.path);
+        copy.textures = slots;
+    }
+    return copy;
+}
+
+std::string Number(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", x);
+    return text;
+}
+
+const char* BoundsName(BoundMode mode) {
+    switch (mode) {
+        case BoundMode::Affine: return "affine";
+        case BoundMode::Reduced: return "reduced";
+        case BoundMode::Interval: return "interval";
+    }
+    return "?";
+}
+
+}  // namespace
+
+std::string HashHex(std::string_view bytes) {
+    Fnv128 h;
+    h.Add(bytes);
+    return h.Hex();
+}
+
+std::string RenderIdentity::Hash() const {
+    Fnv128 h;
+    h.Field("scene", scene);
+    h.Field("options", options);
+    return h.Hex();
+}
+
+RenderIdentity IdentifyRender(const PreparedScene& scene, const RenderOptions& options) {
+    Fnv128 h;
+    h.Field("affray render identity", "1");
+    h.Field("rib", ReadFileBytes(scene.desc.path));
+    SceneDesc desc = scene.desc;
+    desc.path = FileName(desc.path);
+    h.Field("scene", ToString(desc));
+    for (const Primitive& prim : scene.primitives) {
+        if (!prim.shader) {
+            h.Field("primitive", "no shader");
+            continue;
+        }
+        vm::BytecodeFile programs;
+        programs.shaderName = prim.shader->name;
+        programs.sourcePath = FileName(prim.shader->sourcePath);
+        programs.sourceHash = vm::HashSource(prim.shader->sourceText);
+        programs.bound = WithoutDirectories(prim.bound);
+        programs.shade = WithoutDirectories(prim.shade);
+        h.Field("primitive", vm::SaveBytecode(programs));
+        h.Field("source", prim.shader->sourceText);
+        AddTextures(prim.bound, &h);
+        AddTextures(prim.shade, &h);
+    }
+
+    const CameraDesc& cam = scene.desc.camera;
+    std::ostringstream text;
+    text << "resolution=" << cam.xres << "x" << cam.yres << "\n"
+         << "crop=" << Number(cam.cropWindow.x) << "," << Number(cam.cropWindow.y) << "," << Number(cam.cropWindow.z)
+         << "," << Number(cam.cropWindow.w) << "\n"
+         << "samples=" << cam.xsamples << "x" << cam.ysamples << "\n"
+         << "frame=" << (scene.desc.frame ? std::to_string(*scene.desc.frame) : "none") << "\n"
+         << "display=" << scene.desc.displayMode << "\n"
+         << "tolerance=" << Number(options.tolerancePixels) << "\n"
+         << "bounds=" << BoundsName(options.bounds) << "\n"
+         << "max-depth=" << options.maxDepth << "\n"
+         << "region-budget=" << options.regionBudget << "\n"
+         << "ray-groups=" << options.rayGroupPixels << "\n";
+    return {h.Hex(), text.str()};
+}
+
+std::string DifferingOptions(const std::string& a, const std::string& b) {
+    auto lines = [](const std::string& text) {
+        std::map<std::string, std::string> values;
+        std::istringstream in(text);
+        std::string line;
+        while (std::getline(in, line)) {
+            const size_t eq = line.find('=');
+            values[line.substr(0, eq)] = eq == std::string::npos ? "" : line.substr(eq + 1);
+        }
+        return values;
+    };
+    const auto va = lines(a), vb = lines(b);
+    std::string names;
+    auto add = [&](const std::string& name) { names += (names.empty() ? "" : ", ") + name; };
+    for (const auto& [name, value] : va)
+        if (!vb.count(name) || vb.at(name) != value) add(name);
+    for (const auto& [name, value] : vb)
+        if (!va.count(name)) add(name);
+    return names;
+}
+
+}  // namespace affray::renderer
