@@ -62,11 +62,9 @@ struct CliOutput {
     std::string out;
 };
 
-/// Runs the `affray` program with `args` (shell-quoted by the caller); captures its stdout, and
-/// its stderr too when `withStderr`.
-inline CliOutput RunCli(const std::string& args, bool withStderr = false) {
-    std::string cmd = std::string(AFFRAY_CLI) + " " + args + (withStderr ? " 2>&1" : " 2>/dev/null");
-    FILE* pipe = popen(cmd.c_str(), "r");
+/// Runs a shell command line and captures its stdout; the status is -1 if it did not exit.
+inline CliOutput RunShell(const std::string& command) {
+    FILE* pipe = popen(command.c_str(), "r");
     REQUIRE(pipe);
     std::string out;
     char buf[4096];
@@ -74,6 +72,46 @@ inline CliOutput RunCli(const std::string& args, bool withStderr = false) {
     while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
     int status = pclose(pipe);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+/// Runs the `affray` program with `args` (shell-quoted by the caller); captures its stdout, and
+/// its stderr too when `withStderr`.
+inline CliOutput RunCli(const std::string& args, bool withStderr = false) {
+    return RunShell(std::string(AFFRAY_CLI) + " " + args + (withStderr ? " 2>&1" : " 2>/dev/null"));
+}
+
+/// `s` in single quotes, for a RunCli command line (test paths hold no quote).
+inline std::string Quote(const std::string& s) { return "'" + s + "'"; }
+
+/// The CLI tests' scene: a patch rippled by shaders/wave.sl with a sphere in front of it, lit,
+/// width x height, Display `display` with every AOV; `options` (e.g. a PixelSamples line) go
+/// before the camera. The caller copies wave.sl beside it.
+inline std::string WaveSphereScene(int width, int height, const std::string& display, const std::string& options = "",
+                                   const std::string& color = "0.85 0.62 0.35") {
+    return "Format " + std::to_string(width) + " " + std::to_string(height) + " 1\n" + options +
+           "Projection \"perspective\" \"fov\" [40]\n"
+           "Display \"" +
+           display + R"(" "file" "rgba,Z,N,P,st,cost,err"
+Translate 0 0 3.1
+Rotate -130 1 0 0
+WorldBegin
+  LightSource "ambientlight" 1 "intensity" [0.06]
+  LightSource "distantlight" 2 "intensity" [1.1] "from" [-3 1.5 1.1] "to" [0 0 0]
+  Color [)" +
+           color +
+           R"(]
+  Surface "plastic"
+  AttributeBegin
+    Displacement "wave" "Km" [0.06] "frequency" [6] "decay" [2.5]
+    Patch "bilinear" "P" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]
+  AttributeEnd
+  AttributeBegin
+    Color [0.3 0.5 0.9]
+    Translate 0.3 0.2 0.35
+    Sphere 0.3 -0.3 0.3 360
+  AttributeEnd
+WorldEnd
+)";
 }
 
 /// The whole text of a file ("" if it cannot be read).

@@ -23,34 +23,7 @@ namespace {
 
 constexpr int kWidth = 40, kHeight = 30;
 
-/// A rippled patch with a sphere in front of it, with every AOV.
-std::string Scene() {
-    std::ostringstream rib;
-    rib << "Format " << kWidth << " " << kHeight << " 1\n"
-        << R"(Projection "perspective" "fov" [40]
-Display "crop.exr" "file" "rgba,Z,N,P,st,cost,err"
-Translate 0 0 3.1
-Rotate -130 1 0 0
-WorldBegin
-  LightSource "ambientlight" 1 "intensity" [0.06]
-  LightSource "distantlight" 2 "intensity" [1.1] "from" [-3 1.5 1.1] "to" [0 0 0]
-  Color [0.85 0.62 0.35]
-  Surface "plastic"
-  AttributeBegin
-    Displacement "wave" "Km" [0.06] "frequency" [6] "decay" [2.5]
-    Patch "bilinear" "P" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]
-  AttributeEnd
-  AttributeBegin
-    Color [0.3 0.5 0.9]
-    Translate 0.3 0.2 0.35
-    Sphere 0.3 -0.3 0.3 360
-  AttributeEnd
-WorldEnd
-)";
-    return rib.str();
-}
-
-std::string Quote(const std::string& s) { return "'" + s + "'"; }
+std::string Scene() { return test::WaveSphereScene(kWidth, kHeight, "crop.exr"); }
 
 renderer::ImageBuffer Read(const std::string& path) {
     renderer::ImageBuffer image;
@@ -63,7 +36,8 @@ renderer::ImageBuffer Read(const std::string& path) {
 /// Renders the scene in `dir` with `extra` arguments into `name`; returns the image.
 renderer::ImageBuffer Render(const test::TempDir& dir, const std::string& name, const std::string& extra) {
     test::CliOutput out = test::RunCli(
-        "render " + Quote(dir.Path("scene.rib")) + " -o " + Quote(dir.Path(name)) + " --quiet " + extra, true);
+        "render " + test::Quote(dir.Path("scene.rib")) + " -o " + test::Quote(dir.Path(name)) + " --quiet " + extra,
+        true);
     INFO(out.out);
     REQUIRE(out.status == 0);
     return Read(dir.Path(name));

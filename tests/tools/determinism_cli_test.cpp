@@ -12,42 +12,14 @@
 
 using namespace affray;
 
-namespace {
-
-// A rippled patch and a sphere, at 2 x 2 samples, every AOV.
-constexpr const char* kScene = R"(Format 64 48 1
-Projection "perspective" "fov" [40]
-Display "det.exr" "file" "rgba,Z,N,P,st,cost,err"
-Translate 0 0 3.1
-Rotate -130 1 0 0
-WorldBegin
-  LightSource "ambientlight" 1 "intensity" [0.06]
-  LightSource "distantlight" 2 "intensity" [1.1] "from" [-3 1.5 1.1] "to" [0 0 0]
-  Color [0.85 0.62 0.35]
-  Surface "plastic"
-  AttributeBegin
-    Displacement "wave" "Km" [0.06] "frequency" [6] "decay" [2.5]
-    Patch "bilinear" "P" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]
-  AttributeEnd
-  AttributeBegin
-    Color [0.3 0.5 0.9]
-    Translate 0.3 0.2 0.35
-    Sphere 0.3 -0.3 0.3 360
-  AttributeEnd
-WorldEnd
-)";
-
-std::string Quote(const std::string& s) { return "'" + s + "'"; }
-
-}  // namespace
-
 TEST_CASE("determinism: the same bytes with any threads, tile order and cache budget", "[tools][determinism]") {
     test::TempDir dir;
-    dir.Write("scene.rib", kScene);
+    dir.Write("scene.rib", test::WaveSphereScene(64, 48, "det.exr"));
     std::filesystem::copy_file(test::SourceDir() + "/shaders/wave.sl", dir.Path("wave.sl"));
     auto render = [&](const std::string& name, const std::string& extra) {
         const test::CliOutput out = test::RunCli(
-            "render " + Quote(dir.Path("scene.rib")) + " -o " + Quote(dir.Path(name)) + " --quiet " + extra, true);
+            "render " + test::Quote(dir.Path("scene.rib")) + " -o " + test::Quote(dir.Path(name)) + " --quiet " + extra,
+            true);
         INFO(out.out);
         REQUIRE(out.status == 0);
         const std::string bytes = test::ReadText(dir.Path(name));
@@ -74,8 +46,8 @@ TEST_CASE("determinism: a textured scene gives the same bytes with any threads, 
                                   test::ReadText(test::SourceDir() + "/scenes/textured.rib"));
     test::ShrinkFormat(rib, 16);
     auto render = [&](const std::string& extra) {
-        const test::CliOutput out =
-            test::RunCli("render " + Quote(rib) + " -o " + Quote(dir.Path("t.exr")) + " --quiet " + extra, true);
+        const test::CliOutput out = test::RunCli(
+            "render " + test::Quote(rib) + " -o " + test::Quote(dir.Path("t.exr")) + " --quiet " + extra, true);
         INFO(out.out);
         REQUIRE(out.status == 0);
         return test::ReadText(dir.Path("t.exr"));

@@ -24,36 +24,10 @@ using namespace affray;
 
 namespace {
 
-/// A rippled patch and a sphere with every AOV, at width x height, 3 x 3 samples.
+/// The CLI tests' scene at width x height, 3 x 3 samples.
 std::string Scene(int width, int height, const char* color = "0.85 0.62 0.35") {
-    std::ostringstream rib;
-    rib << "Format " << width << " " << height << " 1\n"
-        << "PixelSamples 3 3\n"
-        << R"(Projection "perspective" "fov" [40]
-Display "faults.exr" "file" "rgba,Z,N,P,st,cost,err"
-Translate 0 0 3.1
-Rotate -130 1 0 0
-WorldBegin
-  LightSource "ambientlight" 1 "intensity" [0.06]
-  LightSource "distantlight" 2 "intensity" [1.1] "from" [-3 1.5 1.1] "to" [0 0 0]
-  Color [)"
-        << color << R"(]
-  Surface "plastic"
-  AttributeBegin
-    Displacement "wave" "Km" [0.06] "frequency" [6] "decay" [2.5]
-    Patch "bilinear" "P" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]
-  AttributeEnd
-  AttributeBegin
-    Color [0.3 0.5 0.9]
-    Translate 0.3 0.2 0.35
-    Sphere 0.3 -0.3 0.3 360
-  AttributeEnd
-WorldEnd
-)";
-    return rib.str();
+    return test::WaveSphereScene(width, height, "faults.exr", "PixelSamples 3 3\n", color);
 }
-
-std::string Quote(const std::string& s) { return "'" + s + "'"; }
 
 /// A directory holding the scene (scene.rib) and its shader.
 struct SceneDir {
@@ -63,8 +37,8 @@ struct SceneDir {
         std::filesystem::copy_file(test::SourceDir() + "/shaders/wave.sl", dir.Path("wave.sl"));
     }
     std::string Render(const std::string& output, const std::string& extra, int* status) const {
-        test::CliOutput out =
-            test::RunCli("render " + Quote(dir.Path("scene.rib")) + " -o " + Quote(output) + " --quiet " + extra, true);
+        test::CliOutput out = test::RunCli(
+            "render " + test::Quote(dir.Path("scene.rib")) + " -o " + test::Quote(output) + " --quiet " + extra, true);
         *status = out.status;
         return out.out;
     }
@@ -305,7 +279,7 @@ TEST_CASE("faults: an output that cannot be written is an error naming it, befor
     }
     SECTION("a preview in a missing directory") {
         const std::string text =
-            scene.Render(scene.dir.Path("out.exr"), "--png " + Quote(scene.dir.Path("no/p.png")), &status);
+            scene.Render(scene.dir.Path("out.exr"), "--png " + test::Quote(scene.dir.Path("no/p.png")), &status);
         CHECK(status == 3);
         CHECK(text.find("no/p.png: error: cannot write file: directory") != std::string::npos);
     }
@@ -338,42 +312,33 @@ TEST_CASE("faults: a full disk is an error naming the output, with nothing left 
     SceneDir scene(96, 72);
     const std::string disk = scene.dir.Path("disk");
     std::filesystem::create_directory(disk);
-    const std::string script = "mount -t tmpfs -o size=64k tmpfs " + Quote(disk) + " || exit 99; " + AFFRAY_CLI +
-                               " render " + Quote(scene.dir.Path("scene.rib")) + " -o " + Quote(disk + "/out.exr") +
-                               " --quiet --png " + Quote(disk + "/p.png") + "; status=$?; echo \"listing:$(ls -A " +
-                               Quote(disk) + ")\"; exit $status";
-    FILE* pipe = popen(("unshare -rm sh -c " + Quote(script) + " 2>&1").c_str(), "r");
-    REQUIRE(pipe);
-    std::string out;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-    const int status = pclose(pipe);
-    INFO(out);
-    if (!WIFEXITED(status) || WEXITSTATUS(status) == 99 || out.find("unshare:") != std::string::npos) {
+    const std::string script = "mount -t tmpfs -o size=64k tmpfs " + test::Quote(disk) + " || exit 99; " + AFFRAY_CLI +
+                               " render " + test::Quote(scene.dir.Path("scene.rib")) + " -o " +
+                               test::Quote(disk + "/out.exr") + " --quiet --png " + test::Quote(disk + "/p.png") +
+                               "; status=$?; echo \"listing:$(ls -A " + test::Quote(disk) + ")\"; exit $status";
+    const test::CliOutput full = test::RunShell("unshare -rm sh -c " + test::Quote(script) + " 2>&1");
+    INFO(full.out);
+    if (full.status == -1 || full.status == 99 || full.out.find("unshare:") != std::string::npos) {
         WARN(
             "skipped: "
             "cannot mount a tmpfs here");
         return;
     };
-    CHECK(WEXITSTATUS(status) == 3);
-    CHECK(out.find("out.exr: error: cannot write file: No space left on device") != std::string::npos);
+    CHECK(full.status == 3);
+    CHECK(full.out.find("out.exr: error: cannot write file: No space left on device") != std::string::npos);
     // The checkpoint could not be written either: a warning, and the render went on.
-    CHECK(out.find("out.exr.checkpoint: warning: cannot write the checkpoint: No space left on device") !=
+    CHECK(full.out.find("out.exr.checkpoint: warning: cannot write the checkpoint: No space left on device") !=
           std::string::npos);
-    CHECK(out.find("listing:\n") != std::string::npos);
+    CHECK(full.out.find("listing:\n") != std::string::npos);
 
     // A read-only file system: refused before the render, as a directory without permission is.
-    const std::string readOnly = "mount -t tmpfs -o ro tmpfs " + Quote(disk) + " || exit 99; " + AFFRAY_CLI +
-                                 " render " + Quote(scene.dir.Path("scene.rib")) + " -o " + Quote(disk + "/out.exr") +
-                                 " --quiet; status=$?; echo \"listing:$(ls -A " + Quote(disk) + ")\"; exit $status";
-    pipe = popen(("unshare -rm sh -c " + Quote(readOnly) + " 2>&1").c_str(), "r");
-    REQUIRE(pipe);
-    out.clear();
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-    const int roStatus = pclose(pipe);
-    INFO(out);
-    CHECK(WEXITSTATUS(roStatus) == 3);
-    CHECK(out.find("out.exr: error: cannot write file: Read-only file system") != std::string::npos);
-    CHECK(out.find("listing:\n") != std::string::npos);
+    const std::string readOnly = "mount -t tmpfs -o ro tmpfs " + test::Quote(disk) + " || exit 99; " + AFFRAY_CLI +
+                                 " render " + test::Quote(scene.dir.Path("scene.rib")) + " -o " +
+                                 test::Quote(disk + "/out.exr") + " --quiet; status=$?; echo \"listing:$(ls -A " +
+                                 test::Quote(disk) + ")\"; exit $status";
+    const test::CliOutput ro = test::RunShell("unshare -rm sh -c " + test::Quote(readOnly) + " 2>&1");
+    INFO(ro.out);
+    CHECK(ro.status == 3);
+    CHECK(ro.out.find("out.exr: error: cannot write file: Read-only file system") != std::string::npos);
+    CHECK(ro.out.find("listing:\n") != std::string::npos);
 }

@@ -20,24 +20,12 @@ using namespace affray;
 
 namespace {
 
-struct Shell {
-    int status;
-    std::string out;
-};
+using Shell = test::CliOutput;
 
 /// Runs a shell command, capturing stdout and stderr.
-Shell Run(const std::string& command) {
-    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-    REQUIRE(pipe);
-    std::string out;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+Shell Run(const std::string& command) { return test::RunShell(command + " 2>&1"); }
 
-std::string Quote(const std::string& s) { return "'" + s + "'"; }
+using test::Quote;
 
 /// Fails, naming the package, unless `tool` is on the PATH.
 void RequireTool(const std::string& tool) {
