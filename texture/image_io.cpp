@@ -36,23 +36,26 @@ struct Module {
 Module Load() {
     Module result;
     std::string tried;
+    auto refuse = [&](const std::string& path, const std::string& why) {
+        tried += (tried.empty() ? "" : ", ") + path + " (" + why + ")";
+    };
     for (const std::string& path : Candidates()) {
         std::error_code ec;
         if (!std::filesystem::exists(path, ec)) {
-            tried += (tried.empty() ? "" : ", ") + path + " (missing)";
+            refuse(path, "missing");
             continue;
         }
         // Never closed: OpenImageIO keeps threads and caches for the life of the process.
         void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (!handle) {
             const char* why = dlerror();
-            tried += (tried.empty() ? "" : ", ") + path + " (" + (why ? why : "cannot load") + ")";
+            refuse(path, why ? why : "cannot load");
             continue;
         }
         auto entry = reinterpret_cast<EntryPoint>(dlsym(handle, kEntryName));
         const ImageIo* io = entry ? entry(kAbi) : nullptr;
         if (!io) {
-            tried += (tried.empty() ? "" : ", ") + path + " (not a module of this affray)";
+            refuse(path, "not a module of this affray");
             continue;
         }
         result.io = io;
