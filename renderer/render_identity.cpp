@@ -97,27 +97,15 @@ const char* BoundsName(BoundMode mode) {
     return "?";
 }
 
-}  // namespace
-
-std::string HashHex(std::string_view bytes) {
-    Fnv128 h;
-    h.Add(bytes);
-    return h.Hex();
-}
-
-std::string RenderIdentity::Hash() const {
-    Fnv128 h;
-    h.Field("scene", scene);
-    h.Field("options", options);
-    return h.Hex();
-}
-
-RenderIdentity IdentifyRender(const PreparedScene& scene, const RenderOptions& options) {
+/// IdentifyRender and IdentifyFrame: with `withCrop` false the crop window counts as the whole
+/// frame in the scene's hash and has no line in the options.
+RenderIdentity Identify(const PreparedScene& scene, const RenderOptions& options, bool withCrop) {
     Fnv128 h;
     h.Field("affray render identity", "1");
     h.Field("rib", ReadFileBytes(scene.desc.path));
     SceneDesc desc = scene.desc;
     desc.path = FileName(desc.path);
+    if (!withCrop) desc.camera.cropWindow = glm::dvec4(0.0, 1.0, 0.0, 1.0);
     h.Field("scene", ToString(desc));
     for (const Primitive& prim : scene.primitives) {
         if (!prim.shader) {
@@ -138,10 +126,11 @@ RenderIdentity IdentifyRender(const PreparedScene& scene, const RenderOptions& o
 
     const CameraDesc& cam = scene.desc.camera;
     std::ostringstream text;
-    text << "resolution=" << cam.xres << "x" << cam.yres << "\n"
-         << "crop=" << Number(cam.cropWindow.x) << "," << Number(cam.cropWindow.y) << "," << Number(cam.cropWindow.z)
-         << "," << Number(cam.cropWindow.w) << "\n"
-         << "samples=" << cam.xsamples << "x" << cam.ysamples << "\n"
+    text << "resolution=" << cam.xres << "x" << cam.yres << "\n";
+    if (withCrop)
+        text << "crop=" << Number(cam.cropWindow.x) << "," << Number(cam.cropWindow.y) << ","
+             << Number(cam.cropWindow.z) << "," << Number(cam.cropWindow.w) << "\n";
+    text << "samples=" << cam.xsamples << "x" << cam.ysamples << "\n"
          << "frame=" << (scene.desc.frame ? std::to_string(*scene.desc.frame) : "none") << "\n"
          << "display=" << scene.desc.displayMode << "\n"
          << "tolerance=" << Number(options.tolerancePixels) << "\n"
@@ -150,6 +139,29 @@ RenderIdentity IdentifyRender(const PreparedScene& scene, const RenderOptions& o
          << "region-budget=" << options.regionBudget << "\n"
          << "ray-groups=" << options.rayGroupPixels << "\n";
     return {h.Hex(), text.str()};
+}
+
+}  // namespace
+
+std::string HashHex(std::string_view bytes) {
+    Fnv128 h;
+    h.Add(bytes);
+    return h.Hex();
+}
+
+std::string RenderIdentity::Hash() const {
+    Fnv128 h;
+    h.Field("scene", scene);
+    h.Field("options", options);
+    return h.Hex();
+}
+
+RenderIdentity IdentifyRender(const PreparedScene& scene, const RenderOptions& options) {
+    return Identify(scene, options, true);
+}
+
+RenderIdentity IdentifyFrame(const PreparedScene& scene, const RenderOptions& options) {
+    return Identify(scene, options, false);
 }
 
 std::string DifferingOptions(const std::string& a, const std::string& b) {

@@ -12,6 +12,8 @@
 #include "renderer/image/exr_writer.h"
 #include "renderer/image/png_writer.h"
 #include "renderer/render.h"
+#include "renderer/render_identity.h"
+#include "renderer/tiling.h"
 #include "rib/rib.h"
 #include "texture/texture.h"
 #include "tools/frame_output.h"
@@ -205,6 +207,9 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
     if (const int status = files.AfterRender(stats, err); status != diag::kExitSuccess) return status;
+    // The header says which render and which pixels this is, for affray merge (renderer/tiling.h).
+    renderer::StampTile(renderer::IdentifyFrame(prepared, options), renderer::CropPixels(prepared.desc.camera),
+                        kVersion, &image);
     diag::Report output;
     const bool written = renderer::WriteExr(outputPath, image, &output) &&
                          (pngPath.empty() || renderer::WritePngPreview(pngPath, image, &output));
@@ -266,6 +271,48 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
 
 }  // namespace
 
+std::vector<const renderer::SceneDesc*> ChooseFrames(const std::vector<renderer::SceneDesc>& frames,
+                                                     std::optional<int> frame, const std::string& scenePath, FILE* err,
+                                                     int* status) {
+    // Every frame, or those --frame names; skipped ones (shadow passes) not.
+    std::vector<const renderer::SceneDesc*> chosen;
+    for (const renderer::SceneDesc& f : frames)
+        if (!frame || f.frame == frame) chosen.push_back(&f);
+    if (chosen.empty()) {
+        std::string known;
+        for (const renderer::SceneDesc& f : frames)
+            if (f.frame)
+                known +=
+                    (known.empty() ? "" : ", ") + std::to_string(*f.frame) + " on line " + std::to_string(f.frameLine);
+        const std::string message = "--frame " + std::to_string(*frame) + ": the scene has no frame " +
+                                    std::to_string(*frame) +
+                                    (known.empty() ? " (it has no FrameBegin)" : " (its frames: " + known + ")");
+        std::fputs(diag::Format({diag::Severity::Error, {scenePath}, message, {}}).c_str(), err);
+        *status = diag::kExitUsage;
+        return {};
+    }
+    std::erase_if(chosen, [](const renderer::SceneDesc* f) { return !f->skipped.empty(); });
+    if (chosen.empty()) {
+        const std::string message =
+            frame ? "frame " + std::to_string(*frame) + " renders no image" : "no frame of the scene renders an image";
+        std::fputs(diag::Format({diag::Severity::Note, {scenePath}, message + ": nothing written", {}}).c_str(), err);
+        *status = diag::kExitSuccess;
+    }
+    return chosen;
+}
+
+std::vector<std::string> FrameOutputs(const std::vector<const renderer::SceneDesc*>& chosen,
+                                      const std::string& outputPath) {
+    auto base = [&](const renderer::SceneDesc* f) { return outputPath.empty() ? f->displayName : outputPath; };
+    std::vector<std::string> outputs;
+    for (const renderer::SceneDesc* frame : chosen) {
+        const bool shared = std::count_if(chosen.begin(), chosen.end(),
+                                          [&](const renderer::SceneDesc* f) { return base(f) == base(frame); }) > 1;
+        outputs.push_back(shared ? FrameOutputPath(base(frame), frame->frame.value_or(0)) : base(frame));
+    }
+    return outputs;
+}
+
 int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     // From here SIGINT and SIGTERM only set a flag, which the render checks (tools/interrupt.h).
     Interrupts interrupts;
@@ -275,43 +322,18 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     Print(report, err);
     if (!frames) return diag::kExitBadInput;
 
-    // The frames to render: every one, or those --frame names; skipped ones (shadow passes) not.
-    std::vector<const renderer::SceneDesc*> chosen;
-    for (const renderer::SceneDesc& frame : *frames)
-        if (!cmd.frame || frame.frame == cmd.frame) chosen.push_back(&frame);
-    if (chosen.empty()) {
-        std::string known;
-        for (const renderer::SceneDesc& frame : *frames)
-            if (frame.frame)
-                known += (known.empty() ? "" : ", ") + std::to_string(*frame.frame) + " on line " +
-                         std::to_string(frame.frameLine);
-        const std::string message = "--frame " + std::to_string(*cmd.frame) + ": the scene has no frame " +
-                                    std::to_string(*cmd.frame) +
-                                    (known.empty() ? " (it has no FrameBegin)" : " (its frames: " + known + ")");
-        std::fputs(diag::Format({diag::Severity::Error, {cmd.scenePath}, message, {}}).c_str(), err);
-        return diag::kExitUsage;
-    }
-    std::erase_if(chosen, [](const renderer::SceneDesc* frame) { return !frame->skipped.empty(); });
-    if (chosen.empty()) {
-        const std::string message = cmd.frame ? "frame " + std::to_string(*cmd.frame) + " renders no image"
-                                              : "no frame of the scene renders an image";
-        std::fputs(diag::Format({diag::Severity::Note, {cmd.scenePath}, message + ": nothing written", {}}).c_str(),
-                   err);
-        return diag::kExitSuccess;
-    }
+    int status = diag::kExitSuccess;
+    const std::vector<const renderer::SceneDesc*> chosen =
+        ChooseFrames(*frames, cmd.frame, cmd.scenePath, err, &status);
+    if (chosen.empty()) return status;
 
     // Each frame's files: -o or its Display name, numbered when several frames would share it.
-    std::vector<std::string> outputs, pngs;
-    for (const renderer::SceneDesc* frame : chosen) {
-        auto base = [&](const renderer::SceneDesc* f) {
-            return cmd.outputPath.empty() ? f->displayName : cmd.outputPath;
-        };
-        const bool shared = std::count_if(chosen.begin(), chosen.end(),
-                                          [&](const renderer::SceneDesc* f) { return base(f) == base(frame); }) > 1;
-        const int number = frame->frame.value_or(0);
-        outputs.push_back(shared ? FrameOutputPath(base(frame), number) : base(frame));
-        pngs.push_back(cmd.pngPath.empty() || chosen.size() == 1 ? cmd.pngPath : FrameOutputPath(cmd.pngPath, number));
-    }
+    const std::vector<std::string> outputs = FrameOutputs(chosen, cmd.outputPath);
+    std::vector<std::string> pngs;
+    for (const renderer::SceneDesc* frame : chosen)
+        pngs.push_back(cmd.pngPath.empty() || chosen.size() == 1
+                           ? cmd.pngPath
+                           : FrameOutputPath(cmd.pngPath, frame->frame.value_or(0)));
     for (size_t i = 0; i < chosen.size(); ++i)
         for (size_t j = 0; j < i; ++j)
             if (outputs[i] == outputs[j] || (!pngs[i].empty() && pngs[i] == pngs[j])) {

@@ -16,6 +16,9 @@
 
 namespace affray::tools {
 
+/// The version `affray --version` prints and every image's header records (renderer/tiling.h).
+inline constexpr const char* kVersion = "0.1.0";
+
 struct CompileCommand {
     std::string shaderPath;
     std::string outputPath;  // empty: none
@@ -56,6 +59,24 @@ struct RenderCommand {
     bool reverseTiles = false;  // --tile-order reverse (a test option: the image must not change)
 };
 
+/// affray split: the tiles of every frame as Slurm job scripts, or as shell commands.
+struct SplitCommand {
+    std::string scenePath;
+    std::string outputPath;  // empty: each frame's Display name
+    int tiles = 0;
+    bool shell = false;  // --shell: print one render command per task instead of writing job scripts
+    int threads = 1;     // threads of each task (Slurm: cpus-per-task)
+    std::optional<int> frame;
+    std::vector<std::string> renderArgs;  // options given to every task's affray render (already checked)
+    std::string program;                  // the affray program the tasks run (absolute, for Slurm)
+};
+
+/// affray merge: tiles of one frame pasted into one image.
+struct MergeCommand {
+    std::string outputPath;
+    std::vector<std::string> tiles;
+};
+
 struct DiffCommand {
     std::string reference, test;  // two OpenEXR images of the same size
 };
@@ -68,6 +89,24 @@ int RunEval(const EvalCommand& cmd, FILE* out, FILE* err);
 /// Display name or to -o; when several frames would write one file name, each frame's number is
 /// inserted before the extension (FrameOutputPath).
 int RunRender(const RenderCommand& cmd, FILE* out, FILE* err);
+
+/// Writes the job of `cmd` (tools/split.cpp): OUT.render.sbatch, OUT.merge.sbatch and
+/// OUT.submit.sh beside the output, or with --shell prints the commands on `out`.
+int RunSplit(const SplitCommand& cmd, FILE* out, FILE* err);
+/// Checks that the tiles come from one render and cover its frame exactly once, then writes them
+/// as one image (tools/merge.cpp).
+int RunMerge(const MergeCommand& cmd, FILE* out, FILE* err);
+
+/// The frames of `frames` that `affray render` renders: all, or those numbered `frame`, less
+/// those that make no image (shadow passes). Empty with an error on `err` (and *status set) if
+/// --frame names no frame.
+std::vector<const renderer::SceneDesc*> ChooseFrames(const std::vector<renderer::SceneDesc>& frames,
+                                                     std::optional<int> frame, const std::string& scenePath, FILE* err,
+                                                     int* status);
+/// The image file of each chosen frame: `outputPath` or its Display name, with the frame's number
+/// inserted when several frames would share one name (FrameOutputPath).
+std::vector<std::string> FrameOutputs(const std::vector<const renderer::SceneDesc*>& chosen,
+                                      const std::string& outputPath);
 
 /// `path` with frame number `frame` inserted before its extension, as 4 digits at least:
 /// ("out.exr", 7) -> "out.0007.exr"; ("dir.v2/out", 7) -> "dir.v2/out.0007".

@@ -28,6 +28,9 @@ const char* const kUsage =
     "  affray compile SHADER.sl [-o OUT.afb] [--disasm] [--stats] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
     "              [--mode scalar|affine|interval] [-I DIR] [-D NAME[=VALUE]]\n"
+    "  affray split SCENE.rib --tiles N [-o OUT.exr] [--shell] [--threads N] [--frame N] [render options]\n"
+    "              (Slurm job scripts for a farm, or with --shell one render command per tile)\n"
+    "  affray merge OUT.exr TILE.exr...   (the tiles of a split, checked and pasted into one image)\n"
     "  affray diff REFERENCE.exr TEST.exr   (RMSE and largest error of TEST's RGB, as JSON)\n"
     "  affray opcodes   (the VM's instruction set, as a Markdown table)\n"
     "  affray --help | --version\n";
@@ -98,6 +101,8 @@ class Args {
     Args(int argc, char** argv, int first) : m_args(argv + first, argv + argc) {}
     bool Done() const { return m_next >= m_args.size(); }
     std::string Next() { return m_args[m_next++]; }
+    size_t Position() const { return m_next; }
+    const std::string& At(size_t i) const { return m_args[i]; }
     std::string Value(const std::string& option) {
         if (Done()) throw UsageError{option + " needs a value"};
         return Next();
@@ -191,6 +196,78 @@ int Diff(Args& args) {
     return affray::tools::RunDiff(cmd, stdout, stderr);
 }
 
+/// Takes one option of `affray render` (all but --help) into *cmd; false if `a` is none.
+bool RenderOption(const std::string& a, Args& args, affray::tools::RenderCommand* cmdOut) {
+    affray::tools::RenderCommand& cmd = *cmdOut;
+    if (a == "-o")
+        cmd.outputPath = args.Value(a);
+    else if (a == "--threads")
+        cmd.threads = ParseInt(args.Value(a), a, 1, 1024);
+    else if (a == "--tolerance") {
+        cmd.tolerance = ParseNumber(args.Value(a), a);
+        if (!(cmd.tolerance > 0)) throw UsageError{"--tolerance must be positive"};
+    } else if (a == "--max-depth")
+        cmd.maxDepth = ParseInt(args.Value(a), a, 1, 40);
+    else if (a == "--bounds") {
+        std::string b = args.Value(a);
+        if (b == "affine")
+            cmd.bounds = affray::renderer::BoundMode::Affine;
+        else if (b == "reduced")
+            cmd.bounds = affray::renderer::BoundMode::Reduced;
+        else if (b == "interval")
+            cmd.bounds = affray::renderer::BoundMode::Interval;
+        else
+            throw UsageError{"--bounds takes affine, reduced or interval, got '" + b + "'"};
+    } else if (a == "--stats")
+        cmd.stats = true;
+    else if (a == "--png")
+        cmd.pngPath = args.Value(a);
+    else if (a == "--quiet" || a == "-q")
+        cmd.quiet = true;
+    else if (a == "--samples")
+        cmd.samples = ParseInt(args.Value(a), a, 1, 64);
+    else if (a == "--region-budget")
+        cmd.regionBudget = ParseInt(args.Value(a), a, 1, 1 << 30);
+    else if (a == "--frame")
+        cmd.frame = ParseInt(args.Value(a), a, -1000000000, 1000000000);
+    else if (a == "--resume")
+        cmd.resume = true;
+    else if (a == "--tile-order") {
+        // For tests of determinism; not in the usage text.
+        const std::string order = args.Value(a);
+        if (order != "forward" && order != "reverse")
+            throw UsageError{"--tile-order takes forward or reverse, got '" + order + "'"};
+        cmd.reverseTiles = order == "reverse";
+    } else if (a == "--ray-groups")
+        cmd.rayGroupPixels = ParseInt(args.Value(a), a, 0, 256);
+    else if (a == "--cache-mb") {
+        const double mb = ParseNumber(args.Value(a), a);
+        if (!(mb >= 0 && mb <= 1 << 20)) throw UsageError{"--cache-mb takes a size in MiB from 0 to 1048576"};
+        cmd.cacheBytes = static_cast<size_t>(mb * (1 << 20));
+    } else if (a == "--texture-mb") {
+        const double mb = ParseNumber(args.Value(a), a);
+        if (!(mb >= 0 && mb <= 1 << 20)) throw UsageError{"--texture-mb takes a size in MiB from 0 to 1048576"};
+        cmd.textureBytes = static_cast<size_t>(mb * (1 << 20));
+    } else if (a == "--crop") {
+        std::vector<double> c = ParseNumbers(args.Value(a), a);
+        if (c.size() != 4 || !(0 <= c[0] && c[0] < c[1] && c[1] <= 1 && 0 <= c[2] && c[2] < c[3] && c[3] <= 1))
+            throw UsageError{"--crop takes XMIN,XMAX,YMIN,YMAX with 0 <= min < max <= 1"};
+        cmd.crop = std::array<double, 4>{c[0], c[1], c[2], c[3]};
+    } else if (!PreprocessorOption(a, args, &cmd.preprocess))
+        return false;
+    return true;
+}
+
+/// -o writes OpenEXR whatever the name: another image format's name would hide that.
+void CheckExrName(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* other : {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".tga", ".hdr"})
+        if (extension == other)
+            throw UsageError{"-o writes OpenEXR: name the file .exr, not '" + path +
+                             "' (--png writes an 8-bit preview)"};
+}
+
 int Render(Args& args) {
     affray::tools::RenderCommand cmd;
     while (!args.Done()) {
@@ -200,74 +277,57 @@ int Render(Args& args) {
             std::fputs(kRenderHelp, stdout);
             return affray::diag::kExitSuccess;
         }
-        if (a == "-o")
+        if (!RenderOption(a, args, &cmd)) SetInput(&cmd.scenePath, a);
+    }
+    if (cmd.scenePath.empty()) throw UsageError{"render: missing SCENE.rib"};
+    CheckExrName(cmd.outputPath);
+    return affray::tools::RunRender(cmd, stdout, stderr);
+}
+
+int Split(Args& args) {
+    affray::tools::SplitCommand cmd;
+    affray::tools::RenderCommand render;  // checks the options given to every task
+    while (!args.Done()) {
+        const size_t start = args.Position();
+        std::string a = args.Next();
+        if (a == "--tiles")
+            cmd.tiles = ParseInt(args.Value(a), a, 1, 1 << 20);
+        else if (a == "--shell")
+            cmd.shell = true;
+        else if (a == "-o")
             cmd.outputPath = args.Value(a);
         else if (a == "--threads")
             cmd.threads = ParseInt(args.Value(a), a, 1, 1024);
-        else if (a == "--tolerance") {
-            cmd.tolerance = ParseNumber(args.Value(a), a);
-            if (!(cmd.tolerance > 0)) throw UsageError{"--tolerance must be positive"};
-        } else if (a == "--max-depth")
-            cmd.maxDepth = ParseInt(args.Value(a), a, 1, 40);
-        else if (a == "--bounds") {
-            std::string b = args.Value(a);
-            if (b == "affine")
-                cmd.bounds = affray::renderer::BoundMode::Affine;
-            else if (b == "reduced")
-                cmd.bounds = affray::renderer::BoundMode::Reduced;
-            else if (b == "interval")
-                cmd.bounds = affray::renderer::BoundMode::Interval;
-            else
-                throw UsageError{"--bounds takes affine, reduced or interval, got '" + b + "'"};
-        } else if (a == "--stats")
-            cmd.stats = true;
-        else if (a == "--png")
-            cmd.pngPath = args.Value(a);
-        else if (a == "--quiet" || a == "-q")
-            cmd.quiet = true;
-        else if (a == "--samples")
-            cmd.samples = ParseInt(args.Value(a), a, 1, 64);
-        else if (a == "--region-budget")
-            cmd.regionBudget = ParseInt(args.Value(a), a, 1, 1 << 30);
         else if (a == "--frame")
             cmd.frame = ParseInt(args.Value(a), a, -1000000000, 1000000000);
-        else if (a == "--resume")
-            cmd.resume = true;
-        else if (a == "--tile-order") {
-            // For tests of determinism; not in the usage text.
-            const std::string order = args.Value(a);
-            if (order != "forward" && order != "reverse")
-                throw UsageError{"--tile-order takes forward or reverse, got '" + order + "'"};
-            cmd.reverseTiles = order == "reverse";
-        } else if (a == "--ray-groups")
-            cmd.rayGroupPixels = ParseInt(args.Value(a), a, 0, 256);
-        else if (a == "--cache-mb") {
-            const double mb = ParseNumber(args.Value(a), a);
-            if (!(mb >= 0 && mb <= 1 << 20)) throw UsageError{"--cache-mb takes a size in MiB from 0 to 1048576"};
-            cmd.cacheBytes = static_cast<size_t>(mb * (1 << 20));
-        } else if (a == "--texture-mb") {
-            const double mb = ParseNumber(args.Value(a), a);
-            if (!(mb >= 0 && mb <= 1 << 20)) throw UsageError{"--texture-mb takes a size in MiB from 0 to 1048576"};
-            cmd.textureBytes = static_cast<size_t>(mb * (1 << 20));
-        } else if (a == "--crop") {
-            std::vector<double> c = ParseNumbers(args.Value(a), a);
-            if (c.size() != 4 || !(0 <= c[0] && c[0] < c[1] && c[1] <= 1 && 0 <= c[2] && c[2] < c[3] && c[3] <= 1))
-                throw UsageError{"--crop takes XMIN,XMAX,YMIN,YMAX with 0 <= min < max <= 1"};
-            cmd.crop = std::array<double, 4>{c[0], c[1], c[2], c[3]};
-        } else if (PreprocessorOption(a, args, &cmd.preprocess))
-            continue;
+        else if (a == "--crop" || a == "--resume" || a == "--png" || a == "--stats" || a == "--tile-order" ||
+                 a == "--quiet" || a == "-q")
+            throw UsageError{"split: " + a + " is not an option of split (each task renders its own --crop, " +
+                             "quietly, with --resume)"};
+        else if (RenderOption(a, args, &render))
+            for (size_t i = start; i < args.Position(); ++i) cmd.renderArgs.push_back(args.At(i));
         else
             SetInput(&cmd.scenePath, a);
     }
-    if (cmd.scenePath.empty()) throw UsageError{"render: missing SCENE.rib"};
-    // -o writes OpenEXR whatever the name: another image format's name would hide that.
-    std::string extension = std::filesystem::path(cmd.outputPath).extension().string();
-    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    for (const char* other : {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".tga", ".hdr"})
-        if (extension == other)
-            throw UsageError{"-o writes OpenEXR: name the file .exr, not '" + cmd.outputPath +
-                             "' (--png writes an 8-bit preview)"};
-    return affray::tools::RunRender(cmd, stdout, stderr);
+    if (cmd.scenePath.empty()) throw UsageError{"split: missing SCENE.rib"};
+    if (cmd.tiles == 0) throw UsageError{"split: missing --tiles N"};
+    CheckExrName(cmd.outputPath);
+    return affray::tools::RunSplit(cmd, stdout, stderr);
+}
+
+int Merge(Args& args) {
+    affray::tools::MergeCommand cmd;
+    while (!args.Done()) {
+        std::string a = args.Next();
+        if (!a.empty() && a[0] == '-') throw UsageError{"unknown option '" + a + "'"};
+        if (cmd.outputPath.empty())
+            cmd.outputPath = a;
+        else
+            cmd.tiles.push_back(a);
+    }
+    if (cmd.tiles.empty()) throw UsageError{"merge takes OUT.exr and at least one TILE.exr"};
+    CheckExrName(cmd.outputPath);
+    return affray::tools::RunMerge(cmd, stdout, stderr);
 }
 
 }  // namespace
@@ -283,7 +343,7 @@ int main(int argc, char** argv) {
         return diag::kExitSuccess;
     }
     if (command == "--version") {
-        std::puts("affray 0.1.0");
+        std::printf("affray %s\n", affray::tools::kVersion);
         return diag::kExitSuccess;
     }
     Args args(argc, argv, 2);
@@ -292,6 +352,8 @@ int main(int argc, char** argv) {
         if (command == "eval") return Eval(args);
         if (command == "render") return Render(args);
         if (command == "diff") return Diff(args);
+        if (command == "split") return Split(args);
+        if (command == "merge") return Merge(args);
         if (command == "opcodes") {
             if (!args.Done()) throw UsageError{"opcodes takes no arguments"};
             std::fputs(affray::vm::OpcodeTable().c_str(), stdout);

@@ -10,6 +10,7 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <algorithm>
 #include <cstdint>
 #include <exception>
@@ -67,6 +68,7 @@ void EncodeExr(const ImageBuffer& image, MemoryStream& out) {
     Imf::Header header(image.width, image.height);
     for (const char* name : kRgbaNames) header.channels().insert(name, Imf::Channel(Imf::HALF));
     for (const auto& channel : image.extraChannels) header.channels().insert(channel.first, Imf::Channel(Imf::FLOAT));
+    for (const auto& [name, value] : image.attributes) header.insert(name, Imf::StringAttribute(value));
 
     // RGBA goes to disk as half; convert once into an interleaved buffer.
     std::vector<Imath::half> rgba(image.rgba.size());
@@ -131,6 +133,9 @@ bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report
             frameBuffer.insert(kRgbaNames[c],
                                Imf::Slice::Make(Imf::FLOAT, image.rgba.data() + c, dataWindow, 4 * sizeof(float),
                                                 4 * sizeof(float) * width, 1, 1, c == 3 ? 1.0 : 0.0));
+        for (auto it = file.header().begin(); it != file.header().end(); ++it)
+            if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+                image.attributes[it.name()] = text->value();
         const Imf::ChannelList& channels = file.header().channels();
         for (auto it = channels.begin(); it != channels.end(); ++it) {
             std::string name = it.name();

@@ -6,6 +6,7 @@
 // nothing throws.
 #pragma once
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,6 +21,9 @@ struct ImageBuffer {
     std::vector<float> rgba;  ///< Interleaved RGBA, width * height * 4, row 0 at the top.
     /// Extra float32 channels such as {"Z", ...}, width * height values each, same pixel order.
     std::vector<std::pair<std::string, std::vector<float>>> extraChannels;
+    /// String attributes of the file's header, such as the render's identity that affray merge
+    /// checks ("affray:identity", renderer/tile_header.h). Read back: every string attribute.
+    std::map<std::string, std::string> attributes;
 };
 
 /// Describes an image on one line ("640x480 RGBA + Z"), for logs.

@@ -296,7 +296,7 @@ void Film::ResolveTile(const PixelRange& tile, const std::vector<Sample>& sample
 bool PasteCrop(const ImageBuffer& crop, const PixelRange& range, ImageBuffer* whole, std::string* error) {
     const size_t pixels = static_cast<size_t>(crop.width) * crop.height;
     if (whole->width == 0 && whole->height == 0) {
-        *whole = ImageBuffer{crop.width, crop.height, std::vector<float>(pixels * 4, 0.0f), {}};
+        *whole = ImageBuffer{crop.width, crop.height, std::vector<float>(pixels * 4, 0.0f), {}, {}};
     }
     if (whole->width != crop.width || whole->height != crop.height) {
         if (error)

@@ -320,11 +320,11 @@ TEST_CASE("cli: every scene in scenes/ parses and its shaders compile", "[tools]
 TEST_CASE("cli: diff reports the RMSE and largest RGB error of one image against another", "[tools]") {
     fs::path dir = TempDir("diff");
     // Two 2x1 images: the second differs by 0.5 in R of one pixel and 0.25 in B of the other.
-    renderer::ImageBuffer a{2, 1, {0.5f, 0.5f, 0.5f, 1, 0.25f, 0, 1, 1}, {}};
+    renderer::ImageBuffer a{2, 1, {0.5f, 0.5f, 0.5f, 1, 0.25f, 0, 1, 1}, {}, {}};
     renderer::ImageBuffer b = a;
     b.rgba[0] = 1.0f;
     b.rgba[6] = 0.75f;
-    renderer::ImageBuffer wide{3, 1, std::vector<float>(12, 0.0f), {}};
+    renderer::ImageBuffer wide{3, 1, std::vector<float>(12, 0.0f), {}, {}};
     REQUIRE(renderer::WriteExr((dir / "a.exr").string(), a, nullptr));
     REQUIRE(renderer::WriteExr((dir / "b.exr").string(), b, nullptr));
     REQUIRE(renderer::WriteExr((dir / "wide.exr").string(), wide, nullptr));

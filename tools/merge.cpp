@@ -1,0 +1,124 @@
+// tools/merge.cpp: `affray merge OUT.exr TILE.exr...`, the tiles of one frame rendered by separate
+// processes (affray split) pasted into one image, bit for bit the image one process renders.
+// Before anything is written it checks, from each tile's header (renderer/tiling.h), that the
+// tiles come from one render (same affray version, scene and options, crop left out), have the
+// same size and channels, and cover the frame exactly once; each refusal names the tile files and
+// exits 1 with nothing written. The image is written atomically (renderer/image/atomic_file.h).
+#include <algorithm>
+#include <optional>
+
+#include "renderer/image/exr_writer.h"
+#include "renderer/tiling.h"
+#include "tools/commands.h"
+
+namespace affray::tools {
+namespace {
+
+struct Tile {
+    std::string path;
+    renderer::ImageBuffer image;
+    renderer::TileHeader header;
+};
+
+std::string Channels(const renderer::ImageBuffer& image) {
+    std::string names = "R,G,B,A";
+    for (const auto& channel : image.extraChannels) names += "," + channel.first;
+    return names;
+}
+
+/// Why tile `b` cannot be merged with tile `a` (one render, one size, one channel list), or "".
+std::string Mismatch(const Tile& a, const Tile& b) {
+    const renderer::ImageBuffer &ia = a.image, &ib = b.image;
+    if (b.header.version != a.header.version)
+        return "tiles of different affray versions: " + b.path + " was rendered by affray " + b.header.version + ", " +
+               a.path + " by affray " + a.header.version;
+    if (const std::string names = renderer::DifferingOptions(a.header.options, b.header.options); !names.empty())
+        return "tiles of different options: " + b.path + " and " + a.path + " were rendered with different " + names;
+    if (b.header.scene != a.header.scene || b.header.identity != a.header.identity)
+        return "tiles of different scenes: " + b.path + " and " + a.path +
+               " were rendered from different scenes (the RIB file, a shader or a texture differs)";
+    if (ib.width != ia.width || ib.height != ia.height)
+        return "tiles of different sizes: " + b.path + " is " + std::to_string(ib.width) + "x" +
+               std::to_string(ib.height) + ", " + a.path + " is " + std::to_string(ia.width) + "x" +
+               std::to_string(ia.height);
+    if (Channels(ib) != Channels(ia))
+        return "tiles of different channels: " + b.path + " has " + Channels(ib) + ", " + a.path + " has " +
+               Channels(ia);
+    return "";
+}
+
+/// The pixels both ranges cover.
+renderer::PixelRange Overlap(const renderer::PixelRange& a, const renderer::PixelRange& b) {
+    return {std::max(a.x0, b.x0), std::min(a.x1, b.x1), std::max(a.y0, b.y0), std::min(a.y1, b.y1)};
+}
+
+}  // namespace
+
+int RunMerge(const MergeCommand& cmd, FILE* /*out*/, FILE* err) {
+    diag::Report report;
+    auto refuse = [&](const std::string& where, const std::string& message) {
+        report.error({where}, message + "; nothing written");
+        Print(report, err);
+        return diag::kExitBadInput;
+    };
+    // Read every tile and its header.
+    std::vector<Tile> tiles;
+    for (const std::string& path : cmd.tiles) {
+        Tile tile{path, {}, {}};
+        if (!renderer::ReadExrRgba(path, &tile.image, &report)) {
+            Print(report, err);
+            return diag::kExitBadInput;
+        }
+        std::string why;
+        std::optional<renderer::TileHeader> header = renderer::ReadTileHeader(tile.image, &why);
+        if (!header) return refuse(path, "not a tile: " + why);
+        tile.header = *header;
+        tiles.push_back(std::move(tile));
+    }
+    // One render, one size, one channel list.
+    for (size_t i = 1; i < tiles.size(); ++i)
+        if (const std::string why = Mismatch(tiles[0], tiles[i]); !why.empty()) return refuse(tiles[i].path, why);
+    // The frame covered exactly once: no two tiles overlap, and together they cover every pixel.
+    for (size_t i = 0; i < tiles.size(); ++i)
+        for (size_t j = 0; j < i; ++j)
+            if (const renderer::PixelRange both = Overlap(tiles[j].header.pixels, tiles[i].header.pixels);
+                !both.empty())
+                return refuse(tiles[i].path, "overlapping tiles: " + tiles[i].path + " and " + tiles[j].path +
+                                                 " both cover the pixels " + renderer::ToString(both));
+    const int width = tiles[0].image.width, height = tiles[0].image.height;
+    int64_t covered = 0;
+    for (const Tile& tile : tiles) {
+        const renderer::PixelRange& r = tile.header.pixels;
+        covered += int64_t(r.x1 - r.x0) * (r.y1 - r.y0);
+    }
+    if (covered != int64_t(width) * height) {
+        // The bounding box of the pixels no tile covers, to say where the missing tile goes.
+        renderer::PixelRange missing{width, 0, height, 0};
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                if (std::none_of(tiles.begin(), tiles.end(),
+                                 [&](const Tile& t) { return t.header.pixels.Contains(x, y); })) {
+                    missing = {std::min(missing.x0, x), std::max(missing.x1, x + 1), std::min(missing.y0, y),
+                               std::max(missing.y1, y + 1)};
+                }
+        return refuse(cmd.outputPath, "missing tile: " + std::to_string(int64_t(width) * height - covered) + " of " +
+                                          std::to_string(int64_t(width) * height) + " pixels (within " +
+                                          renderer::ToString(missing) + ") are in none of the " +
+                                          std::to_string(tiles.size()) + " tiles given");
+    }
+    // Paste; the header is the one a single render of the whole frame writes.
+    renderer::ImageBuffer whole;
+    for (const Tile& tile : tiles) {
+        std::string why;
+        if (!renderer::PasteCrop(tile.image, tile.header.pixels, &whole, &why)) return refuse(tile.path, why);
+    }
+    whole.attributes = tiles[0].image.attributes;
+    whole.attributes["affray:pixels"] = "0," + std::to_string(width) + ",0," + std::to_string(height);
+    if (!renderer::WriteExr(cmd.outputPath, whole, &report)) {
+        Print(report, err);
+        return diag::kExitOutput;
+    }
+    return diag::kExitSuccess;
+}
+
+}  // namespace affray::tools
