@@ -4,6 +4,8 @@
 // tiles come from one render (same affray version, scene and options, crop left out), have the
 // same size and channels, and cover the frame exactly once; each refusal names the tile files and
 // exits 1 with nothing written. The image is written atomically (renderer/image/atomic_file.h).
+// Only the headers are read for the checks; then each tile's own rows are read and pasted in
+// turn, so merging holds the whole image and one tile, not every tile.
 #include <algorithm>
 #include <optional>
 
@@ -16,7 +18,7 @@ namespace {
 
 struct Tile {
     std::string path;
-    renderer::ImageBuffer image;
+    renderer::ImageBuffer image;  // header: size, attributes, channel names (no pixels)
     renderer::TileHeader header;
 };
 
@@ -61,11 +63,11 @@ int RunMerge(const MergeCommand& cmd, FILE* /*out*/, FILE* err) {
         Print(report, err);
         return diag::kExitBadInput;
     };
-    // Read every tile and its header.
+    // Read every tile's header.
     std::vector<Tile> tiles;
     for (const std::string& path : cmd.tiles) {
         Tile tile{path, {}, {}};
-        if (!renderer::ReadExrRgba(path, &tile.image, &report)) {
+        if (!renderer::ReadExrHeader(path, &tile.image, &report)) {
             Print(report, err);
             return diag::kExitBadInput;
         }
@@ -106,11 +108,18 @@ int RunMerge(const MergeCommand& cmd, FILE* /*out*/, FILE* err) {
                                           renderer::ToString(missing) + ") are in none of the " +
                                           std::to_string(tiles.size()) + " tiles given");
     }
-    // Paste; the header is the one a single render of the whole frame writes.
+    // Paste each tile's rows in turn; the header is the one a single render of the frame writes.
     renderer::ImageBuffer whole;
     for (const Tile& tile : tiles) {
+        renderer::ImageBuffer pixels;
+        if (!renderer::ReadExrRgba(tile.path, &pixels, &report,
+                                   std::array<int, 2>{tile.header.pixels.y0, tile.header.pixels.y1})) {
+            Print(report, err);
+            return diag::kExitBadInput;
+        }
         std::string why;
-        if (!renderer::PasteCrop(tile.image, tile.header.pixels, &whole, &why)) return refuse(tile.path, why);
+        if (Channels(pixels) != Channels(tile.image)) return refuse(tile.path, "the file changed while merging");
+        if (!renderer::PasteCrop(pixels, tile.header.pixels, &whole, &why)) return refuse(tile.path, why);
     }
     whole.attributes = tiles[0].image.attributes;
     whole.attributes["affray:pixels"] = "0," + std::to_string(width) + ",0," + std::to_string(height);

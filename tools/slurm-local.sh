@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # tools/slurm-local.sh: affray split and merge on a real Slurm cluster, started here for the test.
 #
-#   tools/slurm-local.sh [--kill-one] [--port N] [--keep] AFFRAY
+#   tools/slurm-local.sh [--kill-one] [--port N] [--keep] [--scene RIB --tiles N --samples N] AFFRAY
 #
 # Starts a one-node cluster in a temporary directory, without systemd: munged with a key and
 # socket of its own, then slurmctld and slurmd from a generated slurm.conf (root as SlurmUser,
@@ -14,17 +14,23 @@
 #               met), resubmits only task 3 (OUT.submit.sh 3, a new merge job with it), and checks
 #               that the image is the same and that the other tiles were not rendered again.
 #   --keep      keeps the temporary directory (logs, scripts, images) and prints its name.
+#   --scene RIB, --tiles N, --samples N  split that scene (in place, as it is) into N tiles instead: for the
+#               README's figures (the times from submission to merged image and of the single
+#               render with every core are printed).
 # Every daemon it starts is stopped on exit (trap EXIT), whatever happens; every wait has a timeout.
 # Exit status: 0 passed, 1 failed, 77 skipped (slurmctld, slurmd, munged or sbatch is missing:
 # tools/setup.sh installs them); CTest counts 77 as skipped (tests/CMakeLists.txt).
 set -euo pipefail
 
-kill_one=0 port=36817 keep=0 affray=""
+kill_one=0 port=36817 keep=0 affray="" scene="" tiles=4 samples=()
 while [[ $# -gt 0 ]]; do
     case "$1" in
         --kill-one) kill_one=1 ;;
         --port) port="$2"; shift ;;
         --keep) keep=1 ;;
+        --scene) scene=$(realpath "$2"); shift ;;
+        --tiles) tiles="$2"; shift ;;
+        --samples) samples=(--samples "$2"); shift ;;
         -*) echo "slurm-local: unknown option $1" >&2; exit 2 ;;
         *) affray="$1" ;;
     esac
@@ -134,13 +140,15 @@ echo "slurm-local: cluster up: node $host with $cpus CPUs, slurmctld on port $po
 
 # The scene: scenes/wave.rib at 64 x 48 with every AOV, its shader beside it.
 cd "$tmp/work"
-cp "$src/shaders/wave.sl" .
-sed -e 's/^Format .*/Format 64 48 1/' -e 's/"file" "rgba"/"file" "rgba,Z,N,P,st,cost,err"/' \
-    "$src/scenes/wave.rib" >wave.rib
-samples=()
+if [[ -z "$scene" ]]; then
+    cp "$src/shaders/wave.sl" .
+    sed -e 's/^Format .*/Format 64 48 1/' -e 's/"file" "rgba"/"file" "rgba,Z,N,P,st,cost,err"/' \
+        "$src/scenes/wave.rib" >wave.rib
+    scene=wave.rib
+fi
 # Task 3 must still be rendering when it is cancelled: more samples make each task take seconds.
 [[ $kill_one -eq 1 ]] && samples=(--samples 12)
-"$affray" split wave.rib --tiles 4 -o out.exr "${samples[@]}" >/dev/null
+"$affray" split "$scene" --tiles "$tiles" -o out.exr "${samples[@]}" >/dev/null
 
 # job_state ID: the job's state (COMPLETED, FAILED, CANCELLED, RUNNING, PENDING...).
 job_state() { scontrol show job "$1" 2>/dev/null | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p' | head -n 1; }
@@ -164,7 +172,10 @@ submit() {
     read -r render merge <<<"$(echo "$line" | sed 's/render job \([0-9]*\), merge job \([0-9]*\)/\1 \2/')"
 }
 
-start=$SECONDS
+now() { date +%s.%N; }
+# since START: seconds elapsed since START (a now value), to 0.01 s.
+since() { awk -v a="$(now)" -v b="$1" 'BEGIN { printf "%.2f", a - b }'; }
+start=$(now)
 submit
 if [[ $kill_one -eq 1 ]]; then
     # Cancel task 3 once it has started rendering (its checkpoint exists) and before it finishes.
@@ -186,7 +197,7 @@ if [[ $kill_one -eq 1 ]]; then
     submit 3
 fi
 state=$(wait_job "$merge" 180)
-elapsed=$((SECONDS - start))
+elapsed=$(since "$start")
 [[ "$state" == COMPLETED ]] || fail "merge job $merge ended $state"
 [[ -f out.exr ]] || fail "the merge job wrote no out.exr"
 if [[ $kill_one -eq 1 ]]; then
@@ -195,8 +206,10 @@ if [[ $kill_one -eq 1 ]]; then
     grep -h "checkpoint" out.render-"${render}"_3.log | sed 's/^/slurm-local: task 3 log: /' || true
 fi
 
-# The same render in one process.
-"$affray" render wave.rib -o single.exr --quiet "${samples[@]}"
+# The same render in one process, with every core.
+start=$(now)
+"$affray" render "$scene" -o single.exr --quiet "${samples[@]}"
+single=$(since "$start")
 cmp out.exr single.exr || fail "the merged image differs from the single-process render"
-echo "slurm-local: PASSED: merged image = single-process render, byte for byte ($(stat -c %s out.exr) bytes;" \
-    "split to merged in ${elapsed} s)"
+echo "slurm-local: PASSED: merged image = single-process render, byte for byte ($(stat -c %s out.exr) bytes);" \
+    "submitted to merged: ${elapsed} s; single process on $cpus cores: ${single} s"

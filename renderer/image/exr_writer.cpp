@@ -115,40 +115,70 @@ bool WriteExr(const std::string& path, const ImageBuffer& image, diag::Report* r
     return true;
 }
 
-bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report) {
+namespace {
+
+/// Size and attributes of an open file's header, and its extra channels' names (no values).
+ImageBuffer HeaderOf(const Imf::InputFile& file) {
+    const Imath::Box2i dataWindow = file.header().dataWindow();
+    int64_t width = int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
+    int64_t height = int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
+    if (width <= 0 || height <= 0 || width * height > kMaxPixels)
+        throw std::runtime_error("unsupported data window " + std::to_string(width) + "x" + std::to_string(height));
+    ImageBuffer image;
+    image.width = static_cast<int>(width);
+    image.height = static_cast<int>(height);
+    for (auto it = file.header().begin(); it != file.header().end(); ++it)
+        if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+            image.attributes[it.name()] = text->value();
+    const Imf::ChannelList& channels = file.header().channels();
+    for (auto it = channels.begin(); it != channels.end(); ++it) {
+        std::string name = it.name();
+        if (name == "R" || name == "G" || name == "B" || name == "A") continue;
+        if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
+            throw std::runtime_error("subsampled channel '" + name + "' is not supported");
+        image.extraChannels.emplace_back(name, std::vector<float>());
+    }
+    return image;
+}
+
+}  // namespace
+
+bool ReadExrHeader(const std::string& path, ImageBuffer* out, diag::Report* report) {
+    try {
+        Imf::InputFile file(path.c_str());
+        *out = HeaderOf(file);
+        return true;
+    } catch (const std::exception& e) {
+        if (report) report->error({path}, std::string("cannot read image: ") + e.what());
+        return false;
+    }
+}
+
+bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report,
+                 std::optional<std::array<int, 2>> rows) {
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dataWindow = file.header().dataWindow();
-        int64_t width = int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
-        int64_t height = int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
-        if (width <= 0 || height <= 0 || width * height > kMaxPixels)
-            throw std::runtime_error("unsupported data window " + std::to_string(width) + "x" + std::to_string(height));
-
-        ImageBuffer image;
-        image.width = static_cast<int>(width);
-        image.height = static_cast<int>(height);
-        image.rgba.assign(size_t(width * height) * 4, 0.0f);
+        ImageBuffer image = HeaderOf(file);
+        const size_t pixels = size_t(image.width) * size_t(image.height);
+        image.rgba.assign(pixels * 4, 0.0f);
         Imf::FrameBuffer frameBuffer;
         for (int c = 0; c < 4; ++c)
             frameBuffer.insert(kRgbaNames[c],
                                Imf::Slice::Make(Imf::FLOAT, image.rgba.data() + c, dataWindow, 4 * sizeof(float),
-                                                4 * sizeof(float) * width, 1, 1, c == 3 ? 1.0 : 0.0));
-        for (auto it = file.header().begin(); it != file.header().end(); ++it)
-            if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
-                image.attributes[it.name()] = text->value();
-        const Imf::ChannelList& channels = file.header().channels();
-        for (auto it = channels.begin(); it != channels.end(); ++it) {
-            std::string name = it.name();
-            if (name == "R" || name == "G" || name == "B" || name == "A") continue;
-            if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
-                throw std::runtime_error("subsampled channel '" + name + "' is not supported");
-            image.extraChannels.emplace_back(name, std::vector<float>(size_t(width * height)));
+                                                4 * sizeof(float) * image.width, 1, 1, c == 3 ? 1.0 : 0.0));
+        for (auto& [name, values] : image.extraChannels) {
+            values.assign(pixels, 0.0f);
+            frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, values.data(), dataWindow, sizeof(float),
+                                                      sizeof(float) * image.width));
         }
-        for (auto& [name, values] : image.extraChannels)
-            frameBuffer.insert(
-                name, Imf::Slice::Make(Imf::FLOAT, values.data(), dataWindow, sizeof(float), sizeof(float) * width));
         file.setFrameBuffer(frameBuffer);
-        file.readPixels(dataWindow.min.y, dataWindow.max.y);
+        int y0 = dataWindow.min.y, y1 = dataWindow.max.y;
+        if (rows) {
+            y0 = std::max(y0, dataWindow.min.y + (*rows)[0]);
+            y1 = std::min(y1, dataWindow.min.y + (*rows)[1] - 1);
+        }
+        if (y0 <= y1) file.readPixels(y0, y1);
         *out = std::move(image);
         return true;
     } catch (const std::exception& e) {

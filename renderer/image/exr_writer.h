@@ -6,7 +6,9 @@
 // nothing throws.
 #pragma once
 
+#include <array>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +39,13 @@ bool WriteExr(const std::string& path, const ImageBuffer& image, diag::Report* r
 /// Reads an OpenEXR file: R, G, B, A into out->rgba (missing color channels read as 0, a missing
 /// alpha as 1) and every other channel into out->extraChannels, as float. Returns false with an
 /// error at `path` in *report (may be null), "cannot read image: reason", on failure.
-bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report);
+/// With `rows` = {y0, y1}, only rows y0 to y1 - 1 are read (the others are left 0): a tile of a
+/// frame rendered in parts (affray merge) decodes only its own rows.
+bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report,
+                 std::optional<std::array<int, 2>> rows = std::nullopt);
+
+/// Reads only the header of an OpenEXR file: out->width, height and attributes, and
+/// out->extraChannels with their names and no values. Errors as ReadExrRgba.
+bool ReadExrHeader(const std::string& path, ImageBuffer* out, diag::Report* report);
 
 }  // namespace affray::renderer
