@@ -40,7 +40,7 @@ done
 affray=$(realpath "$affray")
 src=$(cd "$(dirname "$0")/.." && pwd)
 
-for program in munged mungekey slurmctld slurmd sbatch squeue scontrol scancel; do
+for program in slurmctld slurmd munged mungekey sbatch squeue scontrol scancel sinfo; do
     if ! command -v "$program" >/dev/null && [[ ! -x /usr/sbin/$program ]]; then
         echo "slurm-local: SKIPPED: $program is not installed (tools/setup.sh installs slurm-wlm and munge)"
         exit 77
