@@ -5,7 +5,8 @@
 #
 # Starts a one-node cluster in a temporary directory, without systemd: munged with a key and
 # socket of its own, then slurmctld and slurmd from a generated slurm.conf (root as SlurmUser,
-# proctrack/linuxproc, task/none, select/cons_tres; ports N and N+1, 36817 by default). It splits a
+# proctrack/linuxproc, task/none, select/cons_tres; ports N and N+1, by default two free ports
+# picked at random from 36800-38799, so that runs on one machine do not clash). It splits a
 # 64 x 48 render of scenes/wave.rib with every AOV into 4 tiles (affray split), submits the job
 # array and its merge job (OUT.submit.sh), waits for the merge, and compares the merged image with
 # a single-process render byte for byte.
@@ -22,7 +23,7 @@
 # tools/setup.sh installs them); CTest counts 77 as skipped (tests/CMakeLists.txt).
 set -euo pipefail
 
-kill_one=0 port=36817 keep=0 affray="" scene="" tiles=4 samples=()
+kill_one=0 port=auto keep=0 affray="" scene="" tiles=4 samples=()
 while [[ $# -gt 0 ]]; do
     case "$1" in
         --kill-one) kill_one=1 ;;
@@ -82,6 +83,15 @@ wait_for() {
         sleep 0.1
     done
 }
+
+# Ports: two free ones (nothing answers on them), at random unless --port says.
+port_free() { ! (exec 3<>"/dev/tcp/127.0.0.1/$1") 2>/dev/null; }
+if [[ "$port" == auto ]]; then
+    for _ in $(seq 50); do
+        port=$((36800 + RANDOM % 2000))
+        port_free "$port" && port_free $((port + 1)) && break
+    done
+fi
 
 # munge: its own key and socket.
 mkdir -m 700 "$tmp/munge"
