@@ -4,8 +4,8 @@
 #   tools/slurm-local.sh [--kill-one] [--port N] [--keep] [--scene RIB --tiles N --samples N] AFFRAY
 #
 # Starts a one-node cluster in a temporary directory, without systemd: munged with a key and
-# socket of its own, then slurmctld and slurmd from a generated slurm.conf (root as SlurmUser,
-# proctrack/linuxproc, task/none, select/cons_tres; ports N and N+1, by default two free ports
+# socket of its own, then slurmctld and slurmd from a generated slurm.conf (the user running it as
+# SlurmUser, proctrack/linuxproc, task/none, select/cons_tres; ports N and N+1, by default two free ports
 # picked at random from 36800-38799, so that runs on one machine do not clash). It splits a
 # 64 x 48 render of scenes/wave.rib with every AOV into 4 tiles (affray split), submits the job
 # array and its merge job (OUT.submit.sh), waits for the merge, and compares the merged image with
@@ -110,8 +110,8 @@ export SLURM_CONF="$tmp/slurm.conf"
 cat >"$SLURM_CONF" <<EOF
 ClusterName=affraylocal
 SlurmctldHost=$host(127.0.0.1)
-SlurmUser=root
-SlurmdUser=root
+SlurmUser=$(id -un)
+SlurmdUser=$(id -un)
 SlurmctldPort=$port
 SlurmdPort=$((port + 1))
 AuthType=auth/munge
