@@ -4,9 +4,10 @@
 // tiles come from one render (same affray version, scene and options, crop left out), have the
 // same size and channels, and cover the frame exactly once; each refusal names the tile files and
 // exits 1 with nothing written. The image is written atomically (renderer/image/atomic_file.h).
-// Only the headers are read for the checks; then each tile's own rows are read and pasted in
-// turn, so merging holds the whole image and one tile, not every tile.
+// Only the headers are read for the checks; then each tile's own band of rows is read and pasted
+// in turn, so merging holds the whole image and one band, not every tile.
 #include <algorithm>
+#include <cstdint>
 #include <optional>
 
 #include "renderer/image/exr_writer.h"
@@ -95,31 +96,44 @@ int RunMerge(const MergeCommand& cmd, FILE* /*out*/, FILE* err) {
     }
     if (covered != int64_t(width) * height) {
         // The bounding box of the pixels no tile covers, to say where the missing tile goes.
+        std::vector<uint8_t> inTile(size_t(width) * height, 0);
+        for (const Tile& tile : tiles)
+            for (int y = tile.header.pixels.y0; y < tile.header.pixels.y1; ++y)
+                std::fill_n(inTile.begin() + int64_t(y) * width + tile.header.pixels.x0,
+                            tile.header.pixels.x1 - tile.header.pixels.x0, 1);
         renderer::PixelRange missing{width, 0, height, 0};
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x)
-                if (std::none_of(tiles.begin(), tiles.end(),
-                                 [&](const Tile& t) { return t.header.pixels.Contains(x, y); })) {
+                if (!inTile[size_t(y) * width + x])
                     missing = {std::min(missing.x0, x), std::max(missing.x1, x + 1), std::min(missing.y0, y),
                                std::max(missing.y1, y + 1)};
-                }
         return refuse(cmd.outputPath, "missing tile: " + std::to_string(int64_t(width) * height - covered) + " of " +
                                           std::to_string(int64_t(width) * height) + " pixels (within " +
                                           renderer::ToString(missing) + ") are in none of the " +
                                           std::to_string(tiles.size()) + " tiles given");
     }
-    // Paste each tile's rows in turn; the header is the one a single render of the frame writes.
-    renderer::ImageBuffer whole;
+    // Paste each tile's band of rows in turn; the header is the one a single render of the frame
+    // writes, and the channels are in the tiles' order.
+    renderer::ImageBuffer whole{width, height, std::vector<float>(size_t(width) * height * 4, 0.0f), {}, {}};
+    for (const auto& channel : tiles[0].image.extraChannels)
+        whole.extraChannels.emplace_back(channel.first, std::vector<float>(size_t(width) * height, 0.0f));
     for (const Tile& tile : tiles) {
-        renderer::ImageBuffer pixels;
-        if (!renderer::ReadExrRgba(tile.path, &pixels, &report,
-                                   std::array<int, 2>{tile.header.pixels.y0, tile.header.pixels.y1})) {
+        const renderer::PixelRange& r = tile.header.pixels;
+        renderer::ImageBuffer band;
+        if (!renderer::ReadExrRgba(tile.path, &band, &report, std::array<int, 2>{r.y0, r.y1})) {
             Print(report, err);
             return diag::kExitBadInput;
         }
-        std::string why;
-        if (Channels(pixels) != Channels(tile.image)) return refuse(tile.path, "the file changed while merging");
-        if (!renderer::PasteCrop(pixels, tile.header.pixels, &whole, &why)) return refuse(tile.path, why);
+        if (Channels(band) != Channels(tile.image) || band.width != width)
+            return refuse(tile.path, "the file changed while merging");
+        for (int y = r.y0; y < r.y1; ++y) {
+            const size_t from = size_t(y - r.y0) * width + r.x0, to = size_t(y) * width + r.x0;
+            const size_t n = size_t(r.x1 - r.x0);
+            std::copy_n(band.rgba.begin() + int64_t(from * 4), n * 4, whole.rgba.begin() + int64_t(to * 4));
+            for (size_t c = 0; c < band.extraChannels.size(); ++c)
+                std::copy_n(band.extraChannels[c].second.begin() + int64_t(from), n,
+                            whole.extraChannels[c].second.begin() + int64_t(to));
+        }
     }
     whole.attributes = tiles[0].image.attributes;
     whole.attributes["affray:pixels"] = "0," + std::to_string(width) + ",0," + std::to_string(height);

@@ -160,25 +160,30 @@ bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dataWindow = file.header().dataWindow();
         ImageBuffer image = HeaderOf(file);
+        // The rows read, as a box in the file's coordinates: all, or the band asked for.
+        Imath::Box2i band = dataWindow;
+        if (rows) {
+            if ((*rows)[0] < 0 || (*rows)[1] > image.height || (*rows)[0] >= (*rows)[1])
+                throw std::runtime_error("rows " + std::to_string((*rows)[0]) + " to " + std::to_string((*rows)[1]) +
+                                         " are not in the image");
+            band.min.y = dataWindow.min.y + (*rows)[0];
+            band.max.y = dataWindow.min.y + (*rows)[1] - 1;
+            image.height = (*rows)[1] - (*rows)[0];
+        }
         const size_t pixels = size_t(image.width) * size_t(image.height);
         image.rgba.assign(pixels * 4, 0.0f);
         Imf::FrameBuffer frameBuffer;
         for (int c = 0; c < 4; ++c)
             frameBuffer.insert(kRgbaNames[c],
-                               Imf::Slice::Make(Imf::FLOAT, image.rgba.data() + c, dataWindow, 4 * sizeof(float),
+                               Imf::Slice::Make(Imf::FLOAT, image.rgba.data() + c, band, 4 * sizeof(float),
                                                 4 * sizeof(float) * image.width, 1, 1, c == 3 ? 1.0 : 0.0));
         for (auto& [name, values] : image.extraChannels) {
             values.assign(pixels, 0.0f);
-            frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, values.data(), dataWindow, sizeof(float),
-                                                      sizeof(float) * image.width));
+            frameBuffer.insert(
+                name, Imf::Slice::Make(Imf::FLOAT, values.data(), band, sizeof(float), sizeof(float) * image.width));
         }
         file.setFrameBuffer(frameBuffer);
-        int y0 = dataWindow.min.y, y1 = dataWindow.max.y;
-        if (rows) {
-            y0 = std::max(y0, dataWindow.min.y + (*rows)[0]);
-            y1 = std::min(y1, dataWindow.min.y + (*rows)[1] - 1);
-        }
-        if (y0 <= y1) file.readPixels(y0, y1);
+        file.readPixels(band.min.y, band.max.y);
         *out = std::move(image);
         return true;
     } catch (const std::exception& e) {

@@ -39,8 +39,9 @@ bool WriteExr(const std::string& path, const ImageBuffer& image, diag::Report* r
 /// Reads an OpenEXR file: R, G, B, A into out->rgba (missing color channels read as 0, a missing
 /// alpha as 1) and every other channel into out->extraChannels, as float. Returns false with an
 /// error at `path` in *report (may be null), "cannot read image: reason", on failure.
-/// With `rows` = {y0, y1}, only rows y0 to y1 - 1 are read (the others are left 0): a tile of a
-/// frame rendered in parts (affray merge) decodes only its own rows.
+/// With `rows` = {y0, y1}, reads only the rows y0 to y1 - 1: *out is then width x (y1 - y0), its
+/// row 0 the file's row y0 (a tile of a frame rendered in parts, affray merge, reads only its own
+/// band of rows, and holds no more).
 bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report,
                  std::optional<std::array<int, 2>> rows = std::nullopt);
 

@@ -179,3 +179,32 @@ TEST_CASE("EXR write failures are clean", "[renderer]") {
         CHECK(affray::test::LastMessage(error).rfind(junk + ": error: cannot read image: ", 0) == 0);
     }
 }
+
+TEST_CASE("EXR string attributes round trip; a header alone and a band of rows can be read", "[renderer]") {
+    TempDir dir;
+    const std::string path = (dir.path / "band.exr").string();
+    ImageBuffer image{5, 4, std::vector<float>(5 * 4 * 4), {{"Z", std::vector<float>(5 * 4)}}, {}};
+    for (size_t i = 0; i < image.rgba.size(); ++i) image.rgba[i] = float(i % 97) * 0.25f;
+    for (size_t i = 0; i < 20; ++i) image.extraChannels[0].second[i] = float(i) + 0.5f;
+    image.attributes["affray:pixels"] = "0,5,0,4";
+    REQUIRE(WriteExr(path, image, nullptr));
+
+    ImageBuffer header;
+    REQUIRE(ReadExrHeader(path, &header, nullptr));
+    CHECK((header.width == 5 && header.height == 4));
+    CHECK(header.rgba.empty());
+    REQUIRE(header.extraChannels.size() == 1);
+    CHECK(header.extraChannels[0].first == "Z");
+    CHECK(header.attributes.at("affray:pixels") == "0,5,0,4");
+
+    // Rows 1 and 2: a 5 x 2 image holding exactly those rows.
+    ImageBuffer band;
+    REQUIRE(ReadExrRgba(path, &band, nullptr, std::array<int, 2>{1, 3}));
+    CHECK((band.width == 5 && band.height == 2));
+    CHECK(std::equal(band.rgba.begin(), band.rgba.end(), image.rgba.begin() + 5 * 4));
+    CHECK(std::equal(band.extraChannels[0].second.begin(), band.extraChannels[0].second.end(),
+                     image.extraChannels[0].second.begin() + 5));
+    affray::diag::Report report;
+    CHECK_FALSE(ReadExrRgba(path, &band, &report, std::array<int, 2>{3, 5}));
+    CHECK(affray::test::LastMessage(report).find("rows 3 to 5 are not in the image") != std::string::npos);
+}
