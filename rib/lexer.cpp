@@ -1,6 +1,8 @@
 // rib/lexer.cpp: RIB ASCII tokens and requests (see rib/lexer.h for the rules).
 #include "rib/lexer.h"
 
+#include "diag/limits.h"
+
 #include <cfloat>
 #include <charconv>
 #include <cmath>
@@ -277,10 +279,20 @@ bool RibRequestReader::ReadArray(RibArg* arg, std::string* error, RibPos* errorA
                 return fail(m_token.at, "expected a number, a string or ']' in the array opened on line " +
                                             std::to_string(open.line) + ", found '" + m_token.text + "'");
             case Kind::Number:
+                if (static_cast<int64_t>(arg->numbers.size() + arg->strings.size()) >=
+                    diag::LimitValue(diag::Limit::RibArray))
+                    return fail(m_token.at, "array longer than " +
+                                                std::to_string(diag::LimitValue(diag::Limit::RibArray)) + " values " +
+                                                diag::LimitNote(diag::Limit::RibArray));
                 if (!arg->strings.empty()) return fail(m_token.at, "array mixes strings and numbers");
                 arg->numbers.push_back(m_token.number);
                 break;
             case Kind::String:
+                if (static_cast<int64_t>(arg->numbers.size() + arg->strings.size()) >=
+                    diag::LimitValue(diag::Limit::RibArray))
+                    return fail(m_token.at, "array longer than " +
+                                                std::to_string(diag::LimitValue(diag::Limit::RibArray)) + " values " +
+                                                diag::LimitNote(diag::Limit::RibArray));
                 if (!arg->numbers.empty()) return fail(m_token.at, "array mixes numbers and strings");
                 arg->strings.push_back(std::move(m_token.text));
                 break;

@@ -1,6 +1,8 @@
 // tools/commands.cpp: what `affray compile`, `affray eval` and `affray render` do.
 #include "tools/commands.h"
 
+#include "diag/limits.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -269,6 +271,8 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
 int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     // From here SIGINT and SIGTERM only set a flag, which the render checks (tools/interrupt.h).
     Interrupts interrupts;
+    // And so does the time limit, counted from here for every frame together.
+    interrupts.StopAfter(static_cast<double>(diag::LimitValue(diag::Limit::TimeLimit)));
     diag::Report report;
     std::optional<std::vector<renderer::SceneDesc>> frames = rib::ReadRibFrames(cmd.scenePath, &report);
     // The scene's warnings and notes, before anything renders.

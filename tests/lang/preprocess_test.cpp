@@ -186,19 +186,65 @@ TEST_CASE("a missing #include is an error at its line", "[lang][preprocess]") {
 
 TEST_CASE("a recursive #include is an error, not a hang", "[lang][preprocess]") {
     TempDir dir;
-    // Two self-includes per level would take 2^256 steps without mcpp's depth limit.
+    // Two self-includes per level would take 2^64 steps without the include-depth limit, which
+    // stops the preprocessor at the first #include past it.
     dir.Write("r.h", "#include \"r.h\"\n#include \"r.h\"\n");
     PreprocessResult r = Run(dir, "a.sl", "#include \"r.h\"\n");
     CHECK_FALSE(r.ok);
-    CHECK(Messages(r) == dir.Path("r.h") + ":1: More than 256 nesting of #include\n");
+    CHECK(Messages(r) == dir.Path("r.h") +
+                             ":1: #include nested more than 64 files deep: does a header include itself? "
+                             "(limit include-depth = 64; raise it with --limit include-depth=N)\n");
+    {
+        // Up to mcpp's own limit of 256 (the largest include-depth is 200).
+        affray::test::ScopedLimit deep(affray::diag::Limit::IncludeDepth, 200);
+        CHECK(Messages(Run(dir, "a.sl", "#include \"r.h\"\n")).find("more than 200 files deep") != std::string::npos);
+    }
 
-    // mcpp stops with the 256 files still open; Preprocess closes them.
+    // The preprocessor stops with the files still open; Preprocess closes them.
     auto openFiles = [] { return std::distance(fs::directory_iterator("/proc/self/fd"), fs::directory_iterator()); };
     if (fs::exists("/proc/self/fd")) {
         auto before = openFiles();
         for (int i = 0; i < 8; ++i) Run(dir, "a.sl", "#include \"r.h\"\n");
         CHECK(openFiles() == before);
     }
+}
+
+TEST_CASE("the include-depth limit counts nested files exactly", "[lang][preprocess]") {
+    TempDir dir;
+    // a.sl includes h1.h, which includes h2.h, ... h5.h: five files deep.
+    for (int i = 1; i < 5; ++i)
+        dir.Write("h" + std::to_string(i) + ".h", "#include \"h" + std::to_string(i + 1) + ".h\"\n");
+    dir.Write("h5.h", "float five = 5;\n");
+    {
+        affray::test::ScopedLimit limit(affray::diag::Limit::IncludeDepth, 5);
+        PreprocessResult r = Run(dir, "a.sl", "#include \"h1.h\"\n");
+        CHECK(r.ok);
+        CHECK(r.text.find("float five = 5;") != std::string::npos);
+    }
+    affray::test::ScopedLimit limit(affray::diag::Limit::IncludeDepth, 4);
+    PreprocessResult r = Run(dir, "a.sl", "#include \"h1.h\"\n");
+    CHECK_FALSE(r.ok);
+    CHECK(Messages(r) == dir.Path("h4.h") +
+                             ":1: #include nested more than 4 files deep: does a header include itself? "
+                             "(limit include-depth = 4; raise it with --limit include-depth=N)\n");
+}
+
+TEST_CASE("preprocessed text longer than the source-bytes limit is an error", "[lang][preprocess]") {
+    TempDir dir;
+    affray::test::ScopedLimit limit(affray::diag::Limit::SourceBytes, 4096);
+    // 4^6 copies of a 10-byte line: 40 KB of output from 200 bytes of macros.
+    const std::string text =
+        "#define A x = 1 + 2;\n#define B A A A A\n#define C B B B B\n#define D C C C C\n"
+        "#define E D D D D\n#define F E E E E\n#define G F F F F\nG\n";
+    PreprocessResult r = Run(dir, "a.sl", text);
+    CHECK_FALSE(r.ok);
+    CHECK(Messages(r).find("preprocessed text longer than 4096 bytes") != std::string::npos);
+    CHECK(Messages(r).find("(limit source-bytes = 4096; raise it with --limit source-bytes=N)") != std::string::npos);
+    // And a source over the limit is refused before mcpp runs.
+    CHECK(Messages(Run(dir, "b.sl", std::string(5000, ' '))) ==
+          dir.Path("b.sl") +
+              ":0: file larger than 4096 bytes (limit source-bytes = 4096; raise it with --limit "
+              "source-bytes=N)\n");
 }
 
 TEST_CASE("an unterminated #if is an error", "[lang][preprocess]") {

@@ -623,7 +623,8 @@ TEST_CASE("RIB camera options give exact errors", "[renderer][rib]") {
     CHECK(ErrorOf("PixelSamples 2 2.5\n") ==
           "t.rib:1: error: 'PixelSamples' ysamples must be an integer from 1 to 64, got 2.5");
     CHECK(ErrorOf("PixelSamples 65 1\n") ==
-          "t.rib:1: error: 'PixelSamples' xsamples must be an integer from 1 to 64, got 65");
+          "t.rib:1: error: 'PixelSamples' xsamples must be an integer from 1 to 64, got 65 (limit pixel-samples = 64; "
+          "raise it with --limit pixel-samples=N)");
     CHECK(ErrorOf("PixelFilter \"box\" 0 1\n") == "t.rib:1: error: 'PixelFilter' widths must be positive, got 0 1");
     CHECK(ErrorOf("PixelFilter \"box\" 1\n") ==
           "t.rib:1: error: 'PixelFilter' expects a filter name and 2 numbers (xwidth ywidth)");
