@@ -265,5 +265,24 @@ TEST_CASE("preprocessing from several threads takes turns", "[lang][preprocess]"
     for (size_t i = 0; i < outputs.size(); ++i) CHECK(outputs[i] == "x =  " + std::to_string(i) + " ;\n");
 }
 
+// Found by fuzz_sl (fuzz/regressions/fuzz_sl/mcpp_memcmp_long_identifier.sl): mcpp looks a name up
+// in its macro table with memcmp over the name's whole length, past the end of a shorter name
+// in the table; AddressSanitizer reported the read (lang/preprocess.cpp's AffrayMcppMemcmp stops
+// at the first difference). Names long and short, alone and next to macros of their hash chain.
+TEST_CASE("long identifiers are looked up within mcpp's buffers", "[lang][preprocess]") {
+    TempDir dir;
+    const std::vector<std::string> texts = {"BRmfffffffffffffffffffffiif",
+                                            "#define A 1\n" + std::string(200, 'A') + " A\n",
+                                            "#define " + std::string(70, 'x') + " 2\n" + std::string(71, 'x') + "\n"};
+    for (const std::string& text : texts) {
+        INFO(text);
+        PreprocessResult r = Run(dir, "m.sl", text);
+        CHECK(r.ok);
+        CHECK(r.errors.empty());
+    }
+    PreprocessResult r = Run(dir, "m.sl", "BRmfffffffffffffffffffffiif");
+    CHECK(Code(r) == "BRmfffffffffffffffffffffiif\n");
+}
+
 }  // namespace
 }  // namespace affray::lang
