@@ -346,6 +346,10 @@ extern "C" void* AffrayMcppMalloc(size_t size) {
 }
 
 extern "C" void* AffrayMcppRealloc(void* old, size_t size) {
+    // glibc's realloc(p, 0) frees p and returns null, which mcpp's xrealloc takes for success
+    // (a null result is an error only for a nonzero size): p would stay tracked, and be freed
+    // again. A one-byte block keeps every pointer mcpp holds valid and tracked.
+    if (size == 0) size = 1;
     if (!g_capture) return realloc(old, size);
     // Reserve the set entry first, so that a failure leaves `old` valid and tracked.
     try {
