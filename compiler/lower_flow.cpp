@@ -166,6 +166,9 @@ void Lowerer::LowerLoop(const Stmt& s) {
     m_state.contexts.push_back({true, false, False(), False(), {}, Type::Void});
 
     bool varying = false, ranBody = false;
+    // A loop that ran past its budget once (reported) is not unrolled again, as it would be for
+    // every iteration of the loops around it: that multiplied the budget by theirs.
+    const bool ranOut = m_endlessLoops.count(&s) > 0;
     for (int iteration = 0;; ++iteration) {
         std::optional<ValueId> cond = s.expr ? LowerCondition(*s.expr) : std::optional<ValueId>(True());
         if (!cond) break;  // reported
@@ -182,15 +185,16 @@ void Lowerer::LowerLoop(const Stmt& s) {
         const bool endsOnlyByBreaking = ir().ConstValue(*cond) == 1.0 && !ir().ConstValue(run);
         varying = varying || !ir().ConstValue(assumed) || endsOnlyByBreaking;
         const int budget = varying ? kVaryingLoopBudget : kConstantLoopBudget;
-        if (iteration >= budget || ir().size() > kMaxNodes) {
+        if (iteration >= budget || ranOut || ir().size() > kMaxNodes) {
             if (ir().size() > kMaxNodes) {
                 if (!m_reportedSize)
                     m_diags.error(s.loc, "the shader grows past " + std::to_string(kMaxNodes / 1000000) +
                                              " million operations when its loops are unrolled");
                 m_reportedSize = true;
-            } else if (!varying) {
-                m_diags.error(s.loc, "this loop runs more than " + std::to_string(kConstantLoopBudget) +
-                                         " iterations (affray unrolls loops; is its condition ever false?)");
+            } else if (!varying || ranOut) {
+                if (m_endlessLoops.insert(&s).second)
+                    m_diags.error(s.loc, "this loop runs more than " + std::to_string(kConstantLoopBudget) +
+                                             " iterations (affray unrolls loops; is its condition ever false?)");
             } else {
                 // The paths still running past the budget get NaN: Unbounded in every bound type,
                 // never a value the loop would not have computed.

@@ -251,6 +251,7 @@ class Lowerer {
     void CheckUncalledFunctions();
     int m_line = 0;
     bool m_reportedSize = false;
+    std::unordered_set<const lang::Stmt*> m_endlessLoops;  // loops past kConstantLoopBudget (reported)
 };
 
 std::string Article(Type t);

@@ -69,6 +69,8 @@
 //   warnings        75 unused variable                    76 shader 't' never changes P or N
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <string>
 
 #include "tests/test_util.h"
@@ -121,6 +123,29 @@ TEST_CASE("a loop that never ends", "[compiler][diagnostics]") {
           "false?)\n"
           "      while (i < 1) P += 0;\n"
           "      ^\n");
+}
+
+// Found by fuzz_sl (fuzz/regressions/fuzz_sl/nested_endless_loop.sl, a timeout): a loop that
+// never ends, inside other loops, was unrolled to its budget again for every iteration of the
+// loops around it (nine budgets here, minutes under AddressSanitizer). It is reported once and
+// unrolled once.
+TEST_CASE("a loop that never ends inside other loops is unrolled to its budget once", "[compiler][diagnostics]") {
+    auto seconds = [](const std::string& source, std::string* diagnostics) {
+        const auto start = std::chrono::steady_clock::now();
+        *diagnostics = Diagnose(source);
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    std::string alone, nested;
+    const double once = seconds("displacement t() {\n  float k;\n  for (k = 0; k < 1; k += 0) P += 0;\n}\n", &alone);
+    const double nine = seconds(
+        "displacement t() {\n  float i, j, k;\n  for (i = 0; i < 3; i += 1)\n"
+        "    for (j = 0; j < 3; j += 1)\n      for (k = 0; k < 1; k += 0) P += 0;\n}\n",
+        &nested);
+    CHECK(alone.find("test.sl:3:3: error: this loop runs more than 100000 iterations") == 0);
+    CHECK(nested.find("test.sl:5:7: error: this loop runs more than 100000 iterations") == 0);
+    CHECK(std::count(nested.begin(), nested.end(), '^') == 1);
+    INFO("alone " << once << " s, nested " << nine << " s");
+    CHECK(nine < 3 * once + 1);
 }
 
 TEST_CASE("conditions of the wrong type", "[compiler][diagnostics]") {
