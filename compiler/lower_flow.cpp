@@ -186,6 +186,9 @@ void Lowerer::LowerLoop(const Stmt& s) {
         wrong = m_diags.errorCount() > errorsBefore;  // then the loop is not unrolled
     }
     bool varying = false, ranBody = false;
+    // A loop that ran past its budget once (reported) is not unrolled again, as it would be for
+    // every iteration of the loops around it: that multiplied the budget by theirs.
+    const bool ranOut = m_endlessLoops.count(&s) > 0;
     for (int iteration = 0; !wrong; ++iteration) {
         std::optional<ValueId> cond = s.expr ? LowerCondition(*s.expr) : std::optional<ValueId>(True());
         if (!cond) break;  // reported
@@ -202,13 +205,14 @@ void Lowerer::LowerLoop(const Stmt& s) {
         const bool endsOnlyByBreaking = ir().ConstValue(*cond) == 1.0 && !ir().ConstValue(run);
         varying = varying || !ir().ConstValue(assumed) || endsOnlyByBreaking;
         const int budget = varying ? m_varyingLoopBudget : m_constantLoopBudget;
-        if (iteration >= budget || TooLarge(s.loc)) {
+        if (iteration >= budget || ranOut || TooLarge(s.loc)) {
             if (m_reportedSize) {
                 // reported by TooLarge
-            } else if (!varying) {
-                m_diags.error(s.loc, "this loop runs more than " + std::to_string(m_constantLoopBudget) +
-                                         " iterations: affray unrolls loops; is its condition ever false? " +
-                                         diag::LimitNote(diag::Limit::LoopIterations));
+            } else if (!varying || ranOut) {
+                if (m_endlessLoops.insert(&s).second)
+                    m_diags.error(s.loc, "this loop runs more than " + std::to_string(m_constantLoopBudget) +
+                                             " iterations: affray unrolls loops; is its condition ever false? " +
+                                             diag::LimitNote(diag::Limit::LoopIterations));
             } else {
                 // The paths still running past the budget get NaN: Unbounded in every bound type,
                 // never a value the loop would not have computed.

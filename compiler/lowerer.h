@@ -260,6 +260,7 @@ class Lowerer {
     std::vector<lang::SourceLoc> m_unrolling;  // the loops being unrolled, innermost last
     // Loops whose body has been checked as dead code (names, types) before their first unrolling.
     std::unordered_set<const lang::Stmt*> m_checkedLoops;
+    std::unordered_set<const lang::Stmt*> m_endlessLoops;  // loops past loop-iterations (reported)
 };
 
 std::string Article(Type t);

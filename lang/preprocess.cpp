@@ -9,7 +9,7 @@
 // malloc/realloc/free are redirected here (see lang/CMakeLists.txt), so that what a run leaves
 // open or allocated is released after it. One block or so is kept on purpose from one run to the
 // next, which frees it when it starts; so memory is released one run late, and at most one run's
-// leftovers are ever held.
+// leftovers are ever held. mcpp's memcmp comes here too: it must not read past a mismatch.
 #include "lang/preprocess.h"
 
 #include <stdio.h>
@@ -377,6 +377,10 @@ extern "C" void* AffrayMcppMalloc(size_t size) {
 }
 
 extern "C" void* AffrayMcppRealloc(void* old, size_t size) {
+    // glibc's realloc(p, 0) frees p and returns null, which mcpp's xrealloc takes for success
+    // (a null result is an error only for a nonzero size): p would stay tracked, and be freed
+    // again. A one-byte block keeps every pointer mcpp holds valid and tracked.
+    if (size == 0) size = 1;
     if (!g_capture) return realloc(old, size);
     // Reserve the set entry first, so that a failure leaves `old` valid and tracked.
     try {
@@ -395,6 +399,18 @@ extern "C" void* AffrayMcppRealloc(void* old, size_t size) {
 extern "C" void AffrayMcppFree(void* p) {
     if (g_capture && g_capture->blocks.erase(p) == 0) g_leftovers.erase(p);
     free(p);
+}
+
+// mcpp's memcmp: mcpp looks a name up in its macro table (look_prev) with memcmp over the name's
+// whole length, against names in the table that may be shorter (their NUL differs, and their
+// allocation ends soon after). The result is decided at the first differing byte, so stop
+// there: bytes past it are never read.
+extern "C" int AffrayMcppMemcmp(const void* a, const void* b, size_t n) {
+    const auto* x = static_cast<const unsigned char*>(a);
+    const auto* y = static_cast<const unsigned char*>(b);
+    for (size_t i = 0; i < n; ++i)
+        if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
+    return 0;
 }
 
 PreprocessResult Preprocess(const std::string& path, const std::string& text, const PreprocessOptions& options) {

@@ -144,9 +144,12 @@ RibToken RibLexer::LexNumber() {
         return Error(at, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
 
     // from_chars accepts no leading '+'; parse in long double so that overflow past double's
-    // range is detected here rather than silently becoming infinity.
-    std::string_view digits = word;
-    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-' && digits[1] != '+') digits.remove_prefix(1);
+    // range is detected here rather than silently becoming infinity. libstdc++ parses a long
+    // double with strtold, which reads to a NUL: parse a NUL-terminated copy, since the text
+    // (a string_view) need not end with one.
+    std::string_view numeral = word;
+    if (numeral.size() > 1 && numeral[0] == '+' && numeral[1] != '-' && numeral[1] != '+') numeral.remove_prefix(1);
+    const std::string digits(numeral);
     long double value = 0;
     auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
     if (ec == std::errc::result_out_of_range ||

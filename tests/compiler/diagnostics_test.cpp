@@ -69,6 +69,7 @@
 //   warnings        75 unused variable                    76 shader 't' never changes P or N
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -122,6 +123,23 @@ TEST_CASE("a loop that never ends", "[compiler][diagnostics]") {
           "false? (limit loop-iterations = 10000; raise it with --limit loop-iterations=N)\n"
           "      while (i < 1) P += 0;\n"
           "      ^\n");
+}
+
+// Found by fuzz_sl (fuzz/regressions/fuzz_sl/nested_endless_loop.sl, a timeout): a loop that
+// never ends, inside other loops, was unrolled to its budget again for every iteration of the
+// loops around it (nine budgets here, minutes under AddressSanitizer). It is reported once and
+// unrolled once.
+TEST_CASE("a loop that never ends inside other loops is unrolled to its budget once", "[compiler][diagnostics]") {
+    // One budget of this loop asks for about 100000 operations, under the program-ops limit
+    // (250000); nine would pass it, and the error would be that limit's instead.
+    const std::string alone = Diagnose("displacement t() {\n  float k;\n  for (k = 0; k < 1; k += 0) P += 0;\n}\n");
+    const std::string nested = Diagnose(
+        "displacement t() {\n  float i, j, k;\n  for (i = 0; i < 3; i += 1)\n"
+        "    for (j = 0; j < 3; j += 1)\n      for (k = 0; k < 1; k += 0) P += 0;\n}\n");
+    CHECK(alone.find("test.sl:3:3: error: this loop runs more than 10000 iterations") == 0);
+    CHECK(nested.find("test.sl:5:7: error: this loop runs more than 10000 iterations") == 0);
+    CHECK(std::count(nested.begin(), nested.end(), '^') == 1);
+    CHECK(nested.find("grows past") == std::string::npos);
 }
 
 TEST_CASE("conditions of the wrong type", "[compiler][diagnostics]") {

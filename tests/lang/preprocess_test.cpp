@@ -15,6 +15,11 @@
 #include "lang/preprocess.h"
 #include "tests/test_util.h"
 
+// lang/preprocess.cpp's wrappers of mcpp's allocation functions (lang/CMakeLists.txt).
+extern "C" void* AffrayMcppMalloc(size_t size);
+extern "C" void* AffrayMcppRealloc(void* old, size_t size);
+extern "C" void AffrayMcppFree(void* p);
+
 namespace affray::lang {
 namespace {
 
@@ -309,6 +314,41 @@ TEST_CASE("preprocessing from several threads takes turns", "[lang][preprocess]"
         });
     for (std::thread& t : threads) t.join();
     for (size_t i = 0; i < outputs.size(); ++i) CHECK(outputs[i] == "x =  " + std::to_string(i) + " ;\n");
+}
+
+// Found by fuzz_sl (fuzz/regressions/fuzz_sl/mcpp_memcmp_long_identifier.sl): mcpp looks a name up
+// in its macro table with memcmp over the name's whole length, past the end of a shorter name
+// in the table; AddressSanitizer reported the read (lang/preprocess.cpp's AffrayMcppMemcmp stops
+// at the first difference). Names long and short, alone and next to macros of their hash chain.
+TEST_CASE("long identifiers are looked up within mcpp's buffers", "[lang][preprocess]") {
+    TempDir dir;
+    const std::vector<std::string> texts = {"BRmfffffffffffffffffffffiif",
+                                            "#define A 1\n" + std::string(200, 'A') + " A\n",
+                                            "#define " + std::string(70, 'x') + " 2\n" + std::string(71, 'x') + "\n"};
+    for (const std::string& text : texts) {
+        INFO(text);
+        PreprocessResult r = Run(dir, "m.sl", text);
+        CHECK(r.ok);
+        CHECK(r.errors.empty());
+    }
+    PreprocessResult r = Run(dir, "m.sl", "BRmfffffffffffffffffffffiif");
+    CHECK(Code(r) == "BRmfffffffffffffffffffffiif\n");
+}
+
+// mcpp's xrealloc takes a null result for success when the size is 0, and glibc's realloc(p, 0)
+// frees p and returns null: mcpp kept p, and lang/preprocess.cpp's tracking freed it a second
+// time after the run (a crash of `affray compile`). The wrapper mcpp calls keeps a block instead.
+TEST_CASE("mcpp's realloc to zero bytes keeps a block", "[lang][preprocess]") {
+    void* p = AffrayMcppMalloc(32);
+    REQUIRE(p);
+    void* q = AffrayMcppRealloc(p, 0);
+    CHECK(q != nullptr);
+    AffrayMcppFree(q);
+    // And during a run, where the blocks are tracked: macros with empty arguments and bodies.
+    TempDir dir;
+    PreprocessResult r = Run(dir, "m.sl", "#define E()\n#define F(a, b) a b\nE() F(,) F(E(),) x\n");
+    CHECK(r.ok);
+    CHECK(Code(r).find('x') != std::string::npos);
 }
 
 }  // namespace
