@@ -19,9 +19,18 @@ bool SpecialiseShader(CompiledShader& shader, const std::vector<ParamOverride>& 
                       std::vector<std::string>* errors) {
     std::optional<vm::Program> bound = Specialise(shader.genericBound, overrides, errors);
     if (!bound) return false;
-    std::vector<std::string> again;  // the same errors as for the bound program
+    // Compiled together, the two programs take the same parameters and fail together; a loaded
+    // file's shade program need not (its params and constants are its own), so check it too.
+    std::vector<std::string> again;
+    std::optional<vm::Program> shade = Specialise(shader.genericShade, overrides, &again);
+    if (!shade) {
+        for (const std::string& e : again)
+            if (std::find(errors->begin(), errors->end(), e) == errors->end()) errors->push_back(e);
+        if (errors->empty()) errors->push_back("shader '" + shader.name + "': its shade program cannot be specialised");
+        return false;
+    }
     shader.bound = std::move(*bound);
-    shader.shade = *Specialise(shader.genericShade, overrides, &again);
+    shader.shade = std::move(*shade);
     return true;
 }
 
@@ -153,6 +162,17 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
     CompileResult result;
     vm::BytecodeFile file;
     if (!vm::ReadBytecodeFile(path, &file, &result.diagnostics)) return result;
+    // The verifier checks a program, not what its caller reads: the renderer and `eval` take P
+    // from both programs and N from the shade program.
+    auto hasOutput = [&](const vm::Program& program, const std::string& tag, const std::string& name) {
+        const vm::ProgramOutput* out = program.findOutput(name);
+        if (out && out->size == 3) return true;
+        result.diagnostics.error({path}, "program '" + tag + "' has no output " + name + " of three values");
+        return false;
+    };
+    if (!hasOutput(file.bound, "bound", "P") || !hasOutput(file.shade, "shade", "P") ||
+        !hasOutput(file.shade, "shade", "N"))
+        return result;
     CompiledShader shader;
     shader.name = file.shaderName;
     shader.sourcePath = file.sourcePath;

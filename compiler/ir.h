@@ -91,6 +91,8 @@ class IrBuilder {
     /// How many operations lowering asked for, before folding and sharing: the instruction count
     /// of a compiler that optimises nothing.
     int requestedOps() const { return m_requested; }
+    /// Forgets the requests made since requestedOps() was `count` (a check that keeps nothing).
+    void ForgetRequestsSince(int count) { m_requested = count; }
 
     /// The node `n` (an operation with its operands set): folded, or shared, or new.
     ValueId Create(IrNode n);

@@ -30,7 +30,23 @@ Lowerer::Lowerer(LoweredShader& out, lang::Diagnostics& diags, const std::vector
       m_paramValues(paramValues),
       m_stringValues(stringValues),
       m_spaces(spaces),
-      m_facts(facts) {}
+      m_facts(facts),
+      m_varyingLoopBudget(static_cast<int>(diag::LimitValue(diag::Limit::VaryingLoopIterations))),
+      m_constantLoopBudget(static_cast<int>(diag::LimitValue(diag::Limit::LoopIterations))),
+      m_maxOps(diag::LimitValue(diag::Limit::ProgramOps)),
+      m_maxCallDepth(static_cast<size_t>(diag::LimitValue(diag::Limit::CallDepth))) {}
+
+bool Lowerer::TooLarge(const lang::SourceLoc& loc) {
+    if (m_reportedSize) return true;
+    if (ir().requestedOps() <= m_maxOps) return false;
+    m_reportedSize = true;
+    m_diags.error(loc, "the shader grows past " + std::to_string(m_maxOps) +
+                           " operations as its loops are unrolled and its calls inlined " +
+                           diag::LimitNote(diag::Limit::ProgramOps));
+    if (!m_unrolling.empty() && (m_unrolling.back().line != loc.line || m_unrolling.back().file != loc.file))
+        m_diags.note(m_unrolling.back(), "while unrolling this loop");
+    return true;
+}
 
 Value Lowerer::StringValue(const std::string& text) {
     size_t index = 0;

@@ -165,8 +165,31 @@ void Lowerer::LowerLoop(const Stmt& s) {
     const size_t contextIndex = m_state.contexts.size();
     m_state.contexts.push_back({true, false, False(), False(), {}, Type::Void});
 
+    // The body checked as dead code (alive 0: nothing unrolls, nothing is kept), so that its
+    // mistakes are reported before, not after, an unrolling that may be long or endless.
+    auto checkBody = [&] {
+        FlowState before = m_state;
+        m_state.alive = False();
+        PushScope();
+        LowerStmt(*s.body[0]);
+        PopScope();
+        if (isFor && s.step) LowerExpr(*s.step);
+        KeepUsedFlags(before);
+        m_state = std::move(before);
+    };
+    bool checked = false, wrong = false;
+    if (s.body[0] && m_checkedLoops.insert(&s).second) {
+        const int errorsBefore = m_diags.errorCount(), requestsBefore = ir().requestedOps();
+        checkBody();
+        ir().ForgetRequestsSince(requestsBefore);  // nothing of the check is kept
+        checked = true;
+        wrong = m_diags.errorCount() > errorsBefore;  // then the loop is not unrolled
+    }
     bool varying = false, ranBody = false;
-    for (int iteration = 0;; ++iteration) {
+    // A loop that ran past its budget once (reported) is not unrolled again, as it would be for
+    // every iteration of the loops around it: that multiplied the budget by theirs.
+    const bool ranOut = m_endlessLoops.count(&s) > 0;
+    for (int iteration = 0; !wrong; ++iteration) {
         std::optional<ValueId> cond = s.expr ? LowerCondition(*s.expr) : std::optional<ValueId>(True());
         if (!cond) break;  // reported
         // The condition matters only where the loop is still alive, so it is simplified under
@@ -181,16 +204,15 @@ void Lowerer::LowerLoop(const Stmt& s) {
         // whether they do varies if `run` does.
         const bool endsOnlyByBreaking = ir().ConstValue(*cond) == 1.0 && !ir().ConstValue(run);
         varying = varying || !ir().ConstValue(assumed) || endsOnlyByBreaking;
-        const int budget = varying ? kVaryingLoopBudget : kConstantLoopBudget;
-        if (iteration >= budget || ir().size() > kMaxNodes) {
-            if (ir().size() > kMaxNodes) {
-                if (!m_reportedSize)
-                    m_diags.error(s.loc, "the shader grows past " + std::to_string(kMaxNodes / 1000000) +
-                                             " million operations when its loops are unrolled");
-                m_reportedSize = true;
-            } else if (!varying) {
-                m_diags.error(s.loc, "this loop runs more than " + std::to_string(kConstantLoopBudget) +
-                                         " iterations (affray unrolls loops; is its condition ever false?)");
+        const int budget = varying ? m_varyingLoopBudget : m_constantLoopBudget;
+        if (iteration >= budget || ranOut || TooLarge(s.loc)) {
+            if (m_reportedSize) {
+                // reported by TooLarge
+            } else if (!varying || ranOut) {
+                if (m_endlessLoops.insert(&s).second)
+                    m_diags.error(s.loc, "this loop runs more than " + std::to_string(m_constantLoopBudget) +
+                                             " iterations: affray unrolls loops; is its condition ever false? " +
+                                             diag::LimitNote(diag::Limit::LoopIterations));
             } else {
                 // The paths still running past the budget get NaN: Unbounded in every bound type,
                 // never a value the loop would not have computed.
@@ -215,7 +237,9 @@ void Lowerer::LowerLoop(const Stmt& s) {
         m_state.alive = run;
         ranBody = true;
         PushScope();
+        m_unrolling.push_back(s.loc);
         LowerStmt(*s.body[0]);
+        m_unrolling.pop_back();
         PopScope();
         // Paths that continued run the step; paths that left (break, return, an outer jump) do not.
         FlowContext& loop = m_state.contexts[contextIndex];
@@ -223,17 +247,8 @@ void Lowerer::LowerLoop(const Stmt& s) {
         m_state.alive = AliveExcludingLeft(run, 0);
         if (isFor && s.step) LowerExpr(*s.step);
     }
-    if (!ranBody && s.body[0]) {
-        // The body never runs here, but its mistakes are still mistakes: check it as dead code.
-        FlowState before = m_state;
-        m_state.alive = False();
-        PushScope();
-        LowerStmt(*s.body[0]);
-        PopScope();
-        if (isFor && s.step) LowerExpr(*s.step);
-        KeepUsedFlags(before);
-        m_state = std::move(before);
-    }
+    // The body never runs here, but its mistakes are still mistakes: check it as dead code.
+    if (!ranBody && !checked && s.body[0]) checkBody();
     m_state.contexts.pop_back();
     // Every path that entered goes on after the loop, except those that left an enclosing loop
     // or function from inside it.
@@ -296,6 +311,7 @@ void Lowerer::LowerJump(const Stmt& s) {
 }
 
 void Lowerer::LowerStmt(const Stmt& s) {
+    if (TooLarge(s.loc)) return;
     m_line = s.loc.line;
     m_ops.SetLine(m_line);
     switch (s.kind) {

@@ -17,7 +17,6 @@ using lang::Expr;
 using lang::ExprKind;
 
 namespace {
-constexpr size_t kMaxCallDepth = 64;
 
 /// A `return` with a value somewhere in `body` (not in nested functions).
 bool HasValueReturn(const std::vector<lang::StmtPtr>& body) {
@@ -59,8 +58,9 @@ std::optional<Value> Lowerer::LowerUserCall(const Expr& call, const lang::Functi
             return std::nullopt;
         }
     }
-    if (m_callStack.size() >= kMaxCallDepth) {
-        m_diags.error(call.loc, "calls nest deeper than " + std::to_string(kMaxCallDepth) + " functions");
+    if (m_callStack.size() >= m_maxCallDepth) {
+        m_diags.error(call.loc, "calls nest deeper than " + std::to_string(m_maxCallDepth) + " functions " +
+                                    diag::LimitNote(diag::Limit::CallDepth));
         return std::nullopt;
     }
     if (call.args.size() != f.params.size()) {

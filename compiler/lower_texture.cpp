@@ -102,10 +102,10 @@ std::optional<Value> Lowerer::LowerTexture(const lang::Expr& e, Type expected) {
     const bool indexed = nameArg.kind == lang::ExprKind::Index;
     std::optional<Value> nameValue = LowerExpr(indexed ? *nameArg.args[0] : nameArg);
     std::optional<std::string> name = nameValue ? StringOf(*nameValue) : std::nullopt;
-    if (nameValue && !name) {
+    if (nameValue && !name)
         m_diags.error(nameArg.loc, "the texture name must be a constant string (a literal or a string parameter)");
-        ok = false;
-    }
+    // No name (an unknown identifier, already reported), no lookup: *name is read below.
+    if (!name) ok = false;
     int channel = 0;
     std::vector<std::string> dependsOn;  // parameters the options were taken from (their defaults)
     if (indexed) {

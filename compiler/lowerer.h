@@ -10,7 +10,7 @@
 //    condition (one Select per variable an arm changed). A constant condition folds the Select
 //    away, so only the arm taken remains.
 //  - Loops are unrolled: each iteration runs while `alive && condition` may hold; a constant
-//    condition ends the unrolling exactly, a varying one after kVaryingLoopBudget iterations,
+//    condition ends the unrolling exactly, a varying one after varying-loop-iterations (diag/limits.h),
 //    past which the paths still running get NaN (Unbounded in bound types), never a wrong value.
 // Sources: Allen, Kennedy, Porterfield & Warren, "Conversion of control dependence to data
 // dependence" (POPL 1983), i.e. if-conversion; OSL's runtime optimiser for the folding.
@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "compiler/lower.h"
+#include "diag/limits.h"
 
 namespace affray::compiler {
 
@@ -72,13 +73,6 @@ class Lowerer {
             const std::map<std::string, std::string>* stringValues, const Spaces* spaces, const SceneFacts* facts);
 
     bool Run(const lang::ShaderDef& shader, const std::vector<std::shared_ptr<lang::FunctionDef>>& functions);
-
-    // Iterations a loop with a condition that varies over the surface is unrolled for.
-    static constexpr int kVaryingLoopBudget = 64;
-    // Iterations a loop with a constant condition may run.
-    static constexpr int kConstantLoopBudget = 100000;
-    // IR nodes a shader may grow to by unrolling.
-    static constexpr size_t kMaxNodes = 4'000'000;
 
   private:
     // --- expressions (lower.cpp; comparisons, conditions and ?: in lower_logic.cpp)
@@ -224,6 +218,14 @@ class Lowerer {
     const Spaces* m_spaces;
     /// The instance's options and attributes, or null (no scene).
     const SceneFacts* m_facts;
+    // The limits of lowering (diag/limits.h), read once per shader: iterations a loop with a
+    // condition that varies over the surface is unrolled for (varying-loop-iterations), that a
+    // loop with a constant condition may run (loop-iterations), operations the shader may ask for
+    // (program-ops) and calls nested (call-depth).
+    const int m_varyingLoopBudget;
+    const int m_constantLoopBudget;
+    const int64_t m_maxOps;
+    const size_t m_maxCallDepth;
     std::vector<std::string> m_strings;
     /// Functions by visibility: (scope depth at definition, definition), innermost last.
     std::vector<std::pair<size_t, const lang::FunctionDef*>> m_functions;
@@ -250,7 +252,15 @@ class Lowerer {
     bool m_checkingOnly = false;
     void CheckUncalledFunctions();
     int m_line = 0;
+    // True once the program-ops limit is passed (reported once, at `loc`, with a note on the loop
+    // being unrolled): from then on statements are skipped and loops stop unrolling, so that the
+    // limit is reached in time and memory proportional to it.
+    bool TooLarge(const lang::SourceLoc& loc);
     bool m_reportedSize = false;
+    std::vector<lang::SourceLoc> m_unrolling;  // the loops being unrolled, innermost last
+    // Loops whose body has been checked as dead code (names, types) before their first unrolling.
+    std::unordered_set<const lang::Stmt*> m_checkedLoops;
+    std::unordered_set<const lang::Stmt*> m_endlessLoops;  // loops past loop-iterations (reported)
 };
 
 std::string Article(Type t);

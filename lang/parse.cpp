@@ -17,8 +17,8 @@ namespace affray::lang {
 
 namespace {
 
-// Beyond this the lexer's int lengths would be at risk; no shader comes near it.
-constexpr size_t kMaxSourceBytes = size_t{1} << 28;
+// Beyond the source-bytes limit's maximum the lexer's int lengths would be at risk.
+size_t MaxSourceBytes() { return static_cast<size_t>(diag::LimitValue(diag::Limit::SourceBytes)); }
 
 }  // namespace
 
@@ -32,9 +32,10 @@ void ParseContext::Error(SourceLoc loc, std::string message) {
 }
 
 ExprNode ParseContext::Finish(ExprPtr e, int depth) {
-    if (depth > kMaxDepth) {
+    if (depth > m_maxNesting) {
         if (!m_reportedExprDepth)
-            Error(e->loc, "expression too complex (nested more than " + std::to_string(kMaxDepth) + " levels deep)");
+            Error(e->loc, "expression too complex: nested more than " + std::to_string(m_maxNesting) + " levels deep " +
+                              diag::LimitNote(diag::Limit::Nesting));
         m_reportedExprDepth = true;
         // Replace the subtree by a leaf so that nothing deeper is ever built.
         e = std::make_unique<Expr>(ExprKind::Number, e->loc);
@@ -44,9 +45,10 @@ ExprNode ParseContext::Finish(ExprPtr e, int depth) {
 }
 
 StmtNode ParseContext::Finish(StmtPtr s, int depth) {
-    if (depth > kMaxDepth) {
+    if (depth > m_maxNesting) {
         if (!m_reportedStmtDepth)
-            Error(s->loc, "statements nested more than " + std::to_string(kMaxDepth) + " levels deep");
+            Error(s->loc, "statements nested more than " + std::to_string(m_maxNesting) + " levels deep " +
+                              diag::LimitNote(diag::Limit::Nesting));
         m_reportedStmtDepth = true;
         s = std::make_unique<Stmt>(StmtKind::Empty, s->loc);
         depth = 1;
@@ -342,8 +344,9 @@ namespace {
 // Parses `text` as the contents of diags.file(); with `markerFiles`, line markers switch files.
 TranslationUnit ParseText(Diagnostics& diags, const std::string& text, bool markerFiles) {
     int errorsBefore = diags.errorCount();
-    if (text.size() > kMaxSourceBytes) {
-        diags.error({}, "file too large to parse (more than " + std::to_string(kMaxSourceBytes) + " bytes)");
+    if (text.size() > MaxSourceBytes()) {
+        diags.error({}, "file too large to parse (more than " + std::to_string(MaxSourceBytes()) + " bytes) " +
+                            diag::LimitNote(diag::Limit::SourceBytes));
         return {};
     }
 

@@ -42,6 +42,7 @@
 #include <utility>
 #include <vector>
 
+#include "diag/limits.h"
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
 
@@ -65,7 +66,7 @@ struct LexState {
 };
 
 /// A tree under construction, with its depth (1 for a leaf; 0 for none), so that the builders
-/// can enforce ParseContext::kMaxDepth in constant time per node.
+/// can enforce the nesting limit (ParseContext::maxNesting) in constant time per node.
 struct ExprNode {
     ExprPtr expr;
     int depth = 0;
@@ -100,11 +101,12 @@ struct Init {
 /// the unit being built, and the node builders that enforce the nesting limits.
 class ParseContext {
   public:
-    /// Open parentheses, brackets and braces at once; past this, parsing stops with an error.
-    static constexpr int kMaxNesting = 256;
-    /// Depth of an expression or statement tree (operators chain without parentheses, as in
-    /// `- - - x` or `if (a) if (b) ...`); past this, the subtree is replaced and parsing goes on.
-    static constexpr int kMaxDepth = 1000;
+    /// The nesting limit (diag/limits.h), read once per parse. It bounds both the open
+    /// parentheses, brackets and braces at once (past it, parsing stops with an error) and the
+    /// depth of an expression or statement tree (operators chain without parentheses, as in
+    /// `- - - x` or `if (a) if (b) ...`; past it, the subtree is replaced and parsing goes on), so
+    /// that every later recursive pass has a bounded depth.
+    int maxNesting() const { return m_maxNesting; }
 
     /// With `markerFiles`, a line marker's file name also changes the file of later locations
     /// (preprocessed text); without it, only the line changes and every location is in the main
@@ -192,6 +194,7 @@ class ParseContext {
     LexState m_lex;
     TranslationUnit m_unit;
     bool m_stopped = false;
+    int m_maxNesting = static_cast<int>(diag::LimitValue(diag::Limit::Nesting));
     bool m_reportedExprDepth = false;
     bool m_reportedStmtDepth = false;
 };

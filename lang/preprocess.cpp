@@ -9,12 +9,14 @@
 // malloc/realloc/free are redirected here (see lang/CMakeLists.txt), so that what a run leaves
 // open or allocated is released after it. One block or so is kept on purpose from one run to the
 // next, which frees it when it starts; so memory is released one run late, and at most one run's
-// leftovers are ever held.
+// leftovers are ever held. mcpp's memcmp comes here too: it must not read past a mismatch.
 #include "lang/preprocess.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdarg>
 #include <filesystem>
 #include <fstream>
@@ -27,7 +29,11 @@
 
 extern "C" {
 #include <mcpp_lib.h>
+// mcpp's count of the #include files it is inside (its global.c; not in its public header).
+extern int include_nest;
 }
+
+#include "diag/limits.h"
 
 namespace affray::lang {
 
@@ -35,8 +41,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Output past this is a runaway macro or #include; mcpp is stopped by a failing write.
-constexpr size_t kMaxOutputBytes = size_t{64} << 20;
+// Output past this (the source-bytes limit) is a runaway macro or #include; mcpp is stopped by
+// a failing write.
+size_t MaxOutputBytes() { return static_cast<size_t>(diag::LimitValue(diag::Limit::SourceBytes)); }
 constexpr size_t kMaxMessageBytes = size_t{1} << 20;
 
 // Target-CPU macros the compiler-independent mcpp predefines even with -N (it shows __x86_64__
@@ -50,7 +57,9 @@ constexpr const char* kUndefined[] = {"__MCPP",    "__STDC_HOSTED__", "__x86_64_
 struct Capture {
     std::string out;
     std::string err;
-    bool overflow = false;             // output hit kMaxOutputBytes, or memory ran out
+    bool overflow = false;             // output hit MaxOutputBytes(), or memory ran out
+    bool tooDeep = false;              // #include nested past the include-depth limit
+    int maxDepth = 0;                  // the include-depth limit
     std::vector<FILE*> files;          // that mcpp opened and has not closed
     std::unordered_set<void*> blocks;  // that mcpp allocated and has not freed
 };
@@ -70,7 +79,8 @@ Leftovers g_leftovers;
 int Put(const char* s, size_t n, OUTDEST od) {
     try {
         if (od == OUT) {
-            if (g_capture->overflow || g_capture->out.size() + n > kMaxOutputBytes) {
+            if (g_capture->tooDeep) return EOF;  // stops mcpp, see AffrayMcppFopen
+            if (g_capture->overflow || g_capture->out.size() + n > MaxOutputBytes()) {
                 g_capture->overflow = true;
                 return EOF;
             }
@@ -105,7 +115,7 @@ int CaptureFprintf(OUTDEST od, const char* format, ...) {
         rc = EOF;
     } else if (static_cast<size_t>(n) < sizeof small) {
         if (Put(small, static_cast<size_t>(n), od) == EOF) rc = EOF;
-    } else if (static_cast<size_t>(n) <= kMaxOutputBytes) {
+    } else if (static_cast<size_t>(n) <= MaxOutputBytes()) {
         std::unique_ptr<char[]> big(new (std::nothrow) char[static_cast<size_t>(n) + 1]);
         if (!big) {
             rc = EOF;
@@ -131,6 +141,7 @@ Capture RunMcpp(const std::vector<std::string>& args) {
     argv.push_back(nullptr);
 
     Capture capture;
+    capture.maxDepth = static_cast<int>(diag::LimitValue(diag::Limit::IncludeDepth));
     std::lock_guard<std::mutex> lock(g_mcppMutex);
     g_capture = &capture;
     mcpp_set_out_func(CaptureFputc, CaptureFputs, CaptureFprintf);
@@ -272,6 +283,7 @@ void AddMessages(const Capture& capture, FileTable& files, PreprocessResult& res
     } kKinds[] = {
         {": fatal error: ", Severity::Error}, {": error: ", Severity::Error}, {": warning: ", Severity::Warning}};
     size_t pos = 0;
+    bool reportedDepth = false;
     const std::string& err = capture.err;
     while (pos < err.size()) {
         size_t end = err.find('\n', pos);
@@ -290,9 +302,17 @@ void AddMessages(const Capture& capture, FileTable& files, PreprocessResult& res
             // mcpp reads the locale to guess the source encoding, and warns about names it does
             // not know (C.UTF-8); the encoding does not matter to RSL.
             if (message.rfind("Unknown encoding", 0) == 0) break;
+            if (capture.tooDeep && message == "File write error") break;  // reported below
+            if (capture.tooDeep && message.rfind("Can't open include file", 0) == 0) {
+                if (reportedDepth) break;  // the #includes refused after the first
+                reportedDepth = true;
+                message = "#include nested more than " + std::to_string(diag::LimitValue(diag::Limit::IncludeDepth)) +
+                          " files deep: does a header include itself? " + diag::LimitNote(diag::Limit::IncludeDepth);
+            }
             if (capture.overflow && message == "File write error")
-                message = "preprocessed text too long (over " + std::to_string(kMaxOutputBytes >> 20) +
-                          " MiB): is a macro or #include expanding without end?";
+                message = "preprocessed text longer than " + std::to_string(MaxOutputBytes()) +
+                          " bytes: is a macro or #include expanding without end? " +
+                          diag::LimitNote(diag::Limit::SourceBytes);
             // mcpp gives no column: point at the line's first non-blank character.
             const int index = files.Index(Normal(file));
             diag::Diagnostic d{kind.severity,
@@ -315,7 +335,18 @@ void AddMessages(const Capture& capture, FileTable& files, PreprocessResult& res
 
 // mcpp's fopen and fclose (renamed in its library by objcopy): they keep Capture::files, so that
 // RunMcpp can close what a fatal error left open. mcpp only runs under g_mcppMutex.
+// mcpp's own count of nested #includes (its global `include_nest`) is the include depth; mcpp
+// closes and later reopens outer files when many are nested, so open files do not count it.
+// Past the include-depth limit the open of a new #include fails (mcpp reports "Can't open include
+// file" at the #include, which AddMessages rewords), and so do every later open and every later
+// write of output, which stops mcpp within one pass over the files it is inside: a header that includes itself twice would otherwise take 2^depth
+// steps before mcpp's own 256-deep limit is ever reached.
 extern "C" FILE* AffrayMcppFopen(const char* path, const char* mode) {
+    if (g_capture && (g_capture->tooDeep || include_nest > g_capture->maxDepth)) {
+        g_capture->tooDeep = true;
+        errno = ENOENT;  // as if absent: mcpp takes EMFILE as a cue to close and reopen outer files
+        return nullptr;
+    }
     FILE* f = fopen(path, mode);
     if (!f || !g_capture) return f;
     try {
@@ -346,6 +377,10 @@ extern "C" void* AffrayMcppMalloc(size_t size) {
 }
 
 extern "C" void* AffrayMcppRealloc(void* old, size_t size) {
+    // glibc's realloc(p, 0) frees p and returns null, which mcpp's xrealloc takes for success
+    // (a null result is an error only for a nonzero size): p would stay tracked, and be freed
+    // again. A one-byte block keeps every pointer mcpp holds valid and tracked.
+    if (size == 0) size = 1;
     if (!g_capture) return realloc(old, size);
     // Reserve the set entry first, so that a failure leaves `old` valid and tracked.
     try {
@@ -366,6 +401,18 @@ extern "C" void AffrayMcppFree(void* p) {
     free(p);
 }
 
+// mcpp's memcmp: mcpp looks a name up in its macro table (look_prev) with memcmp over the name's
+// whole length, against names in the table that may be shorter (their NUL differs, and their
+// allocation ends soon after). The result is decided at the first differing byte, so stop
+// there: bytes past it are never read.
+extern "C" int AffrayMcppMemcmp(const void* a, const void* b, size_t n) {
+    const auto* x = static_cast<const unsigned char*>(a);
+    const auto* y = static_cast<const unsigned char*>(b);
+    for (size_t i = 0; i < n; ++i)
+        if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
+    return 0;
+}
+
 PreprocessResult Preprocess(const std::string& path, const std::string& text, const PreprocessOptions& options) {
     PreprocessResult result;
     result.files = {path};
@@ -373,7 +420,9 @@ PreprocessResult Preprocess(const std::string& path, const std::string& text, co
         result.errors.push_back({Severity::Error, {path, 0, 0, {}}, std::move(message), {}});
         return result;
     };
-    if (text.size() > kMaxOutputBytes) return fail("file too large to preprocess");
+    if (text.size() > MaxOutputBytes())
+        return fail("file larger than " + std::to_string(MaxOutputBytes()) + " bytes " +
+                    diag::LimitNote(diag::Limit::SourceBytes));
 
     std::string error;
     std::string name = fs::path(path).filename().string();
@@ -402,7 +451,12 @@ PreprocessResult Preprocess(const std::string& path, const std::string& text, co
     FileTable files(result, path, text, tempPath);
     AddMessages(capture, files, result);
     if (capture.overflow && result.errors.empty())
-        fail("preprocessed text too long (over " + std::to_string(kMaxOutputBytes >> 20) + " MiB)");
+        fail("preprocessed text longer than " + std::to_string(MaxOutputBytes()) + " bytes " +
+             diag::LimitNote(diag::Limit::SourceBytes));
+    if (capture.tooDeep && std::none_of(result.errors.begin(), result.errors.end(),
+                                        [](const diag::Diagnostic& d) { return d.severity == Severity::Error; }))
+        fail("#include nested more than " + std::to_string(diag::LimitValue(diag::Limit::IncludeDepth)) +
+             " files deep " + diag::LimitNote(diag::Limit::IncludeDepth));
     result.text = RewriteMarkers(capture.out, files);
     // __FILE__ expands to the copy's name; show the original instead.
     const std::string quotedTemp = "\"" + tempPath + "\"";

@@ -1,9 +1,7 @@
 // lang/source.cpp: loading source files and finding their lines.
 #include "lang/source.h"
 
-#include <fstream>
-#include <sstream>
-#include <system_error>
+#include "diag/limits.h"
 
 namespace affray::lang {
 
@@ -14,18 +12,12 @@ SourceFile::SourceFile(std::string path, std::string text) : m_path(std::move(pa
 }
 
 bool SourceFile::Load(const std::string& path, SourceFile* out, std::string* error) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        if (error) *error = "cannot open file: " + std::generic_category().message(errno);
+    std::string text;
+    if (std::string problem = diag::ReadSourceFile(path, &text); !problem.empty()) {
+        if (error) *error = std::move(problem);
         return false;
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) {
-        if (error) *error = "cannot read file";
-        return false;
-    }
-    *out = SourceFile(path, text.str());
+    *out = SourceFile(path, std::move(text));
     return true;
 }
 

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "compiler/shader_cache.h"
+#include "diag/limits.h"
 #include "renderer/geometry/camera.h"
 #include "renderer/image/film.h"
 #include "renderer/shade.h"
@@ -380,12 +381,41 @@ std::string RenderStats::ToJson() const {
     return buf;
 }
 
+namespace {
+
+/// The image-pixels, pixel-samples and film-mb limits (diag/limits.h) for `camera`'s image with
+/// the channels `displayMode` asks for; "" or the error.
+std::string CheckImageLimits(const CameraDesc& camera, const std::string& displayMode) {
+    using diag::Limit;
+    const int64_t pixels = int64_t{camera.xres} * camera.yres;
+    if (pixels > diag::LimitValue(Limit::ImagePixels))
+        return "the image of " + std::to_string(camera.xres) + "x" + std::to_string(camera.yres) +
+               " pixels is too large " + diag::LimitNote(Limit::ImagePixels);
+    if (std::max(camera.xsamples, camera.ysamples) > diag::LimitValue(Limit::PixelSamples))
+        return "the image has " + std::to_string(camera.xsamples) + "x" + std::to_string(camera.ysamples) +
+               " samples per pixel, more than allowed " + diag::LimitNote(Limit::PixelSamples);
+    DisplayChannels channels;
+    std::string ignored;  // an unknown mode is reported where the image is made
+    ParseDisplayMode(displayMode, &channels, &ignored);
+    const int64_t floats = 4 + static_cast<int64_t>(ChannelNames(channels).size());
+    const int64_t mb = (pixels * floats * int64_t{sizeof(float)} + (int64_t{1} << 20) - 1) >> 20;
+    if (mb > diag::LimitValue(Limit::FilmMb))
+        return "the film needs " + std::to_string(mb) + " MiB for " + std::to_string(pixels) + " pixels of " +
+               std::to_string(floats) + " channels " + diag::LimitNote(Limit::FilmMb);
+    return {};
+}
+
+}  // namespace
+
 bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,
                   const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report) {
     auto fail = [&](const diag::Location& where, std::string message) {
         if (report) report->error(where, std::move(message));
         return false;
     };
+    // Before anything is compiled or allocated.
+    if (std::string problem = CheckImageLimits(desc.camera, desc.displayMode); !problem.empty())
+        return fail({desc.path}, std::move(problem));
     out->desc = desc;
     out->primitives.clear();
     MakeTextures(desc, report);

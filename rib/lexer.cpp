@@ -1,6 +1,8 @@
 // rib/lexer.cpp: RIB ASCII tokens and requests (see rib/lexer.h for the rules).
 #include "rib/lexer.h"
 
+#include "diag/limits.h"
+
 #include <cfloat>
 #include <charconv>
 #include <cmath>
@@ -142,9 +144,12 @@ RibToken RibLexer::LexNumber() {
         return Error(at, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
 
     // from_chars accepts no leading '+'; parse in long double so that overflow past double's
-    // range is detected here rather than silently becoming infinity.
-    std::string_view digits = word;
-    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-' && digits[1] != '+') digits.remove_prefix(1);
+    // range is detected here rather than silently becoming infinity. libstdc++ parses a long
+    // double with strtold, which reads to a NUL: parse a NUL-terminated copy, since the text
+    // (a string_view) need not end with one.
+    std::string_view numeral = word;
+    if (numeral.size() > 1 && numeral[0] == '+' && numeral[1] != '-' && numeral[1] != '+') numeral.remove_prefix(1);
+    const std::string digits(numeral);
     long double value = 0;
     auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
     if (ec == std::errc::result_out_of_range ||
@@ -277,10 +282,20 @@ bool RibRequestReader::ReadArray(RibArg* arg, std::string* error, RibPos* errorA
                 return fail(m_token.at, "expected a number, a string or ']' in the array opened on line " +
                                             std::to_string(open.line) + ", found '" + m_token.text + "'");
             case Kind::Number:
+                if (static_cast<int64_t>(arg->numbers.size() + arg->strings.size()) >=
+                    diag::LimitValue(diag::Limit::RibArray))
+                    return fail(m_token.at, "array longer than " +
+                                                std::to_string(diag::LimitValue(diag::Limit::RibArray)) + " values " +
+                                                diag::LimitNote(diag::Limit::RibArray));
                 if (!arg->strings.empty()) return fail(m_token.at, "array mixes strings and numbers");
                 arg->numbers.push_back(m_token.number);
                 break;
             case Kind::String:
+                if (static_cast<int64_t>(arg->numbers.size() + arg->strings.size()) >=
+                    diag::LimitValue(diag::Limit::RibArray))
+                    return fail(m_token.at, "array longer than " +
+                                                std::to_string(diag::LimitValue(diag::Limit::RibArray)) + " values " +
+                                                diag::LimitNote(diag::Limit::RibArray));
                 if (!arg->numbers.empty()) return fail(m_token.at, "array mixes numbers and strings");
                 arg->strings.push_back(std::move(m_token.text));
                 break;

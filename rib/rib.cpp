@@ -25,6 +25,7 @@
 #include <system_error>
 #include <unordered_map>
 
+#include "diag/limits.h"
 #include "rib/parser.h"
 
 namespace affray::rib {
@@ -59,7 +60,6 @@ constexpr std::string_view kMakeRequests[] = {"MakeBump", "MakeCubeFaceEnvironme
                                               "MakeShadow", "MakeTexture"};
 
 constexpr int kMaxResolution = 65536;
-constexpr int kMaxPixelSamples = 64;  // per axis: 4096 rays a pixel is already far past useful
 
 // The channel groups a Display mode may list (see SceneDesc::displayMode).
 constexpr std::string_view kDisplayGroups[] = {"rgb", "rgba", "rgbz", "rgbaz", "r",  "g",    "b",  "a",
@@ -446,9 +446,14 @@ bool RibParser::DoPixelSamples(const RibRequest& r) {
     if (!BeforeWorld(r) || !Numbers(r, 2, "xsamples ysamples", v)) return false;
     const char* names[2] = {"xsamples", "ysamples"};
     for (int i = 0; i < 2; ++i)
-        if (!(v[i] >= 1 && v[i] <= kMaxPixelSamples && v[i] == std::floor(v[i])))
+        if (!(v[i] >= 1 && v[i] <= static_cast<double>(diag::LimitValue(diag::Limit::PixelSamples)) &&
+              v[i] == std::floor(v[i])))
             return Fail(r.at, std::string("'PixelSamples' ") + names[i] + " must be an integer from 1 to " +
-                                  std::to_string(kMaxPixelSamples) + ", got " + FormatNumber(v[i]));
+                                  std::to_string(diag::LimitValue(diag::Limit::PixelSamples)) + ", got " +
+                                  FormatNumber(v[i]) +
+                                  (v[i] > static_cast<double>(diag::LimitValue(diag::Limit::PixelSamples))
+                                       ? " " + diag::LimitNote(diag::Limit::PixelSamples)
+                                       : std::string()));
     m_scene.camera.xsamples = static_cast<int>(v[0]);
     m_scene.camera.ysamples = static_cast<int>(v[1]);
     return true;

@@ -16,9 +16,25 @@
 #include <vector>
 
 #include "compiler/compile.h"
+#include "diag/limits.h"
 #include "renderer/geometry/surface.h"
 
 namespace affray::test {
+
+/// Sets a limit (diag/limits.h) for one scope, and puts the value it had back after it.
+class ScopedLimit {
+  public:
+    ScopedLimit(diag::Limit limit, int64_t value) : m_limit(limit), m_old(diag::LimitValue(limit)) {
+        diag::SetLimit(limit, value);
+    }
+    ~ScopedLimit() { diag::SetLimit(m_limit, m_old); }
+    ScopedLimit(const ScopedLimit&) = delete;
+    ScopedLimit& operator=(const ScopedLimit&) = delete;
+
+  private:
+    diag::Limit m_limit;
+    int64_t m_old;
+};
 
 /// A temporary directory, removed at the end of the test.
 class TempDir {

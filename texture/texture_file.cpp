@@ -317,6 +317,11 @@ const Tile* MapImpl::threadTile(int index) const {
 
 namespace {
 
+/// The largest side, and the largest number of tiles, of a map (2^30).
+constexpr int64_t kMaxSide = int64_t{1} << 30;
+/// The largest side of a file's own tiles (2^20): the bands read are a few of them high.
+constexpr int kMaxFileTile = 1 << 20;
+
 /// Reads a file's header and builds its pyramid, streaming the image in bands of rows.
 std::shared_ptr<const TextureMap> ReadMap(const std::string& path, std::string* error) {
     auto fail = [&](const std::string& message) -> std::shared_ptr<const TextureMap> {
@@ -330,6 +335,16 @@ std::shared_ptr<const TextureMap> ReadMap(const std::string& path, std::string* 
     if (!input) return fail(why);
     const io::ImageHeader spec = input->header();
     if (spec.width <= 0 || spec.height <= 0 || spec.channels <= 0) return fail("the image has no pixels");
+    // Sides and tile counts are ints (the tile index too): refuse what would overflow them,
+    // counted in 64 bits, before anything is sized from the header.
+    const int64_t tileCount =
+        ((int64_t{spec.width} + kTileSize - 1) >> kTileBits) * ((int64_t{spec.height} + kTileSize - 1) >> kTileBits);
+    if (spec.width > kMaxSide || spec.height > kMaxSide || tileCount > kMaxSide)
+        return fail("the image is too large (" + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                    " texels; sides and tile counts are limited to 2^30)");
+    if (spec.tileWidth < 0 || spec.tileHeight < 0 || spec.tileWidth > kMaxFileTile || spec.tileHeight > kMaxFileTile)
+        return fail("the file's tiles are too large (" + std::to_string(spec.tileWidth) + " x " +
+                    std::to_string(spec.tileHeight) + " texels; at most 2^20 a side)");
 
     Wrap swrap = Wrap::Periodic, twrap = Wrap::Periodic;
     const std::string& modes = spec.wrapmodes;

@@ -46,7 +46,7 @@ class PyramidBuilder {
     std::vector<PyramidLevel> Finish();
 
   private:
-    int m_width, m_height, m_channels;
+    int m_width, m_channels;
     PyramidLevel m_level0;
 };
 

@@ -84,8 +84,7 @@ int64_t detail::ZeroNonFinite(float* texels, size_t count) {
 
 // ---- The pyramid ----
 
-PyramidBuilder::PyramidBuilder(int width, int height, int channels)
-    : m_width(width), m_height(height), m_channels(channels) {
+PyramidBuilder::PyramidBuilder(int width, int height, int channels) : m_width(width), m_channels(channels) {
     m_level0.width = (width + kBlockSize - 1) >> kBlockBits;
     m_level0.height = (height + kBlockSize - 1) >> kBlockBits;
     const size_t blocks = static_cast<size_t>(m_level0.width) * m_level0.height;

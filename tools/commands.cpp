@@ -1,6 +1,8 @@
 // tools/commands.cpp: what `affray compile`, `affray eval` and `affray render` do.
 #include "tools/commands.h"
 
+#include "diag/limits.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -316,6 +318,8 @@ std::vector<std::string> FrameOutputs(const std::vector<const renderer::SceneDes
 int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     // From here SIGINT and SIGTERM only set a flag, which the render checks (tools/interrupt.h).
     Interrupts interrupts;
+    // And so does the time limit, counted from here for every frame together.
+    interrupts.StopAfter(static_cast<double>(diag::LimitValue(diag::Limit::TimeLimit)));
     diag::Report report;
     std::optional<std::vector<renderer::SceneDesc>> frames = rib::ReadRibFrames(cmd.scenePath, &report);
     // The scene's warnings and notes, before anything renders.

@@ -1,6 +1,8 @@
 // tools/frame_output.cpp: outputs, checkpoint and interruption of one frame's render (frame_output.h).
 #include "tools/frame_output.h"
 
+#include "diag/limits.h"
+
 #include <filesystem>
 
 #include "renderer/image/atomic_file.h"
@@ -110,16 +112,20 @@ int FrameOutput::AfterRender(const renderer::RenderStats& stats, FILE* err) {
                    err);
     if (!stats.stopped) return diag::kExitSuccess;
     const int signal = Interrupts::Signal();
+    const bool timedOut = Interrupts::TimedOut();
     m_checkpoint->Sync();
     const int kept = m_checkpoint->tiles();
-    std::string message = "interrupted by " + Interrupts::SignalName(signal) + ": no image written";
+    std::string message = timedOut ? "stopped after " + std::to_string(diag::LimitValue(diag::Limit::TimeLimit)) +
+                                         " s of wall-clock time " + diag::LimitNote(diag::Limit::TimeLimit) +
+                                         ": no image written"
+                                   : "interrupted by " + Interrupts::SignalName(signal) + ": no image written";
     if (checkpointError.empty())
         message += "; " + std::to_string(kept) + " of " + std::to_string(m_tiles) + " tiles kept in " +
                    m_checkpointPath + " (the same command with --resume renders the rest)";
     else
         m_checkpoint->Remove();
     Error(m_output, message, err);
-    return Interrupts::ExitCode(signal);
+    return timedOut ? diag::kExitResources : Interrupts::ExitCode(signal);
 }
 
 void FrameOutput::Finish() { m_checkpoint->Remove(); }

@@ -6,6 +6,7 @@ namespace {
 
 std::atomic<bool> g_stop{false};
 std::atomic<int> g_signal{0};
+std::atomic<bool> g_timedOut{false};
 static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free,
               "the signal handler may only touch lock-free atomics");
 
@@ -21,6 +22,7 @@ extern "C" void OnSignal(int signal) {
 Interrupts::Interrupts() {
     g_stop = false;
     g_signal = 0;
+    g_timedOut = false;
     struct sigaction action {};
     action.sa_handler = OnSignal;
     sigemptyset(&action.sa_mask);
@@ -30,9 +32,30 @@ Interrupts::Interrupts() {
 }
 
 Interrupts::~Interrupts() {
+    if (m_timer.joinable()) {
+        {
+            std::lock_guard<std::mutex> lock(m_mutex);
+            m_finished = true;
+        }
+        m_done.notify_all();
+        m_timer.join();
+    }
     sigaction(SIGINT, &m_oldInt, nullptr);
     sigaction(SIGTERM, &m_oldTerm, nullptr);
 }
+
+void Interrupts::StopAfter(double seconds) {
+    if (!(seconds > 0) || m_timer.joinable()) return;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    m_timer = std::thread([this, deadline] {
+        std::unique_lock<std::mutex> lock(m_mutex);
+        if (m_done.wait_until(lock, deadline, [this] { return m_finished; })) return;
+        g_timedOut.store(true);
+        g_stop.store(true);
+    });
+}
+
+bool Interrupts::TimedOut() { return g_timedOut.load() && g_signal.load() == 0; }
 
 const std::atomic<bool>& Interrupts::Flag() { return g_stop; }
 

@@ -7,11 +7,13 @@
 #include <cstring>
 #include <filesystem>
 #include <new>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "diag/limits.h"
 #include "tools/commands.h"
 #include "vm/disasm.h"
 
@@ -24,7 +26,7 @@ const char* const kUsage =
     "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS] [-I DIR] [-D NAME[=VALUE]]\n"
     "                [--bounds affine|reduced|interval] [--max-depth N] [--stats] [--png PREVIEW.png] [--quiet]\n"
     "                [--crop XMIN,XMAX,YMIN,YMAX] [--samples N] [--region-budget N] [--cache-mb MB]\n"
-    "                [--texture-mb MB] [--ray-groups PIXELS] [--frame N] [--resume]\n"
+    "                [--texture-mb MB] [--ray-groups PIXELS] [--frame N] [--resume] [--time-limit S]\n"
     "  affray compile SHADER.sl [-o OUT.afb] [--disasm] [--stats] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
     "              [--mode scalar|affine|interval] [-I DIR] [-D NAME[=VALUE]]\n"
@@ -33,6 +35,7 @@ const char* const kUsage =
     "  affray merge OUT.exr TILE.exr...   (the tiles of a split, checked and pasted into one image)\n"
     "  affray diff REFERENCE.exr TEST.exr   (RMSE and largest error of TEST's RGB, as JSON)\n"
     "  affray opcodes   (the VM's instruction set, as a Markdown table)\n"
+    "  affray limits    (the resource limits; render, compile and eval take --limit NAME=VALUE)\n"
     "  affray --help | --version\n";
 
 /// `affray render --help`: the usage, then what render does with its files.
@@ -49,7 +52,9 @@ const char* const kRenderHelp =
     "                image an uninterrupted render writes, bit for bit. A checkpoint of another scene\n"
     "                (RIB, shader or texture) or of other options (resolution, crop, samples,\n"
     "                tolerance, bounds...) is refused; --threads, --cache-mb and --texture-mb may differ.\n"
-    "  Without --resume, an existing checkpoint is overwritten.\n";
+    "  Without --resume, an existing checkpoint is overwritten.\n"
+    "  --time-limit S  stop after S seconds of wall-clock time as if interrupted, but with exit\n"
+    "                status 4 and an error naming the limit (the same as --limit time-limit=S).\n";
 
 struct UsageError {
     std::string message;
@@ -122,6 +127,19 @@ bool PreprocessorOption(const std::string& a, Args& args, affray::lang::Preproce
     return true;
 }
 
+/// Takes --limit NAME=VALUE and --time-limit S (diag/limits.h); false if `a` is neither.
+bool LimitOption(const std::string& a, Args& args) {
+    std::string assignment;
+    if (a == "--limit")
+        assignment = args.Value(a);
+    else if (a == "--time-limit")
+        assignment = "time-limit=" + args.Value(a);
+    else
+        return false;
+    if (std::optional<std::string> error = diag::ApplyLimit(assignment)) throw UsageError{*error};
+    return true;
+}
+
 void SetInput(std::string* slot, const std::string& arg) {
     if (!arg.empty() && arg[0] == '-' && arg != "-") throw UsageError{"unknown option '" + arg + "'"};
     if (!slot->empty()) throw UsageError{"unexpected argument '" + arg + "'"};
@@ -138,7 +156,7 @@ int Compile(Args& args) {
             cmd.disasm = true;
         else if (a == "--stats")
             cmd.stats = true;
-        else if (PreprocessorOption(a, args, &cmd.preprocess))
+        else if (LimitOption(a, args) || PreprocessorOption(a, args, &cmd.preprocess))
             continue;
         else
             SetInput(&cmd.shaderPath, a);
@@ -175,7 +193,7 @@ int Eval(Args& args) {
             cmd.mode = args.Value(a);
             if (cmd.mode != "scalar" && cmd.mode != "affine" && cmd.mode != "interval")
                 throw UsageError{"--mode takes scalar, affine or interval, got '" + cmd.mode + "'"};
-        } else if (!PreprocessorOption(a, args, &cmd.preprocess)) {
+        } else if (!LimitOption(a, args) && !PreprocessorOption(a, args, &cmd.preprocess)) {
             SetInput(&cmd.shaderPath, a);
         }
     }
@@ -225,7 +243,7 @@ bool RenderOption(const std::string& a, Args& args, affray::tools::RenderCommand
     else if (a == "--quiet" || a == "-q")
         cmd.quiet = true;
     else if (a == "--samples")
-        cmd.samples = ParseInt(args.Value(a), a, 1, 64);
+        cmd.samples = ParseInt(args.Value(a), a, 1, 256);  // past pixel-samples, PrepareScene says so
     else if (a == "--region-budget")
         cmd.regionBudget = ParseInt(args.Value(a), a, 1, 1 << 30);
     else if (a == "--frame")
@@ -253,7 +271,7 @@ bool RenderOption(const std::string& a, Args& args, affray::tools::RenderCommand
         if (c.size() != 4 || !(0 <= c[0] && c[0] < c[1] && c[1] <= 1 && 0 <= c[2] && c[2] < c[3] && c[3] <= 1))
             throw UsageError{"--crop takes XMIN,XMAX,YMIN,YMAX with 0 <= min < max <= 1"};
         cmd.crop = std::array<double, 4>{c[0], c[1], c[2], c[3]};
-    } else if (!PreprocessorOption(a, args, &cmd.preprocess))
+    } else if (!LimitOption(a, args) && !PreprocessorOption(a, args, &cmd.preprocess))
         return false;
     return true;
 }
@@ -357,6 +375,14 @@ int main(int argc, char** argv) {
         if (command == "opcodes") {
             if (!args.Done()) throw UsageError{"opcodes takes no arguments"};
             std::fputs(affray::vm::OpcodeTable().c_str(), stdout);
+            return diag::kExitSuccess;
+        }
+        if (command == "limits") {
+            while (!args.Done()) {
+                const std::string a = args.Next();
+                if (!LimitOption(a, args)) throw UsageError{"limits takes only --limit NAME=VALUE, got '" + a + "'"};
+            }
+            std::fputs(diag::LimitsTable().c_str(), stdout);
             return diag::kExitSuccess;
         }
         throw UsageError{"unknown command '" + command + "'"};

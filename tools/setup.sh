@@ -4,7 +4,8 @@
 set -euo pipefail
 
 packages=(build-essential cmake flex bison libopenexr-dev libglm-dev zlib1g-dev catch2
-          libmcpp-dev openimageio-tools libopenimageio-dev clang-format-14 slurm-wlm munge)
+          libmcpp-dev openimageio-tools libopenimageio-dev clang-format-14 clang-14 libclang-rt-14-dev
+          slurm-wlm munge)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -5,6 +5,8 @@
 // ReadProgram/LoadBytecode, document it in the header's table and bump kBytecodeVersion.
 #include "vm/bytecode_file.h"
 
+#include "diag/limits.h"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -378,10 +380,8 @@ bool ReadBytecodeFile(const std::string& path, BytecodeFile* out, diag::Report* 
         if (report) report->error({path}, std::move(message));
         return false;
     };
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return fail("cannot open file: " + ErrnoText(errno));
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) return fail("cannot read file");
+    std::string bytes;
+    if (std::string problem = diag::ReadSourceFile(path, &bytes); !problem.empty()) return fail(std::move(problem));
     std::string problem;
     if (!LoadBytecode(bytes, out, &problem)) return fail(problem);
     return true;

@@ -1,6 +1,8 @@
 // renderer/image/exr_writer.cpp: OpenEXR output and input (format and atomicity rules in exr_writer.h).
 #include "renderer/image/exr_writer.h"
 
+#include "diag/limits.h"
+
 #include "renderer/image/atomic_file.h"
 
 #include <Imath/half.h>
@@ -21,15 +23,18 @@ namespace affray::renderer {
 namespace {
 
 constexpr const char* kRgbaNames[4] = {"R", "G", "B", "A"};
-// Refuse images this large (pixels): a corrupt header must not make us allocate without bound.
-constexpr int64_t kMaxPixels = int64_t(1) << 28;
+// Refuse images larger than the image-pixels limit: a corrupt header must not make us allocate
+// without bound.
+int64_t MaxPixels() { return diag::LimitValue(diag::Limit::ImagePixels); }
 
 // Checks sizes and channel names before any file is touched; returns "" if the image is valid.
 std::string ValidateImage(const ImageBuffer& image) {
     if (image.width <= 0 || image.height <= 0)
         return "image size " + std::to_string(image.width) + "x" + std::to_string(image.height) + " is empty";
     int64_t pixels = int64_t(image.width) * image.height;
-    if (pixels > kMaxPixels) return "image is too large";
+    if (pixels > MaxPixels())
+        return "image of " + std::to_string(pixels) + " pixels is too large " +
+               diag::LimitNote(diag::Limit::ImagePixels);
     if (image.rgba.size() != size_t(pixels) * 4)
         return "RGBA buffer holds " + std::to_string(image.rgba.size()) + " floats, expected " +
                std::to_string(pixels * 4);
@@ -122,8 +127,9 @@ ImageBuffer HeaderOf(const Imf::InputFile& file) {
     const Imath::Box2i dataWindow = file.header().dataWindow();
     int64_t width = int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
     int64_t height = int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
-    if (width <= 0 || height <= 0 || width * height > kMaxPixels)
-        throw std::runtime_error("unsupported data window " + std::to_string(width) + "x" + std::to_string(height));
+    if (width <= 0 || height <= 0 || width * height > MaxPixels())
+        throw std::runtime_error("unsupported data window " + std::to_string(width) + "x" + std::to_string(height) +
+                                 (width > 0 && height > 0 ? " " + diag::LimitNote(diag::Limit::ImagePixels) : ""));
     ImageBuffer image;
     image.width = static_cast<int>(width);
     image.height = static_cast<int>(height);

@@ -53,18 +53,6 @@ ChannelPointers FindChannels(ImageBuffer* image) {
     return c;
 }
 
-/// The names MakeImage gives the extra channels, in file order.
-std::vector<std::string> ChannelNames(const DisplayChannels& ch) {
-    std::vector<std::string> names;
-    if (ch.z) names.push_back("Z");
-    if (ch.n) names.insert(names.end(), {"N.X", "N.Y", "N.Z"});
-    if (ch.p) names.insert(names.end(), {"P.X", "P.Y", "P.Z"});
-    if (ch.st) names.insert(names.end(), {"st.s", "st.t"});
-    if (ch.cost) names.push_back("cost");
-    if (ch.err) names.push_back("err");
-    return names;
-}
-
 std::string Trim(const std::string& s) {
     size_t begin = s.find_first_not_of(" \t"), end = s.find_last_not_of(" \t");
     return begin == std::string::npos ? std::string() : s.substr(begin, end - begin + 1);
@@ -153,6 +141,17 @@ void WritePixel(const Film& film, const PixelSums& sums, size_t pixel, const Cha
 }
 
 }  // namespace
+
+std::vector<std::string> ChannelNames(const DisplayChannels& ch) {
+    std::vector<std::string> names;
+    if (ch.z) names.push_back("Z");
+    if (ch.n) names.insert(names.end(), {"N.X", "N.Y", "N.Z"});
+    if (ch.p) names.insert(names.end(), {"P.X", "P.Y", "P.Z"});
+    if (ch.st) names.insert(names.end(), {"st.s", "st.t"});
+    if (ch.cost) names.push_back("cost");
+    if (ch.err) names.push_back("err");
+    return names;
+}
 
 std::string ToString(const PixelRange& r) {
     return "[" + std::to_string(r.x0) + "," + std::to_string(r.x1) + ")x[" + std::to_string(r.y0) + "," +

@@ -77,6 +77,9 @@ struct DisplayChannels {
 /// offending group if a group is unknown or empty. RGBA are written whatever the mode says.
 bool ParseDisplayMode(const std::string& mode, DisplayChannels* out, std::string* error);
 
+/// The names Film::MakeImage gives the channels beyond RGBA, in file order.
+std::vector<std::string> ChannelNames(const DisplayChannels& channels);
+
 /// One camera sample: the pixel it belongs to, its index there, and its raster position.
 struct Sample {
     int px = 0, py = 0;  ///< The pixel whose stratum holds the sample.

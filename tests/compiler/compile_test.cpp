@@ -5,7 +5,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "compiler/ir.h"
 #include "tests/test_util.h"
+#include "vm/bytecode_file.h"
 #include "vm/disasm.h"
 
 using namespace affray;
@@ -290,4 +292,48 @@ TEST_CASE("globals constant on a surface fold like parameters", "[compiler][spec
     // Same values as the unspecialised program given that N.
     glm::dvec3 a = test::PointOnSquare(s.bound, 0.3, 0.7), b = test::PointOnSquare(*flat, 0.3, 0.7);
     CHECK(a == b);
+}
+
+// Found by fuzz_afb (fuzz/regressions/fuzz_afb/shade_poison.afb): a file whose two programs pass
+// the verifier but do not agree. The shade program's specialisation was taken for granted once
+// the bound program's had worked (a crash when it failed), and `eval` and the renderer read
+// outputs P and N that the verifier does not require.
+TEST_CASE("a loaded .afb whose shade program does not specialise or lacks an output is an error",
+          "[compiler][bytecode]") {
+    test::TempDir dir;
+    const compiler::CompileResult compiled = compiler::CompileSource("k.sl", "displacement d() { P += 0.123 * N; }");
+    REQUIRE(compiled.ok());
+    const compiler::CompiledShader& shader = *compiled.shader;
+    auto load = [&](const vm::Program& shade) {
+        const vm::BytecodeFile file{shader.name, "k.sl", 0, shader.genericBound, shade};
+        return compiler::LoadCompiledShader(dir.Write("k.afb", vm::SaveBytecode(file)));
+    };
+    CHECK(load(shader.genericShade).ok());
+
+    // The shade program alone runs a loop past its unrolling (the bound program does not).
+    vm::Program poisoned = shader.genericShade;
+    bool replaced = false;
+    for (double& k : poisoned.constants) {
+        if (k != 0.123) continue;
+        k = compiler::kParameterLoopPoison;
+        replaced = true;
+    }
+    REQUIRE(replaced);
+    compiler::CompileResult r = load(poisoned);
+    CHECK_FALSE(r.ok());
+    REQUIRE(r.paramErrors.size() == 1);
+    CHECK(r.paramErrors[0].find("a loop runs longer than the compiled program was unrolled for") != std::string::npos);
+
+    // No output N.
+    vm::Program noNormal = shader.genericShade;
+    for (vm::ProgramOutput& out : noNormal.outputs)
+        if (out.name == "N") out.name = "Q";
+    r = load(noNormal);
+    CHECK_FALSE(r.ok());
+    CHECK(r.diagnostics.format().find("error: program 'shade' has no output N of three values") != std::string::npos);
+
+    // The fuzzer's input, as found.
+    r = compiler::LoadCompiledShader(std::string(AFFRAY_SOURCE_DIR) + "/fuzz/regressions/fuzz_afb/shade_poison.afb");
+    CHECK_FALSE(r.ok());
+    CHECK(r.paramErrors.size() == 1);
 }

@@ -7,7 +7,7 @@
 // more, mostly syntax):
 //   control flow     1 'break' outside of a loop            2 'continue' outside of a loop
 //                    3 'break N'/'continue N' is inside only M loops
-//                    4 this loop runs more than 100000 iterations
+//                    4 this loop runs more than 10000 iterations
 //   conditions       5 a condition must be a comparison or a float
 //   operators        6 invalid operands to '<' ...: only floats are ordered
 //                    7 ... a color does not compare with a point, vector or normal
@@ -69,6 +69,8 @@
 //   warnings        75 unused variable                    76 shader 't' never changes P or N
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "tests/test_util.h"
@@ -117,10 +119,27 @@ TEST_CASE("break and continue outside their loops", "[compiler][diagnostics]") {
 TEST_CASE("a loop that never ends", "[compiler][diagnostics]") {
     // The condition is constant: the unrolling would never stop.
     CHECK(Diagnose("displacement t() {\n  float i = 0;\n  while (i < 1) P += 0;\n}\n") ==
-          "test.sl:3:3: error: this loop runs more than 100000 iterations (affray unrolls loops; is its condition ever "
-          "false?)\n"
+          "test.sl:3:3: error: this loop runs more than 10000 iterations: affray unrolls loops; is its condition ever "
+          "false? (limit loop-iterations = 10000; raise it with --limit loop-iterations=N)\n"
           "      while (i < 1) P += 0;\n"
           "      ^\n");
+}
+
+// Found by fuzz_sl (fuzz/regressions/fuzz_sl/nested_endless_loop.sl, a timeout): a loop that
+// never ends, inside other loops, was unrolled to its budget again for every iteration of the
+// loops around it (nine budgets here, minutes under AddressSanitizer). It is reported once and
+// unrolled once.
+TEST_CASE("a loop that never ends inside other loops is unrolled to its budget once", "[compiler][diagnostics]") {
+    // One budget of this loop asks for about 100000 operations, under the program-ops limit
+    // (250000); nine would pass it, and the error would be that limit's instead.
+    const std::string alone = Diagnose("displacement t() {\n  float k;\n  for (k = 0; k < 1; k += 0) P += 0;\n}\n");
+    const std::string nested = Diagnose(
+        "displacement t() {\n  float i, j, k;\n  for (i = 0; i < 3; i += 1)\n"
+        "    for (j = 0; j < 3; j += 1)\n      for (k = 0; k < 1; k += 0) P += 0;\n}\n");
+    CHECK(alone.find("test.sl:3:3: error: this loop runs more than 10000 iterations") == 0);
+    CHECK(nested.find("test.sl:5:7: error: this loop runs more than 10000 iterations") == 0);
+    CHECK(std::count(nested.begin(), nested.end(), '^') == 1);
+    CHECK(nested.find("grows past") == std::string::npos);
 }
 
 TEST_CASE("conditions of the wrong type", "[compiler][diagnostics]") {
@@ -600,7 +619,8 @@ TEST_CASE("calls nested more than 64 functions deep", "[compiler][diagnostics]")
     for (int i = 0; i < 70; ++i) source += "void f" + std::to_string(i) + "() { f" + std::to_string(i + 1) + "(); }\n";
     source += "void f70() { }\ndisplacement t() {\n  f0();\n}\n";
     CHECK(Diagnose(source) ==
-          "test.sl:64:14: error: calls nest deeper than 64 functions\n"
+          "test.sl:64:14: error: calls nest deeper than 64 functions (limit call-depth = 64; raise it with --limit "
+          "call-depth=N)\n"
           "    void f63() { f64(); }\n"
           "                 ^\n");
     // 64 levels are fine.
@@ -792,4 +812,54 @@ TEST_CASE("a string parameter of an uncalled function names a space, a basis or 
           "test.sl:1:50: error: unknown coordinate space 'nowhere'\n"
           "    float D (string space) { return zcomp(vtransform(space, N)); }\n"
           "                                                     ^\n");
+}
+
+TEST_CASE("a mistake inside an endless loop is reported before any unrolling", "[compiler][diagnostics][limits]") {
+    // Names and types are checked on the loop's body as dead code first: the unknown name is the
+    // only error, and the loop is not unrolled at all (no loop-iterations error after it).
+    CHECK(Diagnose("displacement t() {\n  float i = 0;\n  while (i < 1) { P += nosuch * N; }\n}\n") ==
+          "test.sl:3:24: error: unknown identifier 'nosuch'\n"
+          "      while (i < 1) { P += nosuch * N; }\n"
+          "                           ^\n");
+}
+
+TEST_CASE("the program-ops limit stops unrolling where it is passed", "[compiler][diagnostics][limits]") {
+    // 1000 iterations of a body asking for a dozen operations each (the loop's test and step too).
+    const std::string source =
+        "displacement t() {\n  float i, a = 0;\n  for (i = 0; i < 1000; i += 1)\n    a += sin(u * i);\n"
+        "  P += a * N;\n}\n";
+    compiler::CompileResult fits = compiler::CompileSource("test.sl", source);
+    INFO(fits.diagnostics);
+    CHECK(fits.ok());
+    CHECK(fits.shader->opsBeforeOptimisation > 10000);
+    CHECK(fits.shader->opsBeforeOptimisation < 14000);
+
+    test::ScopedLimit limit(diag::Limit::ProgramOps, 1000);
+    // Found where the loop tests its condition again (a statement inside the body that passes it
+    // is the place instead, with a note on the loop: limit_program_ops.sl).
+    CHECK(Diagnose(source) ==
+          "test.sl:3:3: error: the shader grows past 1000 operations as its loops are unrolled and its calls inlined "
+          "(limit program-ops = 1000; raise it with --limit program-ops=N)\n"
+          "      for (i = 0; i < 1000; i += 1)\n"
+          "      ^\n");
+}
+
+TEST_CASE("loop-iterations and varying-loop-iterations bound the unrolling", "[compiler][diagnostics][limits]") {
+    const std::string constant = "displacement t() {\n  float i;\n  for (i = 0; i < 50; i += 1) P += 0.001 * N;\n}\n";
+    CHECK(compiler::CompileSource("test.sl", constant).ok());
+    {
+        test::ScopedLimit limit(diag::Limit::LoopIterations, 49);
+        CHECK(Diagnose(constant).find("this loop runs more than 49 iterations") != std::string::npos);
+    }
+    // A loop whose count varies over the surface is unrolled varying-loop-iterations times; the
+    // paths still running after that are unbounded (NaN), not an error, and not a wrong value.
+    const std::string varying = "displacement t() {\n  float x = 0;\n  while (x < u * 10) x += 1;\n  P += x * N;\n}\n";
+    // On the unit square (N = +z) the loop counts to ceil(10 u): 3 at u = 0.25, 8 at u = 0.75.
+    const compiler::CompiledShader wide = test::CompileOrThrow(varying);
+    CHECK(test::PointOnSquare(wide.shade, 0.25, 0.5).z == 3);
+    CHECK(test::PointOnSquare(wide.shade, 0.75, 0.5).z == 8);
+    test::ScopedLimit limit(diag::Limit::VaryingLoopIterations, 5);
+    const compiler::CompiledShader narrow = test::CompileOrThrow(varying);
+    CHECK(test::PointOnSquare(narrow.shade, 0.25, 0.5).z == 3);
+    CHECK(std::isnan(test::PointOnSquare(narrow.shade, 0.75, 0.5).z));
 }

@@ -209,6 +209,23 @@ TEST_CASE("texture(): malformed calls are located errors", "[compiler][texture][
     CHECK(r.diagnostics.format().find("unknown texture parameter 'lerp' ignored") != std::string::npos);
 }
 
+// Found by fuzz_sl (fuzz/regressions/fuzz_sl/texture_unknown_identifier.sl): a name that did not
+// lower (an unknown identifier, reported as such) left the lookup going on with no name, which
+// it then read.
+TEST_CASE("texture(): a name that is an unknown identifier is that one error", "[compiler][texture][diagnostics]") {
+    test::tex::ScratchDir dir;
+    for (const std::string call : {"texture(maq)", "texture(maq[1], s, t)", "texture(maq, s, t, \"blur\", 0)"}) {
+        compiler::CompileResult r = CompileIn(dir, "displacement d() { float h = " + call + "; P += h * N; }");
+        INFO(call << "\n" << r.diagnostics.format());
+        CHECK_FALSE(r.ok());
+        CHECK(r.diagnostics.errorCount() == 1);
+        CHECK(r.diagnostics.format().find("error: unknown identifier 'maq'") != std::string::npos);
+    }
+    // In color context, as the fuzzer found it first.
+    compiler::CompileResult r = CompileIn(dir, "displacement d() { color c = texture(maq); P += comp(c, 0) * N; }");
+    CHECK(r.diagnostics.errorCount() == 1);
+}
+
 TEST_CASE("texture(): compiled bytecode keeps its slots and reads the maps again", "[compiler][texture]") {
     test::tex::ScratchDir dir;
     test::tex::WriteImage(dir.path("ramp.exr"), 8, 4, 2, Ramp());

@@ -1,4 +1,4 @@
-// golden: compile
+// golden: compile --limit program-ops=2000000 --limit loop-iterations=100000
 // 70000 distinct constants (a loop unrolled with its counter as a factor) are more than a program
 // can address: an error without a line, like the register limit (it was an abort, exit 134).
 displacement t() {

@@ -1,4 +1,4 @@
-// golden: compile
+// golden: compile --limit program-ops=2000000 --limit loop-iterations=100000
 // 66000 values alive at once (a chain stored in an array, then read back in reverse) need more
 // registers than a program can address: an error without a line.
 displacement t() {

@@ -1,4 +1,4 @@
-// golden: compile
+// golden: compile --limit nesting=256
 // More than 256 open parentheses at once: parsing stops (the macros expand to 272).
 #define P16(x) ((((((((((((((((x))))))))))))))))
 displacement t() {

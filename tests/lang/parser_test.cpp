@@ -4,10 +4,12 @@
 #include <catch2/catch.hpp>
 
 #include <iterator>
+#include <optional>
 #include <random>
 #include <string>
 
 #include "lang/parse.h"
+#include "tests/test_util.h"
 
 namespace affray::lang {
 namespace {
@@ -677,10 +679,12 @@ TEST_CASE("a file without a shader", "[lang]") {
 }
 
 TEST_CASE("nesting limits", "[lang]") {
+    // The nesting limit (1000) lowered to 256 for brackets, so the lines stay short.
+    std::optional<affray::test::ScopedLimit> lowered(std::in_place, affray::diag::Limit::Nesting, 256);
     std::string parens = "displacement d() { x = " + std::string(300, '(') + "1" + std::string(300, ')') + "; }";
     CHECK(Errors(parens) ==
-          "test.sl:1:279: error: nesting too deep (more than 256 open parentheses, brackets and "
-          "braces)\n"
+          "test.sl:1:279: error: nesting too deep: more than 256 open parentheses, brackets and "
+          "braces (limit nesting = 256; raise it with --limit nesting=N)\n"
           "    " +
               parens +
               "\n"
@@ -692,19 +696,21 @@ TEST_CASE("nesting limits", "[lang]") {
     for (int i = 0; i < 300; ++i) brackets += "a[";
     brackets += "1" + std::string(300, ']') + "; }";
     CHECK(Errors(brackets) ==
-          "test.sl:1:535: error: nesting too deep (more than 256 open parentheses, brackets and "
-          "braces)\n"
+          "test.sl:1:535: error: nesting too deep: more than 256 open parentheses, brackets and "
+          "braces (limit nesting = 256; raise it with --limit nesting=N)\n"
           "    " +
               brackets +
               "\n"
               "    " +
               std::string(534, ' ') + "^\n");
 
+    lowered.reset();  // the default, 1000, for the depth of trees
     std::string minus = "displacement d() {\nx = ";
     for (int i = 0; i < 1200; ++i) minus += "- ";
     minus += "1;\n}\n";
     CHECK(Errors(minus) ==
-          "test.sl:2:405: error: expression too complex (nested more than 1000 levels deep)\n"
+          "test.sl:2:405: error: expression too complex: nested more than 1000 levels deep (limit nesting = 1000; "
+          "raise it with --limit nesting=N)\n"
           "    " +
               minus.substr(19, minus.size() - 22) +
               "\n"
@@ -715,7 +721,8 @@ TEST_CASE("nesting limits", "[lang]") {
     for (int i = 0; i < 1001; ++i) ifs += "if (a)\n";
     ifs += "x = 1;\n}\n";
     CHECK(Errors(ifs) ==
-          "test.sl:3:1: error: statements nested more than 1000 levels deep\n"
+          "test.sl:3:1: error: statements nested more than 1000 levels deep (limit nesting = 1000; raise it with "
+          "--limit nesting=N)\n"
           "    if (a)\n"
           "    ^\n");
 }

@@ -15,6 +15,11 @@
 #include "lang/preprocess.h"
 #include "tests/test_util.h"
 
+// lang/preprocess.cpp's wrappers of mcpp's allocation functions (lang/CMakeLists.txt).
+extern "C" void* AffrayMcppMalloc(size_t size);
+extern "C" void* AffrayMcppRealloc(void* old, size_t size);
+extern "C" void AffrayMcppFree(void* p);
+
 namespace affray::lang {
 namespace {
 
@@ -186,19 +191,65 @@ TEST_CASE("a missing #include is an error at its line", "[lang][preprocess]") {
 
 TEST_CASE("a recursive #include is an error, not a hang", "[lang][preprocess]") {
     TempDir dir;
-    // Two self-includes per level would take 2^256 steps without mcpp's depth limit.
+    // Two self-includes per level would take 2^64 steps without the include-depth limit, which
+    // stops the preprocessor at the first #include past it.
     dir.Write("r.h", "#include \"r.h\"\n#include \"r.h\"\n");
     PreprocessResult r = Run(dir, "a.sl", "#include \"r.h\"\n");
     CHECK_FALSE(r.ok);
-    CHECK(Messages(r) == dir.Path("r.h") + ":1: More than 256 nesting of #include\n");
+    CHECK(Messages(r) == dir.Path("r.h") +
+                             ":1: #include nested more than 64 files deep: does a header include itself? "
+                             "(limit include-depth = 64; raise it with --limit include-depth=N)\n");
+    {
+        // Up to mcpp's own limit of 256 (the largest include-depth is 200).
+        affray::test::ScopedLimit deep(affray::diag::Limit::IncludeDepth, 200);
+        CHECK(Messages(Run(dir, "a.sl", "#include \"r.h\"\n")).find("more than 200 files deep") != std::string::npos);
+    }
 
-    // mcpp stops with the 256 files still open; Preprocess closes them.
+    // The preprocessor stops with the files still open; Preprocess closes them.
     auto openFiles = [] { return std::distance(fs::directory_iterator("/proc/self/fd"), fs::directory_iterator()); };
     if (fs::exists("/proc/self/fd")) {
         auto before = openFiles();
         for (int i = 0; i < 8; ++i) Run(dir, "a.sl", "#include \"r.h\"\n");
         CHECK(openFiles() == before);
     }
+}
+
+TEST_CASE("the include-depth limit counts nested files exactly", "[lang][preprocess]") {
+    TempDir dir;
+    // a.sl includes h1.h, which includes h2.h, ... h5.h: five files deep.
+    for (int i = 1; i < 5; ++i)
+        dir.Write("h" + std::to_string(i) + ".h", "#include \"h" + std::to_string(i + 1) + ".h\"\n");
+    dir.Write("h5.h", "float five = 5;\n");
+    {
+        affray::test::ScopedLimit limit(affray::diag::Limit::IncludeDepth, 5);
+        PreprocessResult r = Run(dir, "a.sl", "#include \"h1.h\"\n");
+        CHECK(r.ok);
+        CHECK(r.text.find("float five = 5;") != std::string::npos);
+    }
+    affray::test::ScopedLimit limit(affray::diag::Limit::IncludeDepth, 4);
+    PreprocessResult r = Run(dir, "a.sl", "#include \"h1.h\"\n");
+    CHECK_FALSE(r.ok);
+    CHECK(Messages(r) == dir.Path("h4.h") +
+                             ":1: #include nested more than 4 files deep: does a header include itself? "
+                             "(limit include-depth = 4; raise it with --limit include-depth=N)\n");
+}
+
+TEST_CASE("preprocessed text longer than the source-bytes limit is an error", "[lang][preprocess]") {
+    TempDir dir;
+    affray::test::ScopedLimit limit(affray::diag::Limit::SourceBytes, 4096);
+    // 4^6 copies of a 10-byte line: 40 KB of output from 200 bytes of macros.
+    const std::string text =
+        "#define A x = 1 + 2;\n#define B A A A A\n#define C B B B B\n#define D C C C C\n"
+        "#define E D D D D\n#define F E E E E\n#define G F F F F\nG\n";
+    PreprocessResult r = Run(dir, "a.sl", text);
+    CHECK_FALSE(r.ok);
+    CHECK(Messages(r).find("preprocessed text longer than 4096 bytes") != std::string::npos);
+    CHECK(Messages(r).find("(limit source-bytes = 4096; raise it with --limit source-bytes=N)") != std::string::npos);
+    // And a source over the limit is refused before mcpp runs.
+    CHECK(Messages(Run(dir, "b.sl", std::string(5000, ' '))) ==
+          dir.Path("b.sl") +
+              ":0: file larger than 4096 bytes (limit source-bytes = 4096; raise it with --limit "
+              "source-bytes=N)\n");
 }
 
 TEST_CASE("an unterminated #if is an error", "[lang][preprocess]") {
@@ -263,6 +314,41 @@ TEST_CASE("preprocessing from several threads takes turns", "[lang][preprocess]"
         });
     for (std::thread& t : threads) t.join();
     for (size_t i = 0; i < outputs.size(); ++i) CHECK(outputs[i] == "x =  " + std::to_string(i) + " ;\n");
+}
+
+// Found by fuzz_sl (fuzz/regressions/fuzz_sl/mcpp_memcmp_long_identifier.sl): mcpp looks a name up
+// in its macro table with memcmp over the name's whole length, past the end of a shorter name
+// in the table; AddressSanitizer reported the read (lang/preprocess.cpp's AffrayMcppMemcmp stops
+// at the first difference). Names long and short, alone and next to macros of their hash chain.
+TEST_CASE("long identifiers are looked up within mcpp's buffers", "[lang][preprocess]") {
+    TempDir dir;
+    const std::vector<std::string> texts = {"BRmfffffffffffffffffffffiif",
+                                            "#define A 1\n" + std::string(200, 'A') + " A\n",
+                                            "#define " + std::string(70, 'x') + " 2\n" + std::string(71, 'x') + "\n"};
+    for (const std::string& text : texts) {
+        INFO(text);
+        PreprocessResult r = Run(dir, "m.sl", text);
+        CHECK(r.ok);
+        CHECK(r.errors.empty());
+    }
+    PreprocessResult r = Run(dir, "m.sl", "BRmfffffffffffffffffffffiif");
+    CHECK(Code(r) == "BRmfffffffffffffffffffffiif\n");
+}
+
+// mcpp's xrealloc takes a null result for success when the size is 0, and glibc's realloc(p, 0)
+// frees p and returns null: mcpp kept p, and lang/preprocess.cpp's tracking freed it a second
+// time after the run (a crash of `affray compile`). The wrapper mcpp calls keeps a block instead.
+TEST_CASE("mcpp's realloc to zero bytes keeps a block", "[lang][preprocess]") {
+    void* p = AffrayMcppMalloc(32);
+    REQUIRE(p);
+    void* q = AffrayMcppRealloc(p, 0);
+    CHECK(q != nullptr);
+    AffrayMcppFree(q);
+    // And during a run, where the blocks are tracked: macros with empty arguments and bodies.
+    TempDir dir;
+    PreprocessResult r = Run(dir, "m.sl", "#define E()\n#define F(a, b) a b\nE() F(,) F(E(),) x\n");
+    CHECK(r.ok);
+    CHECK(Code(r).find('x') != std::string::npos);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -623,7 +624,8 @@ TEST_CASE("RIB camera options give exact errors", "[renderer][rib]") {
     CHECK(ErrorOf("PixelSamples 2 2.5\n") ==
           "t.rib:1: error: 'PixelSamples' ysamples must be an integer from 1 to 64, got 2.5");
     CHECK(ErrorOf("PixelSamples 65 1\n") ==
-          "t.rib:1: error: 'PixelSamples' xsamples must be an integer from 1 to 64, got 65");
+          "t.rib:1: error: 'PixelSamples' xsamples must be an integer from 1 to 64, got 65 (limit pixel-samples = 64; "
+          "raise it with --limit pixel-samples=N)");
     CHECK(ErrorOf("PixelFilter \"box\" 0 1\n") == "t.rib:1: error: 'PixelFilter' widths must be positive, got 0 1");
     CHECK(ErrorOf("PixelFilter \"box\" 1\n") ==
           "t.rib:1: error: 'PixelFilter' expects a filter name and 2 numbers (xwidth ywidth)");
@@ -1045,4 +1047,23 @@ TEST_CASE("A RIB scene with quadrics, options and a mirrored camera", "[renderer
         CHECK(p.flipNormal);
         CHECK(p.surface.model == (i < 3 ? SurfaceDesc::Model::Metal : SurfaceDesc::Model::Constant));
     }
+}
+
+// Found by fuzz_rib (fuzz/regressions/fuzz_rib/number_token_at_end.rib): a number token that
+// starts like "-Inf" or "nan" and ends the text made libstdc++'s from_chars (long double) take
+// strlen of the token, reading past the end of a text that is not NUL-terminated.
+TEST_CASE("RIB numbers at the very end of a text without a NUL are read within it", "[renderer][rib]") {
+    for (const std::string text :
+         {"Sphere 1 -1 1 -Illuminate", "Translate 0 0 -Infx", "Translate 0 0 +nanny", "Translate 0 0 1.5"}) {
+        INFO(text);
+        // Exactly the text's bytes: no NUL after them for a reader to stop at.
+        const std::unique_ptr<char[]> bytes(new char[text.size()]);
+        std::copy(text.begin(), text.end(), bytes.get());
+        affray::diag::Report report;
+        ParseRib(std::string_view(bytes.get(), text.size()), "t.rib", &report);
+        CHECK(report.errorCount() == 1);
+    }
+    affray::diag::Report report;
+    CHECK_FALSE(ParseRib("Translate 0 0 -Infx", "t.rib", &report));
+    CHECK(Short(report.all().at(0)) == "t.rib:1: error: malformed number '-Infx'");
 }

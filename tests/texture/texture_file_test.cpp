@@ -280,3 +280,27 @@ TEST_CASE("texture file: tiles under a tiny budget give the same lookups, from s
     SetTileMemoryBudget(budget);
     CHECK(TileMemoryBudget() == budget);
 }
+
+// Found by fuzz_texture (fuzz/regressions/fuzz_texture/pgm_huge_width.pgm): a header's sides went
+// into int tile counts and band sizes unchecked, and overflowed.
+TEST_CASE("texture file: a header with sides or tiles past 2^30 is refused, naming the file", "[texture]") {
+    ScratchDir dir;
+    auto open = [&](const std::string& name, const std::string& header) {
+        const std::string path = dir.path(name);
+        std::ofstream(path, std::ios::binary) << header << std::string(16, '\0');
+        std::string error;
+        CHECK_FALSE(Open(path, &error));
+        return error;
+    };
+    // One side past 2^30; both sides at 2^30 (2^48 tiles).
+    const std::string wide = open("wide.pgm", "P5\n2147483647 1\n255\n");
+    CHECK(wide == "cannot read texture '" + dir.path("wide.pgm") +
+                      "': the image is too large (2147483647 x 1 texels; sides and tile counts are limited to 2^30)");
+    const std::string square = open("square.pgm", "P5\n1073741824 1073741824\n255\n");
+    CHECK(square.find("'" + dir.path("square.pgm") + "': the image is too large (1073741824 x 1073741824") !=
+          std::string::npos);
+    // The fuzzer's input, as found.
+    std::string error;
+    CHECK_FALSE(Open(std::string(AFFRAY_SOURCE_DIR) + "/fuzz/regressions/fuzz_texture/pgm_huge_width.pgm", &error));
+    CHECK(error.find("too large") != std::string::npos);
+}

@@ -1,0 +1,41 @@
+// fuzz/fuzz_rib.cpp: RIB text -> lexer, request parser and frames -> each frame prepared for
+// rendering as `affray render` prepares it (shaders found and compiled, surfaces specialised,
+// the BVH built); nothing is rendered.
+// The scene is named as a file in this process's temporary directory, so that what a scene writes
+// (MakeTexture) lands there; MakeTexture requests naming an absolute path or '..' are dropped.
+// Shaders are found in shaders/, tests/golden and tests/corpus of the source tree.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fuzz/fuzz_util.h"
+#include "renderer/render.h"
+#include "rib/rib.h"
+
+namespace {
+
+bool InsideP(const std::string& path) {
+    return !path.empty() && path[0] != '/' && path.find("..") == std::string::npos;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    using namespace affray;
+    static const std::string kPath = fuzz::TempDir() + "/input.rib";
+    static const std::vector<std::string> kShaderPaths = {
+        fuzz::SourceDir() + "/shaders", fuzz::SourceDir() + "/tests/golden", fuzz::SourceDir() + "/tests/corpus"};
+    const std::string_view text(reinterpret_cast<const char*>(data), size);
+    diag::Report report;
+    std::optional<std::vector<renderer::SceneDesc>> frames = rib::ParseRibFrames(text, kPath, &report);
+    if (!frames) return 0;
+    for (renderer::SceneDesc& frame : *frames) {
+        std::erase_if(frame.makeTextures, [](const renderer::SceneDesc::MakeTextureDesc& m) {
+            return !InsideP(m.picture) || !InsideP(m.texture);
+        });
+        renderer::PreparedScene prepared;
+        diag::Report frameReport;
+        renderer::PrepareScene(frame, kShaderPaths, {}, &prepared, &frameReport);
+    }
+    return 0;
+}

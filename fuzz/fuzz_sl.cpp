@@ -1,0 +1,35 @@
+// fuzz/fuzz_sl.cpp: shader source (.sl text) -> preprocessor (mcpp) -> parser -> type checker ->
+// lowering -> bytecode, the whole of `affray compile`; then the four programs of a shader that
+// compiles run once in every number type of the VM, and its generic programs go through the .afb
+// writer and loader, which must read back what was written.
+// The source is named as a file in shaders/ of the source tree, with shaders/, tests/corpus and
+// tests/golden as include directories, so that the seeds' #includes and texture names resolve.
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "compiler/compile.h"
+#include "fuzz/fuzz_util.h"
+#include "vm/bytecode_file.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    using namespace affray;
+    static const std::string kPath = fuzz::SourceDir() + "/shaders/fuzz_input.sl";
+    static const lang::PreprocessOptions kPreprocess{
+        {fuzz::SourceDir() + "/shaders", fuzz::SourceDir() + "/tests/corpus", fuzz::SourceDir() + "/tests/golden"}, {}};
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    const compiler::CompileResult result = compiler::CompileSource(kPath, text, {}, kPreprocess);
+    if (!result.ok()) return 0;
+    const compiler::CompiledShader& shader = *result.shader;
+    for (const vm::Program* p : {&shader.genericBound, &shader.genericShade, &shader.bound, &shader.shade})
+        fuzz::RunEveryNumberType(*p);
+
+    const vm::BytecodeFile file{shader.name, shader.sourcePath, vm::HashSource(text), shader.genericBound,
+                                shader.genericShade};
+    std::string error;
+    if (!vm::LoadBytecode(vm::SaveBytecode(file), nullptr, &error)) {
+        std::fprintf(stderr, "fuzz_sl: the compiled shader does not load back from .afb: %s\n", error.c_str());
+        std::abort();
+    }
+    return 0;
+}

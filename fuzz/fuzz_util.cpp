@@ -1,0 +1,101 @@
+// fuzz/fuzz_util.cpp: see fuzz_util.h.
+#include "fuzz/fuzz_util.h"
+
+#include <stdlib.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "renderer/geometry/surface.h"
+#include "vm/bytecode_file.h"
+#include "vm/interpreter.h"
+
+namespace affray::fuzz {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct PrivateDir {
+    std::string path;
+    PrivateDir() {
+        std::error_code ec;
+        fs::path base = fs::temp_directory_path(ec);
+        if (ec) base = "/tmp";
+        std::string pattern = (base / "affray-fuzz-XXXXXX").string();
+        if (!mkdtemp(pattern.data())) {
+            std::perror("affray fuzz: cannot create a temporary directory");
+            std::abort();
+        }
+        path = pattern;
+    }
+    ~PrivateDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+template <class N>
+void RunAs(const vm::Program& program) {
+    vm::Interpreter<N> interp(program);
+    for (const vm::ProgramOutput& out : program.outputs) {
+        if (out.size != 3) continue;
+        renderer::EvaluateOnPatch(interp, renderer::BilinearPatch::UnitSquare(), 0.25, 0.5, 0.25, 0.5,
+                                  glm::dvec3(0.0, 0.0, -5.0), out);
+        return;
+    }
+}
+
+void PutU64(std::string* bytes, size_t offset, uint64_t x) {
+    for (int i = 0; i < 8; ++i) (*bytes)[offset + i] = static_cast<char>((x >> (8 * i)) & 0xff);
+}
+
+}  // namespace
+
+const std::string& TempDir() {
+    static PrivateDir dir;
+    return dir.path;
+}
+
+std::string WriteTemp(const std::string& name, std::string_view bytes) {
+    static int64_t writes = 0;
+    const std::string path = TempDir() + "/" + name;
+    {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    }
+    // File times can be as coarse as the kernel's tick: step a time of our own instead.
+    std::error_code ec;
+    const auto base = fs::file_time_type::clock::now() - std::chrono::hours(24);
+    fs::last_write_time(path, base + std::chrono::microseconds(++writes), ec);
+    return path;
+}
+
+std::string SourceDir() { return AFFRAY_SOURCE_DIR; }
+
+void FixAfbChecksums(std::string* bytes) {
+    // The layout of vm/bytecode_file.h: length at 12, header check of bytes 0..19 at 20, and the
+    // checksum of everything before it in the last 8 bytes.
+    constexpr size_t kHeaderSize = 28, kChecksumSize = 8;
+    if (bytes->size() < kHeaderSize + kChecksumSize) return;
+    PutU64(bytes, 12, bytes->size());
+    PutU64(bytes, 20, vm::HashSource(std::string_view(*bytes).substr(0, 20)));
+    const size_t body = bytes->size() - kChecksumSize;
+    PutU64(bytes, body, vm::HashSource(std::string_view(*bytes).substr(0, body)));
+}
+
+void RunEveryNumberType(const vm::Program& program) {
+    RunAs<double>(program);
+    RunAs<vm::Interval>(program);
+    RunAs<vm::Affine>(program);
+    RunAs<vm::ReducedAffine>(program);
+    RunAs<vm::Dual<double>>(program);
+    RunAs<vm::Dual<vm::Interval>>(program);
+    RunAs<vm::Dual<vm::Affine>>(program);
+    RunAs<vm::Dual<vm::ReducedAffine>>(program);
+}
+
+}  // namespace affray::fuzz

@@ -1,0 +1,1 @@
+displacement t() { float h = texture(maq); P += h * N; }

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# tools/fuzz.sh [--time SECONDS] [--jobs N] [--keep-going] [TARGET...]: coverage-guided fuzzing
+# of affray's front ends with libFuzzer (issue 17; fuzz/README.md).
+# Configures and builds build-fuzz (clang-14, AFFRAY_FUZZ: ASan + UBSan + libFuzzer, -O1 -g1),
+# collects each target's seeds from the repository (fuzz/seeds.sh), then runs each target (all
+# four by default: fuzz_sl fuzz_afb fuzz_rib fuzz_texture) for SECONDS (default 60) with
+# -timeout=25 -rss_limit_mb=2048 and its dictionary. New inputs go to build-fuzz/corpus/TARGET,
+# kept from run to run. Prints per target the executions, coverage (cov: edges, ft: features)
+# and corpus size. A crash, leak, timeout or out-of-memory keeps its input under
+# build-fuzz/artifacts/TARGET/ with a line saying how to reproduce it, and makes the exit status
+# 1; without --keep-going the remaining targets are not run.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+time=60
+jobs=1
+keep_going=0
+targets=()
+all=(fuzz_sl fuzz_afb fuzz_rib fuzz_texture)
+while [[ $# -gt 0 ]]; do
+    case "$1" in
+        --time) time=${2:?--time needs SECONDS}; shift 2 ;;
+        --jobs) jobs=${2:?--jobs needs N}; shift 2 ;;
+        --keep-going) keep_going=1; shift ;;
+        -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        fuzz_sl|fuzz_afb|fuzz_rib|fuzz_texture) targets+=("$1"); shift ;;
+        *) echo "tools/fuzz.sh: unknown argument '$1' (targets: ${all[*]})" >&2; exit 2 ;;
+    esac
+done
+[[ ${#targets[@]} -eq 0 ]] && targets=("${all[@]}")
+
+build=build-fuzz
+echo "== fuzz: building $build (clang-14, ASan + UBSan + libFuzzer) =="
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
+      -DAFFRAY_FUZZ=ON -DAFFRAY_TESTS=OFF -DAFFRAY_BENCH=OFF -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" >/dev/null
+start=$(date +%s)
+# The .afb seeds are compiled by the Release build's affray when there is one (CI builds it
+# first), else by this build's.
+affray=build/tools/affray
+[[ -x "$affray" ]] || affray=$build/tools/affray
+extra=()
+[[ "$affray" == "$build/tools/affray" ]] && extra=(affray)
+mkdir -p "$build/logs"
+if ! cmake --build "$build" -j2 --target "${targets[@]}" "${extra[@]}" >"$build/logs/build.log" 2>&1; then
+    grep -B2 -A8 -m5 "error" "$build/logs/build.log" >&2 || tail -30 "$build/logs/build.log" >&2
+    echo "tools/fuzz.sh: the build failed (log: $build/logs/build.log)" >&2
+    exit 2
+fi
+
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+echo "fuzz: built in $(( $(date +%s) - start )) s"
+status=0
+for t in "${targets[@]}"; do
+    seeds=$build/seeds/$t corpus=$build/corpus/$t artifacts=$build/artifacts/$t log=$build/logs/$t.log
+    mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
+    fuzz/seeds.sh "$t" "$seeds" "$affray" >/dev/null
+    dict=()
+    case "$t" in
+        fuzz_sl) dict=(-dict=fuzz/sl.dict) ;;
+        fuzz_rib) dict=(-dict=fuzz/rib.dict) ;;
+    esac
+    parallel=()
+    [[ "$jobs" -gt 1 ]] && parallel=(-fork="$jobs")
+    echo "== fuzz: $t for ${time} s =="
+    start=$(date +%s)
+    rc=0
+    "$build/fuzz/$t" "$corpus" "$seeds" "fuzz/regressions/$t" "${dict[@]}" "${parallel[@]}" \
+        -max_total_time="$time" -timeout=25 -rss_limit_mb=2048 -print_final_stats=1 \
+        -artifact_prefix="$artifacts/" </dev/null >"$log" 2>&1 || rc=$?
+    execs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
+    last=$(grep -E '^#[0-9]+' "$log" | tail -1 || true)
+    cov=$(grep -o 'cov: [0-9]*' <<<"$last" | grep -o '[0-9]*' || true)
+    ft=$(grep -o 'ft: [0-9]*' <<<"$last" | grep -o '[0-9]*' || true)
+    printf '%s: %s executions in %d s, cov %s, ft %s, corpus %d files\n' "$t" "${execs:-?}" \
+        $(( $(date +%s) - start )) "${cov:-?}" "${ft:-?}" "$(find "$corpus" -type f | wc -l)"
+    if [[ $rc -ne 0 ]]; then
+        status=1
+        crash=$(grep -o "Test unit written to .*" "$log" | tail -1 | sed 's/Test unit written to //' || true)
+        grep -m1 -E "ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer)|runtime error:|==ERROR" "$log" || true
+        echo "$t FAILED (exit $rc); log: $log"
+        [[ -n "$crash" ]] && echo "reproduce: $build/fuzz/$t $crash"
+        [[ $keep_going -eq 1 ]] || exit 1
+    fi
+done
+exit $status
