@@ -273,9 +273,19 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
 
 }  // namespace
 
-std::vector<const renderer::SceneDesc*> ChooseFrames(const std::vector<renderer::SceneDesc>& frames,
-                                                     std::optional<int> frame, const std::string& scenePath, FILE* err,
-                                                     int* status) {
+std::vector<const renderer::SceneDesc*> ReadChosenFrames(const std::string& scenePath, std::optional<int> frame,
+                                                         FILE* err, std::vector<renderer::SceneDesc>* framesOut,
+                                                         int* status) {
+    diag::Report report;
+    std::optional<std::vector<renderer::SceneDesc>> read = rib::ReadRibFrames(scenePath, &report);
+    // The scene's warnings and notes, before anything renders.
+    Print(report, err);
+    if (!read) {
+        *status = diag::kExitBadInput;
+        return {};
+    }
+    *framesOut = std::move(*read);
+    const std::vector<renderer::SceneDesc>& frames = *framesOut;
     // Every frame, or those --frame names; skipped ones (shadow passes) not.
     std::vector<const renderer::SceneDesc*> chosen;
     for (const renderer::SceneDesc& f : frames)
@@ -320,15 +330,10 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     Interrupts interrupts;
     // And so does the time limit, counted from here for every frame together.
     interrupts.StopAfter(static_cast<double>(diag::LimitValue(diag::Limit::TimeLimit)));
-    diag::Report report;
-    std::optional<std::vector<renderer::SceneDesc>> frames = rib::ReadRibFrames(cmd.scenePath, &report);
-    // The scene's warnings and notes, before anything renders.
-    Print(report, err);
-    if (!frames) return diag::kExitBadInput;
-
+    std::vector<renderer::SceneDesc> frames;
     int status = diag::kExitSuccess;
     const std::vector<const renderer::SceneDesc*> chosen =
-        ChooseFrames(*frames, cmd.frame, cmd.scenePath, err, &status);
+        ReadChosenFrames(cmd.scenePath, cmd.frame, err, &frames, &status);
     if (chosen.empty()) return status;
 
     // Each frame's files: -o or its Display name, numbered when several frames would share it.

@@ -97,12 +97,14 @@ int RunSplit(const SplitCommand& cmd, FILE* out, FILE* err);
 /// as one image (tools/merge.cpp).
 int RunMerge(const MergeCommand& cmd, FILE* out, FILE* err);
 
-/// The frames of `frames` that `affray render` renders: all, or those numbered `frame`, less
-/// those that make no image (shadow passes). Empty with an error on `err` (and *status set) if
-/// --frame names no frame.
-std::vector<const renderer::SceneDesc*> ChooseFrames(const std::vector<renderer::SceneDesc>& frames,
-                                                     std::optional<int> frame, const std::string& scenePath, FILE* err,
-                                                     int* status);
+/// Reads the scene at `scenePath` into *frames (its diagnostics printed on `err`) and returns
+/// the frames `affray render` renders: all, or those numbered `frame`, less those that make no
+/// image (shadow passes). Empty with *status set if the scene cannot be read (kExitBadInput),
+/// if --frame names no frame (kExitUsage, with an error on `err`), or if no frame makes an image
+/// (kExitSuccess, with a note).
+std::vector<const renderer::SceneDesc*> ReadChosenFrames(const std::string& scenePath, std::optional<int> frame,
+                                                         FILE* err, std::vector<renderer::SceneDesc>* frames,
+                                                         int* status);
 /// The image file of each chosen frame: `outputPath` or its Display name, with the frame's number
 /// inserted when several frames would share one name (FrameOutputPath).
 std::vector<std::string> FrameOutputs(const std::vector<const renderer::SceneDesc*>& chosen,

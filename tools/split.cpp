@@ -20,7 +20,6 @@
 #include <map>
 
 #include "renderer/tiling.h"
-#include "rib/rib.h"
 #include "tools/commands.h"
 
 namespace affray::tools {
@@ -86,13 +85,10 @@ bool WriteScript(const std::string& path, const std::string& text, FILE* err) {
 }  // namespace
 
 int RunSplit(const SplitCommand& cmd, FILE* out, FILE* err) {
-    diag::Report report;
-    std::optional<std::vector<renderer::SceneDesc>> frames = rib::ReadRibFrames(cmd.scenePath, &report);
-    Print(report, err);
-    if (!frames) return diag::kExitBadInput;
+    std::vector<renderer::SceneDesc> frames;
     int status = diag::kExitSuccess;
     const std::vector<const renderer::SceneDesc*> chosen =
-        ChooseFrames(*frames, cmd.frame, cmd.scenePath, err, &status);
+        ReadChosenFrames(cmd.scenePath, cmd.frame, err, &frames, &status);
     if (chosen.empty()) return status;
     // Tasks pick their frame by number: two rendered frames of one number cannot be told apart.
     std::map<int, int> numbers;
