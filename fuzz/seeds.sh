@@ -8,8 +8,8 @@
 #   fuzz_rib      scenes/, tests/golden/ (and its archives/), tests/scenes/
 #   fuzz_texture  fuzz/corpus/fuzz_texture/, shaders/maps/, tests/scenes/
 # fuzz/regressions/TARGET/ is not a seed directory here: the replay tests and tools/fuzz.sh read
-# it directly. Seeds that take more than a second or so per run are left out (SLOW below), so
-# that libFuzzer's -timeout never fires on a seed.
+# it directly. Every seed runs within a few seconds in build-fuzz (the slowest, the golden cases
+# that run into the compiler's limits, take 0.8-2 s), far from libFuzzer's -timeout.
 set -euo pipefail
 
 target=${1:?usage: fuzz/seeds.sh TARGET OUT_DIR [AFFRAY]}
@@ -17,24 +17,12 @@ out=${2:?usage: fuzz/seeds.sh TARGET OUT_DIR [AFFRAY]}
 affray=${3:-}
 root=$(cd "$(dirname "$0")/.." && pwd)
 
-# Golden cases whose loops run to the compiler's unrolling limit, measured in build-fuzz (one
-# run each): diag_endless_loop 9.5 s, diag_constants 13.5 s, diag_registers 20.2 s. Of the seeds
-# left, the slowest takes 5 s (loop_past_unrolling_bound).
-SLOW=(tests/golden/diag_endless_loop.sl tests/golden/diag_constants.sl tests/golden/diag_registers.sl)
-
-slow() {
-    local s
-    for s in "${SLOW[@]}"; do [[ "$1" == "$s" ]] && return 0; done
-    return 1
-}
-
-# Copies the files matching the globs (relative to the root) into $out, skipping SLOW ones.
+# Copies the files matching the globs (relative to the root) into $out.
 collect() {
     local f rel
     shopt -s nullglob
     for f in "$@"; do
         rel=${f#"$root"/}
-        slow "$rel" && continue
         cp "$f" "$out/${rel//\//_}"
     done
 }

@@ -4,6 +4,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <fstream>
 #include <sstream>
 
 #include "texture/image_io.h"
@@ -16,6 +18,36 @@ std::string OneLine(std::string s) {
     while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
     for (size_t p; (p = s.find('\n')) != std::string::npos;) s.replace(p, 1, "; ");
     return s.empty() ? "unknown error" : s;
+}
+
+/// Why the PNG file at `path` cannot be read whole, or "" when it can or is not a PNG. Every chunk
+/// (length, type, data, CRC) must lie within the file, up to IEND. Checked before OpenImageIO
+/// opens the file because Debian's OpenImageIO 2.4 leaks on a PNG that ends early:
+/// PNGInput::PngReadCallback hands libpng's png_error the text of a std::string, and png_error
+/// longjmps past its destructor (found by fuzz_texture; fuzz/regressions/fuzz_texture holds the
+/// input). With every chunk present, libpng's reads are never short.
+std::string TruncatedPng(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    unsigned char head[8] = {};
+    if (!in.read(reinterpret_cast<char*>(head), 8)) return "";
+    static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (!std::equal(head, head + 8, kSignature)) return "";
+    in.seekg(0, std::ios::end);
+    const auto size = static_cast<uint64_t>(in.tellg());
+    uint64_t at = 8;
+    for (;;) {
+        in.seekg(static_cast<std::streamoff>(at));
+        if (!in.read(reinterpret_cast<char*>(head), 8))
+            return "the PNG file ends at byte " + std::to_string(size) + ", before its IEND chunk";
+        const uint64_t length = uint64_t{head[0]} << 24 | uint64_t{head[1]} << 16 | uint64_t{head[2]} << 8 | head[3];
+        const std::string type(reinterpret_cast<const char*>(head + 4), 4);
+        const uint64_t end = at + 12 + length;
+        if (end > size)
+            return "the PNG chunk at byte " + std::to_string(at) + " needs " + std::to_string(end) +
+                   " bytes, but the file has " + std::to_string(size);
+        if (type == "IEND") return "";
+        at = end;
+    }
 }
 
 OIIO::TypeDesc TypeOf(PixelFormat f) {
@@ -51,6 +83,10 @@ class OiioReader final : public ImageReader {
 class OiioImageIo final : public ImageIo {
   public:
     std::unique_ptr<ImageReader> Open(const std::string& path, std::string* error) const override {
+        if (std::string why = TruncatedPng(path); !why.empty()) {
+            *error = why;
+            return nullptr;
+        }
         std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::open(path);
         if (!input) {
             *error = OneLine(OIIO::geterror());

@@ -7,8 +7,9 @@
 # -timeout=25 -rss_limit_mb=2048 and its dictionary. New inputs go to build-fuzz/corpus/TARGET,
 # kept from run to run. Prints per target the executions, coverage (cov: edges, ft: features)
 # and corpus size. A crash, leak, timeout or out-of-memory keeps its input under
-# build-fuzz/artifacts/TARGET/ with a line saying how to reproduce it, and makes the exit status
-# 1; without --keep-going the remaining targets are not run.
+# build-fuzz/artifacts/TARGET/ with a line saying how to reproduce it; if that input fails again
+# when run alone, the exit status is 1 and, without --keep-going, the remaining targets are not
+# run. (One that does not fail again is reported and not counted: see below.)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -75,12 +76,20 @@ for t in "${targets[@]}"; do
     printf '%s: %s executions in %d s, cov %s, ft %s, corpus %d files\n' "$t" "${execs:-?}" \
         $(( $(date +%s) - start )) "${cov:-?}" "${ft:-?}" "$(find "$corpus" -type f | wc -l)"
     if [[ $rc -ne 0 ]]; then
-        status=1
         crash=$(grep -o "Test unit written to .*" "$log" | tail -1 | sed 's/Test unit written to //' || true)
         grep -m1 -E "ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer)|runtime error:|==ERROR" "$log" || true
-        echo "$t FAILED (exit $rc); log: $log"
-        [[ -n "$crash" ]] && echo "reproduce: $build/fuzz/$t $crash"
-        [[ $keep_going -eq 1 ]] || exit 1
+        # A finding counts when its input fails again alone, in a fresh process with the same
+        # limits. One that does not (a timeout under a loaded machine, a sanitizer failing inside
+        # itself) is reported with its log and input, and does not fail the run.
+        if [[ -n "$crash" && -f "$crash" ]] &&
+            "$build/fuzz/$t" -timeout=25 -rss_limit_mb=2048 "$crash" >"$log.replay" 2>&1; then
+            echo "$t: the input above did not fail again when run alone (log: $log.replay); not counted"
+        else
+            status=1
+            echo "$t FAILED (exit $rc); log: $log"
+            [[ -n "$crash" ]] && echo "reproduce: $build/fuzz/$t $crash"
+            [[ $keep_going -eq 1 ]] || exit 1
+        fi
     fi
 done
 exit $status

@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <thread>
 
@@ -205,6 +206,31 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     error.clear();
     CHECK_FALSE(Open(text, &error));
     CHECK(error.find(text) != std::string::npos);
+
+    // PNG files that end early (fuzz/regressions/fuzz_texture): refused, naming the file and
+    // where it ends, before OpenImageIO reads them (texture/image_io_oiio.cpp says why).
+    const std::string signature = "\x89PNG\r\n\x1a\n";
+    const std::string truncated = dir.path("truncated.png");
+    std::ofstream(truncated, std::ios::binary) << signature;
+    REQUIRE(std::filesystem::file_size(truncated) == 8);
+    error.clear();
+    CHECK_FALSE(Open(truncated, &error));
+    CHECK(error == "cannot read texture '" + truncated + "': the PNG file ends at byte 8, before its IEND chunk");
+    const std::string cut = dir.path("cut.png");
+    WriteImage(cut, 8, 8, 3, RandomTexels(rng, 8 * 8 * 3));
+    std::string bytes;
+    {
+        std::ifstream in(cut, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    REQUIRE(bytes.compare(0, 8, signature) == 0);
+    REQUIRE(Open(cut, &error));
+    const std::string half = dir.path("half.png");
+    std::ofstream(half, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    error.clear();
+    CHECK_FALSE(Open(half, &error));
+    CHECK(error.find("cannot read texture '" + half + "': the PNG chunk at byte ") == 0);
+    CHECK(error.find("but the file has " + std::to_string(bytes.size() / 2)) != std::string::npos);
 }
 
 TEST_CASE("texture file: tiles under a tiny budget give the same lookups, from several threads", "[texture]") {
