@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# tools/fuzz.sh [--time SECONDS] [--jobs N] [--keep-going] [TARGET...]: coverage-guided fuzzing
-# of affray's front ends with libFuzzer (issue 17; fuzz/README.md).
+# tools/fuzz.sh [--time SECONDS] [--runs N] [--jobs N] [--keep-going] [TARGET...]: coverage-guided
+# fuzzing of affray's front ends with libFuzzer (issue 17; fuzz/README.md).
 # Configures and builds build-fuzz (clang-14, AFFRAY_FUZZ: ASan + UBSan + libFuzzer, -O1 -g1),
 # collects each target's seeds from the repository (fuzz/seeds.sh), then runs each target (all
-# four by default: fuzz_sl fuzz_afb fuzz_rib fuzz_texture) for SECONDS (default 60) with
-# -timeout=25 -rss_limit_mb=2048 and its dictionary. New inputs go to build-fuzz/corpus/TARGET,
-# kept from run to run. Prints per target the executions, coverage (cov: edges, ft: features)
+# four by default: fuzz_sl fuzz_afb fuzz_rib fuzz_texture) for SECONDS (default 60; --runs N
+# stops it after N executions if that comes first) with -timeout=25 -rss_limit_mb=2048 and its
+# dictionary. New inputs go to build-fuzz/corpus/TARGET, kept from run to run. Prints per target the executions, coverage (cov: edges, ft: features)
 # and corpus size. A crash, leak, timeout or out-of-memory keeps its input under
 # build-fuzz/artifacts/TARGET/ with a line saying how to reproduce it; if that input fails again
 # when run alone, the exit status is 1 and, without --keep-going, the remaining targets are not
@@ -14,6 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 time=60
+runs=0
 jobs=1
 keep_going=0
 targets=()
@@ -21,6 +22,7 @@ all=(fuzz_sl fuzz_afb fuzz_rib fuzz_texture)
 while [[ $# -gt 0 ]]; do
     case "$1" in
         --time) time=${2:?--time needs SECONDS}; shift 2 ;;
+        --runs) runs=${2:?--runs needs N}; shift 2 ;;
         --jobs) jobs=${2:?--jobs needs N}; shift 2 ;;
         --keep-going) keep_going=1; shift ;;
         -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
@@ -61,12 +63,13 @@ for t in "${targets[@]}"; do
         fuzz_sl) dict=(-dict=fuzz/sl.dict) ;;
         fuzz_rib) dict=(-dict=fuzz/rib.dict) ;;
     esac
-    parallel=()
-    [[ "$jobs" -gt 1 ]] && parallel=(-fork="$jobs")
+    run_flags=()
+    [[ "$jobs" -gt 1 ]] && run_flags=(-fork="$jobs")
+    [[ "$runs" -gt 0 ]] && run_flags+=(-runs="$runs")
     echo "== fuzz: $t for ${time} s =="
     start=$(date +%s)
     rc=0
-    "$build/fuzz/$t" "$corpus" "$seeds" "fuzz/regressions/$t" "${dict[@]}" "${parallel[@]}" \
+    "$build/fuzz/$t" "$corpus" "$seeds" "fuzz/regressions/$t" "${dict[@]}" "${run_flags[@]}" \
         -max_total_time="$time" -timeout=25 -rss_limit_mb=2048 -print_final_stats=1 \
         -artifact_prefix="$artifacts/" </dev/null >"$log" 2>&1 || rc=$?
     execs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
