@@ -10,10 +10,12 @@
 # 64 x 48 render of scenes/wave.rib with every AOV into 4 tiles (affray split), submits the job
 # array and its merge job (OUT.submit.sh), waits for the merge, and compares the merged image with
 # a single-process render byte for byte.
-#   --kill-one  cancels array task 3 mid-render (scancel: SIGTERM, so affray keeps its checkpoint),
-#               checks that the merge job is then cancelled (its afterok dependency can never be
-#               met), resubmits only task 3 (OUT.submit.sh 3, a new merge job with it), and checks
-#               that the image is the same and that the other tiles were not rendered again.
+#   --kill-one  cancels array task 3 mid-render, once its checkpoint holds a finished tile
+#               (scancel: SIGTERM, so affray keeps its checkpoint), checks that the merge job is
+#               then cancelled (its afterok dependency can never be met), resubmits only task 3
+#               (OUT.submit.sh 3, a new merge job with it), and checks that the rerun took tiles
+#               from the checkpoint, that the image is the same and that the other tiles were not
+#               rendered again.
 #   --keep      keeps the temporary directory (logs, scripts, images) and prints its name.
 #   --scene RIB, --tiles N, --samples N  split that scene (in place, as it is) into N tiles instead: for the
 #               README's figures (the times from submission to merged image and of the single
@@ -156,8 +158,9 @@ if [[ -z "$scene" ]]; then
         "$src/scenes/wave.rib" >wave.rib
     scene=wave.rib
 fi
-# Task 3 must still be rendering when it is cancelled: more samples make each task take seconds.
-[[ $kill_one -eq 1 ]] && samples=(--samples 12)
+# Task 3 must still be rendering when it is cancelled, after its first tile: at 64 samples each of
+# its 4 tiles takes 0.5-1.5 s.
+[[ $kill_one -eq 1 ]] && samples=(--samples 64)
 "$affray" split "$scene" --tiles "$tiles" -o out.exr "${samples[@]}" >/dev/null
 
 # job_state ID: the job's state (COMPLETED, FAILED, CANCELLED, RUNNING, PENDING...).
@@ -188,8 +191,12 @@ since() { awk -v a="$(now)" -v b="$1" 'BEGIN { printf "%.2f", a - b }'; }
 start=$(now)
 submit
 if [[ $kill_one -eq 1 ]]; then
-    # Cancel task 3 once it has started rendering (its checkpoint exists) and before it finishes.
-    wait_for 120 "checkpoint of task 3" test -f out.tile3.exr.checkpoint
+    # Cancel task 3 once its checkpoint holds a finished tile (it has grown past its header, which
+    # is written in one piece) and before the task finishes.
+    larger_than() { [[ $(stat -c %s out.tile3.exr.checkpoint 2>/dev/null || echo 0) -gt $1 ]]; }
+    wait_for 120 "checkpoint of task 3" larger_than 0
+    header=$(stat -c %s out.tile3.exr.checkpoint)
+    wait_for 120 "finished tile in the checkpoint of task 3" larger_than "$header"
     scancel "${render}_3"
     task=$(wait_job "${render}_3" 30)
     [[ "$task" == CANCELLED ]] || fail "task 3 ended $task, not CANCELLED"
@@ -214,6 +221,8 @@ if [[ $kill_one -eq 1 ]]; then
     [[ "$(stat -c '%n %Y.%y' out.tile0.exr out.tile1.exr out.tile2.exr)" == "$stamps" ]] ||
         fail "tiles other than 3 were rendered again"
     grep -h "checkpoint" out.render-"${render}"_3.log | sed 's/^/slurm-local: task 3 log: /' || true
+    grep -q "resuming: [1-9][0-9]* of" out.render-"${render}"_3.log ||
+        fail "the rerun of task 3 took no tile from its checkpoint"
 fi
 
 # The same render in one process, with every core.
