@@ -532,6 +532,7 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
     // parameters at their defaults; the body then sees each parameter as an IR Param node, bound
     // to a constant per shader instance later (compiler/specialise).
     PushScope();
+    std::vector<std::string> defaultStrings;  // "name = \"value\"" of string parameters at their defaults
     for (const lang::VarDecl& p : shader.params) {
         Type type = FromTypeName(p.type);
         if (m_state.scopes.back().count(p.name)) {
@@ -564,8 +565,8 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
             continue;
         }
         if (type == Type::String) {
-            // A string parameter is its default everywhere: the compiler folds what depends on
-            // it (a space name, a switch between variants). Scenes cannot set it yet.
+            // A string parameter is a constant: its default, or the value a scene gives it. The
+            // compiler folds what depends on it (a space name, a switch between variants).
             std::optional<Value> init = LowerExpr(*p.init);
             if (init && init->type != Type::String) {
                 m_diags.error(p.loc, "default value of string parameter '" + p.name + "' must be a string");
@@ -575,7 +576,10 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
             var.type = Type::String;
             var.value = init ? *init : StringValue("");
             m_out.stringParams.push_back(p.name);
-            if (m_stringValues && m_stringValues->count(p.name)) var.value = StringValue(m_stringValues->at(p.name));
+            if (m_stringValues && m_stringValues->count(p.name))
+                var.value = StringValue(m_stringValues->at(p.name));
+            else if (std::optional<std::string> text = StringOf(var.value))
+                defaultStrings.push_back(p.name + " = \"" + *text + "\"");
             var.assigned = var.used = true;
             var.writable = false;
             var.loc = p.loc;
@@ -647,8 +651,14 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
     m_out.finalN = N.value;
     m_out.writesP = P.value.c != inputP.c;
     m_out.writesN = N.value.c != inputN.c;
-    if (!m_out.writesP && !m_out.writesN && !m_diags.hasErrors())
-        m_diags.warning(shader.loc, "shader '" + shader.name + "' never changes P or N");
+    if (!m_out.writesP && !m_out.writesN && !m_diags.hasErrors()) {
+        // String parameters are folded: a shader may move P only for a value a scene gives them.
+        std::string defaults;
+        for (const std::string& d : defaultStrings) defaults += (defaults.empty() ? "" : ", ") + d;
+        m_diags.warning(shader.loc, "shader '" + shader.name + "' never changes P or N" +
+                                        (defaults.empty() ? "" : " with its string parameters at their defaults (" +
+                                                                     defaults + ")"));
+    }
     return !m_diags.hasErrors();
 }
 

@@ -678,6 +678,14 @@ TEST_CASE("warnings: a shader that never changes P or N", "[compiler][diagnostic
           "                 ^\n");
     // Changing N alone is a change.
     CHECK(Warnings("displacement t() {\n  N = -N;\n}\n").empty());
+    // String parameters are folded at their defaults: the warning says so, since a scene may give
+    // them a value that moves P.
+    CHECK(Warnings("displacement t(string map = \"\"; string space = \"object\"; float Km = 1) {\n"
+                   "  if (map != \"\") P += Km * N;\n}\n") ==
+          "test.sl:1:14: warning: shader 't' never changes P or N with its string parameters at their defaults "
+          "(map = \"\", space = \"object\")\n"
+          "    displacement t(string map = \"\"; string space = \"object\"; float Km = 1) {\n"
+          "                 ^\n");
 }
 
 // ---------------------------------------------------------------------------------------------
