@@ -102,8 +102,7 @@ std::optional<Value> Lowerer::Convert(const Value& value, Type target, SourceLoc
 }
 
 std::optional<Value> Lowerer::LowerIdent(const Expr& e) {
-    Variable* var = Find(e.name);
-    if (!var) var = ImplicitExtern(e.name);
+    Variable* var = FindOrExtern(e.name);
     if (!var) {
         if (e.name == "PI") return m_ops.Constant(std::numbers::pi);
         if (SurfaceGlobalType(e.name) != Type::Void)
@@ -130,7 +129,7 @@ std::optional<Value> Lowerer::LowerComponentCall(const Expr& e) {
     Value target;
     bool haveTarget = false;
     Variable* unassigned =
-        isSet && !e.args.empty() && e.args[0]->kind == ExprKind::Ident ? Find(e.args[0]->name) : nullptr;
+        isSet && !e.args.empty() && e.args[0]->kind == ExprKind::Ident ? FindOrExtern(e.args[0]->name) : nullptr;
     if (unassigned && !unassigned->assigned) {
         // Setting a component of a variable not yet assigned starts from 0: no warning.
         unassigned->used = unassigned->assigned = true;
@@ -183,7 +182,7 @@ std::optional<Value> Lowerer::LowerComponentCall(const Expr& e) {
                       "the new component of '" + e.name + "' must be a float, got " + Article(x->type));
         return std::nullopt;
     }
-    Variable* var = e.args[0]->kind == ExprKind::Ident ? Find(e.args[0]->name) : nullptr;
+    Variable* var = e.args[0]->kind == ExprKind::Ident ? FindOrExtern(e.args[0]->name) : nullptr;
     if (!var) {
         m_diags.error(e.args[0]->loc, "the first argument of '" + e.name + "' must be a variable");
         return std::nullopt;
@@ -259,12 +258,11 @@ std::optional<Value> Lowerer::LowerBinary(const Expr& e) {
 }
 
 std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
-    const Variable* target = Find(e.name);
+    const Variable* target = FindOrExtern(e.name);
     std::optional<Value> rhs = LowerExpecting(*e.args[0], target ? target->type : Type::Void);
     const bool isElement = e.args.size() == 2;
     std::optional<Value> index = isElement ? LowerExpr(*e.args[1]) : std::nullopt;
-    Variable* var = Find(e.name);
-    if (!var) var = ImplicitExtern(e.name);
+    Variable* var = FindOrExtern(e.name);
     if (!var) {
         if (SurfaceGlobalType(e.name) != Type::Void)
             m_diags.error(e.loc, "'" + e.name +
@@ -384,9 +382,10 @@ std::optional<Value> Lowerer::LowerCall(const Expr& e, Type expected) {
     bool ok = true;
     for (const lang::ExprPtr& arg : e.args) {
         // spline(t, knots) with an array of knots: its elements.
-        if (const Variable* array = e.name == "spline" && arg->kind == ExprKind::Ident ? Find(arg->name) : nullptr;
+        if (const Variable* array =
+                e.name == "spline" && arg->kind == ExprKind::Ident ? FindOrExtern(arg->name) : nullptr;
             array && array->arraySize >= 0) {
-            Find(arg->name)->used = true;
+            FindOrExtern(arg->name)->used = true;
             args.insert(args.end(), array->elements.begin(), array->elements.end());
             continue;
         }
@@ -655,9 +654,10 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
         // String parameters are folded: a shader may move P only for a value a scene gives them.
         std::string defaults;
         for (const std::string& d : defaultStrings) defaults += (defaults.empty() ? "" : ", ") + d;
-        m_diags.warning(shader.loc, "shader '" + shader.name + "' never changes P or N" +
-                                        (defaults.empty() ? "" : " with its string parameters at their defaults (" +
-                                                                     defaults + ")"));
+        m_diags.warning(
+            shader.loc,
+            "shader '" + shader.name + "' never changes P or N" +
+                (defaults.empty() ? "" : " with its string parameters at their defaults (" + defaults + ")"));
     }
     return !m_diags.hasErrors();
 }

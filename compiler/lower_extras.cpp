@@ -266,7 +266,7 @@ std::optional<Value> Lowerer::LowerExtraCall(const lang::Expr& e, Type expected)
     std::vector<Variable*> outputs;
     for (size_t i = 3; i < e.args.size(); ++i) {
         const lang::Expr& arg = *e.args[i];
-        Variable* var = arg.kind == lang::ExprKind::Ident ? Find(arg.name) : nullptr;
+        Variable* var = arg.kind == lang::ExprKind::Ident ? FindOrExtern(arg.name) : nullptr;
         const bool wantFloat = i < 5;
         if (!var || !var->writable || var->arraySize >= 0 ||
             (wantFloat ? var->type != Type::Float : !IsSpatial(var->type))) {

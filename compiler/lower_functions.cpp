@@ -83,7 +83,7 @@ std::optional<Value> Lowerer::LowerUserCall(const Expr& call, const lang::Functi
         param.assigned = param.used = true;
         const bool wantsArray = p.arraySize >= 0;
         if (wantsArray || p.isOutput) {
-            const Variable* source = arg.kind == ExprKind::Ident ? Find(arg.name) : nullptr;
+            const Variable* source = arg.kind == ExprKind::Ident ? FindOrExtern(arg.name) : nullptr;
             if (!source) {
                 m_diags.error(arg.loc, std::string("argument ") + std::to_string(i + 1) + " of '" + f.name +
                                            "' must be " +
@@ -106,7 +106,7 @@ std::optional<Value> Lowerer::LowerUserCall(const Expr& call, const lang::Functi
                 ok = false;
                 continue;
             }
-            Variable* mutableSource = Find(arg.name);
+            Variable* mutableSource = FindOrExtern(arg.name);
             mutableSource->used = true;
             param.arraySize = source->arraySize;
             param.elements = source->elements;
@@ -242,19 +242,28 @@ void Lowerer::DeclareExtern(const lang::VarDecl& d) {
 }
 
 Variable* Lowerer::ImplicitExtern(const std::string& name) {
-    if (m_callStack.empty() || m_externs.empty() || !m_nested.count(m_callStack.back())) return nullptr;
-    ExternFrame& frame = m_externs.back();
+    if (m_callStack.empty() || m_externs.size() != m_callStack.size()) return nullptr;
+    return AliasOuter(m_externs.size() - 1, name, m_state.scopes[1]);
+}
+
+Variable* Lowerer::AliasOuter(size_t k, const std::string& name, Scope& params) {
+    if (!m_nested.count(m_callStack[k])) return nullptr;
+    ExternFrame& frame = m_externs[k];
     const Variable* outer = nullptr;
     for (auto scope = frame.callerScopes->rbegin(); scope != frame.callerScopes->rend() && !outer; ++scope) {
         auto it = scope->find(name);
         if (it != scope->end()) outer = &it->second;
     }
+    // Not the caller's: a variable of the body both are nested in, when the caller is a nested
+    // function called from it (a method calling a method of a shader class). The caller's own
+    // parameter scope (the first of its scopes, put aside for this call) gets an alias first.
+    if (!outer && k > 0 && !frame.callerScopes->empty()) outer = AliasOuter(k - 1, name, frame.callerScopes->front());
     if (!outer) return nullptr;
     Variable alias = *outer;
     alias.used = true;
-    m_state.scopes[1][name] = alias;
+    params[name] = alias;
     frame.names.push_back(name);
-    return &m_state.scopes[1][name];
+    return &params[name];
 }
 
 void Lowerer::CheckUncalledFunctions() {
@@ -348,7 +357,7 @@ void Lowerer::StoreElement(Variable& array, const Value& index, const Value& val
 std::optional<Value> Lowerer::LowerIndex(const Expr& e) {
     const Expr& target = *e.args[0];
     std::optional<Value> index = LowerExpr(*e.args[1]);
-    Variable* var = target.kind == ExprKind::Ident ? Find(target.name) : nullptr;
+    Variable* var = target.kind == ExprKind::Ident ? FindOrExtern(target.name) : nullptr;
     if (!var || var->arraySize < 0) {
         m_diags.error(target.loc, target.kind == ExprKind::Ident && !var ? "unknown identifier '" + target.name + "'"
                                                                          : "only an array can be indexed");

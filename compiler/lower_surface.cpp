@@ -7,7 +7,7 @@
 // function. The light loops (illuminance, illuminate, solar) reach here as an `if` on a call of
 // their name (lang/parser.y), so their bodies are checked too.
 // The queries a displacement shader may run (option, attribute, rendererinfo, and displacement
-// reading the shader's own parameter) fold per instance instead: the scene's facts
+// or evalparam reading the shader's own parameter) fold per instance instead: the scene's facts
 // (compiler/scene_facts.h) are constants of the instance, so each call is 1 and a store into its
 // output variable when the name is known and the variable's type (and array size) match, else 0
 // and no store (RI Spec 3.2 section 15.8; prman's rule for the types).
@@ -56,6 +56,7 @@ constexpr SurfaceCall kSurfaceCalls[] = {
     {"option", "so", 'f', false, true},
     {"rendererinfo", "so", 'f', false, true},
     {"displacement", "so", 'f', false, true},
+    {"evalparam", "so", 'f', false, true},
     {"illuminance", "?*", 'f'},
     {"illuminate", "t*", 'f'},
     {"solar", "*", 'f'},
@@ -141,7 +142,7 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
         const char want = i < fixed ? call.args[i] : '?';
         if (want == 'o') {
             // An output argument: a variable, written by the call (0 here).
-            Variable* var = arg.kind == lang::ExprKind::Ident ? Find(arg.name) : nullptr;
+            Variable* var = arg.kind == lang::ExprKind::Ident ? FindOrExtern(arg.name) : nullptr;
             if (!var) {
                 m_diags.error(arg.loc, "argument " + std::to_string(i + 1) + " of '" + e.name + "' must be a variable");
                 ok = false;
@@ -155,7 +156,7 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
         }
         // A texture's channel, name[1], is the name (the channel a float).
         const Variable* named = arg.kind == lang::ExprKind::Index && arg.args[0]->kind == lang::ExprKind::Ident
-                                    ? Find(arg.args[0]->name)
+                                    ? FindOrExtern(arg.args[0]->name)
                                     : nullptr;
         const bool channel = arg.kind == lang::ExprKind::Index &&
                              (arg.args[0]->kind == lang::ExprKind::String || (named && named->type == Type::String));
@@ -230,8 +231,8 @@ std::optional<Value> Lowerer::LowerQuery(const lang::Expr& e, const Value& nameA
     // A function nobody calls answers nothing (the instance is unknown there).
     const Value no = m_ops.Constant(0.0), yes = m_ops.Constant(1.0);
     if (m_checkingOnly) return no;
-    if (e.name == "displacement") {
-        // The shader's own parameter: copied when its type (and array size) is the variable's.
+    if (e.name == "displacement" || e.name == "evalparam") {
+        // The shader's own parameter (evalparam: a shader class's, RSL 2): copied when its type (and array size) is the variable's.
         const Variable* param = ShaderParameter(*name);
         if (!param || param->type != out.type || param->arraySize != out.arraySize) return no;
         if (out.arraySize >= 0) {

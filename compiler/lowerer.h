@@ -190,6 +190,12 @@ class Lowerer {
     void PushScope() { m_state.scopes.emplace_back(); }
     void PopScope();
     Variable* Find(const std::string& name);
+    /// Find, or in a nested function a variable of the enclosing scopes (ImplicitExtern): every
+    /// use of a name as a variable, read or written, goes through this.
+    Variable* FindOrExtern(const std::string& name) {
+        Variable* var = Find(name);
+        return var ? var : ImplicitExtern(name);
+    }
     IrBuilder& ir() { return m_out.ir; }
     ValueId True() { return ir().Const(1.0); }
     ValueId False() { return ir().Const(0.0); }
@@ -243,6 +249,12 @@ class Lowerer {
     /// In a nested function, a variable of the enclosing scopes it names without declaring it
     /// extern: declared extern implicitly (as prman does), or null if there is none.
     Variable* ImplicitExtern(const std::string& name);
+    using Scope = std::unordered_map<std::string, Variable>;
+    /// For ImplicitExtern: in the nested function of call frame k, an alias in `params` (its
+    /// parameter scope) of `name` from its caller's scopes, or, through callers that are nested
+    /// functions too, from theirs; each caller on the way gets an alias too, so that a write goes
+    /// back out one call at a time. Null if no enclosing scope has the name.
+    Variable* AliasOuter(size_t k, const std::string& name, Scope& params);
     /// Functions defined inside the shader body or another function.
     std::unordered_set<const lang::FunctionDef*> m_nested;
     /// Every function defined, and those inlined at least once.

@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <map>
 #include <memory>
 #include <new>
+#include <set>
 
 #include "lang/parse.h"
 #include "parser.hh"
@@ -304,6 +306,107 @@ void ParseContext::AddShader(ShaderKind kind, SourceLoc loc, std::string name, s
     def.params = std::move(params);
     def.body = std::move(body.items);
     m_unit.shaders.push_back(std::move(def));
+}
+
+namespace {
+
+// The names of the functions `e` and `s` call, into *out. Trees are within the nesting limit.
+void CollectCalls(const Expr& e, std::set<std::string>* out) {
+    if (e.kind == ExprKind::Call) out->insert(e.name);
+    for (const ExprPtr& a : e.args)
+        if (a) CollectCalls(*a, out);
+}
+
+void CollectCalls(const Stmt& s, std::set<std::string>* out) {
+    for (const Expr* e : {s.expr.get(), s.init.get(), s.step.get()})
+        if (e) CollectCalls(*e, out);
+    for (const VarDecl& v : s.decls) {
+        if (v.init) CollectCalls(*v.init, out);
+        for (const ExprPtr& e : v.initList)
+            if (e) CollectCalls(*e, out);
+    }
+    for (const StmtPtr& b : s.body)
+        if (b) CollectCalls(*b, out);
+    if (s.function)
+        for (const StmtPtr& b : s.function->body)
+            if (b) CollectCalls(*b, out);
+}
+
+}  // namespace
+
+// A shader class becomes the displacement shader of the same name and parameters whose body
+// declares the members, defines the methods its run needs (as nested functions, which see the
+// members), and calls `construct()` and `begin()` if the class has them, then `displacement()`.
+// The displacement method's parameters are the globals it changes, `output point P; output
+// normal N`; in the body P and N are those globals. Methods no run reaches (`surface`,
+// `lighting`, `opacity` and their helpers) are left out unchecked, as another renderer's
+// displacement pass leaves them out; the entry methods are renamed `class::method`, names no
+// source can call, so that they cannot clash with the message-passing `displacement()`.
+void ParseContext::AddClass(SourceLoc loc, std::string name, std::vector<VarDecl> params, StmtList items) {
+    std::map<std::string, Stmt*> methods;
+    for (StmtPtr& item : items.items) {
+        if (item->kind != StmtKind::FunctionDef) continue;
+        const std::string& method = item->function->name;
+        if (!methods.emplace(method, item.get()).second)
+            Error(item->function->loc, "redefinition of method '" + method + "' of class '" + name + "'");
+    }
+    auto found = methods.find("displacement");
+    if (found == methods.end()) {
+        Error(loc, "class '" + name +
+                       "' has no displacement method: affray runs a shader class by its `public void "
+                       "displacement(output point P; output normal N)`");
+        return;
+    }
+    const char* entries[] = {"construct", "begin", "displacement"};
+    for (const char* entry : entries) {
+        auto m = methods.find(entry);
+        if (m == methods.end()) continue;
+        for (const VarDecl& v : m->second->function->params) {
+            const bool global = m->first == "displacement" && (v.name == "P" || v.name == "N");
+            if (!global)
+                Error(v.loc, m->first == "displacement"
+                                 ? "parameter '" + v.name +
+                                       "' of a displacement method: its parameters are the globals it changes, "
+                                       "`output point P; output normal N`"
+                                 : "method '" + m->first + "' of a shader class takes no parameters");
+        }
+        m->second->function->params.clear();
+    }
+
+    // The methods a run reaches, from the entries through the calls of each.
+    std::set<std::string> reached, calls;
+    std::vector<const Stmt*> pending;
+    for (const char* entry : entries)
+        if (auto m = methods.find(entry); m != methods.end()) {
+            reached.insert(entry);
+            pending.push_back(m->second);
+        }
+    for (const StmtPtr& item : items.items)
+        if (item->kind == StmtKind::Decl) pending.push_back(item.get());
+    while (!pending.empty()) {
+        const Stmt* s = pending.back();
+        pending.pop_back();
+        calls.clear();
+        CollectCalls(*s, &calls);
+        for (const std::string& callee : calls)
+            if (auto m = methods.find(callee); m != methods.end() && reached.insert(callee).second)
+                pending.push_back(m->second);
+    }
+
+    StmtList body;
+    for (StmtPtr& item : items.items) {
+        if (item->kind == StmtKind::FunctionDef) {
+            if (!reached.count(item->function->name)) continue;
+            for (const char* entry : entries)
+                if (item->function->name == entry) item->function->name = "class::" + std::string(entry);
+        }
+        body.items.push_back(std::move(item));
+    }
+    body.depth = items.depth;
+    for (const char* entry : entries)
+        if (methods.count(entry))
+            Append(body, Simple(StmtKind::Expr, loc, Call(loc, "class::" + std::string(entry), {})));
+    AddShader(ShaderKind::Displacement, loc, std::move(name), std::move(params), std::move(body));
 }
 
 std::shared_ptr<FunctionDef> ParseContext::FunctionHead(TypeName type, SourceLoc loc, std::string name,

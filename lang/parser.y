@@ -175,6 +175,9 @@ class ParseContext {
     std::vector<VarDecl> ShaderParams(std::vector<VarDecl> params);
     void AddShader(ShaderKind kind, SourceLoc loc, std::string name, std::vector<VarDecl> params,
                    StmtList body);
+    /// A shader class: its members (declarations) and methods (function definitions) in `items`.
+    /// Added as the displacement shader its `displacement` method runs (parse.cpp).
+    void AddClass(SourceLoc loc, std::string name, std::vector<VarDecl> params, StmtList items);
     /// `type name(params)`, the head of a function definition: reports parameters with defaults.
     std::shared_ptr<FunctionDef> FunctionHead(TypeName type, SourceLoc loc, std::string name,
                                               std::vector<VarDecl> params);
@@ -229,7 +232,7 @@ Parser::symbol_type yylex(ParseContext& ctx);
 %token IF "'if'" ELSE "'else'" FOR "'for'" WHILE "'while'" RETURN "'return'"
 %token BREAK "'break'" CONTINUE "'continue'"
 %token DISPLACEMENT "'displacement'" SURFACE "'surface'" LIGHT "'light'" VOLUME "'volume'"
-%token IMAGER "'imager'"
+%token IMAGER "'imager'" CLASS "'class'" PUBLIC "'public'"
 %token ILLUMINANCE "'illuminance'" ILLUMINATE "'illuminate'" SOLAR "'solar'"
 %token ADD_ASSIGN "'+='" SUB_ASSIGN "'-='" MUL_ASSIGN "'*='" DIV_ASSIGN "'/='"
 %token OR "'||'" AND "'&&'" EQ "'=='" NE "'!='" LE "'<='" GE "'>='"
@@ -255,7 +258,9 @@ Parser::symbol_type yylex(ParseContext& ctx);
 %nterm <Init> opt_init
 %nterm <std::shared_ptr<FunctionDef>> function_head
 %nterm <FunctionNode> function
-%nterm <StmtList> stmts body
+%nterm <StmtList> stmts body class_items
+%nterm <StmtNode> class_item
+%nterm <std::string> method_name
 %nterm <StmtNode> stmt
 %nterm <TypeName> type
 %nterm <Detail> detail opt_detail
@@ -272,6 +277,7 @@ unit
   : %empty
   | unit shader
   | unit function  { ctx.AddFunction($2); }
+  | unit shader_class
   | unit error  // skips one token at a time until a shader keyword or a type
   ;
 
@@ -535,6 +541,46 @@ args
 arg_list
   : expr               { ctx.Append($$, $1); }
   | arg_list ',' expr  { $$ = $1; ctx.Append($$, $3); }
+  ;
+
+// (Last in the grammar, so that the numbers Bison gives the character tokens, which order the
+// "expecting ..." lists of syntax errors, stay as they were before classes.)
+// A shader class (RenderMan Shading Language 2): `class name(params) { members and methods }`,
+// methods written as functions, optionally `public`. AddClass makes it a displacement shader run
+// by its `displacement` method (parse.cpp says how).
+shader_class
+  : CLASS IDENT '(' shader_params ')' '{' class_items '}'
+      { ctx.AddClass(@2, $2, $4, std::move($7)); }
+  | CLASS IDENT '(' error '{' class_items '}'
+      { ctx.AddClass(@2, $2, {}, std::move($6)); yyerrok; }
+  ;
+
+class_items
+  : %empty                  { }
+  | class_items class_item  { $$ = $1; ctx.Append($$, $2); }
+  ;
+
+// The pipeline methods are named by keywords (`displacement`, `surface`, ...).
+class_item
+  : opt_public type method_name '(' params ')' body
+      { $$ = ctx.Function(@2, ctx.FunctionBody(ctx.FunctionHead($2, @3, $3, $5), $7)); }
+  | opt_public decl ';'  { $$ = ctx.Decl(@2, $2); }
+  | error ';'            { $$ = ctx.Simple(StmtKind::Empty, @1); }
+  | error body           { $$ = ctx.Simple(StmtKind::Empty, @1); }
+  ;
+
+opt_public
+  : %empty
+  | PUBLIC
+  ;
+
+method_name
+  : IDENT         { $$ = $1; }
+  | DISPLACEMENT  { $$ = "displacement"; }
+  | SURFACE       { $$ = "surface"; }
+  | LIGHT         { $$ = "light"; }
+  | VOLUME        { $$ = "volume"; }
+  | IMAGER        { $$ = "imager"; }
   ;
 
 %%

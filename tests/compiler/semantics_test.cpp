@@ -716,6 +716,50 @@ TEST_CASE("extern reads and writes the caller's variables", "[compiler][semantic
     CHECK_THAT(ZSource(src, 0.25, 0.75, {{"Km", {5}}}), WithinAbs(10, kEps));
 }
 
+TEST_CASE("a nested function uses the enclosing body's variables without extern, in every role",
+          "[compiler][semantics]") {
+    // Read and written.
+    CHECK_THAT(Z("float k = 5; void bump() { k += 1; } bump(); bump(); P += k;"), WithinAbs(7, kEps));
+    // As an output argument of a user function, and of a query (evalparam reads a parameter).
+    CHECK_THAT(Z("float k = 1; void twice(output float x) { x *= 2; } void f() { twice(k); } f(); P += k;"),
+               WithinAbs(2, kEps));
+    CHECK_THAT(ZSource(Shader("float k = 0; void f() { evalparam(\"Km\", k); } f(); P += k;", "float Km = 3")),
+               WithinAbs(3, kEps));
+    // An array's elements, read and written.
+    CHECK_THAT(Z("float a[3] = {1, 2, 3}; float f() { a[1] = 10; return a[0] + a[2]; } float r = f(); P += r + a[1];"),
+               WithinAbs(14, kEps));
+    // setzcomp's first argument.
+    CHECK_THAT(Z("point q = (0, 0, 1); void f() { setzcomp(q, 4); } f(); P += zcomp(q);"), WithinAbs(4, kEps));
+    // From a nested function called by another that never names it: read, and written back
+    // through both calls (1 + 10, then doubled by the body).
+    CHECK_THAT(Z("float k = 1; void inner() { k += 10; } void outer() { inner(); } outer(); P += 2 * k;"),
+               WithinAbs(22, kEps));
+    CHECK_THAT(Z("float k = 3; float inner() { return k * k; } float outer() { return inner() + 1; } P += outer();"),
+               WithinAbs(10, kEps));
+}
+
+TEST_CASE("a shader class runs construct, begin and displacement over its members and parameters",
+          "[compiler][semantics]") {
+    const std::string source =
+        "class c(float Km = 2) {\n"
+        "  uniform float m = 0;\n"
+        "  varying float w = 0;\n"
+        "  float h(float x) { return x * m + w; }\n"
+        "  void construct() { m = 1; }\n"
+        "  public void begin() { float k; evalparam(\"Km\", k); m *= k; w = u; }\n"
+        "  public void displacement(output point P; output normal N) {\n"
+        "    if (u > 0.5) return;\n"
+        "    P += vector(0, 0, h(3));\n"
+        "    N = calculatenormal(P);\n"
+        "  }\n"
+        "  public void surface(output color Ci, Oi) { illuminance(P) { Ci += Cl * diffuse(N); } }\n"
+        "}\n";
+    // 3 * Km + u below u = 0.5; nothing above (the method returns early).
+    CHECK_THAT(ZSource(source, 0.25), WithinAbs(6.25, kEps));
+    CHECK_THAT(ZSource(source, 0.25, 0.75, {{"Km", {5}}}), WithinAbs(15.25, kEps));
+    CHECK_THAT(ZSource(source, 0.75), WithinAbs(0, kEps));
+}
+
 TEST_CASE("void functions", "[compiler][semantics]") {
     CHECK_THAT(ZSource("void addz(float d) { P += vector(0, 0, d); }\n" + Shader("addz(1); addz(u);"), 0.25),
                WithinAbs(1.25, kEps));

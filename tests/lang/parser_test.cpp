@@ -176,6 +176,43 @@ TEST_CASE("shader parameters share a type across commas", "[lang]") {
           "(imager i (params) (body))");
 }
 
+TEST_CASE("a shader class is the displacement shader its displacement method runs", "[lang]") {
+    // Members first, then the methods a run reaches (the entries renamed class::...), then the
+    // calls of construct/begin and displacement. surface() and what only it calls are left out,
+    // unchecked; so is a method nobody calls.
+    CHECK(Tree("class c(float Km = 1) {\n"
+               "  varying float m = 0;\n"
+               "  public void surface(output color Ci, Oi) { illuminance(P) { Ci += shade(); } }\n"
+               "  color shade() { return diffuse(N); }\n"
+               "  float h(float x) { return x * m; }\n"
+               "  float unused() { return 1; }\n"
+               "  public void begin() { m = Km; }\n"
+               "  public void displacement(output point P; output normal N) { P += h(2) * N; }\n"
+               "}\n") ==
+          "(displacement c (params (float Km 1)) (body (decl (varying float m 0)) "
+          "(function float h (params (float x)) (body (return (* x m)))) "
+          "(function void class::begin (params) (body (= m Km))) "
+          "(function void class::displacement (params) (body (+= P (* (call h 2) N)))) "
+          "(call class::begin) (call class::displacement)))");
+    // construct() runs before begin(); a displacement method may take no parameters.
+    CHECK(Tree("class c() { void begin() {} void construct() {} void displacement() { P += 1; } }") ==
+          "(displacement c (params) (body (function void class::begin (params) (body)) "
+          "(function void class::construct (params) (body)) "
+          "(function void class::displacement (params) (body (+= P 1))) "
+          "(call class::construct) (call class::begin) (call class::displacement)))");
+    auto starts = [](const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; };
+    CHECK(starts(Errors("class c(float a = 1) { public void surface(output color Ci, Oi) { Ci = 1; } }"),
+                 "test.sl:1:7: error: class 'c' has no displacement method: affray runs a shader class by its "
+                 "`public void displacement(output point P; output normal N)`\n"));
+    CHECK(starts(Errors("class c() { void displacement(output point Q) { } }"),
+                 "test.sl:1:44: error: parameter 'Q' of a displacement method: its parameters are the globals it "
+                 "changes, `output point P; output normal N`\n"));
+    CHECK(starts(Errors("class c() { void begin(float x) { } void displacement() { } }"),
+                 "test.sl:1:30: error: method 'begin' of a shader class takes no parameters\n"));
+    CHECK(starts(Errors("class c() { void displacement() { } float displacement() { return 1; } }"),
+                 "test.sl:1:43: error: redefinition of method 'displacement' of class 'c'\n"));
+}
+
 TEST_CASE("statements", "[lang]") {
     CHECK(Body("if (a < b) x = 1; else { x = 2; y = 3; }") == "(if (< a b) (= x 1) (block (= x 2) (= y 3)))");
     CHECK(Body("if (a) if (b) x = 1; else x = 2;") == "(if a (if b (= x 1) (= x 2)))");
