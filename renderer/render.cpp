@@ -290,6 +290,8 @@ compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveDesc& patch) {
     };
     compiler::Spaces spaces;
     for (const auto& [name, toWorld] : scene.coordinateSystems) spaces[name] = space(toWorld);
+    if (patch.scopedSpaces)
+        for (const auto& [name, toWorld] : *patch.scopedSpaces) spaces[name] = space(toWorld);
     spaces["world"] = compiler::SpaceTransform{};
     spaces["object"] = space(patch.objectToWorld);
     spaces["shader"] = space(patch.displacement ? patch.displacement->shaderToWorld : patch.objectToWorld);

@@ -104,6 +104,10 @@ struct PrimitiveDesc {
     /// ReverseOrientation make them differ. So flipNormal = (det objectToWorld < 0) XOR insideOut.
     /// Default: a sphere's normals point out, whatever the camera and placement.
     bool flipNormal = false;
+    /// The named spaces ScopedCoordinateSystem defined in the attribute blocks around the request
+    /// (name -> world, column vectors), or null: its shaders see them, over the scene's
+    /// coordinateSystems of the same names.
+    std::shared_ptr<const std::map<std::string, glm::dmat4>> scopedSpaces;
 };
 
 /// The pixel reconstruction filter (PixelFilter): "box" or "gaussian", with its widths in pixels.
@@ -254,6 +258,8 @@ inline std::string ToString(const PrimitiveDesc& p) {
         text += "]";
     }
     if (p.flipNormal) text += " flipnormal";
+    if (p.scopedSpaces)
+        for (const auto& [name, m] : *p.scopedSpaces) text += " space " + name + "=" + ToString(m);
     text += " color=" + ToString(p.color) + " " + ToString(p.surface);
     if (p.displacement) text += " displacement " + ToString(*p.displacement);
     return text;

@@ -25,9 +25,17 @@ namespace {
 // Requests an object definition cannot hold: options, frame and world blocks and lights (RI 3.2
 // allows only geometry, transforms and attributes in an object).
 constexpr std::string_view kNotInObject[] = {
-    "Format",       "Projection",  "Display",     "FrameAspectRatio", "ScreenWindow", "CropWindow",  "Clipping",
-    "PixelSamples", "PixelFilter", "Exposure",    "Option",           "Hider",        "FrameBegin",  "FrameEnd",
-    "WorldBegin",   "WorldEnd",    "LightSource", "AreaLightSource",  "ObjectBegin",  "MotionBegin", "CoordinateSystem",
+    "Format",           "Projection",
+    "Display",          "FrameAspectRatio",
+    "ScreenWindow",     "CropWindow",
+    "Clipping",         "PixelSamples",
+    "PixelFilter",      "Exposure",
+    "Option",           "Hider",
+    "FrameBegin",       "FrameEnd",
+    "WorldBegin",       "WorldEnd",
+    "LightSource",      "AreaLightSource",
+    "ObjectBegin",      "MotionBegin",
+    "CoordinateSystem", "ScopedCoordinateSystem",
 };
 
 constexpr int kMaxInstanceDepth = 32;  // objects instancing objects: deeper is a cycle
@@ -82,9 +90,57 @@ bool RibParser::DoReadArchive(const RibRequest& r) {
     std::string name;
     if (!LeadingString(r, "an archive file name", &name)) return false;
     if (r.args.size() > 1) return Fail(r.args[1].at, "'ReadArchive' expects one string (a file name)");
+    return OpenArchive(r, r.args[0].at, name, false);
+}
+
+bool RibParser::DoProcedural(const RibRequest& r) {
+    std::string kind;
+    if (!LeadingString(r, "a procedural name", &kind)) return false;
+    if (r.name == "Procedural" && kind == "DelayedReadArchive") {
+        // Procedural "DelayedReadArchive" ["file"] [xmin xmax ymin ymax zmin zmax]
+        if (r.args.size() != 3 || !r.args[1].isArray || r.args[1].strings.size() != 1 || !r.args[1].StringsP() ||
+            !r.args[2].NumericP() || r.args[2].numbers.size() != 6)
+            return Fail(r.args.size() > 1 ? r.args[1].at : r.at,
+                        "'Procedural \"DelayedReadArchive\"' expects [\"file\"] and a bound [xmin xmax ymin ymax "
+                        "zmin zmax]");
+        return OpenArchive(r, r.args[1].at, r.args[1].strings[0], true);
+    }
+    if (r.name == "Procedural2" && kind == "DelayedReadArchive2") {
+        // Procedural2 "DelayedReadArchive2" "SimpleBound" "string filename" ["file"] "float[6] bound" [...]
+        std::vector<RibParam> params;
+        if (r.args.size() < 2 || !r.args[1].StringsP() || r.args[1].isArray)
+            return Fail(r.args.size() > 1 ? r.args[1].at : r.at,
+                        "'Procedural2' expects the procedural's name, its bound function's name, then parameters");
+        if (!ParamList(r, 2, &params)) return false;
+        for (const RibParam& p : params)
+            if (p.value.name == "filename" && p.value.strings.size() == 1)
+                return OpenArchive(r, p.at, p.value.strings[0], true);
+        return Fail(r.at, "'Procedural2 \"DelayedReadArchive2\"' needs a \"string filename\" parameter");
+    }
+    if (kind == "RunProgram" || kind == "DynamicLoad" || kind == "RunProgram2" || kind == "DynamicLoad2")
+        return Fail(r.args[0].at, "procedural " + Quote(kind) +
+                                      " makes geometry by running a program, which affray does not do: write its "
+                                      "output to a RIB file and read that with 'ReadArchive'");
+    return Fail(r.args[0].at, "unknown procedural " + Quote(kind) + " (affray reads " +
+                                  (r.name == "Procedural" ? "\"DelayedReadArchive\")" : "\"DelayedReadArchive2\")"));
+}
+
+bool RibParser::EndArchive(const OpenReader& reader) {
+    if (!reader.procedural) return true;
+    const RibPos at = reader.reader.LastPos();
+    const std::string what = "the archive read by 'Procedural' on " + LineName(reader.at, RibPos{}) + " ";
+    if (m_defining) {
+        if (m_definingDepth != 1) return Fail(at, what + "leaves a block open");
+        return Record(RibRequest{"AttributeEnd", reader.at, {}});
+    }
+    if (m_blocks.size() != reader.blocks) return Fail(at, what + "leaves a block open or closes one it did not open");
+    return End(RibRequest{"AttributeEnd", reader.at, {}}, Block::Attribute);
+}
+
+bool RibParser::OpenArchive(const RibRequest& r, RibPos nameAt, const std::string& name, bool procedural) {
     std::string searched;
     const std::string path = FindArchive(name, r.at.file, &searched);
-    if (path.empty()) return Fail(r.args[0].at, "archive " + Quote(name) + " not found (searched " + searched + ")");
+    if (path.empty()) return Fail(nameAt, "archive " + Quote(name) + " not found (searched " + searched + ")");
     // A file already being read would read itself for ever.
     std::error_code ec;
     const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
@@ -93,19 +149,25 @@ bool RibParser::DoReadArchive(const RibRequest& r) {
         if (std::filesystem::weakly_canonical(openPath, ec) == canonical) {
             std::string chain;
             for (const OpenReader& o : m_readers) chain += m_sources[static_cast<size_t>(o.file)].path + " -> ";
-            return Fail(r.args[0].at, "'ReadArchive' cycle: " + chain + path);
+            return Fail(nameAt, Quote(r.name) + " cycle: " + chain + path);
         }
     }
     auto text = std::make_unique<std::string>();
     std::string reason;
-    if (!ReadFile(path, text.get(), &reason))
-        return Fail(r.args[0].at, "cannot read archive " + Quote(path) + ": " + reason);
+    if (!ReadFile(path, text.get(), &reason)) return Fail(nameAt, "cannot read archive " + Quote(path) + ": " + reason);
     if (text->size() >= 2 && static_cast<unsigned char>((*text)[0]) == 0x1f &&
         static_cast<unsigned char>((*text)[1]) == 0x8b)
-        return Fail(r.args[0].at, "archive " + Quote(path) + " is gzip-compressed RIB, which is not supported yet");
+        return Fail(nameAt, "archive " + Quote(path) + " is gzip-compressed RIB, which is not supported yet");
+    // A Procedural's requests go in an attribute block of their own (RI 3.2: a procedural's
+    // geometry takes the graphics state of its request and changes nothing after it).
+    if (procedural) {
+        const RibRequest begin{"AttributeBegin", r.at, {}};
+        if (!(m_defining ? Record(begin) : Begin(begin, Block::Attribute))) return false;
+    }
     const std::string_view view = *text;
     m_sources.push_back({path, std::move(text), view});
-    m_readers.push_back({RibRequestReader(view), static_cast<int>(m_sources.size() - 1)});
+    m_readers.push_back(
+        {RibRequestReader(view), static_cast<int>(m_sources.size() - 1), procedural, r.at, m_blocks.size()});
     return true;
 }
 
@@ -139,7 +201,8 @@ bool RibParser::DoObjectEnd(const RibRequest& r) {
 
 bool RibParser::Record(const RibRequest& r) {
     if (r.name == "ObjectEnd") return DoObjectEnd(r);
-    if (r.name == "ReadArchive" || r.name == "Declare") return Dispatch(r);
+    if (r.name == "ReadArchive" || r.name == "Declare" || r.name == "Procedural" || r.name == "Procedural2")
+        return Dispatch(r);
     if (std::find(std::begin(kNotInObject), std::end(kNotInObject), r.name) != std::end(kNotInObject))
         return Fail(r.at, Quote(r.name) + " cannot be part of an object (started by 'ObjectBegin' on line " +
                               std::to_string(m_defining->second.at.line) + ")");

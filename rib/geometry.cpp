@@ -275,24 +275,34 @@ bool RibParser::DoQuadric(const RibRequest& r, Quadric::Kind kind) {
 
 // CoordinateSystem names the current object space. Before WorldBegin that space is known only
 // relative to the camera; WorldBegin maps it to world space, as it does lights.
+// CoordinateSystem names the current transform for the rest of the frame.
+// ScopedCoordinateSystem names it until the end of the attribute block (an attribute of the
+// primitives after it, which see it over a CoordinateSystem of the same name); before
+// WorldBegin, where no primitive can see it in a block, it is a CoordinateSystem.
 bool RibParser::DoCoordinateSystem(const RibRequest& r) {
     std::string name;
     if (!LeadingString(r, "a coordinate system name", &name)) return false;
-    if (r.args.size() > 1) return Fail(r.at, "'CoordinateSystem' expects one string");
-    if (m_worldEnded) return Fail(r.at, "'CoordinateSystem' after 'WorldEnd'");
+    if (r.args.size() > 1) return Fail(r.at, Quote(r.name) + " expects one string");
+    if (m_worldEnded) return Fail(r.at, Quote(r.name) + " after 'WorldEnd'");
     static const char* const kStandard[] = {"camera", "current", "object", "raster",
                                             "screen", "shader",  "world",  "NDC"};
     for (const char* standard : kStandard)
-        if (name == standard) return Fail(r.at, "'CoordinateSystem' cannot redefine the standard space " + Quote(name));
-    if (m_worldSeen)
+        if (name == standard) return Fail(r.at, Quote(r.name) + " cannot redefine the standard space " + Quote(name));
+    if (m_worldSeen && r.name == "ScopedCoordinateSystem") {
+        auto spaces = m_state.scopedSpaces ? std::make_shared<std::map<std::string, glm::dmat4>>(*m_state.scopedSpaces)
+                                           : std::make_shared<std::map<std::string, glm::dmat4>>();
+        (*spaces)[name] = m_state.ctm;
+        m_state.scopedSpaces = std::move(spaces);
+    } else if (m_worldSeen) {
         m_scene.coordinateSystems[name] = m_state.ctm;
-    else
+    } else {
         m_cameraCoordinateSystems[name] = m_state.ctm;
+    }
     return true;
 }
 
 // CoordSysTransform replaces the current transform with a named space's: one that
-// CoordinateSystem defined, or "world", "camera" (and "object", "current", "shader", which are
+// ScopedCoordinateSystem defined in the blocks open, or CoordinateSystem, or "world", "camera" (and "object", "current", "shader", which are
 // the current space, so nothing changes). Screen spaces are projective and refused.
 bool RibParser::DoCoordSysTransform(const RibRequest& r) {
     std::string name;
@@ -312,6 +322,8 @@ bool RibParser::DoCoordSysTransform(const RibRequest& r) {
         if (!m_worldSeen)
             return Fail(r.at, "'CoordSysTransform \"world\"' before 'WorldBegin': world space is not known yet");
         ctm = inWorld ? glm::dmat4(1.0) : worldToCamera;
+    } else if (inWorld && m_state.scopedSpaces && m_state.scopedSpaces->count(name)) {
+        ctm = m_state.scopedSpaces->at(name);
     } else if (named != m_scene.coordinateSystems.end()) {
         ctm = inWorld ? named->second : worldToCamera * named->second;
     } else if (beforeWorld != m_cameraCoordinateSystems.end()) {

@@ -59,6 +59,9 @@ class RibParser : private RibArgChecks {
         /// Attribute "trimcurve" "sense": whether the inside of the loops is kept ("inside").
         std::shared_ptr<const renderer::TrimCurves> trim;
         bool trimKeepInside = true;
+        /// ScopedCoordinateSystem: the named spaces of this block and those around it (null:
+        /// none), given to every primitive (PrimitiveDesc::scopedSpaces).
+        std::shared_ptr<const std::map<std::string, glm::dmat4>> scopedSpaces;
     };
     /// What FrameEnd restores: the options and camera-space lights and coordinate systems in
     /// effect at FrameBegin (the graphics state is restored by the block itself).
@@ -86,6 +89,11 @@ class RibParser : private RibArgChecks {
     struct OpenReader {
         RibRequestReader reader;
         int file;
+        /// Read for a Procedural (at `at`): its requests run in an attribute block of their own,
+        /// the block m_blocks[blocks - 1] (or, in an object definition, a recorded one).
+        bool procedural = false;
+        RibPos at{};
+        size_t blocks = 0;
     };
     /// An ObjectBegin ... ObjectEnd definition: its requests, replayed by ObjectInstance.
     struct ObjectDef {
@@ -151,6 +159,15 @@ class RibParser : private RibArgChecks {
     bool DoShadingInterpolation(const RibRequest& r);
     bool DoArchiveRecord(const RibRequest& r);
     bool DoReadArchive(const RibRequest& r);
+    /// Procedural "DelayedReadArchive" and Procedural2 "DelayedReadArchive2": the archive read
+    /// at once, in an attribute block of its own (the bound is not needed: affray bounds what
+    /// the archive holds). Procedurals that run programs are refused.
+    bool DoProcedural(const RibRequest& r);
+    /// Opens archive `name` (written at `nameAt` in `r`) for reading next; `procedural` scopes it
+    /// in an attribute block, closed by EndArchive.
+    bool OpenArchive(const RibRequest& r, RibPos nameAt, const std::string& name, bool procedural);
+    /// At the end of an archive's text: closes a Procedural's attribute block.
+    bool EndArchive(const OpenReader& reader);
     /// The file ReadArchive `name` names, as given in file `from`: an absolute path, else
     /// relative to that file's directory, else to each Option "searchpath" "archive" directory.
     /// Empty if none exists; *searched lists where it looked.

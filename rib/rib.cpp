@@ -51,7 +51,7 @@ constexpr std::string_view kIgnored[] = {
 // they are errors until implemented.
 constexpr std::string_view kUnsupported[] = {
     "Blobby", "Curves", "Deformation", "Geometry", "MotionBegin", "MotionEnd",
-    "Perspective", "Points", "Procedural", "Skew", "SolidBegin", "SolidEnd",
+    "Perspective", "Points", "Skew", "SolidBegin", "SolidEnd",
 };
 // clang-format on
 
@@ -104,7 +104,12 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
         RibRequestReader::Status status = current.reader.Next(&request, &message, &at);
         if (status == RibRequestReader::Status::End) {
             if (m_readers.size() == 1) break;
+            const OpenReader done = std::move(m_readers.back());
             m_readers.pop_back();  // the end of an archive: back to the file that read it
+            if (!EndArchive(done)) {
+                ok = false;
+                break;
+            }
             continue;
         }
         if (status == RibRequestReader::Status::Error) {
@@ -170,6 +175,7 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"ReverseOrientation", &RibParser::DoReverseOrientation},
         {"Orientation", &RibParser::DoOrientation},
         {"CoordinateSystem", &RibParser::DoCoordinateSystem},
+        {"ScopedCoordinateSystem", &RibParser::DoCoordinateSystem},
         {"Surface", &RibParser::DoSurface},
         {"Displacement", &RibParser::DoDisplacement},
         {"LightSource", &RibParser::DoLightSource},
@@ -198,6 +204,8 @@ bool RibParser::Dispatch(const RibRequest& r) {
         {"ArchiveRecord", &RibParser::DoArchiveRecord},
         {"Illuminate", &RibParser::DoIlluminate},
         {"ReadArchive", &RibParser::DoReadArchive},
+        {"Procedural", &RibParser::DoProcedural},
+        {"Procedural2", &RibParser::DoProcedural},
         {"ObjectBegin", &RibParser::DoObjectBegin},
         {"ObjectEnd", &RibParser::DoObjectEnd},
         {"ObjectInstance", &RibParser::DoObjectInstance},
@@ -208,8 +216,10 @@ bool RibParser::Dispatch(const RibRequest& r) {
         // Every primitive takes the lights on at its request (RI 3.2: the light list is an
         // attribute). Stamped here, for every geometry request alike; an ObjectInstance's
         // primitives were stamped by the replayed requests, with the state of the instance.
-        for (; m_primitivesStamped < m_scene.primitives.size(); ++m_primitivesStamped)
+        for (; m_primitivesStamped < m_scene.primitives.size(); ++m_primitivesStamped) {
             m_scene.primitives[m_primitivesStamped].lights = m_state.lights;
+            m_scene.primitives[m_primitivesStamped].scopedSpaces = m_state.scopedSpaces;
+        }
         return true;
     }
     if (ContainsP(std::begin(kMakeRequests), std::end(kMakeRequests), r.name)) return DoMake(r);

@@ -1,7 +1,8 @@
 // tests/rib/archive_test.cpp: requests that bring in other requests (rib/archive.cpp): ReadArchive
 // (relative paths, the archive search path, cycles, missing files, diagnostics located in the
-// archive) and retained objects (ObjectBegin/End/Instance by number and by name, the instance's
-// transform and attributes), parsed and rendered.
+// archive), Procedural "DelayedReadArchive", and retained objects (ObjectBegin/End/Instance by
+// number and by name, the instance's transform and attributes), parsed and rendered; and the
+// named spaces a shader sees from CoordinateSystem and ScopedCoordinateSystem, rendered.
 #include <catch2/catch.hpp>
 #include <string>
 #include <vector>
@@ -54,10 +55,10 @@ Translate 0 0 -5
 // A unit square in z = 0 with its lower left corner at the origin.
 const char* const kSquare = "Patch \"bilinear\" \"P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n";
 
-ImageBuffer Render(const SceneDesc& desc) {
+ImageBuffer Render(const SceneDesc& desc, const std::string& shaders = test::SourceDir() + "/shaders") {
     diag::Report error;
     PreparedScene prepared;
-    const bool ok = PrepareScene(desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error);
+    const bool ok = PrepareScene(desc, {shaders}, {}, &prepared, &error);
     INFO(error);
     REQUIRE(ok);
     RenderOptions options;
@@ -281,4 +282,108 @@ TEST_CASE("Retained objects give exact errors", "[renderer][rib]") {
                  "ObjectInstance 1\nWorldEnd\n")
               .front() ==
           "t.rib:5:1: error: objects instance each other more than 32 deep (an object that instances itself?)");
+}
+
+TEST_CASE("Procedural DelayedReadArchive reads its archive at once, in an attribute block of its own",
+          "[renderer][rib]") {
+    test::TempDir dir;
+    // The archive changes the colour and the transform for what follows it inside the archive.
+    dir.Write("parts/square.rib",
+              std::string("Color 1 0 0\n") + kSquare + "Translate -2 -2 0\nColor 0 0 1\n" + kSquare);
+    const std::string after = std::string("Color 0 1 0\n") +
+                              "Procedural \"DelayedReadArchive\" [\"parts/square.rib\"] "
+                              "[0 1 0 1 0 0]\n" +
+                              kSquare;
+    diag::Report report;
+    std::optional<SceneDesc> desc =
+        ParseRib(std::string(kCamera) + "WorldBegin\n" + after + "WorldEnd\n", dir.Path("scene.rib"), &report);
+    INFO(report);
+    REQUIRE(desc);
+    CHECK(report.all().empty());
+    REQUIRE(desc->primitives.size() == 3);
+    CHECK(desc->primitives[0].color == glm::dvec3(1, 0, 0));
+    CHECK(desc->primitives[1].color == glm::dvec3(0, 0, 1));
+    CHECK(desc->primitives[1].corners[0] == glm::dvec3(-2, -2, 0));
+    // After it: the colour and transform of before it.
+    CHECK(desc->primitives[2].color == glm::dvec3(0, 1, 0));
+    CHECK(desc->primitives[2].corners[0] == glm::dvec3(0, 0, 0));
+
+    // Procedural2 "DelayedReadArchive2" names the file as a parameter; in an object definition
+    // the archive's requests are part of the object, in their block.
+    const std::string procedural2 =
+        "Procedural2 \"DelayedReadArchive2\" \"SimpleBound\" \"string filename\" [\"parts/square.rib\"] "
+        "\"float[6] bound\" [0 1 0 1 0 0]\n";
+    desc = ParseRib(std::string(kCamera) + "WorldBegin\nObjectBegin 1\n" + procedural2 +
+                        "ObjectEnd\nColor 0 1 0\nObjectInstance 1\nTranslate 1 0 0\nObjectInstance 1\n" + kSquare +
+                        "WorldEnd\n",
+                    dir.Path("scene.rib"), &report);
+    INFO(report);
+    REQUIRE(desc);
+    REQUIRE(desc->primitives.size() == 5);
+    CHECK(desc->primitives[2].color == glm::dvec3(1, 0, 0));
+    CHECK(desc->primitives[2].corners[0] == glm::dvec3(1, 0, 0));
+    CHECK(desc->primitives[3].corners[0] == glm::dvec3(-1, -2, 0));
+    CHECK(desc->primitives[4].color == glm::dvec3(0, 1, 0));
+    CHECK(desc->primitives[4].corners[0] == glm::dvec3(1, 0, 0));
+}
+
+TEST_CASE("Procedurals that run programs, unknown ones and bad arguments are refused", "[renderer][rib]") {
+    test::TempDir dir;
+    dir.Write("open.rib", std::string("AttributeBegin\n") + kSquare);
+    auto error = [&](const std::string& request) {
+        diag::Report report;
+        CHECK_FALSE(ParseRib("WorldBegin\n" + request + "\nWorldEnd\n", dir.Path("scene.rib"), &report));
+        REQUIRE(report.all().size() == 1);
+        return Line(report.all()[0]);
+    };
+    CHECK(error("Procedural \"RunProgram\" [\"make.py\" \"\"] [-1 1 -1 1 -1 1]") ==
+          "scene.rib:2:12: error: procedural 'RunProgram' makes geometry by running a program, which affray does "
+          "not do: write its output to a RIB file and read that with 'ReadArchive'");
+    CHECK(error("Procedural \"DynamicLoad\" [\"fur.so\" \"\"] [-1 1 -1 1 -1 1]").find("procedural 'DynamicLoad'") !=
+          std::string::npos);
+    CHECK(error("Procedural \"Sprinkle\" [\"a\"] [-1 1 -1 1 -1 1]") ==
+          "scene.rib:2:12: error: unknown procedural 'Sprinkle' (affray reads \"DelayedReadArchive\")");
+    CHECK(error("Procedural \"DelayedReadArchive\" [\"open.rib\"] [-1 1]") ==
+          "scene.rib:2:33: error: 'Procedural \"DelayedReadArchive\"' expects [\"file\"] and a bound [xmin xmax ymin "
+          "ymax zmin zmax]");
+    CHECK(error("Procedural \"DelayedReadArchive\" [\"gone.rib\"] [-1 1 -1 1 -1 1]") ==
+          "scene.rib:2:33: error: archive 'gone.rib' not found (searched " + SceneDir(dir) + ")");
+    CHECK(error("Procedural2 \"DelayedReadArchive2\" \"SimpleBound\" \"float[6] bound\" [-1 1 -1 1 -1 1]") ==
+          "scene.rib:2:1: error: 'Procedural2 \"DelayedReadArchive2\"' needs a \"string filename\" parameter");
+    // The archive must close the blocks it opens.
+    CHECK(error("Procedural \"DelayedReadArchive\" [\"open.rib\"] [-1 1 -1 1 -1 1]")
+              .find("error: the archive read by 'Procedural' on line 2 leaves a block open") != std::string::npos);
+}
+
+TEST_CASE("A shader sees a ScopedCoordinateSystem over a CoordinateSystem of the same name", "[renderer][rib]") {
+    test::TempDir dir;
+    // Moves the square's points down 2 units where the x of P in the space named by `space` is
+    // within (0.5, 1): a band of the square whose place tells the space apart.
+    dir.Write("band.sl",
+              "displacement band(string space = \"shader\") {\n"
+              "  float x = xcomp(transform(space, P));\n"
+              "  P += (x > 0.5 && x < 1 ? 1 : 0) * vector(0, -2, 0);\n"
+              "}\n");
+    const std::string square = "Displacement \"band\" \"string space\" \"paint\"\n" + std::string(kSquare);
+    auto render = [&](const std::string& world) {
+        diag::Report report;
+        std::optional<SceneDesc> desc =
+            ParseRib(std::string(kCamera) + "WorldBegin\n" + world + "WorldEnd\n", dir.Path("scene.rib"), &report);
+        INFO(report);
+        REQUIRE(desc);
+        return Coverage(Render(*desc, dir.Path(".")));
+    };
+    // "paint" one unit left of world: x in paint = world x + 1, so the band is at world x in
+    // [-0.5, 0], off the square; with paint at world, the band is the square's right half.
+    const std::string left = "Translate -1 0 0\n";
+    const std::string global =
+        render("AttributeBegin\n" + left + "CoordinateSystem \"paint\"\nAttributeEnd\n" + square);
+    const std::string scoped = render("CoordinateSystem \"paint\"\nAttributeBegin\n" + left +
+                                      "ScopedCoordinateSystem \"paint\"\nIdentity\n" + square + "AttributeEnd\n");
+    const std::string atWorld = render("CoordinateSystem \"paint\"\n" + square);
+    CHECK(scoped == global);
+    CHECK(scoped != atWorld);
+    // After the block the scene's own "paint" is seen again.
+    CHECK(render("CoordinateSystem \"paint\"\nAttributeBegin\n" + left +
+                 "ScopedCoordinateSystem \"paint\"\nAttributeEnd\n" + square) == atWorld);
 }

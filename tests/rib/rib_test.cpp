@@ -726,6 +726,36 @@ TEST_CASE("RIB CoordinateSystem stores object to world", "[renderer][rib]") {
           "t.rib:3: error: 'CoordinateSystem' after 'WorldEnd'");
 }
 
+TEST_CASE("RIB ScopedCoordinateSystem names a space until the end of its block", "[renderer][rib]") {
+    SceneDesc scene = Parsed(
+        "WorldBegin\n"
+        "  CoordinateSystem \"paint\"\n"
+        "  AttributeBegin\n    Translate 1 2 3\n    ScopedCoordinateSystem \"paint\"\n"
+        "    AttributeBegin\n      Translate 0 0 1\n      ScopedCoordinateSystem \"inner\"\n"
+        "      Sphere 1 -1 1 360\n    AttributeEnd\n"
+        "    Sphere 1 -1 1 360\n"
+        "    Identity\n    CoordSysTransform \"paint\"\n    Sphere 1 -1 1 360\n"
+        "  AttributeEnd\n"
+        "  Sphere 1 -1 1 360\n"
+        "WorldEnd\n");
+    REQUIRE(scene.primitives.size() == 4);
+    // Only CoordinateSystem names a space of the scene.
+    REQUIRE(scene.coordinateSystems.size() == 1);
+    CHECK(scene.coordinateSystems.at("paint") == glm::dmat4(1.0));
+    // The inner block sees both scoped spaces; the outer one only its own; after it, none.
+    REQUIRE(scene.primitives[0].scopedSpaces);
+    CHECK(scene.primitives[0].scopedSpaces->size() == 2);
+    RequireVec(Apply(scene.primitives[0].scopedSpaces->at("paint"), {0, 0, 0}), {1, 2, 3});
+    RequireVec(Apply(scene.primitives[0].scopedSpaces->at("inner"), {0, 0, 0}), {1, 2, 4});
+    REQUIRE(scene.primitives[1].scopedSpaces);
+    CHECK(scene.primitives[1].scopedSpaces->size() == 1);
+    // CoordSysTransform finds the scoped space first.
+    RequireVec(Apply(scene.primitives[2].objectToWorld, {0, 0, 0}), {1, 2, 3});
+    CHECK_FALSE(scene.primitives[3].scopedSpaces);
+    CHECK(ErrorOf("WorldBegin\nScopedCoordinateSystem \"shader\"\nWorldEnd\n") ==
+          "t.rib:2: error: 'ScopedCoordinateSystem' cannot redefine the standard space 'shader'");
+}
+
 TEST_CASE("RIB CoordSysTransform makes a named space current", "[renderer][rib]") {
     // world -> camera is Translate (0, 0, 5).
     SceneDesc scene = Parsed(
