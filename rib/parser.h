@@ -101,7 +101,18 @@ class RibParser : private RibArgChecks {
         std::vector<RibRequest> requests;
     };
 
+    /// Runs `r`, taking motion blocks into account (only their first sample runs).
     bool Dispatch(const RibRequest& r);
+    /// Runs `r` by its handler.
+    bool DispatchRequest(const RibRequest& r);
+    /// An open MotionBegin: where, its times, the kind of request it holds, how many so far.
+    struct Motion {
+        RibPos at;
+        std::vector<double> times;
+        std::string request;
+        size_t count = 0;
+    };
+    std::optional<Motion> m_motion;
     /// While an object is being defined: records `r` in it, or runs it if it acts at once
     /// (ObjectEnd, ReadArchive, Declare). Requests an object cannot hold are errors.
     bool Record(const RibRequest& r);

@@ -50,7 +50,7 @@ constexpr std::string_view kIgnored[] = {
 // RI 3.2 requests that create or move geometry: ignoring them would render the wrong scene, so
 // they are errors until implemented.
 constexpr std::string_view kUnsupported[] = {
-    "Blobby", "Curves", "Deformation", "Geometry", "MotionBegin", "MotionEnd",
+    "Blobby", "Curves", "Deformation", "Geometry",
     "Perspective", "Points", "Skew", "SolidBegin", "SolidEnd",
 };
 // clang-format on
@@ -71,9 +71,6 @@ bool ContainsP(const std::string_view* begin, const std::string_view* end, std::
 
 // Why a refused request that is not a primitive cannot be skipped ("" for primitives).
 std::string UnsupportedReason(std::string_view name) {
-    if (name == "MotionBegin" || name == "MotionEnd")
-        return ": motion blocks move geometry during the shutter, and one instant of them is not the "
-               "scene";
     if (name == "Deformation") return ": a deformation shader moves geometry";
     if (name == "Perspective") return ": a projective transform (transforms must be affine)";
     if (name == "Skew") return ": skipping the shear would move geometry";
@@ -124,6 +121,7 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
         }
     }
     if (ok && m_defining) ok = Fail(m_defining->second.at, "'ObjectBegin' has no matching 'ObjectEnd'");
+    if (ok && m_motion) ok = Fail(m_motion->at, "'MotionBegin' has no matching 'MotionEnd'");
     if (ok && !m_blocks.empty()) {
         const OpenBlock& open = m_blocks.back();
         ok =
@@ -142,6 +140,49 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
 }
 
 bool RibParser::Dispatch(const RibRequest& r) {
+    // MotionBegin [t0 t1 ...] holds one request of a kind per time: the first (the shutter-open
+    // sample, as exporters write them) is run and the others are checked for kind and skipped.
+    if (r.name == "MotionBegin") {
+        if (m_motion)
+            return Fail(r.at, "'MotionBegin' inside the motion block started on " + LineName(m_motion->at, r.at));
+        const bool array = r.args.size() == 1 && r.args[0].isArray;
+        const std::vector<double> times = array ? r.args[0].numbers : std::vector<double>{};
+        if (!array || !r.args[0].NumericP() || times.empty())
+            return Fail(r.at, "'MotionBegin' expects an array of the times of its samples");
+        for (size_t i = 0; i < times.size(); ++i)
+            if (!std::isfinite(times[i]) || (i > 0 && !(times[i] > times[i - 1])))
+                return Fail(r.args[0].at, "'MotionBegin' times must be finite and increasing");
+        m_motion = Motion{r.at, times, "", 0};
+        Warn(r.at, "motion blur is not rendered: each motion block takes its first sample (time " +
+                       FormatNumber(times[0]) + ")");
+        return true;
+    }
+    if (r.name == "MotionEnd") {
+        if (!NoArgs(r)) return false;
+        if (!m_motion) return Fail(r.at, "'MotionEnd' without matching 'MotionBegin'");
+        const Motion motion = *m_motion;
+        m_motion.reset();
+        if (motion.count != motion.times.size())
+            return Fail(r.at, "the motion block started on " + LineName(motion.at, r.at) + " has " +
+                                  std::to_string(motion.count) + " request" + (motion.count == 1 ? "" : "s") + " for " +
+                                  std::to_string(motion.times.size()) + " times");
+        return true;
+    }
+    if (m_motion) {
+        Motion& motion = *m_motion;
+        if (motion.count == 0) motion.request = r.name;
+        if (r.name != motion.request)
+            return Fail(r.at, "a motion block holds one kind of request, one per time: " + Quote(r.name) + " after " +
+                                  Quote(motion.request));
+        if (motion.count == motion.times.size())
+            return Fail(r.at, "the motion block started on " + LineName(motion.at, r.at) +
+                                  " has more requests than its " + std::to_string(motion.times.size()) + " times");
+        if (motion.count++ > 0) return true;
+    }
+    return DispatchRequest(r);
+}
+
+bool RibParser::DispatchRequest(const RibRequest& r) {
     static const std::unordered_map<std::string_view, Handler> kHandlers = {
         {"Format", &RibParser::DoFormat},
         {"Projection", &RibParser::DoProjection},

@@ -282,9 +282,6 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
           "t.rib:2: error: 'Patch \"bicubic\"' parameter 'P' expects 48 numbers, got 3");
     CHECK(ErrorOf("Skew 45 0 1 0 1 0 0\n") ==
           "t.rib:1: error: 'Skew' is not supported yet: skipping the shear would move geometry");
-    CHECK(ErrorOf("WorldBegin\nMotionBegin [0 1]\n") ==
-          "t.rib:2: error: 'MotionBegin' is not supported yet: motion blocks move geometry during the shutter, "
-          "and one instant of them is not the scene");
 
     // Other ignored things: unknown shader parameters, light shaders and surface shaders.
     error = {};
@@ -693,6 +690,46 @@ TEST_CASE("RIB Option searchpath shader and texture expand & and @", "[renderer]
     CHECK(warnings[0] == "t.rib:3: warning: 'Option \"searchpath\" \"procedural\"' does not apply to affray; ignored");
     CHECK(warnings[1] == "t.rib:4: warning: 'Option \"limits\"' does not apply to affray; ignored");
     CHECK(warnings[2] == "t.rib:5: warning: 'Option \"statistics\"' does not apply to affray; ignored");
+}
+
+TEST_CASE("RIB motion blocks take their first sample, with one warning", "[renderer][rib]") {
+    affray::diag::Report report;
+    std::optional<SceneDesc> scene = ParseRib(
+        "WorldBegin\n"
+        "MotionBegin [0 1]\n  Translate 1 0 0\n  Translate 5 0 0\nMotionEnd\n"
+        "MotionBegin [0.25 0.5 1]\n  Sphere 1 -1 1 360\n  Sphere 2 -2 2 360\n  Sphere 3 -3 3 360\nMotionEnd\n"
+        "MotionBegin [0 1]\n  Surface \"matte\"\n  Surface \"plastic\"\nMotionEnd\n"
+        "Sphere 1 -1 1 360\n"
+        "WorldEnd\n",
+        "t.rib", &report);
+    INFO(report);
+    REQUIRE(scene);
+    std::vector<std::string> warnings = WarningsOf(report);
+    REQUIRE(warnings.size() == 2);
+    CHECK(warnings[0] ==
+          "t.rib:2: warning: motion blur is not rendered: each motion block takes its first sample (time 0)");
+    CHECK(warnings[1] ==
+          "t.rib:6: warning: motion blur is not rendered: each motion block takes its first sample (time 0.25)");
+    REQUIRE(scene->primitives.size() == 2);
+    CHECK(scene->primitives[0].quadric.radius == 1);
+    RequireVec(Apply(scene->primitives[0].objectToWorld, {0, 0, 0}), {1, 0, 0});
+    CHECK(scene->primitives[1].surface.model == SurfaceDesc::Model::Matte);
+
+    CHECK(ErrorOf("WorldBegin\nMotionBegin [0 1]\nTranslate 1 0 0\nRotate 1 0 0 1\nMotionEnd\nWorldEnd\n") ==
+          "t.rib:4: error: a motion block holds one kind of request, one per time: 'Rotate' after 'Translate'");
+    CHECK(ErrorOf("WorldBegin\nMotionBegin [0 1]\nTranslate 1 0 0\nMotionEnd\nWorldEnd\n") ==
+          "t.rib:4: error: the motion block started on line 2 has 1 request for 2 times");
+    CHECK(ErrorOf("WorldBegin\nMotionBegin [0 1]\nScale 1 1 1\nScale 2 2 2\nScale 3 3 3\nMotionEnd\nWorldEnd\n") ==
+          "t.rib:5: error: the motion block started on line 2 has more requests than its 2 times");
+    CHECK(ErrorOf("WorldBegin\nMotionBegin [0 1]\nMotionBegin [0 1]\n") ==
+          "t.rib:3: error: 'MotionBegin' inside the motion block started on line 2");
+    CHECK(ErrorOf("WorldBegin\nMotionBegin [1 0]\n") ==
+          "t.rib:2: error: 'MotionBegin' times must be finite and increasing");
+    CHECK(ErrorOf("WorldBegin\nMotionBegin 0 1\n") ==
+          "t.rib:2: error: 'MotionBegin' expects an array of the times of its samples");
+    CHECK(ErrorOf("WorldBegin\nMotionEnd\n") == "t.rib:2: error: 'MotionEnd' without matching 'MotionBegin'");
+    CHECK(ErrorOf("WorldBegin\nMotionBegin [0]\nTranslate 1 0 0\n") ==
+          "t.rib:2: error: 'MotionBegin' has no matching 'MotionEnd'");
 }
 
 TEST_CASE("RIB CoordinateSystem stores object to world", "[renderer][rib]") {
