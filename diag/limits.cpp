@@ -32,6 +32,8 @@ constexpr std::array<LimitInfo, kLimitCount> kTable{{
     {Limit::CallDepth, "call-depth", 64, 1, 256, "calls", "function calls nested in each other (calls are inlined)"},
     {Limit::RibArray, "rib-array", int64_t{1} << 25, 16, int64_t{1} << 30, "values",
      "numbers or strings in one RIB array"},
+    {Limit::RibBytes, "rib-bytes", int64_t{1} << 32, 1024, int64_t{1} << 42, "bytes",
+     "bytes of a RIB file or archive, decompressed if gzip-compressed"},
     {Limit::ImagePixels, "image-pixels", int64_t{1} << 28, 1, int64_t{1} << 31, "pixels",
      "pixels of an image rendered, written or read"},
     {Limit::PixelSamples, "pixel-samples", 64, 1, 256, "samples", "samples per pixel along each axis"},

@@ -27,6 +27,7 @@ enum class Limit : int {
     VaryingLoopIterations,  ///< iterations unrolled of a loop whose count varies (then bounded)
     CallDepth,              ///< function calls nested (every call is inlined)
     RibArray,               ///< numbers or strings in one RIB array
+    RibBytes,               ///< bytes of a RIB file or archive (decompressed, if gzip-compressed)
     ImagePixels,            ///< pixels of an image written or read (the film, an EXR, a map)
     PixelSamples,           ///< samples per pixel along each axis
     FilmMb,                 ///< MiB of memory for the film (every sample of every channel)

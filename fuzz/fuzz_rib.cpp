@@ -3,11 +3,14 @@
 // the BVH built); nothing is rendered.
 // The scene is named as a file in this process's temporary directory, so that what a scene writes
 // (MakeTexture) lands there; MakeTexture requests naming an absolute path or '..' are dropped.
-// Shaders are found in shaders/, tests/golden and tests/corpus of the source tree.
+// Shaders are found in shaders/, tests/golden and tests/corpus of the source tree. A
+// gzip-compressed input is decompressed up to the rib-bytes limit, set to 64 MiB here so that a
+// small input cannot grow past libFuzzer's memory limit (-rss_limit_mb) before it is refused.
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "diag/limits.h"
 #include "fuzz/fuzz_util.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
@@ -22,6 +25,8 @@ bool InsideP(const std::string& path) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace affray;
+    static const bool kLimited = (diag::SetLimit(diag::Limit::RibBytes, int64_t{1} << 26), true);
+    (void)kLimited;
     static const std::string kPath = fuzz::TempDir() + "/input.rib";
     static const std::vector<std::string> kShaderPaths = {
         fuzz::SourceDir() + "/shaders", fuzz::SourceDir() + "/tests/golden", fuzz::SourceDir() + "/tests/corpus"};

@@ -11,12 +11,10 @@
 // state current at the instance (transform, color, shaders) and its own transforms and attributes
 // apply on top of it, as the spec says.
 #include <algorithm>
-#include <cerrno>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <system_error>
 
+#include "rib/file.h"
 #include "rib/parser.h"
 
 namespace affray::rib {
@@ -39,27 +37,6 @@ constexpr std::string_view kNotInObject[] = {
 };
 
 constexpr int kMaxInstanceDepth = 32;  // objects instancing objects: deeper is a cycle
-
-// Reads a whole file; on failure returns false with *reason set.
-bool ReadFile(const std::string& path, std::string* text, std::string* reason) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) {
-        *reason = "it is a directory";
-        return false;
-    }
-    errno = 0;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        *reason = errno ? std::generic_category().message(errno) : "cannot open";
-        return false;
-    }
-    text->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (in.bad()) {
-        *reason = "read error";
-        return false;
-    }
-    return true;
-}
 
 }  // namespace
 
@@ -153,11 +130,8 @@ bool RibParser::OpenArchive(const RibRequest& r, RibPos nameAt, const std::strin
         }
     }
     auto text = std::make_unique<std::string>();
-    std::string reason;
-    if (!ReadFile(path, text.get(), &reason)) return Fail(nameAt, "cannot read archive " + Quote(path) + ": " + reason);
-    if (text->size() >= 2 && static_cast<unsigned char>((*text)[0]) == 0x1f &&
-        static_cast<unsigned char>((*text)[1]) == 0x8b)
-        return Fail(nameAt, "archive " + Quote(path) + " is gzip-compressed RIB, which is not supported yet");
+    if (const std::string reason = ReadRibFile(path, text.get()); !reason.empty())
+        return Fail(nameAt, "cannot read archive " + Quote(path) + ": " + reason);
     // A Procedural's requests go in an attribute block of their own (RI 3.2: a procedural's
     // geometry takes the graphics state of its request and changes nothing after it).
     if (procedural) {

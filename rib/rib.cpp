@@ -15,17 +15,15 @@
 #include "rib/rib.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
-#include <iterator>
 #include <set>
 #include <system_error>
 #include <unordered_map>
 
 #include "diag/limits.h"
+#include "rib/file.h"
 #include "rib/parser.h"
 
 namespace affray::rib {
@@ -576,10 +574,14 @@ bool RibParser::DoScale(const RibRequest& r) {
 
 std::optional<std::vector<SceneDesc>> ParseRibFrames(std::string_view text, const std::string& pathForMessages,
                                                      diag::Report* report) {
-    if (text.size() >= 2 && static_cast<unsigned char>(text[0]) == 0x1f &&
-        static_cast<unsigned char>(text[1]) == 0x8b) {
-        if (report) report->error({pathForMessages, 1, 1, {}}, "gzip-compressed RIB is not supported yet");
-        return std::nullopt;
+    if (const std::string bytes(text.substr(0, 2)); GzipP(bytes)) {
+        std::string decompressed(text);
+        if (const std::string reason = Gunzip(&decompressed); !reason.empty()) {
+            if (report) report->error({pathForMessages}, "cannot read file: " + reason);
+            return std::nullopt;
+        }
+        RibParser parser(decompressed, pathForMessages, report);
+        return parser.Run();
     }
     RibParser parser(text, pathForMessages, report);
     return parser.Run();
@@ -590,14 +592,10 @@ std::optional<std::vector<SceneDesc>> ReadRibFrames(const std::string& path, dia
         if (report) report->error({path}, "cannot read file: " + reason);
         return std::nullopt;
     };
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) return fail("it is a directory");
-    errno = 0;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return fail(errno ? std::generic_category().message(errno) : "cannot open");
-    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    if (in.bad()) return fail("read error");
-    return ParseRibFrames(text, path, report);
+    std::string text;
+    if (const std::string reason = ReadRibFile(path, &text); !reason.empty()) return fail(reason);
+    RibParser parser(text, path, report);
+    return parser.Run();
 }
 
 namespace {

@@ -3,7 +3,10 @@
 // archive), Procedural "DelayedReadArchive", and retained objects (ObjectBegin/End/Instance by
 // number and by name, the instance's transform and attributes), parsed and rendered; and the
 // named spaces a shader sees from CoordinateSystem and ScopedCoordinateSystem, rendered.
+#include <zlib.h>
+
 #include <catch2/catch.hpp>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -386,4 +389,82 @@ TEST_CASE("A shader sees a ScopedCoordinateSystem over a CoordinateSystem of the
     // After the block the scene's own "paint" is seen again.
     CHECK(render("CoordinateSystem \"paint\"\nAttributeBegin\n" + left +
                  "ScopedCoordinateSystem \"paint\"\nAttributeEnd\n" + square) == atWorld);
+}
+
+namespace {
+
+// `text` gzip-compressed into file `path` (one gzip member per piece of `pieces`, as
+// `gzip -c a b > c` writes them).
+void WriteGzip(const std::string& path, const std::vector<std::string>& pieces) {
+    std::string bytes;
+    for (const std::string& piece : pieces) {
+        z_stream z{};
+        REQUIRE(deflateInit2(&z, 9, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) == Z_OK);
+        std::string out(deflateBound(&z, piece.size()) + 64, '\0');
+        z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(piece.data()));
+        z.avail_in = static_cast<uInt>(piece.size());
+        z.next_out = reinterpret_cast<Bytef*>(out.data());
+        z.avail_out = static_cast<uInt>(out.size());
+        REQUIRE(deflate(&z, Z_FINISH) == Z_STREAM_END);
+        out.resize(z.total_out);
+        deflateEnd(&z);
+        bytes += out;
+    }
+    std::ofstream(path, std::ios::binary) << bytes;
+}
+
+}  // namespace
+
+TEST_CASE("gzip-compressed scenes and archives read as their text, within rib-bytes", "[renderer][rib]") {
+    test::TempDir dir;
+    const std::string world = "WorldBegin\nReadArchive \"parts.rib.gz\"\nWorldEnd\n";
+    WriteGzip(dir.Path("parts.rib.gz"),
+              {std::string("Color 0 1 0\n") + kSquare, "Translate -2 -2 0\n" + std::string(kSquare)});
+    dir.Write("plain.rib", std::string(kCamera) + "WorldBegin\nColor 0 1 0\n" + kSquare + "Translate -2 -2 0\n" +
+                               kSquare + "WorldEnd\n");
+    WriteGzip(dir.Path("scene.rib.gz"), {std::string(kCamera) + world});
+    diag::Report report;
+    std::optional<SceneDesc> plain = ReadRib(dir.Path("plain.rib"), &report);
+    std::optional<SceneDesc> gz = ReadRib(dir.Path("scene.rib.gz"), &report);
+    INFO(report);
+    REQUIRE(plain);
+    REQUIRE(gz);
+    REQUIRE(gz->primitives.size() == 2);
+    CHECK(gz->primitives[0].color == glm::dvec3(0, 1, 0));
+    CHECK(gz->primitives[1].corners[0] == glm::dvec3(-2, -2, 0));
+    CHECK(Coverage(Render(*gz)) == Coverage(Render(*plain)));
+
+    auto error = [&](const std::string& path) {
+        diag::Report r;
+        CHECK_FALSE(ReadRib(path, &r));
+        REQUIRE(r.all().size() == 1);
+        return Line(r.all()[0]);
+    };
+    // A stream cut short, or damaged.
+    std::string bytes = test::ReadText(dir.Path("parts.rib.gz"));
+    dir.Write("cut.rib.gz", bytes.substr(0, bytes.size() / 2));
+    std::string damaged = bytes;
+    damaged[12] = static_cast<char>(damaged[12] ^ 0x5a);
+    damaged[13] = static_cast<char>(damaged[13] ^ 0xa5);
+    dir.Write("damaged.rib.gz", damaged);
+    CHECK(error(dir.Path("cut.rib.gz")) == "cut.rib.gz:0:0: error: cannot read file: the gzip stream is cut short");
+    CHECK(error(dir.Path("damaged.rib.gz")).find("cut.rib.gz") == std::string::npos);
+    CHECK(error(dir.Path("damaged.rib.gz")).find("error: cannot read file: the gzip stream is damaged (") !=
+          std::string::npos);
+
+    // rib-bytes: a plain file past it is refused before it is read; a compressed one as it
+    // decompresses past it.
+    const std::string big(5000, '#');
+    dir.Write("big.rib", big + "\n");
+    WriteGzip(dir.Path("big.rib.gz"), {big + "\n"});
+    {
+        test::ScopedLimit limit(diag::Limit::RibBytes, 4096);
+        CHECK(error(dir.Path("big.rib")) ==
+              "big.rib:0:0: error: cannot read file: it holds more than 4096 bytes (limit rib-bytes = 4096; raise it "
+              "with --limit rib-bytes=N)");
+        CHECK(error(dir.Path("big.rib.gz")) ==
+              "big.rib.gz:0:0: error: cannot read file: decompressed, it holds more than 4096 bytes (limit rib-bytes = "
+              "4096; raise it with --limit rib-bytes=N)");
+        CHECK(ReadRib(dir.Path("scene.rib.gz"), &report));
+    }
 }
