@@ -273,11 +273,10 @@ bool RibParser::DoQuadric(const RibRequest& r, Quadric::Kind kind) {
     return true;
 }
 
-// CoordinateSystem names the current object space. Before WorldBegin that space is known only
-// relative to the camera; WorldBegin maps it to world space, as it does lights.
-// CoordinateSystem names the current transform for the rest of the frame.
-// ScopedCoordinateSystem names it until the end of the attribute block (an attribute of the
-// primitives after it, which see it over a CoordinateSystem of the same name); before
+// CoordinateSystem names the current object space for the rest of the frame. Before WorldBegin
+// that space is known only relative to the camera; WorldBegin maps it to world space, as it does
+// lights. ScopedCoordinateSystem names it until the end of the attribute block (an attribute of
+// the primitives after it, which see it over a CoordinateSystem of the same name); before
 // WorldBegin, where no primitive can see it in a block, it is a CoordinateSystem.
 bool RibParser::DoCoordinateSystem(const RibRequest& r) {
     std::string name;
