@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "tests/test_random.h"
+#include "tests/test_util.h"
 #include "tests/texture/texture_test_util.h"
 #include "texture/texture.h"
 
@@ -231,6 +232,30 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     CHECK_FALSE(Open(half, &error));
     CHECK(error.find("cannot read texture '" + half + "': the PNG chunk at byte ") == 0);
     CHECK(error.find("but the file has " + std::to_string(bytes.size() / 2)) != std::string::npos);
+
+    // OpenEXR files whose header attributes claim more bytes than the file holds: refused before
+    // OpenImageIO reads them (OpenEXR 3.1 would allocate the claim first; texture/image_io_oiio.cpp).
+    // A multi-part file (headers one after another) reads as usual.
+    const std::string multipart = affray::test::SourceDir() + "/fuzz/corpus/fuzz_texture/multipart4x4.exr";
+    REQUIRE(Open(multipart, &error));
+    std::string exr;
+    {
+        std::ifstream in(multipart, std::ios::binary);
+        exr.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    // The first attribute: its name and type after the 8 bytes of magic number and version, then
+    // its size.
+    const size_t nameEnd = exr.find('\0', 8), typeEnd = exr.find('\0', nameEnd + 1);
+    REQUIRE(typeEnd != std::string::npos);
+    const std::string attribute = exr.substr(8, nameEnd - 8);
+    exr.replace(typeEnd + 1, 4, std::string("\xff\xff\xff\x7f", 4));
+    const std::string claims = dir.path("claims.exr");
+    std::ofstream(claims, std::ios::binary) << exr;
+    error.clear();
+    CHECK_FALSE(Open(claims, &error));
+    CHECK(error == "cannot read texture '" + claims + "': the OpenEXR attribute '" + attribute +
+                       "' claims 2147483647 bytes, but the file has " + std::to_string(exr.size() - typeEnd - 5) +
+                       " left");
 }
 
 TEST_CASE("texture file: tiles under a tiny budget give the same lookups, from several threads", "[texture]") {
