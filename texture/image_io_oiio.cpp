@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "renderer/image/exr_check.h"
 #include "texture/image_io.h"
 
 namespace affray::texture::io {
@@ -50,55 +51,6 @@ std::string TruncatedPng(const std::string& path) {
     }
 }
 
-/// Why the OpenEXR file at `path` cannot be read, or "" when it can or is not an OpenEXR file:
-/// every attribute of its headers must fit in the file. Checked before OpenImageIO opens the file
-/// because Debian's OpenEXR 3.1 allocates a string attribute's stated size before reading it, so
-/// that a 15 KB file claiming a 2 GB attribute takes 2 GB (found by fuzz_texture;
-/// fuzz/regressions/fuzz_texture holds the input).
-std::string OversizedExrHeader(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    unsigned char head[8] = {};
-    if (!in.read(reinterpret_cast<char*>(head), 8)) return "";
-    if (!(head[0] == 0x76 && head[1] == 0x2f && head[2] == 0x31 && head[3] == 0x01)) return "";
-    const bool multipart = (head[5] & 0x10) != 0;
-    in.seekg(0, std::ios::end);
-    const auto size = static_cast<uint64_t>(in.tellg());
-    in.seekg(8);
-    const std::string early = "the OpenEXR header ends before the end of its attributes";
-    // A name or type: up to 255 characters and a terminating 0.
-    auto word = [&](std::string* out) {
-        out->clear();
-        for (char c; in.get(c);) {
-            if (c == '\0') return true;
-            if (out->size() == 255) return false;
-            out->push_back(c);
-        }
-        return false;
-    };
-    for (int part = 0;; ++part) {
-        if (part > 0) {
-            // Multi-part files: headers follow one another, and an empty one ends them.
-            const int next = in.peek();
-            if (next == std::char_traits<char>::eof()) return early;
-            if (next == 0) return "";
-        }
-        for (std::string name, type;;) {
-            if (!word(&name)) return early;
-            if (name.empty()) break;
-            unsigned char bytes[4];
-            if (!word(&type) || !in.read(reinterpret_cast<char*>(bytes), 4)) return early;
-            const uint64_t length =
-                uint64_t{bytes[0]} | uint64_t{bytes[1]} << 8 | uint64_t{bytes[2]} << 16 | uint64_t{bytes[3]} << 24;
-            const auto at = static_cast<uint64_t>(in.tellg());
-            if (length > size - at)
-                return "the OpenEXR attribute '" + name + "' claims " + std::to_string(length) +
-                       " bytes, but the file has " + std::to_string(size - at) + " left";
-            in.seekg(static_cast<std::streamoff>(at + length));
-        }
-        if (!multipart) return "";
-    }
-}
-
 OIIO::TypeDesc TypeOf(PixelFormat f) {
     switch (f) {
         case PixelFormat::Half: return OIIO::TypeDesc::HALF;
@@ -132,7 +84,7 @@ class OiioReader final : public ImageReader {
 class OiioImageIo final : public ImageIo {
   public:
     std::unique_ptr<ImageReader> Open(const std::string& path, std::string* error) const override {
-        if (std::string why = TruncatedPng(path) + OversizedExrHeader(path); !why.empty()) {
+        if (std::string why = TruncatedPng(path) + renderer::OversizedExrHeader(path); !why.empty()) {
             *error = why;
             return nullptr;
         }

@@ -4,6 +4,7 @@
 #include "diag/limits.h"
 
 #include "renderer/image/atomic_file.h"
+#include "renderer/image/exr_check.h"
 
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
@@ -151,6 +152,7 @@ ImageBuffer HeaderOf(const Imf::InputFile& file) {
 
 bool ReadExrHeader(const std::string& path, ImageBuffer* out, diag::Report* report) {
     try {
+        if (const std::string why = OversizedExrHeader(path); !why.empty()) throw std::runtime_error(why);
         Imf::InputFile file(path.c_str());
         *out = HeaderOf(file);
         return true;
@@ -163,6 +165,7 @@ bool ReadExrHeader(const std::string& path, ImageBuffer* out, diag::Report* repo
 bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report,
                  std::optional<std::array<int, 2>> rows) {
     try {
+        if (const std::string why = OversizedExrHeader(path); !why.empty()) throw std::runtime_error(why);
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dataWindow = file.header().dataWindow();
         ImageBuffer image = HeaderOf(file);

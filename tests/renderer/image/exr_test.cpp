@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "renderer/image/exr_writer.h"
@@ -207,4 +208,29 @@ TEST_CASE("EXR string attributes round trip, and a header alone or a band of row
     affray::diag::Report report;
     CHECK_FALSE(ReadExrRgba(path, &band, &report, std::array<int, 2>{3, 5}));
     CHECK(affray::test::LastMessage(report).find("rows 3 to 5 are not in the image") != std::string::npos);
+}
+
+TEST_CASE("EXR files whose attributes claim more bytes than the file holds are refused before OpenEXR reads them",
+          "[renderer]") {
+    // OpenEXR 3.1 would allocate the claim first (renderer/image/exr_check.h).
+    TempDir dir;
+    const std::string path = (dir.path / "claims.exr").string();
+    ImageBuffer image = TestImage(3, 2);
+    image.attributes["affray:pixels"] = "0,3,0,2";
+    REQUIRE(WriteExr(path, image, nullptr));
+    std::string bytes = affray::test::ReadText(path);
+    // The attribute "affray:pixels", then its type "string", then its size: claim 1 GiB.
+    const size_t name = bytes.find(std::string("affray:pixels\0string\0", 21));
+    REQUIRE(name != std::string::npos);
+    const size_t size = name + 21;
+    bytes.replace(size, 4, std::string("\x00\x00\x00\x40", 4));
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+    const std::string expected = "the OpenEXR attribute 'affray:pixels' claims 1073741824 bytes, but the file has " +
+                                 std::to_string(bytes.size() - size - 4) + " left";
+    ImageBuffer read;
+    affray::diag::Report report;
+    CHECK_FALSE(ReadExrHeader(path, &read, &report));
+    CHECK(affray::test::LastMessage(report) == path + ": error: cannot read image: " + expected);
+    CHECK_FALSE(ReadExrRgba(path, &read, &report));
+    CHECK(affray::test::LastMessage(report) == path + ": error: cannot read image: " + expected);
 }
