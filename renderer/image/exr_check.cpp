@@ -15,7 +15,7 @@ std::string OversizedExrHeader(const std::string& path) {
     in.seekg(0, std::ios::end);
     const auto size = static_cast<uint64_t>(in.tellg());
     in.seekg(8);
-    const std::string early = "the OpenEXR header ends before the end of its attributes";
+    const char* const early = "the OpenEXR header ends before the end of its attributes";
     // A name or type: up to 255 characters and a terminating 0.
     auto word = [&](std::string* out) {
         out->clear();
