@@ -232,7 +232,8 @@ std::optional<Value> Lowerer::LowerQuery(const lang::Expr& e, const Value& nameA
     const Value no = m_ops.Constant(0.0), yes = m_ops.Constant(1.0);
     if (m_checkingOnly) return no;
     if (e.name == "displacement" || e.name == "evalparam") {
-        // The shader's own parameter (evalparam: a shader class's, RSL 2): copied when its type (and array size) is the variable's.
+        // The shader's own parameter (evalparam: a shader class's, RSL 2): copied when its type
+        // (and array size) is the variable's.
         const Variable* param = ShaderParameter(*name);
         if (!param || param->type != out.type || param->arraySize != out.arraySize) return no;
         if (out.arraySize >= 0) {

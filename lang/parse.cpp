@@ -350,8 +350,7 @@ void ParseContext::AddClass(SourceLoc loc, std::string name, std::vector<VarDecl
         if (!methods.emplace(method, item.get()).second)
             Error(item->function->loc, "redefinition of method '" + method + "' of class '" + name + "'");
     }
-    auto found = methods.find("displacement");
-    if (found == methods.end()) {
+    if (!methods.count("displacement")) {
         Error(loc, "class '" + name +
                        "' has no displacement method: affray runs a shader class by its `public void "
                        "displacement(output point P; output normal N)`");

@@ -22,7 +22,7 @@ std::string TooLarge(const char* what) {
 
 }  // namespace
 
-bool GzipP(const std::string& bytes) {
+bool GzipP(std::string_view bytes) {
     return bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f &&
            static_cast<unsigned char>(bytes[1]) == 0x8b;
 }

@@ -4,11 +4,12 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 namespace affray::rib {
 
 /// Whether `bytes` start as a gzip stream does (0x1f 0x8b).
-bool GzipP(const std::string& bytes);
+bool GzipP(std::string_view bytes);
 
 /// Replaces gzip-compressed `*bytes` by their decompressed text (every member of the stream, as
 /// gunzip does). Stops with an error past the rib-bytes limit, and on a damaged or cut stream;

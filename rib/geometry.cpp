@@ -301,8 +301,9 @@ bool RibParser::DoCoordinateSystem(const RibRequest& r) {
 }
 
 // CoordSysTransform replaces the current transform with a named space's: one that
-// ScopedCoordinateSystem defined in the blocks open, or CoordinateSystem, or "world", "camera" (and "object", "current", "shader", which are
-// the current space, so nothing changes). Screen spaces are projective and refused.
+// ScopedCoordinateSystem defined in the blocks open, or CoordinateSystem, or "world", "camera"
+// (and "object", "current", "shader", which are the current space, so nothing changes). Screen
+// spaces are projective and refused.
 bool RibParser::DoCoordSysTransform(const RibRequest& r) {
     std::string name;
     if (!LeadingString(r, "a coordinate system name", &name)) return false;

@@ -574,14 +574,14 @@ bool RibParser::DoScale(const RibRequest& r) {
 
 std::optional<std::vector<SceneDesc>> ParseRibFrames(std::string_view text, const std::string& pathForMessages,
                                                      diag::Report* report) {
-    if (const std::string bytes(text.substr(0, 2)); GzipP(bytes)) {
-        std::string decompressed(text);
+    std::string decompressed;
+    if (GzipP(text)) {
+        decompressed = text;
         if (const std::string reason = Gunzip(&decompressed); !reason.empty()) {
             if (report) report->error({pathForMessages}, "cannot read file: " + reason);
             return std::nullopt;
         }
-        RibParser parser(decompressed, pathForMessages, report);
-        return parser.Run();
+        text = decompressed;
     }
     RibParser parser(text, pathForMessages, report);
     return parser.Run();

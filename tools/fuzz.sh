@@ -5,15 +5,17 @@
 # collects each target's seeds from the repository (fuzz/seeds.sh), then runs each target (all
 # four by default: fuzz_sl fuzz_afb fuzz_rib fuzz_texture) for SECONDS (default 60; --runs N
 # stops it after N executions if that comes first) with -timeout=25 -rss_limit_mb=2048 and its
-# dictionary. New inputs go to build-fuzz/corpus/TARGET, kept from run to run. Prints per target the executions, coverage (cov: edges, ft: features)
-# and corpus size. A crash, leak, timeout or out-of-memory keeps its input under
-# build-fuzz/artifacts/TARGET/ with a line saying how to reproduce it; if that input fails again
-# when run alone, the exit status is 1 and, without --keep-going, the remaining targets are not
-# run. (One that does not fail again is reported and not counted: see below.)
+# dictionary. New inputs go to build-fuzz/corpus/TARGET, kept from run to run. Prints per target
+# the executions, coverage (cov: edges, ft: features) and corpus size. A crash, leak, timeout or
+# out-of-memory keeps its input under build-fuzz/artifacts/TARGET/ with a line saying how to
+# reproduce it; if that input fails again when run alone, the exit status is 1 and, without
+# --keep-going, the remaining targets are not run. (One that does not fail again is reported and
+# not counted: see below.)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 time=60
+limits=(-timeout=25 -rss_limit_mb=2048)  # of a run and of the rerun of a finding
 runs=0
 jobs=1
 keep_going=0
@@ -25,7 +27,7 @@ while [[ $# -gt 0 ]]; do
         --runs) runs=${2:?--runs needs N}; shift 2 ;;
         --jobs) jobs=${2:?--jobs needs N}; shift 2 ;;
         --keep-going) keep_going=1; shift ;;
-        -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         fuzz_sl|fuzz_afb|fuzz_rib|fuzz_texture) targets+=("$1"); shift ;;
         *) echo "tools/fuzz.sh: unknown argument '$1' (targets: ${all[*]})" >&2; exit 2 ;;
     esac
@@ -70,7 +72,7 @@ for t in "${targets[@]}"; do
     start=$(date +%s)
     rc=0
     "$build/fuzz/$t" "$corpus" "$seeds" "fuzz/regressions/$t" "${dict[@]}" "${run_flags[@]}" \
-        -max_total_time="$time" -timeout=25 -rss_limit_mb=2048 -print_final_stats=1 \
+        -max_total_time="$time" "${limits[@]}" -print_final_stats=1 \
         -artifact_prefix="$artifacts/" </dev/null >"$log" 2>&1 || rc=$?
     execs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
     last=$(grep -E '^#[0-9]+' "$log" | tail -1 || true)
@@ -85,7 +87,7 @@ for t in "${targets[@]}"; do
         # limits. One that does not (a timeout under a loaded machine, a sanitizer failing inside
         # itself) is reported with its log and input, and does not fail the run.
         if [[ -n "$crash" && -f "$crash" ]] &&
-            "$build/fuzz/$t" -timeout=25 -rss_limit_mb=2048 "$crash" >"$log.replay" 2>&1; then
+            "$build/fuzz/$t" "${limits[@]}" "$crash" >"$log.replay" 2>&1; then
             echo "$t: the input above did not fail again when run alone (log: $log.replay); not counted"
         else
             status=1

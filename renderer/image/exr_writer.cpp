@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <exception>
+#include <memory>
 #include <set>
 #include <stdexcept>
 
@@ -123,6 +124,12 @@ bool WriteExr(const std::string& path, const ImageBuffer& image, diag::Report* r
 
 namespace {
 
+/// The file at `path` opened for reading, once its headers pass OversizedExrHeader; throws why not.
+std::unique_ptr<Imf::InputFile> OpenExr(const std::string& path) {
+    if (const std::string why = OversizedExrHeader(path); !why.empty()) throw std::runtime_error(why);
+    return std::make_unique<Imf::InputFile>(path.c_str());
+}
+
 /// Size and attributes of an open file's header, and its extra channels' names (no values).
 ImageBuffer HeaderOf(const Imf::InputFile& file) {
     const Imath::Box2i dataWindow = file.header().dataWindow();
@@ -152,9 +159,7 @@ ImageBuffer HeaderOf(const Imf::InputFile& file) {
 
 bool ReadExrHeader(const std::string& path, ImageBuffer* out, diag::Report* report) {
     try {
-        if (const std::string why = OversizedExrHeader(path); !why.empty()) throw std::runtime_error(why);
-        Imf::InputFile file(path.c_str());
-        *out = HeaderOf(file);
+        *out = HeaderOf(*OpenExr(path));
         return true;
     } catch (const std::exception& e) {
         if (report) report->error({path}, std::string("cannot read image: ") + e.what());
@@ -165,8 +170,8 @@ bool ReadExrHeader(const std::string& path, ImageBuffer* out, diag::Report* repo
 bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report,
                  std::optional<std::array<int, 2>> rows) {
     try {
-        if (const std::string why = OversizedExrHeader(path); !why.empty()) throw std::runtime_error(why);
-        Imf::InputFile file(path.c_str());
+        const std::unique_ptr<Imf::InputFile> opened = OpenExr(path);
+        Imf::InputFile& file = *opened;
         const Imath::Box2i dataWindow = file.header().dataWindow();
         ImageBuffer image = HeaderOf(file);
         // The rows read, as a box in the file's coordinates: all, or the band asked for.
