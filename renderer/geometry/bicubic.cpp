@@ -2,6 +2,8 @@
 // control points to the power basis (renderer/geometry/bicubic.h).
 #include "renderer/geometry/bicubic.h"
 
+#include "renderer/geometry/pole.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -94,6 +96,7 @@ BicubicPatch BicubicPatch::FromControlPoints(const std::array<glm::dvec3, 16>& p
             if (a == 3 && b == 3) c += translation;  // the u^0 v^0 term: the only point among them
             patch.c[4 * (3 - a) + (3 - b)] = c;
         }
+    patch.poles = FindPatchPoles(patch);
     return patch;
 }
 

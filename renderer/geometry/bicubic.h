@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -49,10 +50,14 @@ struct CubicBasis {
 /// "bezier 3", or the 16 numbers and the step.
 std::string ToString(const CubicBasis& b);
 
+struct PatchPoles;  // renderer/geometry/pole.h
+
 /// A bicubic patch in the power basis: P(u,v) = sum over i, j of c[4 i + j] u^i v^j, u and v in
 /// [0, 1], in world space.
 struct BicubicPatch {
     std::array<glm::dvec3, 16> c{};
+    /// Edges collapsed to a point and the factor that gives the normal there (pole.h), or null.
+    std::shared_ptr<const PatchPoles> poles;
 
     /// The patch of the 16 control points `points` (u varies fastest, RI order) with the bases
     /// `uBasis` and `vBasis`, placed by `objectToWorld` (affine). The transform is applied to the

@@ -3,6 +3,8 @@
 // once per primitive, in doubles.
 #include "renderer/geometry/nurbs.h"
 
+#include "renderer/geometry/pole.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -87,15 +89,17 @@ void RationalPatch::Simplify(const std::vector<glm::dvec4>& size) {
     bool constantW = true;
     for (size_t k = 1; k < c.size(); ++k) constantW = constantW && c[k].w == 0;
     rational = !constantW || c[0].w != 1;
-    if (!constantW || c[0].w == 0) return;
-    // W is a constant w0: P = X / w0 is a polynomial.
-    const double w0 = c[0].w;
-    for (glm::dvec4& x : c) x = glm::dvec4(glm::dvec3(x) / w0, 0.0);
-    c[0].w = 1;
-    if (hasST && stHomogeneous)
-        for (glm::dvec2& x : st) x /= w0;
-    stHomogeneous = false;
-    rational = false;
+    if (constantW && c[0].w != 0) {
+        // W is a constant w0: P = X / w0 is a polynomial.
+        const double w0 = c[0].w;
+        for (glm::dvec4& x : c) x = glm::dvec4(glm::dvec3(x) / w0, 0.0);
+        c[0].w = 1;
+        if (hasST && stHomogeneous)
+            for (glm::dvec2& x : st) x /= w0;
+        stHomogeneous = false;
+        rational = false;
+    }
+    poles = FindPatchPoles(*this);
 }
 
 glm::dvec3 RationalPatch::At(double s, double t) const {

@@ -43,6 +43,9 @@ struct RationalPatch {
     bool hasST = false;          ///< whether `st` holds the texture coordinates
     bool stHomogeneous = false;  ///< st is divided by W (vertex "st" of a rational NuPatch)
     std::vector<glm::dvec2> st;  ///< coefficients as c's (if hasST)
+    /// Edges collapsed to a point and the factor that gives the normal there (pole.h), or null;
+    /// set by Simplify.
+    std::shared_ptr<const PatchPoles> poles;
 
     /// The patch of the 4 homogeneous corners `q` (world space; RenderMan order u0v0, u1v0, u0v1, u1v1).
     static RationalPatch Bilinear(const std::array<glm::dvec4, 4>& q);

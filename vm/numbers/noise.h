@@ -207,17 +207,20 @@ void AddTerm(T& acc, bool& any, const G& g, const T& x) {
     any = true;
 }
 
-/// raw(t) of one cell: gradient(o, i) gives component i of corner o's gradient (a double or a
-/// T); corners are numbered by bits, bit i set for o_i = 1.
+/// The fade s(t) = 6t^5 - 15t^4 + 10t^3, as every type computes it.
+template <class T>
+T Fade(const T& x) {
+    return x * x * x * (x * (x * 6.0 - 15.0) + 10.0);
+}
+
+/// raw(t) of one cell given the fades of its local coordinates, fade[i] = Fade(t[i]) (see
+/// CellPolynomial).
 template <class T, class GradientOf>
-T CellPolynomial(const T* t, int dims, GradientOf&& gradient) {
-    T fade[4];
+T FadedCellPolynomial(const T* t, const T* fade, int dims, GradientOf&& gradient) {
     T offset[4][2];  // t_i - o_i
     for (int i = 0; i < dims; ++i) {
-        const T& x = t[i];
-        fade[i] = x * x * x * (x * (x * 6.0 - 15.0) + 10.0);
-        offset[i][0] = x;
-        offset[i][1] = x - 1.0;
+        offset[i][0] = t[i];
+        offset[i][1] = t[i] - 1.0;
     }
     T v[16];
     const int corners = 1 << dims;
@@ -233,6 +236,15 @@ T CellPolynomial(const T* t, int dims, GradientOf&& gradient) {
         for (int j = 0; j < n; ++j) v[j] = v[2 * j] + fade[i] * (v[2 * j + 1] - v[2 * j]);
     }
     return v[0];
+}
+
+/// raw(t) of one cell: gradient(o, i) gives component i of corner o's gradient (a double or a
+/// T); corners are numbered by bits, bit i set for o_i = 1.
+template <class T, class GradientOf>
+T CellPolynomial(const T* t, int dims, GradientOf&& gradient) {
+    T fade[4];
+    for (int i = 0; i < dims; ++i) fade[i] = Fade(t[i]);
+    return FadedCellPolynomial(t, fade, dims, gradient);
 }
 
 /// Whether T can bound cells by LocalForm (the bounded types without derivatives: a Dual's
@@ -418,26 +430,63 @@ struct LocalForm {
     }
 };
 
-/// One cell's noise value before the final clamp, raw * NoiseScale(dims) + 0.5, over a region by
-/// LocalForm (see the head comment): p the noise coordinates, k the cell, g[o] the gradients of
-/// its corners. Contains the double value at every double point of the region that lies in this
-/// cell (t_d = p - k in double, in [0, 1]^dims).
+/// One coordinate of the part of a region inside one cell, for LocalCell: the cell's local
+/// coordinate over it, t_i = centre + reach*sigma_i, and the fade of t_i as a form in sigma_i and
+/// one symbol of its own, fade0 + fadeLinear*sigma_i + fadeOwn*eps +- fadeError. The fade depends
+/// only on the coordinate and its cell index k_i, so the cells of a region that share k_i share it
+/// (a region straddling a face in each of d dimensions has 2^d cells but 2d axes).
+/// Collapsing the fade's fresh symbols into one loses nothing: within a cell they appear only in
+/// that fade, and every later use multiplies all of them by the same number, so the sum of
+/// their absolute values is carried exactly as the one coefficient would be.
+struct LocalAxis {
+    double centre, reach;
+    double fade0, fadeLinear, fadeOwn, fadeError;
+};
+
+/// The LocalAxis of coordinate p (a bound) in the cell whose index along it is k.
+/// B holds every t_d = p - k in double: Interval subtraction contains the double one.
 template <class T>
-T LocalCell(const T* p, const double* k, int dims, const double (*g)[4]) {
-    // The part B of the region inside the cell, its centre c and a reach >= |t_i - c_i| on B.
-    // B holds every such t_d: Interval subtraction contains the double one.
-    double c[4], reach[4];
-    LocalForm t[4];
-    LocalForm::Begin(dims);
+LocalAxis MakeLocalAxis(const T& p, double k) {
+    LocalAxis axis;
+    const Interval r = RangeOf(p) - k;
+    const double lo = std::clamp(r.lo(), 0.0, 1.0), hi = std::clamp(r.hi(), 0.0, 1.0);
+    axis.centre = 0.5 * (lo + hi);  // between lo and hi: both are in [0, 1]
+    axis.reach = std::fmax(SubUp(axis.centre, lo), SubUp(hi, axis.centre));
+    LocalForm::Begin(1);
+    const LocalForm fade = Fade(LocalForm::Coordinate(axis.centre, axis.reach, 0));
+    axis.fade0 = fade.c0;
+    axis.fadeLinear = fade.n > 0 ? fade.c[0] : 0.0;
+    UpperSum own;
+    for (int k = 1; k < fade.n; ++k) own.add(std::fabs(fade.c[k]));
+    axis.fadeOwn = own.value();
+    axis.fadeError = fade.e;
+    return axis;
+}
+
+/// One cell's noise value before the final clamp, raw * NoiseScale(dims) + 0.5, over a region by
+/// LocalForm (see the head comment): p the noise coordinates, k the cell, axes[i] the LocalAxis
+/// of p[i] in it, g[o] the gradients of its corners. Contains the double value at every double
+/// point of the region that lies in this cell (t_d = p - k in double, in [0, 1]^dims).
+template <class T>
+T LocalCell(const T* p, const double* k, int dims, const LocalAxis* const* axes, const double (*g)[4]) {
+    // Symbols: sigma_i in slot i, the fade of coordinate i's own symbol in slot dims + i, then
+    // the fresh symbols of this cell's products.
+    LocalForm t[4], fade[4];
+    LocalForm::Begin(2 * dims);
     for (int i = 0; i < dims; ++i) {
-        const Interval r = RangeOf(p[i]) - k[i];
-        const double lo = std::clamp(r.lo(), 0.0, 1.0), hi = std::clamp(r.hi(), 0.0, 1.0);
-        c[i] = 0.5 * (lo + hi);  // between lo and hi: both are in [0, 1]
-        reach[i] = std::fmax(SubUp(c[i], lo), SubUp(hi, c[i]));
-        t[i] = LocalForm::Coordinate(c[i], reach[i], i);
+        const LocalAxis& a = *axes[i];
+        t[i] = LocalForm::Coordinate(a.centre, a.reach, i);
+        LocalForm& f = fade[i];
+        f.c0 = a.fade0;
+        f.e = a.fadeError;
+        f.n = dims + i + 1;
+        for (int s = 0; s < f.n; ++s) f.c[s] = 0;
+        f.c[i] = a.fadeLinear;
+        f.c[dims + i] = a.fadeOwn;
     }
     // The noise value before its clamp, as the double computes it (GradientNoise's last step).
-    const LocalForm raw = CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; }) * NoiseScale(dims) + 0.5;
+    const LocalForm raw =
+        FadedCellPolynomial(t, fade, dims, [&](int o, int i) { return g[o][i]; }) * NoiseScale(dims) + 0.5;
     // value(t_d) = z0 + sum_i z_i sigma_i + (fresh terms, e), sigma_i = (t_d,i - c_i)/reach_i,
     // and t_d,i = p_i - k_i + (its rounding, <= u since t_d,i <= 1):
     //   value(t_d) in sum_i a_i p_i + [z0 - sum_i a_i (k_i + c_i)] +- error
@@ -455,10 +504,10 @@ T LocalCell(const T* p, const double* k, int dims, const double (*g)[4]) {
             error.add(std::fabs(z));
             continue;
         }
-        const double a = z / reach[s];
+        const double a = z / axes[s]->reach;
         error.add(MulUp(std::fabs(z), kEpsilon));
         error.add(MulUp(std::fabs(a), kEpsilon));
-        constant = constant - Interval(a) * (Interval(k[s]) + Interval(c[s]));
+        constant = constant - Interval(a) * (Interval(k[s]) + Interval(axes[s]->centre));
         AddTerm(linear, any, a, p[s]);
     }
     const double e = AddUp(error.value(), kUnderflowSlack);
@@ -485,14 +534,15 @@ struct CellBox {
         return true;
     }
 
-    /// Calls visit(k) for each cell k (its lowest corner) in turn: a mixed-radix counter.
+    /// Calls visit(k, j) for each cell k (its lowest corner; j its offsets from kLo) in turn: a
+    /// mixed-radix counter.
     template <class Visit>
     void ForEach(int dims, Visit&& visit) const {
         int j[4] = {0, 0, 0, 0};
         for (;;) {
             double k[4] = {0, 0, 0, 0};
             for (int i = 0; i < dims; ++i) k[i] = kLo[i] + j[i];
-            visit(k);
+            visit(k, static_cast<const int*>(j));
             int i = 0;
             while (i < dims && ++j[i] >= count[i]) j[i++] = 0;
             if (i == dims) return;
@@ -525,8 +575,16 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
                 (method == NoiseBoundMethod::Local || (method == NoiseBoundMethod::Auto && kLocalNoiseByDefault<T>));
     T raw(0.0);
     if (cellwise) {
+        // Local: each coordinate's axes, one per cell index it touches (at most kNoiseCellCap).
+        LocalAxis axes[4][kNoiseCellCap];
+        if constexpr (kLocalNoise<T>) {
+            if (local)
+                for (int i = 0; i < dims; ++i)
+                    for (int j = 0; j < static_cast<int>(box.count[i]); ++j)
+                        axes[i][j] = MakeLocalAxis(p[i], box.kLo[i] + j);
+        }
         bool first = true;
-        box.ForEach(dims, [&](const double* k) {
+        box.ForEach(dims, [&](const double* k, const int* j) {
             T t[4];
             int64_t cell[4];
             for (int i = 0; i < dims; ++i) {
@@ -544,7 +602,11 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
             }
             T v(0.0);
             if constexpr (kLocalNoise<T>) {
-                if (local) v = LocalCell(p, k, dims, g);
+                if (local) {
+                    const LocalAxis* cellAxes[4];
+                    for (int i = 0; i < dims; ++i) cellAxes[i] = &axes[i][j[i]];
+                    v = LocalCell(p, k, dims, cellAxes, g);
+                }
             }
             if (!local) v = CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; });
             raw = first ? v : Join(raw, v);
@@ -588,7 +650,7 @@ T CellNoise(const T* p, int dims, uint32_t seed) {
     if (!(box.cells <= kNoiseCellCap)) return Join(T(0.0), T(1.0));
     T result(0.0);
     bool first = true;
-    box.ForEach(dims, [&](const double* k) {
+    box.ForEach(dims, [&](const double* k, const int*) {
         int64_t cell[4];
         for (int i = 0; i < dims; ++i) cell[i] = noise_detail::CellIndex(k[i]);
         T v(noise_detail::CellValue(cell, dims, seed));
