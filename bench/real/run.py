@@ -6,8 +6,10 @@
 
 Each scene is rendered once, one after the other, with `affray render SCENE -o TMP.exr --stats
 --quiet --threads N --time-limit S` (Python 3 standard library only). The table gives per scene:
-the render's wall time (affray's wall_seconds; a render stopped by --time-limit shows how far it
-got instead), the peak resident memory of the affray process (its own rusage, from wait4),
+the render's wall time (affray's wall_seconds: tracing the image, after the scene is read, its
+shaders compiled, its maps made and its surfaces prepared; a render stopped by --time-limit shows
+how far it got instead), the whole process's wall time (all of that included), the peak resident
+memory of the affray process (its own rusage, from wait4),
 region bounds tested and bounds evaluated (by running the shader) per camera ray and per shadow
 ray, depth-limit hits, rays out of region budget, the largest certified error of a camera hit
 (world units), and the share of the render spent evaluating bounds:
@@ -113,10 +115,10 @@ def main():
         version, commit, " (modified)" if dirty else "", args.threads, limit,
         ", crop " + args.crop if args.crop else ""))
     print()
-    print("| scene | wall | peak memory | regions / camera ray | evaluations / camera ray | "
+    print("| scene | render wall | process wall | peak memory | regions / camera ray | evaluations / camera ray | "
           "regions / shadow ray | evaluations / shadow ray | depth-limit hits | budget-exhausted rays | "
           "max certified error | bound evaluation share |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     outdir = tempfile.mkdtemp(prefix="affray-bench-real-")
     records = {}
     try:
@@ -134,13 +136,14 @@ def main():
                     what = "killed after %.0f s" % seconds
                 else:
                     what = "failed (exit %s): %s" % (status, error.split(": error: ", 1)[-1][:120])
-                print("| %s | %s | %.0f MB | - | - | - | - | - | - | - | - |" % (name, what, rss), flush=True)
+                print("| %s | %s | %.1f s | %.0f MB | - | - | - | - | - | - | - | - |" % (name, what, seconds, rss),
+                      flush=True)
                 continue
             wall = stats["wall_seconds"]
             cache = stats.get("cache", {})
             share = cache.get("build_thread_seconds", 0) / (wall * args.threads) if wall > 0 else None
-            print("| %s | %.1f s | %.0f MB | %s | %s | %s | %s | %d | %d | %s | %s |" % (
-                name, wall, rss, fmt(stats.get("regions_per_ray_mean"), "%.1f"),
+            print("| %s | %.1f s | %.1f s | %.0f MB | %s | %s | %s | %s | %d | %d | %s | %s |" % (
+                name, wall, seconds, rss, fmt(stats.get("regions_per_ray_mean"), "%.1f"),
                 fmt(stats.get("evaluations_per_ray_mean"), "%.2f"),
                 fmt(stats.get("shadow_regions_per_ray_mean"), "%.1f"),
                 fmt(stats.get("shadow_evaluations_per_ray_mean"), "%.2f"),
