@@ -135,7 +135,8 @@ def main():
                 elif status in (130, 143, -signal.SIGTERM):
                     what = "killed after %.0f s" % seconds
                 else:
-                    what = "failed (exit %s): %s" % (status, error.split(": error: ", 1)[-1][:120])
+                    message = error.split(": error: ", 1)[-1].split(" (", 1)[0]
+                    what = "failed (exit %s): %s" % (status, message[:100])
                 print("| %s | %s | %.1f s | %.0f MB | - | - | - | - | - | - | - | - |" % (name, what, seconds, rss),
                       flush=True)
                 continue
