@@ -9,6 +9,11 @@ namespace affray::renderer {
 
 namespace {
 
+/// An edge collapses when its points agree to this fraction of the patch's size. Exported files
+/// print 6 or 7 significant digits, so the points of a collapsed edge of a rational patch (x w,
+/// y w, z w, w, with w 0.8047) agree only to about 1e-6 of their size once divided by w.
+constexpr double kCollapsed = 1e-5;
+
 /// Collapsed edges are found along parameter `axis` of a patch whose homogeneous coefficients
 /// coef(i, j) (of s^i t^j) are given by degree along and across that parameter: `along` is the
 /// parameter of the collapsed edges' ends (1 = t), so an edge is {along = e}.
@@ -39,7 +44,7 @@ std::shared_ptr<const PatchPoles> FindAlong(int axis, int degreeU, int degreeV, 
         scale = std::max(scale, glm::length(point[e]));
         for (int a = 1; a <= degreeA; ++a) {
             const glm::dvec3 rest = glm::dvec3(h[a]) - point[e] * h[a].w;
-            if (!(std::max({std::fabs(rest.x), std::fabs(rest.y), std::fabs(rest.z)}) <= 1e-10 * scale))
+            if (!(std::max({std::fabs(rest.x), std::fabs(rest.y), std::fabs(rest.z)}) <= kCollapsed * scale))
                 collapsed[e] = false;
         }
     }
@@ -73,7 +78,7 @@ std::shared_ptr<const PatchPoles> FindAlong(int axis, int degreeU, int degreeV, 
                 carry = g[k] + r * carry;
                 q[k - 1] = carry;
             }
-            g = q;  // the remainder g[0] + r q[0] is rounding noise of the conversion: dropped
+            g = q;  // the remainder g[0] + r q[0] (the edge's extent, below kCollapsed) is dropped
         }
         for (int b = 0; b <= degreeY; ++b) {
             const int i = axis == 1 ? a : b, j = axis == 1 ? b : a;

@@ -16,8 +16,12 @@
 // and sign(D) Q x dP/dt is a positive multiple of dP/ds x dP/dt that does not vanish at the
 // pole (its limit there is the tangent of the edge's first-order ring times the radial tangent).
 // Edges s = e are the same with s and t exchanged: sign(D) dP/ds x R, R = d(Z/W)/dt.
-// Y is computed once, in doubles, by synthetic division (its remainder, rounding noise of the
-// conversion to the power basis, is dropped); the normal direction is then a polynomial
+// An edge counts as collapsed when its points agree to 1e-5 of the patch's size: exporters print
+// 6 or 7 significant digits, so a rational patch's collapsed edge (x w, y w, z w, w) is a point
+// only to about 1e-6 once divided by w. P is left exactly as given; only the normal's definition
+// changes, by the dropped remainder, and only next to the edge, where the tangents' cross product
+// is at the scale of the file's rounding and its direction is noise.
+// Y is computed once, in doubles, by synthetic division (the remainder is dropped); the normal direction is then a polynomial
 // expression in s, t evaluated by the same template for a double, a bound or a dual, so the
 // shader sees the same N at a point as its bound contains over a region.
 #pragma once
@@ -44,7 +48,7 @@ struct PatchPoles {
 };
 
 /// The poles of a bicubic patch, or null if no edge collapses. An edge collapses when its points
-/// agree with its first to 1e-10 of the patch's size.
+/// agree with its first to 1e-5 of the patch's size (see the head comment).
 std::shared_ptr<const PatchPoles> FindPatchPoles(const BicubicPatch& patch);
 /// The poles of a rational patch (a NuPatch span), or null.
 std::shared_ptr<const PatchPoles> FindPatchPoles(const RationalPatch& patch);
