@@ -2,6 +2,8 @@
 // built, memory-budgeted quadtree of them (see the header).
 #include "renderer/bound_tree.h"
 
+#include <tuple>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -143,15 +145,22 @@ RegionBound Reduce(const vm::Vec3<vm::Dual<T>>& p) {
 template <class N>
 class RegionEvaluatorT final : public RegionEvaluator {
   public:
-    RegionEvaluatorT(const BaseSurface& surface, const vm::Program& program, const glm::dvec3& eye)
-        : m_surface(surface), m_interp(program), m_output(*program.findOutput("P")), m_eye(eye) {}
+    /// With `shared` (a pool's interpreter, which must outlive this), each evaluation runs on it
+    /// after pointing it at `program`; without, on an interpreter of its own.
+    RegionEvaluatorT(const BaseSurface& surface, const vm::Program& program, const glm::dvec3& eye,
+                     std::shared_ptr<vm::Interpreter<N>> shared = nullptr)
+        : m_surface(surface),
+          m_program(program),
+          m_interp(shared ? std::move(shared) : std::make_shared<vm::Interpreter<N>>(program)),
+          m_output(*program.findOutput("P")),
+          m_eye(eye) {}
 
     RegionBound Bound(double u0, double u1, double v0, double v1) override {
-        return Reduce(EvaluateOnSurface(m_interp, m_surface, u0, u1, v0, v1, m_eye, m_output));
+        return Reduce(EvaluateOnSurface(Interp(), m_surface, u0, u1, v0, v1, m_eye, m_output));
     }
 
     bool PointAt(double u, double v, glm::dvec3* p) override {
-        const Vec3<N> x = EvaluateOnSurface(m_interp, m_surface, u, u, v, v, m_eye, m_output);
+        const Vec3<N> x = EvaluateOnSurface(Interp(), m_surface, u, u, v, v, m_eye, m_output);
         for (int i = 0; i < 3; ++i) {
             const vm::Interval r = RangeOf(vm::ValueOf(x[i]));
             if (r.isUnbounded()) return false;
@@ -161,13 +170,40 @@ class RegionEvaluatorT final : public RegionEvaluator {
     }
 
   private:
+    vm::Interpreter<N>& Interp() {
+        if (&m_interp->program() != &m_program) m_interp->SetProgram(m_program);
+        return *m_interp;
+    }
+
     const BaseSurface& m_surface;
-    vm::Interpreter<N> m_interp;
+    const vm::Program& m_program;
+    std::shared_ptr<vm::Interpreter<N>> m_interp;
     const vm::ProgramOutput& m_output;
     glm::dvec3 m_eye;
 };
 
 }  // namespace
+
+class EvaluatorPool {
+  public:
+    /// The pool's interpreter for type N, first made for `program`.
+    template <class N>
+    std::shared_ptr<vm::Interpreter<N>> Get(const vm::Program& program) {
+        std::shared_ptr<vm::Interpreter<N>>& slot = std::get<std::shared_ptr<vm::Interpreter<N>>>(m_interpreters);
+        if (!slot) slot = std::make_shared<vm::Interpreter<N>>(program);
+        return slot;
+    }
+
+  private:
+    std::tuple<std::shared_ptr<vm::Interpreter<vm::Interval>>, std::shared_ptr<vm::Interpreter<vm::Affine>>,
+               std::shared_ptr<vm::Interpreter<vm::ReducedAffine>>,
+               std::shared_ptr<vm::Interpreter<vm::Dual<vm::Interval>>>,
+               std::shared_ptr<vm::Interpreter<vm::Dual<vm::Affine>>>,
+               std::shared_ptr<vm::Interpreter<vm::Dual<vm::ReducedAffine>>>>
+        m_interpreters;
+};
+
+std::shared_ptr<EvaluatorPool> MakeEvaluatorPool() { return std::make_shared<EvaluatorPool>(); }
 
 int SplitAxis(const RegionBound& b, int levelU, int levelV, int maxDepth) {
     if (levelU >= maxDepth) return kSplitV;
@@ -211,18 +247,20 @@ BoundTree::~BoundTree() {
     }
 }
 
-std::unique_ptr<RegionEvaluator> BoundTree::MakeEvaluator() const {
+std::unique_ptr<RegionEvaluator> BoundTree::MakeEvaluator(const std::shared_ptr<EvaluatorPool>& pool) const {
+    // A program with parameters keeps an interpreter of its own (SetProgram carries parameter
+    // values over, so the pool's interpreter may only run programs without them, as every
+    // specialised program is).
+    const bool share = pool && m_program->params.empty();
+    auto make = [&](auto type) -> std::unique_ptr<RegionEvaluator> {
+        using N = decltype(type);
+        return std::make_unique<RegionEvaluatorT<N>>(m_surface, *m_program, m_eye,
+                                                     share ? pool->Get<N>(*m_program) : nullptr);
+    };
     const bool dual = m_program->usesDerivatives();
-    if (m_mode == BoundMode::Affine) {
-        if (dual) return std::make_unique<RegionEvaluatorT<vm::Dual<vm::Affine>>>(m_surface, *m_program, m_eye);
-        return std::make_unique<RegionEvaluatorT<vm::Affine>>(m_surface, *m_program, m_eye);
-    }
-    if (m_mode == BoundMode::Reduced) {
-        if (dual) return std::make_unique<RegionEvaluatorT<vm::Dual<vm::ReducedAffine>>>(m_surface, *m_program, m_eye);
-        return std::make_unique<RegionEvaluatorT<vm::ReducedAffine>>(m_surface, *m_program, m_eye);
-    }
-    if (dual) return std::make_unique<RegionEvaluatorT<vm::Dual<vm::Interval>>>(m_surface, *m_program, m_eye);
-    return std::make_unique<RegionEvaluatorT<vm::Interval>>(m_surface, *m_program, m_eye);
+    if (m_mode == BoundMode::Affine) return dual ? make(vm::Dual<vm::Affine>()) : make(vm::Affine());
+    if (m_mode == BoundMode::Reduced) return dual ? make(vm::Dual<vm::ReducedAffine>()) : make(vm::ReducedAffine());
+    return dual ? make(vm::Dual<vm::Interval>()) : make(vm::Interval());
 }
 
 BoundTree::Slot* BoundTree::RegisterWalker() {

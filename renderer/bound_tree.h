@@ -122,6 +122,11 @@ struct BoundTreeStats {
 /// surfaces of a scene.
 inline constexpr size_t kDefaultCacheBytes = size_t(256) << 20;
 
+/// The interpreters one thread's region evaluators share, one per number type, made on first use
+/// (bound_tree.cpp). A thread bounds one region at a time, so they can.
+class EvaluatorPool;
+std::shared_ptr<EvaluatorPool> MakeEvaluatorPool();
+
 class BoundTree {
   public:
     /// The hierarchy of `surface` displaced by `boundProgram` (which outputs P; it must outlive the
@@ -136,8 +141,10 @@ class BoundTree {
 
     /// The surface the hierarchy bounds.
     const BaseSurface& surface() const { return m_surface; }
-    /// A new evaluator for this surface, for one thread.
-    std::unique_ptr<RegionEvaluator> MakeEvaluator() const;
+    /// A new evaluator for this surface, for one thread. With `pool` (that thread's), it borrows
+    /// the pool's interpreter for each bound instead of holding registers of its own, so a thread
+    /// walking thousands of primitives keeps one interpreter per number type, not one each.
+    std::unique_ptr<RegionEvaluator> MakeEvaluator(const std::shared_ptr<EvaluatorPool>& pool = nullptr) const;
 
     BoundNode& root() { return m_root; }
     int maxDepth() const { return m_maxDepth; }

@@ -236,12 +236,32 @@ bool OutsideGroup(const RegionBound& b, const RayGroup& g) {
 /// The most nodes a group's frontier keeps: each of the group's rays tests all of them.
 constexpr size_t kMaxFrontier = 32;
 
+}  // namespace
+
+class IntersectWorkspace {
+  public:
+    std::vector<Entry> stack;  // a walk's, sized for the deepest tree of the thread
+    std::shared_ptr<EvaluatorPool> pool = MakeEvaluatorPool();
+};
+
+std::shared_ptr<IntersectWorkspace> MakeIntersectWorkspace() { return std::make_shared<IntersectWorkspace>(); }
+
+namespace {
+
 class TreeIntersector final : public SurfaceIntersector {
   public:
-    TreeIntersector(BoundTree& tree, uint64_t budget, std::unique_ptr<BoundTree> owned = nullptr)
-        : m_owned(std::move(owned)), m_tree(tree), m_walker(tree), m_evaluator(tree.MakeEvaluator()), m_budget(budget) {
+    TreeIntersector(BoundTree& tree, uint64_t budget, std::unique_ptr<BoundTree> owned = nullptr,
+                    std::shared_ptr<IntersectWorkspace> workspace = nullptr)
+        : m_owned(std::move(owned)),
+          m_tree(tree),
+          m_walker(tree),
+          m_workspace(workspace ? std::move(workspace) : MakeIntersectWorkspace()),
+          m_evaluator(tree.MakeEvaluator(m_workspace->pool)),
+          m_budget(budget),
+          m_stack(m_workspace->stack) {
         // Each of the at most 2 * maxDepth splits on a ray's path leaves at most 3 siblings behind.
-        m_stack.resize(kMaxFrontier + 6 * static_cast<size_t>(std::max(tree.maxDepth(), 0)) + 8);
+        const size_t need = kMaxFrontier + 6 * static_cast<size_t>(std::max(tree.maxDepth(), 0)) + 8;
+        if (m_stack.size() < need) m_stack.resize(need);
     }
 
     bool Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit, Hit* hit,
@@ -271,9 +291,10 @@ class TreeIntersector final : public SurfaceIntersector {
     std::unique_ptr<BoundTree> m_owned;  // the tree, when this intersector has one of its own
     BoundTree& m_tree;
     BoundTree::Walker m_walker;
+    std::shared_ptr<IntersectWorkspace> m_workspace;
     std::unique_ptr<RegionEvaluator> m_evaluator;
     uint64_t m_budget;
-    std::vector<Entry> m_stack;  // the walk's, [0, m_top) (sized once: entries are not initialised)
+    std::vector<Entry>& m_stack;  // the workspace's, [0, m_top) during a walk (entries not initialised)
     size_t m_top = 0;
     // The current ray's frame.
     glm::dvec3 m_origin, m_dir, m_n1, m_n2, m_invDir;
@@ -592,8 +613,9 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
 
 }  // namespace
 
-std::unique_ptr<SurfaceIntersector> MakeSurfaceIntersector(BoundTree& tree, uint64_t regionBudget) {
-    return std::make_unique<TreeIntersector>(tree, regionBudget);
+std::unique_ptr<SurfaceIntersector> MakeSurfaceIntersector(BoundTree& tree, uint64_t regionBudget,
+                                                           std::shared_ptr<IntersectWorkspace> workspace) {
+    return std::make_unique<TreeIntersector>(tree, regionBudget, nullptr, std::move(workspace));
 }
 
 std::unique_ptr<SurfaceIntersector> MakeSurfaceIntersector(const BaseSurface& surface, const vm::Program& boundProgram,

@@ -91,10 +91,19 @@ class SurfaceIntersector {
 /// on the time of any ray. The stiff scenes of docs/stiff.md need at most a few thousand.
 inline constexpr uint64_t kDefaultRegionBudget = 1u << 18;
 
+/// What one thread's intersectors share: the walk's stack and the interpreters that bound regions
+/// (an EvaluatorPool). A thread runs one walk at a time, so its intersectors need not each hold
+/// them, and their memory does not grow with the number of primitives (about 25 KB of stack and
+/// an interpreter's registers each, before).
+class IntersectWorkspace;
+std::shared_ptr<IntersectWorkspace> MakeIntersectWorkspace();
+
 /// An intersector for one thread walking `tree` (shared with other threads; it must outlive the
-/// intersector). Its hits do not depend on what the tree held before.
+/// intersector). Its hits do not depend on what the tree held before. With `workspace` (the
+/// thread's), it uses the workspace's stack and interpreters; without, its own.
 std::unique_ptr<SurfaceIntersector> MakeSurfaceIntersector(BoundTree& tree,
-                                                           uint64_t regionBudget = kDefaultRegionBudget);
+                                                           uint64_t regionBudget = kDefaultRegionBudget,
+                                                           std::shared_ptr<IntersectWorkspace> workspace = nullptr);
 
 /// An intersector with a bound hierarchy of its own, for `surface` displaced by `boundProgram`
 /// (which outputs P, and must outlive the intersector), bounded in `mode` (or its dual if the

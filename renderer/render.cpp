@@ -66,21 +66,42 @@ std::string FindShader(const std::string& name, const std::vector<std::string>& 
 /// bound hierarchy) and a shading interpreter.
 struct ThreadState {
     std::vector<std::unique_ptr<SurfaceIntersector>> intersectors;
-    std::vector<std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> shaders;
     IntersectStats cameraStats, shadowStats;
     uint64_t cameraRays = 0;
 
     ThreadState(const PreparedScene& scene, const RenderOptions& options,
-                const std::vector<std::unique_ptr<BoundTree>>& trees) {
+                const std::vector<std::unique_ptr<BoundTree>>& trees)
+        : m_scene(scene), m_ownShaders(scene.primitives.size()) {
+        const std::shared_ptr<IntersectWorkspace> workspace = MakeIntersectWorkspace();
         for (size_t i = 0; i < scene.primitives.size(); ++i) {
             const Primitive& prim = scene.primitives[i];
             if (options.intersectorFactory)
                 intersectors.push_back(options.intersectorFactory(prim, static_cast<int>(i)));
             else
-                intersectors.push_back(MakeSurfaceIntersector(*trees[i], options.regionBudget));
-            shaders.push_back(std::make_unique<vm::Interpreter<vm::Dual<double>>>(prim.shade));
+                intersectors.push_back(MakeSurfaceIntersector(*trees[i], options.regionBudget, workspace));
         }
     }
+
+    /// The shading interpreter of primitive i, running its shade program. A program without
+    /// parameters (every specialised one) runs on the thread's one interpreter, pointed at it;
+    /// one with parameters gets an interpreter of its own, made on first use.
+    vm::Interpreter<vm::Dual<double>>& Shader(int i) {
+        const vm::Program& program = m_scene.primitives[i].shade;
+        if (!program.params.empty()) {
+            if (!m_ownShaders[i]) m_ownShaders[i] = std::make_unique<vm::Interpreter<vm::Dual<double>>>(program);
+            return *m_ownShaders[i];
+        }
+        if (!m_shared)
+            m_shared = std::make_unique<vm::Interpreter<vm::Dual<double>>>(program);
+        else if (&m_shared->program() != &program)
+            m_shared->SetProgram(program);
+        return *m_shared;
+    }
+
+  private:
+    const PreparedScene& m_scene;
+    std::unique_ptr<vm::Interpreter<vm::Dual<double>>> m_shared;
+    std::vector<std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> m_ownShaders;
 };
 
 struct NearestHit {
@@ -98,7 +119,7 @@ struct HitPoint {
 HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh,
                      const glm::dvec3& eye) {
     const Primitive& prim = scene.primitives[nh.primitive];
-    vm::Interpreter<vm::Dual<double>>& interp = *ts.shaders[nh.primitive];
+    vm::Interpreter<vm::Dual<double>>& interp = ts.Shader(nh.primitive);
     const double u = nh.hit.u, v = nh.hit.v;
     HitPoint h;
     h.P = ToGlm(EvaluateOnSurface(interp, prim.base, u, u, v, v, eye, *prim.shade.findOutput("P")));
