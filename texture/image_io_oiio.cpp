@@ -119,6 +119,9 @@ class OiioImageIo final : public ImageIo {
         OIIO::ImageSpec config;
         if (format) config.format = TypeOf(*format);
         config.attribute("wrapmodes", wrapmodes);
+        // Always a TIFF, whatever the name: prman's txmake names its files .tex or .tx, and the
+        // scenes written for it name the made file so (OIIO picks a writer by extension).
+        config.attribute("maketx:fileformatname", "tiff");
         std::ostringstream messages;
         if (OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, picture, output, config, &messages))
             return true;

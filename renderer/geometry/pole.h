@@ -40,10 +40,10 @@ namespace affray::renderer {
 
 /// The factor Y of a patch with collapsed edges (see the head comment).
 struct PatchPoles {
-    int axis = 1;       ///< 1: edges t = 0 and/or t = 1 collapse; 0: edges s = 0 and/or s = 1
-    double sign = 1;    ///< the sign of D inside the patch (+1 for t, -1 for t - 1 and t (t - 1))
-    int degreeU = 0;    ///< Y's degree in s
-    int degreeV = 0;    ///< and in t
+    int axis = 1;               ///< 1: edges t = 0 and/or t = 1 collapse; 0: edges s = 0 and/or s = 1
+    double sign = 1;            ///< the sign of D inside the patch (+1 for t, -1 for t - 1 and t (t - 1))
+    int degreeU = 0;            ///< Y's degree in s
+    int degreeV = 0;            ///< and in t
     std::vector<glm::dvec3> y;  ///< Y's coefficients, of s^i t^j at (degreeV + 1) i + j
 };
 
@@ -62,8 +62,8 @@ void PoleNormalDirection(const PatchPoles& poles, const T& s, const T& t, const 
     for (int k = 0; k < 3; ++k) {
         T value, ds, dt;
         nurbs_detail::Polynomial(
-            poles.degreeU, poles.degreeV, [&](int i, int j) { return poles.y[(poles.degreeV + 1) * i + j][k]; }, s,
-            t, &value, poles.axis == 1 ? &ds : nullptr, poles.axis == 0 ? &dt : nullptr);
+            poles.degreeU, poles.degreeV, [&](int i, int j) { return poles.y[(poles.degreeV + 1) * i + j][k]; }, s, t,
+            &value, poles.axis == 1 ? &ds : nullptr, poles.axis == 0 ? &dt : nullptr);
         y[k] = value;
         yd[k] = poles.axis == 1 ? ds : dt;
     }

@@ -115,6 +115,9 @@ TEST_CASE("texture render: one map in every format displaces a plane with certif
 
 TEST_CASE("texture render: MakeTexture makes a tiled, mip-mapped texture that a shader reads",
           "[renderer][texture][rib]") {
+    // Named as affray's tools name it (.tx) or as prman's txmake does (.tex): a TIFF either way.
+    const std::string name = GENERATE(as<std::string>(), "made.tx", "made.tex");
+    INFO(name);
     test::TempDir dir;
     dir.Write("heights.sl",
               "displacement heights(string map = \"\"; float Km = 0.12) {\n"
@@ -123,23 +126,25 @@ TEST_CASE("texture render: MakeTexture makes a tiled, mip-mapped texture that a 
     test::tex::ImageLayout bytes;
     bytes.format = test::tex::PixelFormat::UInt8;
     test::tex::WriteImage(dir.Path("picture.png"), kMapSize, kMapSize, 1, texels, bytes);
-    const std::string scene = "MakeTexture \"picture.png\" \"made.tx\" \"clamp\" \"black\" \"gaussian\" 2 2\n";
+    const std::string scene = "MakeTexture \"picture.png\" \"" + name + "\" \"clamp\" \"black\" \"gaussian\" 2 2\n";
     Rendered made;
     made.image = test::RenderRib(dir,
                                  scene +
                                      "Format 40 30 1\nProjection \"perspective\" \"fov\" [40]\n"
                                      "Translate 0 0 1.3\nRotate -120 1 0 0\nWorldBegin\n"
-                                     "Displacement \"heights\" \"string map\" [\"made.tx\"]\n"
+                                     "Displacement \"heights\" \"string map\" [\"" +
+                                     name +
+                                     "\"]\n"
                                      "Patch \"bilinear\" \"P\" [-0.5 -0.5 0  0.5 -0.5 0  -0.5 0.5 0  0.5 0.5 0]\n"
                                      "WorldEnd\n",
                                  &made.stats);
     // The file: tiled, mip-mapped, the wrap modes of the request; texels those of the picture.
-    const texture::io::ImageHeader header = test::tex::ReadHeader(dir.Path("made.tx"));
+    const texture::io::ImageHeader header = test::tex::ReadHeader(dir.Path(name));
     CHECK(header.tileWidth > 0);
     CHECK(header.mipLevels > 1);
     CHECK(header.wrapmodes == "clamp,black");
     std::string error;
-    auto map = texture::Open(dir.Path("made.tx"), &error);
+    auto map = texture::Open(dir.Path(name), &error);
     REQUIRE(map);
     CHECK(map->swrap() == texture::Wrap::Clamp);
     CHECK(map->twrap() == texture::Wrap::Black);

@@ -25,14 +25,13 @@ namespace {
 // The classic teapot's lid knob (patch 21 of the Newell data) and one of its bottom patches
 // (29), as a RIB exporter writes them: 16 points, u fastest. Each has an edge whose four points
 // coincide.
-const double kLid[48] = {0,   0,      3.15, 0,     0,      3.15, 0,     0,      3.15, 0,    0,      3.15,
-                         0.8, 0,      3.15, 0.8,   -0.45,  3.15, 0.45,  -0.8,   3.15, 0,    -0.8,   3.15,
-                         0,   0,      2.85, 0,     0,      2.85, 0,     0,      2.85, 0,    0,      2.85,
-                         0.2, 0,      2.7,  0.2,   -0.112, 2.7,  0.112, -0.2,   2.7,  0,    -0.2,   2.7};
-const double kBottom[48] = {0,     0,   0,    0,     0,     0,     0,     0,   0,     0,     0,     0,
-                            1.425, 0,   0,    1.425, 0.798, 0,     0.798, 1.425, 0,   0,     1.425, 0,
-                            1.5,   0,   0.075, 1.5,  0.84,  0.075, 0.84,  1.5, 0.075, 0,     1.5,   0.075,
-                            1.5,   0,   0.15, 1.5,   0.84,  0.15,  0.84,  1.5, 0.15,  0,     1.5,   0.15};
+const double kLid[48] = {
+    0, 0, 3.15, 0, 0, 3.15, 0, 0, 3.15, 0, 0, 3.15, 0.8, 0, 3.15, 0.8, -0.45,  3.15, 0.45,  -0.8, 3.15, 0, -0.8, 3.15,
+    0, 0, 2.85, 0, 0, 2.85, 0, 0, 2.85, 0, 0, 2.85, 0.2, 0, 2.7,  0.2, -0.112, 2.7,  0.112, -0.2, 2.7,  0, -0.2, 2.7};
+const double kBottom[48] = {0,     0, 0,     0,     0,     0,     0,     0,     0,     0, 0,     0,
+                            1.425, 0, 0,     1.425, 0.798, 0,     0.798, 1.425, 0,     0, 1.425, 0,
+                            1.5,   0, 0.075, 1.5,   0.84,  0.075, 0.84,  1.5,   0.075, 0, 1.5,   0.075,
+                            1.5,   0, 0.15,  1.5,   0.84,  0.15,  0.84,  1.5,   0.15,  0, 1.5,   0.15};
 
 std::array<glm::dvec3, 16> Points(const double* xyz, bool transpose) {
     std::array<glm::dvec3, 16> p;
@@ -91,7 +90,8 @@ std::vector<PoleSurface> Surfaces() {
     out.push_back(Surface("lid", BicubicPatch::FromControlPoints(Points(kLid, false), bezier, bezier, place), {0}));
     out.push_back(
         Surface("lid transposed", BicubicPatch::FromControlPoints(Points(kLid, true), bezier, bezier, place), {0}));
-    out.push_back(Surface("bottom", BicubicPatch::FromControlPoints(Points(kBottom, false), bezier, bezier, place), {0}));
+    out.push_back(
+        Surface("bottom", BicubicPatch::FromControlPoints(Points(kBottom, false), bezier, bezier, place), {0}));
     // A spindle: a quarter of a surface of revolution closed at both ends (edges v = 0, v = 1).
     std::array<glm::dvec3, 16> spindle;
     const double k = 0.5523, ring[4][2] = {{1, 0}, {1, k}, {k, 1}, {0, 1}}, radius[4] = {0, 0.8, 0.8, 0};
