@@ -74,9 +74,16 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
                                                 "; give each world its own 'FrameBegin'/'FrameEnd'"
                                           : "a second 'WorldBegin' outside frames; give each world its own "
                                             "'FrameBegin'/'FrameEnd'");
-    if (!m_blocks.empty() && m_blocks.back().kind != Block::Frame)
-        return Fail(r.at, "'WorldBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) + " on line " +
-                              std::to_string(m_blocks.back().at.line));
+    // Exporters (Houdini) may wrap the camera transform and the world in TransformBegin or
+    // AttributeBegin: the world starts from the transform current here all the same, and the block
+    // restores what it saved after WorldEnd. (No other block can be open here: FrameBegin is
+    // refused inside a block, and solids inside a world.)
+    if (!m_blocks.empty() && m_blocks.back().kind != Block::Frame) {
+        const std::string block = Quote(BlockName(m_blocks.back().kind, false));
+        Note(r.at, "'WorldBegin' inside " + block +
+                       ": the world starts from the transform current here (the camera transform), and " +
+                       Quote(BlockName(m_blocks.back().kind, true)) + " after 'WorldEnd' ends the block");
+    }
     // The CTM now is world -> camera; it must be invertible for rays to be generated.
     glm::dmat4 worldToCamera = m_state.ctm;
     double det = glm::determinant(worldToCamera);
@@ -99,7 +106,7 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
     if (!m_scene.skipped.empty()) {
         const std::string what =
             m_frameDefaults ? "frame " + std::to_string(*m_scene.frame) : std::string("the world block");
-        const RibPos at = m_frameDefaults ? m_blocks.back().at : r.at;
+        const RibPos at = m_frameDefaults ? m_blocks.front().at : r.at;  // FrameBegin opens no block inside another
         Note(at, what + " renders " + m_scene.skipped + "; affray traces shadows: skipped");
     }
     m_worldSeen = true;
