@@ -63,6 +63,8 @@ class RibParser : private RibArgChecks {
         /// ScopedCoordinateSystem: the named spaces of this block and those around it (null:
         /// none), given to every primitive (PrimitiveDesc::scopedSpaces).
         std::shared_ptr<const std::map<std::string, glm::dmat4>> scopedSpaces;
+        /// Attribute values by "category:name" (null: none), for conditional RIB's $category:name.
+        std::shared_ptr<const std::map<std::string, ParamValue>> attributes;
     };
     /// What FrameEnd restores: the options and camera-space lights and coordinate systems in
     /// effect at FrameBegin (the graphics state is restored by the block itself).
@@ -72,6 +74,7 @@ class RibParser : private RibArgChecks {
         std::vector<LightDesc> cameraLights;
         std::map<std::string, glm::dmat4> cameraCoordinateSystems;
         std::map<std::string, int> lightHandles;
+        std::map<std::string, ParamValue> options;
     };
     /// Solid: SolidBegin ... SolidEnd, which saves and restores nothing (RI 3.2 section 5.8).
     enum class Block { Frame, World, Attribute, Transform, Solid };
@@ -117,6 +120,20 @@ class RibParser : private RibArgChecks {
         size_t count = 0;
     };
     std::optional<Motion> m_motion;
+    /// An open IfBegin: where; whether the branch being read is taken; whether one was already
+    /// (or none can be, inside a branch not taken); whether its Else came.
+    struct OpenConditional {
+        RibPos at;
+        bool active, taken, elseSeen;
+    };
+    std::vector<OpenConditional> m_conditionals;
+    /// Conditional RIB (rib/conditional.cpp), before objects record `r`: runs IfBegin, ElseIf,
+    /// Else and IfEnd, and sets *consumed for them and for the requests of a branch not taken.
+    bool Conditional(const RibRequest& r, bool* consumed);
+    /// Checks that IfBegin or ElseIf `r` has one expression, and if `evaluate`, its truth.
+    bool Condition(const RibRequest& r, bool evaluate, bool* out);
+    /// The value of the attribute, else the option, "category:name"; null if neither is given.
+    const ParamValue* FindSetting(const std::string& name) const;
     /// While an object is being defined: records `r` in it, or runs it if it acts at once
     /// (ObjectEnd, ReadArchive, Declare). Requests an object cannot hold are errors.
     bool Record(const RibRequest& r);
@@ -324,6 +341,7 @@ class RibParser : private RibArgChecks {
     std::vector<LightDesc> m_cameraLights;  // lights given before WorldBegin, in camera space
     // CoordinateSystem given before WorldBegin: object -> camera, mapped to world at WorldBegin.
     std::map<std::string, glm::dmat4> m_cameraCoordinateSystems;
+    std::map<std::string, ParamValue> m_options;  // Option values by "category:name" (conditional RIB)
 };
 
 }  // namespace affray::rib

@@ -84,6 +84,12 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
             break;
         }
         StampFile(&request, current.file);
+        bool consumed = false;
+        if (!Conditional(request, &consumed)) {
+            ok = false;
+            break;
+        }
+        if (consumed) continue;
         if (!(m_defining ? Record(request) : Dispatch(request))) {
             ok = false;
             break;
@@ -91,6 +97,7 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
     }
     if (ok && m_defining) ok = Fail(m_defining->second.at, "'ObjectBegin' has no matching 'ObjectEnd'");
     if (ok && m_motion) ok = Fail(m_motion->at, "'MotionBegin' has no matching 'MotionEnd'");
+    if (ok && !m_conditionals.empty()) ok = Fail(m_conditionals.back().at, "'IfBegin' has no matching 'IfEnd'");
     if (ok && !m_blocks.empty()) {
         const OpenBlock& open = m_blocks.back();
         ok =

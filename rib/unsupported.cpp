@@ -50,7 +50,6 @@ struct Refused {
 constexpr Refused kRefused[] = {
     {"Perspective", "a projective transform (transforms must be affine)"},
     {"ArchiveBegin", "an inline archive's requests would run here instead of where 'ReadArchive' reads them"},
-    {"IfBegin", "the requests of every branch would run"},
 };
 
 bool ListedP(const std::string_view* begin, const std::string_view* end, std::string_view name) {
@@ -66,8 +65,9 @@ bool RibParser::DoUnhandled(const RibRequest& r) {
         return true;
     }
     if (r.name == "Deformation") {
-        Warn(r.at, "'Deformation' is not supported (deformation shaders are an optional RI 3.2 capability); ignored: "
-                   "the geometry is not deformed");
+        Warn(r.at,
+             "'Deformation' is not supported (deformation shaders are an optional RI 3.2 capability); ignored: "
+             "the geometry is not deformed");
         return true;
     }
     if (ListedP(std::begin(kNoEffect), std::end(kNoEffect), r.name)) {

@@ -67,9 +67,8 @@ TEST_CASE("rib: a world inside TransformBegin or AttributeBegin starts from the 
         "ConcatTransform [1 0 0 0  0 1 0 0  0 0 1 0  0 0 6 1]\n"
         "MotionEnd\n";
     Messages messages;
-    SceneDesc scene = Scene("Translate 1 0 0\nTransformBegin\n" + camera + "WorldBegin\n" + kPatch +
-                                "WorldEnd\nTransformEnd\n",
-                            &messages);
+    SceneDesc scene = Scene(
+        "Translate 1 0 0\nTransformBegin\n" + camera + "WorldBegin\n" + kPatch + "WorldEnd\nTransformEnd\n", &messages);
     CHECK(scene.camera.worldToCamera[3] == glm::dvec4(1, 0, 5, 1));  // Translate, then the first sample
     REQUIRE(scene.primitives.size() == 1);
     CHECK(scene.primitives[0].corners[3] == glm::dvec3(1, 1, 0));  // world space starts at identity
@@ -220,16 +219,15 @@ TEST_CASE("rib: primitives affray cannot make are skipped with one warning per n
           "t.rib:1: error: 'Curves' must come between 'WorldBegin' and 'WorldEnd'");
 }
 
-TEST_CASE("rib: other renderers' requests warn once per name; a projective one and unknown names are errors",
-          "[rib]") {
+TEST_CASE("rib: other renderers' requests warn once per name; a projective one and unknown names are errors", "[rib]") {
     Messages messages;
-    const SceneDesc scene =
-        Scene("Camera \"world\" \"float[2] shutteropening\" [0 1]\nDisplayChannel \"color Ci\"\n"
-              "PixelVariance 0.01\nWorldBegin\nDeformation \"twist\" \"angle\" [30]\nDetailRange [0 0 10 20]\n" +
-                  kPatch + "DetailRange [10 20 1e38 1e38]\n" + kPatch +
-                  "Bxdf \"PxrDiffuse\" \"d\"\nShader \"noise\" \"n\"\nTextureCoordinates 0 0 1 0 0 1 1 1\n"
-                  "WorldEnd\n",
-              &messages);
+    const SceneDesc scene = Scene(
+        "Camera \"world\" \"float[2] shutteropening\" [0 1]\nDisplayChannel \"color Ci\"\n"
+        "PixelVariance 0.01\nWorldBegin\nDeformation \"twist\" \"angle\" [30]\nDetailRange [0 0 10 20]\n" +
+            kPatch + "DetailRange [10 20 1e38 1e38]\n" + kPatch +
+            "Bxdf \"PxrDiffuse\" \"d\"\nShader \"noise\" \"n\"\nTextureCoordinates 0 0 1 0 0 1 1 1\n"
+            "WorldEnd\n",
+        &messages);
     CHECK(scene.primitives.size() == 2);  // both levels of detail
     CHECK(messages ==
           Messages{
