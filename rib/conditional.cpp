@@ -267,7 +267,8 @@ bool RibParser::Conditional(const RibRequest& r, bool* consumed) {
             m_conditionals.pop_back();
             return true;
         }
-        if (c.elseSeen) return Fail(r.at, Quote(r.name) + " after the 'Else' of the 'IfBegin' on " + LineName(c.at, r.at));
+        if (c.elseSeen)
+            return Fail(r.at, Quote(r.name) + " after the 'Else' of the 'IfBegin' on " + LineName(c.at, r.at));
         bool value = true;
         if (r.name == "Else") {
             if (!NoArgs(r)) return false;

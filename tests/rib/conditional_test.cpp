@@ -41,8 +41,7 @@ std::string Choose(const std::string& expression) {
 TEST_CASE("rib conditionals: the branch the options and attributes select is read", "[rib]") {
     const std::string header = "Option \"user\" \"string pass_class\" [\"Final\"] \"int frame\" [3]\n";
     // RenderMan for Maya's pass tests.
-    CHECK(Reds(header, Choose("!defined(user:pass_class) || $user:pass_class == 'Final'")) ==
-          std::vector<double>{1});
+    CHECK(Reds(header, Choose("!defined(user:pass_class) || $user:pass_class == 'Final'")) == std::vector<double>{1});
     CHECK(Reds(header, Choose("$user:pass_class == 'Shadow'")) == std::vector<double>{2});
     CHECK(Reds(header, Choose("${user:pass_class} != \\\"Shadow\\\"")) == std::vector<double>{1});
     CHECK(Reds(header, Choose("defined(user:nothing)")) == std::vector<double>{2});
@@ -58,9 +57,8 @@ TEST_CASE("rib conditionals: the branch the options and attributes select is rea
 
     // ElseIf: the first branch that holds; the others are not evaluated (they may test what is
     // not defined), and nested conditionals in a branch not taken are dropped whole.
-    const std::string chain = "IfBegin \"$user:frame == 1\"\n" + Patch(1) + "ElseIf \"$user:frame == 3\"\n" +
-                              Patch(2) + "ElseIf \"$user:undefined == 3\"\n" + Patch(3) + "Else\n" + Patch(4) +
-                              "IfEnd\n";
+    const std::string chain = "IfBegin \"$user:frame == 1\"\n" + Patch(1) + "ElseIf \"$user:frame == 3\"\n" + Patch(2) +
+                              "ElseIf \"$user:undefined == 3\"\n" + Patch(3) + "Else\n" + Patch(4) + "IfEnd\n";
     CHECK(Reds(header, chain) == std::vector<double>{2});
     CHECK(Reds(header, "IfBegin \"0\"\nIfBegin \"$user:undefined\"\n" + Patch(1) + "Else\n" + Patch(2) +
                            "IfEnd\nElse\n" + Patch(3) + "IfEnd\n" + Patch(4)) == std::vector<double>{3, 4});
@@ -84,9 +82,7 @@ TEST_CASE("rib conditionals: the branch the options and attributes select is rea
 TEST_CASE("rib conditionals: malformed expressions and structure are errors at their place", "[rib]") {
     const std::string header = "Option \"user\" \"string pass\" [\"a\"] \"float[2] range\" [0 1]\n";
     auto error = [&](const std::string& world) { return FirstError(header + InWorld(world)); };
-    auto expression = [&](const std::string& text) {
-        return error("IfBegin \"" + text + "\"\nIfEnd\n");
-    };
+    auto expression = [&](const std::string& text) { return error("IfBegin \"" + text + "\"\nIfEnd\n"); };
     const std::string at = "t.rib:3: error: 'IfBegin' expression \"";
     CHECK(expression("$user:nothing == 1") ==
           at + "$user:nothing == 1\": no option or attribute 'user:nothing' is defined (test it with "
