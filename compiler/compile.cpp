@@ -53,6 +53,23 @@ std::shared_ptr<const vm::TextureSlots> TexturesOf(const LoweredShader& lowered)
     return std::make_shared<const vm::TextureSlots>(lowered.textures);
 }
 
+/// `overrides` without those whose name is not in `declared` (the parameters of shader `shader`),
+/// string values aside if `keepStrings`; each name left out is said once in *undeclared. prman
+/// ignores such a value, with a warning: the caller says so (see CompileResult::undeclared).
+std::vector<ParamOverride> KeepDeclared(const std::vector<ParamOverride>& overrides,
+                                        const std::set<std::string>& declared, bool keepStrings,
+                                        const std::string& shader, std::vector<std::string>* undeclared) {
+    std::vector<ParamOverride> kept;
+    for (const ParamOverride& o : overrides) {
+        const std::string sentence = "shader '" + shader + "' has no parameter '" + o.name + "'";
+        if (declared.count(o.name) || (keepStrings && o.text))
+            kept.push_back(o);
+        else if (std::find(undeclared->begin(), undeclared->end(), sentence) == undeclared->end())
+            undeclared->push_back(sentence);
+    }
+    return kept;
+}
+
 ParamInfo ParamFromProgram(const vm::ProgramParam& p) {
     ParamInfo info{p.name, Type::Float, p.defaults, false};
     const size_t bracket = p.type.find('[');
@@ -102,17 +119,17 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         // The instance: lowered again with its parameter values as constants, so that the
         // branches and loops they decide fold during lowering (bytecode specialisation cannot
         // undo the unrolling of a loop whose bound was a parameter).
+        std::set<std::string> declared(lowered->stringParams.begin(), lowered->stringParams.end());
+        for (const vm::ProgramParam& p : params) declared.insert(p.name);
         std::vector<ParamOverride> numeric;
         std::map<std::string, std::string> strings;
         bool stringsOk = true;
-        for (const ParamOverride& o : overrides) {
+        for (const ParamOverride& o : KeepDeclared(overrides, declared, false, shader.name, &result.undeclared)) {
             const bool isStringParam =
                 std::count(lowered->stringParams.begin(), lowered->stringParams.end(), o.name) > 0;
             if (o.text && !isStringParam) {
-                const bool known = std::any_of(params.begin(), params.end(), [&](auto& p) { return p.name == o.name; });
-                result.paramErrors.push_back(known ? "parameter '" + o.name + "' of shader '" + shader.name +
-                                                         "' is not a string, got a string value"
-                                                   : "shader '" + shader.name + "' has no parameter '" + o.name + "'");
+                result.paramErrors.push_back("parameter '" + o.name + "' of shader '" + shader.name +
+                                             "' is not a string, got a string value");
                 stringsOk = false;
             } else if (o.text) {
                 strings[o.name] = *o.text;
@@ -136,6 +153,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         if (!instance && again.hasErrors()) return result;
         if (!instance) throw std::logic_error("lowering " + path + " with its parameter values failed");
         shader.stringParams = lowered->stringParams;
+        shader.undeclared = result.undeclared;
         shader.bound = Emit(instance->ir, {{"P", instance->finalP}}, {});
         shader.shade = Emit(instance->ir, {{"P", instance->finalP}, {"N", instance->finalN}}, {});
         auto instanceTextures = TexturesOf(*instance);
@@ -188,7 +206,13 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
             return result;
         }
     }
-    for (const ParamOverride& o : overrides) {
+    // A string value cannot be checked against a compiled file (its string parameters were
+    // folded away), so only numbers for names the programs do not have are left out.
+    std::set<std::string> declared;
+    for (const vm::Program* program : {&shader.genericBound, &shader.genericShade})
+        for (const vm::ProgramParam& p : program->params) declared.insert(p.name);
+    const std::vector<ParamOverride> kept = KeepDeclared(overrides, declared, true, shader.name, &result.undeclared);
+    for (const ParamOverride& o : kept) {
         if (o.text) {
             result.paramErrors.push_back("parameter '" + o.name + "': string values need the shader's source (.sl); '" +
                                          path + "' is compiled bytecode");
@@ -204,7 +228,8 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
                     return result;
                 }
     }
-    if (!SpecialiseShader(shader, overrides, &result.paramErrors)) return result;
+    if (!SpecialiseShader(shader, kept, &result.paramErrors)) return result;
+    shader.undeclared = result.undeclared;
     result.shader = std::make_shared<const CompiledShader>(std::move(shader));
     return result;
 }

@@ -29,6 +29,9 @@ struct CompiledShader {
     vm::Program shade;
     std::vector<ParamInfo> params;
     std::vector<std::string> stringParams;
+    /// The instance's parameter values that name no parameter of the shader, left out of it, as
+    /// CompileResult::undeclared says them.
+    std::vector<std::string> undeclared;
     /// Scalar operations lowering asked for, before folding, sharing and dead-code removal.
     int opsBeforeOptimisation = 0;
 };
@@ -41,12 +44,18 @@ struct CompileResult {
     diag::Report diagnostics;
     /// Problems with the parameter overrides, each a full sentence.
     std::vector<std::string> paramErrors;
+    /// Overrides that name no parameter of the shader, one sentence each ("shader 'wave' has no
+    /// parameter 'Kx'"), set even when the compilation fails. They are left out of the instance,
+    /// which compiles without them, as prman ignores them with a warning; the caller decides what
+    /// they are: the renderer warns at the scene's request, `affray eval` refuses a misspelt --param.
+    std::vector<std::string> undeclared;
     bool ok() const { return shader != nullptr; }
 };
 
 /// Preprocesses (C preprocessor: #include, #define, #if...) and compiles the shader in the file
 /// at `path`, then specialises it with `overrides` bound to its
-/// parameters (defaults for the others).
+/// parameters (defaults for the others; overrides it does not declare are left out, see
+/// CompileResult::undeclared).
 CompileResult CompileFile(const std::string& path, const std::vector<ParamOverride>& overrides = {},
                           const lang::PreprocessOptions& preprocess = {}, const Spaces* spaces = nullptr,
                           const SceneFacts* facts = nullptr);

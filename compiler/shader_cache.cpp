@@ -62,6 +62,7 @@ CompileResult ShaderCache::Load(const std::string& path, const std::vector<Param
             ++m_hits;
             CompileResult hit;
             hit.shader = it->second;
+            hit.undeclared = hit.shader->undeclared;
             return hit;
         }
     }

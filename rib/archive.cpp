@@ -94,10 +94,13 @@ bool RibParser::DoProcedural(const RibRequest& r) {
                 return OpenArchive(r, p.at, p.value.strings[0], true);
         return Fail(r.at, "'Procedural2 \"DelayedReadArchive2\"' needs a \"string filename\" parameter");
     }
-    if (kind == "RunProgram" || kind == "DynamicLoad" || kind == "RunProgram2" || kind == "DynamicLoad2")
-        return Fail(r.args[0].at, "procedural " + Quote(kind) +
-                                      " makes geometry by running a program, which affray does not do: write its "
-                                      "output to a RIB file and read that with 'ReadArchive'");
+    // A program's geometry is skipped, as an unsupported primitive is (rib/unsupported.cpp).
+    if (kind == "RunProgram" || kind == "DynamicLoad" || kind == "RunProgram2" || kind == "DynamicLoad2") {
+        Warn(r.args[0].at, "procedural " + Quote(kind) +
+                               " makes geometry by running a program, which affray does not do: skipped (write its "
+                               "output to a RIB file and read that with 'ReadArchive')");
+        return true;
+    }
     return Fail(r.args[0].at, "unknown procedural " + Quote(kind) + " (affray reads " +
                                   (r.name == "Procedural" ? "\"DelayedReadArchive\")" : "\"DelayedReadArchive2\")"));
 }
@@ -180,8 +183,8 @@ bool RibParser::Record(const RibRequest& r) {
     if (std::find(std::begin(kNotInObject), std::end(kNotInObject), r.name) != std::end(kNotInObject))
         return Fail(r.at, Quote(r.name) + " cannot be part of an object (started by 'ObjectBegin' on line " +
                               std::to_string(m_defining->second.at.line) + ")");
-    if (r.name == "AttributeBegin" || r.name == "TransformBegin") ++m_definingDepth;
-    if (r.name == "AttributeEnd" || r.name == "TransformEnd") {
+    if (r.name == "AttributeBegin" || r.name == "TransformBegin" || r.name == "SolidBegin") ++m_definingDepth;
+    if (r.name == "AttributeEnd" || r.name == "TransformEnd" || r.name == "SolidEnd") {
         if (m_definingDepth == 0)
             return Fail(r.at, Quote(r.name) + " inside an object closes a block opened outside it");
         --m_definingDepth;

@@ -53,6 +53,14 @@ bool RibParser::DoAttribute(const RibRequest& r) {
     std::string name;
     std::vector<RibParam> params;
     if (!LeadingString(r, "an attribute name", &name) || !ParamList(r, 1, &params)) return false;
+    // Every value is kept for conditional RIB ($category:name), which is what "user" is for; the
+    // map is shared by the blocks that saved it, so it is copied to change.
+    if (!params.empty()) {
+        auto attributes = m_state.attributes ? std::make_shared<std::map<std::string, ParamValue>>(*m_state.attributes)
+                                             : std::make_shared<std::map<std::string, ParamValue>>();
+        for (const RibParam& p : params) (*attributes)[name + ":" + p.value.name] = p.value;
+        m_state.attributes = std::move(attributes);
+    }
     // The intersector bounds displaced surfaces exactly, so no user bound is needed.
     if (name == "trimcurve") {
         // Attribute "trimcurve" "sense" "inside"|"outside": which side of the trim loops NuPatches keep.
@@ -64,6 +72,7 @@ bool RibParser::DoAttribute(const RibRequest& r) {
         }
         return true;
     }
+    if (name == "user") return true;
     if (name == "displacementbound")
         Warn(r.at,
              "'Attribute \"displacementbound\"' is not needed: affray bounds displacement "

@@ -35,8 +35,8 @@ bool RibParser::DoFrameBegin(const RibRequest& r) {
                               std::to_string(m_blocks.back().at.line));
     if (m_worldSeen) return Fail(r.at, "'FrameBegin' after a 'WorldBegin' outside any frame");
     // The options in effect now are every frame's defaults: FrameEnd restores them.
-    m_frameDefaults =
-        FrameDefaults{m_scene, m_archiveSearchPath, m_cameraLights, m_cameraCoordinateSystems, m_lightHandles};
+    m_frameDefaults = FrameDefaults{
+        m_scene, m_archiveSearchPath, m_cameraLights, m_cameraCoordinateSystems, m_lightHandles, m_options};
     m_scene.frame = static_cast<int>(number);
     m_scene.frameLine = r.at.line;
     return Begin(r, Block::Frame);
@@ -50,6 +50,7 @@ bool RibParser::DoFrameEnd(const RibRequest& r) {
     m_cameraLights = std::move(defaults.cameraLights);
     m_cameraCoordinateSystems = std::move(defaults.cameraCoordinateSystems);
     m_lightHandles = std::move(defaults.lightHandles);
+    m_options = std::move(defaults.options);
     m_frameDefaults.reset();
     m_primitivesStamped = 0;
     m_worldSeen = m_worldEnded = false;
@@ -74,9 +75,16 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
                                                 "; give each world its own 'FrameBegin'/'FrameEnd'"
                                           : "a second 'WorldBegin' outside frames; give each world its own "
                                             "'FrameBegin'/'FrameEnd'");
-    if (!m_blocks.empty() && m_blocks.back().kind != Block::Frame)
-        return Fail(r.at, "'WorldBegin' inside " + Quote(BlockName(m_blocks.back().kind, false)) + " on line " +
-                              std::to_string(m_blocks.back().at.line));
+    // Exporters (Houdini) may wrap the camera transform and the world in TransformBegin or
+    // AttributeBegin: the world starts from the transform current here all the same, and the block
+    // restores what it saved after WorldEnd. (No other block can be open here: FrameBegin is
+    // refused inside a block, and solids inside a world.)
+    if (!m_blocks.empty() && m_blocks.back().kind != Block::Frame) {
+        const std::string block = Quote(BlockName(m_blocks.back().kind, false));
+        Note(r.at, "'WorldBegin' inside " + block +
+                       ": the world starts from the transform current here (the camera transform), and " +
+                       Quote(BlockName(m_blocks.back().kind, true)) + " after 'WorldEnd' ends the block");
+    }
     // The CTM now is world -> camera; it must be invertible for rays to be generated.
     glm::dmat4 worldToCamera = m_state.ctm;
     double det = glm::determinant(worldToCamera);
@@ -99,7 +107,7 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
     if (!m_scene.skipped.empty()) {
         const std::string what =
             m_frameDefaults ? "frame " + std::to_string(*m_scene.frame) : std::string("the world block");
-        const RibPos at = m_frameDefaults ? m_blocks.back().at : r.at;
+        const RibPos at = m_frameDefaults ? m_blocks.front().at : r.at;  // FrameBegin opens no block inside another
         Note(at, what + " renders " + m_scene.skipped + "; affray traces shadows: skipped");
     }
     m_worldSeen = true;

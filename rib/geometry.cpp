@@ -250,6 +250,38 @@ Quadric MakeQuadric(Quadric::Kind kind, const double* v) {
     return q;
 }
 
+/// Why the surface of `q` is empty, or "" if it is not. Exports write such quadrics (a sweep
+/// animated from 0 degrees, an object scaled to nothing); prman draws nothing for them.
+std::string EmptyReason(const Quadric& q) {
+    using Kind = Quadric::Kind;
+    if (q.thetamax == 0) return "thetamax is 0";
+    const bool radial = q.kind != Kind::Torus && q.kind != Kind::Hyperboloid;
+    if (radial && q.radius < 0) return "";  // an error (Quadric::Problem), not an empty surface
+    if (radial && q.radius == 0) return q.kind == Kind::Paraboloid ? "rmax is 0" : "the radius is 0";
+    switch (q.kind) {
+        case Kind::Sphere:
+            // A reversed range (zmin > zmax) is no sphere's: Quadric::Problem refuses it.
+            if (q.zmin == q.zmax || (q.zmin < q.zmax && (q.zmin >= q.radius || q.zmax <= -q.radius)))
+                return "zmin..zmax does not cut the sphere";
+            break;
+        case Kind::Cylinder:
+        case Kind::Paraboloid:
+            if (q.zmin == q.zmax) return "zmin equals zmax";
+            break;
+        case Kind::Torus:
+            if (q.minorRadius < 0) return "";
+            if (q.minorRadius == 0) return "the minor radius is 0";
+            if (q.phimin == q.phimax) return "phimin equals phimax";
+            break;
+        case Kind::Hyperboloid:
+            if (std::equal(q.point1, q.point1 + 3, q.point2)) return "point1 equals point2";
+            break;
+        case Kind::Cone:
+        case Kind::Disk: break;
+    }
+    return "";
+}
+
 }  // namespace
 
 bool RibParser::DoQuadric(const RibRequest& r, Quadric::Kind kind) {
@@ -266,6 +298,10 @@ bool RibParser::DoQuadric(const RibRequest& r, Quadric::Kind kind) {
     PrimitiveDesc prim;
     prim.shape = PrimitiveDesc::Shape::Quadric;
     prim.quadric = MakeQuadric(kind, v);
+    if (const std::string empty = EmptyReason(prim.quadric); !empty.empty()) {
+        Warn(r.at, Quote(r.name) + " " + empty + ": the surface is empty; skipped");
+        return true;
+    }
     if (std::string problem = prim.quadric.Problem(); !problem.empty())
         return Fail(r.at, Quote(r.name) + " " + problem);
     SetPrimitiveAttributes(r, &prim);

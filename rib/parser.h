@@ -2,7 +2,8 @@
 // Private to the reader: use rib/rib.h. rib.cpp holds dispatch, the block structure, options
 // and transforms; frames.cpp frames, world blocks and shadow passes; attributes.cpp the shading
 // attributes (with Sides and orientation) and lights; geometry.cpp the primitives and coordinate
-// systems; nurbs.cpp NuPatch and TrimCurve; archive.cpp ReadArchive and retained objects. The graphics state (CTM, color, surface,
+// systems; nurbs.cpp NuPatch and TrimCurve; archive.cpp ReadArchive and retained objects;
+// unsupported.cpp the requests read without being rendered. The graphics state (CTM, color, surface,
 // displacement, sides, orientation, basis, the lights that are on) is saved by every Begin and
 // restored by its End; the options by FrameBegin and FrameEnd (FrameDefaults).
 #pragma once
@@ -62,6 +63,8 @@ class RibParser : private RibArgChecks {
         /// ScopedCoordinateSystem: the named spaces of this block and those around it (null:
         /// none), given to every primitive (PrimitiveDesc::scopedSpaces).
         std::shared_ptr<const std::map<std::string, glm::dmat4>> scopedSpaces;
+        /// Attribute values by "category:name" (null: none), for conditional RIB's $category:name.
+        std::shared_ptr<const std::map<std::string, ParamValue>> attributes;
     };
     /// What FrameEnd restores: the options and camera-space lights and coordinate systems in
     /// effect at FrameBegin (the graphics state is restored by the block itself).
@@ -71,12 +74,16 @@ class RibParser : private RibArgChecks {
         std::vector<LightDesc> cameraLights;
         std::map<std::string, glm::dmat4> cameraCoordinateSystems;
         std::map<std::string, int> lightHandles;
+        std::map<std::string, ParamValue> options;
     };
-    enum class Block { Frame, World, Attribute, Transform };
+    /// Solid: SolidBegin ... SolidEnd, which saves and restores nothing (RI 3.2 section 5.8).
+    enum class Block { Frame, World, Attribute, Transform, Solid };
     struct OpenBlock {
         Block kind;
         RibPos at;
         State saved;
+        /// A solid affray cannot render (intersection, difference): its requests are skipped.
+        bool skips = false;
     };
     using Handler = bool (RibParser::*)(const RibRequest&);
     /// A file the reader has read: the scene (0) or an archive. RibPos::file indexes these.
@@ -113,6 +120,20 @@ class RibParser : private RibArgChecks {
         size_t count = 0;
     };
     std::optional<Motion> m_motion;
+    /// An open IfBegin: where; whether the branch being read is taken; whether one was already
+    /// (or none can be, inside a branch not taken); whether its Else came.
+    struct OpenConditional {
+        RibPos at;
+        bool active, taken, elseSeen;
+    };
+    std::vector<OpenConditional> m_conditionals;
+    /// Conditional RIB (rib/conditional.cpp), before objects record `r`: runs IfBegin, ElseIf,
+    /// Else and IfEnd, and sets *consumed for them and for the requests of a branch not taken.
+    bool Conditional(const RibRequest& r, bool* consumed);
+    /// Checks that IfBegin or ElseIf `r` has one expression, and if `evaluate`, its truth.
+    bool Condition(const RibRequest& r, bool evaluate, bool* out);
+    /// The value of the attribute, else the option, "category:name"; null if neither is given.
+    const ParamValue* FindSetting(const std::string& name) const;
     /// While an object is being defined: records `r` in it, or runs it if it acts at once
     /// (ObjectEnd, ReadArchive, Declare). Requests an object cannot hold are errors.
     bool Record(const RibRequest& r);
@@ -204,6 +225,7 @@ class RibParser : private RibArgChecks {
     bool DoTransformEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::Transform); }
     bool DoIdentity(const RibRequest& r) { return NoArgs(r) && SetCtm(r, glm::dmat4(1.0)); }
     bool DoTransform(const RibRequest& r);
+    bool DoSkew(const RibRequest& r);
     bool DoConcatTransform(const RibRequest& r);
     bool DoTranslate(const RibRequest& r);
     bool DoRotate(const RibRequest& r);
@@ -285,6 +307,14 @@ class RibParser : private RibArgChecks {
     /// SubdivisionMesh (rib/subdivision.cpp): its counts, tags and parameters checked, its patches added.
     bool DoSubdivisionMesh(const RibRequest& r);
     bool DoVersion(const RibRequest&) { return true; }  // "version 3.03": nothing to check
+    // Requests affray reads without rendering what they ask (rib/unsupported.cpp).
+    /// SolidBegin "primitive"|"union"|"intersection"|"difference" and SolidEnd.
+    bool DoSolidBegin(const RibRequest& r);
+    bool DoSolidEnd(const RibRequest& r);
+    /// A request without a handler: another renderer's option or attribute (a warning), a
+    /// primitive affray cannot render (skipped with a warning), one whose absence would render
+    /// another scene (an error), or no request at all (an error).
+    bool DoUnhandled(const RibRequest& r);
 
     std::vector<Source> m_sources;
     std::vector<OpenReader> m_readers;
@@ -301,6 +331,7 @@ class RibParser : private RibArgChecks {
     SceneDesc m_scene;
     State m_state;
     std::vector<OpenBlock> m_blocks;
+    int m_skipping = 0;                            // open blocks whose requests are skipped (OpenBlock::skips)
     std::vector<SceneDesc> m_frames;               // one per world block ended
     std::optional<FrameDefaults> m_frameDefaults;  // inside FrameBegin ... FrameEnd
     std::map<std::string, int> m_lightHandles;     // light handle -> index into the frame's lights; -1: ignored
@@ -310,6 +341,7 @@ class RibParser : private RibArgChecks {
     std::vector<LightDesc> m_cameraLights;  // lights given before WorldBegin, in camera space
     // CoordinateSystem given before WorldBegin: object -> camera, mapped to world at WorldBegin.
     std::map<std::string, glm::dmat4> m_cameraCoordinateSystems;
+    std::map<std::string, ParamValue> m_options;  // Option values by "category:name" (conditional RIB)
 };
 
 }  // namespace affray::rib

@@ -3,7 +3,7 @@
 // current transform (CTM), color, surface, displacement, sides and orientation, saved and
 // restored by the Begin/End blocks. To add a request: write a handler (attributes and lights in
 // attributes.cpp, geometry in geometry.cpp, archives and objects in archive.cpp), list it in
-// Dispatch(), and take it out of kNoEffect / kIgnored / kUnsupported. Handlers return false after
+// Dispatch(), and take it out of the lists of unsupported.cpp. Handlers return false after
 // Fail(); the first error ends the parse. Run() reads the innermost open file (see archive.cpp).
 // Frames and world blocks, and the requests that only serve shadow passes, are in frames.cpp.
 // Longer than most files: the options are many small handlers that share the placement rules.
@@ -29,33 +29,14 @@
 namespace affray::rib {
 namespace {
 
-// clang-format off
-// RI 3.2 requests that tune what affray has no counterpart for (level of detail, dicing, bounds,
-// quantizing an image affray writes as floats, the shutter of motion affray refuses): accepted
-// with one warning per name. The Make* requests are DoMake's.
-constexpr std::string_view kNoEffect[] = {
-    "Begin", "Bound", "Detail", "DetailRange", "End", "ErrorHandler", "GeometricApproximation",
-    "PixelVariance", "Quantize", "RelativeDetail", "Shutter", "TransformPoints",
-};
-
-// RI 3.2 requests whose absence changes only appearance (shading, lighting, the lens): skipped
-// with one warning per name.
-constexpr std::string_view kIgnored[] = {
-    "AreaLightSource", "Atmosphere", "ClippingPlane", "ColorSamples", "DepthOfField", "Exterior",
-    "Imager", "Interior", "Matte", "TextureCoordinates",
-};
-
-// RI 3.2 requests that create or move geometry: ignoring them would render the wrong scene, so
-// they are errors until implemented.
-constexpr std::string_view kUnsupported[] = {
-    "Blobby", "Curves", "Deformation", "Geometry",
-    "Perspective", "Points", "Skew", "SolidBegin", "SolidEnd",
-};
-// clang-format on
-
 // RI 3.2 requests that make texture, environment and shadow maps from images (DoMake).
 constexpr std::string_view kMakeRequests[] = {"MakeBump", "MakeCubeFaceEnvironment", "MakeLatLongEnvironment",
                                               "MakeShadow", "MakeTexture"};
+
+// The requests that open and close the blocks of m_blocks.
+constexpr std::string_view kBlockRequests[] = {"FrameBegin",     "FrameEnd",     "WorldBegin",     "WorldEnd",
+                                               "AttributeBegin", "AttributeEnd", "TransformBegin", "TransformEnd",
+                                               "SolidBegin",     "SolidEnd"};
 
 constexpr int kMaxResolution = 65536;
 
@@ -65,16 +46,6 @@ constexpr std::string_view kDisplayGroups[] = {"rgb", "rgba", "rgbz", "rgbaz", "
 
 bool ContainsP(const std::string_view* begin, const std::string_view* end, std::string_view name) {
     return std::find(begin, end, name) != end;
-}
-
-// Why a refused request that is not a primitive cannot be skipped ("" for primitives).
-std::string UnsupportedReason(std::string_view name) {
-    if (name == "Deformation") return ": a deformation shader moves geometry";
-    if (name == "Perspective") return ": a projective transform (transforms must be affine)";
-    if (name == "Skew") return ": skipping the shear would move geometry";
-    if (name == "SolidBegin" || name == "SolidEnd")
-        return ": constructive solid geometry changes which surfaces are seen";
-    return "";
 }
 
 }  // namespace
@@ -113,6 +84,12 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
             break;
         }
         StampFile(&request, current.file);
+        bool consumed = false;
+        if (!Conditional(request, &consumed)) {
+            ok = false;
+            break;
+        }
+        if (consumed) continue;
         if (!(m_defining ? Record(request) : Dispatch(request))) {
             ok = false;
             break;
@@ -120,6 +97,7 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
     }
     if (ok && m_defining) ok = Fail(m_defining->second.at, "'ObjectBegin' has no matching 'ObjectEnd'");
     if (ok && m_motion) ok = Fail(m_motion->at, "'MotionBegin' has no matching 'MotionEnd'");
+    if (ok && !m_conditionals.empty()) ok = Fail(m_conditionals.back().at, "'IfBegin' has no matching 'IfEnd'");
     if (ok && !m_blocks.empty()) {
         const OpenBlock& open = m_blocks.back();
         ok =
@@ -138,6 +116,9 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
 }
 
 bool RibParser::Dispatch(const RibRequest& r) {
+    // Inside a solid that affray skips, only the requests that open and close blocks run, so
+    // that the blocks still nest as written and the solid ends at its own SolidEnd.
+    if (m_skipping > 0 && !ContainsP(std::begin(kBlockRequests), std::end(kBlockRequests), r.name)) return true;
     // MotionBegin [t0 t1 ...] holds one request of a kind per time: the first (the shutter-open
     // sample, as exporters write them) is run and the others are checked for kind and skipped.
     if (r.name == "MotionBegin") {
@@ -242,6 +223,9 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"ShadingInterpolation", &RibParser::DoShadingInterpolation},
         {"ArchiveRecord", &RibParser::DoArchiveRecord},
         {"Illuminate", &RibParser::DoIlluminate},
+        {"Skew", &RibParser::DoSkew},
+        {"SolidBegin", &RibParser::DoSolidBegin},
+        {"SolidEnd", &RibParser::DoSolidEnd},
         {"ReadArchive", &RibParser::DoReadArchive},
         {"Procedural", &RibParser::DoProcedural},
         {"Procedural2", &RibParser::DoProcedural},
@@ -262,17 +246,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         return true;
     }
     if (ContainsP(std::begin(kMakeRequests), std::end(kMakeRequests), r.name)) return DoMake(r);
-    if (ContainsP(std::begin(kNoEffect), std::end(kNoEffect), r.name)) {
-        Warn(r.at, Quote(r.name) + " does not apply to affray; ignored");
-        return true;
-    }
-    if (ContainsP(std::begin(kIgnored), std::end(kIgnored), r.name)) {
-        Warn(r.at, "request " + Quote(r.name) + " is not supported yet; ignored");
-        return true;
-    }
-    if (ContainsP(std::begin(kUnsupported), std::end(kUnsupported), r.name))
-        return Fail(r.at, Quote(r.name) + " is not supported yet" + UnsupportedReason(r.name));
-    return Fail(r.at, "unknown RIB request " + Quote(r.name));
+    return DoUnhandled(r);
 }
 
 void RibParser::Warn(RibPos at, const std::string& message) {
@@ -302,6 +276,7 @@ const char* RibParser::BlockName(Block kind, bool end) {
         case Block::World: return end ? "WorldEnd" : "WorldBegin";
         case Block::Attribute: return end ? "AttributeEnd" : "AttributeBegin";
         case Block::Transform: return end ? "TransformEnd" : "TransformBegin";
+        case Block::Solid: return end ? "SolidEnd" : "SolidBegin";
     }
     return "?";
 }
@@ -350,11 +325,13 @@ bool RibParser::End(const RibRequest& r, Block kind) {
     if (open.kind != kind)
         return Fail(r.at, Quote(r.name) + " does not match " + Quote(BlockName(open.kind, false)) + " on " +
                               LineName(open.at, r.at));
-    // TransformEnd restores only the transform; every other block restores all attributes.
+    // TransformEnd restores only the transform, SolidEnd nothing; every other block restores all
+    // attributes.
     if (kind == Block::Transform)
         m_state.ctm = open.saved.ctm;
-    else
+    else if (kind != Block::Solid)
         m_state = open.saved;
+    if (open.skips) --m_skipping;
     if (kind == Block::World) m_worldEnded = true;
     m_blocks.pop_back();
     return true;
@@ -370,10 +347,18 @@ bool RibParser::DoFormat(const RibRequest& r) {
         if (!(v[i] >= 1 && v[i] <= kMaxResolution && v[i] == std::floor(v[i])))
             return Fail(r.at, std::string("'Format' ") + names[i] + " must be an integer from 1 to " +
                                   std::to_string(kMaxResolution) + ", got " + FormatNumber(v[i]));
-    if (!(v[2] > 0)) return Fail(r.at, "'Format' pixelaspectratio must be positive, got " + FormatNumber(v[2]));
+    // RI 3.2: a pixel aspect ratio that is not positive (exporters write -1 or 0) asks for the
+    // display's default, which for affray's image files is square pixels. (The lexer reads no NaN
+    // or infinity, so the value is finite.)
+    double aspect = v[2];
+    if (!(aspect > 0)) {
+        Note(r.at, "'Format' pixelaspectratio " + FormatNumber(aspect) +
+                       " asks for the display's default (RI 3.2): using 1, square pixels");
+        aspect = 1;
+    }
     m_scene.camera.xres = static_cast<int>(v[0]);
     m_scene.camera.yres = static_cast<int>(v[1]);
-    m_scene.camera.pixelAspect = v[2];
+    m_scene.camera.pixelAspect = aspect;
     return true;
 }
 
@@ -570,6 +555,37 @@ bool RibParser::DoRotate(const RibRequest& r) {
 bool RibParser::DoScale(const RibRequest& r) {
     double v[3];
     return Numbers(r, 3, "sx sy sz", v) && SetCtm(r, glm::scale(m_state.ctm, glm::dvec3(v[0], v[1], v[2])));
+}
+
+// Skew angle dx1 dy1 dz1 dx2 dy2 dz2 (RI 3.2 section 4.3): a shear along lines parallel to d2 that
+// turns the direction d1 by `angle` degrees towards d2. With e the unit vector along d2 and n the
+// unit part of d1 perpendicular to it, a point moves along e by k times its component along n,
+// P' = P + k (n . P) e. d1, at angle phi from d2, goes to angle phi - angle, so k = cot(phi -
+// angle) - cot(phi), which needs 0 < phi - angle < 180 degrees (the spec's limits on angle).
+bool RibParser::DoSkew(const RibRequest& r) {
+    double v[7];
+    if (!Numbers(r, 7, "angle dx1 dy1 dz1 dx2 dy2 dz2", v)) return false;
+    const glm::dvec3 d1(v[1], v[2], v[3]), d2(v[4], v[5], v[6]);
+    const double length2 = glm::length(d2);
+    const glm::dvec3 e = d2 / length2;
+    const glm::dvec3 across = d1 - glm::dot(d1, e) * e;
+    const double lengthAcross = glm::length(across);
+    // An axis of zero, or two parallel axes (within rounding of their lengths), define no shear.
+    if (!(length2 > 0 && std::isfinite(length2) && lengthAcross > 1e-12 * glm::length(d1) &&
+          std::isfinite(lengthAcross)))
+        return Fail(r.at, "'Skew' axes must be nonzero and not parallel");
+    const glm::dvec3 n = across / lengthAcross;
+    const double phi = std::atan2(lengthAcross, glm::dot(d1, e));  // in (0, pi)
+    const double rest = phi - glm::radians(v[0]);
+    if (!(rest > 0 && rest < glm::pi<double>()))
+        return Fail(r.at, "'Skew' angle must be less than the angle between the axes (" +
+                              FormatNumber(glm::degrees(phi)) + " degrees) and more than that angle minus 180, got " +
+                              FormatNumber(v[0]));
+    const double k = 1 / std::tan(rest) - 1 / std::tan(phi);
+    glm::dmat4 shear(1.0);  // I + k e n^T, column-major: shear[column][row]
+    for (int column = 0; column < 3; ++column)
+        for (int row = 0; row < 3; ++row) shear[column][row] += k * e[row] * n[column];
+    return SetCtm(r, m_state.ctm * shear);
 }
 
 std::optional<std::vector<SceneDesc>> ParseRibFrames(std::string_view text, const std::string& pathForMessages,

@@ -8,11 +8,12 @@
 // Orientation, Illuminate on),
 // lights (ambientlight, distantlight, pointlight, spotlight), ReadArchive, retained objects
 // (ObjectBegin, ObjectEnd, ObjectInstance) and geometry (bilinear Patch, Sphere, Cylinder, Cone,
-// Disk, Torus, Hyperboloid, Paraboloid). Other RI 3.2 requests, other Option and Attribute names,
-// other hiders and unknown shaders are skipped with one warning per name, unless ignoring them
-// would change the geometry (other primitives, Skew, Perspective, MotionBegin, ...), which is an
-// error. Problems are reported through diag/diagnostic.h, at the file (the scene or an archive),
-// line and column of the token.
+// Disk, Torus, Hyperboloid, Paraboloid). Other RI 3.2 requests (and those of later RenderMan
+// versions that exporters write), other Option and Attribute names, other hiders and unknown
+// shaders are skipped with one warning per name, as are primitives affray cannot make (the image
+// lacks them): see rib/unsupported.cpp. A request whose absence would render another scene
+// (Perspective) and a name that is no request are errors. Problems are reported through
+// diag/diagnostic.h, at the file (the scene or an archive), line and column of the token.
 //
 // Frames: each world block is one frame, a SceneDesc. Options before the first FrameBegin are
 // defaults for every frame; options, lights and coordinate systems given inside a frame last

@@ -8,14 +8,17 @@
 
 namespace affray::rib {
 
-// Option "searchpath" "shader", "texture" and "archive" are used; every other option tunes another
-// renderer (bucket sizes, statistics, caches...) and is ignored with one warning per name.
+// Option "searchpath" "shader", "texture" and "archive" are used; "user" is kept for conditional
+// RIB (rib/conditional.cpp); every other option tunes another renderer (bucket sizes, statistics,
+// caches...) and is ignored with one warning per name.
 bool RibParser::DoOption(const RibRequest& r) {
     std::string name;
     std::vector<RibParam> params;
     if (!BeforeWorld(r) || !LeadingString(r, "an option name", &name) || !ParamList(r, 1, &params)) return false;
+    // Every value is kept for conditional RIB ($category:name), which is what "user" is for.
+    for (const RibParam& p : params) m_options[name + ":" + p.value.name] = p.value;
     if (name != "searchpath") {
-        Warn(r.at, "'Option \"" + name + "\"' does not apply to affray; ignored");
+        if (name != "user") Warn(r.at, "'Option \"" + name + "\"' does not apply to affray; ignored");
         return true;
     }
     for (const RibParam& p : params) {

@@ -25,8 +25,13 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     const std::string context = Quote(r.name);
     std::string scheme;
     if (!LeadingString(r, "a subdivision scheme name", &scheme)) return false;
-    if (scheme != "catmull-clark")
-        return Fail(r.args[0].at, context + " scheme " + Quote(scheme) + " is not supported (only \"catmull-clark\")");
+    // Another scheme's surface is skipped, as an unsupported primitive is (rib/unsupported.cpp).
+    if (scheme != "catmull-clark") {
+        if (!InsideWorld(r)) return false;
+        Warn(r.args[0].at,
+             context + " scheme " + Quote(scheme) + " is not supported (only \"catmull-clark\"): the mesh is skipped");
+        return true;
+    }
     std::vector<int> nvertices, vertices;
     if (!IntArray(r, 1, "nvertices", 3, &nvertices) || !IntArray(r, 2, "vertices", 0, &vertices)) return false;
     // The tags come as four arrays, or not at all (the parameter list's tokens are bare strings).

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <set>
 
 #include "compiler/compile.h"
 #include "renderer/geometry/surface.h"
@@ -116,8 +117,11 @@ int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
     compiler::CompileResult result = compiler::LoadShader(cmd.shaderPath, cmd.params, cmd.preprocess);
     diag::Report report = result.diagnostics;
     for (const std::string& e : result.paramErrors) report.error({"affray"}, e);
+    // A --param the shader does not declare is a typo on the command line, not a scene's value
+    // for another shader: an error here (the renderer warns and ignores it, as prman does).
+    for (const std::string& e : result.undeclared) report.error({"affray"}, e);
     Print(report, err);
-    if (!result.ok()) return diag::kExitBadInput;
+    if (!result.ok() || !result.undeclared.empty()) return diag::kExitBadInput;
     const compiler::CompiledShader& shader = *result.shader;
     const renderer::BilinearPatch square = renderer::BilinearPatch::UnitSquare();
 
@@ -173,10 +177,26 @@ std::string FrameName(const renderer::SceneDesc& frame) {
     return "frame " + std::to_string(*frame.frame) + " (line " + std::to_string(frame.frameLine) + ")";
 }
 
+/// Warns, at its Displacement request, about each parameter value that a shader instance of
+/// `prepared` does not declare and so was compiled without (prman warns and ignores them too);
+/// once per shader and name over the run (`warned`).
+void WarnUndeclared(const renderer::PreparedScene& prepared, std::set<std::string>* warned, diag::Report* report) {
+    const renderer::SceneDesc& desc = prepared.desc;
+    for (size_t i = 0; i < prepared.primitives.size() && i < desc.primitives.size(); ++i) {
+        const renderer::Primitive& prim = prepared.primitives[i];
+        if (!prim.shader || prim.shader->undeclared.empty() || !desc.primitives[i].displacement) continue;
+        const renderer::ShaderRef& ref = *desc.primitives[i].displacement;
+        const std::string& file = ref.file.empty() ? desc.path : ref.file;
+        for (const std::string& sentence : prim.shader->undeclared)
+            if (warned->insert(sentence).second)
+                report->warning({file, ref.line, ref.column, diag::ReadLine(file, ref.line)}, sentence + "; ignored");
+    }
+}
+
 /// Renders one frame to `outputPath` (and `pngPath` if not empty); prints the frame's shader
-/// diagnostics and, with --stats, its figures.
+/// diagnostics (with WarnUndeclared's warnings, `warned` over the run) and, with --stats, its figures.
 int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::string& outputPath,
-                const std::string& pngPath, FILE* out, FILE* err) {
+                const std::string& pngPath, std::set<std::string>* warned, FILE* out, FILE* err) {
     diag::Report report;
     std::filesystem::path ribDir = std::filesystem::path(cmd.scenePath).parent_path();
     if (ribDir.empty()) ribDir = ".";
@@ -187,6 +207,7 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     const texture::CacheStats texturesBefore = texture::Stats();
     renderer::PreparedScene prepared;
     const bool preparedOk = renderer::PrepareScene(scene, shaderPaths, cmd.preprocess, &prepared, &report);
+    if (preparedOk) WarnUndeclared(prepared, warned, &report);
     // The shaders' warnings are printed before the render starts.
     Print(report, err);
     if (!preparedOk) return diag::kExitBadInput;
@@ -355,8 +376,9 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
 
     // Frame by frame: an error stops the run, and the frames written before it stay complete.
     // SIGINT and SIGTERM stop it too, giving up the frame being rendered.
+    std::set<std::string> warned;  // WarnUndeclared's, once over the frames
     for (size_t i = 0; i < chosen.size(); ++i) {
-        const int status = RenderFrame(cmd, *chosen[i], outputs[i], pngs[i], out, err);
+        const int status = RenderFrame(cmd, *chosen[i], outputs[i], pngs[i], &warned, out, err);
         if (status != diag::kExitSuccess) return status;
     }
     return diag::kExitSuccess;

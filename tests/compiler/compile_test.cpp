@@ -126,9 +126,22 @@ TEST_CASE("parameters take defaults and overrides", "[compiler]") {
     CHECK_THAT(test::PointOnSquare(test::CompileOrThrow(src, {{"c", {0, 0, 10}}}).shade, 0, 0).z,
                WithinAbs(11.5, 1e-15));
 
-    compiler::CompileResult bad = compiler::CompileSource("t.sl", src, {{"Kx", {1}}});
+    // A value for a parameter the shader does not declare is left out, and said (prman ignores
+    // it with a warning): the instance is the one without it.
+    compiler::CompileResult lenient = compiler::CompileSource("t.sl", src, {{"Kx", {1}}, {"Km", {2}}, {"Kx", {3}}});
+    REQUIRE(lenient.ok());
+    CHECK(lenient.paramErrors.empty());
+    CHECK(lenient.undeclared == std::vector<std::string>{"shader 't' has no parameter 'Kx'"});
+    CHECK(lenient.shader->undeclared == lenient.undeclared);
+    CHECK_THAT(test::PointOnSquare(lenient.shader->shade, 0, 0).z, WithinAbs(2 + 1 + 3, 1e-15));
+    // Specialise itself, called directly, still refuses a name the program does not have.
+    std::vector<std::string> errors;
+    CHECK_FALSE(compiler::Specialise(lenient.shader->genericBound, {{"Kx", {1}}}, &errors));
+    CHECK(errors == std::vector<std::string>{"shader 't' has no parameter 'Kx'"});
+    // ... and said even when another value fails the compilation.
+    compiler::CompileResult bad = compiler::CompileSource("t.sl", src, {{"Kx", {1}}, {"Km", {1, 2}}});
     REQUIRE_FALSE(bad.ok());
-    REQUIRE(bad.paramErrors == std::vector<std::string>{"shader 't' has no parameter 'Kx'"});
+    CHECK(bad.undeclared == std::vector<std::string>{"shader 't' has no parameter 'Kx'"});
     bad = compiler::CompileSource("t.sl", src, {{"Km", {NAN}}});
     REQUIRE(bad.paramErrors ==
             std::vector<std::string>{"parameter 'Km' of shader 't' must be finite (got NaN or infinity)"});

@@ -1,5 +1,6 @@
 // tests/compiler/shader_cache_test.cpp: compiled shaders are reused by content, never stale;
-// string parameters take instance values; coordinate spaces fold into an instance.
+// string parameters take instance values; coordinate spaces fold into an instance; values for
+// parameters a shader does not declare are left out.
 #include <catch2/catch.hpp>
 
 #include "compiler/shader_cache.h"
@@ -59,8 +60,11 @@ TEST_CASE("string parameters take instance values", "[compiler][cache]") {
           std::vector<std::string>{"parameter 'Km' of shader 'c' is not a string, got a string value"});
     wrong = compiler::CompileSource("c.sl", kShader, {{"mode", {1}}});
     CHECK(wrong.paramErrors == std::vector<std::string>{"parameter 'mode' of shader 'c' is a string, got a number"});
+    // A string value for a parameter the shader does not declare is left out, as a number is.
     wrong = compiler::CompileSource("c.sl", kShader, {compiler::ParamOverride::String("style", "x")});
-    CHECK(wrong.paramErrors == std::vector<std::string>{"shader 'c' has no parameter 'style'"});
+    CHECK(wrong.ok());
+    CHECK(wrong.paramErrors.empty());
+    CHECK(wrong.undeclared == std::vector<std::string>{"shader 'c' has no parameter 'style'"});
 }
 
 TEST_CASE("coordinate spaces of an instance are folded into its programs", "[compiler][spaces]") {
@@ -102,4 +106,38 @@ TEST_CASE("coordinate spaces of an instance are folded into its programs", "[com
     CHECK_FALSE(refused.ok());
     REQUIRE(refused.paramErrors.size() == 1);
     CHECK(refused.paramErrors[0].find("uses coordinate space 'shader'") != std::string::npos);
+}
+
+TEST_CASE("values for parameters a shader does not declare are left out, from source or bytecode",
+          "[compiler][cache]") {
+    const std::vector<std::string> said{"shader 'c' has no parameter 'power'"};
+    test::TempDir dir;
+    const std::string path = dir.Write("c.sl", kShader);
+    compiler::ShaderCache cache;
+    for (int pass = 0; pass < 2; ++pass) {  // compiled, then a cache hit: said both times
+        compiler::CompileResult r = cache.Load(path, {{"power", {2}}, {"Km", {3}}}, {});
+        REQUIRE(r.ok());
+        CHECK(r.undeclared == said);
+        CHECK(r.shader->undeclared == said);
+        CHECK_THAT(HeightOf(*r.shader), WithinAbs(3, 0));
+    }
+    CHECK(cache.hits() == 1);
+
+    // Bytecode leaves out numbers for names its programs lack; a string value it cannot check
+    // (its string parameters were folded away) stays an error.
+    const compiler::CompileResult src = compiler::CompileSource("c.sl", kShader);
+    REQUIRE(src.ok());
+    vm::BytecodeFile file{"c", "c.sl", 0, src.shader->genericBound, src.shader->genericShade};
+    affray::diag::Report error;
+    REQUIRE(vm::WriteBytecodeFile(dir.Path("c.afb"), file, &error));
+    compiler::CompileResult loaded = compiler::LoadCompiledShader(dir.Path("c.afb"), {{"power", {2}}, {"Km", {3}}});
+    REQUIRE(loaded.ok());
+    CHECK(loaded.undeclared == said);
+    CHECK(loaded.shader->undeclared == said);
+    CHECK_THAT(HeightOf(*loaded.shader), WithinAbs(3, 0));
+    loaded = compiler::LoadCompiledShader(dir.Path("c.afb"), {compiler::ParamOverride::String("style", "x")});
+    CHECK_FALSE(loaded.ok());
+    CHECK(loaded.undeclared.empty());
+    REQUIRE(loaded.paramErrors.size() == 1);
+    CHECK(loaded.paramErrors[0].find("string values need the shader's source") != std::string::npos);
 }

@@ -200,7 +200,8 @@ TEST_CASE("Declare and inline declarations work on every parameter list", "[rend
     CHECK(ErrorsOf("Declare \"a b\" \"float\"\n") == Messages{"t.rib:1: error: 'Declare' name 'a b' must be one word"});
 }
 
-TEST_CASE("Options and attributes of other renderers warn once per name", "[renderer][rib]") {
+TEST_CASE("Options and attributes of other renderers warn once per name; \"user\" is kept, silently",
+          "[renderer][rib]") {
     Messages messages;
     std::optional<SceneDesc> scene = Parse(
         "Option \"limits\" \"bucketsize\" [16 16]\nOption \"limits\" \"gridsize\" [256]\n"
@@ -219,11 +220,9 @@ TEST_CASE("Options and attributes of other renderers warn once per name", "[rend
                           "t.rib:3: warning: 'Option \"statistics\"' does not apply to affray; ignored",
 
                           "t.rib:5: warning: 'Option \"searchpath\" \"procedural\"' does not apply to affray; ignored",
-                          "t.rib:6: warning: 'Option \"user\"' does not apply to affray; ignored",
                           "t.rib:8: warning: 'Attribute \"identifier\"' does not apply to affray; ignored",
                           "t.rib:10: warning: 'Attribute \"visibility\"' does not apply to affray; ignored",
                           "t.rib:11: warning: 'Attribute \"dice\"' does not apply to affray; ignored",
-                          "t.rib:12: warning: 'Attribute \"user\"' does not apply to affray; ignored",
                           "t.rib:13: warning: 'Attribute \"trace\"' does not apply to affray; ignored",
                       });
 }
@@ -329,7 +328,6 @@ FrameEnd
                           "t.rib:7: warning: 'Option \"limits\"' does not apply to affray; ignored",
                           "t.rib:8: warning: 'Option \"statistics\"' does not apply to affray; ignored",
                           "t.rib:9: warning: 'Option \"trace\"' does not apply to affray; ignored",
-                          "t.rib:10: warning: 'Option \"user\"' does not apply to affray; ignored",
                           "t.rib:18: warning: 'PixelVariance' does not apply to affray; ignored",
                           "t.rib:21: warning: 'Quantize' does not apply to affray; ignored",
                           "t.rib:22: warning: request 'Imager' is not supported yet; ignored",

@@ -70,8 +70,14 @@ TEST_CASE("rib subdivision: SubdivisionMesh makes patches with its tags", "[rib]
 
 TEST_CASE("rib subdivision: wrong meshes are errors at their place", "[rib][subdivision]") {
     const std::string cube = std::string(kCube) + " ";
-    CHECK(WorldError("SubdivisionMesh \"loop\" [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\n") ==
-          "t.rib:2: error: 'SubdivisionMesh' scheme 'loop' is not supported (only \"catmull-clark\")");
+    // Another scheme's mesh is skipped with a warning, as an unsupported primitive is.
+    affray::diag::Report report;
+    CHECK(ParseWorld("SubdivisionMesh \"loop\" [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\n", &report).primitives.empty());
+    REQUIRE(report.all().size() == 1);
+    CHECK(ShortDiagnostic(report.all()[0]) ==
+          "t.rib:2: warning: 'SubdivisionMesh' scheme 'loop' is not supported (only \"catmull-clark\"): the mesh is "
+          "skipped");
+    CHECK(WorldError("SubdivisionMesh \"loop\" [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\n").empty());
     CHECK(WorldError("SubdivisionMesh \"catmull-clark\" [3 3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\n") ==
           "t.rib:2: error: 'SubdivisionMesh' nvertices add up to 6 vertices, but the vertices array has 3");
     CHECK(WorldError("SubdivisionMesh \"catmull-clark\" [3] [0 1 7] \"P\" [0 0 0 1 0 0 0 1 0]\n") ==

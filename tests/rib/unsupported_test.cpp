@@ -1,0 +1,250 @@
+// tests/rib/unsupported_test.cpp: what the reader does with the forms real exporters write that
+// affray does not render as asked (rib/unsupported.cpp, and the leniencies of rib/rib.cpp and
+// rib/frames.cpp): a non-positive pixel aspect ratio, a world wrapped in a TransformBegin or
+// AttributeBegin block, Skew, solids, primitives affray cannot make, and other renderers'
+// requests. Each is accepted with one warning or note, or refused with a located error.
+#include <catch2/catch.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rib/rib.h"
+#include "tests/rib/rib_test_util.h"
+
+using namespace affray;
+using namespace affray::test;
+using renderer::SceneDesc;
+
+namespace {
+
+using Messages = std::vector<std::string>;
+
+// The frames of `text`, with every diagnostic (as ShortDiagnostic gives it) in *messages.
+std::optional<std::vector<SceneDesc>> Frames(const std::string& text, Messages* messages) {
+    diag::Report report;
+    std::optional<std::vector<SceneDesc>> frames = rib::ParseRibFrames(text, "t.rib", &report);
+    messages->clear();
+    for (const diag::Diagnostic& d : report.all()) messages->push_back(ShortDiagnostic(d));
+    return frames;
+}
+
+// The one frame of `text`, which must parse.
+SceneDesc Scene(const std::string& text, Messages* messages) {
+    std::optional<std::vector<SceneDesc>> frames = Frames(text, messages);
+    INFO(text);
+    REQUIRE(frames);
+    REQUIRE(frames->size() == 1);
+    return frames->front();
+}
+
+const std::string kPatch = "Patch \"bilinear\" \"P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n";
+
+}  // namespace
+
+TEST_CASE("rib: a pixel aspect ratio that is not positive is the default, 1, with a note", "[rib]") {
+    for (const char* aspect : {"-1", "0"}) {
+        Messages messages;
+        const SceneDesc scene = Scene("Format 40 30 " + std::string(aspect) + "\nWorldBegin\nWorldEnd\n", &messages);
+        CHECK(scene.camera.xres == 40);
+        CHECK(scene.camera.yres == 30);
+        CHECK(scene.camera.pixelAspect == 1);
+        CHECK(messages == Messages{"t.rib:1: note: 'Format' pixelaspectratio " + std::string(aspect) +
+                                   " asks for the display's default (RI 3.2): using 1, square pixels"});
+    }
+    Messages messages;
+    CHECK(Scene("Format 40 30 2\nWorldBegin\nWorldEnd\n", &messages).camera.pixelAspect == 2);
+    CHECK(messages.empty());
+    // The lexer refuses NaN and infinity, so they never reach Format.
+    CHECK(FirstError("Format 40 30 inf\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:1: error: invalid number 'inf': NaN and infinity are not allowed");
+}
+
+TEST_CASE("rib: a world inside TransformBegin or AttributeBegin starts from the camera transform", "[rib]") {
+    // As Houdini writes it: the camera's motion block and the world in one TransformBegin block.
+    const std::string camera =
+        "MotionBegin [0 1]\n"
+        "ConcatTransform [1 0 0 0  0 1 0 0  0 0 1 0  0 0 5 1]\n"
+        "ConcatTransform [1 0 0 0  0 1 0 0  0 0 1 0  0 0 6 1]\n"
+        "MotionEnd\n";
+    Messages messages;
+    SceneDesc scene = Scene(
+        "Translate 1 0 0\nTransformBegin\n" + camera + "WorldBegin\n" + kPatch + "WorldEnd\nTransformEnd\n", &messages);
+    CHECK(scene.camera.worldToCamera[3] == glm::dvec4(1, 0, 5, 1));  // Translate, then the first sample
+    REQUIRE(scene.primitives.size() == 1);
+    CHECK(scene.primitives[0].corners[3] == glm::dvec3(1, 1, 0));  // world space starts at identity
+    CHECK(messages == Messages{
+                          "t.rib:3: warning: motion blur is not rendered: each motion block takes its first sample "
+                          "(time 0)",
+                          "t.rib:7: note: 'WorldBegin' inside 'TransformBegin': the world starts from the transform "
+                          "current here (the camera transform), and 'TransformEnd' after 'WorldEnd' ends the block",
+                      });
+
+    // In frames, each world in its own block, the note once; an AttributeBegin around the world
+    // restores the attributes given before it after AttributeEnd, and the frame ends cleanly.
+    std::optional<std::vector<SceneDesc>> frames;
+    std::string text;
+    for (int frame = 1; frame <= 2; ++frame)
+        text += "FrameBegin " + std::to_string(frame) + "\nAttributeBegin\nColor 1 0 0\nTranslate 0 0 " +
+                std::to_string(frame) + "\nWorldBegin\n" + kPatch + "WorldEnd\nAttributeEnd\nFrameEnd\n";
+    frames = Frames(text, &messages);
+    REQUIRE(frames);
+    REQUIRE(frames->size() == 2);
+    for (int frame = 1; frame <= 2; ++frame) {
+        const SceneDesc& f = (*frames)[static_cast<size_t>(frame - 1)];
+        CHECK(f.camera.worldToCamera[3] == glm::dvec4(0, 0, frame, 1));
+        CHECK(f.primitives.at(0).color == glm::dvec3(1, 0, 0));
+    }
+    CHECK(messages == Messages{"t.rib:5: note: 'WorldBegin' inside 'AttributeBegin': the world starts from the "
+                               "transform current here (the camera transform), and 'AttributeEnd' after 'WorldEnd' "
+                               "ends the block"});
+
+    // The block must still close after the world, and in order.
+    CHECK(FirstError("TransformBegin\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:1: error: 'TransformBegin' has no matching 'TransformEnd'");
+    CHECK(FirstError("TransformBegin\nWorldBegin\nTransformEnd\nWorldEnd\n") ==
+          "t.rib:3: error: 'TransformEnd' does not match 'WorldBegin' on line 2");
+    CHECK(FirstError("FrameBegin 1\nTransformBegin\nWorldBegin\nWorldEnd\nFrameEnd\nTransformEnd\n") ==
+          "t.rib:5: error: 'FrameEnd' does not match 'TransformBegin' on line 2");
+    CHECK(FirstError("TransformBegin\nWorldBegin\nWorldEnd\nTransformEnd\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:5: error: a second 'WorldBegin' outside frames; give each world its own 'FrameBegin'/'FrameEnd'");
+    CHECK(FirstError("TransformBegin\nFrameBegin 1\nWorldBegin\nWorldEnd\nFrameEnd\nTransformEnd\n") ==
+          "t.rib:2: error: 'FrameBegin' inside 'TransformBegin' on line 1");
+}
+
+TEST_CASE("rib: Skew shears along the second axis, turning the first by the angle", "[rib]") {
+    Messages messages;
+    // RI 3.2's example: the y axis turns 45 degrees towards x.
+    SceneDesc scene = Scene(InWorld("Skew 45 0 1 0 1 0 0\n" + kPatch), &messages);
+    CHECK(messages.empty());
+    REQUIRE(scene.primitives.size() == 1);
+    const auto& corners = scene.primitives[0].corners;
+    CHECK(corners[1] == glm::dvec3(1, 0, 0));  // points on the second axis do not move
+    CHECK(glm::length(corners[2] - glm::dvec3(1, 1, 0)) < 1e-15);
+    CHECK(glm::length(corners[3] - glm::dvec3(2, 1, 0)) < 1e-15);
+    // Axes 60 degrees apart, a turn of -30 degrees: the first axis ends 90 degrees from the second,
+    // moved along it only (its part across the second axis stays).
+    scene = Scene(InWorld("Skew -30 0.5 0.8660254037844386 0  2 0 0\n"
+                          "Patch \"bilinear\" \"P\" [0 0 0  0.5 0.8660254037844386 0  0 0 1  1 0 0]\n"),
+                  &messages);
+    const glm::dvec3 d1 = scene.primitives[0].corners[1];
+    CHECK(std::abs(d1.x) < 1e-15);
+    CHECK(std::abs(d1.y - 0.8660254037844386) < 1e-15);
+    CHECK(scene.primitives[0].corners[3] == glm::dvec3(1, 0, 0));
+
+    CHECK(WorldError("Skew 45 0 1 0 0 2 0\n") == "t.rib:2: error: 'Skew' axes must be nonzero and not parallel");
+    CHECK(WorldError("Skew 45 0 0 0 1 0 0\n") == "t.rib:2: error: 'Skew' axes must be nonzero and not parallel");
+    CHECK(WorldError("Skew 90 0 1 0 1 0 0\n") ==
+          "t.rib:2: error: 'Skew' angle must be less than the angle between the axes (90 degrees) and more than "
+          "that angle minus 180, got 90");
+    CHECK(WorldError("Skew -90 0 1 0 1 0 0\n") ==
+          "t.rib:2: error: 'Skew' angle must be less than the angle between the axes (90 degrees) and more than "
+          "that angle minus 180, got -90");
+    CHECK(WorldError("Skew 45 0 1 0\n") ==
+          "t.rib:2: error: 'Skew' expects 7 numbers (angle dx1 dy1 dz1 dx2 dy2 dz2), got 4");
+}
+
+TEST_CASE("rib: solids render their parts for unions and are skipped for intersections and differences", "[rib]") {
+    Messages messages;
+    SceneDesc scene = Scene(InWorld("SolidBegin \"primitive\"\n" + kPatch + "SolidEnd\nSolidBegin \"union\"\n" +
+                                    "SolidBegin \"primitive\"\nSphere 1 -1 1 360\nSolidEnd\n" + kPatch +
+                                    "SolidEnd\nSolidBegin \"union\"\nSolidEnd\n"),
+                            &messages);
+    CHECK(scene.primitives.size() == 3);
+    CHECK(messages == Messages{"t.rib:5: note: 'SolidBegin \"union\"': the surfaces of the parts are rendered, which "
+                               "shows the union of closed, opaque parts"});
+
+    // A difference is skipped whole: its nested blocks, transforms, attributes and primitives;
+    // what follows it renders with the state before it.
+    scene = Scene(InWorld("SolidBegin \"difference\"\nColor 1 0 0\nTranslate 5 0 0\nSphere 1 -1 1 360\n"
+                          "AttributeBegin\nSolidBegin \"intersection\"\nPoints \"P\" [0 0 0]\nFooBar\nSolidEnd\n"
+                          "AttributeEnd\nSolidEnd\n" +
+                          kPatch + "SolidBegin \"intersection\"\nSolidEnd\n"),
+                  &messages);
+    REQUIRE(scene.primitives.size() == 1);
+    CHECK(scene.primitives[0].color == glm::dvec3(1));
+    CHECK(scene.primitives[0].corners[1] == glm::dvec3(1, 0, 0));
+    CHECK(messages ==
+          Messages{"t.rib:2: warning: 'SolidBegin \"difference\"' (constructive solid geometry) is not supported yet: "
+                   "the solid is skipped",
+                   "t.rib:14: warning: 'SolidBegin \"intersection\"' (constructive solid geometry) is not supported "
+                   "yet: the solid is skipped"});
+
+    CHECK(WorldError("SolidBegin \"xor\"\nSolidEnd\n") ==
+          "t.rib:2: error: unknown solid operation 'xor' (expected \"primitive\", \"union\", \"intersection\" or "
+          "\"difference\")");
+    CHECK(WorldError("SolidBegin \"union\" \"x\"\nSolidEnd\n") ==
+          "t.rib:2: error: 'SolidBegin' expects one string (the operation)");
+    CHECK(WorldError("SolidBegin\n") == "t.rib:2: error: 'SolidBegin' expects a solid operation as its first argument");
+    CHECK(WorldError("SolidEnd\n") == "t.rib:2: error: 'SolidEnd' without matching 'SolidBegin'");
+    CHECK(WorldError("SolidBegin \"union\"\nAttributeBegin\nSolidEnd\n") ==
+          "t.rib:4: error: 'SolidEnd' does not match 'AttributeBegin' on line 3");
+    CHECK(WorldError("SolidBegin \"difference\"\nAttributeBegin\nSolidEnd\n") ==
+          "t.rib:4: error: 'SolidEnd' does not match 'AttributeBegin' on line 3");
+    CHECK(WorldError("SolidBegin \"union\"\n") == "t.rib:4: error: 'WorldEnd' does not match 'SolidBegin' on line 2");
+    CHECK(FirstError("SolidBegin \"union\"\nSolidEnd\n") ==
+          "t.rib:1: error: 'SolidBegin' must come between 'WorldBegin' and 'WorldEnd'");
+    // In an object, a solid is a block of the object's own.
+    CHECK(FirstError("ObjectBegin 1\nSolidBegin \"union\"\nObjectEnd\n") ==
+          "t.rib:3: error: 'ObjectEnd' inside an 'AttributeBegin' or 'TransformBegin' of the object");
+    scene = Scene("ObjectBegin 1\nSolidBegin \"union\"\n" + kPatch + "SolidEnd\nObjectEnd\n" +
+                      InWorld("ObjectInstance 1\nObjectInstance 1\n"),
+                  &messages);
+    CHECK(scene.primitives.size() == 2);
+}
+
+TEST_CASE("rib: primitives affray cannot make are skipped with one warning per name", "[rib]") {
+    Messages messages;
+    const SceneDesc scene = Scene(
+        InWorld("Points \"P\" [0 0 0  1 1 1] \"constantwidth\" [0.1]\n"
+                "Curves \"cubic\" [4] \"nonperiodic\" \"P\" [0 0 0  1 1 1  2 2 2  3 3 3] \"constantwidth\" [0.1]\n"
+                "Blobby 1 [1001 0] [1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1] [\"\"]\n"
+                "Geometry \"teapot\"\nPoints \"P\" [0 0 0]\nVolume \"box\" [0 1 0 1 0 1] [1 1 1]\n" +
+                kPatch),
+        &messages);
+    CHECK(scene.primitives.size() == 1);
+    CHECK(messages == Messages{
+                          "t.rib:2: warning: 'Points' is not supported yet: skipped, so the image lacks these "
+                          "primitives",
+                          "t.rib:3: warning: 'Curves' is not supported yet: skipped, so the image lacks these "
+                          "primitives",
+                          "t.rib:4: warning: 'Blobby' is not supported yet: skipped, so the image lacks these "
+                          "primitives",
+                          "t.rib:5: warning: 'Geometry' is not supported yet: skipped, so the image lacks these "
+                          "primitives",
+                          "t.rib:7: warning: 'Volume' is not supported yet: skipped, so the image lacks these "
+                          "primitives",
+                      });
+    // Outside the world they are misplaced, as every primitive is.
+    CHECK(FirstError("Curves \"linear\" [2] \"nonperiodic\" \"P\" [0 0 0 1 1 1]\n") ==
+          "t.rib:1: error: 'Curves' must come between 'WorldBegin' and 'WorldEnd'");
+}
+
+TEST_CASE("rib: other renderers' requests warn once per name; a projective one and unknown names are errors", "[rib]") {
+    Messages messages;
+    const SceneDesc scene = Scene(
+        "Camera \"world\" \"float[2] shutteropening\" [0 1]\nDisplayChannel \"color Ci\"\n"
+        "PixelVariance 0.01\nWorldBegin\nDeformation \"twist\" \"angle\" [30]\nDetailRange [0 0 10 20]\n" +
+            kPatch + "DetailRange [10 20 1e38 1e38]\n" + kPatch +
+            "Bxdf \"PxrDiffuse\" \"d\"\nShader \"noise\" \"n\"\nTextureCoordinates 0 0 1 0 0 1 1 1\n"
+            "WorldEnd\n",
+        &messages);
+    CHECK(scene.primitives.size() == 2);  // both levels of detail
+    CHECK(messages ==
+          Messages{
+              "t.rib:1: warning: 'Camera' does not apply to affray; ignored",
+              "t.rib:2: warning: 'DisplayChannel' does not apply to affray; ignored",
+              "t.rib:3: warning: 'PixelVariance' does not apply to affray; ignored",
+              "t.rib:5: warning: 'Deformation' is not supported (deformation shaders are an optional RI 3.2 "
+              "capability); ignored: the geometry is not deformed",
+              "t.rib:6: warning: 'DetailRange' is not supported: every level of detail is rendered",
+              "t.rib:10: warning: request 'Bxdf' is not supported yet; ignored",
+              "t.rib:11: warning: request 'Shader' is not supported yet; ignored",
+              "t.rib:12: warning: request 'TextureCoordinates' is not supported yet; ignored",
+          });
+    CHECK(FirstError("Perspective 45\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:1: error: 'Perspective' is not supported yet: a projective transform (transforms must be affine)");
+    CHECK(FirstError("WorldBegin\nArchiveBegin \"a\"\nArchiveEnd\nWorldEnd\n") ==
+          "t.rib:2: error: 'ArchiveBegin' is not supported yet: an inline archive's requests would run here "
+          "instead of where 'ReadArchive' reads them");
+    CHECK(FirstError("WorldBegin\nSpehre 1 -1 1 360\nWorldEnd\n") == "t.rib:2: error: unknown RIB request 'Spehre'");
+}
