@@ -253,7 +253,7 @@ TEST_CASE("Shadow rays only for lights that would add light", "[shade]") {
     RequireNear(c, glm::dvec3(0.0));
 }
 
-TEST_CASE("Lights that cast no shadows trace no shadow rays; a partial shadow scales the light", "[shade]") {
+TEST_CASE("Lights that cast no shadows trace no shadow rays, a partial shadow scales the light", "[shade]") {
     const SurfaceDesc plastic = Model(SurfaceDesc::Model::Plastic, 1, 0.5, 0.5);
     const glm::dvec3 Cs(1, 0.5, 0.25);
     LightDesc standard = Point({0, 0, 2}, 4);

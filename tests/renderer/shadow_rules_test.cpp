@@ -110,7 +110,7 @@ TEST_CASE("shadow rules: a light with shadows on is blocked by an occluder, a st
     CHECK(light == Approx(kLit).epsilon(1e-3));
 }
 
-TEST_CASE("shadow rules: transparent occluders cast no shadow; \"Os\" ones let 1 - Os through", "[renderer][shadow]") {
+TEST_CASE("shadow rules: transparent occluders cast no shadow, \"Os\" ones let 1 - Os through", "[renderer][shadow]") {
     const std::string on = "Attribute \"light\" \"shadows\" \"on\"\n";
     for (const char* attribute :
          {"Attribute \"visibility\" \"transmission\" \"transparent\"\n",

@@ -35,7 +35,7 @@ const char* const kSphere = "Sphere 1 -1 1 360\n";
 
 }  // namespace
 
-TEST_CASE("attributes: the standard lights cast no shadows; Attribute \"light\" \"shadows\" turns them on",
+TEST_CASE("attributes: the standard lights cast no shadows, Attribute \"light\" \"shadows\" turns them on",
           "[rib][shadow]") {
     const std::string lights =
         "LightSource \"ambientlight\" 1\nLightSource \"distantlight\" 2\nLightSource \"pointlight\" 3\n"

@@ -822,7 +822,7 @@ TEST_CASE("RIB CoordSysTransform makes a named space current", "[renderer][rib]"
     CHECK(ErrorOf("CoordSysTransform \"a\" \"b\"\n") == "t.rib:1: error: 'CoordSysTransform' expects one string");
 }
 
-TEST_CASE("RIB Attribute warns once; Opacity and visibility are attributes", "[renderer][rib]") {
+TEST_CASE("RIB Attribute warns once, Opacity and visibility are attributes", "[renderer][rib]") {
     std::vector<std::string> warnings;
     SceneDesc scene = Parsed(
         "WorldBegin\nAttribute \"displacementbound\" \"sphere\" [0.5]\n"
