@@ -109,6 +109,13 @@ struct NearestHit {
     int primitive = -1;
 };
 
+/// Where a search for the next surface along a ray starts after `hit`: past its certified error
+/// (or the tolerance, if larger or the error unknown) twice, so it cannot find the same region.
+double Beyond(const Hit& hit, const Tolerance& tol) {
+    const double error = std::isfinite(hit.error) ? hit.error : tol.At(hit.t);
+    return hit.t + 2 * std::max(error, tol.At(hit.t));
+}
+
 glm::dvec3 ToGlm(const vm::Vec3<vm::Dual<double>>& v) { return {v.x.v, v.y.v, v.z.v}; }
 
 /// The displaced point and its unit normal at a hit, from the shade program in dual numbers.
@@ -139,6 +146,7 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
         NearestHit nearest;
         double best = tMax;
         scene.bvh->Traverse(ray, tMin, &best, [&](int i, double) {
+            if (!scene.primitives[i].cameraVisible) return true;  // Attribute "visibility" "camera" 0
             Hit hit;
             if (ts.intersectors[i]->Intersect(ray, tMin, best, tol, false, &hit, stats, group)) {
                 best = hit.t;
@@ -149,14 +157,59 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
         if (nearest.primitive < 0 || scene.primitives[nearest.primitive].twoSided) return nearest;
         if (glm::dot(EvaluateHit(scene, ts, ray, nearest, eye).N, ray.dir) < 0) return nearest;
         // Seen from behind: look again beyond this hit's certified error.
-        const double error = std::isfinite(nearest.hit.error) ? nearest.hit.error : tol.At(nearest.hit.t);
-        tMin = nearest.hit.t + 2 * std::max(error, tol.At(nearest.hit.t));
+        tMin = Beyond(nearest.hit, tol);
     }
     return {};
 }
 
-/// Shades the nearest hit of a camera ray: the surface model at P, N (EvaluateHit) with shadow
-/// rays through the same intersector.
+/// Partly transparent surfaces one ray passes through at most: a camera ray's layers, and a
+/// shadow ray's hits on one primitive. What lies beyond the last is taken as black (camera) or
+/// blocked (shadow).
+constexpr int kMaxLayers = 64;
+
+/// The light that gets through the segment of `ray` from tMin to tMax past the primitives that
+/// cast shadows (transmission): 0 if an opaque one blocks it, else the product of 1 - Os over
+/// the hits on the partly transparent ones (transmission "Os": each hit found nearest first,
+/// the next search beyond it).
+glm::dvec3 ShadowTransmission(const PreparedScene& scene, ThreadState& ts, const Ray& ray, double tMin, double tMax,
+                              const Tolerance& tol) {
+    using Transmission = PrimitiveDesc::Transmission;
+    bool blocked = false, partly = false;
+    double tEnd = tMax;
+    scene.bvh->Traverse(ray, tMin, &tEnd, [&](int i, double) {
+        const Primitive& prim = scene.primitives[i];
+        if (prim.transmission == Transmission::Transparent) return true;
+        if (prim.transmission == Transmission::Opacity && !prim.OpaqueP()) {
+            partly = true;  // in the second pass
+            return true;
+        }
+        Hit hit;
+        blocked = ts.intersectors[i]->Intersect(ray, tMin, tMax, tol, true, &hit, ts.shadowStats);
+        return !blocked;
+    });
+    if (blocked) return glm::dvec3(0.0);
+    glm::dvec3 through(1.0);
+    if (!partly) return through;
+    tEnd = tMax;
+    scene.bvh->Traverse(ray, tMin, &tEnd, [&](int i, double) {
+        const Primitive& prim = scene.primitives[i];
+        if (prim.transmission != Transmission::Opacity || prim.OpaqueP()) return true;
+        double from = tMin;
+        for (int layer = 0; layer < kMaxLayers; ++layer) {
+            Hit hit;
+            if (!ts.intersectors[i]->Intersect(ray, from, tMax, tol, false, &hit, ts.shadowStats)) return true;
+            through *= 1.0 - prim.OpacityAt(hit.u, hit.v);
+            if (through == glm::dvec3(0.0)) return false;
+            from = Beyond(hit, tol);
+        }
+        through = glm::dvec3(0.0);
+        return false;
+    });
+    return through;
+}
+
+/// Shades the nearest hit of a camera ray: the surface model at P, N (EvaluateHit) with Cs at
+/// the hit and shadow rays through the same intersector. The colour is not yet multiplied by Os.
 glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh,
                     const HitPoint& at, const Tolerance& tol) {
     const Primitive& prim = scene.primitives[nh.primitive];
@@ -172,18 +225,13 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
     // A cone: as wide as the camera ray's footprint where it left, widening at the pixel's angle,
     // so an occluder is resolved no finer than the pixel that sees its shadow needs.
     Tolerance shadowTol{footprint, tol.slope};
-    auto occluded = [&](const glm::dvec3& toLight, double distance) {
+    auto transmitted = [&](const glm::dvec3& toLight, double distance) {
         Ray shadowRay{sp.P + sp.Nf * offset, toLight};
         double tMax = std::isfinite(distance) ? distance - offset : INFINITY;
-        bool blocked = false;
-        scene.bvh->Traverse(shadowRay, offset, &tMax, [&](int i, double) {
-            Hit hit;
-            blocked = ts.intersectors[i]->Intersect(shadowRay, offset, tMax, shadowTol, true, &hit, ts.shadowStats);
-            return !blocked;
-        });
-        return blocked;
+        return ShadowTransmission(scene, ts, shadowRay, offset, tMax, shadowTol);
     };
-    return ShadeSurface(prim.surface, prim.color, sp, scene.lightSets[prim.lightSet], occluded);
+    return ShadeSurface(prim.surface, prim.ColorAt(nh.hit.u, nh.hit.v), sp, scene.lightSets[prim.lightSet],
+                        transmitted);
 }
 
 /// The largest magnitude a bound of P may reach for the intersector to measure it: the ray-frame
@@ -483,6 +531,11 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         }
         prim.surface = patch.surface;
         prim.color = patch.color;
+        prim.opacity = patch.opacity;
+        prim.colorField = patch.colorField;
+        prim.opacityField = patch.opacityField;
+        prim.transmission = patch.transmission;
+        prim.cameraVisible = patch.cameraVisible;
         prim.twoSided = patch.twoSided;
         prim.lightSet = lightSetOf(patch);
         prim.line = patch.line;
@@ -580,6 +633,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         glm::dvec3 forward = glm::dvec3(cameraToWorld * glm::dvec4(0, 0, 1, 0));
         LightDesc key;
         key.kind = LightDesc::Kind::Distant;
+        key.castShadows = true;  // affray's own light, not a RenderMan one: it keeps the shadows it always had
         key.from = eye;
         key.to = eye + forward;
         out->lights.push_back(key);
@@ -632,19 +686,33 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
     ++ts.cameraRays;
     if (!(tMin <= tMax)) return value;
     const uint64_t before = ts.cameraStats.regionsBounded;
-    const NearestHit nh = TraceNearest(scene, ts, ray, tMin, tMax, tol, ts.cameraStats, eye, group);
+    // Front to back through partly transparent surfaces (Os < 1): each layer adds its colour
+    // times its opacity times what the layers in front let through (RenderMan's Ci = Os * ...,
+    // composited over what lies behind); an opaque layer ends the ray. The AOVs are the nearest
+    // surface's; alpha is the coverage, 1 - the mean of what gets through.
+    glm::dvec3 through(1.0);
+    for (int layer = 0; layer < kMaxLayers; ++layer) {
+        const NearestHit nh = TraceNearest(scene, ts, ray, tMin, tMax, tol, ts.cameraStats, eye, group);
+        if (nh.primitive < 0) break;
+        const Primitive& prim = scene.primitives[nh.primitive];
+        const HitPoint at = EvaluateHit(scene, ts, ray, nh, eye);
+        const glm::dvec3 Os = prim.OpacityAt(nh.hit.u, nh.hit.v);
+        value.rgb += through * Os * ShadeHit(scene, ts, ray, nh, at, tol);
+        through *= 1.0 - Os;
+        if (layer == 0) {
+            value.z = (scene.desc.camera.worldToCamera * glm::dvec4(ray.origin + nh.hit.t * ray.dir, 1.0)).z;
+            value.N = at.N;
+            value.P = at.P;
+            // The mesh's (u,v), which the shader saw: the hit's are the patch's own.
+            const ParameterRange& range = prim.base.range;
+            value.st = {range.U(nh.hit.u), range.V(nh.hit.v)};
+            value.err = nh.hit.error;
+        }
+        if (through == glm::dvec3(0.0)) break;
+        tMin = Beyond(nh.hit, tol);
+    }
+    value.alpha = 1.0 - (through.x + through.y + through.z) / 3.0;
     value.cost = static_cast<int64_t>(ts.cameraStats.regionsBounded - before);
-    if (nh.primitive < 0) return value;
-    const HitPoint at = EvaluateHit(scene, ts, ray, nh, eye);
-    value.rgb = ShadeHit(scene, ts, ray, nh, at, tol);
-    value.alpha = 1;
-    value.z = (scene.desc.camera.worldToCamera * glm::dvec4(ray.origin + nh.hit.t * ray.dir, 1.0)).z;
-    value.N = at.N;
-    value.P = at.P;
-    // The mesh's (u,v), which the shader saw: the hit's are the patch's own.
-    const ParameterRange& range = scene.primitives[nh.primitive].base.range;
-    value.st = {range.U(nh.hit.u), range.V(nh.hit.v)};
-    value.err = nh.hit.error;
     return value;
 }
 

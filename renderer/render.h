@@ -104,13 +104,25 @@ struct Primitive {
     vm::Program bound;
     vm::Program shade;
     SurfaceDesc surface;
-    glm::dvec3 color{1.0};
+    glm::dvec3 color{1.0}, opacity{1.0};                         // Cs and Os, where no field is given
+    std::shared_ptr<const ColorField> colorField, opacityField;  // over the primitive's own (u,v), or null
+    PrimitiveDesc::Transmission transmission = PrimitiveDesc::Transmission::Opaque;
+    bool cameraVisible = true;
     bool twoSided = true;
     int lightSet = 0;  // the lights that illuminate it: PreparedScene::lightSets[lightSet]
     int line = 0;      // the RIB request
     /// The displaced surface's bound over its whole (u,v) domain, for the BVH; infinite if the
     /// bound overflows somewhere.
     Box box;
+
+    /// Cs and Os at the point (u, v) of the primitive's own parameters (a hit's); Os clamped to
+    /// [0, 1] (a field may overshoot between its values).
+    glm::dvec3 ColorAt(double u, double v) const { return colorField ? colorField->At(u, v) : color; }
+    glm::dvec3 OpacityAt(double u, double v) const {
+        return opacityField ? glm::clamp(opacityField->At(u, v), 0.0, 1.0) : opacity;
+    }
+    /// Whether Os is 1 everywhere.
+    bool OpaqueP() const { return !opacityField && opacity == glm::dvec3(1.0); }
 };
 
 struct PreparedScene {

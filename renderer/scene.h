@@ -8,6 +8,7 @@
 #include <array>
 #include <glm/glm.hpp>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -16,6 +17,7 @@
 #include "renderer/geometry/bicubic.h"
 #include "renderer/geometry/mesh.h"
 #include "renderer/geometry/nurbs.h"
+#include "renderer/geometry/primvar.h"
 #include "renderer/geometry/quadric.h"
 #include "renderer/geometry/subdivision.h"
 
@@ -59,6 +61,10 @@ struct LightDesc {
     double coneAngle = 0.5235987755982988, coneDeltaAngle = 0.08726646259971647, beamDistribution = 2;
     std::string handle;  ///< The RIB light handle (number or string), as text.
     int line = 0;
+    /// Whether the light traces shadow rays. RenderMan's standard lights cast no shadows (their
+    /// shaders never call shadow()); the RIB reader turns this on for the shadow-map lights
+    /// (shadowspot...), a light given a "shadowname", and BMRT's Attribute "light" "shadows" "on".
+    bool castShadows = false;
 };
 
 /// One geometric primitive with its shading attributes: a bilinear patch (corners already in
@@ -82,7 +88,18 @@ struct PrimitiveDesc {
     SubdivPatch subdiv;                      ///< SubdivPatch: one patch of a subdivision mesh.
     /// Patches: the part of the mesh's (u,v) this patch covers ([0,1]^2 for a lone Patch).
     ParameterRange range;
-    glm::dvec3 color{1.0};  ///< The RIB Color (Cs) in effect.
+    glm::dvec3 color{1.0};    ///< The RIB Color in effect, or the primitive's constant or uniform "Cs".
+    glm::dvec3 opacity{1.0};  ///< The RIB Opacity in effect, or the primitive's constant or uniform "Os".
+    /// A "Cs" or "Os" that varies over the primitive (varying, vertex, facevarying values), over
+    /// its own (s,t) as the intersector's hits give them; null: `color` or `opacity` everywhere.
+    std::shared_ptr<const ColorField> colorField, opacityField;
+    /// How the primitive stops shadow rays (Attribute "visibility" "transmission", BMRT's
+    /// Attribute "render" "casts_shadows"): wholly (Opaque, the default, BMRT's), by its opacity
+    /// Os (Opacity: the light passing a hit is scaled by 1 - Os there), or not at all.
+    enum class Transmission { Opaque, Opacity, Transparent } transmission = Transmission::Opaque;
+    /// Attribute "visibility" "camera": false hides the primitive from camera rays (it still
+    /// casts shadows as `transmission` says).
+    bool cameraVisible = true;
     SurfaceDesc surface;
     std::optional<ShaderRef> displacement;
     int line = 0, column = 0;  ///< Where the request starts in the RIB file, for diagnostics.
@@ -225,6 +242,7 @@ inline std::string ToString(const LightDesc& l) {
     if (l.kind == LightDesc::Kind::Spot)
         out << " coneangle=" << l.coneAngle << " conedeltaangle=" << l.coneDeltaAngle
             << " beamdistribution=" << l.beamDistribution;
+    if (l.castShadows) out << " shadows";
     return out.str();
 }
 
@@ -260,7 +278,14 @@ inline std::string ToString(const PrimitiveDesc& p) {
     if (p.flipNormal) text += " flipnormal";
     if (p.scopedSpaces)
         for (const auto& [name, m] : *p.scopedSpaces) text += " space " + name + "=" + ToString(m);
-    text += " color=" + ToString(p.color) + " " + ToString(p.surface);
+    if (p.transmission == PrimitiveDesc::Transmission::Opacity) text += " transmission=Os";
+    if (p.transmission == PrimitiveDesc::Transmission::Transparent) text += " transmission=transparent";
+    if (!p.cameraVisible) text += " camera=0";
+    text += " color=" + ToString(p.color);
+    if (p.colorField) text += " Cs=(" + ToString(*p.colorField) + ")";
+    if (p.opacity != glm::dvec3(1.0)) text += " opacity=" + ToString(p.opacity);
+    if (p.opacityField) text += " Os=(" + ToString(*p.opacityField) + ")";
+    text += " " + ToString(p.surface);
     if (p.displacement) text += " displacement " + ToString(*p.displacement);
     return text;
 }

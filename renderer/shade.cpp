@@ -63,7 +63,7 @@ double SpecularWeight(const glm::dvec3& Nf, const glm::dvec3& L, const glm::dvec
 }  // namespace
 
 glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const ShadingPoint& sp,
-                        const std::vector<LightDesc>& lights, const OcclusionTest& occluded) {
+                        const std::vector<LightDesc>& lights, const ShadowTest& shadow) {
     using Model = SurfaceDesc::Model;
     if (surface.model == Model::Constant) return Cs;  // no lights, so no shadow rays either
     // The terms the model uses; the others are neither summed nor worth a shadow ray.
@@ -80,11 +80,15 @@ glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const 
         if (!in) continue;
         const double cosine = glm::dot(sp.Nf, in->L);
         if (cosine <= 0) continue;  // the light is behind the surface: no need for a shadow ray
-        const glm::dvec3 d = wantsDiffuse ? in->Cl * cosine : glm::dvec3(0.0);
-        const glm::dvec3 s =
-            wantsSpecular ? in->Cl * SpecularWeight(sp.Nf, in->L, sp.V, surface.roughness) : glm::dvec3(0.0);
+        glm::dvec3 d = wantsDiffuse ? in->Cl * cosine : glm::dvec3(0.0);
+        glm::dvec3 s = wantsSpecular ? in->Cl * SpecularWeight(sp.Nf, in->L, sp.V, surface.roughness) : glm::dvec3(0.0);
         if (d == glm::dvec3(0.0) && s == glm::dvec3(0.0)) continue;  // adds nothing: skip the shadow ray
-        if (occluded(in->L, in->distance)) continue;
+        if (light.castShadows) {
+            const glm::dvec3 through = shadow(in->L, in->distance);
+            if (through == glm::dvec3(0.0)) continue;
+            d *= through;  // (exact where nothing is in the way: through is 1)
+            s *= through;
+        }
         diffuse += d;
         specular += s;
     }

@@ -17,13 +17,15 @@ struct ShadingPoint {
     glm::dvec3 V;   // unit vector from P towards the viewer
 };
 
-/// Returns true if the segment from the shading point towards a light is blocked; `toLight` is a
-/// unit vector and `distance` the distance to the light (infinite for distant lights).
-using OcclusionTest = std::function<bool(const glm::dvec3& toLight, double distance)>;
+/// The part of a light's colour that gets through the segment from the shading point towards
+/// the light, per component: 1 where nothing is in the way, 0 behind an opaque occluder, between
+/// behind partly transparent ones. `toLight` is a unit vector and `distance` the distance to the
+/// light (infinite for distant lights).
+using ShadowTest = std::function<glm::dvec3(const glm::dvec3& toLight, double distance)>;
 
 /// The colour of `sp` under `lights` for the surface model `surface` with colour Cs, following the
 /// RenderMan shaders of RI Spec 3.2 appendix A:
-///   constant  Cs (no lights, so `occluded` is never called)
+///   constant  Cs (no lights, so `shadow` is never called)
 ///   matte     Cs * (Ka*ambient() + Kd*diffuse(Nf))
 ///   metal     Cs * (Ka*ambient() + Ks*specular(Nf, V, roughness))
 ///   plastic   Cs * (Ka*ambient() + Kd*diffuse(Nf)) + specularcolor * Ks*specular(Nf, V, roughness)
@@ -32,9 +34,11 @@ using OcclusionTest = std::function<bool(const glm::dvec3& toLight, double dista
 /// (intensity*lightcolor / distance^2) and spotlight (the pointlight's colour times
 /// smoothstep(cos(coneangle), cos(coneangle - conedeltaangle), cosangle) * cosangle^beamdistribution,
 /// cosangle the cosine between from -> P and from -> to; nothing outside the cone).
-/// `occluded` is asked only about lights that would add something: in front of the surface and
-/// with a nonzero contribution to a term the model uses.
+/// Shadows: a light that casts them (LightDesc::castShadows; RenderMan's standard lights do not)
+/// is scaled by what `shadow` lets through. `shadow` is asked only about such lights that would
+/// add something: in front of the surface and with a nonzero contribution to a term the model
+/// uses. The result is the colour Ci before RenderMan's final Ci *= Os (the caller composites).
 glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const ShadingPoint& sp,
-                        const std::vector<LightDesc>& lights, const OcclusionTest& occluded);
+                        const std::vector<LightDesc>& lights, const ShadowTest& shadow);
 
 }  // namespace affray::renderer

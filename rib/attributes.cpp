@@ -1,10 +1,13 @@
 // rib/attributes.cpp: RIB requests for attributes and lights (Color, Opacity, Surface,
 // Displacement, Attribute, Sides, ReverseOrientation, Orientation, Basis, LightSource,
-// Illuminate). Rules shared with rib.cpp are in rib/parser.h. Light positions are transformed with
-// the CTM current at the request. A new light shader goes in kLightShaders (and LightParams if it
-// has new parameters).
+// Illuminate), with the attributes that decide shadows: which lights cast them (the shadow-map
+// lights, map names, Attribute "light") and which primitives stop them (Attribute "visibility",
+// BMRT's "render"). Rules shared with rib.cpp are in rib/parser.h. Light positions are
+// transformed with the CTM current at the request. A new light shader goes in kLightShaders (and
+// LightParams if it has new parameters).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "rib/parser.h"
 
@@ -42,10 +45,16 @@ bool RibParser::DoColor(const RibRequest& r) {
     return true;
 }
 
+// Opacity r g b: the Os of the primitives that follow, each component from 0 (clear) to 1.
 bool RibParser::DoOpacity(const RibRequest& r) {
     double v[3];
     if (!Numbers(r, 3, "r g b", v)) return false;
-    if (v[0] != 1 || v[1] != 1 || v[2] != 1) Warn(r.at, "affray renders opaque surfaces only; Opacity ignored");
+    glm::dvec3 opacity(v[0], v[1], v[2]);
+    if (glm::clamp(opacity, 0.0, 1.0) != opacity) {
+        Warn(r.at, "'Opacity' components must be from 0 to 1; clamped");
+        opacity = glm::clamp(opacity, 0.0, 1.0);
+    }
+    m_state.opacity = opacity;
     return true;
 }
 
@@ -73,12 +82,94 @@ bool RibParser::DoAttribute(const RibRequest& r) {
         return true;
     }
     if (name == "user") return true;
+    if (name == "light") return LightAttribute(params);
+    if (name == "visibility" || name == "render") return VisibilityAttribute(name, params);
     if (name == "displacementbound")
         Warn(r.at,
              "'Attribute \"displacementbound\"' is not needed: affray bounds displacement "
              "exactly; ignored");
     else
         Warn(r.at, "'Attribute \"" + name + "\"' does not apply to affray; ignored");
+    return true;
+}
+
+// Attribute "light" "shadows" "on"|"off" (BMRT, and Houdini's exports): whether the lights
+// declared from now on, until the end of the attribute block, trace shadows.
+bool RibParser::LightAttribute(const std::vector<RibParam>& params) {
+    for (const RibParam& p : params) {
+        const ParamValue& v = p.value;
+        if (v.name != "shadows") {
+            Warn(p.at, "'Attribute \"light\"' parameter " + Quote(v.name) + " does not apply to affray; ignored");
+        } else if (v.strings.size() == 1 && (v.strings[0] == "on" || v.strings[0] == "off")) {
+            m_state.lightShadows = v.strings[0] == "on";
+        } else {
+            Warn(p.at, "'Attribute \"light\" \"shadows\"' takes \"on\" or \"off\", got " +
+                           (v.strings.empty() ? "numbers" : "\"" + v.strings[0] + "\"") + "; ignored");
+        }
+    }
+    return true;
+}
+
+// Which rays see the primitives that follow: Attribute "visibility" "transmission" (prman 11:
+// "opaque", "Os", "shader" or "transparent"; later prman: 1 or 0, the opacity then from the
+// shader, Os here) and "camera" 0|1; BMRT's Attribute "render" "casts_shadows" ("none",
+// "opaque", "Os", "shade") and "visibility" (bits: 1 camera rays, 4 shadow rays).
+bool RibParser::VisibilityAttribute(const std::string& name, const std::vector<RibParam>& params) {
+    using Transmission = PrimitiveDesc::Transmission;
+    const std::string context = "'Attribute \"" + name + "\"'";
+    const bool prman = name == "visibility";
+    for (const RibParam& p : params) {
+        const ParamValue& v = p.value;
+        const std::string* word = v.strings.size() == 1 ? &v.strings[0] : nullptr;
+        const double* number = v.numbers.size() == 1 ? &v.numbers[0] : nullptr;
+        const std::string what = "'Attribute \"" + name + "\" \"" + v.name + "\"'";
+        auto bad = [&](const std::string& expected) {
+            Warn(p.at, what + " takes " + expected + ", got " +
+                           (word     ? "\"" + *word + "\""
+                            : number ? FormatNumber(*number)
+                                     : "a list") +
+                           "; ignored");
+        };
+        if (prman && v.name == "transmission") {
+            if (word && *word == "opaque")
+                m_state.transmission = Transmission::Opaque;
+            else if (word && (*word == "Os" || *word == "shader"))
+                m_state.transmission = Transmission::Opacity;
+            else if (word && *word == "transparent")
+                m_state.transmission = Transmission::Transparent;
+            else if (number && (*number == 0 || *number == 1))
+                m_state.transmission = *number == 1 ? Transmission::Opacity : Transmission::Transparent;
+            else
+                bad("\"opaque\", \"Os\", \"shader\", \"transparent\", 1 or 0");
+        } else if (prman && v.name == "camera") {
+            if (number && (*number == 0 || *number == 1))
+                m_state.cameraVisible = *number == 1;
+            else
+                bad("1 or 0");
+        } else if (!prman && v.name == "casts_shadows") {
+            if (word && *word == "none")
+                m_state.transmission = Transmission::Transparent;
+            else if (word && *word == "opaque")
+                m_state.transmission = Transmission::Opaque;
+            else if (word && (*word == "Os" || *word == "shade"))
+                m_state.transmission = Transmission::Opacity;
+            else
+                bad("\"none\", \"opaque\", \"Os\" or \"shade\"");
+        } else if (!prman && v.name == "visibility") {
+            if (number && *number >= 0 && *number <= 7 && *number == std::floor(*number)) {
+                const int bits = static_cast<int>(*number);
+                m_state.cameraVisible = (bits & 1) != 0;
+                if (!(bits & 4))
+                    m_state.transmission = Transmission::Transparent;
+                else if (m_state.transmission == Transmission::Transparent)
+                    m_state.transmission = Transmission::Opaque;
+            } else {
+                bad("a sum of 1 (camera), 2 (reflection) and 4 (shadow rays)");
+            }
+        } else {
+            Warn(p.at, context + " parameter " + Quote(v.name) + " does not apply to affray; ignored");
+        }
+    }
     return true;
 }
 
@@ -248,12 +339,17 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     const std::string standard = shader->kind == LightDesc::Kind::Distant ? "distantlight"
                                  : shader->kind == LightDesc::Kind::Point ? "pointlight"
                                                                           : "spotlight";
-    if (shader->shadowMapped)
-        Note(r.at, "light source " + Quote(name) + " renders as " + Quote(standard) +
-                       " with traced shadows; its shadow map parameters (shadowname, samples, width, blur, bias, "
-                       "...) are ignored");
     const std::string context = "'LightSource \"" + name + "\"'";
+    // Shadows: a shadow-map light's (unless its map names are empty, as RenderMan's defaults
+    // are: it then reads no map), a light's given a map name, or the attribute's.
+    light.castShadows = shader->shadowMapped;
     if (!LightParams(context, params, shader->shadowMapped, &light)) return false;
+    if (shader->shadowMapped)
+        Note(r.at,
+             "light source " + Quote(name) + " renders as " + Quote(standard) +
+                 (light.castShadows ? " with traced shadows" : " without shadows (its shadow map name is empty)") +
+                 "; its shadow map parameters (shadowname, samples, width, blur, bias, ...) are ignored");
+    light.castShadows = light.castShadows || m_state.lightShadows;
     if (light.kind == LightDesc::Kind::Spot && !CheckSpotlight(r, context, light)) return false;
     // from/to are points in the current space; before WorldBegin that is camera space, which is
     // mapped to world space once the camera transform is known.
@@ -297,21 +393,31 @@ bool RibParser::DoIlluminate(const RibRequest& r) {
 
 // The parameters of the RI 3.2 light shaders; each light takes only its own.
 // A shadow-map light shader, or a standard one given "shadowname" (some renderers' standard lights
-// read one), takes its map parameters, which are ignored with one note.
+// read one), takes its map parameters, which are ignored with one note. The map names decide
+// light->castShadows: any name ("raytrace", which asks for traced shadows, or a file) turns them
+// on; names that are all empty (RenderMan's default: no map) turn them off.
 bool RibParser::LightParams(const std::string& context, const std::vector<RibParam>& params, bool shadowMapped,
                             LightDesc* light) {
     using Kind = LightDesc::Kind;
     const bool spot = light->kind == Kind::Spot;
+    std::optional<bool> named;  // a map name given: is one of them not empty?
     for (const RibParam& p : params) {
         const std::string& n = p.value.name;
         const bool mapParam =
             std::find(std::begin(kShadowMapParams), std::end(kShadowMapParams), n) != std::end(kShadowMapParams);
+        // shadowname, or shadowpoint's six faces sfpx ... sfnz.
+        const bool mapName = n == "shadowname" || (shadowMapped && mapParam && n.size() == 4 && n.rfind("sf", 0) == 0);
+        const std::string file = p.value.strings.size() == 1 ? p.value.strings[0] : "";
+        if (mapName && p.value.strings.size() == 1) named = named.value_or(false) || !file.empty();
         bool ok = true;
         if (mapParam && shadowMapped)
             continue;  // noted once at the request
-        else if (n == "shadowname")
-            Note(p.at, context + " parameter 'shadowname' names a shadow map; affray traces its shadows: ignored");
-        else if (n == "intensity")
+        else if (n == "shadowname") {
+            if (!file.empty() && file != "raytrace")
+                Note(p.at, context +
+                               " parameter 'shadowname' names a shadow map; affray traces the light's "
+                               "shadows instead");
+        } else if (n == "intensity")
             ok = ParamNumbers(p, context, 1, &light->intensity);
         else if (n == "lightcolor")
             ok = ParamVector(p, context, &light->color);
@@ -329,6 +435,7 @@ bool RibParser::LightParams(const std::string& context, const std::vector<RibPar
             Warn(p.at, context + " has no parameter " + Quote(n) + "; ignored");
         if (!ok) return false;
     }
+    if (named) light->castShadows = *named;
     return true;
 }
 

@@ -12,6 +12,8 @@
 
 namespace affray::rib {
 
+using renderer::StorageClass;
+
 // flipNormal = (det objectToWorld < 0) XOR insideOut, as documented in scene.h: the first term
 // undoes the turn a mirroring placement gives dPdu x dPdv, the second applies the RI rule.
 bool RibParser::FlipNormalP() const {
@@ -21,6 +23,9 @@ bool RibParser::FlipNormalP() const {
 
 void RibParser::SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) const {
     p->color = m_state.color;
+    p->opacity = m_state.opacity;
+    p->transmission = m_state.transmission;
+    p->cameraVisible = m_state.cameraVisible;
     p->surface = m_state.surface;
     p->displacement = m_state.displacement;
     p->line = r.at.line;
@@ -60,6 +65,8 @@ bool RibParser::PatchPoints(const RibRequest& r, const std::vector<RibParam>& pa
             for (size_t i = 0; i < count; ++i) (*out)[i] = glm::dvec4(double(i & 1), double(i >> 1), v[i], 1.0);
         } else if (n == "Pz") {
             return Fail(p.at, context + " parameter 'Pz' is supported on 'Patch \"bilinear\"' only; give \"P\"");
+        } else if (n == "Cs" || n == "Os") {
+            continue;  // PatchColors reads them
         } else {
             Warn(p.at, context + " parameter " + Quote(n) + " is not supported yet; ignored");
             continue;
@@ -109,7 +116,76 @@ bool RibParser::DoPatch(const RibRequest& r) {
     std::vector<glm::dvec4> points;
     bool rational;
     if (!PatchPoints(r, params, context, bicubic ? 16 : 4, !bicubic, &points, &rational)) return false;
-    return AddPatch(r, context, bicubic, rational, points, {});
+    std::optional<ColorValues> colors[2];
+    const size_t nPoints = bicubic ? 16 : 4;
+    if (!PatchColors(params, context, {1, nPoints, 4, 4}, colors)) return false;
+    if (!AddPatch(r, context, bicubic, rational, points, {})) return false;
+    std::vector<size_t> vertices(nPoints);
+    for (size_t i = 0; i < nPoints; ++i) vertices[i] = i;
+    PatchColorFields(&m_scene.primitives.back(), colors, 0, {0, 1, 2, 3}, vertices, points, bicubic, rational);
+    return true;
+}
+
+bool RibParser::PatchColors(const std::vector<RibParam>& params, const std::string& context,
+                            const PrimvarCounts& counts, std::optional<ColorValues> (&colors)[2]) {
+    for (const RibParam& p : params)
+        if (p.value.name == "Cs" || p.value.name == "Os") {
+            ColorValues c;
+            if (!ColorPrimvar(p, context, counts, true, &c)) return false;
+            colors[p.value.name == "Os"] = std::move(c);
+        }
+    return true;
+}
+
+// Per storage class: constant and uniform values are the patch's colour; varying and
+// facevarying ones bilinear between the patch's corners; vertex ones in the patch's own basis
+// (bilinear, or the current bicubic Basis), weighted by the points' w and divided by their
+// weighted sum on a rational patch, as P is.
+void RibParser::PatchColorFields(PrimitiveDesc* prim, const std::optional<ColorValues> (&colors)[2], size_t face,
+                                 const std::array<size_t, 4>& corners, const std::vector<size_t>& vertices,
+                                 const std::vector<glm::dvec4>& points, bool bicubic, bool rational) {
+    using renderer::ColorField;
+    for (int k = 0; k < 2; ++k) {
+        if (!colors[k]) continue;
+        const std::vector<glm::dvec3>& values = colors[k]->values;
+        ColorField field;
+        switch (colors[k]->storage) {
+            case StorageClass::Constant: field.c = {values[0]}; break;
+            case StorageClass::Uniform: field.c = {values[face]}; break;
+            case StorageClass::Varying:
+            case StorageClass::FaceVarying:
+                field = ColorField::Bilinear(
+                    {values[corners[0]], values[corners[1]], values[corners[2]], values[corners[3]]});
+                break;
+            case StorageClass::Vertex: {
+                // The control values, times w on a rational patch (W from the w alone).
+                auto w = [&](size_t i) { return rational ? points[vertices[i]].w : 1.0; };
+                if (!bicubic) {
+                    field = ColorField::Bilinear({values[vertices[0]] * w(0), values[vertices[1]] * w(1),
+                                                  values[vertices[2]] * w(2), values[vertices[3]] * w(3)});
+                    if (rational)
+                        for (const glm::dvec3& x : ColorField::Bilinear({glm::dvec3(w(0)), glm::dvec3(w(1)),
+                                                                         glm::dvec3(w(2)), glm::dvec3(w(3))})
+                                                       .c)
+                            field.w.push_back(x.x);
+                    break;
+                }
+                std::array<glm::dvec3, 16> g, weights;
+                for (size_t i = 0; i < 16; ++i) g[i] = values[vertices[i]] * w(i), weights[i] = glm::dvec3(w(i));
+                const renderer::BicubicPatch cubic =
+                    renderer::BicubicPatch::FromControlPoints(g, m_state.uBasis, m_state.vBasis, glm::dmat4(1.0));
+                field.degreeU = field.degreeV = 3;
+                field.c.assign(cubic.c.begin(), cubic.c.end());
+                if (rational)
+                    for (const glm::dvec3& x : renderer::BicubicPatch::FromControlPoints(
+                                                   weights, m_state.uBasis, m_state.vBasis, glm::dmat4(1.0))
+                                                   .c)
+                        field.w.push_back(x.x);
+                break;
+            }
+        }
+        SetColorField(prim, k == 1, std::move(field));
+    }
 }
 
 // A patch of homogeneous control points: on the bilinear or bicubic fast path when every w is 1,
@@ -187,27 +263,46 @@ bool RibParser::DoPatchMesh(const RibRequest& r) {
         }
     }
     std::vector<RibParam> params;
-    if (!ParamList(r, 5, &params) || !InsideWorld(r)) return false;
+    m_uniformVaries = true;  // one uniform value per patch
+    const bool listed = ParamList(r, 5, &params);
+    m_uniformVaries = false;
+    if (!listed || !InsideWorld(r)) return false;
     std::vector<glm::dvec4> points;
     bool rational;
     if (!PatchPoints(r, params, context, size_t(n[0]) * size_t(n[1]), false, &points, &rational)) return false;
+    // Varying values lie at the patches' corners: one more than the patches across a
+    // nonperiodic direction.
+    const size_t varyingU = size_t(patches[0]) + (periodic[0] ? 0 : 1);
+    const size_t varyingV = size_t(patches[1]) + (periodic[1] ? 0 : 1);
+    std::optional<ColorValues> colors[2];
+    if (!PatchColors(params, context,
+                     {size_t(patches[0]) * size_t(patches[1]), points.size(), varyingU * varyingV, varyingU * varyingV},
+                     colors))
+        return false;
 
-    auto point = [&](int i, int j) {
+    auto pointIndex = [&](int i, int j) {
         // Periodic indices wrap; nonperiodic ones stay in range by the counts checked above.
-        return points[size_t(j % n[1]) * size_t(n[0]) + size_t(i % n[0])];
+        return size_t(j % n[1]) * size_t(n[0]) + size_t(i % n[0]);
     };
+    auto varying = [&](int i, int j) { return (size_t(j) % varyingV) * varyingU + size_t(i) % varyingU; };
     for (int pv = 0; pv < patches[1]; ++pv)
         for (int pu = 0; pu < patches[0]; ++pu) {
             const renderer::ParameterRange range{double(pu) / patches[0], double(pu + 1) / patches[0],
                                                  double(pv) / patches[1], double(pv + 1) / patches[1]};
-            std::vector<glm::dvec4> g;
+            std::vector<size_t> vertices;
             if (bicubic) {
                 for (int b = 0; b < 4; ++b)
-                    for (int a = 0; a < 4; ++a) g.push_back(point(pu * step[0] + a, pv * step[1] + b));
+                    for (int a = 0; a < 4; ++a) vertices.push_back(pointIndex(pu * step[0] + a, pv * step[1] + b));
             } else {
-                g = {point(pu, pv), point(pu + 1, pv), point(pu, pv + 1), point(pu + 1, pv + 1)};
+                vertices = {pointIndex(pu, pv), pointIndex(pu + 1, pv), pointIndex(pu, pv + 1),
+                            pointIndex(pu + 1, pv + 1)};
             }
+            std::vector<glm::dvec4> g;
+            for (size_t i : vertices) g.push_back(points[i]);
             if (!AddPatch(r, context, bicubic, rational, g, range)) return false;
+            PatchColorFields(&m_scene.primitives.back(), colors, size_t(pv) * size_t(patches[0]) + size_t(pu),
+                             {varying(pu, pv), varying(pu + 1, pv), varying(pu, pv + 1), varying(pu + 1, pv + 1)},
+                             vertices, points, bicubic, rational);
         }
     return true;
 }
@@ -291,9 +386,18 @@ bool RibParser::DoQuadric(const RibRequest& r, Quadric::Kind kind) {
     size_t next = 0;
     std::vector<RibParam> params;
     if (!LeadingNumbers(r, count, names, v, &next) || !ParamList(r, next, &params) || !InsideWorld(r)) return false;
-    // Primitive variables (Cs, st, N, ...) would vary over the surface; none is used yet.
-    for (const RibParam& p : params)
-        Warn(p.at, Quote(r.name) + " parameter " + Quote(p.value.name) + " is not supported yet; ignored");
+    // Cs and Os: constant or uniform (one value), or four at the corners of (u,v) (varying,
+    // vertex, facevarying), bilinear between them. Other variables are not used yet.
+    std::optional<ColorValues> colors[2];
+    for (const RibParam& p : params) {
+        if (p.value.name != "Cs" && p.value.name != "Os") {
+            Warn(p.at, Quote(r.name) + " parameter " + Quote(p.value.name) + " is not supported yet; ignored");
+            continue;
+        }
+        ColorValues c;
+        if (!ColorPrimvar(p, Quote(r.name), {1, 4, 4, 4}, true, &c)) return false;
+        colors[p.value.name == "Os"] = std::move(c);
+    }
 
     PrimitiveDesc prim;
     prim.shape = PrimitiveDesc::Shape::Quadric;
@@ -305,6 +409,7 @@ bool RibParser::DoQuadric(const RibRequest& r, Quadric::Kind kind) {
     if (std::string problem = prim.quadric.Problem(); !problem.empty())
         return Fail(r.at, Quote(r.name) + " " + problem);
     SetPrimitiveAttributes(r, &prim);
+    PatchColorFields(&prim, colors, 0, {0, 1, 2, 3}, {0, 1, 2, 3}, {}, false, false);
     m_scene.primitives.push_back(std::move(prim));
     return true;
 }

@@ -62,7 +62,7 @@ bool RibParser::DoNuPatch(const RibRequest& r) {
     m_uniformVaries = false;
     if (!listed || !InsideWorld(r)) return false;
 
-    renderer::NurbsSurface surface{k[0], k[1], {}, std::nullopt};
+    renderer::NurbsSurface surface{k[0], k[1], {}, std::nullopt, std::nullopt, std::nullopt};
     const size_t nPoints = size_t(k[0].n) * size_t(k[1].n);
     const size_t segU = size_t(k[0].n) - size_t(k[0].order) + 1, segV = size_t(k[1].n) - size_t(k[1].order) + 1;
     const RibParam *position = nullptr, *st = nullptr, *s = nullptr, *t = nullptr;
@@ -76,7 +76,7 @@ bool RibParser::DoNuPatch(const RibRequest& r) {
             s = &p;
         else if (n == "t")
             t = &p;
-        else
+        else if (n != "Cs" && n != "Os")  // read below
             Warn(p.at, context + " parameter " + Quote(n) + " is not supported yet; ignored");
     }
     if (!position) return Fail(r.at, context + " needs a \"P\" or \"Pw\" parameter");
@@ -135,6 +135,14 @@ bool RibParser::DoNuPatch(const RibRequest& r) {
         surface.st = std::move(coords);
     }
 
+    // Colours, counted as st is (no facevarying class on a NuPatch).
+    for (const RibParam& p : params) {
+        if (p.value.name != "Cs" && p.value.name != "Os") continue;
+        ColorValues c;
+        if (!ColorPrimvar(p, context, {segU * segV, nPoints, 0, (segU + 1) * (segV + 1)}, false, &c)) return false;
+        (p.value.name == "Cs" ? surface.Cs : surface.Os) = renderer::NurbsColor{c.storage, std::move(c.values)};
+    }
+
     // The trim curves in effect, with the current sense.
     std::shared_ptr<const TrimCurves> trim = m_state.trim;
     if (trim && trim->keepInside != m_state.trimKeepInside) {
@@ -146,6 +154,8 @@ bool RibParser::DoNuPatch(const RibRequest& r) {
         const renderer::ParameterRange& g = span.range;
         if (trim && trim->RemovedP(g.u0, g.u1, g.v0, g.v1)) continue;
         if (!AddRational(r, context, span.patch, span.range, trim)) return false;
+        if (span.Cs) SetColorField(&m_scene.primitives.back(), false, *span.Cs);
+        if (span.Os) SetColorField(&m_scene.primitives.back(), true, *span.Os);
     }
     return true;
 }

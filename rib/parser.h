@@ -2,10 +2,12 @@
 // Private to the reader: use rib/rib.h. rib.cpp holds dispatch, the block structure, options
 // and transforms; frames.cpp frames, world blocks and shadow passes; attributes.cpp the shading
 // attributes (with Sides and orientation) and lights; geometry.cpp the primitives and coordinate
-// systems; nurbs.cpp NuPatch and TrimCurve; archive.cpp ReadArchive and retained objects;
-// unsupported.cpp the requests read without being rendered. The graphics state (CTM, color, surface,
-// displacement, sides, orientation, basis, the lights that are on) is saved by every Begin and
-// restored by its End; the options by FrameBegin and FrameEnd (FrameDefaults).
+// systems; nurbs.cpp NuPatch and TrimCurve; primvars.cpp the colour primitive variables;
+// archive.cpp ReadArchive and retained objects; unsupported.cpp the requests read without being
+// rendered. The graphics state (CTM, color, opacity, surface, displacement, sides, orientation,
+// basis, the lights that are on, whether new lights cast shadows, which rays see the primitives)
+// is saved by every Begin and restored by its End; the options by FrameBegin and FrameEnd
+// (FrameDefaults).
 #pragma once
 
 #include <array>
@@ -44,6 +46,12 @@ class RibParser : private RibArgChecks {
     struct State {
         glm::dmat4 ctm{1.0};
         glm::dvec3 color{1.0};
+        glm::dvec3 opacity{1.0};  // Opacity
+        /// Attribute "light" "shadows" (BMRT): whether the lights declared now trace shadows.
+        bool lightShadows = false;
+        /// Attribute "visibility" "transmission" and "camera" (and BMRT's "render" forms).
+        PrimitiveDesc::Transmission transmission = PrimitiveDesc::Transmission::Opaque;
+        bool cameraVisible = true;
         SurfaceDesc surface;
         std::optional<ShaderRef> displacement;
         bool twoSided = true;  // Sides 2 (RI default)
@@ -293,11 +301,39 @@ class RibParser : private RibArgChecks {
     /// from argument `first`.
     bool MeshRequest(const RibRequest& r, std::vector<int> loops, std::vector<int> loopSizes, std::vector<int> corners,
                      size_t first, bool indexed);
-    /// Values a mesh-like primitive holds per storage class (RI Spec 3.2 table 4.1).
+    /// Values a primitive holds per storage class (RI Spec 3.2 table 4.1): a polygon or
+    /// subdivision mesh's faces, points and face corners (varying values are per point); a
+    /// patch's or quadric's patches, varying values (at the patches' corners) and control points.
     struct PrimvarCounts {
-        size_t faces, points, corners;
+        size_t faces, points, corners, varying;
         size_t Of(renderer::StorageClass s) const;
     };
+    /// A colour primitive variable ("Cs" or "Os") as given: its storage class, one colour per value.
+    struct ColorValues {
+        renderer::StorageClass storage = renderer::StorageClass::Constant;
+        std::vector<glm::dvec3> values;
+    };
+    /// Reads `p` ("Cs" or "Os") into *out after checking its declaration (a color), its count
+    /// against `counts` and its values (an opacity clamped to 0..1). `facevarying` false: the
+    /// primitive has no such class (NuPatch). False after a Fail.
+    bool ColorPrimvar(const RibParam& p, const std::string& context, const PrimvarCounts& counts, bool facevarying,
+                      ColorValues* out);
+    /// Sets prim's colour (`opacity` false) or opacity from `field`: its constant value if it has
+    /// one, else the field.
+    static void SetColorField(PrimitiveDesc* prim, bool opacity, renderer::ColorField field);
+    /// Reads a patch's (or patch mesh's) "Cs" and "Os" into colors[0] and colors[1].
+    bool PatchColors(const std::vector<RibParam>& params, const std::string& context, const PrimvarCounts& counts,
+                     std::optional<ColorValues> (&colors)[2]);
+    /// Sets the colour and opacity of `prim`, a patch (or quadric) just made, from `colors`: its
+    /// uniform value is number `face`, its varying values at its corners (patch order) numbers
+    /// `corners`, its vertex values those of its control points `vertices` (4 or 16, `bicubic`),
+    /// whose weights are those of `points` (homogeneous, indexed as the values) if `rational`.
+    void PatchColorFields(PrimitiveDesc* prim, const std::optional<ColorValues> (&colors)[2], size_t face,
+                          const std::array<size_t, 4>& corners, const std::vector<size_t>& vertices,
+                          const std::vector<glm::dvec4>& points, bool bicubic, bool rational);
+    /// The Attribute requests affray follows (rib/attributes.cpp): "light", "visibility", "render".
+    bool LightAttribute(const std::vector<RibParam>& params);
+    bool VisibilityAttribute(const std::string& name, const std::vector<RibParam>& params);
     /// A primitive variable of a mesh (polygons, subdivision) against its declaration, inline or
     /// standard, and its value count against `counts`. False after a Fail; *declared false, with a
     /// warning, for a parameter that has no declaration (the caller skips it). `context` names the

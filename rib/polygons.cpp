@@ -3,8 +3,8 @@
 // which renderer::SplitMesh cuts into pieces, one primitive each. The parameter list is checked
 // against the mesh's counts per storage class (RI 3.2 section 4.1): constant 1, uniform one per
 // polygon, varying and vertex one per point, facevarying one per polygon corner (hole corners
-// included). Only "P", "Pw", "N", "st", "s" and "t" are used; other variables are checked, then
-// ignored with a warning.
+// included). Only "P", "Pw", "N", "st", "s", "t", "Cs" and "Os" are used; other variables are
+// checked, then ignored with a warning.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -111,11 +111,18 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
     mesh.loopSizes = std::move(loopSizes);
     mesh.corners = std::move(corners);
     const glm::dmat3 normalToWorld = glm::transpose(glm::inverse(glm::dmat3(m_state.ctm)));
+    std::optional<ColorValues> colors[2];  // Cs, Os
+    const PrimvarCounts counts{mesh.loops.size(), nPoints, nCorners, nPoints};
     for (const RibParam& p : params) {
         const std::string& name = p.value.name;
+        if (name == "Cs" || name == "Os") {  // their own checks, for every primitive
+            ColorValues c;
+            if (!ColorPrimvar(p, context, counts, true, &c)) return false;
+            colors[name == "Os"] = std::move(c);
+            continue;
+        }
         RibDeclaration d;
         bool declared;
-        const PrimvarCounts counts{mesh.loops.size(), nPoints, nCorners};
         if (!MeshPrimvar(p, context, counts, &d, &declared)) return false;
         if (!declared) continue;
         const StorageClass storage = d.Storage();
@@ -159,20 +166,26 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
         prim.shape = PrimitiveDesc::Shape::MeshPiece;
         prim.piece = piece;
         SetPrimitiveAttributes(r, &prim);
+        // Cs and Os bilinear over the piece between its corners' values (so, on a triangle,
+        // linear between the face's vertices, as RenderMan's varying values are).
+        for (int k = 0; k < 2; ++k) {
+            if (!colors[k]) continue;
+            std::array<glm::dvec3, 4> corner;
+            for (int i = 0; i < 4; ++i) {
+                const size_t c = static_cast<size_t>(piece.faceCorner[i]);
+                switch (colors[k]->storage) {
+                    case StorageClass::Constant: corner[i] = colors[k]->values[0]; break;
+                    case StorageClass::Uniform: corner[i] = colors[k]->values[size_t(piece.face)]; break;
+                    case StorageClass::Varying:
+                    case StorageClass::Vertex: corner[i] = colors[k]->values[size_t(mesh.corners[c])]; break;
+                    case StorageClass::FaceVarying: corner[i] = colors[k]->values[c]; break;
+                }
+            }
+            SetColorField(&prim, k == 1, renderer::ColorField::Bilinear(corner));
+        }
         m_scene.primitives.push_back(std::move(prim));
     }
     return true;
-}
-
-size_t RibParser::PrimvarCounts::Of(StorageClass s) const {
-    switch (s) {
-        case StorageClass::Constant: return 1;
-        case StorageClass::Uniform: return faces;
-        case StorageClass::Varying:
-        case StorageClass::Vertex: return points;
-        case StorageClass::FaceVarying: return corners;
-    }
-    return 1;
 }
 
 bool RibParser::MeshPrimvar(const RibParam& p, const std::string& context, const PrimvarCounts& counts,

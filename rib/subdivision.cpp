@@ -5,9 +5,11 @@
 // chain of vertices, one sharpness), "corner" (vertices, one sharpness or one each),
 // "interpolateboundary" (no argument, or one integer: 0 none, 1 edges and corners, 2 edges only);
 // any other tag is warned about once and ignored. Parameters: "P" or "Pw" (w must be 1), "st" or
-// "s" and "t" together (any storage class); "N" means nothing on a subdivision surface (its
-// normal is the limit surface's) and is ignored with a warning, as in PRMan; other variables
-// are checked against their counts, then ignored with a warning.
+// "s" and "t" together (any storage class), "Cs" and "Os" (any storage class: vertex values
+// follow the limit surface's rules, as P does; varying and facevarying ones are bilinear over
+// each face); "N" means nothing on a subdivision surface (its normal is the limit surface's)
+// and is ignored with a warning, as in PRMan; other variables are checked against their
+// counts, then ignored with a warning.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -162,11 +164,18 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
 
     // Primitive variables against their storage classes.
     const RibParam *sParam = nullptr, *tParam = nullptr;
+    std::optional<ColorValues> colors[2];  // Cs, Os
+    const PrimvarCounts counts{nFaces, nPoints, nCorners, nPoints};
     for (const RibParam& p : params) {
         const std::string& name = p.value.name;
+        if (name == "Cs" || name == "Os") {  // their own checks, for every primitive
+            ColorValues c;
+            if (!ColorPrimvar(p, context, counts, true, &c)) return false;
+            colors[name == "Os"] = std::move(c);
+            continue;
+        }
         RibDeclaration d;
         bool declared;
-        const PrimvarCounts counts{nFaces, nPoints, nCorners};
         if (!MeshPrimvar(p, context, counts, &d, &declared)) return false;
         if (!declared) continue;
         const StorageClass storage = d.Storage();
@@ -214,15 +223,38 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
             return Fail(position->at, context + " point " + std::to_string(i) + " overflows in world space");
     }
 
+    // Cs and Os that vary within a face are refined with the mesh (vertex values as P is, the
+    // others bilinear in each face); a constant or uniform one is each patch's colour.
+    int variable[2] = {-1, -1};
+    for (int k = 0; k < 2; ++k)
+        if (colors[k] && colors[k]->storage != StorageClass::Constant && colors[k]->storage != StorageClass::Uniform) {
+            variable[k] = static_cast<int>(mesh.variables.size());
+            mesh.variables.push_back({colors[k]->storage, colors[k]->values});
+        }
+
     renderer::SubdivisionResult result;
     if (std::string problem = renderer::BuildSubdivisionPatches(mesh, &result); !problem.empty())
         return Fail(r.at, context + " " + problem);
-    for (const renderer::SubdivPatch& patch : result.patches) {
+    for (size_t i = 0; i < result.patches.size(); ++i) {
+        const renderer::SubdivPatch& patch = result.patches[i];
         if (!patch.geometry.FiniteP()) return Fail(r.at, context + " has a patch that overflows in world space");
         PrimitiveDesc prim;
         prim.shape = PrimitiveDesc::Shape::SubdivPatch;
         prim.subdiv = patch;
         SetPrimitiveAttributes(r, &prim);
+        for (int k = 0; k < 2; ++k) {
+            if (!colors[k]) continue;
+            renderer::ColorField field;
+            if (variable[k] >= 0) {
+                const renderer::BicubicPatch& values = result.variables[size_t(variable[k])][i];
+                field.degreeU = field.degreeV = 3;
+                field.c.assign(values.c.begin(), values.c.end());
+            } else {
+                const bool uniform = colors[k]->storage == StorageClass::Uniform;
+                field.c = {colors[k]->values[uniform ? size_t(patch.controlFace) : 0]};
+            }
+            SetColorField(&prim, k == 1, std::move(field));
+        }
         m_scene.primitives.push_back(std::move(prim));
     }
     return true;

@@ -55,6 +55,7 @@ MeshPiece MakePiece(const PolygonMesh& mesh, int face, const glm::dvec3& normal,
     piece.hasST = mesh.st || mesh.s || mesh.t;
     for (int i = 0; i < 4; ++i) {
         piece.P[i] = mesh.points[c[i].point];
+        piece.faceCorner[i] = c[i].faceCorner;
         if (mesh.normals)
             for (int k = 0; k < 3; ++k) piece.N[i][k] = Fetch(*mesh.normals, face, c[i], k);
         if (!piece.hasST) continue;

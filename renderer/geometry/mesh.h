@@ -57,6 +57,9 @@ struct MeshPiece {
     bool hasNormals = false;
     bool hasST = false;
     int face = 0;  ///< The face's index in its mesh, for messages and tests.
+    /// The corners' indices among the mesh's face corners (PolygonMesh::corners), where the
+    /// caller finds their values of other primitive variables (Cs, Os).
+    std::array<int, 4> faceCorner{};
 };
 
 /// A primitive variable of a polygon mesh: `components` numbers per value, values by storage

@@ -195,6 +195,62 @@ std::vector<std::array<double, kMaxNurbsOrder>> KnotVector::SpanBasis(const Span
     return basis;
 }
 
+namespace {
+
+using SpanBasisPolys = std::vector<std::array<double, kMaxNurbsOrder>>;
+
+/// The coefficients (RationalPatch's layout) over the span (su, sv) of a variable of `storage`
+/// with one value V per entry: vertex values times each point's w (`world`, the homogeneous
+/// points) times their basis polynomials `bu`, `bv`; varying ones bilinear across the whole
+/// segment between its corner values; a uniform or constant one the constant term.
+template <class V>
+std::vector<V> SpanValues(const KnotVector& ku, const KnotVector& kv, const KnotVector::Span& su,
+                          const KnotVector::Span& sv, const SpanBasisPolys& bu, const SpanBasisPolys& bv,
+                          const std::vector<glm::dvec4>& world, StorageClass storage, const std::vector<V>& values) {
+    auto index = [&](int i, int j) { return static_cast<size_t>(kv.order) * static_cast<size_t>(i) + size_t(j); };
+    std::vector<V> out(static_cast<size_t>(ku.order) * static_cast<size_t>(kv.order), V(0.0));
+    const int segU = su.k - ku.order + 1, segV = sv.k - kv.order + 1;
+    if (storage == StorageClass::Vertex) {
+        for (int b = 0; b < kv.order; ++b)
+            for (int a = 0; a < ku.order; ++a) {
+                const size_t point = static_cast<size_t>(sv.k - kv.order + 1 + b) * static_cast<size_t>(ku.n) +
+                                     static_cast<size_t>(su.k - ku.order + 1 + a);
+                for (int i = 0; i < ku.order; ++i)
+                    for (int j = 0; j < kv.order; ++j) {
+                        const double weight = bu[a][i] * bv[b][j];
+                        if (weight != 0) out[index(i, j)] += weight * world[point].w * values[point];
+                    }
+            }
+    } else if (storage == StorageClass::Varying) {
+        // Along u the corner weights 1 - f and f, f = (u - t_k) / (t_k+1 - t_k) affine in the
+        // span's x.
+        auto weights = [](const KnotVector& kn, const KnotVector::Span& s, double w[2][2]) {
+            const double t0 = kn.knots[s.k], len = kn.knots[s.k + 1] - t0;
+            const double f0 = (s.lo - t0) / len, f1 = (s.hi - t0) / len;
+            w[0][0] = 1 - f0, w[0][1] = -(f1 - f0), w[1][0] = f0, w[1][1] = f1 - f0;
+        };
+        double wu[2][2], wv[2][2];
+        weights(ku, su, wu);
+        weights(kv, sv, wv);
+        const int across = ku.n - ku.order + 2;
+        for (int b = 0; b < 2; ++b)
+            for (int a = 0; a < 2; ++a) {
+                const V value =
+                    values[static_cast<size_t>(segV + b) * static_cast<size_t>(across) + static_cast<size_t>(segU + a)];
+                for (int i = 0; i < 2; ++i)
+                    for (int j = 0; j < 2; ++j) out[index(i, j)] += wu[a][i] * wv[b][j] * value;
+            }
+    } else if (storage == StorageClass::Uniform) {
+        const int across = ku.n - ku.order + 1;
+        out[0] = values[static_cast<size_t>(segV) * static_cast<size_t>(across) + static_cast<size_t>(segU)];
+    } else {
+        out[0] = values[0];
+    }
+    return out;
+}
+
+}  // namespace
+
 std::vector<NurbsSpan> SplitNurbs(const NurbsSurface& surface, const glm::dmat4& objectToWorld) {
     const KnotVector &ku = surface.u, &kv = surface.v;
     // Equal weights w0 (every "P" NuPatch): sum N = 1 makes the surface the polynomial sum N Pw / w0,
@@ -222,12 +278,6 @@ std::vector<NurbsSpan> SplitNurbs(const NurbsSurface& surface, const glm::dmat4&
             const size_t count = static_cast<size_t>(ku.order) * static_cast<size_t>(kv.order);
             p.c.assign(count, glm::dvec4(0.0));
             std::vector<glm::dvec4> sizes(count, glm::dvec4(0.0));
-            const NurbsST* st = surface.st ? &*surface.st : nullptr;
-            if (st) {
-                p.hasST = true;
-                p.stHomogeneous = st->storage == StorageClass::Vertex;
-                p.st.assign(count, glm::dvec2(0.0));
-            }
             // The control points of the span, each times its two basis polynomials.
             for (int b = 0; b < kv.order; ++b)
                 for (int a = 0; a < ku.order; ++a) {
@@ -239,37 +289,25 @@ std::vector<NurbsSpan> SplitNurbs(const NurbsSurface& surface, const glm::dmat4&
                             if (weight == 0) continue;
                             p.c[p.Index(i, j)] += weight * world[index];
                             sizes[p.Index(i, j)] += std::fabs(weight) * size[index];
-                            if (st && p.stHomogeneous)
-                                p.st[p.Index(i, j)] += weight * world[index].w * st->values[index];
                         }
                 }
-            if (st && st->storage == StorageClass::Varying) {
-                // Bilinear in the whole segment between its corner values: along u the corner weights
-                // 1 - f and f, f = (u - t_k) / (t_k+1 - t_k) affine in the span's x.
-                auto weights = [](const KnotVector& kn, const KnotVector::Span& s, double w[2][2]) {
-                    const double t0 = kn.knots[s.k], len = kn.knots[s.k + 1] - t0;
-                    const double f0 = (s.lo - t0) / len, f1 = (s.hi - t0) / len;
-                    w[0][0] = 1 - f0, w[0][1] = -(f1 - f0), w[1][0] = f0, w[1][1] = f1 - f0;
-                };
-                double wu[2][2], wv[2][2];
-                weights(ku, su, wu);
-                weights(kv, sv, wv);
-                const int segU = su.k - ku.order + 1, segV = sv.k - kv.order + 1, across = ku.n - ku.order + 2;
-                for (int b = 0; b < 2; ++b)
-                    for (int a = 0; a < 2; ++a) {
-                        const glm::dvec2 value =
-                            st->values[static_cast<size_t>(segV + b) * static_cast<size_t>(across) +
-                                       static_cast<size_t>(segU + a)];
-                        for (int i = 0; i < 2; ++i)
-                            for (int j = 0; j < 2; ++j) p.st[p.Index(i, j)] += wu[a][i] * wv[b][j] * value;
-                    }
-            } else if (st && st->storage == StorageClass::Uniform) {
-                const int segU = su.k - ku.order + 1, segV = sv.k - kv.order + 1, across = ku.n - ku.order + 1;
-                p.st[0] =
-                    st->values[static_cast<size_t>(segV) * static_cast<size_t>(across) + static_cast<size_t>(segU)];
-            } else if (st && st->storage == StorageClass::Constant) {
-                p.st[0] = st->values[0];
+            if (const NurbsST* st = surface.st ? &*surface.st : nullptr) {
+                p.hasST = true;
+                p.stHomogeneous = st->storage == StorageClass::Vertex;
+                p.st = SpanValues(ku, kv, su, sv, bu, bv, world, st->storage, st->values);
             }
+            // Colours: vertex ones divided by W as P is (no W when it is 1: equal weights).
+            auto colorField = [&](const NurbsColor& color) {
+                ColorField f;
+                f.degreeU = p.degreeU;
+                f.degreeV = p.degreeV;
+                f.c = SpanValues(ku, kv, su, sv, bu, bv, world, color.storage, color.values);
+                if (color.storage == StorageClass::Vertex && !polynomial)
+                    for (const glm::dvec4& x : p.c) f.w.push_back(x.w);
+                return f;
+            };
+            if (surface.Cs) span.Cs = colorField(*surface.Cs);
+            if (surface.Os) span.Os = colorField(*surface.Os);
             if (polynomial)
                 for (size_t i = 0; i < count; ++i) p.c[i].w = i == 0 ? 1.0 : 0.0, sizes[i].w = 0;
             p.Simplify(sizes);

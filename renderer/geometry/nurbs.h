@@ -184,18 +184,29 @@ struct NurbsST {
     std::vector<glm::dvec2> values;
 };
 
+/// A colour primitive variable of a NuPatch ("Cs", "Os"): its storage class and one colour per
+/// entry, counted as NurbsST's are.
+struct NurbsColor {
+    StorageClass storage = StorageClass::Vertex;  ///< never FaceVarying
+    std::vector<glm::dvec3> values;
+};
+
 /// A NuPatch (object space): knot vectors in u and v, nu x nv homogeneous control points (u
-/// fastest; x, y, z multiplied by w, as RI "Pw") and optional texture coordinates.
+/// fastest; x, y, z multiplied by w, as RI "Pw"), optional texture coordinates and colours.
 struct NurbsSurface {
     KnotVector u, v;
     std::vector<glm::dvec4> points;
     std::optional<NurbsST> st;
+    std::optional<NurbsColor> Cs, Os;
 };
 
-/// One span of a NuPatch: its patch over [0, 1]^2 and the part of the NuPatch's (u,v) it covers.
+/// One span of a NuPatch: its patch over [0, 1]^2, the part of the NuPatch's (u,v) it covers,
+/// and its Cs and Os over [0, 1]^2 if the surface has them (vertex values weighted and divided
+/// by W as the points are, varying ones bilinear across their segment, as st's).
 struct NurbsSpan {
     RationalPatch patch;
     ParameterRange range;
+    std::optional<ColorField> Cs, Os;
 };
 
 /// The spans of `surface` (checked: KnotVector::Problem, positive weights, counts) placed by

@@ -17,12 +17,20 @@ namespace {
 
 constexpr double kInfiniteSharpness = 1e30;
 
+/// A primitive variable refined with the mesh (st, then the mesh's other variables): values per
+/// vertex (the vertex class, refined as P is) or per face corner (the others: bilinear in each
+/// face, its children's corners interpolated from its own).
+struct VariableData {
+    bool perVertex = false;
+    std::vector<glm::dvec3> values;
+};
+
 /// One level of the mesh: faces as corner lists, tags per edge and vertex, and the data refined
-/// with it (points, vertex st, face-corner st).
+/// with it (points and primitive variables).
 struct Level {
-    std::vector<glm::dvec3> P, stVertex;
-    std::vector<glm::dvec2> stCorner;  // one per face corner
-    std::vector<int> start, verts;     // face f: verts[start[f] .. start[f + 1])
+    std::vector<glm::dvec3> P;
+    std::vector<VariableData> data;
+    std::vector<int> start, verts;  // face f: verts[start[f] .. start[f + 1])
     std::vector<char> hole;
     std::vector<char> corner;                     // per vertex: a sharp corner
     std::map<std::pair<int, int>, double> sharp;  // undirected edge (sorted) -> sharpness > 0
@@ -216,23 +224,32 @@ Level Refine(const Topology& t) {
     const int nV = static_cast<int>(level.P.size()), nE = static_cast<int>(t.edgeVerts.size());
     Level next;
     next.P = RefineData(t, level.P);
-    if (!level.stVertex.empty()) next.stVertex = RefineData(t, level.stVertex);
+    next.data.resize(level.data.size());
+    for (size_t k = 0; k < level.data.size(); ++k) {
+        next.data[k].perVertex = level.data[k].perVertex;
+        if (level.data[k].perVertex) next.data[k].values = RefineData(t, level.data[k].values);
+    }
     next.corner = level.corner;
     next.corner.resize(next.P.size(), 0);
     next.start.push_back(0);
     for (int f = 0; f < level.Faces(); ++f) {
         const int n = level.Size(f);
-        glm::dvec2 stMean(0.0);
-        if (!level.stCorner.empty())
-            for (int h = level.start[f]; h < level.start[f + 1]; ++h) stMean += level.stCorner[h] / double(n);
+        std::vector<glm::dvec3> mean(level.data.size(), glm::dvec3(0.0));
+        for (size_t k = 0; k < level.data.size(); ++k)
+            if (!level.data[k].perVertex)
+                for (int h = level.start[f]; h < level.start[f + 1]; ++h)
+                    mean[k] += level.data[k].values[h] / double(n);
         for (int h = level.start[f]; h < level.start[f + 1]; ++h) {
             const int prev = t.Prev(h), nextH = t.Next(h);
             next.verts.insert(next.verts.end(), {level.verts[h], nV + t.edgeOf[h], nV + nE + f, nV + t.edgeOf[prev]});
             next.start.push_back(static_cast<int>(next.verts.size()));
             next.hole.push_back(level.hole[f]);
-            if (!level.stCorner.empty()) {
-                const glm::dvec2 &s = level.stCorner[h], &sNext = level.stCorner[nextH], &sPrev = level.stCorner[prev];
-                next.stCorner.insert(next.stCorner.end(), {s, 0.5 * (s + sNext), stMean, 0.5 * (s + sPrev)});
+            for (size_t k = 0; k < level.data.size(); ++k) {
+                if (level.data[k].perVertex) continue;
+                const std::vector<glm::dvec3>& x = level.data[k].values;
+                const glm::dvec3 &s = x[h], &sNext = x[nextH], &sPrev = x[prev];
+                next.data[k].values.insert(next.data[k].values.end(),
+                                           {s, 0.5 * (s + sNext), mean[k], 0.5 * (s + sPrev)});
             }
         }
     }
@@ -464,14 +481,30 @@ BicubicPatch PatchOf(const Net& points, bool bspline) {
     return BicubicPatch::FromControlPoints(points, basis, basis, glm::dmat4(1.0));
 }
 
-std::vector<glm::dvec3> Lift(const std::vector<glm::dvec2>& st) {
-    std::vector<glm::dvec3> out;
-    out.reserve(st.size());
-    for (const glm::dvec2& p : st) out.emplace_back(p, 0.0);
-    return out;
+/// The level-0 data of a variable of `storage` with `values`: the vertex class as it is, the
+/// others as one value per face corner.
+VariableData FirstData(const Level& level, StorageClass storage, const std::vector<glm::dvec3>& values) {
+    VariableData data;
+    data.perVertex = storage == StorageClass::Vertex;
+    if (data.perVertex) {
+        data.values = values;
+        return data;
+    }
+    for (int f = 0; f < level.Faces(); ++f)
+        for (int h = level.start[f]; h < level.start[f + 1]; ++h) {
+            size_t i = 0;
+            switch (storage) {
+                case StorageClass::Constant: i = 0; break;
+                case StorageClass::Uniform: i = static_cast<size_t>(f); break;
+                case StorageClass::Varying: i = static_cast<size_t>(level.verts[h]); break;
+                default: i = static_cast<size_t>(h); break;
+            }
+            data.values.push_back(values[i]);
+        }
+    return data;
 }
 
-/// Level 0 of `mesh`: its faces, tags and st.
+/// Level 0 of `mesh`: its faces, tags, st (data 0, lifted to (s, t, 0)) and other variables.
 Level FirstLevel(const SubdivisionMesh& mesh) {
     Level level;
     level.P = mesh.points;
@@ -487,23 +520,11 @@ Level FirstLevel(const SubdivisionMesh& mesh) {
         for (size_t i = 0; i + 1 < c.chain.size(); ++i)
             if (c.sharpness > 0) level.sharp[std::minmax(c.chain[i], c.chain[i + 1])] = c.sharpness;
     if (mesh.st) {
-        const SubdivST& st = *mesh.st;
-        if (st.storage == StorageClass::Vertex) {
-            level.stVertex = Lift(st.values);
-        } else {
-            for (int f = 0; f < level.Faces(); ++f)
-                for (int h = level.start[f]; h < level.start[f + 1]; ++h) {
-                    size_t i = 0;
-                    switch (st.storage) {
-                        case StorageClass::Constant: i = 0; break;
-                        case StorageClass::Uniform: i = static_cast<size_t>(f); break;
-                        case StorageClass::Varying: i = static_cast<size_t>(level.verts[h]); break;
-                        default: i = static_cast<size_t>(h); break;
-                    }
-                    level.stCorner.push_back(st.values[i]);
-                }
-        }
+        std::vector<glm::dvec3> lifted;
+        for (const glm::dvec2& p : mesh.st->values) lifted.emplace_back(p, 0.0);
+        level.data.push_back(FirstData(level, mesh.st->storage, lifted));
     }
+    for (const SubdivVariable& var : mesh.variables) level.data.push_back(FirstData(level, var.storage, var.values));
     return level;
 }
 
@@ -575,8 +596,10 @@ std::string BuildSubdivisionPatches(const SubdivisionMesh& mesh, SubdivisionResu
     const std::vector<VertexInfo> info = ClassifyVertices(t);
     const LimitData limits = ComputeLimits(t, info, level.P);
     out->refinedPoints = limits.limit;
-    const bool vertexST = !level.stVertex.empty();
-    const LimitData stLimits = vertexST ? ComputeLimits(t, info, level.stVertex) : LimitData{};
+    std::vector<LimitData> dataLimits(level.data.size());
+    for (size_t k = 0; k < level.data.size(); ++k)
+        if (level.data[k].perVertex) dataLimits[k] = ComputeLimits(t, info, level.data[k].values);
+    out->variables.assign(mesh.variables.size(), {});
 
     // Bezier nets of every face (neighbours' nets enter the edge normal curves), then the
     // shared edge curves and vertex normals.
@@ -623,24 +646,33 @@ std::string BuildSubdivisionPatches(const SubdivisionMesh& mesh, SubdivisionResu
                 patch.edgeReversed[k] = (k >= 2) == sameWay;
             }
         }
-        if (vertexST) {
-            patch.hasST = true;
-            patch.st = regular ? PatchOf(BSplineGrid(t, info, level.stVertex, f), true)
-                               : PatchOf(BezierNet(t, info, stLimits, level.stVertex, f), false);
-        } else if (!level.stCorner.empty()) {
-            // Bilinear over the face: the Bezier net of the bilinear patch of its corners.
-            patch.hasST = true;
-            const int h0 = level.start[f];
-            const glm::dvec2 c00 = level.stCorner[h0], c10 = level.stCorner[h0 + 1], c11 = level.stCorner[h0 + 2],
-                             c01 = level.stCorner[h0 + 3];
-            Net net;
-            for (int a = 0; a < 4; ++a)
-                for (int b = 0; b < 4; ++b) {
-                    const double u = a / 3.0, v = b / 3.0;
-                    const glm::dvec2 s = (1 - u) * (1 - v) * c00 + u * (1 - v) * c10 + (1 - u) * v * c01 + u * v * c11;
-                    net[NetIndex(a, b)] = glm::dvec3(s, 0.0);
-                }
-            patch.st = PatchOf(net, false);
+        // Each variable over the patch: vertex values by the surface's own rules, the others
+        // bilinear over the face (the Bezier net of the bilinear patch of its corners).
+        for (size_t k = 0; k < level.data.size(); ++k) {
+            const VariableData& data = level.data[k];
+            BicubicPatch field;
+            if (data.perVertex) {
+                field = regular ? PatchOf(BSplineGrid(t, info, data.values, f), true)
+                                : PatchOf(BezierNet(t, info, dataLimits[k], data.values, f), false);
+            } else {
+                const int h0 = level.start[f];
+                const glm::dvec3 c00 = data.values[h0], c10 = data.values[h0 + 1], c11 = data.values[h0 + 2],
+                                 c01 = data.values[h0 + 3];
+                Net net;
+                for (int a = 0; a < 4; ++a)
+                    for (int b = 0; b < 4; ++b) {
+                        const double u = a / 3.0, v = b / 3.0;
+                        net[NetIndex(a, b)] =
+                            (1 - u) * (1 - v) * c00 + u * (1 - v) * c10 + (1 - u) * v * c01 + u * v * c11;
+                    }
+                field = PatchOf(net, false);
+            }
+            if (mesh.st && k == 0) {
+                patch.hasST = true;
+                patch.st = field;
+            } else {
+                out->variables[k - (mesh.st ? 1 : 0)].push_back(field);
+            }
         }
         out->regularPatches += regular;
         out->patches.push_back(patch);

@@ -90,6 +90,14 @@ struct SubdivST {
     std::vector<glm::dvec2> values;
 };
 
+/// A primitive variable of a subdivision mesh that the caller reads back per patch ("Cs", "Os"):
+/// 3 numbers per value, by storage class. Vertex values are refined and evaluated as P is (the
+/// limit surface's rules); the others are bilinear over each face (RenderMan's varying).
+struct SubdivVariable {
+    StorageClass storage = StorageClass::Vertex;
+    std::vector<glm::dvec3> values;
+};
+
 /// A subdivision mesh as RenderMan gives it, in world space: face f has faceSizes[f] corners,
 /// corner c is points[faceVerts[c]]; tags already checked against the counts.
 struct SubdivisionMesh {
@@ -104,6 +112,7 @@ struct SubdivisionMesh {
     std::vector<int> holes;                       ///< Faces not rendered.
     SubdivBoundary boundary = SubdivBoundary::None;
     std::optional<SubdivST> st;
+    std::vector<SubdivVariable> variables;
 };
 
 /// One rendered patch: face `face` of the refined mesh (from control face `controlFace`).
@@ -135,6 +144,9 @@ struct SubdivisionResult {
     int regularPatches = 0;
     /// Limit positions of the refined mesh's vertices (tests compare them with the patches).
     std::vector<glm::dvec3> refinedPoints;
+    /// Per variable of the mesh, per patch (as `patches`): the variable over the patch's (u,v),
+    /// as SubdivPatch::st is.
+    std::vector<std::vector<BicubicPatch>> variables;
 };
 
 /// Refines `mesh` and builds one patch per rendered face (holes and, without

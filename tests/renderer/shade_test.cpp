@@ -15,11 +15,13 @@ constexpr double kPi = 3.14159265358979323846;
 /// A point at the origin facing +z, seen from straight above.
 ShadingPoint Facing() { return {glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1)}; }
 
+/// A point light that casts shadows (as the lights of these tests do, but the last case's).
 LightDesc Point(const glm::dvec3& from, double intensity) {
     LightDesc l;
     l.kind = LightDesc::Kind::Point;
     l.from = from;
     l.intensity = intensity;
+    l.castShadows = true;
     return l;
 }
 
@@ -34,6 +36,7 @@ LightDesc Ambient(double intensity) {
 LightDesc Spot(double intensity = 4) {
     LightDesc l;
     l.kind = LightDesc::Kind::Spot;
+    l.castShadows = true;
     l.from = {0, 0, 2};
     l.to = {0, 0, 0};
     l.intensity = intensity;
@@ -53,14 +56,16 @@ SurfaceDesc Model(SurfaceDesc::Model model, double Ka, double Kd, double Ks, dou
     return s;
 }
 
-/// An occlusion test that blocks nothing (or everything) and counts its calls.
+/// A shadow test that blocks nothing (or everything, or lets `through` through) and counts its
+/// calls.
 struct CountingOcclusion {
     int calls = 0;
     bool blocked = false;
-    OcclusionTest Test() {
+    glm::dvec3 through{1.0};
+    ShadowTest Test() {
         return [this](const glm::dvec3&, double) {
             ++calls;
-            return blocked;
+            return blocked ? glm::dvec3(0.0) : through;
         };
     }
 };
@@ -68,7 +73,7 @@ struct CountingOcclusion {
 /// The matte and plastic of shade.cpp as they were before metal, constant and spotlight: the
 /// reference that the refactored code must reproduce bit for bit.
 glm::dvec3 ShadeBefore(const SurfaceDesc& surface, const glm::dvec3& Cs, const ShadingPoint& sp,
-                       const std::vector<LightDesc>& lights, const OcclusionTest& occluded) {
+                       const std::vector<LightDesc>& lights, const ShadowTest& occluded) {
     glm::dvec3 ambient(0.0), diffuse(0.0), specular(0.0);
     for (const LightDesc& light : lights) {
         glm::dvec3 Cl = light.intensity * light.color;
@@ -90,7 +95,7 @@ glm::dvec3 ShadeBefore(const SurfaceDesc& surface, const glm::dvec3& Cs, const S
         }
         double cosine = glm::dot(sp.Nf, L);
         if (cosine <= 0) continue;
-        if (occluded(L, distance)) continue;
+        if (occluded(L, distance) != glm::dvec3(1.0)) continue;  // blocked (these tests block all or nothing)
         diffuse += Cl * cosine;
         if (surface.model == SurfaceDesc::Model::Plastic && surface.roughness > 0) {
             glm::dvec3 H = glm::normalize(L + sp.V);
@@ -133,6 +138,7 @@ TEST_CASE("Plastic and matte are unchanged bit for bit", "[shade]") {
         distant.from = {1, 2, 3};
         distant.to = {0, 0, 0};
         distant.color = {1, 0.9, 0.8};
+        distant.castShadows = true;
         l.push_back(distant);
         return l;
     }();
@@ -245,4 +251,24 @@ TEST_CASE("Shadow rays only for lights that would add light", "[shade]") {
     c = ShadeSurface(plastic, glm::dvec3(1.0), Facing(), {Spot()}, occ.Test());
     CHECK(occ.calls == 1);
     RequireNear(c, glm::dvec3(0.0));
+}
+
+TEST_CASE("Lights that cast no shadows trace no shadow rays, a partial shadow scales the light", "[shade]") {
+    const SurfaceDesc plastic = Model(SurfaceDesc::Model::Plastic, 1, 0.5, 0.5);
+    const glm::dvec3 Cs(1, 0.5, 0.25);
+    LightDesc standard = Point({0, 0, 2}, 4);
+    standard.castShadows = false;  // RenderMan's pointlight: no shadow() call
+    CountingOcclusion occ;
+    occ.blocked = true;
+    glm::dvec3 c = ShadeSurface(plastic, Cs, Facing(), {standard, Ambient(0.1)}, occ.Test());
+    CHECK(occ.calls == 0);
+    // Overhead, Cl = 1, N.L = N.H = 1: as if nothing were in the way.
+    RequireNear(c, Cs * (0.1 + 0.5) + glm::dvec3(0.5));
+    // The same light casting shadows behind a half-transparent occluder (1 - Os = 0.5, 0.25, 0):
+    // its diffuse and specular terms scaled per component, the ambient untouched.
+    occ.blocked = false;
+    occ.through = {0.5, 0.25, 0};
+    c = ShadeSurface(plastic, Cs, Facing(), {Point({0, 0, 2}, 4), Ambient(0.1)}, occ.Test());
+    CHECK(occ.calls == 1);
+    RequireNear(c, Cs * 0.1 + (Cs * 0.5 + glm::dvec3(0.5)) * occ.through);
 }

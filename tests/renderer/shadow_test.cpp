@@ -64,11 +64,14 @@ struct Rendered {
     double Footprint(const glm::dvec3& P) const { return camera->Footprint(glm::length(P - Eye())); }
 };
 
-/// Parses `rib`, sets one sample per pixel through a 1 x 1 box filter and the AOVs, prepares it
-/// with `dir` as the shader path and renders it.
-std::unique_ptr<Rendered> Render(const std::string& rib, const test::TempDir& dir) {
+/// Parses `rib` with its lights casting shadows (Attribute "light" "shadows" "on" after its
+/// WorldBegin: RenderMan's standard lights cast none), sets one sample per pixel through a 1 x 1
+/// box filter and the AOVs, prepares it with `dir` as the shader path and renders it.
+std::unique_ptr<Rendered> Render(std::string rib, const test::TempDir& dir) {
     affray::diag::Report error;
-    std::vector<std::string> warnings;
+    const size_t world = rib.find("WorldBegin\n");
+    REQUIRE(world != std::string::npos);
+    rib.insert(world + 11, "Attribute \"light\" \"shadows\" \"on\"\n");
     std::optional<renderer::SceneDesc> desc = rib::ParseRib(rib, "shadow.rib", &error);
     INFO(error);
     REQUIRE(desc);

@@ -249,7 +249,7 @@ WorldEnd
     const std::string mapIgnored =
         " with traced shadows; its shadow map parameters (shadowname, samples, width, "
         "blur, bias, ...) are ignored";
-    const std::string traced = "' parameter 'shadowname' names a shadow map; affray traces its shadows: ignored";
+    const std::string traced = "' parameter 'shadowname' names a shadow map; affray traces the light's shadows instead";
     CHECK(Messages(report, Severity::Note) ==
           std::vector<std::string>{"2: light source 'shadowspot' renders as 'spotlight'" + mapIgnored,
                                    "5: light source 'shadowpoint' renders as 'pointlight'" + mapIgnored,

@@ -221,7 +221,6 @@ TEST_CASE("Options and attributes of other renderers warn once per name; \"user\
 
                           "t.rib:5: warning: 'Option \"searchpath\" \"procedural\"' does not apply to affray; ignored",
                           "t.rib:8: warning: 'Attribute \"identifier\"' does not apply to affray; ignored",
-                          "t.rib:10: warning: 'Attribute \"visibility\"' does not apply to affray; ignored",
                           "t.rib:11: warning: 'Attribute \"dice\"' does not apply to affray; ignored",
                           "t.rib:13: warning: 'Attribute \"trace\"' does not apply to affray; ignored",
                       });
@@ -334,7 +333,8 @@ FrameEnd
                           "t.rib:23: warning: request 'DepthOfField' is not supported yet; ignored",
                           "t.rib:24: warning: 'Shutter' does not apply to affray; ignored",
                           "t.rib:30: warning: 'Attribute \"identifier\"' does not apply to affray; ignored",
-                          "t.rib:31: warning: 'Attribute \"visibility\"' does not apply to affray; ignored",
+                          "t.rib:31: warning: 'Attribute \"visibility\"' parameter 'trace' does not apply to affray; "
+                          "ignored",
                           "t.rib:32: warning: 'Attribute \"dice\"' does not apply to affray; ignored",
                           // NOLINTNEXTLINE(bugprone-suspicious-missing-comma): one message in two literals
                           "t.rib:33: warning: 'Attribute \"displacementbound\"' is not needed: affray bounds "

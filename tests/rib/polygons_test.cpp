@@ -72,10 +72,11 @@ TEST_CASE("rib polygons: Polygon, GeneralPolygon, PointsPolygons, PointsGeneralP
         const MeshPiece& last = PieceOf(s, 7);
         CHECK(last.face == 1);
         CHECK(last.st[0] == glm::dvec2(0.75, 0.5));
-        REQUIRE(report.all().size() == 1);
-        CHECK(ShortDiagnostic(report.all()[0]) ==
-              "t.rib:4: warning: 'PointsGeneralPolygons' parameter 'Cs' is not supported "
-              "yet; ignored");
+        CHECK(report.all().empty());
+        // Cs by point: the triangle's corners 0 7 1 are red, blue and green.
+        REQUIRE(s.primitives[7].colorField);
+        CHECK(s.primitives[7].colorField->At(0, 0) == glm::dvec3(1, 0, 0));
+        CHECK(s.primitives[7].colorField->At(0, 1) == glm::dvec3(0, 1, 0));
     }
 }
 

@@ -821,7 +821,7 @@ TEST_CASE("RIB CoordSysTransform makes a named space current", "[renderer][rib]"
     CHECK(ErrorOf("CoordSysTransform \"a\" \"b\"\n") == "t.rib:1: error: 'CoordSysTransform' expects one string");
 }
 
-TEST_CASE("RIB Attribute and Opacity warn once and are ignored", "[renderer][rib]") {
+TEST_CASE("RIB Attribute warns once, Opacity and visibility are attributes", "[renderer][rib]") {
     std::vector<std::string> warnings;
     SceneDesc scene = Parsed(
         "WorldBegin\nAttribute \"displacementbound\" \"sphere\" [0.5]\n"
@@ -830,12 +830,10 @@ TEST_CASE("RIB Attribute and Opacity warn once and are ignored", "[renderer][rib
         "Attribute \"visibility\" \"int camera\" [1]\nAttribute \"visibility\" \"int camera\" [0]\n"
         "Opacity 1 1 1\nOpacity [0.5 0.5 0.5]\nOpacity 0 1 1\nWorldEnd\n",
         &warnings);
-    REQUIRE(warnings.size() == 3);
+    REQUIRE(warnings.size() == 1);
     CHECK(warnings[0] ==
           "t.rib:2: warning: 'Attribute \"displacementbound\"' is not needed: affray bounds "
           "displacement exactly; ignored");
-    CHECK(warnings[1] == "t.rib:4: warning: 'Attribute \"visibility\"' does not apply to affray; ignored");
-    CHECK(warnings[2] == "t.rib:7: warning: affray renders opaque surfaces only; Opacity ignored");
     CHECK(ErrorOf("WorldBegin\nOpacity 1 1\nWorldEnd\n") ==
           "t.rib:2: error: 'Opacity' expects 3 numbers (r g b), got 2");
     CHECK(ErrorOf("WorldBegin\nAttribute \"displacementbound\" \"sphere\"\nWorldEnd\n") ==
@@ -989,7 +987,7 @@ TEST_CASE("RIB quadrics take the graphics state", "[renderer][rib]") {
     const PrimitiveDesc& p = scene.primitives[0];
     CHECK(p.shape == PrimitiveDesc::Shape::Quadric);
     CHECK(p.line == 6);
-    RequireVec(p.color, {1, 0, 0});  // the Cs parameter is ignored
+    RequireVec(p.color, {0, 1, 0});  // one colour for a varying "Cs": the sphere's
     CHECK(p.surface.model == SurfaceDesc::Model::Matte);
     REQUIRE(p.displacement);
     CHECK(p.displacement->name == "bumps");
@@ -997,10 +995,15 @@ TEST_CASE("RIB quadrics take the graphics state", "[renderer][rib]") {
     CHECK(p.twoSided);
     CHECK_FALSE(p.flipNormal);
     CHECK(scene.primitives[1].quadric.kind == Quadric::Kind::Disk);
+    RequireVec(scene.primitives[1].color, {0, 0, 1});
     REQUIRE(warnings.size() == 3);
-    CHECK(warnings[0] == "t.rib:6: warning: 'Sphere' parameter 'Cs' is not supported yet; ignored");
+    CHECK(warnings[0] ==
+          "t.rib:6: warning: 'Sphere' parameter 'Cs' (varying color) expects 4 colors, got one: "
+          "taken as the whole primitive's");
     CHECK(warnings[1] == "t.rib:6: warning: 'Sphere' parameter 'st' is not supported yet; ignored");
-    CHECK(warnings[2] == "t.rib:7: warning: 'Disk' parameter 'Cs' is not supported yet; ignored");
+    CHECK(warnings[2] ==
+          "t.rib:7: warning: 'Disk' parameter 'Cs' (varying color) expects 4 colors, got one: taken "
+          "as the whole primitive's");
 }
 
 TEST_CASE("RIB quadric arguments give exact errors", "[renderer][rib]") {
@@ -1104,7 +1107,9 @@ TEST_CASE("A RIB scene with quadrics, options and a mirrored camera", "[renderer
     CHECK(warnings[0] ==
           "t.rib:16: warning: 'Attribute \"displacementbound\"' is not needed: affray bounds "
           "displacement exactly; ignored");
-    CHECK(warnings[1] == "t.rib:24: warning: 'Cone' parameter 'Cs' is not supported yet; ignored");
+    CHECK(warnings[1] ==
+          "t.rib:24: warning: 'Cone' parameter 'Cs' (varying color) expects 4 colors, got one: taken "
+          "as the whole primitive's");
     CHECK(scene.shaderSearchPath == std::vector<std::string>{"shaders"});
     CHECK(scene.displayMode == "rgba,Z,N");
     CHECK(scene.camera.xsamples == 3);

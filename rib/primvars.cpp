@@ -1,0 +1,79 @@
+// rib/primvars.cpp: the colour primitive variables "Cs" and "Os" (RI Spec 3.2 section 4.1),
+// shared by every primitive request: their declaration and count checked against the storage
+// classes of the primitive (PrimvarCounts), then turned into each primitive's colour or colour
+// field (renderer/geometry/primvar.h) by the request's own file, which knows where its values
+// lie over each piece.
+#include <cmath>
+
+#include "rib/parser.h"
+
+namespace affray::rib {
+
+using renderer::ColorField;
+using renderer::StorageClass;
+
+size_t RibParser::PrimvarCounts::Of(StorageClass s) const {
+    switch (s) {
+        case StorageClass::Constant: return 1;
+        case StorageClass::Uniform: return faces;
+        case StorageClass::Varying: return varying;
+        case StorageClass::Vertex: return points;
+        case StorageClass::FaceVarying: return corners;
+    }
+    return 1;
+}
+
+bool RibParser::ColorPrimvar(const RibParam& p, const std::string& context, const PrimvarCounts& counts,
+                             bool facevarying, ColorValues* out) {
+    const std::string& name = p.value.name;
+    const std::string declaration = p.value.declaration.empty() ? StandardDeclaration(name) : p.value.declaration;
+    RibDeclaration d;
+    std::string problem;
+    if (!RibDeclaration::Parse(declaration, &d, &problem)) return Fail(p.at, context + " parameter: " + problem);
+    if (d.type == "string" || d.UniformCount() != 3)
+        return Fail(p.at, context + " parameter " + Quote(name) + " must be a color (3 numbers a value), declared " +
+                              Quote(declaration));
+    StorageClass storage = d.Storage();
+    if (storage == StorageClass::FaceVarying && !facevarying)  // (NuPatch)
+        return Fail(p.at, context + " parameter " + Quote(name) + ": storage class " + Quote(d.storage) +
+                              " is not defined on a NuPatch");
+    size_t values = counts.Of(storage);
+    if (p.value.strings.empty() && p.value.numbers.size() == 3 && values > 1) {
+        // One colour where the class needs more ("Cs" [1 0 0] on a sphere): what was meant.
+        Warn(p.at, context + " parameter " + Quote(name) + " (" + declaration + ") expects " + std::to_string(values) +
+                       " colors, got one: taken as the whole primitive's");
+        values = 1;
+        storage = StorageClass::Constant;
+    }
+    if (!p.value.strings.empty() || p.value.numbers.size() != 3 * values)
+        return Fail(p.at, context + " parameter " + Quote(name) + " (" + declaration + ") expects " +
+                              std::to_string(values) + " color" + (values == 1 ? "" : "s") + " (" +
+                              std::to_string(3 * values) + " numbers), got " +
+                              (p.value.strings.empty() ? std::to_string(p.value.numbers.size()) + " numbers"
+                                                       : std::string("strings")));
+    out->storage = storage;
+    out->values.clear();
+    bool clamped = false;
+    for (size_t i = 0; i < values; ++i) {
+        glm::dvec3 c(p.value.numbers[3 * i], p.value.numbers[3 * i + 1], p.value.numbers[3 * i + 2]);
+        if (name == "Os" && glm::clamp(c, 0.0, 1.0) != c) {
+            c = glm::clamp(c, 0.0, 1.0);
+            clamped = true;
+        }
+        out->values.push_back(c);
+    }
+    if (clamped) Warn(p.at, context + " parameter 'Os' components must be from 0 to 1; clamped");
+    return true;
+}
+
+void RibParser::SetColorField(PrimitiveDesc* prim, bool opacity, ColorField field) {
+    glm::dvec3 value;
+    if (field.ConstantP(&value)) {
+        (opacity ? prim->opacity : prim->color) = value;
+        (opacity ? prim->opacityField : prim->colorField) = nullptr;
+    } else {
+        (opacity ? prim->opacityField : prim->colorField) = std::make_shared<const ColorField>(std::move(field));
+    }
+}
+
+}  // namespace affray::rib
