@@ -42,7 +42,8 @@ class Evaluator {
     /// The expression's truth, or nothing with *problem saying why.
     std::optional<bool> Run(std::string* problem) {
         std::optional<Value> v = Or();
-        if (v && (Skip(), m_pos < m_text.size())) v = Problem("unexpected '" + std::string(m_text.substr(m_pos)) + "'");
+        Skip();
+        if (v && m_pos < m_text.size()) v = Problem("unexpected '" + std::string(m_text.substr(m_pos)) + "'");
         if (!v) {
             *problem = m_problem;
             return std::nullopt;
@@ -135,6 +136,14 @@ class Evaluator {
         return left;
     }
     std::optional<Value> Unary() {
+        // Parentheses and unary operators recurse: a bound keeps a hostile file off the stack.
+        if (++m_depth > kMaxDepth)
+            return Problem("the expression nests more than " + std::to_string(kMaxDepth) + " deep");
+        std::optional<Value> v = UnaryOperand();
+        --m_depth;
+        return v;
+    }
+    std::optional<Value> UnaryOperand() {
         if (Accept("!", '=')) {
             std::optional<Value> v = Unary();
             return v ? std::optional<Value>(Value::Number(!v->TrueP())) : v;
@@ -220,9 +229,11 @@ class Evaluator {
         return Problem("unknown word '" + word + "' (a variable is written $" + word + ")");
     }
 
+    static constexpr int kMaxDepth = 200;
     std::string_view m_text;
     Lookup m_lookup;
     size_t m_pos = 0;
+    int m_depth = 0;
     std::string m_problem;
 };
 

@@ -98,6 +98,9 @@ TEST_CASE("rib conditionals: malformed expressions and structure are errors at t
     CHECK(expression("'a' + 'b'") == at + "'a' + 'b'\": '+' needs numbers (concat() joins strings)");
     CHECK(expression("defined($user:pass)") == at + "defined($user:pass)\": defined needs a name in parentheses");
     CHECK(expression("${user:pass") == at + "${user:pass\": '${' has no matching '}'");
+    const std::string deep = std::string(100000, '(') + "1";
+    CHECK(expression(deep) == at + deep + "\": the expression nests more than 200 deep");
+    CHECK(expression(std::string(100000, '!') + "1").find("nests more than 200 deep") != std::string::npos);
 
     CHECK(error("IfBegin\nIfEnd\n") == "t.rib:3: error: 'IfBegin' expects one string (an expression)");
     CHECK(error("IfBegin \"1\"\nElseIf [\"1\"]\nIfEnd\n") ==

@@ -200,7 +200,7 @@ TEST_CASE("Declare and inline declarations work on every parameter list", "[rend
     CHECK(ErrorsOf("Declare \"a b\" \"float\"\n") == Messages{"t.rib:1: error: 'Declare' name 'a b' must be one word"});
 }
 
-TEST_CASE("Options and attributes of other renderers warn once per name; \"user\" is kept, silently",
+TEST_CASE("Options and attributes of other renderers warn once per name, \"user\" is kept silently",
           "[renderer][rib]") {
     Messages messages;
     std::optional<SceneDesc> scene = Parse(

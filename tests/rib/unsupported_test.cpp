@@ -219,7 +219,7 @@ TEST_CASE("rib: primitives affray cannot make are skipped with one warning per n
           "t.rib:1: error: 'Curves' must come between 'WorldBegin' and 'WorldEnd'");
 }
 
-TEST_CASE("rib: other renderers' requests warn once per name; a projective one and unknown names are errors", "[rib]") {
+TEST_CASE("rib: other renderers' requests warn once per name, a projective one and unknown names are errors", "[rib]") {
     Messages messages;
     const SceneDesc scene = Scene(
         "Camera \"world\" \"float[2] shutteropening\" [0 1]\nDisplayChannel \"color Ci\"\n"
