@@ -297,8 +297,8 @@ bool RibParser::DoPatchMesh(const RibRequest& r) {
                 vertices = {pointIndex(pu, pv), pointIndex(pu + 1, pv), pointIndex(pu, pv + 1),
                             pointIndex(pu + 1, pv + 1)};
             }
-            std::vector<glm::dvec4> g;
-            for (size_t i : vertices) g.push_back(points[i]);
+            std::vector<glm::dvec4> g(vertices.size());
+            for (size_t i = 0; i < vertices.size(); ++i) g[i] = points[vertices[i]];
             if (!AddPatch(r, context, bicubic, rational, g, range)) return false;
             PatchColorFields(&m_scene.primitives.back(), colors, size_t(pv) * size_t(patches[0]) + size_t(pu),
                              {varying(pu, pv), varying(pu + 1, pv), varying(pu, pv + 1), varying(pu + 1, pv + 1)},

@@ -23,7 +23,7 @@ glm::dvec3 ColorField::At(double s, double t) const {
         glm::dvec3 row(0.0);
         double rowW = 0;
         for (int j = degreeV; j >= 0; --j) {
-            const size_t k = static_cast<size_t>((degreeV + 1) * i + j);
+            const size_t k = static_cast<size_t>(degreeV + 1) * static_cast<size_t>(i) + static_cast<size_t>(j);
             row = row * t + c[k];
             if (!w.empty()) rowW = rowW * t + w[k];
         }

@@ -8,7 +8,6 @@
 #include "tests/rib/rib_test_util.h"
 
 using namespace affray;
-using renderer::PrimitiveDesc;
 using Transmission = renderer::PrimitiveDesc::Transmission;
 
 namespace {

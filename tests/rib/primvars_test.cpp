@@ -163,8 +163,9 @@ TEST_CASE("primvars: Cs on patches, patch meshes and quadrics", "[rib][primvar]"
         // Rational (Pw): vertex values weighted by w and divided by W, as P is.
         std::string pw = "[";
         for (int i = 0; i < 16; ++i) {
+            const int row = i / 4;
             const double w = 1 + 0.25 * (i % 3);
-            pw += " " + std::to_string((i % 4) * w) + " " + std::to_string((i / 4) * w) + " " +
+            pw += " " + std::to_string((i % 4) * w) + " " + std::to_string(row * w) + " " +
                   std::to_string(0.1 * (i % 5) * w) + " " + std::to_string(w);
         }
         std::string cs = "[";
