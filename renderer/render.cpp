@@ -69,9 +69,12 @@ struct ThreadState {
     IntersectStats cameraStats, shadowStats;
     uint64_t cameraRays = 0;
 
+    /// Per primitive, the factor its tolerance is scaled by (ToleranceScales).
+    const std::vector<double>& toleranceScale;
+
     ThreadState(const PreparedScene& scene, const RenderOptions& options,
-                const std::vector<std::unique_ptr<BoundTree>>& trees)
-        : m_scene(scene), m_ownShaders(scene.primitives.size()) {
+                const std::vector<std::unique_ptr<BoundTree>>& trees, const std::vector<double>& scales)
+        : toleranceScale(scales), m_scene(scene), m_ownShaders(scene.primitives.size()) {
         const std::shared_ptr<IntersectWorkspace> workspace = MakeIntersectWorkspace();
         for (size_t i = 0; i < scene.primitives.size(); ++i) {
             const Primitive& prim = scene.primitives[i];
@@ -103,6 +106,23 @@ struct ThreadState {
     std::unique_ptr<vm::Interpreter<vm::Dual<double>>> m_shared;
     std::vector<std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> m_ownShaders;
 };
+
+/// The factor each primitive's tolerance is scaled by: its scene's coarser level of detail
+/// (PrimitiveDesc::sceneTolerance) over the render's tolerance, at least 1; all 1 when the
+/// tolerance was given by the user.
+std::vector<double> ToleranceScales(const PreparedScene& scene, const RenderOptions& options) {
+    std::vector<double> scales(scene.primitives.size(), 1.0);
+    if (!options.sceneTolerance) return scales;
+    for (size_t i = 0; i < scales.size(); ++i)
+        scales[i] = std::max(1.0, scene.primitives[i].sceneTolerance / options.tolerancePixels);
+    return scales;
+}
+
+/// `tol` for primitive i of the thread's scene.
+Tolerance ToleranceOf(const ThreadState& ts, int i, const Tolerance& tol) {
+    const double k = ts.toleranceScale[i];
+    return k == 1 ? tol : Tolerance{tol.base * k, tol.slope * k};
+}
 
 struct NearestHit {
     Hit hit;
@@ -148,7 +168,7 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
         scene.bvh->Traverse(ray, tMin, &best, [&](int i, double) {
             if (!scene.primitives[i].cameraVisible) return true;  // Attribute "visibility" "camera" 0
             Hit hit;
-            if (ts.intersectors[i]->Intersect(ray, tMin, best, tol, false, &hit, stats, group)) {
+            if (ts.intersectors[i]->Intersect(ray, tMin, best, ToleranceOf(ts, i, tol), false, &hit, stats, group)) {
                 best = hit.t;
                 nearest = {hit, i};
             }
@@ -184,7 +204,7 @@ glm::dvec3 ShadowTransmission(const PreparedScene& scene, ThreadState& ts, const
             return true;
         }
         Hit hit;
-        blocked = ts.intersectors[i]->Intersect(ray, tMin, tMax, tol, true, &hit, ts.shadowStats);
+        blocked = ts.intersectors[i]->Intersect(ray, tMin, tMax, ToleranceOf(ts, i, tol), true, &hit, ts.shadowStats);
         return !blocked;
     });
     if (blocked) return glm::dvec3(0.0);
@@ -197,7 +217,8 @@ glm::dvec3 ShadowTransmission(const PreparedScene& scene, ThreadState& ts, const
         double from = tMin;
         for (int layer = 0; layer < kMaxLayers; ++layer) {
             Hit hit;
-            if (!ts.intersectors[i]->Intersect(ray, from, tMax, tol, false, &hit, ts.shadowStats)) return true;
+            if (!ts.intersectors[i]->Intersect(ray, from, tMax, ToleranceOf(ts, i, tol), false, &hit, ts.shadowStats))
+                return true;
             through *= 1.0 - prim.OpacityAt(hit.u, hit.v);
             if (through == glm::dvec3(0.0)) return false;
             from = Beyond(hit, tol);
@@ -511,6 +532,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         key.erase(std::unique(key.begin(), key.end()), key.end());
         return lightSetKeys.emplace(key, static_cast<int>(lightSetKeys.size())).first->second;
     };
+    std::map<std::string, std::string> shaderFiles;  // shader name -> its file ("" if not found)
     for (const PrimitiveDesc& patch : desc.primitives) {
         Primitive prim;
         switch (patch.shape) {
@@ -536,22 +558,37 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         prim.opacityField = patch.opacityField;
         prim.transmission = patch.transmission;
         prim.cameraVisible = patch.cameraVisible;
+        prim.sceneTolerance = patch.sceneTolerance;
         prim.twoSided = patch.twoSided;
         prim.lightSet = lightSetOf(patch);
         prim.line = patch.line;
+        // The shader's file, looked up once per name; a shader that is not found leaves the
+        // surface undisplaced, as prman does, with one warning per name (a scene exported with
+        // shaders its renderer had but this machine has not).
+        std::string path;
         if (patch.displacement) {
+            const ShaderRef& ref = *patch.displacement;
+            auto [known, added] = shaderFiles.try_emplace(ref.name);
+            if (added) {
+                known->second = FindShader(ref.name, searchPath);
+                if (known->second.empty() && report) {
+                    const std::string& refFile = ref.file.empty() ? desc.path : ref.file;
+                    std::string searched;
+                    for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
+                    report->warning(diag::Location(refFile, ref.line, ref.column, diag::ReadLine(refFile, ref.line)),
+                                    "shader '" + ref.name + "' not found (searched " + searched +
+                                        "); its surfaces render undisplaced");
+                }
+            }
+            path = known->second;
+        }
+        if (!path.empty()) {
             const ShaderRef& ref = *patch.displacement;
             // The Displacement request in the RIB file (its line is read again only for a message).
             const std::string& refFile = ref.file.empty() ? desc.path : ref.file;
             auto where = [&] {
                 return diag::Location(refFile, ref.line, ref.column, diag::ReadLine(refFile, ref.line));
             };
-            std::string path = FindShader(ref.name, searchPath);
-            if (path.empty()) {
-                std::string searched;
-                for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
-                return fail(where(), "shader '" + ref.name + "' not found (searched " + searched + ")");
-            }
             std::vector<compiler::ParamOverride> overrides;
             for (const ParamValue& p : ref.params) {
                 if (p.strings.size() > 1)
@@ -769,10 +806,11 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
         for (const Primitive& prim : scene.primitives)
             trees.push_back(
                 std::make_unique<BoundTree>(prim.base, prim.bound, eye, options.bounds, options.maxDepth, &budget));
+    const std::vector<double> toleranceScales = ToleranceScales(scene, options);
     const int side = options.rayGroupPixels;
     const int blocksX = side > 0 ? (cam.xres + side - 1) / side : 0;
     auto worker = [&](int index) {
-        ThreadState ts(scene, options, trees);
+        ThreadState ts(scene, options, trees, toleranceScales);
         std::vector<Sample> samples;
         std::vector<SampleValue> values;
         std::vector<std::pair<int64_t, uint32_t>> order;  // (block, sample index)

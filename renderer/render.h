@@ -52,6 +52,10 @@ inline constexpr int kDefaultRayGroupPixels = 8;
 struct RenderOptions {
     int threads = 0;               // 0: one per core
     double tolerancePixels = 0.5;  // a region is a hit once its bound is smaller than this many pixels
+    /// Whether a primitive whose scene asks for a coarser tolerance (PrimitiveDesc::sceneTolerance:
+    /// ShadingRate, GeometricApproximation) is certified to that; false when tolerancePixels was
+    /// given by the user (--tolerance).
+    bool sceneTolerance = true;
     BoundMode bounds = BoundMode::Reduced;
     int maxDepth = 24;
     size_t cacheBytes = kDefaultCacheBytes;        // the bound hierarchies' memory budget (renderer/bound_tree.h)
@@ -108,6 +112,7 @@ struct Primitive {
     std::shared_ptr<const ColorField> colorField, opacityField;  // over the primitive's own (u,v), or null
     PrimitiveDesc::Transmission transmission = PrimitiveDesc::Transmission::Opaque;
     bool cameraVisible = true;
+    double sceneTolerance = 0.5;  // PrimitiveDesc::sceneTolerance: pixels
     bool twoSided = true;
     int lightSet = 0;  // the lights that illuminate it: PreparedScene::lightSets[lightSet]
     int line = 0;      // the RIB request

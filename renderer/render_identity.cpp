@@ -133,7 +133,7 @@ RenderIdentity Identify(const PreparedScene& scene, const RenderOptions& options
     text << "samples=" << cam.xsamples << "x" << cam.ysamples << "\n"
          << "frame=" << (scene.desc.frame ? std::to_string(*scene.desc.frame) : "none") << "\n"
          << "display=" << scene.desc.displayMode << "\n"
-         << "tolerance=" << Number(options.tolerancePixels) << "\n"
+         << "tolerance=" << Number(options.tolerancePixels) << (options.sceneTolerance ? "" : " (given)") << "\n"
          << "bounds=" << BoundsName(options.bounds) << "\n"
          << "max-depth=" << options.maxDepth << "\n"
          << "region-budget=" << options.regionBudget << "\n"

@@ -100,6 +100,11 @@ struct PrimitiveDesc {
     /// Attribute "visibility" "camera": false hides the primitive from camera rays (it still
     /// casts shadows as `transmission` says).
     bool cameraVisible = true;
+    /// The geometric tolerance, in pixels, that the scene's level of detail asks of the primitive:
+    /// 0.5 sqrt(ShadingRate) (RI default 1: 0.5, affray's default tolerance) or
+    /// GeometricApproximation "flatness", the larger. The renderer takes it where it is coarser
+    /// than its own tolerance, unless that was given on the command line.
+    double sceneTolerance = 0.5;
     SurfaceDesc surface;
     std::optional<ShaderRef> displacement;
     int line = 0, column = 0;  ///< Where the request starts in the RIB file, for diagnostics.
@@ -281,6 +286,11 @@ inline std::string ToString(const PrimitiveDesc& p) {
     if (p.transmission == PrimitiveDesc::Transmission::Opacity) text += " transmission=Os";
     if (p.transmission == PrimitiveDesc::Transmission::Transparent) text += " transmission=transparent";
     if (!p.cameraVisible) text += " camera=0";
+    if (p.sceneTolerance != 0.5) {
+        std::ostringstream tolerance;
+        tolerance << " tolerance=" << p.sceneTolerance;
+        text += tolerance.str();
+    }
     text += " color=" + ToString(p.color);
     if (p.colorField) text += " Cs=(" + ToString(*p.colorField) + ")";
     if (p.opacity != glm::dvec3(1.0)) text += " opacity=" + ToString(p.opacity);

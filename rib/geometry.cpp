@@ -26,6 +26,7 @@ void RibParser::SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) co
     p->opacity = m_state.opacity;
     p->transmission = m_state.transmission;
     p->cameraVisible = m_state.cameraVisible;
+    p->sceneTolerance = std::max(0.5 * std::sqrt(m_state.shadingRate), m_state.flatness);
     p->surface = m_state.surface;
     p->displacement = m_state.displacement;
     p->line = r.at.line;

@@ -52,6 +52,9 @@ class RibParser : private RibArgChecks {
         /// Attribute "visibility" "transmission" and "camera" (and BMRT's "render" forms).
         PrimitiveDesc::Transmission transmission = PrimitiveDesc::Transmission::Opaque;
         bool cameraVisible = true;
+        /// ShadingRate and GeometricApproximation "flatness" (0: none given), for
+        /// PrimitiveDesc::sceneTolerance.
+        double shadingRate = 1, flatness = 0;
         SurfaceDesc surface;
         std::optional<ShaderRef> displacement;
         bool twoSided = true;  // Sides 2 (RI default)
@@ -196,6 +199,7 @@ class RibParser : private RibArgChecks {
     bool DoHider(const RibRequest& r);
     bool DoDeclare(const RibRequest& r);
     bool DoShadingRate(const RibRequest& r);
+    bool DoGeometricApproximation(const RibRequest& r);
     bool DoShadingInterpolation(const RibRequest& r);
     bool DoArchiveRecord(const RibRequest& r);
     bool DoReadArchive(const RibRequest& r);

@@ -220,6 +220,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"Hider", &RibParser::DoHider},
         {"Declare", &RibParser::DoDeclare},
         {"ShadingRate", &RibParser::DoShadingRate},
+        {"GeometricApproximation", &RibParser::DoGeometricApproximation},
         {"ShadingInterpolation", &RibParser::DoShadingInterpolation},
         {"ArchiveRecord", &RibParser::DoArchiveRecord},
         {"Illuminate", &RibParser::DoIlluminate},

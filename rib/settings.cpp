@@ -3,6 +3,7 @@
 // ShadingInterpolation and ArchiveRecord. Rules shared with rib.cpp are in rib/parser.h. Every
 // request that only tunes another renderer is accepted, its arguments checked, with one warning.
 #include <algorithm>
+#include <cmath>
 
 #include "rib/parser.h"
 
@@ -104,13 +105,43 @@ bool RibParser::DoDeclare(const RibRequest& r) {
     return true;
 }
 
-// affray shades each ray hit exactly, so the micropolygon shading rate and its interpolation
-// have nothing to tune; the arguments are still checked.
+// The scene's level of detail (attributes): a Reyes renderer dices into micropolygons of
+// ShadingRate pixels' area, about sqrt(ShadingRate) pixels a side, and GeometricApproximation
+// "flatness" is the largest distance in pixels it allows between its facets and the surface.
+// affray certifies every hit to its tolerance in pixels (0.5 by default); a primitive whose
+// scene asks for less accuracy, 0.5 sqrt(ShadingRate) or the flatness, whichever is larger, is
+// certified to that instead (PrimitiveDesc::sceneTolerance; --tolerance overrides). A finer
+// request keeps the default: affray shades every ray hit, so a finer shading rate has nothing
+// more to shade.
 bool RibParser::DoShadingRate(const RibRequest& r) {
     double rate;
     if (!Numbers(r, 1, "size", &rate)) return false;
     if (!(rate > 0)) return Fail(r.at, "'ShadingRate' must be positive, got " + FormatNumber(rate));
-    Warn(r.at, "'ShadingRate' does not apply: affray shades every ray hit; ignored");
+    m_state.shadingRate = rate;
+    if (rate > 1)
+        Note(r.at, "'ShadingRate' " + FormatNumber(rate) + ": the primitives that follow are certified to " +
+                       FormatNumber(0.5 * std::sqrt(rate)) + " pixels, not 0.5 (unless --tolerance is given)");
+    return true;
+}
+
+bool RibParser::DoGeometricApproximation(const RibRequest& r) {
+    std::string type;
+    if (!LeadingString(r, "an approximation type", &type)) return false;
+    RibRequest value = r;
+    value.args.erase(value.args.begin());
+    double amount;
+    if (!Numbers(value, 1, "value", &amount)) return false;
+    if (type != "flatness") {
+        Warn(r.at, "'GeometricApproximation \"" + type + "\"' does not apply to affray; ignored");
+        return true;
+    }
+    if (!(amount >= 0)) return Fail(r.at, "'GeometricApproximation \"flatness\"' must not be negative, got " +
+                                             FormatNumber(amount));
+    m_state.flatness = amount;
+    if (amount > 0.5)
+        Note(r.at, "'GeometricApproximation \"flatness\"' " + FormatNumber(amount) +
+                       ": the primitives that follow are certified to " + FormatNumber(amount) +
+                       " pixels, not 0.5 (unless --tolerance is given)");
     return true;
 }
 

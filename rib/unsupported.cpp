@@ -23,7 +23,7 @@ namespace {
 // DisplayChannel, PixelSampleImager, System): accepted with one warning per name.
 constexpr std::string_view kNoEffect[] = {
     "Begin", "Bound", "Camera", "Detail", "DisplayChannel", "End", "ErrorHandler",
-    "GeometricApproximation", "PixelSampleImager", "PixelVariance", "Quantize", "RelativeDetail",
+    "PixelSampleImager", "PixelVariance", "Quantize", "RelativeDetail",
     "Shutter", "System", "TransformPoints",
 };
 

@@ -214,6 +214,7 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     renderer::RenderOptions options;
     options.threads = cmd.threads;
     options.tolerancePixels = cmd.tolerance;
+    options.sceneTolerance = !cmd.toleranceGiven;
     options.bounds = cmd.bounds;
     options.maxDepth = cmd.maxDepth;
     options.regionBudget = cmd.regionBudget;

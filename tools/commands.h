@@ -42,6 +42,7 @@ struct RenderCommand {
     std::string outputPath;  // empty: the scene's Display name
     int threads = 0;
     double tolerance = 0.5;
+    bool toleranceGiven = false;  // --tolerance was given: the scene's level of detail does not apply
     renderer::BoundMode bounds = renderer::BoundMode::Reduced;
     int maxDepth = 24;
     bool stats = false;

@@ -223,6 +223,7 @@ bool RenderOption(const std::string& a, Args& args, affray::tools::RenderCommand
         cmd.threads = ParseInt(args.Value(a), a, 1, 1024);
     else if (a == "--tolerance") {
         cmd.tolerance = ParseNumber(args.Value(a), a);
+        cmd.toleranceGiven = true;
         if (!(cmd.tolerance > 0)) throw UsageError{"--tolerance must be positive"};
     } else if (a == "--max-depth")
         cmd.maxDepth = ParseInt(args.Value(a), a, 1, 40);
