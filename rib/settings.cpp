@@ -135,8 +135,8 @@ bool RibParser::DoGeometricApproximation(const RibRequest& r) {
         Warn(r.at, "'GeometricApproximation \"" + type + "\"' does not apply to affray; ignored");
         return true;
     }
-    if (!(amount >= 0)) return Fail(r.at, "'GeometricApproximation \"flatness\"' must not be negative, got " +
-                                             FormatNumber(amount));
+    if (!(amount >= 0))
+        return Fail(r.at, "'GeometricApproximation \"flatness\"' must not be negative, got " + FormatNumber(amount));
     m_state.flatness = amount;
     if (amount > 0.5)
         Note(r.at, "'GeometricApproximation \"flatness\"' " + FormatNumber(amount) +

@@ -60,11 +60,13 @@ TEST_CASE("level of detail: ShadingRate and flatness are attributes giving each 
     CHECK(desc.primitives[3].sceneTolerance == 0.25);
     CHECK(desc.primitives[4].sceneTolerance == 0.5);  // AttributeEnd restored; motionfactor ignored
     diag::Report error;
-    CHECK_FALSE(rib::ParseRib(std::string(kHead) + "GeometricApproximation \"flatness\" -1\nWorldEnd\n", "x.rib", &error));
+    CHECK_FALSE(
+        rib::ParseRib(std::string(kHead) + "GeometricApproximation \"flatness\" -1\nWorldEnd\n", "x.rib", &error));
     CHECK(test::LastMessage(error).find("must not be negative") != std::string::npos);
 }
 
-TEST_CASE("level of detail: a coarser ShadingRate is cheaper and certified to what it asks", "[renderer][render][lod]") {
+TEST_CASE("level of detail: a coarser ShadingRate is cheaper and certified to what it asks",
+          "[renderer][render][lod]") {
     const std::string body = "Displacement \"dented\" \"Km\" [0.08] \"frequency\" [6]\nSphere 1 -1 1 360\nWorldEnd\n";
     const renderer::RenderStats fine = Render(std::string(kHead) + body, false);
     const renderer::RenderStats coarse = Render(std::string(kHead) + "ShadingRate 64\n" + body, false);
