@@ -185,6 +185,13 @@ TEST_CASE("pole: unit normals over regions at the pole are bounded and contain t
                 }
             if (width <= 1.0 / 128)
                 for (int i = 0; i < 3; ++i) CHECK(nr[i].range().width() < 0.5);
+            // What the pole normal fixes: normalize(dPdu x dPdv) over the same region, whose length
+            // reaches 0 on the edge, is not bounded away from the whole unit sphere.
+            const renderer::SurfaceFrame<vm::ReducedAffine> frame = surface.ra(sr, tr);
+            const vm::Vec3<vm::ReducedAffine> naive = vm::Normalize(vm::Cross(frame.dPdu, frame.dPdv));
+            bool wide = false;
+            for (int i = 0; i < 3; ++i) wide = wide || !(naive[i].range().width() < 1);
+            CHECK(wide);
             for (int m = 0; m < 20; ++m) {
                 const double s = m == 0 ? s0 : rng.uniform(s0, s1), t = m == 0 ? t0 : rng.uniform(t0, t1);
                 const glm::dvec3 n = Glm(vm::Normalize(surface.atPoint(s, t).normalDirection));
