@@ -2,11 +2,10 @@
 // built, memory-budgeted quadtree of them (see the header).
 #include "renderer/bound_tree.h"
 
-#include <tuple>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <tuple>
 
 #include "vm/interpreter.h"
 
