@@ -533,6 +533,11 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         return lightSetKeys.emplace(key, static_cast<int>(lightSetKeys.size())).first->second;
     };
     std::map<std::string, std::string> shaderFiles;  // shader name -> its file ("" if not found)
+    // Where a Displacement request is in the RIB file (its line is read again only for a message).
+    auto requestAt = [&](const ShaderRef& ref) {
+        const std::string& file = ref.file.empty() ? desc.path : ref.file;
+        return diag::Location(file, ref.line, ref.column, diag::ReadLine(file, ref.line));
+    };
     for (const PrimitiveDesc& patch : desc.primitives) {
         Primitive prim;
         switch (patch.shape) {
@@ -572,23 +577,17 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
             if (added) {
                 known->second = FindShader(ref.name, searchPath);
                 if (known->second.empty() && report) {
-                    const std::string& refFile = ref.file.empty() ? desc.path : ref.file;
                     std::string searched;
                     for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
-                    report->warning(diag::Location(refFile, ref.line, ref.column, diag::ReadLine(refFile, ref.line)),
-                                    "shader '" + ref.name + "' not found (searched " + searched +
-                                        "); its surfaces render undisplaced");
+                    report->warning(requestAt(ref), "shader '" + ref.name + "' not found (searched " + searched +
+                                                        "); its surfaces render undisplaced");
                 }
             }
             path = known->second;
         }
         if (!path.empty()) {
             const ShaderRef& ref = *patch.displacement;
-            // The Displacement request in the RIB file (its line is read again only for a message).
-            const std::string& refFile = ref.file.empty() ? desc.path : ref.file;
-            auto where = [&] {
-                return diag::Location(refFile, ref.line, ref.column, diag::ReadLine(refFile, ref.line));
-            };
+            auto where = [&] { return requestAt(ref); };
             std::vector<compiler::ParamOverride> overrides;
             for (const ParamValue& p : ref.params) {
                 if (p.strings.size() > 1)
@@ -637,8 +636,8 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
         for (size_t i = next++; i < out->primitives.size(); i = next++) {
             Primitive& prim = out->primitives[i];
             const CellRanges intervalCells = BoundCellsIn<vm::Interval>(prim, eye, cells);
-            if (const PrimitiveDesc& patch = desc.primitives[i]; patch.displacement)
-                problems[i] = UnboundedEverywhere(prim, *patch.displacement, eye, cells, intervalCells);
+            if (prim.shader)  // a displacement whose shader was found
+                problems[i] = UnboundedEverywhere(prim, *desc.primitives[i].displacement, eye, cells, intervalCells);
             prim.box = UnionBox(intervalCells);
         }
     };
@@ -650,9 +649,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
     for (std::thread& t : workers) t.join();
     for (size_t i = 0; i < problems.size(); ++i) {
         if (problems[i].empty()) continue;
-        const ShaderRef& ref = *desc.primitives[i].displacement;
-        const std::string& refFile = ref.file.empty() ? desc.path : ref.file;
-        return fail({refFile, ref.line, ref.column, diag::ReadLine(refFile, ref.line)}, problems[i]);
+        return fail(requestAt(*desc.primitives[i].displacement), problems[i]);
     }
     std::vector<Box> boxes;
     for (const Primitive& prim : out->primitives) boxes.push_back(prim.box);

@@ -37,7 +37,7 @@ std::shared_ptr<const PatchPoles> FindAlong(int axis, int degreeU, int degreeV, 
     for (int e = 0; e < 2; ++e) {
         std::vector<glm::dvec4> h(static_cast<size_t>(degreeA) + 1, glm::dvec4(0.0));
         for (int a = 0; a <= degreeA; ++a)
-            for (int b = 0; b <= degreeB; ++b) h[a] += at(a, b) * (e == 0 ? (b == 0 ? 1.0 : 0.0) : 1.0);
+            for (int b = 0; b <= (e == 0 ? 0 : degreeB); ++b) h[a] += at(a, b);  // X(s, e): e^b is 0 or 1
         collapsed[e] = h[0].w > 0;
         if (!collapsed[e]) continue;
         point[e] = glm::dvec3(h[0]) / h[0].w;
@@ -55,11 +55,11 @@ std::shared_ptr<const PatchPoles> FindAlong(int axis, int degreeU, int degreeV, 
     const glm::dvec3 c0 = collapsed[0] ? point[0] : point[1];
     const glm::dvec3 slope = both ? point[1] - point[0] : glm::dvec3(0.0);
     const int degreeG = degreeB + (both ? 1 : 0);
+    const int degreeY = degreeG - (both ? 2 : 1);
+    if (degreeY < 0) return nullptr;
     auto poles = std::make_shared<PatchPoles>();
     poles->axis = axis;
     poles->sign = collapsed[0] && !both ? 1.0 : -1.0;
-    const int degreeY = degreeG - (both ? 2 : 1);
-    if (degreeY < 0) return nullptr;
     std::vector<glm::dvec3> y(static_cast<size_t>(degreeA + 1) * static_cast<size_t>(degreeY + 1));
     for (int a = 0; a <= degreeA; ++a) {
         std::vector<glm::dvec3> g(static_cast<size_t>(degreeG) + 1, glm::dvec3(0.0));

@@ -79,4 +79,21 @@ void PoleNormalDirection(const PatchPoles& poles, const T& s, const T& t, const 
     frame->hasNormalDirection = true;
 }
 
+/// Sets frame->normalDirection of a bicubic patch with poles at (s, t) (its own parameters).
+template <class T>
+void PoleNormalDirection(const BicubicPatch& patch, const T& s, const T& t, SurfaceFrame<T>* frame) {
+    PoleNormalDirection(*patch.poles, s, t, T(1.0), T(0.0), T(0.0), false, frame);
+}
+
+/// Sets frame->normalDirection of a rational patch (a NuPatch span) with poles at (s, t).
+template <class T>
+void PoleNormalDirection(const RationalPatch& patch, const T& s, const T& t, SurfaceFrame<T>* frame) {
+    T w(1.0), ws(0.0), wt(0.0);
+    if (patch.rational)
+        nurbs_detail::Polynomial(
+            patch.degreeU, patch.degreeV, [&](int i, int j) { return patch.c[patch.Index(i, j)].w; }, s, t, &w, &ws,
+            &wt);
+    PoleNormalDirection(*patch.poles, s, t, w, ws, wt, patch.rational, frame);
+}
+
 }  // namespace affray::renderer

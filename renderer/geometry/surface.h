@@ -222,8 +222,7 @@ void SetBicubicGlobals(vm::Interpreter<T>& interp, const BicubicPatch& patch, do
     if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
     const PatchParameters<T> param(range, u0, u1, v0, v1);
     SurfaceFrame<T> frame = BicubicFrame(patch, param.s, param.t);
-    if (patch.poles && ReadsNormal(interp.program()))
-        PoleNormalDirection(*patch.poles, param.s, param.t, T(1.0), T(0.0), T(0.0), false, &frame);
+    if (patch.poles && ReadsNormal(interp.program())) PoleNormalDirection(patch, param.s, param.t, &frame);
     if (param.dsdu != 1) frame.dPdu = frame.dPdu * param.dsdu;
     if (param.dtdv != 1) frame.dPdv = frame.dPdv * param.dtdv;
     SetFrameGlobals(interp, param.u, param.v, frame, nullptr, eye, flipNormal);
@@ -249,14 +248,7 @@ void SetRationalGlobals(vm::Interpreter<T>& interp, const RationalPatch& patch, 
     if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
     const PatchParameters<T> param(range, u0, u1, v0, v1);
     SurfaceFrame<T> frame = RationalFrame(patch, param.s, param.t);
-    if (patch.poles && ReadsNormal(interp.program())) {
-        T w(1.0), ws(0.0), wt(0.0);
-        if (patch.rational)
-            nurbs_detail::Polynomial(
-                patch.degreeU, patch.degreeV, [&](int i, int j) { return patch.c[patch.Index(i, j)].w; }, param.s,
-                param.t, &w, &ws, &wt);
-        PoleNormalDirection(*patch.poles, param.s, param.t, w, ws, wt, patch.rational, &frame);
-    }
+    if (patch.poles && ReadsNormal(interp.program())) PoleNormalDirection(patch, param.s, param.t, &frame);
     if (param.dsdu != 1) frame.dPdu = frame.dPdu * param.dsdu;
     if (param.dtdv != 1) frame.dPdv = frame.dPdv * param.dtdv;
     SetFrameGlobals(interp, param.u, param.v, frame, nullptr, eye, flipNormal);

@@ -54,20 +54,15 @@ struct PoleSurface {
     std::vector<int> ends;
 };
 
-template <class T>
-renderer::SurfaceFrame<T> Frame(const BicubicPatch& patch, const T& s, const T& t) {
-    renderer::SurfaceFrame<T> f = renderer::BicubicFrame(patch, s, t);
-    renderer::PoleNormalDirection(*patch.poles, s, t, T(1.0), T(0.0), T(0.0), false, &f);
-    return f;
-}
-
-template <class T>
-renderer::SurfaceFrame<T> Frame(const RationalPatch& patch, const T& s, const T& t) {
-    renderer::SurfaceFrame<T> f = renderer::RationalFrame(patch, s, t);
-    T w(1.0), ws(0.0), wt(0.0);
-    renderer::nurbs_detail::Polynomial(
-        patch.degreeU, patch.degreeV, [&](int i, int j) { return patch.c[patch.Index(i, j)].w; }, s, t, &w, &ws, &wt);
-    renderer::PoleNormalDirection(*patch.poles, s, t, w, ws, wt, patch.rational, &f);
+/// The patch's frame with its pole's normal direction.
+template <class T, class Patch>
+renderer::SurfaceFrame<T> Frame(const Patch& patch, const T& s, const T& t) {
+    renderer::SurfaceFrame<T> f;
+    if constexpr (std::is_same_v<Patch, BicubicPatch>)
+        f = renderer::BicubicFrame(patch, s, t);
+    else
+        f = renderer::RationalFrame(patch, s, t);
+    renderer::PoleNormalDirection(patch, s, t, &f);
     return f;
 }
 
