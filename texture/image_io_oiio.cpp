@@ -82,8 +82,8 @@ class OiioReader final : public ImageReader {
         if (m_native == OIIO::TypeDesc::FLOAT) return read(out);
         const size_t count = static_cast<size_t>(y1 - y0) * m_header.width * m_header.channels;
         m_scratch.resize(count * m_native.size());
-        return read(m_scratch.data()) &&
-               OIIO::convert_pixel_values(m_native, m_scratch.data(), OIIO::TypeDesc::FLOAT, out, static_cast<int>(count));
+        return read(m_scratch.data()) && OIIO::convert_pixel_values(m_native, m_scratch.data(), OIIO::TypeDesc::FLOAT,
+                                                                    out, static_cast<int>(count));
     }
     bool readTiles(int x0, int x1, int y0, int y1, float* out) override {
         // (OpenImageIO's conversion here: a format's native tile read may write whole tiles past
