@@ -238,10 +238,29 @@ constexpr size_t kMaxFrontier = 32;
 
 }  // namespace
 
+namespace {
+class TreeIntersector;
+
+/// A node of a group's frontier: its entry (region, split) and its bound (a copy: the node's own
+/// may be another thread's to publish).
+struct FrontierNode {
+    Entry entry;
+    RegionBound bound;
+};
+}  // namespace
+
 class IntersectWorkspace {
   public:
     std::vector<Entry> stack;  // a walk's, sized for the deepest tree of the thread
     std::shared_ptr<EvaluatorPool> pool = MakeEvaluatorPool();
+    /// The ray group whose frontiers the thread's intersectors hold now, and those intersectors.
+    /// A ray of another group releases them all: rays come block by block, so a thread keeps the
+    /// frontiers of the primitives one block meets, not one per primitive of the scene (16,384
+    /// patches kept 14 MB per thread).
+    uint64_t group = 0;
+    std::vector<TreeIntersector*> holders;
+    /// BuildFrontier's breadth-first queue, shared by the thread's intersectors.
+    std::vector<FrontierNode> queue;
 };
 
 std::shared_ptr<IntersectWorkspace> MakeIntersectWorkspace() { return std::make_shared<IntersectWorkspace>(); }
@@ -267,14 +286,18 @@ class TreeIntersector final : public SurfaceIntersector {
     bool Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit, Hit* hit,
                    IntersectStats& stats, const RayGroup* group) override;
 
-  private:
-    /// A node of a group's frontier: its entry (region, split) and its bound (a copy: the node's
-    /// own may be another thread's to publish).
-    struct FrontierNode {
-        Entry entry;
-        RegionBound bound;
-    };
+    ~TreeIntersector() override {
+        std::vector<TreeIntersector*>& holders = m_workspace->holders;
+        holders.erase(std::remove(holders.begin(), holders.end(), this), holders.end());
+    }
 
+    /// Frees the frontier (IntersectWorkspace::holders).
+    void ReleaseFrontier() {
+        m_frontier = {};
+        m_groupId = 0;
+    }
+
+  private:
     /// The frontier of `group`: the nodes, at most kMaxFrontier, whose regions hold every point
     /// of the surface that a ray of the group can meet, found by splitting from the root while the
     /// group's planes cull children. A function of the group and the node bounds alone (whatever
@@ -302,24 +325,25 @@ class TreeIntersector final : public SurfaceIntersector {
     uint64_t m_tested = 0, m_evaluated = 0;
     // The current group's frontier.
     uint64_t m_groupId = 0, m_groupEpoch = 0;
-    std::vector<FrontierNode> m_frontier, m_queue;
+    std::vector<FrontierNode> m_frontier;
 };
 
 void TreeIntersector::BuildFrontier(const RayGroup& group, IntersectStats& stats) {
     m_groupId = group.id;
     m_groupEpoch = m_walker.epoch();
     m_frontier.clear();
-    m_queue.clear();
+    std::vector<FrontierNode>& queue = m_workspace->queue;
+    queue.clear();
     ++stats.frontiers;
     const int maxDepth = m_tree.maxDepth();
     Entry root = RootEntry(m_tree.root());
     const RegionBound& rootBound = m_tree.root().bound;
     root.axis = SplitAxis(rootBound, 0, 0, maxDepth);
-    if (!OutsideGroup(rootBound, group)) m_queue.push_back({root, rootBound});
+    if (!OutsideGroup(rootBound, group)) queue.push_back({root, rootBound});
     // Breadth first: a node is split while its children fit in the frontier and it is wider than
     // the group where it lies (smaller nodes overlap the group's edges and cull little).
-    for (size_t head = 0; head < m_queue.size(); ++head) {
-        const FrontierNode n = m_queue[head];
+    for (size_t head = 0; head < queue.size(); ++head) {
+        const FrontierNode n = queue[head];
         const Entry& e = n.entry;
         bool split = e.levelU < maxDepth || e.levelV < maxDepth;
         if (split && n.bound.bounded()) {
@@ -342,8 +366,8 @@ void TreeIntersector::BuildFrontier(const RayGroup& group, IntersectStats& stats
                 c.axis = SplitAxis(b, c.levelU, c.levelV, maxDepth);
                 kept[nKept++] = {c, b};
             }
-            if (m_frontier.size() + (m_queue.size() - head - 1) + size_t(nKept) <= kMaxFrontier) {
-                for (int i = 0; i < nKept; ++i) m_queue.push_back(kept[i]);
+            if (m_frontier.size() + (queue.size() - head - 1) + size_t(nKept) <= kMaxFrontier) {
+                for (int i = 0; i < nKept; ++i) queue.push_back(kept[i]);
                 continue;
             }
         }
@@ -502,7 +526,16 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
     m_evaluated = 0;
     m_top = 0;
     m_walker.Enter();
-    if (group && (group->id != m_groupId || m_walker.epoch() != m_groupEpoch)) BuildFrontier(*group, stats);
+    if (group && (group->id != m_groupId || m_walker.epoch() != m_groupEpoch)) {
+        IntersectWorkspace& w = *m_workspace;
+        if (w.group != group->id) {
+            for (TreeIntersector* holder : w.holders) holder->ReleaseFrontier();
+            w.holders.clear();
+            w.group = group->id;
+        }
+        if (m_groupId != group->id) w.holders.push_back(this);
+        BuildFrontier(*group, stats);
+    }
 
     double best = tMax;
     bool found = false;

@@ -14,8 +14,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <thread>
+
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include "compiler/shader_cache.h"
 #include "diag/limits.h"
@@ -65,7 +69,6 @@ std::string FindShader(const std::string& name, const std::vector<std::string>& 
 /// Everything one thread needs: per primitive an intersector (a walker over the primitive's shared
 /// bound hierarchy) and a shading interpreter.
 struct ThreadState {
-    std::vector<std::unique_ptr<SurfaceIntersector>> intersectors;
     IntersectStats cameraStats, shadowStats;
     uint64_t cameraRays = 0;
 
@@ -74,15 +77,47 @@ struct ThreadState {
 
     ThreadState(const PreparedScene& scene, const RenderOptions& options,
                 const std::vector<std::unique_ptr<BoundTree>>& trees, const std::vector<double>& scales)
-        : toleranceScale(scales), m_scene(scene), m_ownShaders(scene.primitives.size()) {
-        const std::shared_ptr<IntersectWorkspace> workspace = MakeIntersectWorkspace();
-        for (size_t i = 0; i < scene.primitives.size(); ++i) {
-            const Primitive& prim = scene.primitives[i];
-            if (options.intersectorFactory)
-                intersectors.push_back(options.intersectorFactory(prim, static_cast<int>(i)));
-            else
-                intersectors.push_back(MakeSurfaceIntersector(*trees[i], options.regionBudget, workspace));
+        : toleranceScale(scales),
+          m_scene(scene),
+          m_options(options),
+          m_trees(trees),
+          m_workspace(MakeIntersectWorkspace()),
+          m_slotOf(scene.primitives.size(), -1),
+          m_ownShaders(scene.primitives.size()) {}
+
+    /// The intersector of primitive i, made when a ray of this thread first tests the primitive.
+    /// At most kKeptIntersectors are kept, the least recently used (by the clock algorithm) made
+    /// again when needed: each holds a walker, an evaluator and a frontier (about 0.8 KB), so that
+    /// a thread's state grows with the primitives its rays meet at a time, not with the scene's
+    /// (16,384 patches took 13 MB per thread). What an intersector finds does not depend on
+    /// what it held before, so neither does the image.
+    SurfaceIntersector& Intersector(int i) {
+        int slot = m_slotOf[i];
+        if (slot >= 0) {
+            m_kept[slot].used = true;
+            return *m_kept[slot].intersector;
         }
+        if (m_kept.size() < kKeptIntersectors) {
+            slot = static_cast<int>(m_kept.size());
+            m_kept.emplace_back();
+        } else {
+            while (m_kept[m_hand].used) {
+                m_kept[m_hand].used = false;
+                m_hand = (m_hand + 1) % m_kept.size();
+            }
+            slot = static_cast<int>(m_hand);
+            m_hand = (m_hand + 1) % m_kept.size();
+            m_slotOf[m_kept[slot].primitive] = -1;
+            m_kept[slot].intersector.reset();
+        }
+        Kept& k = m_kept[slot];
+        k.primitive = i;
+        k.used = true;
+        k.intersector = m_options.intersectorFactory
+                            ? m_options.intersectorFactory(m_scene.primitives[i], i)
+                            : MakeSurfaceIntersector(*m_trees[i], m_options.regionBudget, m_workspace);
+        m_slotOf[i] = slot;
+        return *k.intersector;
     }
 
     /// The shading interpreter of primitive i, running its shade program. A program without
@@ -102,7 +137,20 @@ struct ThreadState {
     }
 
   private:
+    static constexpr size_t kKeptIntersectors = 2048;
+    struct Kept {
+        std::unique_ptr<SurfaceIntersector> intersector;
+        int primitive = -1;
+        bool used = false;  // tested since the clock hand last passed
+    };
+
     const PreparedScene& m_scene;
+    const RenderOptions& m_options;
+    const std::vector<std::unique_ptr<BoundTree>>& m_trees;
+    std::shared_ptr<IntersectWorkspace> m_workspace;
+    std::vector<int> m_slotOf;  // per primitive, its place in m_kept or -1
+    std::vector<Kept> m_kept;
+    size_t m_hand = 0;
     std::unique_ptr<vm::Interpreter<vm::Dual<double>>> m_shared;
     std::vector<std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> m_ownShaders;
 };
@@ -168,7 +216,7 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
         scene.bvh->Traverse(ray, tMin, &best, [&](int i, double) {
             if (!scene.primitives[i].cameraVisible) return true;  // Attribute "visibility" "camera" 0
             Hit hit;
-            if (ts.intersectors[i]->Intersect(ray, tMin, best, ToleranceOf(ts, i, tol), false, &hit, stats, group)) {
+            if (ts.Intersector(i).Intersect(ray, tMin, best, ToleranceOf(ts, i, tol), false, &hit, stats, group)) {
                 best = hit.t;
                 nearest = {hit, i};
             }
@@ -204,7 +252,7 @@ glm::dvec3 ShadowTransmission(const PreparedScene& scene, ThreadState& ts, const
             return true;
         }
         Hit hit;
-        blocked = ts.intersectors[i]->Intersect(ray, tMin, tMax, ToleranceOf(ts, i, tol), true, &hit, ts.shadowStats);
+        blocked = ts.Intersector(i).Intersect(ray, tMin, tMax, ToleranceOf(ts, i, tol), true, &hit, ts.shadowStats);
         return !blocked;
     });
     if (blocked) return glm::dvec3(0.0);
@@ -217,7 +265,7 @@ glm::dvec3 ShadowTransmission(const PreparedScene& scene, ThreadState& ts, const
         double from = tMin;
         for (int layer = 0; layer < kMaxLayers; ++layer) {
             Hit hit;
-            if (!ts.intersectors[i]->Intersect(ray, from, tMax, ToleranceOf(ts, i, tol), false, &hit, ts.shadowStats))
+            if (!ts.Intersector(i).Intersect(ray, from, tMax, ToleranceOf(ts, i, tol), false, &hit, ts.shadowStats))
                 return true;
             through *= 1.0 - prim.OpacityAt(hit.u, hit.v);
             if (through == glm::dvec3(0.0)) return false;
@@ -454,7 +502,8 @@ std::string RenderStats::ToJson() const {
         "\"budget_exhausted_rays\":%llu,\"frontiers\":%llu,\"frontier_regions_mean\":%.2f,"
         "\"cache\":{\"budget_mb\":%.1f,\"peak_mb\":%.2f,\"final_mb\":%.2f,\"nodes\":%llu,"
         "\"lookups\":%llu,\"hit_rate\":%.4f,\"evaluations\":%llu,\"private_copies\":%llu,"
-        "\"evictions\":%llu,\"eviction_passes\":%llu,\"build_thread_seconds\":%.3f}}",
+        "\"evictions\":%llu,\"eviction_passes\":%llu,\"build_thread_seconds\":%.3f},"
+        "\"memory\":{\"resident_at_start_mb\":%.1f,\"peak_resident_mb\":%.1f}}",
         wallSeconds, width, height, static_cast<unsigned long long>(cameraRays),
         perRay(camera.regionsBounded, cameraRays), static_cast<unsigned long long>(camera.maxRegionsPerRay),
         perRay(camera.regionsEvaluated, cameraRays),
@@ -469,7 +518,7 @@ std::string RenderStats::ToJson() const {
         static_cast<unsigned long long>(cache.nodes), static_cast<unsigned long long>(cache.lookups), hitRate,
         static_cast<unsigned long long>(cache.evaluations), static_cast<unsigned long long>(cache.privateCopies),
         static_cast<unsigned long long>(cache.evictions), static_cast<unsigned long long>(cache.evictionPasses),
-        cache.buildSeconds);
+        cache.buildSeconds, double(residentAtStartBytes) / (1 << 20), double(peakResidentBytes) / (1 << 20));
     return buf;
 }
 
@@ -750,6 +799,20 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
     return value;
 }
 
+/// The process's resident memory now (/proc/self/statm), 0 where unknown.
+uint64_t ResidentBytes() {
+    std::ifstream statm("/proc/self/statm");
+    uint64_t pages = 0, resident = 0;
+    if (!(statm >> pages >> resident)) return 0;
+    return resident * static_cast<uint64_t>(sysconf(_SC_PAGESIZE));
+}
+
+/// The process's peak resident memory so far (getrusage: ru_maxrss in KiB), 0 where unknown.
+uint64_t PeakResidentBytes() {
+    rusage usage{};
+    return getrusage(RUSAGE_SELF, &usage) == 0 ? static_cast<uint64_t>(usage.ru_maxrss) * 1024 : 0;
+}
+
 int RenderThreads(const RenderOptions& options) {
     return options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
@@ -769,6 +832,7 @@ int RenderTileSize(const CameraDesc& camera, const RenderOptions& options) {
 
 void RenderImage(const PreparedScene& scene, const RenderOptions& options, ImageBuffer* image, RenderStats* stats) {
     auto start = std::chrono::steady_clock::now();
+    const uint64_t residentAtStart = ResidentBytes();
     const CameraDesc& cam = scene.desc.camera;
     const Camera camera(cam);
     const glm::dvec3 eye = camera.Position();
@@ -867,6 +931,8 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     stats->width = cam.xres;
     stats->height = cam.yres;
     stats->wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats->residentAtStartBytes = residentAtStart;
+    stats->peakResidentBytes = PeakResidentBytes();
 }
 
 }  // namespace affray::renderer

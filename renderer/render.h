@@ -91,6 +91,10 @@ struct RenderStats {
     BoundTreeStats cache;     // the bound hierarchies, summed over the primitives
     size_t cacheBudgetBytes = 0;
     uint64_t cachePeakBytes = 0;  // the most the hierarchies held together
+    /// The process's resident memory when the render began (the scene read and prepared, no
+    /// film yet) and its peak over the process's life (what the budgets bound: the tracing adds
+    /// at most --cache-mb + --texture-mb + the film + per-thread state to the first).
+    uint64_t residentAtStartBytes = 0, peakResidentBytes = 0;
     int width = 0, height = 0;
     bool stopped = false;   // RenderOptions::stop was set in time: some tiles are missing from the image
     int tilesRestored = 0;  // tiles the TileStore gave back instead of being rendered
