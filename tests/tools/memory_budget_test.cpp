@@ -82,10 +82,9 @@ TEST_CASE("memory budget: a render of many noise-displaced patches adds at most 
               "}\n");
     dir.Write("ground.rib", ManyPatchNoiseScene(32));
     auto render = [&](const std::string& extra) {
-        const test::CliOutput out =
-            test::RunCli("render " + test::Quote(dir.Path("ground.rib")) + " -o " + test::Quote(dir.Path("g.exr")) +
-                             " --quiet --stats " + extra,
-                         true);
+        const test::CliOutput out = test::RunCli("render " + test::Quote(dir.Path("ground.rib")) + " -o " +
+                                                     test::Quote(dir.Path("g.exr")) + " --quiet --stats " + extra,
+                                                 true);
         INFO(out.out);
         REQUIRE(out.status == 0);
         return out.out;
