@@ -225,6 +225,35 @@ void CacheBudget::Add(uint64_t n) {
     while (now > peak && !peakBytes.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {}
 }
 
+void CacheBudget::Enforce() {
+    std::unique_lock<std::mutex> lock(m_mutex, std::try_to_lock);
+    if (!lock.owns_lock()) return;  // another thread is at it
+    // What earlier passes retired and no ray holds any more goes first.
+    std::erase_if(m_retiring, [](BoundTree* tree) {
+        tree->Reclaim();
+        return tree->m_retired.empty();
+    });
+    // Blocks retired but still held by rays under way are freed at a later pass; evicting more
+    // for them would not free them sooner.
+    const uint64_t live = bytes.load(std::memory_order_relaxed) - m_retiredBytes.load(std::memory_order_relaxed);
+    if (live <= limit) return;
+    m_passes.fetch_add(1, std::memory_order_relaxed);
+    // Down to half the budget, the blocks expanded longest ago first, whichever tree holds them.
+    const uint64_t excess = live - limit / 2;
+    std::vector<uint32_t> stamps;
+    for (BoundTree* tree : m_trees) tree->CollectStamps(&stamps);
+    if (stamps.empty()) return;
+    const size_t wanted =
+        std::min(stamps.size(), size_t((excess + BoundTree::kBlockBytes - 1) / BoundTree::kBlockBytes));
+    std::nth_element(stamps.begin(), stamps.begin() + long(wanted - 1), stamps.end());
+    const uint32_t threshold = stamps[wanted - 1];
+    for (BoundTree* tree : m_trees) {
+        const bool wasRetiring = !tree->m_retired.empty();
+        tree->EvictExpandedBefore(threshold);
+        if (!wasRetiring && !tree->m_retired.empty()) m_retiring.push_back(tree);
+    }
+}
+
 BoundTree::BoundTree(const BaseSurface& surface, const vm::Program& boundProgram, const glm::dvec3& eye, BoundMode mode,
                      int maxDepth, CacheBudget* budget)
     : m_surface(surface), m_program(&boundProgram), m_eye(eye), m_mode(mode), m_maxDepth(maxDepth) {
@@ -232,12 +261,25 @@ BoundTree::BoundTree(const BaseSurface& surface, const vm::Program& boundProgram
     m_budget = budget ? budget : m_ownBudget.get();
     m_root.bound = MakeEvaluator()->Bound(0, 1, 0, 1);
     m_root.state.store(BoundNode::kReady);
+    std::lock_guard<std::mutex> lock(m_budget->m_mutex);
+    m_budgetIndex = m_budget->m_trees.size();
+    m_budget->m_trees.push_back(this);
 }
 
 BoundTree::~BoundTree() {
-    uint64_t freed = 0;
+    std::lock_guard<std::mutex> lock(m_budget->m_mutex);
+    std::vector<BoundTree*>& trees = m_budget->m_trees;
+    trees[m_budgetIndex] = trees.back();
+    trees[m_budgetIndex]->m_budgetIndex = m_budgetIndex;
+    trees.pop_back();
+    if (!m_retired.empty()) std::erase(m_budget->m_retiring, this);
+    uint64_t freed = 0, retired = 0;
     if (BoundNode* kids = m_root.children.load()) freed += FreeSubtree(kids);
-    for (const Retired& r : m_retired) freed += FreeSubtree(r.block);
+    for (const Retired& r : m_retired) {
+        freed += FreeSubtree(r.block);
+        retired += r.bytes;
+    }
+    m_budget->m_retiredBytes.fetch_sub(retired, std::memory_order_relaxed);
     m_budget->Sub(freed / kBlockNodes * kBlockBytes);
     for (Slot* s = m_slots.load(); s;) {
         Slot* next = s->next;
@@ -245,7 +287,6 @@ BoundTree::~BoundTree() {
         s = next;
     }
 }
-
 std::unique_ptr<RegionEvaluator> BoundTree::MakeEvaluator(const std::shared_ptr<EvaluatorPool>& pool) const {
     // A program with parameters keeps an interpreter of its own (SetProgram carries parameter
     // values over, so the pool's interpreter may only run programs without them, as every
@@ -288,6 +329,13 @@ uint64_t BoundTree::FreeSubtree(BoundNode* block) {
     return nodes;
 }
 
+uint64_t BoundTree::CountSubtree(const BoundNode* block) {
+    uint64_t nodes = kBlockNodes;
+    for (int i = 0; i < kBlockNodes; ++i)
+        if (const BoundNode* kids = block[i].children.load(std::memory_order_relaxed)) nodes += CountSubtree(kids);
+    return nodes;
+}
+
 void BoundTree::Reclaim() {
     // The oldest epoch a walker still in a ray may have seen.
     uint64_t oldest = UINT64_MAX;
@@ -295,63 +343,57 @@ void BoundTree::Reclaim() {
         const uint64_t e = s->epoch.load();
         if (e != 0) oldest = std::min(oldest, e);
     }
-    uint64_t freed = 0;
-    auto kept = std::remove_if(m_retired.begin(), m_retired.end(), [&](const Retired& r) {
+    uint64_t freed = 0, retired = 0;
+    std::erase_if(m_retired, [&](const Retired& r) {
         if (r.epoch >= oldest) return false;
         freed += FreeSubtree(r.block);
+        retired += r.bytes;
         return true;
     });
-    m_retired.erase(kept, m_retired.end());
     m_nodes.fetch_sub(freed, std::memory_order_relaxed);
+    m_budget->m_retiredBytes.fetch_sub(retired, std::memory_order_relaxed);
     m_budget->Sub(freed / kBlockNodes * kBlockBytes);
 }
 
-void BoundTree::Evict() {
-    std::unique_lock<std::mutex> lock(m_evictMutex, std::try_to_lock);
-    if (!lock.owns_lock()) return;  // another thread is at it
-    const uint64_t total = m_budget->bytes.load(std::memory_order_relaxed);
-    if (total <= m_budget->limit) return;
-    ++m_passes;
-    // Down to half the budget overall, from this tree's least recently expanded subtrees.
-    const uint64_t excess = total - m_budget->limit / 2;
-    // The stamps of the expanded nodes reachable now.
-    std::vector<uint32_t> stamps;
+void BoundTree::CollectStamps(std::vector<uint32_t>* stamps) {
     std::vector<BoundNode*> stack{&m_root};
     while (!stack.empty()) {
         BoundNode* n = stack.back();
         stack.pop_back();
         BoundNode* kids = n->children.load(std::memory_order_acquire);
         if (!kids) continue;
-        stamps.push_back(n->stamp.load(std::memory_order_relaxed));
+        stamps->push_back(n->stamp.load(std::memory_order_relaxed));
         for (int i = 0; i < kBlockNodes; ++i) stack.push_back(&kids[i]);
     }
-    if (stamps.empty()) return;
-    // Evict blocks expanded before `threshold`: as many blocks as the excess needs.
-    const size_t wanted = std::min(stamps.size(), size_t((excess + kBlockBytes - 1) / kBlockBytes));
-    std::nth_element(stamps.begin(), stamps.begin() + long(wanted - 1), stamps.end());
-    const uint32_t threshold = stamps[wanted - 1];
+}
+
+void BoundTree::EvictExpandedBefore(uint32_t threshold) {
     const uint64_t epoch = m_epoch.load();
     uint64_t evicted = 0;
-    stack.assign(1, &m_root);
+    std::vector<BoundNode*> stack{&m_root};
     while (!stack.empty()) {
         BoundNode* n = stack.back();
         stack.pop_back();
         std::atomic<BoundNode*>& children = n->children;
         BoundNode* kids = children.load(std::memory_order_acquire);
         if (!kids) continue;
-        if (n->stamp.load(std::memory_order_relaxed) <= threshold && n != &m_root) {
+        if (n->stamp.load(std::memory_order_relaxed) <= threshold) {
             // Unlink: rays that start from now on cannot reach the block; rays under way may
             // still hold it, so it is freed once they have all finished (Reclaim).
             kids = children.exchange(nullptr);
             if (kids) {
-                m_retired.push_back({kids, epoch});
+                const uint64_t bytes = CountSubtree(kids) / kBlockNodes * kBlockBytes;
+                m_retired.push_back({kids, epoch, bytes});
+                m_budget->m_retiredBytes.fetch_add(bytes, std::memory_order_relaxed);
                 ++evicted;
             }
             continue;
         }
         for (int i = 0; i < kBlockNodes; ++i) stack.push_back(&kids[i]);
     }
+    if (evicted == 0) return;
     m_evictions.fetch_add(evicted, std::memory_order_relaxed);
+    m_passes.fetch_add(1, std::memory_order_relaxed);
     m_epoch.fetch_add(1);
     Reclaim();
 }
@@ -400,12 +442,14 @@ void BoundTree::Walker::Enter() {
     // unlink-then-advance).
     m_epoch = m_tree.m_epoch.load();
     m_slot->epoch.store(m_epoch);
-    // The clock ticks every 64 rays of each walker: coarse, but enough to tell old from recent.
-    if (++m_raysSinceTick >= 64) {
-        m_raysSinceTick = 0;
-        m_tree.m_clock.fetch_add(1, std::memory_order_relaxed);
+    // The clock ticks every 64 rays a thread starts, in whichever trees: coarse, but enough to
+    // tell old from recent.
+    thread_local uint32_t raysSinceTick = 0;
+    if (++raysSinceTick >= 64) {
+        raysSinceTick = 0;
+        m_tree.m_budget->m_clock.fetch_add(1, std::memory_order_relaxed);
     }
-    m_clock = m_tree.m_clock.load(std::memory_order_relaxed);
+    m_clock = m_tree.m_budget->m_clock.load(std::memory_order_relaxed);
 }
 
 void BoundTree::Walker::Leave() { m_slot->epoch.store(0, std::memory_order_release); }
@@ -424,7 +468,7 @@ BoundNode* BoundTree::Walker::Children(BoundNode& node) {
         ++m_built;
         m_tree.m_nodes.fetch_add(kBlockNodes, std::memory_order_relaxed);
         m_tree.m_budget->Add(kBlockBytes);
-        if (m_tree.m_budget->bytes.load(std::memory_order_relaxed) > m_tree.m_budget->limit) m_tree.Evict();
+        if (m_tree.m_budget->bytes.load(std::memory_order_relaxed) > m_tree.m_budget->limit) m_tree.m_budget->Enforce();
         return block;
     }
 }

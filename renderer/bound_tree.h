@@ -12,9 +12,10 @@
 // bounds are the same either way, since a node's bound is a function of its region alone; so the
 // image does not depend on the thread count, the tile order or what the cache held.
 //
-// Memory: the tree keeps within a budget. When a new block of children takes it past the budget,
-// one thread evicts the subtrees no ray has entered for the longest time (each node keeps the
-// clock of its last expansion by a ray), and they are rebuilt on demand. Evicted blocks are freed
+// Memory: the trees of a render keep within one budget (CacheBudget). When a new block of children
+// takes them past it, one thread evicts the subtrees no ray has entered for the longest time,
+// whichever trees hold them (each node keeps the budget's clock at its last expansion by a ray),
+// and they are rebuilt on demand. Evicted blocks are freed
 // only once every thread that could still hold a pointer into them has finished its ray
 // (epoch-based reclamation: each walker announces the epoch in which its ray started).
 #pragma once
@@ -74,7 +75,7 @@ struct BoundNode {
     std::atomic<BoundNode*> children{nullptr};
     static constexpr uint8_t kEmpty = 0, kClaimed = 1, kReady = 2;
     std::atomic<uint8_t> state{kEmpty};
-    /// The tree's clock when a ray last expanded this node (for eviction).
+    /// The budget's clock when a ray last expanded this node (for eviction).
     std::atomic<uint32_t> stamp{0};
 };
 
@@ -93,14 +94,41 @@ inline constexpr int kMaxImbalance = 24;
 /// instead of into 4^depth squares. A function of the bound alone, so every thread agrees.
 int SplitAxis(const RegionBound& b, int levelU, int levelV, int maxDepth);
 
-/// The memory budget that the hierarchies of one render share (`affray render --cache-mb`).
-struct CacheBudget {
+class BoundTree;
+
+/// The memory budget that the hierarchies of one render share (`affray render --cache-mb`), and
+/// the clock their nodes are stamped with. When the trees together hold more than `limit`, one
+/// thread evicts the blocks expanded longest ago across all of them (root blocks included) until
+/// they hold half of it: a scene of thousands of primitives keeps within the budget as one of a
+/// single primitive does.
+class CacheBudget {
+  public:
     explicit CacheBudget(size_t limitBytes) : limit(limitBytes) {}
+    CacheBudget(const CacheBudget&) = delete;
+    CacheBudget& operator=(const CacheBudget&) = delete;
+
     const size_t limit;
     std::atomic<uint64_t> bytes{0};      // held now by all the trees
     std::atomic<uint64_t> peakBytes{0};  // the most ever held
     void Add(uint64_t n);
     void Sub(uint64_t n) { bytes.fetch_sub(n, std::memory_order_relaxed); }
+    /// Times the limit was enforced.
+    uint64_t passes() const { return m_passes.load(std::memory_order_relaxed); }
+    /// Of `bytes`, those in blocks evicted but not yet freed (rays under way may still hold them).
+    uint64_t retiredBytes() const { return m_retiredBytes.load(std::memory_order_relaxed); }
+
+  private:
+    friend class BoundTree;
+    /// Enforces the limit over every registered tree; a thread that finds another at it returns.
+    void Enforce();
+
+    /// Ticks once every 64 rays a thread starts in any tree: the stamps of all trees compare.
+    std::atomic<uint32_t> m_clock{1};
+    std::atomic<uint64_t> m_passes{0};
+    std::atomic<uint64_t> m_retiredBytes{0};  // written under m_mutex
+    std::mutex m_mutex;                       // held by the thread enforcing the budget, and to register
+    std::vector<BoundTree*> m_trees;          // under m_mutex; a tree knows its index (m_budgetIndex)
+    std::vector<BoundTree*> m_retiring;       // under m_mutex: the trees with blocks retired, not freed
 };
 
 struct BoundTreeStats {
@@ -111,7 +139,7 @@ struct BoundTreeStats {
     uint64_t privateCopies = 0;   // bounds evaluated by a thread that found them claimed, not ready
     uint64_t lookups = 0;         // a ray asking for the bound of a child
     uint64_t evictions = 0;       // blocks evicted
-    uint64_t evictionPasses = 0;  // times the budget was enforced
+    uint64_t evictionPasses = 0;  // times the budget was enforced (of one tree: passes that evicted from it)
     double buildSeconds = 0;      // thread-seconds spent evaluating bounds (the price of a cold cache)
 
     /// Sums (the figures of several trees).
@@ -187,7 +215,6 @@ class BoundTree {
         uint64_t m_lookups = 0, m_built = 0, m_evaluations = 0, m_private = 0;
         RegionBound m_privateBound;  // a private copy (see Bound)
         double m_buildSeconds = 0;
-        uint32_t m_raysSinceTick = 0;
         uint64_t m_epoch = 0;
     };
 
@@ -201,13 +228,19 @@ class BoundTree {
     Slot* RegisterWalker();
     /// Publishes `block` as the children of `node`; false if another thread did first.
     bool Publish(BoundNode& node, BoundNode* block);
-    /// Evicts the least recently expanded subtrees until the tree holds half its budget, and
-    /// frees what no walker can reach any more. One thread at a time; others carry on.
-    void Evict();
-    /// Frees retired blocks that no active walker can still hold.
+    friend class CacheBudget;
+    /// Appends the stamps of the nodes whose children are held (the root's included).
+    void CollectStamps(std::vector<uint32_t>* stamps);
+    /// Unlinks the blocks of children of nodes stamped at or before `threshold`: rays under way
+    /// may still hold them, so they are freed once those rays have finished (Reclaim). Under the
+    /// budget's mutex.
+    void EvictExpandedBefore(uint32_t threshold);
+    /// Frees retired blocks that no active walker can still hold. Under the budget's mutex.
     void Reclaim();
     /// Deletes a block and every block below it; returns the nodes freed.
     static uint64_t FreeSubtree(BoundNode* block);
+    /// The nodes of a block and every block below it.
+    static uint64_t CountSubtree(const BoundNode* block);
 
     BaseSurface m_surface;
     const vm::Program* m_program;
@@ -221,17 +254,17 @@ class BoundTree {
     std::atomic<uint64_t> m_nodes{1};  // the root and every block's nodes
     std::atomic<uint64_t> m_lookups{0}, m_blocksBuilt{0}, m_evaluations{0}, m_private{0}, m_evictions{0}, m_passes{0};
     std::atomic<double> m_buildSeconds{0};
-    std::atomic<uint32_t> m_clock{1};
     std::atomic<uint64_t> m_epoch{1};
 
     std::atomic<Slot*> m_slots{nullptr};
 
-    std::mutex m_evictMutex;
+    size_t m_budgetIndex = 0;  // in m_budget->m_trees
     struct Retired {
         BoundNode* block;
         uint64_t epoch;
+        uint64_t bytes;  // of the subtree when it was retired (it may grow until freed)
     };
-    std::vector<Retired> m_retired;  // under m_evictMutex
+    std::vector<Retired> m_retired;  // under the budget's mutex
 };
 
 }  // namespace affray::renderer

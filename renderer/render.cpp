@@ -918,6 +918,7 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
 
     *stats = RenderStats();
     for (const auto& tree : trees) stats->cache.Merge(tree->stats());
+    if (!trees.empty()) stats->cache.evictionPasses = budget.passes();  // one pass serves every tree
     stats->cacheBudgetBytes = options.cacheBytes;
     stats->cachePeakBytes = budget.peakBytes.load();
     for (int i = 0; i < nThreads; ++i) {

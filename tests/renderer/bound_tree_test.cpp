@@ -160,6 +160,54 @@ TEST_CASE("bound tree: threads refining one tree at once find the hits of a lone
     CHECK(stats.lookups > stats.evaluations);
 }
 
+TEST_CASE("bound tree: trees sharing a budget evict each other's oldest blocks", "[renderer][cache]") {
+    compiler::CompiledShader s =
+        test::CompileOrThrow("displacement d() { P += 0.1 * (noise(P * 7) - 0.5) * normalize(N); }");
+    std::vector<std::string> errors;
+    const vm::Program bound = *compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
+    const BilinearPatch square = BilinearPatch::UnitSquare();
+    std::vector<Ray> rays;
+    test::Rng rng(9);
+    for (int i = 0; i < 300; ++i) {
+        const glm::dvec3 target(rng.uniform(0, 1), rng.uniform(0, 1), 0);
+        const glm::dvec3 from = target + glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(0.3, 2));
+        rays.push_back({from, glm::normalize(target - from)});
+    }
+    auto trace = [&](BoundTree& tree) {
+        auto it = MakeSurfaceIntersector(tree);
+        IntersectStats stats;
+        std::vector<double> ts;
+        for (const Ray& ray : rays) {
+            Hit hit;
+            ts.push_back(it->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats) ? hit.t : -1.0);
+        }
+        return ts;
+    };
+    // What one tree holds after the rays, with a budget of its own that never bites.
+    BoundTree alone(square, bound, glm::dvec3(0), BoundMode::Affine, 24);
+    const std::vector<double> expected = trace(alone);
+    const uint64_t aloneBytes = alone.stats().bytes;
+    REQUIRE(alone.stats().evictions == 0);
+    // Two trees sharing a budget of 60 % of that: the first fills it, the second's blocks take
+    // the place of the first's (a tree evicting only its own blocks kept them all).
+    CacheBudget budget(aloneBytes * 6 / 10);
+    BoundTree first(square, bound, glm::dvec3(0), BoundMode::Affine, 24, &budget);
+    BoundTree second(square, bound, glm::dvec3(0), BoundMode::Affine, 24, &budget);
+    CHECK(trace(first) == expected);
+    const uint64_t firstBytes = first.stats().bytes;
+    CHECK(trace(second) == expected);
+    INFO("first held " << firstBytes << ", holds " << first.stats().bytes << "; limit " << budget.limit);
+    CHECK(first.stats().evictions > 0);
+    CHECK(first.stats().bytes < firstBytes / 4);
+    // Within the limit but for one block, besides the blocks the last pass unlinked while the ray
+    // under way held them (freed at the next pass).
+    CHECK(budget.bytes.load() - budget.retiredBytes() <= budget.limit + kBlockNodes * sizeof(BoundNode));
+    CHECK(budget.bytes.load() == first.stats().bytes + second.stats().bytes);
+    CHECK(budget.passes() > 0);
+    // Rebuilt on demand: the evicted tree gives the same hits again.
+    CHECK(trace(first) == expected);
+}
+
 TEST_CASE("bound tree: a region is split across the parameter the surface stretches along", "[renderer][cache]") {
     RegionBound b;
     b.boundedMask = 7;

@@ -101,5 +101,9 @@ TEST_CASE("memory budget: a render of many noise-displaced patches adds at most 
         REQUIRE(start > 0);
         CHECK(StatField(stats, "evictions") > 0);  // the budget bites
         CHECK(peak - start <= kCacheMb + kTextureMb + kMarginMb);
+        // The 16,384 bound hierarchies share the budget: the blocks expanded longest ago go first,
+        // whichever tree holds them (each tree evicting only its own, root blocks kept, they held
+        // 32 MB). Above the limit only by what rays under way still hold, so checked alone.
+        if (threads == 1) CHECK(StatField(stats, "peak_mb") <= 1.5 * kCacheMb);
     }
 }
