@@ -1,6 +1,7 @@
 // rib/archive.cpp: RIB requests that bring in requests from elsewhere: ReadArchive (another RIB
-// file, read in place) and retained objects (ObjectBegin, ObjectEnd, ObjectInstance). Rules
-// shared with rib.cpp are in rib/parser.h.
+// file or an inline archive, read in place), inline archives (ArchiveBegin, ArchiveEnd) and
+// retained objects (ObjectBegin, ObjectEnd, ObjectInstance). Rules shared with rib.cpp are in
+// rib/parser.h.
 //
 // Files: every file read gets a number in m_sources (the scene is 0), which its requests' RibPos
 // carry, so a diagnostic names the archive's own file:line:col. An archive is read by pushing a
@@ -62,12 +63,50 @@ std::string RibParser::FindArchive(const std::string& name, int from, std::strin
     return {};
 }
 
-// ReadArchive "file": the file's requests, read here as if written in place.
+// ReadArchive "name": the requests of the inline archive of that name if one was defined, else of
+// the file, read here as if written in place.
 bool RibParser::DoReadArchive(const RibRequest& r) {
     std::string name;
     if (!LeadingString(r, "an archive file name", &name)) return false;
     if (r.args.size() > 1) return Fail(r.args[1].at, "'ReadArchive' expects one string (a file name)");
-    return OpenArchive(r, r.args[0].at, name, false);
+    auto it = m_inlineArchives.find(name);
+    if (it == m_inlineArchives.end()) return OpenArchive(r, r.args[0].at, name, false);
+    for (const OpenReader& open : m_readers)
+        if (open.inlineRequests && open.inlineName == name)
+            return Fail(r.args[0].at,
+                        "inline archive " + Quote(name) + " reads itself (from " + LineName(open.at, r.at) + ")");
+    OpenReader reader{RibRequestReader(std::string_view()), r.at.file, false, r.at, m_blocks.size()};
+    reader.inlineRequests = it->second;
+    reader.inlineName = name;
+    m_readers.push_back(std::move(reader));
+    return true;
+}
+
+// Inline archives (RIB 3.3, prman and the exporters that target it): ArchiveBegin "name" ...
+// ArchiveEnd keeps its requests, unrun, under the name; ReadArchive "name" reads them in place,
+// as it would a file. A name defined again names the new archive; parameters are ignored.
+bool RibParser::DoArchiveBegin(const RibRequest& r) {
+    if (r.name == "ArchiveEnd") return Fail(r.at, "'ArchiveEnd' without matching 'ArchiveBegin'");
+    std::string name;
+    if (!LeadingString(r, "an archive name", &name)) return false;
+    std::vector<RibParam> params;
+    if (!ParamList(r, 1, &params)) return false;
+    if (name.empty()) return Fail(r.args[0].at, "'ArchiveBegin' name must not be empty");
+    m_archiveDef = ArchiveDef{name, r.at, {}, 0};
+    return true;
+}
+
+bool RibParser::RecordArchive(const RibRequest& r) {
+    if (r.name == "ArchiveBegin") ++m_archiveDef->depth;
+    if (r.name == "ArchiveEnd" && m_archiveDef->depth-- == 0) {
+        if (!NoArgs(r)) return false;
+        m_inlineArchives[m_archiveDef->name] =
+            std::make_shared<const std::vector<RibRequest>>(std::move(m_archiveDef->requests));
+        m_archiveDef.reset();
+        return true;
+    }
+    m_archiveDef->requests.push_back(r);
+    return true;
 }
 
 bool RibParser::DoProcedural(const RibRequest& r) {
@@ -125,6 +164,7 @@ bool RibParser::OpenArchive(const RibRequest& r, RibPos nameAt, const std::strin
     std::error_code ec;
     const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
     for (const OpenReader& open : m_readers) {
+        if (open.inlineRequests) continue;
         const std::string& openPath = m_sources[static_cast<size_t>(open.file)].path;
         if (std::filesystem::weakly_canonical(openPath, ec) == canonical) {
             std::string chain;

@@ -112,6 +112,17 @@ class RibParser : private RibArgChecks {
         bool procedural = false;
         RibPos at{};
         size_t blocks = 0;
+        /// An inline archive read by ReadArchive: its requests (`reader` is unused), the next to run.
+        std::shared_ptr<const std::vector<RibRequest>> inlineRequests{};
+        size_t next = 0;
+        std::string inlineName{};
+    };
+    /// An ArchiveBegin ... ArchiveEnd being recorded.
+    struct ArchiveDef {
+        std::string name;
+        RibPos at;
+        std::vector<RibRequest> requests;
+        int depth = 0;  // nested ArchiveBegin open in it
     };
     /// An ObjectBegin ... ObjectEnd definition: its requests, replayed by ObjectInstance.
     struct ObjectDef {
@@ -202,7 +213,13 @@ class RibParser : private RibArgChecks {
     bool DoGeometricApproximation(const RibRequest& r);
     bool DoShadingInterpolation(const RibRequest& r);
     bool DoArchiveRecord(const RibRequest& r);
+    /// ReadArchive "name": an inline archive of that name (ArchiveBegin), else a file.
     bool DoReadArchive(const RibRequest& r);
+    /// ArchiveBegin "name" [params]: starts recording an inline archive; ArchiveEnd outside one
+    /// is an error.
+    bool DoArchiveBegin(const RibRequest& r);
+    /// Records `r` in the inline archive being defined, or ends it at its ArchiveEnd.
+    bool RecordArchive(const RibRequest& r);
     /// Procedural "DelayedReadArchive" and Procedural2 "DelayedReadArchive2": the archive read
     /// at once, in an attribute block of its own (the bound is not needed: affray bounds what
     /// the archive holds). Procedurals that run programs are refused.
@@ -359,9 +376,11 @@ class RibParser : private RibArgChecks {
     std::vector<Source> m_sources;
     std::vector<OpenReader> m_readers;
     diag::Report* m_report;
-    std::vector<std::string> m_archiveSearchPath;                 // Option "searchpath" "archive"
-    std::vector<SceneDesc::MakeTextureDesc> m_madeTextures;       // MakeTexture requests so far
-    std::map<std::string, ObjectDef> m_objects;                   // by handle ("1" or the string)
+    std::vector<std::string> m_archiveSearchPath;            // Option "searchpath" "archive"
+    std::vector<SceneDesc::MakeTextureDesc> m_madeTextures;  // MakeTexture requests so far
+    std::map<std::string, ObjectDef> m_objects;              // by handle ("1" or the string)
+    std::optional<ArchiveDef> m_archiveDef;                  // between ArchiveBegin and ArchiveEnd
+    std::map<std::string, std::shared_ptr<const std::vector<RibRequest>>> m_inlineArchives;  // by name
     std::optional<std::pair<std::string, ObjectDef>> m_defining;  // between ObjectBegin and ObjectEnd
     int m_definingDepth = 0;                                      // Attribute/Transform blocks open in it
     int m_instanceDepth = 0;                                      // ObjectInstance replays under way

@@ -41,8 +41,8 @@ constexpr std::string_view kBlockRequests[] = {"FrameBegin",     "FrameEnd",    
 constexpr int kMaxResolution = 65536;
 
 // The channel groups a Display mode may list (see SceneDesc::displayMode).
-constexpr std::string_view kDisplayGroups[] = {"rgb", "rgba", "rgbz", "rgbaz", "r",  "g",    "b",  "a",
-                                               "z",   "Z",    "N",    "P",     "st", "cost", "err"};
+constexpr std::string_view kDisplayGroups[] = {"rgb", "rgba", "rgbz", "rgbaz", "r", "g",  "b",    "a",  "z",
+                                               "Ci",  "Oi",   "Z",    "N",     "P", "st", "cost", "err"};
 
 bool ContainsP(const std::string_view* begin, const std::string_view* end, std::string_view name) {
     return std::find(begin, end, name) != end;
@@ -67,7 +67,11 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
     bool ok = true;
     for (;;) {
         OpenReader& current = m_readers.back();
-        RibRequestReader::Status status = current.reader.Next(&request, &message, &at);
+        RibRequestReader::Status status = RibRequestReader::Status::End;
+        if (!current.inlineRequests)
+            status = current.reader.Next(&request, &message, &at);
+        else if (current.next < current.inlineRequests->size())
+            request = (*current.inlineRequests)[current.next++], status = RibRequestReader::Status::Ok;
         if (status == RibRequestReader::Status::End) {
             if (m_readers.size() == 1) break;
             const OpenReader done = std::move(m_readers.back());
@@ -83,18 +87,30 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
             ok = Fail(at, message);
             break;
         }
-        StampFile(&request, current.file);
+        if (!current.inlineRequests) StampFile(&request, current.file);
+        // An inline archive's requests are kept as written, conditionals included, until
+        // ReadArchive reads them.
+        if (m_archiveDef) {
+            if (!RecordArchive(request)) {
+                ok = false;
+                break;
+            }
+            continue;
+        }
         bool consumed = false;
         if (!Conditional(request, &consumed)) {
             ok = false;
             break;
         }
         if (consumed) continue;
-        if (!(m_defining ? Record(request) : Dispatch(request))) {
+        // ArchiveBegin defines at once, in an object definition too (as Declare does).
+        const bool archive = request.name == "ArchiveBegin" || request.name == "ArchiveEnd";
+        if (!(archive ? DoArchiveBegin(request) : m_defining ? Record(request) : Dispatch(request))) {
             ok = false;
             break;
         }
     }
+    if (ok && m_archiveDef) ok = Fail(m_archiveDef->at, "'ArchiveBegin' has no matching 'ArchiveEnd'");
     if (ok && m_defining) ok = Fail(m_defining->second.at, "'ObjectBegin' has no matching 'ObjectEnd'");
     if (ok && m_motion) ok = Fail(m_motion->at, "'MotionBegin' has no matching 'MotionEnd'");
     if (ok && !m_conditionals.empty()) ok = Fail(m_conditionals.back().at, "'IfBegin' has no matching 'IfEnd'");
@@ -420,7 +436,7 @@ bool RibParser::DoDisplay(const RibRequest& r) {
         if (!ContainsP(std::begin(kDisplayGroups), std::end(kDisplayGroups), group))
             return Fail(r.args[2].at, "'Display' mode " + Quote(mode) + " has an unknown channel group " +
                                           Quote(std::string(group)) +
-                                          " (expected rgb, rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost "
+                                          " (expected rgb, rgba, rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost "
                                           "or err, separated by commas)");
         if (end == mode.size()) break;
         begin = end + 1;
@@ -469,8 +485,15 @@ bool RibParser::DoCropWindow(const RibRequest& r) {
 bool RibParser::DoClipping(const RibRequest& r) {
     double v[2];
     if (!BeforeWorld(r) || !Numbers(r, 2, "near far", v)) return false;
+    // RI 3.2 asks near >= RI_EPSILON (1e-10); exporters write 0 for "as near as possible", which
+    // prman takes as that.
+    constexpr double kRiEpsilon = 1e-10;
+    if (v[0] >= 0 && v[0] < kRiEpsilon && kRiEpsilon < v[1]) {
+        Warn(r.at, "'Clipping' near " + FormatNumber(v[0]) + " is below RI_EPSILON; taken as 1e-10");
+        v[0] = kRiEpsilon;
+    }
     if (!(v[0] > 0 && v[0] < v[1]))
-        return Fail(r.at, "'Clipping' needs 0 < near < far, got " + FormatNumber(v[0]) + " " + FormatNumber(v[1]));
+        return Fail(r.at, "'Clipping' needs 0 <= near < far, got " + FormatNumber(v[0]) + " " + FormatNumber(v[1]));
     m_scene.camera.nearClip = v[0];
     m_scene.camera.farClip = v[1];
     return true;

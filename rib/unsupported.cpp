@@ -49,7 +49,6 @@ struct Refused {
 };
 constexpr Refused kRefused[] = {
     {"Perspective", "a projective transform (transforms must be affine)"},
-    {"ArchiveBegin", "an inline archive's requests would run here instead of where 'ReadArchive' reads them"},
 };
 
 bool ListedP(const std::string_view* begin, const std::string_view* end, std::string_view name) {

@@ -60,7 +60,8 @@ std::string Trim(const std::string& s) {
 
 /// Applies one Display mode group; false if the group is not in the grammar.
 bool ApplyGroup(const std::string& group, DisplayChannels* out) {
-    static const char* const kColorGroups[] = {"rgb", "rgba", "rgbz", "rgbaz", "r", "g", "b", "a", "z"};
+    // "Ci" and "Oi" are the output variables prman's exporters name for colour and opacity.
+    static const char* const kColorGroups[] = {"rgb", "rgba", "rgbz", "rgbaz", "r", "g", "b", "a", "z", "Ci", "Oi"};
     for (const char* name : kColorGroups)
         if (group == name) {
             if (group.back() == 'z') out->z = true;  // RGBA are always written
@@ -180,7 +181,8 @@ bool ParseDisplayMode(const std::string& mode, DisplayChannels* out, std::string
                 group.empty() ? std::string("empty channel group") : "unknown channel group '" + group + "'";
             if (error)
                 *error = what + " in display mode '" + mode +
-                         "' (expected comma-separated rgb, rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost, err)";
+                         "' (expected comma-separated rgb, rgba, rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, "
+                         "cost, err)";
             return false;
         }
         if (comma == std::string::npos) break;

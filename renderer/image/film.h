@@ -72,7 +72,8 @@ struct DisplayChannels {
 };
 
 /// Parses a Display mode: comma-separated groups, each one of "rgb", "rgba", "rgbz", "rgbaz",
-/// the single letters "r" "g" "b" "a" "z", or the AOVs "Z" (same as "z"), "N", "P", "st",
+/// the single letters "r" "g" "b" "a" "z", prman's "Ci" and "Oi" (colour and opacity: RGBA), or
+/// the AOVs "Z" (same as "z"), "N", "P", "st",
 /// "cost", "err"; spaces around a group are ignored. Returns false with *error naming the
 /// offending group if a group is unknown or empty. RGBA are written whatever the mode says.
 bool ParseDisplayMode(const std::string& mode, DisplayChannels* out, std::string* error);

@@ -256,6 +256,70 @@ TEST_CASE("ObjectInstance places a retained object with the instance's transform
           "........\n");
 }
 
+TEST_CASE("Inline archives (ArchiveBegin) are read where ReadArchive names them, before a file", "[renderer][rib]") {
+    test::TempDir dir;
+    dir.Write("square", std::string("Color 1 1 0\n") + kSquare);  // a file of the same name: not read
+    // Defined before the world, inside an object and inside another archive (defined when read);
+    // a conditional inside it is decided where it is read.
+    const std::string scene =
+        dir.Write("scene.rib", std::string(kCamera) +
+                                   "ArchiveBegin \"square\" \"string note\" [\"x\"]\n"
+                                   "  IfBegin \"defined(user:green)\"\n    Color 0 1 0\n  IfEnd\n" +
+                                   kSquare +
+                                   "ArchiveEnd\n"
+                                   "ArchiveBegin \"outer\"\n"
+                                   "  ArchiveBegin \"inner\"\n    Translate -2 -2 0\n"
+                                   "  ArchiveEnd\n"
+                                   "ArchiveEnd\n"
+                                   "WorldBegin\n"
+                                   "  ReadArchive \"square\"\n"
+                                   "  Attribute \"user\" \"float green\" [1]\n"
+                                   "  ReadArchive \"outer\"\n"
+                                   "  ReadArchive \"inner\"\n"
+                                   "  ReadArchive \"square\"\n"
+                                   "WorldEnd\n");
+    diag::Report report;
+    std::optional<SceneDesc> desc = ReadRib(scene, &report);
+    INFO(report);
+    REQUIRE(desc);
+    CHECK(report.all().empty());
+    REQUIRE(desc->primitives.size() == 2);
+    CHECK(desc->primitives[0].corners[0] == glm::dvec3(0, 0, 0));
+    CHECK(desc->primitives[0].color == glm::dvec3(1, 1, 1));
+    CHECK(desc->primitives[1].corners[0] == glm::dvec3(-2, -2, 0));
+    CHECK(desc->primitives[1].color == glm::dvec3(0, 1, 0));
+    CHECK(desc->primitives[1].line == 13);  // where the archive says it
+    CHECK(Coverage(Render(*desc)) ==
+          "........\n"
+          "........\n"
+          "....##..\n"
+          "....##..\n"
+          "........\n"
+          "........\n"
+          "##......\n"
+          "##......\n");
+}
+
+TEST_CASE("Inline archives give exact errors", "[renderer][rib]") {
+    auto errors = [](const std::string& rib) {
+        diag::Report report;
+        CHECK_FALSE(ParseRib(rib, "t.rib", &report));
+        return Lines(report);
+    };
+    using Lines = std::vector<std::string>;
+    CHECK(errors("WorldBegin\nArchiveEnd\nWorldEnd\n") ==
+          Lines{"t.rib:2:1: error: 'ArchiveEnd' without matching 'ArchiveBegin'"});
+    CHECK(errors("ArchiveBegin \"a\"\nWorldBegin\nWorldEnd\n") ==
+          Lines{"t.rib:1:1: error: 'ArchiveBegin' has no matching 'ArchiveEnd'"});
+    CHECK(errors("ArchiveBegin\nArchiveEnd\n") ==
+          Lines{"t.rib:1:1: error: 'ArchiveBegin' expects an archive name as its first argument"});
+    // An error inside is reported where the archive says it.
+    CHECK(errors("ArchiveBegin \"a\"\nSphere 1 2\nArchiveEnd\nWorldBegin\nReadArchive \"a\"\nWorldEnd\n") ==
+          Lines{"t.rib:2:1: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 2"});
+    CHECK(errors("ArchiveBegin \"a\"\nReadArchive \"a\"\nArchiveEnd\nWorldBegin\nReadArchive \"a\"\nWorldEnd\n") ==
+          Lines{"t.rib:2:13: error: inline archive 'a' reads itself (from line 5)"});
+}
+
 TEST_CASE("Retained objects give exact errors", "[renderer][rib]") {
     auto errors = [](const std::string& rib) {
         diag::Report report;

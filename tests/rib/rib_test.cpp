@@ -612,8 +612,19 @@ TEST_CASE("RIB camera options give exact errors", "[renderer][rib]") {
     CHECK(ErrorOf("CropWindow 0 1 0.5 0.5\n") ==
           "t.rib:1: error: 'CropWindow' needs 0 <= ymin < ymax <= 1, got 0.5 0.5");
     CHECK(ErrorOf("CropWindow 0 1 0 1.5\n") == "t.rib:1: error: 'CropWindow' needs 0 <= ymin < ymax <= 1, got 0 1.5");
-    CHECK(ErrorOf("Clipping 0 10\n") == "t.rib:1: error: 'Clipping' needs 0 < near < far, got 0 10");
-    CHECK(ErrorOf("Clipping 10 1\n") == "t.rib:1: error: 'Clipping' needs 0 < near < far, got 10 1");
+    CHECK(ErrorOf("Clipping -1 10\n") == "t.rib:1: error: 'Clipping' needs 0 <= near < far, got -1 10");
+    CHECK(ErrorOf("Clipping 10 1\n") == "t.rib:1: error: 'Clipping' needs 0 <= near < far, got 10 1");
+    CHECK(ErrorOf("Clipping 0 0\n") == "t.rib:1: error: 'Clipping' needs 0 <= near < far, got 0 0");
+    {
+        // Exporters write a near plane of 0; RI 3.2 asks RI_EPSILON at least, and that is taken.
+        affray::diag::Report report;
+        std::optional<SceneDesc> scene = ParseRib("Clipping 0 1e30\nWorldBegin\nWorldEnd\n", "t.rib", &report);
+        REQUIRE(scene);
+        CHECK(scene->camera.nearClip == 1e-10);
+        CHECK(scene->camera.farClip == 1e30);
+        CHECK(WarningsOf(report) ==
+              std::vector<std::string>{"t.rib:1: warning: 'Clipping' near 0 is below RI_EPSILON; taken as 1e-10"});
+    }
     CHECK(ErrorOf("PixelSamples 0 2\n") ==
           "t.rib:1: error: 'PixelSamples' xsamples must be an integer from 1 to 64, got 0");
     CHECK(ErrorOf("PixelSamples 2 2.5\n") ==
@@ -640,21 +651,21 @@ TEST_CASE("RIB camera options give exact errors", "[renderer][rib]") {
 }
 
 TEST_CASE("RIB Display modes follow the channel grammar", "[renderer][rib]") {
-    for (const char* mode : {"rgb", "rgba", "rgbz", "rgbaz", "r", "z", "rgba,Z,N,P,st,cost,err", "a,g"}) {
+    for (const char* mode : {"rgb", "rgba", "rgbz", "rgbaz", "r", "z", "rgba,Z,N,P,st,cost,err", "a,g", "Ci", "Ci,a"}) {
         INFO(mode);
         // (OpenEXR: "z" alone to a "file" is a depth map pass, tests/rib/frames_test.cpp)
         SceneDesc scene = Parsed(std::string("Display \"o.exr\" \"openexr\" \"") + mode + "\"\nWorldBegin\nWorldEnd\n");
         CHECK(scene.displayMode == mode);
     }
-    CHECK(ErrorOf("Display \"o.exr\" \"file\" \"rgba,Ci\"\n") ==
-          "t.rib:1: error: 'Display' mode 'rgba,Ci' has an unknown channel group 'Ci' (expected rgb, "
-          "rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost or err, separated by commas)");
+    CHECK(ErrorOf("Display \"o.exr\" \"file\" \"rgba,Cs\"\n") ==
+          "t.rib:1: error: 'Display' mode 'rgba,Cs' has an unknown channel group 'Cs' (expected rgb, "
+          "rgba, rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost or err, separated by commas)");
     CHECK(ErrorOf("Display \"o.exr\" \"file\" \"\"\n") ==
           "t.rib:1: error: 'Display' mode '' has an unknown channel group '' (expected rgb, rgba, "
-          "rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost or err, separated by commas)");
+          "rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost or err, separated by commas)");
     CHECK(ErrorOf("Display \"o.exr\" \"file\" \"rgb,,N\"\n") ==
           "t.rib:1: error: 'Display' mode 'rgb,,N' has an unknown channel group '' (expected rgb, "
-          "rgba, rgbz, rgbaz, r, g, b, a, z, Z, N, P, st, cost or err, separated by commas)");
+          "rgba, rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost or err, separated by commas)");
     CHECK(ErrorOf("Display \"o.exr\" \"file\" \"RGB\"\n").find("unknown channel group 'RGB'") != std::string::npos);
 }
 

@@ -243,8 +243,5 @@ TEST_CASE("rib: other renderers' requests warn once per name, a projective one a
           });
     CHECK(FirstError("Perspective 45\nWorldBegin\nWorldEnd\n") ==
           "t.rib:1: error: 'Perspective' is not supported yet: a projective transform (transforms must be affine)");
-    CHECK(FirstError("WorldBegin\nArchiveBegin \"a\"\nArchiveEnd\nWorldEnd\n") ==
-          "t.rib:2: error: 'ArchiveBegin' is not supported yet: an inline archive's requests would run here "
-          "instead of where 'ReadArchive' reads them");
     CHECK(FirstError("WorldBegin\nSpehre 1 -1 1 360\nWorldEnd\n") == "t.rib:2: error: unknown RIB request 'Spehre'");
 }

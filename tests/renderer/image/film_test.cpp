@@ -414,6 +414,10 @@ TEST_CASE("Display modes select the AOV channels", "[film]") {
     CHECK(parse("rgba,Z") == parse("rgbaz"));
     CHECK(parse("rgba,N,P,st,cost,err") == DisplayChannels{false, true, true, true, true, true});
     CHECK(parse(" rgb , N ") == DisplayChannels{false, true, false, false, false, false});
+    // prman's output variables for colour and opacity, as its exporters name the primary display.
+    CHECK(parse("Ci") == DisplayChannels{});
+    CHECK(parse("Ci,a") == DisplayChannels{});
+    CHECK(parse("Ci,Oi,N") == DisplayChannels{false, true, false, false, false, false});
 
     auto fails = [](const std::string& mode, const std::string& mention) {
         DisplayChannels ch{true, true, true, true, true, true};
