@@ -605,6 +605,7 @@ bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderP
                 prim.base = BaseSurface(PlacedQuadric{patch.quadric, patch.objectToWorld}, patch.flipNormal);
                 break;
         }
+        prim.base.textureCoordinates = patch.textureCoordinates;
         prim.surface = patch.surface;
         prim.color = patch.color;
         prim.opacity = patch.opacity;

@@ -88,6 +88,9 @@ struct PrimitiveDesc {
     SubdivPatch subdiv;                      ///< SubdivPatch: one patch of a subdivision mesh.
     /// Patches: the part of the mesh's (u,v) this patch covers ([0,1]^2 for a lone Patch).
     ParameterRange range;
+    /// TextureCoordinates in effect (s1 t1 ... s4 t4 at (u,v) = (0,0), (1,0), (0,1), (1,1)), or
+    /// null: the s, t of quadrics and patches without their own "st" (BaseSurface::textureCoordinates).
+    std::shared_ptr<const std::array<double, 8>> textureCoordinates;
     glm::dvec3 color{1.0};    ///< The RIB Color in effect, or the primitive's constant or uniform "Cs".
     glm::dvec3 opacity{1.0};  ///< The RIB Opacity in effect, or the primitive's constant or uniform "Os".
     /// A "Cs" or "Os" that varies over the primitive (varying, vertex, facevarying values), over
@@ -281,6 +284,12 @@ inline std::string ToString(const PrimitiveDesc& p) {
         text += "]";
     }
     if (p.flipNormal) text += " flipnormal";
+    if (p.textureCoordinates) {
+        std::ostringstream st;
+        st << " st=[";
+        for (size_t i = 0; i < 8; ++i) st << (i ? " " : "") << (*p.textureCoordinates)[i];
+        text += st.str() + "]";
+    }
     if (p.scopedSpaces)
         for (const auto& [name, m] : *p.scopedSpaces) text += " space " + name + "=" + ToString(m);
     if (p.transmission == PrimitiveDesc::Transmission::Opacity) text += " transmission=Os";

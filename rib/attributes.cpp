@@ -1,4 +1,4 @@
-// rib/attributes.cpp: RIB requests for attributes and lights (Color, Opacity, Surface,
+// rib/attributes.cpp: RIB requests for attributes and lights (Color, TextureCoordinates, Opacity, Surface,
 // Displacement, Attribute, Sides, ReverseOrientation, Orientation, Basis, LightSource,
 // Illuminate), with the attributes that decide shadows: which lights cast them (the shadow-map
 // lights, map names, Attribute "light") and which primitives stop them (Attribute "visibility",
@@ -42,6 +42,17 @@ bool RibParser::DoColor(const RibRequest& r) {
     double v[3];
     if (!Numbers(r, 3, "r g b", v)) return false;
     m_state.color = glm::dvec3(v[0], v[1], v[2]);
+    return true;
+}
+
+// TextureCoordinates s1 t1 s2 t2 s3 t3 s4 t4: the s, t of the quadrics and patches that follow
+// at their (u,v) corners (0,0), (1,0), (0,1), (1,1), bilinear between (RI 3.2 section 4.3);
+// primitives with an "st" of their own keep it.
+bool RibParser::DoTextureCoordinates(const RibRequest& r) {
+    std::array<double, 8> v;
+    if (!Numbers(r, 8, "s1 t1 s2 t2 s3 t3 s4 t4", v.data())) return false;
+    static constexpr std::array<double, 8> kDefault = {0, 0, 1, 0, 0, 1, 1, 1};
+    m_state.textureCoordinates = v == kDefault ? nullptr : std::make_shared<const std::array<double, 8>>(v);
     return true;
 }
 

@@ -34,6 +34,7 @@ void RibParser::SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) co
     p->objectToWorld = m_state.ctm;
     p->twoSided = m_state.twoSided;
     p->flipNormal = FlipNormalP();
+    p->textureCoordinates = m_state.textureCoordinates;
 }
 
 bool RibParser::PatchPoints(const RibRequest& r, const std::vector<RibParam>& params, const std::string& context,

@@ -71,6 +71,8 @@ class RibParser : private RibArgChecks {
         /// Attribute "trimcurve" "sense": whether the inside of the loops is kept ("inside").
         std::shared_ptr<const renderer::TrimCurves> trim;
         bool trimKeepInside = true;
+        /// TextureCoordinates (null: none given, s, t are u, v).
+        std::shared_ptr<const std::array<double, 8>> textureCoordinates;
         /// ScopedCoordinateSystem: the named spaces of this block and those around it (null:
         /// none), given to every primitive (PrimitiveDesc::scopedSpaces).
         std::shared_ptr<const std::map<std::string, glm::dmat4>> scopedSpaces;
@@ -212,6 +214,8 @@ class RibParser : private RibArgChecks {
     bool DoShadingRate(const RibRequest& r);
     bool DoGeometricApproximation(const RibRequest& r);
     bool DoShadingInterpolation(const RibRequest& r);
+    /// TextureCoordinates s1 t1 s2 t2 s3 t3 s4 t4 (an attribute).
+    bool DoTextureCoordinates(const RibRequest& r);
     bool DoArchiveRecord(const RibRequest& r);
     /// ReadArchive "name": an inline archive of that name (ArchiveBegin), else a file.
     bool DoReadArchive(const RibRequest& r);

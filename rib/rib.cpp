@@ -238,6 +238,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"ShadingRate", &RibParser::DoShadingRate},
         {"GeometricApproximation", &RibParser::DoGeometricApproximation},
         {"ShadingInterpolation", &RibParser::DoShadingInterpolation},
+        {"TextureCoordinates", &RibParser::DoTextureCoordinates},
         {"ArchiveRecord", &RibParser::DoArchiveRecord},
         {"Illuminate", &RibParser::DoIlluminate},
         {"Skew", &RibParser::DoSkew},

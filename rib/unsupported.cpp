@@ -33,7 +33,7 @@ constexpr std::string_view kNoEffect[] = {
 constexpr std::string_view kIgnored[] = {
     "AreaLightSource", "Atmosphere", "Bxdf", "ClippingPlane", "ColorSamples", "DepthOfField",
     "DisplayFilter", "Exterior", "Imager", "Integrator", "Interior", "Light", "LightFilter", "Matte",
-    "Pattern", "SampleFilter", "Shader", "TextureCoordinates",
+    "Pattern", "SampleFilter", "Shader",
 };
 
 // Primitives affray cannot render yet (RI 3.2's and prman's): skipped with one warning per name,

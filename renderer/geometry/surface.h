@@ -364,6 +364,16 @@ struct BaseSurface {
     SubdivPatch subdiv{};
     ParameterRange range{};  ///< Patches only; a quadric's or mesh piece's (u,v) is always [0,1]^2.
     bool flipNormal = false;
+    /// RenderMan's TextureCoordinates (s1 t1 s2 t2 s3 t3 s4 t4 at (u,v) = (0,0), (1,0), (0,1),
+    /// (1,1)): s and t bilinear in u, v instead of u, v themselves, for quadrics and patches
+    /// without an "st" of their own (meshes and subdivision surfaces keep theirs). Null: none.
+    std::shared_ptr<const std::array<double, 8>> textureCoordinates;
+
+    /// Whether s and t come from textureCoordinates.
+    bool TextureCoordinatesP() const {
+        return textureCoordinates && (kind == Kind::BilinearPatch || kind == Kind::BicubicPatch ||
+                                      kind == Kind::Quadric || (kind == Kind::RationalPatch && !rational.hasST));
+    }
 
     BaseSurface() = default;
     // Implicit on purpose: a patch is a base surface (as in every caller of the intersector).
@@ -406,6 +416,23 @@ void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, d
             SetSubdivGlobals(interp, surface.subdiv, u0, u1, v0, v1, eye, surface.flipNormal);
             break;
     }
+    if (surface.TextureCoordinatesP())
+        SetSTGlobals(interp, [&](T* s, T* t) {
+            // u, v as the surface's setter made them (a quadric's range is the unit square).
+            const PatchParameters<T> param(surface.range, u0, u1, v0, v1);
+            const std::array<double, 8>& c = *surface.textureCoordinates;
+            auto bilinear = [&](int i) {
+                const double k0 = c[i], ku = c[2 + i] - c[i], kv = c[4 + i] - c[i],
+                             kuv = c[i] - c[2 + i] - c[4 + i] + c[6 + i];
+                T x(k0);
+                if (ku != 0) x = x + param.u * ku;
+                if (kv != 0) x = x + param.v * kv;
+                if (kuv != 0) x = x + param.u * param.v * kuv;
+                return x;
+            };
+            *s = bilinear(0);
+            *t = bilinear(1);
+        });
 }
 
 /// Runs `interp`'s program over the region [u0,u1] x [v0,v1] of `surface` and returns its triple

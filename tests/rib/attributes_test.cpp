@@ -137,3 +137,32 @@ TEST_CASE("attributes: unknown values and parameters of these attributes are war
     CHECK(test::ParseWorld("Opacity 1.5 0.5 -1\n" + std::string(kSphere)).primitives[0].opacity ==
           glm::dvec3(1, 0.5, 0));
 }
+
+TEST_CASE("attributes: TextureCoordinates give the s, t of the quadrics and patches that follow", "[rib][st]") {
+    diag::Report report;
+    const renderer::SceneDesc scene = test::ParseWorld(
+        "Sphere 1 -1 1 360\n"
+        "AttributeBegin\n"
+        "  TextureCoordinates 1 0 0 0 1 1 0 1\n"
+        "  Patch \"bilinear\" \"P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n"
+        "  Sphere 1 -1 1 360\n"
+        "  PointsPolygons [3] [0 1 2] \"P\" [0 0 0  1 0 0  0 1 0]\n"
+        "  TextureCoordinates [0 0 1 0 0 1 1 1]\n"  // the default again
+        "  Sphere 1 -1 1 360\n"
+        "AttributeEnd\n"
+        "Sphere 1 -1 1 360\n",
+        &report);
+    INFO(report);
+    CHECK(report.all().empty());
+    REQUIRE(scene.primitives.size() == 6);
+    const std::array<double, 8> flipped = {1, 0, 0, 0, 1, 1, 0, 1};
+    CHECK_FALSE(scene.primitives[0].textureCoordinates);
+    for (size_t i : {1, 2, 3}) {
+        REQUIRE(scene.primitives[i].textureCoordinates);
+        CHECK(*scene.primitives[i].textureCoordinates == flipped);
+    }
+    CHECK_FALSE(scene.primitives[4].textureCoordinates);
+    CHECK_FALSE(scene.primitives[5].textureCoordinates);  // AttributeEnd restored none
+    CHECK(test::FirstError(test::InWorld("TextureCoordinates 0 0 1 0\n")) ==
+          "t.rib:2: error: 'TextureCoordinates' expects 8 numbers (s1 t1 s2 t2 s3 t3 s4 t4), got 4");
+}

@@ -225,7 +225,7 @@ TEST_CASE("rib: other renderers' requests warn once per name, a projective one a
         "Camera \"world\" \"float[2] shutteropening\" [0 1]\nDisplayChannel \"color Ci\"\n"
         "PixelVariance 0.01\nWorldBegin\nDeformation \"twist\" \"angle\" [30]\nDetailRange [0 0 10 20]\n" +
             kPatch + "DetailRange [10 20 1e38 1e38]\n" + kPatch +
-            "Bxdf \"PxrDiffuse\" \"d\"\nShader \"noise\" \"n\"\nTextureCoordinates 0 0 1 0 0 1 1 1\n"
+            "Bxdf \"PxrDiffuse\" \"d\"\nShader \"noise\" \"n\"\nInterior \"water\"\n"
             "WorldEnd\n",
         &messages);
     CHECK(scene.primitives.size() == 2);  // both levels of detail
@@ -239,7 +239,7 @@ TEST_CASE("rib: other renderers' requests warn once per name, a projective one a
               "t.rib:6: warning: 'DetailRange' is not supported: every level of detail is rendered",
               "t.rib:10: warning: request 'Bxdf' is not supported yet; ignored",
               "t.rib:11: warning: request 'Shader' is not supported yet; ignored",
-              "t.rib:12: warning: request 'TextureCoordinates' is not supported yet; ignored",
+              "t.rib:12: warning: request 'Interior' is not supported yet; ignored",
           });
     CHECK(FirstError("Perspective 45\nWorldBegin\nWorldEnd\n") ==
           "t.rib:1: error: 'Perspective' is not supported yet: a projective transform (transforms must be affine)");
