@@ -44,20 +44,20 @@ TEST_CASE("texture coordinates: s and t are bilinear in u, v on patches and quad
         for (double v : {0.0, 0.6, 1.0}) {
             INFO("u " << u << " v " << v);
             const glm::dvec2 st = Expected(*coords, u, v);
-            const glm::dvec3 moved = test::PointOnSurface(shader.bound, square, u, v) -
-                                     test::PointOnSurface(shader.bound, base, u, v);
+            const glm::dvec3 moved =
+                test::PointOnSurface(shader.bound, square, u, v) - test::PointOnSurface(shader.bound, base, u, v);
             CHECK(moved.x == Approx(st.x - u).margin(1e-12));
             CHECK(moved.y == Approx(st.y - v).margin(1e-12));
             CHECK(moved.z == Approx(st.x * st.y - u * v).margin(1e-12));
-            const glm::dvec3 onBall = test::PointOnSurface(shader.bound, ball, u, v) -
-                                      test::PointOnSurface(shader.bound, plainBall, u, v);
+            const glm::dvec3 onBall =
+                test::PointOnSurface(shader.bound, ball, u, v) - test::PointOnSurface(shader.bound, plainBall, u, v);
             CHECK(onBall.x == Approx(st.x - u).margin(1e-12));
             CHECK(onBall.y == Approx(st.y - v).margin(1e-12));
         }
     // Derivatives along u and v (Dual): ds/du at (0.25, 0.6) from the bilinear form.
     const compiler::CompiledShader slope = test::CompileOrThrow("displacement d() { P += vector(Du(s), Dv(t), 0); }");
-    const glm::dvec3 d = test::PointOnSurface(slope.bound, square, 0.25, 0.6) -
-                         test::PointOnSurface(slope.bound, base, 0.25, 0.6);
+    const glm::dvec3 d =
+        test::PointOnSurface(slope.bound, square, 0.25, 0.6) - test::PointOnSurface(slope.bound, base, 0.25, 0.6);
     const std::array<double, 8>& c = *coords;
     CHECK(d.x == Approx((c[2] - c[0]) * (1 - 0.6) + (c[6] - c[4]) * 0.6 - 1).margin(1e-9));
     CHECK(d.y == Approx((c[5] - c[1]) * (1 - 0.25) + (c[7] - c[3]) * 0.25 - 1).margin(1e-9));
@@ -66,10 +66,10 @@ TEST_CASE("texture coordinates: s and t are bilinear in u, v on patches and quad
 TEST_CASE("texture coordinates: the bounds of a shader reading s, t contain every point", "[renderer][st]") {
     const compiler::CompiledShader shader =
         test::CompileOrThrow("displacement d() { P += normalize(N) * 0.2 * sin(9 * s) * cos(5 * t * s); }");
-    const vm::ProgramOutput& out = *shader.bound.findOutput("P");
     BaseSurface surface(renderer::BilinearPatch{
         {glm::dvec3(0, 0, 0), glm::dvec3(2, 0, 0.5), glm::dvec3(0, 1, 0), glm::dvec3(2, 1.5, 1)}});
-    surface.textureCoordinates = std::make_shared<const std::array<double, 8>>(std::array<double, 8>{1, 0, -2, 1, 0, 3, 4, -1});
+    surface.textureCoordinates =
+        std::make_shared<const std::array<double, 8>>(std::array<double, 8>{1, 0, -2, 1, 0, 3, 4, -1});
     test::Rng rng(21);
     for (int r = 0; r < 200; ++r) {
         const double width = std::pow(10.0, -rng.uniform(0, 5));
