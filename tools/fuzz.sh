@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tools/fuzz.sh [--time SECONDS] [--runs N] [--jobs N] [--keep-going] [TARGET...]: coverage-guided
+# tools/fuzz.sh [--time SECONDS] [--runs N] [--jobs N] [--parallel N] [--keep-going] [TARGET...]: coverage-guided
 # fuzzing of affray's front ends with libFuzzer (issue 17; fuzz/README.md).
 # Configures and builds build-fuzz (clang-14, AFFRAY_FUZZ: ASan + UBSan + libFuzzer, -O1 -g1),
 # collects each target's seeds from the repository (fuzz/seeds.sh), then runs each target (all
@@ -10,7 +10,7 @@
 # out-of-memory keeps its input under build-fuzz/artifacts/TARGET/ with a line saying how to
 # reproduce it; if that input fails again when run alone, the exit status is 1 and, without
 # --keep-going, the remaining targets are not run. (One that does not fail again is reported and
-# not counted: see below.)
+# not counted: see below.) --parallel N runs N targets at once (one core each).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -18,6 +18,7 @@ time=60
 limits=(-timeout=25 -rss_limit_mb=2048)  # of a run and of the rerun of a finding
 runs=0
 jobs=1
+parallel=1
 keep_going=0
 targets=()
 all=(fuzz_sl fuzz_afb fuzz_rib fuzz_texture)
@@ -26,6 +27,7 @@ while [[ $# -gt 0 ]]; do
         --time) time=${2:?--time needs SECONDS}; shift 2 ;;
         --runs) runs=${2:?--runs needs N}; shift 2 ;;
         --jobs) jobs=${2:?--jobs needs N}; shift 2 ;;
+        --parallel) parallel=${2:?--parallel needs N}; shift 2 ;;
         --keep-going) keep_going=1; shift ;;
         -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         fuzz_sl|fuzz_afb|fuzz_rib|fuzz_texture) targets+=("$1"); shift ;;
@@ -55,46 +57,70 @@ fi
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 echo "fuzz: built in $(( $(date +%s) - start )) s"
-status=0
-for t in "${targets[@]}"; do
-    seeds=$build/seeds/$t corpus=$build/corpus/$t artifacts=$build/artifacts/$t log=$build/logs/$t.log
+# Runs target $1 and writes its summary to $build/logs/$1.summary; returns 1 for a finding that
+# fails again alone.
+fuzz_one() {
+    local t=$1
+    local seeds=$build/seeds/$t corpus=$build/corpus/$t artifacts=$build/artifacts/$t log=$build/logs/$t.log
+    local out=$build/logs/$t.summary
     mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
+    : >"$out"
     fuzz/seeds.sh "$t" "$seeds" "$affray" >/dev/null
-    dict=()
+    local dict=()
     case "$t" in
         fuzz_sl) dict=(-dict=fuzz/sl.dict) ;;
         fuzz_rib) dict=(-dict=fuzz/rib.dict) ;;
     esac
-    run_flags=()
+    local run_flags=()
     [[ "$jobs" -gt 1 ]] && run_flags=(-fork="$jobs")
     [[ "$runs" -gt 0 ]] && run_flags+=(-runs="$runs")
-    echo "== fuzz: $t for ${time} s =="
+    echo "== fuzz: $t for ${time} s ==" >>"$out"
+    local start rc=0
     start=$(date +%s)
-    rc=0
     "$build/fuzz/$t" "$corpus" "$seeds" "fuzz/regressions/$t" "${dict[@]}" "${run_flags[@]}" \
         -max_total_time="$time" "${limits[@]}" -print_final_stats=1 \
         -artifact_prefix="$artifacts/" </dev/null >"$log" 2>&1 || rc=$?
+    local execs last cov ft
     execs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || true)
     last=$(grep -E '^#[0-9]+' "$log" | tail -1 || true)
     cov=$(grep -o 'cov: [0-9]*' <<<"$last" | grep -o '[0-9]*' || true)
     ft=$(grep -o 'ft: [0-9]*' <<<"$last" | grep -o '[0-9]*' || true)
     printf '%s: %s executions in %d s, cov %s, ft %s, corpus %d files\n' "$t" "${execs:-?}" \
-        $(( $(date +%s) - start )) "${cov:-?}" "${ft:-?}" "$(find "$corpus" -type f | wc -l)"
-    if [[ $rc -ne 0 ]]; then
-        crash=$(grep -o "Test unit written to .*" "$log" | tail -1 | sed 's/Test unit written to //' || true)
-        grep -m1 -E "ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer)|runtime error:|==ERROR" "$log" || true
-        # A finding counts when its input fails again alone, in a fresh process with the same
-        # limits. One that does not (a timeout under a loaded machine, a sanitizer failing inside
-        # itself) is reported with its log and input, and does not fail the run.
-        if [[ -n "$crash" && -f "$crash" ]] &&
-            "$build/fuzz/$t" "${limits[@]}" "$crash" >"$log.replay" 2>&1; then
-            echo "$t: the input above did not fail again when run alone (log: $log.replay); not counted"
-        else
-            status=1
-            echo "$t FAILED (exit $rc); log: $log"
-            [[ -n "$crash" ]] && echo "reproduce: $build/fuzz/$t $crash"
-            [[ $keep_going -eq 1 ]] || exit 1
-        fi
+        $(( $(date +%s) - start )) "${cov:-?}" "${ft:-?}" "$(find "$corpus" -type f | wc -l)" >>"$out"
+    [[ $rc -eq 0 ]] && return 0
+    local crash
+    crash=$(grep -o "Test unit written to .*" "$log" | tail -1 | sed 's/Test unit written to //' || true)
+    grep -m1 -E "ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer)|runtime error:|==ERROR" "$log" >>"$out" || true
+    # A finding counts when its input fails again alone, in a fresh process with the same
+    # limits. One that does not (a timeout under a loaded machine, a sanitizer failing inside
+    # itself) is reported with its log and input, and does not fail the run.
+    if [[ -n "$crash" && -f "$crash" ]] && "$build/fuzz/$t" "${limits[@]}" "$crash" >"$log.replay" 2>&1; then
+        echo "$t: the input above did not fail again when run alone (log: $log.replay); not counted" >>"$out"
+        return 0
+    fi
+    echo "$t FAILED (exit $rc); log: $log" >>"$out"
+    [[ -n "$crash" ]] && echo "reproduce: $build/fuzz/$t $crash" >>"$out"
+    return 1
+}
+
+# The targets run `parallel` at a time (each libFuzzer process uses one core); their summaries
+# are printed in the targets' order.
+status=0
+for ((i = 0; i < ${#targets[@]}; i += parallel)); do
+    batch=("${targets[@]:i:parallel}")
+    pids=()
+    for t in "${batch[@]}"; do
+        fuzz_one "$t" &
+        pids+=($!)
+    done
+    failed=0
+    for k in "${!batch[@]}"; do
+        wait "${pids[$k]}" || failed=1
+        cat "$build/logs/${batch[$k]}.summary"
+    done
+    if [[ $failed -eq 1 ]]; then
+        status=1
+        [[ $keep_going -eq 1 ]] || exit 1
     fi
 done
 exit $status
