@@ -287,6 +287,7 @@ BoundTree::~BoundTree() {
         s = next;
     }
 }
+
 std::unique_ptr<RegionEvaluator> BoundTree::MakeEvaluator(const std::shared_ptr<EvaluatorPool>& pool) const {
     // A program with parameters keeps an interpreter of its own (SetProgram carries parameter
     // values over, so the pool's interpreter may only run programs without them, as every
