@@ -23,6 +23,7 @@
 #include <unordered_map>
 
 #include "diag/limits.h"
+#include "renderer/image/film.h"
 #include "rib/file.h"
 #include "rib/parser.h"
 
@@ -39,10 +40,6 @@ constexpr std::string_view kBlockRequests[] = {"FrameBegin",     "FrameEnd",    
                                                "SolidBegin",     "SolidEnd"};
 
 constexpr int kMaxResolution = 65536;
-
-// The channel groups a Display mode may list (see SceneDesc::displayMode).
-constexpr std::string_view kDisplayGroups[] = {"rgb", "rgba", "rgbz", "rgbaz", "r", "g",  "b",    "a",  "z",
-                                               "Ci",  "Oi",   "Z",    "N",     "P", "st", "cost", "err"};
 
 bool ContainsP(const std::string_view* begin, const std::string_view* end, std::string_view name) {
     return std::find(begin, end, name) != end;
@@ -434,7 +431,7 @@ bool RibParser::DoDisplay(const RibRequest& r) {
     for (size_t begin = 0; !shadowMap;) {
         size_t end = std::min(mode.find(',', begin), mode.size());
         std::string_view group = std::string_view(mode).substr(begin, end - begin);
-        if (!ContainsP(std::begin(kDisplayGroups), std::end(kDisplayGroups), group))
+        if (!renderer::DisplayGroupP(group))
             return Fail(r.args[2].at, "'Display' mode " + Quote(mode) + " has an unknown channel group " +
                                           Quote(std::string(group)) +
                                           " (expected rgb, rgba, rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost "

@@ -192,6 +192,11 @@ bool ParseDisplayMode(const std::string& mode, DisplayChannels* out, std::string
     return true;
 }
 
+bool DisplayGroupP(std::string_view group) {
+    DisplayChannels scratch;
+    return ApplyGroup(std::string(group), &scratch);
+}
+
 std::uint64_t SampleHash(int x, int y, int index, std::uint64_t seed) {
     // Chained so that (x, y) and (y, x) differ; each stage mixes fully before the next key word.
     std::uint64_t h = Mix64(seed ^ static_cast<std::uint32_t>(x));

@@ -34,6 +34,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -77,6 +78,9 @@ struct DisplayChannels {
 /// "cost", "err"; spaces around a group are ignored. Returns false with *error naming the
 /// offending group if a group is unknown or empty. RGBA are written whatever the mode says.
 bool ParseDisplayMode(const std::string& mode, DisplayChannels* out, std::string* error);
+/// Whether `group` (taken as written, spaces included) is one of the groups ParseDisplayMode
+/// accepts: the RIB reader checks a Display mode with it.
+bool DisplayGroupP(std::string_view group);
 
 /// The names Film::MakeImage gives the channels beyond RGBA, in file order.
 std::vector<std::string> ChannelNames(const DisplayChannels& channels);
