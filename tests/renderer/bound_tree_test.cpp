@@ -67,6 +67,26 @@ Result RenderWith(int threads, size_t cacheBytes, int tileSize = 32, int rayGrou
     return r;
 }
 
+/// The bound program of noise displacement along N = +z, for trees over the unit square.
+vm::Program NoiseOnSquare() {
+    const compiler::CompiledShader s =
+        test::CompileOrThrow("displacement d() { P += 0.1 * (noise(P * 7) - 0.5) * normalize(N); }");
+    std::vector<std::string> errors;
+    return *compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
+}
+
+/// `count` rays from above at many angles toward points of the unit square (the stream of `seed`).
+std::vector<Ray> RaysFromAbove(uint64_t seed, int count) {
+    std::vector<Ray> rays;
+    test::Rng rng(seed);
+    for (int i = 0; i < count; ++i) {
+        const glm::dvec3 target(rng.uniform(0, 1), rng.uniform(0, 1), 0);
+        const glm::dvec3 from = target + glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(0.3, 2));
+        rays.push_back({from, glm::normalize(target - from)});
+    }
+    return rays;
+}
+
 bool SameImage(const ImageBuffer& a, const ImageBuffer& b) {
     if (a.rgba != b.rgba || a.extraChannels.size() != b.extraChannels.size()) return false;
     for (size_t i = 0; i < a.extraChannels.size(); ++i)
@@ -103,19 +123,10 @@ TEST_CASE("bound tree: the image is the same with any thread count and any cache
 }
 
 TEST_CASE("bound tree: threads refining one tree at once find the hits of a lone walker", "[renderer][cache]") {
-    compiler::CompiledShader s =
-        test::CompileOrThrow("displacement d() { P += 0.1 * (noise(P * 7) - 0.5) * normalize(N); }");
-    std::vector<std::string> errors;
-    const vm::Program bound = *compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
+    const vm::Program bound = NoiseOnSquare();
     const BilinearPatch square = BilinearPatch::UnitSquare();
-    // Rays from above at many angles, the same list for every walker.
-    std::vector<Ray> rays;
-    test::Rng rng(5);
-    for (int i = 0; i < 400; ++i) {
-        const glm::dvec3 target(rng.uniform(0, 1), rng.uniform(0, 1), 0);
-        const glm::dvec3 from = target + glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(0.3, 2));
-        rays.push_back({from, glm::normalize(target - from)});
-    }
+    // The same rays for every walker.
+    const std::vector<Ray> rays = RaysFromAbove(5, 400);
     auto trace = [&](SurfaceIntersector& it, std::vector<Hit>* hits, std::vector<int>* found) {
         IntersectStats stats;
         for (const Ray& ray : rays) {
@@ -161,18 +172,9 @@ TEST_CASE("bound tree: threads refining one tree at once find the hits of a lone
 }
 
 TEST_CASE("bound tree: trees sharing a budget evict each other's oldest blocks", "[renderer][cache]") {
-    compiler::CompiledShader s =
-        test::CompileOrThrow("displacement d() { P += 0.1 * (noise(P * 7) - 0.5) * normalize(N); }");
-    std::vector<std::string> errors;
-    const vm::Program bound = *compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
+    const vm::Program bound = NoiseOnSquare();
     const BilinearPatch square = BilinearPatch::UnitSquare();
-    std::vector<Ray> rays;
-    test::Rng rng(9);
-    for (int i = 0; i < 300; ++i) {
-        const glm::dvec3 target(rng.uniform(0, 1), rng.uniform(0, 1), 0);
-        const glm::dvec3 from = target + glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(0.3, 2));
-        rays.push_back({from, glm::normalize(target - from)});
-    }
+    const std::vector<Ray> rays = RaysFromAbove(9, 300);
     auto trace = [&](BoundTree& tree) {
         auto it = MakeSurfaceIntersector(tree);
         IntersectStats stats;

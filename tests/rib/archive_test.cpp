@@ -72,6 +72,13 @@ ImageBuffer Render(const SceneDesc& desc, const std::string& shaders = test::Sou
     return image;
 }
 
+// The diagnostics of a RIB text that must fail to parse, one line each.
+std::vector<std::string> ErrorsOf(const std::string& rib) {
+    diag::Report report;
+    CHECK_FALSE(ParseRib(rib, "t.rib", &report));
+    return Lines(report);
+}
+
 // The alpha channel as 8 rows of '#' (covered) and '.' (empty), top row first.
 std::string Coverage(const ImageBuffer& image) {
     std::string text;
@@ -301,55 +308,45 @@ TEST_CASE("Inline archives (ArchiveBegin) are read where ReadArchive names them,
 }
 
 TEST_CASE("Inline archives give exact errors", "[renderer][rib]") {
-    auto errors = [](const std::string& rib) {
-        diag::Report report;
-        CHECK_FALSE(ParseRib(rib, "t.rib", &report));
-        return Lines(report);
-    };
     using Lines = std::vector<std::string>;
-    CHECK(errors("WorldBegin\nArchiveEnd\nWorldEnd\n") ==
+    CHECK(ErrorsOf("WorldBegin\nArchiveEnd\nWorldEnd\n") ==
           Lines{"t.rib:2:1: error: 'ArchiveEnd' without matching 'ArchiveBegin'"});
-    CHECK(errors("ArchiveBegin \"a\"\nWorldBegin\nWorldEnd\n") ==
+    CHECK(ErrorsOf("ArchiveBegin \"a\"\nWorldBegin\nWorldEnd\n") ==
           Lines{"t.rib:1:1: error: 'ArchiveBegin' has no matching 'ArchiveEnd'"});
-    CHECK(errors("ArchiveBegin\nArchiveEnd\n") ==
+    CHECK(ErrorsOf("ArchiveBegin\nArchiveEnd\n") ==
           Lines{"t.rib:1:1: error: 'ArchiveBegin' expects an archive name as its first argument"});
     // An error inside is reported where the archive says it.
-    CHECK(errors("ArchiveBegin \"a\"\nSphere 1 2\nArchiveEnd\nWorldBegin\nReadArchive \"a\"\nWorldEnd\n") ==
+    CHECK(ErrorsOf("ArchiveBegin \"a\"\nSphere 1 2\nArchiveEnd\nWorldBegin\nReadArchive \"a\"\nWorldEnd\n") ==
           Lines{"t.rib:2:1: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 2"});
-    CHECK(errors("ArchiveBegin \"a\"\nReadArchive \"a\"\nArchiveEnd\nWorldBegin\nReadArchive \"a\"\nWorldEnd\n") ==
+    CHECK(ErrorsOf("ArchiveBegin \"a\"\nReadArchive \"a\"\nArchiveEnd\nWorldBegin\nReadArchive \"a\"\nWorldEnd\n") ==
           Lines{"t.rib:2:13: error: inline archive 'a' reads itself (from line 5)"});
 }
 
 TEST_CASE("Retained objects give exact errors", "[renderer][rib]") {
-    auto errors = [](const std::string& rib) {
-        diag::Report report;
-        CHECK_FALSE(ParseRib(rib, "t.rib", &report));
-        return Lines(report);
-    };
     using Lines = std::vector<std::string>;
-    CHECK(errors("WorldBegin\nObjectInstance 3\nWorldEnd\n") ==
+    CHECK(ErrorsOf("WorldBegin\nObjectInstance 3\nWorldEnd\n") ==
           Lines{"t.rib:2:16: error: no object '3' has been defined"});
-    CHECK(errors("WorldBegin\nObjectBegin 1\nSphere 1 -1 1 360\n") ==
+    CHECK(ErrorsOf("WorldBegin\nObjectBegin 1\nSphere 1 -1 1 360\n") ==
           Lines{"t.rib:2:1: error: 'ObjectBegin' has no matching 'ObjectEnd'"});
-    CHECK(errors("WorldBegin\nObjectEnd\nWorldEnd\n") ==
+    CHECK(ErrorsOf("WorldBegin\nObjectEnd\nWorldEnd\n") ==
           Lines{"t.rib:2:1: error: 'ObjectEnd' without matching 'ObjectBegin'"});
-    CHECK(errors("WorldBegin\nObjectBegin 1\nLightSource \"pointlight\" 1\nObjectEnd\nWorldEnd\n") ==
+    CHECK(ErrorsOf("WorldBegin\nObjectBegin 1\nLightSource \"pointlight\" 1\nObjectEnd\nWorldEnd\n") ==
           Lines{"t.rib:3:1: error: 'LightSource' cannot be part of an object (started by 'ObjectBegin' on line 2)"});
-    CHECK(errors("WorldBegin\nObjectBegin 1\nAttributeBegin\nObjectEnd\nWorldEnd\n") ==
+    CHECK(ErrorsOf("WorldBegin\nObjectBegin 1\nAttributeBegin\nObjectEnd\nWorldEnd\n") ==
           Lines{"t.rib:4:1: error: 'ObjectEnd' inside an 'AttributeBegin' or 'TransformBegin' of the object"});
-    CHECK(errors("WorldBegin\nAttributeBegin\nObjectBegin 1\nAttributeEnd\nObjectEnd\nWorldEnd\n") ==
+    CHECK(ErrorsOf("WorldBegin\nAttributeBegin\nObjectBegin 1\nAttributeEnd\nObjectEnd\nWorldEnd\n") ==
           Lines{"t.rib:4:1: error: 'AttributeEnd' inside an object closes a block opened outside it"});
-    CHECK(errors("WorldBegin\nObjectBegin\nObjectEnd\nWorldEnd\n") ==
+    CHECK(ErrorsOf("WorldBegin\nObjectBegin\nObjectEnd\nWorldEnd\n") ==
           Lines{"t.rib:2:1: error: 'ObjectBegin' expects one object handle (a number or a string)"});
-    CHECK(errors("ObjectBegin 1\nObjectEnd\nObjectInstance 1\nWorldBegin\nWorldEnd\n") ==
+    CHECK(ErrorsOf("ObjectBegin 1\nObjectEnd\nObjectInstance 1\nWorldBegin\nWorldEnd\n") ==
           Lines{"t.rib:3:1: error: 'ObjectInstance' must come between 'WorldBegin' and 'WorldEnd'"});
     // An error in an object is reported where the object says it, with a note at the instance.
-    CHECK(errors("WorldBegin\nObjectBegin 1\nSphere 1 2\nObjectEnd\n\nObjectInstance 1\nWorldEnd\n") ==
+    CHECK(ErrorsOf("WorldBegin\nObjectBegin 1\nSphere 1 2\nObjectEnd\n\nObjectInstance 1\nWorldEnd\n") ==
           Lines{"t.rib:3:1: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 2",
                 "t.rib:6:1: note: in the instance of object '1' here"});
     // An object redefined to instance itself recurses no further than the limit.
-    CHECK(errors("WorldBegin\nObjectBegin 1\nObjectEnd\nObjectBegin 1\nObjectInstance 1\nObjectEnd\n"
-                 "ObjectInstance 1\nWorldEnd\n")
+    CHECK(ErrorsOf("WorldBegin\nObjectBegin 1\nObjectEnd\nObjectBegin 1\nObjectInstance 1\nObjectEnd\n"
+                   "ObjectInstance 1\nWorldEnd\n")
               .front() ==
           "t.rib:5:1: error: objects instance each other more than 32 deep (an object that instances itself?)");
 }
