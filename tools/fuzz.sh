@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# tools/fuzz.sh [--time SECONDS] [--runs N] [--jobs N] [--parallel N] [--keep-going] [TARGET...]: coverage-guided
-# fuzzing of affray's front ends with libFuzzer (issue 17; fuzz/README.md).
-# Configures and builds build-fuzz (clang-14, AFFRAY_FUZZ: ASan + UBSan + libFuzzer, -O1 -g1),
-# collects each target's seeds from the repository (fuzz/seeds.sh), then runs each target (all
+# tools/fuzz.sh [--time SECONDS] [--runs N] [--jobs N] [--parallel N] [--keep-going] [--build DIR] [TARGET...]:
+# coverage-guided fuzzing of affray's front ends with libFuzzer (issue 17; fuzz/README.md).
+# Configures and builds build-fuzz (clang-14, AFFRAY_FUZZ: ASan + UBSan + libFuzzer, -O1 -g1), or
+# with --build DIR builds the targets in DIR, a build already configured with AFFRAY_FUZZ (CI's
+# sanitizer build is one: no third build of the libraries), collects each target's seeds from the repository (fuzz/seeds.sh), then runs each target (all
 # four by default: fuzz_sl fuzz_afb fuzz_rib fuzz_texture) for SECONDS (default 60; --runs N
 # stops it after N executions if that comes first) with -timeout=25 -rss_limit_mb=2048 and its
 # dictionary. New inputs go to build-fuzz/corpus/TARGET, kept from run to run. Prints per target
@@ -20,6 +21,7 @@ runs=0
 jobs=1
 parallel=1
 keep_going=0
+build=
 targets=()
 all=(fuzz_sl fuzz_afb fuzz_rib fuzz_texture)
 while [[ $# -gt 0 ]]; do
@@ -29,17 +31,25 @@ while [[ $# -gt 0 ]]; do
         --jobs) jobs=${2:?--jobs needs N}; shift 2 ;;
         --parallel) parallel=${2:?--parallel needs N}; shift 2 ;;
         --keep-going) keep_going=1; shift ;;
-        -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --build) build=${2:?--build needs DIR}; shift 2 ;;
+        -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         fuzz_sl|fuzz_afb|fuzz_rib|fuzz_texture) targets+=("$1"); shift ;;
         *) echo "tools/fuzz.sh: unknown argument '$1' (targets: ${all[*]})" >&2; exit 2 ;;
     esac
 done
 [[ ${#targets[@]} -eq 0 ]] && targets=("${all[@]}")
 
-build=build-fuzz
-echo "== fuzz: building $build (clang-14, ASan + UBSan + libFuzzer) =="
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
-      -DAFFRAY_FUZZ=ON -DAFFRAY_TESTS=OFF -DAFFRAY_BENCH=OFF -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" >/dev/null
+if [[ -z "$build" ]]; then
+    build=build-fuzz
+    echo "== fuzz: building $build (clang-14, ASan + UBSan + libFuzzer) =="
+    cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
+          -DAFFRAY_FUZZ=ON -DAFFRAY_TESTS=OFF -DAFFRAY_BENCH=OFF -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" >/dev/null
+elif grep -q '^AFFRAY_FUZZ:BOOL=ON$' "$build/CMakeCache.txt" 2>/dev/null; then
+    echo "== fuzz: building the targets in $build =="
+else
+    echo "tools/fuzz.sh: $build is not a build configured with -DAFFRAY_FUZZ=ON" >&2
+    exit 2
+fi
 start=$(date +%s)
 # The .afb seeds are compiled by the Release build's affray when there is one (CI builds it
 # first), else by this build's.

@@ -162,7 +162,6 @@ struct Covered {
     bool black = false;
 };
 Covered CoveredIndices(int64_t i0, int64_t i1, int n, Wrap w) {
-    Covered c;
     if (w == Wrap::Clamp) return {std::clamp<int64_t>(i0, 0, n - 1), std::clamp<int64_t>(i1, 0, n - 1), false};
     if (w == Wrap::Black) return {std::max<int64_t>(i0, 0), std::min<int64_t>(i1, n - 1), i0 < 0 || i1 >= n};
     if (static_cast<uint64_t>(i1) - static_cast<uint64_t>(i0) >= static_cast<uint64_t>(n - 1)) return {0, n - 1, false};

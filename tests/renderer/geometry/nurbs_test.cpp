@@ -82,7 +82,9 @@ NurbsSurface RandomSurface(test::Rng& rng, int orderU, int orderV, bool rational
     for (int j = 0; j < s.v.n; ++j)
         for (int i = 0; i < s.u.n; ++i) {
             const double w = rational ? rng.uniform(0.3, 3) : 1.0;
-            s.points.emplace_back(glm::dvec3(i + rng.uniform(-0.3, 0.3), j, rng.uniform(-1, 1)) * w, w);
+            const double x = i + rng.uniform(-0.3, 0.3);  // drawn in this order whatever the compiler
+            const double z = rng.uniform(-1, 1);
+            s.points.emplace_back(glm::dvec3(x, j, z) * w, w);
         }
     return s;
 }
@@ -176,7 +178,9 @@ TEST_CASE("nurbs: tangents by the quotient rule and Dual derivatives against fin
     test::Rng rng(33);
     using D = vm::Dual<double>;
     for (int trial = 0; trial < 20; ++trial) {
-        const NurbsSurface s = RandomSurface(rng, rng.integer(2, 6), rng.integer(2, 6), trial % 2 == 0, false);
+        const int orderU = rng.integer(2, 6);
+        const int orderV = rng.integer(2, 6);  // drawn after orderU whatever the compiler
+        const NurbsSurface s = RandomSurface(rng, orderU, orderV, trial % 2 == 0, false);
         for (const renderer::NurbsSpan& span : renderer::SplitNurbs(s, kPlace)) {
             const double a = rng.uniform(0.1, 0.9), b = rng.uniform(0.1, 0.9), h = 1e-6;
             const renderer::SurfaceFrame<double> f = renderer::RationalFrame<double>(span.patch, a, b);
@@ -326,11 +330,16 @@ TEST_CASE("nurbs: displaced span bounds contain the scalar values in every type"
 TEST_CASE("nurbs: neighbouring spans meet at their seams", "[renderer][nurbs]") {
     test::Rng rng(36);
     for (int trial = 0; trial < 10; ++trial) {
-        const NurbsSurface s = RandomSurface(rng, rng.integer(2, 5), rng.integer(2, 5), trial % 2 == 1, false);
+        const int orderU = rng.integer(2, 5);
+        const int orderV = rng.integer(2, 5);
+        const NurbsSurface s = RandomSurface(rng, orderU, orderV, trial % 2 == 1, false);
+        INFO("trial " << trial << ", orders " << orderU << " x " << orderV);
         const std::vector<renderer::NurbsSpan> spans = renderer::SplitNurbs(s, kPlace);
         for (const renderer::NurbsSpan& a : spans)
             for (const renderer::NurbsSpan& b : spans) {
                 if (a.range.u1 != b.range.u0 || a.range.v0 != b.range.v0) continue;
+                // A knot repeated order times is a break in the surface itself: no seam to meet.
+                if (std::count(s.u.knots.begin(), s.u.knots.end(), a.range.u1) >= s.u.order) continue;
                 for (int k = 0; k <= 4; ++k) {
                     const glm::dvec3 pa = a.patch.At(1, k / 4.0), pb = b.patch.At(0, k / 4.0);
                     CHECK(glm::length(pa - pb) <= 1e-12 * (1 + glm::length(pa)));

@@ -25,10 +25,10 @@ struct Gen {
     explicit Gen(uint64_t seed) : rng(seed) {}
     double uniform(double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); }
     int integer(int lo, int hi) { return std::uniform_int_distribution<>(lo, hi)(rng); }
-    double magnitude(int e10lo, int e10hi) { return std::pow(10.0, uniform(e10lo, e10hi)); }
+    double magnitude(double e10lo, double e10hi) { return std::pow(10.0, uniform(e10lo, e10hi)); }
 
     // An interval of one of several shapes, scaled by 10^[e10lo, e10hi].
-    Interval interval(int e10lo, int e10hi) {
+    Interval interval(double e10lo, double e10hi) {
         double m = magnitude(e10lo, e10hi);
         double a = uniform(-m, m), w = m * std::pow(10.0, uniform(-8, 0.3));
         switch (integer(0, 7)) {
