@@ -17,7 +17,7 @@ namespace {
 
 // The light shaders affray knows: RI 3.2's standard ones, and the shadow-map versions of them
 // that scanline-era scenes use (shadowspot, shadowpoint, shadowdistant), which affray renders
-// as the standard light with traced shadows.
+// as the standard light, with traced shadows where they name a map.
 struct LightShader {
     std::string_view name;
     LightDesc::Kind kind;
@@ -351,15 +351,15 @@ bool RibParser::DoLightSource(const RibRequest& r) {
                                  : shader->kind == LightDesc::Kind::Point ? "pointlight"
                                                                           : "spotlight";
     const std::string context = "'LightSource \"" + name + "\"'";
-    // Shadows: a shadow-map light's (unless its map names are empty, as RenderMan's defaults
-    // are: it then reads no map), a light's given a map name, or the attribute's.
-    light.castShadows = shader->shadowMapped;
+    // Shadows: a light's given a map name that is not empty (a shadow-map light's default names
+    // are empty, "" in RenderMan's shaders: it then reads no map and shadow() gives 0), or the
+    // attribute's.
+    light.castShadows = false;
     if (!LightParams(context, params, shader->shadowMapped, &light)) return false;
     if (shader->shadowMapped)
-        Note(r.at,
-             "light source " + Quote(name) + " renders as " + Quote(standard) +
-                 (light.castShadows ? " with traced shadows" : " without shadows (its shadow map name is empty)") +
-                 "; its shadow map parameters (shadowname, samples, width, blur, bias, ...) are ignored");
+        Note(r.at, "light source " + Quote(name) + " renders as " + Quote(standard) +
+                       (light.castShadows ? " with traced shadows" : " without shadows (it names no shadow map)") +
+                       "; its shadow map parameters (shadowname, samples, width, blur, bias, ...) are ignored");
     light.castShadows = light.castShadows || m_state.lightShadows;
     if (light.kind == LightDesc::Kind::Spot && !CheckSpotlight(r, context, light)) return false;
     // from/to are points in the current space; before WorldBegin that is camera space, which is

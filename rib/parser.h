@@ -71,6 +71,11 @@ class RibParser : private RibArgChecks {
         /// Attribute "trimcurve" "sense": whether the inside of the loops is kept ("inside").
         std::shared_ptr<const renderer::TrimCurves> trim;
         bool trimKeepInside = true;
+        /// Detail: the corners of the current detail bound in camera space (null: none given).
+        std::shared_ptr<const std::array<glm::dvec3, 8>> detailBound;
+        /// DetailRange: the primitives that follow are a level of detail not drawn at the
+        /// bound's size on screen.
+        bool detailHidden = false;
         /// TextureCoordinates (null: none given, s, t are u, v).
         std::shared_ptr<const std::array<double, 8>> textureCoordinates;
         /// ScopedCoordinateSystem: the named spaces of this block and those around it (null:
@@ -88,6 +93,7 @@ class RibParser : private RibArgChecks {
         std::map<std::string, glm::dmat4> cameraCoordinateSystems;
         std::map<std::string, int> lightHandles;
         std::map<std::string, ParamValue> options;
+        double relativeDetail;
     };
     /// Solid: SolidBegin ... SolidEnd, which saves and restores nothing (RI 3.2 section 5.8).
     enum class Block { Frame, World, Attribute, Transform, Solid };
@@ -216,6 +222,10 @@ class RibParser : private RibArgChecks {
     bool DoShadingInterpolation(const RibRequest& r);
     /// TextureCoordinates s1 t1 s2 t2 s3 t3 s4 t4 (an attribute).
     bool DoTextureCoordinates(const RibRequest& r);
+    /// Detail, DetailRange and RelativeDetail: levels of detail chosen by a bound's raster area.
+    bool DoDetail(const RibRequest& r);
+    bool DoDetailRange(const RibRequest& r);
+    bool DoRelativeDetail(const RibRequest& r);
     bool DoArchiveRecord(const RibRequest& r);
     /// ReadArchive "name": an inline archive of that name (ArchiveBegin), else a file.
     bool DoReadArchive(const RibRequest& r);
@@ -405,6 +415,7 @@ class RibParser : private RibArgChecks {
     // CoordinateSystem given before WorldBegin: object -> camera, mapped to world at WorldBegin.
     std::map<std::string, glm::dmat4> m_cameraCoordinateSystems;
     std::map<std::string, ParamValue> m_options;  // Option values by "category:name" (conditional RIB)
+    double m_relativeDetail = 1;                  // RelativeDetail (an option)
 };
 
 }  // namespace affray::rib

@@ -236,6 +236,9 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"GeometricApproximation", &RibParser::DoGeometricApproximation},
         {"ShadingInterpolation", &RibParser::DoShadingInterpolation},
         {"TextureCoordinates", &RibParser::DoTextureCoordinates},
+        {"Detail", &RibParser::DoDetail},
+        {"DetailRange", &RibParser::DoDetailRange},
+        {"RelativeDetail", &RibParser::DoRelativeDetail},
         {"ArchiveRecord", &RibParser::DoArchiveRecord},
         {"Illuminate", &RibParser::DoIlluminate},
         {"Skew", &RibParser::DoSkew},
@@ -251,6 +254,9 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
     };
     if (auto it = kHandlers.find(r.name); it != kHandlers.end()) {
         if (!(this->*(it->second))(r)) return false;
+        // A level of detail not drawn at its size on screen: its primitives are dropped (read
+        // and checked all the same, as every level is).
+        if (m_state.detailHidden) m_scene.primitives.resize(m_primitivesStamped);
         // Every primitive takes the lights on at its request (RI 3.2: the light list is an
         // attribute). Stamped here, for every geometry request alike; an ObjectInstance's
         // primitives were stamped by the replayed requests, with the state of the instance.

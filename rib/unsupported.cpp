@@ -17,13 +17,13 @@ namespace affray::rib {
 namespace {
 
 // clang-format off
-// RI 3.2 requests that tune what affray has no counterpart for (level of detail, dicing, bounds,
+// RI 3.2 requests that tune what affray has no counterpart for (dicing, bounds,
 // quantizing an image affray writes as floats, the shutter of motion affray does not blur), and
 // later RenderMan requests that name things for other renderers' pipelines (prman's Camera,
 // DisplayChannel, PixelSampleImager, System): accepted with one warning per name.
 constexpr std::string_view kNoEffect[] = {
-    "Begin", "Bound", "Camera", "Detail", "DisplayChannel", "End", "ErrorHandler",
-    "PixelSampleImager", "PixelVariance", "Quantize", "RelativeDetail",
+    "Begin", "Bound", "Camera", "DisplayChannel", "End", "ErrorHandler",
+    "PixelSampleImager", "PixelVariance", "Quantize",
     "Shutter", "System", "TransformPoints",
 };
 
@@ -58,11 +58,6 @@ bool ListedP(const std::string_view* begin, const std::string_view* end, std::st
 }  // namespace
 
 bool RibParser::DoUnhandled(const RibRequest& r) {
-    if (r.name == "DetailRange") {
-        // Levels of detail are chosen by a bound's size on screen, which affray does not compute.
-        Warn(r.at, "'DetailRange' is not supported: every level of detail is rendered");
-        return true;
-    }
     if (r.name == "Deformation") {
         Warn(r.at,
              "'Deformation' is not supported (deformation shaders are an optional RI 3.2 capability); ignored: "

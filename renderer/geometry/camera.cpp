@@ -50,6 +50,18 @@ void Camera::CameraSpaceRay(double rasterX, double rasterY, glm::dvec3* origin, 
     }
 }
 
+bool Camera::ToRaster(const glm::dvec3& p, glm::dvec2* raster) const {
+    double sx = p.x, sy = p.y;
+    if (m_desc.perspective) {
+        if (!(p.z > 0)) return false;
+        sx = p.x / (p.z * m_tanHalfFov);
+        sy = p.y / (p.z * m_tanHalfFov);
+    }
+    *raster =
+        glm::dvec2((sx - m_left) / (m_right - m_left) * m_desc.xres, (m_top - sy) / (m_top - m_bottom) * m_desc.yres);
+    return true;
+}
+
 Ray Camera::GenerateRay(double rasterX, double rasterY) const {
     glm::dvec3 origin, dir;
     CameraSpaceRay(rasterX, rasterY, &origin, &dir);

@@ -59,6 +59,10 @@ class Camera {
     /// The screen window (left, right, bottom, top) in screen coordinates.
     glm::dvec4 ScreenWindow() const { return {m_left, m_right, m_bottom, m_top}; }
 
+    /// The raster position of a camera-space point (the inverse of CameraSpaceRay); false for a
+    /// perspective camera and a point not in front of the eye (z <= 0), which has none.
+    bool ToRaster(const glm::dvec3& cameraPoint, glm::dvec2* raster) const;
+
   private:
     /// The camera-space ray through a raster position, before the world transform.
     void CameraSpaceRay(double rasterX, double rasterY, glm::dvec3* origin, glm::dvec3* dir) const;

@@ -53,9 +53,12 @@ TEST_CASE("attributes: the standard lights cast no shadows, Attribute \"light\" 
 }
 
 TEST_CASE("attributes: shadow-map lights and shadownames cast shadows, empty map names do not", "[rib][shadow]") {
+    // A shadow-map light without a map name reads none (RenderMan's default name is ""): no
+    // shadows, as from prman, unless the attribute asks for them.
     CHECK(LightShadows("LightSource \"shadowspot\" 1\nLightSource \"shadowpoint\" 2\n"
-                       "LightSource \"shadowdistant\" 3 \"shadowname\" \"sun.tex\"\n") ==
-          std::vector<bool>{true, true, true});
+                       "LightSource \"shadowdistant\" 3 \"shadowname\" \"sun.tex\"\n"
+                       "Attribute \"light\" \"shadows\" \"on\"\nLightSource \"shadowspot\" 4\n") ==
+          std::vector<bool>{false, false, true, true});
     // A file or "raytrace" (BMRT's and later prman's traced shadows) both mean shadows.
     CHECK(LightShadows("LightSource \"spotlight\" 1 \"shadowname\" \"key.tex\"\n"
                        "LightSource \"distantlight\" 2 \"shadowname\" \"raytrace\"\n") ==

@@ -228,7 +228,8 @@ TEST_CASE("rib: other renderers' requests warn once per name, a projective one a
             "Bxdf \"PxrDiffuse\" \"d\"\nShader \"noise\" \"n\"\nInterior \"water\"\n"
             "WorldEnd\n",
         &messages);
-    CHECK(scene.primitives.size() == 2);  // both levels of detail
+    // Without a Detail bound the detail is unbounded: only the level up to 1e38 is drawn.
+    CHECK(scene.primitives.size() == 1);
     CHECK(messages ==
           Messages{
               "t.rib:1: warning: 'Camera' does not apply to affray; ignored",
@@ -236,7 +237,10 @@ TEST_CASE("rib: other renderers' requests warn once per name, a projective one a
               "t.rib:3: warning: 'PixelVariance' does not apply to affray; ignored",
               "t.rib:5: warning: 'Deformation' is not supported (deformation shaders are an optional RI 3.2 "
               "capability); ignored: the geometry is not deformed",
-              "t.rib:6: warning: 'DetailRange' is not supported: every level of detail is rendered",
+              "t.rib:6: warning: 'DetailRange' without a 'Detail' bound: its detail is taken as unbounded (the "
+              "level whose maxvisible is infinite is drawn)",
+              "t.rib:6: note: 'DetailRange' transitions are not dissolved: each level is drawn up to the middle of "
+              "its transitions",
               "t.rib:10: warning: request 'Bxdf' is not supported yet; ignored",
               "t.rib:11: warning: request 'Shader' is not supported yet; ignored",
               "t.rib:12: warning: request 'Interior' is not supported yet; ignored",

@@ -218,3 +218,25 @@ TEST_CASE("FrameAspectRatio sets the default screen window", "[renderer][camera]
         RequireVec(Camera(scene->camera).GenerateRay(200, 100).dir, glm::normalize(glm::dvec3(2, -1, 1)));
     }
 }
+
+TEST_CASE("ToRaster inverts the ray through a raster position, at any depth", "[renderer][camera]") {
+    for (bool perspective : {true, false}) {
+        CameraDesc d = Desc(320, 200, 50, perspective, 1.5);
+        d.worldToCamera = glm::rotate(glm::translate(glm::dmat4(1.0), glm::dvec3(1, -2, 7)), 0.3, glm::dvec3(1, 1, 0));
+        const Camera camera(d);
+        for (double x : {0.0, 17.25, 160.0, 319.5})
+            for (double y : {0.0, 99.5, 200.0})
+                for (double t : {0.5, 3.0, 40.0}) {
+                    const Ray ray = camera.GenerateRay(x, y);
+                    const glm::dvec3 p = glm::dvec3(d.worldToCamera * glm::dvec4(ray.origin + t * ray.dir, 1.0));
+                    glm::dvec2 raster;
+                    REQUIRE(camera.ToRaster(p, &raster));
+                    CHECK(raster.x == Approx(x).margin(1e-9));
+                    CHECK(raster.y == Approx(y).margin(1e-9));
+                }
+        // Behind a perspective camera's eye there is no raster position.
+        glm::dvec2 raster;
+        CHECK(camera.ToRaster(glm::dvec3(0.1, 0.2, -1), &raster) == !perspective);
+        CHECK(camera.ToRaster(glm::dvec3(0.1, 0.2, 0), &raster) == !perspective);
+    }
+}
