@@ -119,6 +119,8 @@ bool RibParser::DoProcedural(const RibRequest& r) {
             return Fail(r.args.size() > 1 ? r.args[1].at : r.at,
                         "'Procedural \"DelayedReadArchive\"' expects [\"file\"] and a bound [xmin xmax ymin ymax "
                         "zmin zmax]");
+        // A level of detail not drawn (DetailRange) is not opened: its file is read only when needed.
+        if (m_state.detailHidden) return true;
         return OpenArchive(r, r.args[1].at, r.args[1].strings[0], true);
     }
     if (r.name == "Procedural2" && kind == "DelayedReadArchive2") {
@@ -130,7 +132,7 @@ bool RibParser::DoProcedural(const RibRequest& r) {
         if (!ParamList(r, 2, &params)) return false;
         for (const RibParam& p : params)
             if (p.value.name == "filename" && p.value.strings.size() == 1)
-                return OpenArchive(r, p.at, p.value.strings[0], true);
+                return m_state.detailHidden || OpenArchive(r, p.at, p.value.strings[0], true);
         return Fail(r.at, "'Procedural2 \"DelayedReadArchive2\"' needs a \"string filename\" parameter");
     }
     // A program's geometry is skipped, as an unsupported primitive is (rib/unsupported.cpp).

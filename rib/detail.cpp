@@ -69,8 +69,9 @@ bool RibParser::DoDetailRange(const RibRequest& r) {
     if (!InsideWorld(r)) return false;
     double detail = std::numeric_limits<double>::infinity();
     if (!m_state.detailBound) {
-        Warn(r.at, "'DetailRange' without a 'Detail' bound: its detail is taken as unbounded (the level "
-                   "whose maxvisible is infinite is drawn)");
+        Warn(r.at,
+             "'DetailRange' without a 'Detail' bound: its detail is taken as unbounded (the level "
+             "whose maxvisible is infinite is drawn)");
     } else {
         const renderer::Camera camera(m_scene.camera);
         glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-lo);
@@ -91,8 +92,9 @@ bool RibParser::DoDetailRange(const RibRequest& r) {
     const double from = 0.5 * (v[0] + v[1]), to = 0.5 * (v[2] + v[3]);
     m_state.detailHidden = !(detail >= from && (detail < to || v[3] >= 1e30));
     if (v[0] < v[1] || v[2] < v[3])
-        Note(r.at, "'DetailRange' transitions are not dissolved: each level is drawn up to the middle of its "
-                   "transitions");
+        Note(r.at,
+             "'DetailRange' transitions are not dissolved: each level is drawn up to the middle of its "
+             "transitions");
     return true;
 }
 

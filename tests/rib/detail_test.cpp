@@ -22,9 +22,10 @@ std::string Scene(double distance, const std::string& options, const std::string
 // Two levels switching at a detail of 150 (the middle of the transition 100 .. 200): a coarse one
 // (red) below, a fine one (green) above and at any larger size.
 const std::string kBound = "Detail [-1 1 -1 1 -1 1]\n";
-const std::string kLevels = "DetailRange [0 0 100 200]\nColor [1 0 0]\nSphere 1 -1 1 360\n"
-                            "DetailRange [100 200 1e38 1e38]\nColor [0 1 0]\nSphere 1 -1 1 360\n"
-                            "Disk 0 1 360\n";
+const std::string kLevels =
+    "DetailRange [0 0 100 200]\nColor [1 0 0]\nSphere 1 -1 1 360\n"
+    "DetailRange [100 200 1e38 1e38]\nColor [0 1 0]\nSphere 1 -1 1 360\n"
+    "Disk 0 1 360\n";
 
 // The colours of the primitives the scene keeps, "r" or "g" each.
 std::string Kept(const std::string& rib, diag::Report* report = nullptr) {
@@ -49,8 +50,19 @@ TEST_CASE("detail: DetailRange keeps the level drawn at the bound's raster area"
     // Far away neither level is drawn once the coarse one's range ends.
     CHECK(Kept(Scene(6, "", kBound + "DetailRange [0 0 10 20]\nColor [1 0 0]\nSphere 1 -1 1 360\n")) == "");
     // Primitives before any DetailRange, and after the block that held one, are always drawn.
-    CHECK(Kept(Scene(11, "", "Color [0 1 0]\nSphere 1 -1 1 360\nAttributeBegin\n" + kBound + kLevels +
-                                 "AttributeEnd\nColor [1 0 0]\nSphere 1 -1 1 360\n")) == "grr");
+    CHECK(Kept(Scene(11, "",
+                     "Color [0 1 0]\nSphere 1 -1 1 360\nAttributeBegin\n" + kBound + kLevels +
+                         "AttributeEnd\nColor [1 0 0]\nSphere 1 -1 1 360\n")) == "grr");
+}
+
+TEST_CASE("detail: a delayed archive of a level not drawn is not opened", "[rib][detail]") {
+    // 100 pixels at 11 units: the coarse level is drawn, the fine one's archive (which does not
+    // exist) is never opened; at 6 units (400 pixels) it is, and its absence is an error.
+    const std::string levels = kBound + "DetailRange [0 0 100 200]\nColor [1 0 0]\nSphere 1 -1 1 360\n" +
+                               "DetailRange [100 200 1e38 1e38]\n"
+                               "Procedural \"DelayedReadArchive\" [\"no_such_fine.rib\"] [-1 1 -1 1 -1 1]\n";
+    CHECK(Kept(Scene(11, "", levels)) == "r");
+    CHECK(test::FirstError(Scene(6, "", levels)).find("no_such_fine.rib") != std::string::npos);
 }
 
 TEST_CASE("detail: RelativeDetail scales the detail, and the bound follows the transform", "[rib][detail]") {
@@ -79,7 +91,8 @@ TEST_CASE("detail: malformed bounds and ranges are errors at their request", "[r
           "maxvisible, got 3 2 1 0");
     CHECK(test::FirstError(Scene(6, "", "Detail [1 -1 0 1 0 1]\n")) ==
           "t.rib:6: error: 'Detail' expects a finite bound with each minimum at most its maximum, got 1 > -1");
-    CHECK(test::FirstError(Scene(6, "RelativeDetail 0\n", "")) == "t.rib:3: error: 'RelativeDetail' must be positive, got 0");
+    CHECK(test::FirstError(Scene(6, "RelativeDetail 0\n", "")) ==
+          "t.rib:3: error: 'RelativeDetail' must be positive, got 0");
     CHECK(test::FirstError("DetailRange [0 0 1 1]\n") ==
           "t.rib:1: error: 'DetailRange' must come between 'WorldBegin' and 'WorldEnd'");
 }
