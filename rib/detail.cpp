@@ -3,7 +3,7 @@
 // `RelativeDetail` scales every size. The size, the detail, is the raster area in pixels of the
 // box around the bound's projected corners, times RelativeDetail; it is measured at the
 // DetailRange request, whose primitives are then kept or dropped (rib.cpp), so a level that is not
-// drawn costs no memory and no render time.
+// drawn is not kept and costs no render time.
 //
 // Where RenderMan dissolves one level into the next across a transition (the level's weight rises
 // from 0 at minvisible to 1 at lowertransition and falls back to 0 from uppertransition to
