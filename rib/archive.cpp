@@ -119,8 +119,6 @@ bool RibParser::DoProcedural(const RibRequest& r) {
             return Fail(r.args.size() > 1 ? r.args[1].at : r.at,
                         "'Procedural \"DelayedReadArchive\"' expects [\"file\"] and a bound [xmin xmax ymin ymax "
                         "zmin zmax]");
-        // A level of detail not drawn (DetailRange) is not opened: its file is read only when needed.
-        if (m_state.detailHidden) return true;
         return OpenArchive(r, r.args[1].at, r.args[1].strings[0], true);
     }
     if (r.name == "Procedural2" && kind == "DelayedReadArchive2") {
@@ -132,7 +130,7 @@ bool RibParser::DoProcedural(const RibRequest& r) {
         if (!ParamList(r, 2, &params)) return false;
         for (const RibParam& p : params)
             if (p.value.name == "filename" && p.value.strings.size() == 1)
-                return m_state.detailHidden || OpenArchive(r, p.at, p.value.strings[0], true);
+                return OpenArchive(r, p.at, p.value.strings[0], true);
         return Fail(r.at, "'Procedural2 \"DelayedReadArchive2\"' needs a \"string filename\" parameter");
     }
     // A program's geometry is skipped, as an unsupported primitive is (rib/unsupported.cpp).
@@ -159,6 +157,9 @@ bool RibParser::EndArchive(const OpenReader& reader) {
 }
 
 bool RibParser::OpenArchive(const RibRequest& r, RibPos nameAt, const std::string& name, bool procedural) {
+    // A delayed archive of a level of detail not drawn (DetailRange) is not opened: a renderer
+    // reads one only when it is needed.
+    if (procedural && m_state.detailHidden) return true;
     std::string searched;
     const std::string path = FindArchive(name, r.at.file, &searched);
     if (path.empty()) return Fail(nameAt, "archive " + Quote(name) + " not found (searched " + searched + ")");

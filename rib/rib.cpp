@@ -255,7 +255,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
     if (auto it = kHandlers.find(r.name); it != kHandlers.end()) {
         if (!(this->*(it->second))(r)) return false;
         // A level of detail not drawn at its size on screen: its primitives are dropped (read
-        // and checked all the same, as every level is).
+        // and checked all the same, except in a delayed archive, which is not opened).
         if (m_state.detailHidden) m_scene.primitives.resize(m_primitivesStamped);
         // Every primitive takes the lights on at its request (RI 3.2: the light list is an
         // attribute). Stamped here, for every geometry request alike; an ObjectInstance's
