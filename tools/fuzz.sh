@@ -3,7 +3,8 @@
 # coverage-guided fuzzing of affray's front ends with libFuzzer (issue 17; fuzz/README.md).
 # Configures and builds build-fuzz (clang-14, AFFRAY_FUZZ: ASan + UBSan + libFuzzer, -O1 -g1), or
 # with --build DIR builds the targets in DIR, a build already configured with AFFRAY_FUZZ (CI's
-# sanitizer build is one: no third build of the libraries), collects each target's seeds from the repository (fuzz/seeds.sh), then runs each target (all
+# sanitizer build is one: no third build of the libraries); collects each target's seeds from the
+# repository (fuzz/seeds.sh), then runs each target (all
 # four by default: fuzz_sl fuzz_afb fuzz_rib fuzz_texture) for SECONDS (default 60; --runs N
 # stops it after N executions if that comes first) with -timeout=25 -rss_limit_mb=2048 and its
 # dictionary. New inputs go to build-fuzz/corpus/TARGET, kept from run to run. Prints per target
