@@ -112,6 +112,140 @@ bool BicubicPatch::FiniteP() const {
     return true;
 }
 
+namespace bicubic_detail {
+
+namespace {
+
+using vm::kUnitRoundoff;
+
+/// The powers of x in (c + r x)^i: m[i][k] = C(i, k) c^(i - k) r^k for k <= i (0 above), and
+/// their magnitudes. Each entry is a product of at most six roundings of the exact one.
+struct LocalShift {
+    double m[4][4] = {};
+    double a[4][4] = {};
+
+    LocalShift(double c, double r) {
+        static constexpr double kBinomial[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
+        const double cp[4] = {1, c, c * c, c * c * c}, rp[4] = {1, r, r * r, r * r * r};
+        for (int i = 0; i < 4; ++i)
+            for (int k = 0; k <= i; ++k) {
+                m[i][k] = kBinomial[i][k] * cp[i - k] * rp[k];
+                a[i][k] = std::fabs(m[i][k]);
+            }
+    }
+};
+
+/// Relative bound on the rounding of a local coefficient: two shifts' entries (six roundings
+/// each), two products and two sums of four terms make at most 20 roundings of the sum of the
+/// magnitudes of its terms (gamma_20 < 21 u), computed itself with as many: 32 u covers both.
+constexpr double kCoefficientSlack = 32 * kUnitRoundoff;
+/// Relative bound on the rounding of HornerFrame<double>: Horner in u (degree 3: six roundings),
+/// then in v over the rounded rows (six more, and a scale by 1..3 for dPdv; dPdu's coefficients
+/// i * c_i are the same doubles here as there) is within gamma_14 < 15 u of the exact polynomial,
+/// relative to sum |c_ij| |u|^i |v|^j; 32 u covers the rounding of that sum too.
+constexpr double kScalarSlack = 32 * kUnitRoundoff;
+/// Absolute bound on what underflow adds, with |u|, |v| <= 4 (RegionFrame): each product that
+/// underflows is off by 2^-1075 at most, carried by factors below 2^8 through two shifts (and
+/// likewise in HornerFrame<double>), far below 2^-1040 in all.
+constexpr double kUnderflow = 0x1p-1040;
+
+/// The polynomial sum of p[i][j] u^i v^j over i <= nu, j <= nv (one coordinate) over the region
+/// u = uc + ru x, v = vc + rv y (x, y in [-1, 1]; |u| <= uMax, |v| <= vMax), as a reduced affine
+/// form containing both the exact polynomial and its Horner evaluation in doubles there.
+vm::ReducedAffine LocalForm(const double (&p)[4][4], int nu, int nv, const LocalShift& su, const LocalShift& sv,
+                            const double (&uPow)[4], const double (&vPow)[4]) {
+    // W = P Mv (the shift in v of each row), then L = Mu^T W; with the magnitudes alongside.
+    double w[4][4] = {}, wa[4][4] = {};
+    double scalar = 0;  // sum |p_ij| uMax^i vMax^j
+    for (int i = 0; i <= nu; ++i)
+        for (int j = 0; j <= nv; ++j) {
+            const double pij = p[i][j], aij = std::fabs(pij);
+            scalar += aij * uPow[i] * vPow[j];
+            for (int l = 0; l <= j; ++l) {
+                w[i][l] += pij * sv.m[j][l];
+                wa[i][l] += aij * sv.a[j][l];
+            }
+        }
+    double l[4][4] = {}, la = 0;
+    for (int i = 0; i <= nu; ++i)
+        for (int k = 0; k <= i; ++k)
+            for (int j = 0; j <= nv; ++j) {
+                l[k][j] += su.m[i][k] * w[i][j];
+                la += su.a[i][k] * wa[i][j];
+            }
+    // x^k y^j over [-1, 1]^2 as its affine part and error: each power is 1, x, 0.5 +- 0.5 (squares)
+    // or 0.75 x +- 0.25 (cubes, the Chebyshev fit); an odd power of one parameter times an even
+    // power of the other keeps its fit times the even power's middle (x y^2 = 0.5 x +- 0.5), a
+    // product of even powers is 0.5 +- 0.5, and of odd powers 0 +- 1.
+    static constexpr double kSlope[4] = {0, 1, 0, 0.75}, kFitError[4] = {0, 0, 0, 0.25};
+    static constexpr double kMiddle[4] = {1, 0, 0.5, 0}, kHalfRange[4] = {0, 0, 0.5, 0};
+    double centre = 0, du = 0, dv = 0, termSum = 0, nonlinear = 0;
+    for (int k = 0; k < 4; ++k)
+        for (int j = 0; j < 4; ++j) {
+            const double c = l[k][j], ac = std::fabs(c);
+            if (c == 0) continue;
+            const bool oddK = k % 2 == 1, oddJ = j % 2 == 1;
+            if (oddK && !oddJ) {
+                du += c * (kSlope[k] * kMiddle[j]);
+                termSum += ac * (kSlope[k] * kMiddle[j]);
+                nonlinear += ac * (kSlope[k] * kHalfRange[j] + kFitError[k]);
+            } else if (!oddK && oddJ) {
+                dv += c * (kSlope[j] * kMiddle[k]);
+                termSum += ac * (kSlope[j] * kMiddle[k]);
+                nonlinear += ac * (kSlope[j] * kHalfRange[k] + kFitError[j]);
+            } else if (!oddK) {
+                const double middle = k + j == 0 ? 1 : 0.5;
+                centre += c * middle;
+                termSum += ac * middle;
+                nonlinear += ac * (1 - middle);
+            } else {
+                nonlinear += ac;
+            }
+        }
+    // The sums of four terms above (each a product by an exact constant) round by gamma_4 < 8 u
+    // of their magnitudes; the nonnegative sums of the error by far less than the final factor.
+    const double error =
+        (nonlinear + kCoefficientSlack * la + kScalarSlack * scalar + 8 * kUnitRoundoff * termSum + kUnderflow) *
+        (1 + 0x1p-40);
+    return vm::ReducedAffine::FromForm(centre, du, dv, error);
+}
+
+}  // namespace
+
+bool RegionFrame(const BicubicPatch& patch, const vm::ReducedAffine& u, const vm::ReducedAffine& v,
+                 SurfaceFrame<vm::ReducedAffine>* frame) {
+    if (u.isUnbounded() || v.isUnbounded() || u.error() != 0 || v.error() != 0 || u.coefficientV() != 0 ||
+        v.coefficientU() != 0)
+        return false;
+    const double uc = u.center(), ru = u.coefficientU(), vc = v.center(), rv = v.coefficientV();
+    // |u| and |v| anywhere in the region, rounded up.
+    const double uMax = (std::fabs(uc) + std::fabs(ru)) * (1 + 4 * kUnitRoundoff);
+    const double vMax = (std::fabs(vc) + std::fabs(rv)) * (1 + 4 * kUnitRoundoff);
+    // The relative rounding bounds need parameters of moderate size (a patch's are in [0, 1]):
+    // then no product underflows by more than kUnderflow covers, and the shifts stay below 2^8.
+    const auto tiny = [](double x) { return x != 0 && std::fabs(x) < 0x1p-300; };
+    if (!(uMax <= 4 && vMax <= 4) || tiny(uc) || tiny(ru) || tiny(vc) || tiny(rv)) return false;
+    const LocalShift su(uc, ru), sv(vc, rv);
+    const double uPow[4] = {1, uMax, uMax * uMax, uMax * uMax * uMax};
+    const double vPow[4] = {1, vMax, vMax * vMax, vMax * vMax * vMax};
+    for (int axis = 0; axis < 3; ++axis) {
+        // P, and the coefficients of dP/du and dP/dv as HornerFrame forms them (i * c_i).
+        double p[4][4], pu[4][4] = {}, pv[4][4] = {};
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) p[i][j] = patch.c[4 * i + j][axis];
+        for (int i = 1; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) pu[i - 1][j] = i * p[i][j];
+        for (int i = 0; i < 4; ++i)
+            for (int j = 1; j < 4; ++j) pv[i][j - 1] = j * p[i][j];
+        frame->P[axis] = LocalForm(p, 3, 3, su, sv, uPow, vPow);
+        frame->dPdu[axis] = LocalForm(pu, 2, 3, su, sv, uPow, vPow);
+        frame->dPdv[axis] = LocalForm(pv, 3, 2, su, sv, uPow, vPow);
+    }
+    return true;
+}
+
+}  // namespace bicubic_detail
+
 std::string ToString(const BicubicPatch& p) {
     std::ostringstream out;
     out << "bicubic [";

@@ -54,6 +54,13 @@ class ReducedAffine {
     /// center + radius*eps_axis exactly (axis kSymbolU or kSymbolV; radius may be negative, 0
     /// gives the constant); Unbounded if either is not finite.
     static ReducedAffine FromSymbol(double center, double radius, int axis);
+    /// center + u*eps_u + v*eps_v +- error with the form's own range, for a bound computed outside
+    /// this class (renderer/geometry/bicubic.cpp): `error` >= 0 must already hold every rounding
+    /// of the caller's computation. Unbounded if anything is not finite.
+    static ReducedAffine FromForm(double center, double u, double v, double error) {
+        if (!(error >= 0)) return Unbounded();
+        return Make(center, u, v, error);
+    }
     /// center +- radius(range) in the error term, with the range as enclosure (a point gives the
     /// constant).
     static ReducedAffine FromInterval(const Interval& range);

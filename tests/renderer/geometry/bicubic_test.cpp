@@ -4,6 +4,9 @@
 // a mesh's (u,v)) in Interval, Affine and ReducedAffine; tangents against finite differences.
 #include <catch2/catch.hpp>
 
+#include <sstream>
+#include <tuple>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "renderer/geometry/bicubic.h"
@@ -227,4 +230,85 @@ TEST_CASE("bicubic: the predefined bases are RenderMan's", "[renderer][bicubic]"
     CHECK(curve(hermite, g, 1, 1) == Approx(g[3]));
     // Power: the coefficients of u^3, u^2, u, 1.
     CHECK(curve(power, g, 0.5, 0) == Approx(g[0] / 8 + g[1] / 4 + g[2] / 2 + g[3]));
+}
+
+TEST_CASE("bicubic: reduced affine region frames contain the double frame at every point, thinner than Horner's",
+          "[renderer][bicubic][containment]") {
+    // RegionFrame (the reduced affine bound of P, dPdu and dPdv) against HornerFrame<double>, the
+    // scalar evaluation every bound must contain: at the corners and random points of random
+    // regions, as a range and as the form at the point's own (eps_u, eps_v), on patches of every
+    // basis from 2^-60 to 2^60 units. Its radius is compared with HornerFrame<ReducedAffine>'s.
+    test::Rng rng(24);
+    const std::vector<CubicBasis> bases = AllBases(rng);
+    test::Tally tally;
+    int wider = 0, compared = 0;
+    const int regions = test::Samples(40);
+    for (int scaleExp : {-60, -8, 0, 8, 60})
+        for (const CubicBasis& bu : bases)
+            for (const CubicBasis& bv : bases) {
+                std::array<glm::dvec3, 16> g = RandomPoints(rng);
+                for (glm::dvec3& p : g) p *= std::ldexp(1.0, scaleExp);
+                const glm::dmat4 m = rng.chance(0.5) ? glm::dmat4(1.0) : kPlace;
+                const BicubicPatch patch = BicubicPatch::FromControlPoints(g, bu, bv, m);
+                for (int k = 0; k < regions; ++k) {
+                    // Regions from the whole patch down to 2^-30 of it, and single points.
+                    const double wu = k == 0 ? 1 : std::ldexp(1.0, -rng.integer(0, 30)) * (k % 7 == 0 ? 0 : 1);
+                    const double wv = k == 0 ? 1 : std::ldexp(1.0, -rng.integer(0, 30)) * (k % 11 == 0 ? 0 : 1);
+                    const double u0 = rng.uniform(0, 1 - wu), v0 = rng.uniform(0, 1 - wv);
+                    const double u1 = u0 + wu, v1 = v0 + wv;
+                    const auto u = renderer::SurfaceParameter<vm::ReducedAffine>(u0, u1, 0);
+                    const auto v = renderer::SurfaceParameter<vm::ReducedAffine>(v0, v1, 1);
+                    renderer::SurfaceFrame<vm::ReducedAffine> fr;
+                    REQUIRE(renderer::bicubic_detail::RegionFrame(patch, u, v, &fr));
+                    const auto fh = renderer::bicubic_detail::HornerFrame(patch, u, v);
+                    // Compared where the nonlinear terms outweigh rounding: regions at least 2^-10 of
+                    // the patch wide each way, and thicker than 2^-40 of their size.
+                    for (int c = 0; c < 3 && wu >= 0x1p-10 && wv >= 0x1p-10; ++c)
+                        for (const auto& [region, horner] :
+                             {std::pair{fr.P[c], fh.P[c]}, {fr.dPdu[c], fh.dPdu[c]}, {fr.dPdv[c], fh.dPdv[c]}}) {
+                            if (region.isUnbounded() || horner.isUnbounded()) continue;
+                            const double size = std::fabs(horner.center()) + std::fabs(horner.coefficientU()) +
+                                                std::fabs(horner.coefficientV());
+                            if (horner.error() <= 0x1p-40 * size) continue;  // rounding, not curvature
+                            ++compared;
+                            if (region.error() > horner.error() * 1.01) ++wider;
+                        }
+                    for (int s = 0; s < 12; ++s) {
+                        const double ud = s < 4 ? ((s & 1) ? u1 : u0) : rng.uniform(u0, u1);
+                        const double vd = s < 4 ? ((s & 2) ? v1 : v0) : rng.uniform(v0, v1);
+                        const renderer::SurfaceFrame<double> f = renderer::BicubicFrame<double>(patch, ud, vd);
+                        const double eu = u.coefficientU() != 0 ? (ud - u.center()) / u.coefficientU() : 0;
+                        const double ev = v.coefficientV() != 0 ? (vd - v.center()) / v.coefficientV() : 0;
+                        for (int c = 0; c < 3; ++c)
+                            for (const auto& [form, value, what] : {std::tuple{fr.P[c], f.P[c], "P"},
+                                                                    {fr.dPdu[c], f.dPdu[c], "dPdu"},
+                                                                    {fr.dPdv[c], f.dPdv[c], "dPdv"}}) {
+                                ++tally.samples;
+                                if (form.isUnbounded()) continue;
+                                // eps_u, eps_v are rounded: widen the form at them by that much.
+                                const vm::Interval at =
+                                    form.evaluateAt(std::clamp(eu, -1.0, 1.0), std::clamp(ev, -1.0, 1.0));
+                                const double slack = 4 * vm::kEpsilon *
+                                                     (std::fabs(form.coefficientU()) + std::fabs(form.coefficientV()));
+                                const bool inRange = form.range().contains(value);
+                                const bool atPoint = at.lo() - slack <= value && value <= at.hi() + slack;
+                                if (!inRange || !atPoint) {
+                                    std::ostringstream out;
+                                    out << what << "[" << c << "] = " << value << " at (" << ud << ", " << vd
+                                        << ") not in " << form.toString() << " over [" << u0 << ", " << u1 << "] x ["
+                                        << v0 << ", " << v1 << "], patch scale 2^" << scaleExp;
+                                    tally.fail(out.str());
+                                }
+                            }
+                    }
+                }
+            }
+    INFO(tally.first.str());
+    CHECK(tally.failures == 0);
+    CHECK(tally.samples > 10000);
+    // Horner in reduced affine folds every product's remainder into the error; the local power
+    // basis keeps exact coefficients, so its error should almost never be the larger one.
+    INFO(wider << " of " << compared << " bounds thicker than Horner's");
+    CHECK(compared > 1000);
+    CHECK(wider <= compared / 100);
 }
