@@ -548,17 +548,20 @@ std::string CheckImageLimits(const CameraDesc& camera, const std::string& displa
 
 }  // namespace
 
-bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,
+bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
                   const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report) {
     auto fail = [&](const diag::Location& where, std::string message) {
         if (report) report->error(where, std::move(message));
         return false;
     };
     // Before anything is compiled or allocated.
-    if (std::string problem = CheckImageLimits(desc.camera, desc.displayMode); !problem.empty())
-        return fail({desc.path}, std::move(problem));
-    out->desc = desc;
+    if (std::string problem = CheckImageLimits(input.camera, input.displayMode); !problem.empty())
+        return fail({input.path}, std::move(problem));
+    // Moved, not copied: a mesh of thousands of faces is as many PrimitiveDescs.
+    out->desc = std::move(input);
+    const SceneDesc& desc = out->desc;
     out->primitives.clear();
+    out->identityDigest.clear();
     MakeTextures(desc, report);
     const glm::dvec3 eye = Camera(desc.camera).Position();
     compiler::ShaderCache cache;

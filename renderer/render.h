@@ -145,6 +145,9 @@ struct PreparedScene {
     /// Shader instances compiled, and those that reused a compilation (same file bytes, same
     /// parameter values: compiler/shader_cache.h).
     int shadersCompiled = 0, shadersReused = 0;
+    /// The digest of the scene's inputs that a render's identity and its frame's share
+    /// (renderer/render_identity.cpp), computed by the first that needs it.
+    mutable std::string identityDigest;
 };
 
 /// The shader globals that do not vary over `base` seen from `eye`, for specialising its programs:
@@ -157,7 +160,7 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, c
 /// directories taken from the RIB file's directory), then in `shaderPaths`;
 /// `preprocess` gives the -I and -D of the C preprocessor. The shaders' diagnostics go to *report
 /// (may be null); on error returns false with an error there at the Displacement request.
-bool PrepareScene(const SceneDesc& desc, const std::vector<std::string>& shaderPaths,
+bool PrepareScene(SceneDesc desc, const std::vector<std::string>& shaderPaths,
                   const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report);
 
 /// The side of the tiles RenderImage cuts `camera`'s image (its crop) into with `options`:

@@ -97,16 +97,15 @@ const char* BoundsName(BoundMode mode) {
     return "?";
 }
 
-/// IdentifyRender and IdentifyFrame: with `withCrop` false the crop window counts as the whole
-/// frame in the scene's hash and has no line in the options.
-RenderIdentity Identify(const PreparedScene& scene, const RenderOptions& options, bool withCrop) {
+/// The digest of what a render's identity and its frame's share: the RIB file's bytes, the
+/// scene as read after its camera, and each primitive's specialised programs, its shader's source
+/// and the texture files they read. Computed once per prepared scene (PreparedScene::
+/// identityDigest): for a mesh of thousands of faces it is most of the cost of an identity.
+const std::string& InputsDigest(const PreparedScene& scene) {
+    if (!scene.identityDigest.empty()) return scene.identityDigest;
     Fnv128 h;
-    h.Field("affray render identity", "1");
     h.Field("rib", ReadFileBytes(scene.desc.path));
-    SceneDesc desc = scene.desc;
-    desc.path = FileName(desc.path);
-    if (!withCrop) desc.camera.cropWindow = glm::dvec4(0.0, 1.0, 0.0, 1.0);
-    h.Field("scene", ToString(desc));
+    h.Field("scene", ToStringAfterCamera(scene.desc));
     for (const Primitive& prim : scene.primitives) {
         if (!prim.shader) {
             h.Field("primitive", "no shader");
@@ -123,6 +122,23 @@ RenderIdentity Identify(const PreparedScene& scene, const RenderOptions& options
         AddTextures(prim.bound, &h);
         AddTextures(prim.shade, &h);
     }
+    scene.identityDigest = h.Hex();
+    return scene.identityDigest;
+}
+
+/// IdentifyRender and IdentifyFrame: with `withCrop` false the crop window counts as the whole
+/// frame in the scene's hash and has no line in the options.
+RenderIdentity Identify(const PreparedScene& scene, const RenderOptions& options, bool withCrop) {
+    Fnv128 h;
+    h.Field("affray render identity", "2");
+    h.Field("inputs", InputsDigest(scene));
+    std::string head = "scene " + FileName(scene.desc.path);
+    if (scene.desc.frame) head += " frame " + std::to_string(*scene.desc.frame);
+    if (!scene.desc.skipped.empty()) head += " skipped (" + scene.desc.skipped + ")";
+    CameraDesc camera = scene.desc.camera;
+    if (!withCrop) camera.cropWindow = glm::dvec4(0.0, 1.0, 0.0, 1.0);
+    h.Field("head", head);
+    h.Field("camera", ToString(camera));
 
     const CameraDesc& cam = scene.desc.camera;
     std::ostringstream text;

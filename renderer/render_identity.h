@@ -10,7 +10,9 @@
 //            they compiled to) with its shader's source text, and every texture file a program
 //            reads, by size and modification time (not content: maps can be large). File paths
 //            count by their file names only, so the identity is the same whichever directory
-//            the render starts in, or wherever a farm machine mounts the project.
+//            the render starts in, or wherever a farm machine mounts the project. Everything
+//            but the scene's head line and camera is digested once per prepared scene
+//            (PreparedScene::identityDigest), which the render's and the frame's identity share.
 //   options  the render options that change pixels, as canonical "name=value" lines (so a
 //            mismatch can be named): resolution, crop, samples, frame, display mode, tolerance,
 //            bounds, max depth, region budget and ray groups. Options that do not change pixels

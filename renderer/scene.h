@@ -329,12 +329,10 @@ inline std::string ToString(const CameraDesc& c) {
     return out.str();
 }
 
-inline std::string ToString(const SceneDesc& s) {
-    std::string text = "scene " + s.path;
-    if (s.frame) text += " frame " + std::to_string(*s.frame);
-    if (!s.skipped.empty()) text += " skipped (" + s.skipped + ")";
-    text += "\n  camera " + ToString(s.camera) + "\n  display \"" + s.displayName + "\" \"" + s.displayType + "\" \"" +
-            s.displayMode + "\"\n";
+/// The scene after its camera: display, lights, coordinate systems, search paths, texture
+/// requests and primitives, one per line (ToString(SceneDesc)'s lines after the camera's).
+inline std::string ToStringAfterCamera(const SceneDesc& s) {
+    std::string text = "  display \"" + s.displayName + "\" \"" + s.displayType + "\" \"" + s.displayMode + "\"\n";
     for (const LightDesc& l : s.lights) text += "  light " + ToString(l) + "\n";
     for (const auto& [name, m] : s.coordinateSystems) text += "  coordinatesystem " + name + " " + ToString(m) + "\n";
     for (const std::string& dir : s.shaderSearchPath) text += "  searchpath shader " + dir + "\n";
@@ -343,6 +341,13 @@ inline std::string ToString(const SceneDesc& s) {
         text += "  maketexture " + m.picture + " " + m.texture + " " + m.swrap + " " + m.twrap + "\n";
     for (const PrimitiveDesc& p : s.primitives) text += "  " + ToString(p) + "\n";
     return text;
+}
+
+inline std::string ToString(const SceneDesc& s) {
+    std::string text = "scene " + s.path;
+    if (s.frame) text += " frame " + std::to_string(*s.frame);
+    if (!s.skipped.empty()) text += " skipped (" + s.skipped + ")";
+    return text + "\n  camera " + ToString(s.camera) + "\n" + ToStringAfterCamera(s);
 }
 
 }  // namespace affray::renderer

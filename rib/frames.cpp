@@ -120,8 +120,12 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
 // The world block ends: the frame is complete (a skipped one without its primitives).
 bool RibParser::DoWorldEnd(const RibRequest& r) {
     if (!NoArgs(r) || !End(r, Block::World)) return false;
+    // The primitives move into the frame (no geometry may follow WorldEnd, and FrameEnd restores
+    // the scene of FrameBegin): a mesh of thousands of faces is not copied.
+    std::vector<PrimitiveDesc> primitives = std::move(m_scene.primitives);
+    m_scene.primitives.clear();
     SceneDesc frame = m_scene;
-    if (!frame.skipped.empty()) frame.primitives.clear();
+    if (frame.skipped.empty()) frame.primitives = std::move(primitives);
     // A texture is made when its request is read, as in RenderMan: every frame after it has it.
     frame.makeTextures = m_madeTextures;
     m_frames.push_back(std::move(frame));

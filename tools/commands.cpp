@@ -206,7 +206,8 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     if (cmd.textureBytes) texture::SetTileMemoryBudget(*cmd.textureBytes);
     const texture::CacheStats texturesBefore = texture::Stats();
     renderer::PreparedScene prepared;
-    const bool preparedOk = renderer::PrepareScene(scene, shaderPaths, cmd.preprocess, &prepared, &report);
+    const std::optional<int> frameNumber = scene.frame;
+    const bool preparedOk = renderer::PrepareScene(std::move(scene), shaderPaths, cmd.preprocess, &prepared, &report);
     if (preparedOk) WarnUndeclared(prepared, warned, &report);
     // The shaders' warnings are printed before the render starts.
     Print(report, err);
@@ -248,7 +249,7 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
         // mesh of a thousand faces is one entry, not a thousand).
         std::string json = stats.ToJson();
         json.pop_back();
-        if (scene.frame) json.insert(1, "\"frame\":" + std::to_string(*scene.frame) + ",");
+        if (frameNumber) json.insert(1, "\"frame\":" + std::to_string(*frameNumber) + ",");
         // The texture tiles this frame read and dropped, and what all maps hold now.
         const texture::CacheStats textures = texture::Stats();
         char texturesJson[256];
@@ -379,7 +380,10 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     // SIGINT and SIGTERM stop it too, giving up the frame being rendered.
     std::set<std::string> warned;  // WarnUndeclared's, once over the frames
     for (size_t i = 0; i < chosen.size(); ++i) {
-        const int status = RenderFrame(cmd, *chosen[i], outputs[i], pngs[i], &warned, out, err);
+        // Each frame is rendered once: its description moves into the render (no copy of its
+        // primitives).
+        renderer::SceneDesc& frame = frames[static_cast<size_t>(chosen[i] - frames.data())];
+        const int status = RenderFrame(cmd, std::move(frame), outputs[i], pngs[i], &warned, out, err);
         if (status != diag::kExitSuccess) return status;
     }
     return diag::kExitSuccess;

@@ -149,10 +149,12 @@ constexpr double kScalarSlack = 32 * kUnitRoundoff;
 /// likewise in HornerFrame<double>), far below 2^-1040 in all.
 constexpr double kUnderflow = 0x1p-1040;
 
-/// The polynomial sum of p[i][j] u^i v^j over i <= nu, j <= nv (one coordinate) over the region
+/// The polynomial sum of p[i][j] u^i v^j over i <= nu, j <= nv (one coordinate; the degrees are
+/// template arguments so that the loops unroll) over the region
 /// u = uc + ru x, v = vc + rv y (x, y in [-1, 1]; |u| <= uMax, |v| <= vMax), as a reduced affine
 /// form containing both the exact polynomial and its Horner evaluation in doubles there.
-vm::ReducedAffine LocalForm(const double (&p)[4][4], int nu, int nv, const LocalShift& su, const LocalShift& sv,
+template <int nu, int nv>
+vm::ReducedAffine LocalForm(const double (&p)[4][4], const LocalShift& su, const LocalShift& sv,
                             const double (&uPow)[4], const double (&vPow)[4]) {
     // W = P Mv (the shift in v of each row), then L = Mu^T W; with the magnitudes alongside.
     double w[4][4] = {}, wa[4][4] = {};
@@ -237,9 +239,9 @@ bool RegionFrame(const BicubicPatch& patch, const vm::ReducedAffine& u, const vm
             for (int j = 0; j < 4; ++j) pu[i - 1][j] = i * p[i][j];
         for (int i = 0; i < 4; ++i)
             for (int j = 1; j < 4; ++j) pv[i][j - 1] = j * p[i][j];
-        frame->P[axis] = LocalForm(p, 3, 3, su, sv, uPow, vPow);
-        frame->dPdu[axis] = LocalForm(pu, 2, 3, su, sv, uPow, vPow);
-        frame->dPdv[axis] = LocalForm(pv, 3, 2, su, sv, uPow, vPow);
+        frame->P[axis] = LocalForm<3, 3>(p, su, sv, uPow, vPow);
+        frame->dPdu[axis] = LocalForm<2, 3>(pu, su, sv, uPow, vPow);
+        frame->dPdv[axis] = LocalForm<3, 2>(pv, su, sv, uPow, vPow);
     }
     return true;
 }
