@@ -735,4 +735,59 @@ TEST_CASE("noise bounds are tight inside one cell", "[vm][noise]") {
     }
 }
 
+TEST_CASE("noise fade axes contain the double fade and are no wider than the fade in LocalForm arithmetic",
+          "[vm][noise]") {
+    // MakeLocalAxis's closed-form fade (its Taylor polynomial at the part's centre, rounding bounded
+    // a priori) against Fade<double> at the ends and random doubles of parts of a cell from the
+    // whole cell down to 2^-40 of it, near 0, 1/2 and 1; its width (|fadeLinear| + fadeOwn +
+    // fadeError) against the fade computed in LocalForm arithmetic (five products, each remainder
+    // on a fresh symbol), which it replaces.
+    using noise_detail::LocalForm;
+    Rng rng(29);
+    int failures = 0, wider = 0, samples = 0;
+    std::ostringstream first;
+    const int parts = Samples(3000);
+    for (int n = 0; n < parts; ++n) {
+        const double width = n % 10 == 0 ? 1.0 : std::ldexp(rng.uniform(0.5, 1), -rng.integer(0, 40));
+        const int where = n % 4;
+        const double lo = where == 0   ? 0.0
+                          : where == 1 ? 1.0 - width
+                          : where == 2 ? std::max(0.0, 0.5 - width * rng.uniform(0, 1))
+                                       : rng.uniform(0, 1 - width);
+        const double hi = std::min(1.0, lo + width);
+        const double k = std::floor(rng.uniform(-1e6, 1e6));
+        const noise_detail::LocalAxis axis = noise_detail::MakeLocalAxis(Interval(k + lo, k + hi), k);
+        // The same part in LocalForm arithmetic, as MakeLocalAxis computed it before.
+        LocalForm::Begin(1);
+        const LocalForm fade = noise_detail::Fade(LocalForm::Coordinate(axis.centre, axis.reach, 0));
+        double own = 0;
+        for (int s = 1; s < fade.n; ++s) own += std::fabs(fade.c[s]);
+        const double oldWidth = std::fabs(fade.n > 0 ? fade.c[0] : 0.0) + own + fade.e;
+        const double newWidth = std::fabs(axis.fadeLinear) + axis.fadeOwn + axis.fadeError;
+        // Beyond rounding: the closed form bounds it a priori (about 1e-13 for a fade near 1), where
+        // LocalForm tracks each operation's (about 1e-14); a part of a cell 2^-40 wide is that thin.
+        if (newWidth > oldWidth * (1 + 1e-6) + 1e-12) ++wider;
+        for (int s = 0; s < 8; ++s) {
+            // t_d = p - k for p in the part, as the double reference computes it.
+            const double p = s == 0 ? k + lo : s == 1 ? k + hi : rng.uniform(k + lo, k + hi);
+            const double t = p - k;
+            if (t < axis.centre - axis.reach || t > axis.centre + axis.reach) continue;
+            ++samples;
+            const double value = noise_detail::Fade(t);
+            const double sigma = axis.reach > 0 ? std::clamp((t - axis.centre) / axis.reach, -1.0, 1.0) : 0.0;
+            const double mid = axis.fade0 + axis.fadeLinear * sigma;
+            const double slack =
+                axis.fadeOwn + axis.fadeError + 4 * kEpsilon * (std::fabs(mid) + std::fabs(axis.fadeLinear));
+            if (std::fabs(value - mid) > slack && failures++ < 4)
+                first << "Fade(" << t << ") = " << value << " not in " << mid << " +- " << slack << " over [" << lo
+                      << ", " << hi << "]\n";
+        }
+    }
+    INFO(first.str());
+    CHECK(failures == 0);
+    CHECK(samples > 10000);
+    INFO(wider << " of " << parts << " closed-form fades wider than LocalForm's");
+    CHECK(wider == 0);
+}
+
 }  // namespace
