@@ -149,32 +149,51 @@ constexpr double kScalarSlack = 32 * kUnitRoundoff;
 /// likewise in HornerFrame<double>), far below 2^-1040 in all.
 constexpr double kUnderflow = 0x1p-1040;
 
+/// The coefficients l[k][j] of x^k y^j of a polynomial over the region u = uc + ru x, v = vc + rv y
+/// (x, y in [-1, 1]), and the magnitudes la of their terms, which bound their rounding
+/// (kCoefficientSlack * la).
+struct LocalPolynomial {
+    double l[4][4] = {};
+    double la[4][4] = {};
+};
+
 /// The polynomial sum of p[i][j] u^i v^j over i <= nu, j <= nv (one coordinate; the degrees are
-/// template arguments so that the loops unroll) over the region
-/// u = uc + ru x, v = vc + rv y (x, y in [-1, 1]; |u| <= uMax, |v| <= vMax), as a reduced affine
-/// form containing both the exact polynomial and its Horner evaluation in doubles there.
+/// template arguments so that the loops unroll) in the region's local power basis.
 template <int nu, int nv>
-vm::ReducedAffine LocalForm(const double (&p)[4][4], const LocalShift& su, const LocalShift& sv,
-                            const double (&uPow)[4], const double (&vPow)[4]) {
+LocalPolynomial Localise(const double (&p)[4][4], const LocalShift& su, const LocalShift& sv) {
     // W = P Mv (the shift in v of each row), then L = Mu^T W; with the magnitudes alongside.
     double w[4][4] = {}, wa[4][4] = {};
-    double scalar = 0;  // sum |p_ij| uMax^i vMax^j
     for (int i = 0; i <= nu; ++i)
         for (int j = 0; j <= nv; ++j) {
             const double pij = p[i][j], aij = std::fabs(pij);
-            scalar += aij * uPow[i] * vPow[j];
             for (int l = 0; l <= j; ++l) {
                 w[i][l] += pij * sv.m[j][l];
                 wa[i][l] += aij * sv.a[j][l];
             }
         }
-    double l[4][4] = {}, la = 0;
+    LocalPolynomial out;
     for (int i = 0; i <= nu; ++i)
         for (int k = 0; k <= i; ++k)
             for (int j = 0; j <= nv; ++j) {
-                l[k][j] += su.m[i][k] * w[i][j];
-                la += su.a[i][k] * wa[i][j];
+                out.l[k][j] += su.m[i][k] * w[i][j];
+                out.la[k][j] += su.a[i][k] * wa[i][j];
             }
+    return out;
+}
+
+/// sum |p_ij| uMax^i vMax^j over i <= nu, j <= nv: what HornerFrame<double>'s rounding is relative to.
+template <int nu, int nv>
+double ScalarMagnitude(const double (&p)[4][4], const double (&uPow)[4], const double (&vPow)[4]) {
+    double sum = 0;
+    for (int i = 0; i <= nu; ++i)
+        for (int j = 0; j <= nv; ++j) sum += std::fabs(p[i][j]) * uPow[i] * vPow[j];
+    return sum;
+}
+
+/// The reduced affine form of the local polynomial l over [-1, 1]^2, with `coefficientError`
+/// (the rounding of l) and `scalar` (ScalarMagnitude) added to its error: it contains both the
+/// exact polynomial and its Horner evaluation in doubles at every point of the region.
+vm::ReducedAffine FormOf(const double (&l)[4][4], double coefficientError, double scalar) {
     // x^k y^j over [-1, 1]^2 as its affine part and error: each power is 1, x, 0.5 +- 0.5 (squares)
     // or 0.75 x +- 0.25 (cubes, the Chebyshev fit); an odd power of one parameter times an even
     // power of the other keeps its fit times the even power's middle (x y^2 = 0.5 x +- 0.5), a
@@ -207,9 +226,36 @@ vm::ReducedAffine LocalForm(const double (&p)[4][4], const LocalShift& su, const
     // The sums of four terms above (each a product by an exact constant) round by gamma_4 < 8 u
     // of their magnitudes; the nonnegative sums of the error by far less than the final factor.
     const double error =
-        (nonlinear + kCoefficientSlack * la + kScalarSlack * scalar + 8 * kUnitRoundoff * termSum + kUnderflow) *
+        (nonlinear + coefficientError + kScalarSlack * scalar + 8 * kUnitRoundoff * termSum + kUnderflow) *
         (1 + 0x1p-40);
     return vm::ReducedAffine::FromForm(centre, du, dv, error);
+}
+
+/// The sum of la's entries times kCoefficientSlack: the rounding of all of l's coefficients.
+double CoefficientError(const LocalPolynomial& q) {
+    double sum = 0;
+    for (int k = 0; k < 4; ++k)
+        for (int j = 0; j < 4; ++j) sum += q.la[k][j];
+    return kCoefficientSlack * sum;
+}
+
+/// The local polynomial of a tangent from P's: dP/du = (1/ru) dQ/dx for Q(x, y) = P(uc + ru x,
+/// vc + rv y), so its coefficient of x^k y^j is (k + 1) l[k + 1][j] / ru (alongU; along v, the
+/// same with the roles swapped); the rounding of P's coefficients carries over scaled the same
+/// way, and the product and quotient round each coefficient by 2 u at most (4 u taken).
+vm::ReducedAffine TangentForm(const LocalPolynomial& q, double radius, bool alongU, double scalar) {
+    double d[4][4] = {};
+    double error = 0;
+    const double scale = 1 / std::fabs(radius);
+    for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 4; ++j) {
+            const int a = alongU ? k + 1 : j, b = alongU ? j : k + 1;
+            const double factor = k + 1;
+            double& out = alongU ? d[k][j] : d[j][k];
+            out = factor * q.l[a][b] / radius;
+            error += factor * kCoefficientSlack * q.la[a][b] * scale + 4 * kUnitRoundoff * std::fabs(out);
+        }
+    return FormOf(d, error * (1 + 0x1p-40), scalar);
 }
 
 }  // namespace
@@ -239,9 +285,23 @@ bool RegionFrame(const BicubicPatch& patch, const vm::ReducedAffine& u, const vm
             for (int j = 0; j < 4; ++j) pu[i - 1][j] = i * p[i][j];
         for (int i = 0; i < 4; ++i)
             for (int j = 1; j < 4; ++j) pv[i][j - 1] = j * p[i][j];
-        frame->P[axis] = LocalForm<3, 3>(p, su, sv, uPow, vPow);
-        frame->dPdu[axis] = LocalForm<2, 3>(pu, su, sv, uPow, vPow);
-        frame->dPdv[axis] = LocalForm<3, 2>(pv, su, sv, uPow, vPow);
+        const LocalPolynomial q = Localise<3, 3>(p, su, sv);
+        frame->P[axis] = FormOf(q.l, CoefficientError(q), ScalarMagnitude<3, 3>(p, uPow, vPow));
+        // The tangents from P's local polynomial where the region has a width along the
+        // parameter; a region of one u (or v) localises the tangent's own polynomial.
+        const double su3 = ScalarMagnitude<2, 3>(pu, uPow, vPow), sv3 = ScalarMagnitude<3, 2>(pv, uPow, vPow);
+        if (ru != 0) {
+            frame->dPdu[axis] = TangentForm(q, ru, true, su3);
+        } else {
+            const LocalPolynomial d = Localise<2, 3>(pu, su, sv);
+            frame->dPdu[axis] = FormOf(d.l, CoefficientError(d), su3);
+        }
+        if (rv != 0) {
+            frame->dPdv[axis] = TangentForm(q, rv, false, sv3);
+        } else {
+            const LocalPolynomial d = Localise<3, 2>(pv, su, sv);
+            frame->dPdv[axis] = FormOf(d.l, CoefficientError(d), sv3);
+        }
     }
     return true;
 }
