@@ -790,4 +790,46 @@ TEST_CASE("noise fade axes contain the double fade and are no wider than the fad
     CHECK(wider == 0);
 }
 
+TEST_CASE("reduced affine noise bounds stay close to the noise's own deviation from their plane",
+          "[vm][noise][reduced]") {
+    // A surface's region is a parallelogram in noise space, not the box of its coordinate ranges:
+    // LocalCellOnRegion keeps the region's own symbols, so its error is compared with how far the
+    // noise really strays from the bound's plane over the parallelogram (sampled on a 41 x 41
+    // grid), for regions 0.1 and 0.01 of a cell wide in 3-d noise. Measured mean ratios 4.2 and
+    // 3.7; over the box of the coordinates (the symbols of LocalCell) they were 6.7 and 5.9.
+    Rng rng(31);
+    for (double width : {0.1, 0.01}) {
+        double sumError = 0, sumTrue = 0;
+        for (int n = 0; n < 200; ++n) {
+            double c[3], a[3], b[3];
+            for (int i = 0; i < 3; ++i) {
+                c[i] = std::floor(rng.uniform(0, 100)) + 0.5 + rng.uniform(-0.3, 0.3);
+                a[i] = 0.5 * width * rng.uniform(-1, 1);
+                b[i] = 0.5 * width * rng.uniform(-1, 1);
+            }
+            const ReducedAffine eu = ReducedAffine::FromSymbol(0, 1, ReducedAffine::kSymbolU);
+            const ReducedAffine ev = ReducedAffine::FromSymbol(0, 1, ReducedAffine::kSymbolV);
+            ReducedAffine p[3];
+            for (int i = 0; i < 3; ++i) p[i] = eu * a[i] + ev * b[i] + c[i];
+            const ReducedAffine bound = Noise(p, 3, 0);
+            REQUIRE_FALSE(bound.isUnbounded());
+            double lo = INFINITY, hi = -INFINITY;
+            for (int i = 0; i <= 40; ++i)
+                for (int j = 0; j <= 40; ++j) {
+                    const double x = -1 + i / 20.0, y = -1 + j / 20.0;
+                    double q[3];
+                    for (int k = 0; k < 3; ++k) q[k] = c[k] + a[k] * x + b[k] * y;
+                    const double off =
+                        Noise(q, 3, 0) - (bound.center() + bound.coefficientU() * x + bound.coefficientV() * y);
+                    lo = std::min(lo, off);
+                    hi = std::max(hi, off);
+                }
+            sumError += bound.error();
+            sumTrue += 0.5 * (hi - lo);
+        }
+        INFO("width " << width << ": mean error " << sumError / 200 << ", mean deviation " << sumTrue / 200);
+        CHECK(sumError < 5 * sumTrue);
+    }
+}
+
 }  // namespace
