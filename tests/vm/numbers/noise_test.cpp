@@ -832,4 +832,47 @@ TEST_CASE("reduced affine noise bounds stay close to the noise's own deviation f
     }
 }
 
+TEST_CASE("noise: the in-place LocalForm cell polynomial makes the template's forms exactly", "[vm][noise]") {
+    // FadedCellPolynomialInPlace must be FadedCellPolynomial<LocalForm> without its copies: the
+    // same centre, coefficients, slot count and error, bit for bit, for every gradient set and
+    // for gradients other than 0 and +-1, on random coordinate and fade forms.
+    using noise_detail::LocalForm;
+    Rng rng(37);
+    int mismatches = 0;
+    for (int n = 0; n < Samples(400); ++n) {
+        const int dims = 1 + n % 4;
+        LocalForm t[4], fade[4];
+        double g[16][4];
+        for (int o = 0; o < (1 << dims); ++o)
+            for (int i = 0; i < dims; ++i) {
+                const int kind = rng.integer(0, 3);
+                g[o][i] = kind == 0 ? 0.0 : kind == 1 ? 1.0 : kind == 2 ? -1.0 : rng.uniform(-2, 2);
+            }
+        auto make = [&] {
+            LocalForm::Begin(2 * dims);
+            for (int i = 0; i < dims; ++i) {
+                t[i] = LocalForm::Coordinate(rng.uniform(0, 1), rng.uniform(0, 0.5), i);
+                LocalForm& f = fade[i];
+                f.c0 = rng.uniform(0, 1);
+                f.e = rng.chance(0.5) ? 0.0 : rng.uniform(0, 1e-12);
+                f.n = dims + i + 1;
+                for (int k = 0; k < f.n; ++k) f.c[k] = 0;
+                f.c[i] = rng.uniform(-2, 2);
+                f.c[dims + i] = rng.uniform(0, 0.1);
+            }
+        };
+        const uint64_t state = rng.gen();
+        rng.gen.seed(state);
+        make();
+        const LocalForm a = noise_detail::FadedCellPolynomial(t, fade, dims, [&](int o, int i) { return g[o][i]; });
+        rng.gen.seed(state);
+        make();
+        const LocalForm b = noise_detail::FadedCellPolynomialInPlace(t, fade, dims, g);
+        bool same = a.c0 == b.c0 && a.e == b.e && a.n == b.n;
+        for (int k = 0; same && k < a.n; ++k) same = a.c[k] == b.c[k];
+        if (!same) ++mismatches;
+    }
+    CHECK(mismatches == 0);
+}
+
 }  // namespace
