@@ -132,12 +132,9 @@ RenderIdentity Identify(const PreparedScene& scene, const RenderOptions& options
     Fnv128 h;
     h.Field("affray render identity", "2");
     h.Field("inputs", InputsDigest(scene));
-    std::string head = "scene " + FileName(scene.desc.path);
-    if (scene.desc.frame) head += " frame " + std::to_string(*scene.desc.frame);
-    if (!scene.desc.skipped.empty()) head += " skipped (" + scene.desc.skipped + ")";
     CameraDesc camera = scene.desc.camera;
     if (!withCrop) camera.cropWindow = glm::dvec4(0.0, 1.0, 0.0, 1.0);
-    h.Field("head", head);
+    h.Field("head", SceneHeadLine(scene.desc, FileName(scene.desc.path)));
     h.Field("camera", ToString(camera));
 
     const CameraDesc& cam = scene.desc.camera;

@@ -343,11 +343,16 @@ inline std::string ToStringAfterCamera(const SceneDesc& s) {
     return text;
 }
 
-inline std::string ToString(const SceneDesc& s) {
-    std::string text = "scene " + s.path;
+/// ToString(SceneDesc)'s first line, without its newline, naming the scene's file as `path`.
+inline std::string SceneHeadLine(const SceneDesc& s, const std::string& path) {
+    std::string text = "scene " + path;
     if (s.frame) text += " frame " + std::to_string(*s.frame);
     if (!s.skipped.empty()) text += " skipped (" + s.skipped + ")";
-    return text + "\n  camera " + ToString(s.camera) + "\n" + ToStringAfterCamera(s);
+    return text;
+}
+
+inline std::string ToString(const SceneDesc& s) {
+    return SceneHeadLine(s, s.path) + "\n  camera " + ToString(s.camera) + "\n" + ToStringAfterCamera(s);
 }
 
 }  // namespace affray::renderer
