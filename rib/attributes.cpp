@@ -364,6 +364,7 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     if (light.kind == LightDesc::Kind::Spot && !CheckSpotlight(r, context, light)) return false;
     // from/to are points in the current space; before WorldBegin that is camera space, which is
     // mapped to world space once the camera transform is known.
+    if (!m_worldSeen && !NoPendingPerspective(r)) return false;
     light.from = TransformPoint(m_state.ctm, light.from);
     light.to = TransformPoint(m_state.ctm, light.to);
     bool aimed = light.kind == LightDesc::Kind::Distant || light.kind == LightDesc::Kind::Spot;

@@ -93,6 +93,11 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
     if (!(std::fabs(det) > 0) || !std::isfinite(det) || !FiniteP(cameraToWorld))
         return Fail(r.at, "the camera transform (the transform at 'WorldBegin') is singular");
     m_scene.camera.worldToCamera = worldToCamera;
+    if (m_state.perspectiveFov > 0) {  // DoPerspective
+        m_scene.camera.perspective = true;
+        m_scene.camera.fovDegrees = m_state.perspectiveFov;
+        m_state.perspectiveFov = 0;
+    }
     // Lights given before WorldBegin come first, so their indices (LightSource) hold.
     for (LightDesc light : m_cameraLights) {
         light.from = TransformPoint(cameraToWorld, light.from);

@@ -438,6 +438,7 @@ bool RibParser::DoCoordinateSystem(const RibRequest& r) {
     } else if (m_worldSeen) {
         m_scene.coordinateSystems[name] = m_state.ctm;
     } else {
+        if (!NoPendingPerspective(r)) return false;
         m_cameraCoordinateSystems[name] = m_state.ctm;
     }
     return true;
@@ -475,6 +476,7 @@ bool RibParser::DoCoordSysTransform(const RibRequest& r) {
         return Fail(r.args[0].at, "'CoordSysTransform': no coordinate system " + Quote(name) +
                                       " has been defined (by 'CoordinateSystem')");
     }
+    m_state.perspectiveFov = 0;  // replaced with the rest of the CTM
     return SetCtm(r, ctm);
 }
 

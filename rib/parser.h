@@ -45,6 +45,11 @@ class RibParser : private RibArgChecks {
   private:
     struct State {
         glm::dmat4 ctm{1.0};
+        /// Perspective given before WorldBegin with nothing concatenated before it: the CTM is
+        /// this perspective (its fov in degrees; 0: none) followed by `ctm`, which WorldBegin
+        /// makes the camera's projection (see DoPerspective).
+        double perspectiveFov = 0;
+        RibPos perspectiveAt{};
         glm::dvec3 color{1.0};
         glm::dvec3 opacity{1.0};  // Opacity
         /// Attribute "light" "shadows" (BMRT): whether the lights declared now trace shadows.
@@ -204,6 +209,12 @@ class RibParser : private RibArgChecks {
     // and lights in rib_attributes.cpp; geometry and coordinate systems in rib_geometry.cpp.
     bool DoFormat(const RibRequest& r);
     bool DoProjection(const RibRequest& r);
+    /// Perspective fov: before WorldBegin, on the identity, the camera's perspective projection;
+    /// anywhere else refused (a projective transform).
+    bool DoPerspective(const RibRequest& r);
+    /// Fails if a Perspective is pending in the CTM (State::perspectiveFov): `r` would place
+    /// something in the projective space it makes.
+    bool NoPendingPerspective(const RibRequest& r);
     bool DoDisplay(const RibRequest& r);
     bool DoFrameAspectRatio(const RibRequest& r);
     bool DoScreenWindow(const RibRequest& r);
@@ -266,7 +277,10 @@ class RibParser : private RibArgChecks {
     bool DoAttributeEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::Attribute); }
     bool DoTransformBegin(const RibRequest& r) { return NoArgs(r) && Begin(r, Block::Transform); }
     bool DoTransformEnd(const RibRequest& r) { return NoArgs(r) && End(r, Block::Transform); }
-    bool DoIdentity(const RibRequest& r) { return NoArgs(r) && SetCtm(r, glm::dmat4(1.0)); }
+    bool DoIdentity(const RibRequest& r) {
+        m_state.perspectiveFov = 0;  // replaces a Perspective too
+        return NoArgs(r) && SetCtm(r, glm::dmat4(1.0));
+    }
     bool DoTransform(const RibRequest& r);
     bool DoSkew(const RibRequest& r);
     bool DoConcatTransform(const RibRequest& r);

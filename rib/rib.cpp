@@ -178,6 +178,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
     static const std::unordered_map<std::string_view, Handler> kHandlers = {
         {"Format", &RibParser::DoFormat},
         {"Projection", &RibParser::DoProjection},
+        {"Perspective", &RibParser::DoPerspective},
         {"Display", &RibParser::DoDisplay},
         {"FrameAspectRatio", &RibParser::DoFrameAspectRatio},
         {"ScreenWindow", &RibParser::DoScreenWindow},
@@ -348,9 +349,11 @@ bool RibParser::End(const RibRequest& r, Block kind) {
                               LineName(open.at, r.at));
     // TransformEnd restores only the transform, SolidEnd nothing; every other block restores all
     // attributes.
-    if (kind == Block::Transform)
+    if (kind == Block::Transform) {
         m_state.ctm = open.saved.ctm;
-    else if (kind != Block::Solid)
+        m_state.perspectiveFov = open.saved.perspectiveFov;
+        m_state.perspectiveAt = open.saved.perspectiveAt;
+    } else if (kind != Block::Solid)
         m_state = open.saved;
     if (open.skips) --m_skipping;
     if (kind == Block::World) m_worldEnded = true;
@@ -410,10 +413,57 @@ bool RibParser::DoProjection(const RibRequest& r) {
     }
     // RI 3.2: transforms before Projection form the screen transform; Projection then resets the
     // CTM to identity and what follows is the camera transform.
-    if (m_state.ctm != glm::dmat4(1.0))
+    if (m_state.ctm != glm::dmat4(1.0) || m_state.perspectiveFov > 0)
         Warn(r.at, "transforms before 'Projection' (screen transforms) are not supported; ignored");
     m_state.ctm = glm::dmat4(1.0);
+    m_state.perspectiveFov = 0;
     return true;
+}
+
+// Perspective fov (RI 3.2 section 4.3) concatenates a perspective transform onto the CTM. Before
+// WorldBegin, with nothing concatenated yet, the camera transform is that perspective followed by
+// what comes after it; seen through the orthographic projection (the default, or given), that is
+// the perspective projection of the same fov, so WorldBegin makes it one. Everywhere else the
+// transform it makes is projective, which affray's affine transforms cannot hold.
+bool RibParser::DoPerspective(const RibRequest& r) {
+    double fov;
+    if (!Numbers(r, 1, "fov", &fov)) return false;
+    const std::string request = "'Perspective " + FormatNumber(fov) + "'";
+    if (m_worldSeen && !m_worldEnded)
+        return Fail(r.at, request +
+                              " inside the world block makes the object transform projective (affray's transforms "
+                              "are affine); not supported");
+    if (m_worldSeen) return Fail(r.at, request + " after 'WorldEnd': a camera transform comes before 'WorldBegin'");
+    if (!(fov > 0 && fov < 180))
+        return Fail(r.at, "'Perspective' fov must be between 0 and 180 degrees, got " + FormatNumber(fov));
+    if (m_state.perspectiveFov > 0)
+        return Fail(r.at, request + " after the 'Perspective' on " + LineName(m_state.perspectiveAt, r.at) +
+                              " composes two perspective transforms, a projective camera transform (affray's "
+                              "transforms are affine); not supported");
+    if (m_scene.camera.perspective)
+        return Fail(r.at, request +
+                              " after 'Projection \"perspective\"' composes two perspective transforms, a projective "
+                              "camera transform (affray's transforms are affine); not supported");
+    if (m_state.ctm != glm::dmat4(1.0))
+        return Fail(r.at, request +
+                              " after other transforms makes the camera transform projective (affray's transforms "
+                              "are affine); not supported: give 'Projection \"perspective\" \"fov\" [" +
+                              FormatNumber(fov) + "]' before the camera's transforms instead");
+    Note(r.at, request +
+                   " before any other camera transform is the camera's projection: taken as 'Projection "
+                   "\"perspective\" \"fov\" [" +
+                   FormatNumber(fov) + "]'");
+    m_state.perspectiveFov = fov;
+    m_state.perspectiveAt = r.at;
+    return true;
+}
+
+bool RibParser::NoPendingPerspective(const RibRequest& r) {
+    if (m_state.perspectiveFov == 0) return true;
+    return Fail(r.at, Quote(r.name) + " after 'Perspective' on " + LineName(m_state.perspectiveAt, r.at) +
+                          " is placed in the projective space it makes (affray's transforms are affine); not "
+                          "supported: give it after 'WorldBegin', or 'Projection \"perspective\"' instead of "
+                          "'Perspective'");
 }
 
 bool RibParser::DoDisplay(const RibRequest& r) {
@@ -558,7 +608,9 @@ bool RibParser::DoExposure(const RibRequest& r) {
 
 bool RibParser::DoTransform(const RibRequest& r) {
     glm::dmat4 m;
-    return Matrix(r, &m) && SetCtm(r, m);
+    if (!Matrix(r, &m)) return false;
+    m_state.perspectiveFov = 0;  // replaced with the rest of the CTM
+    return SetCtm(r, m);
 }
 
 bool RibParser::DoConcatTransform(const RibRequest& r) {

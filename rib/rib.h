@@ -11,8 +11,8 @@
 // Disk, Torus, Hyperboloid, Paraboloid). Other RI 3.2 requests (and those of later RenderMan
 // versions that exporters write), other Option and Attribute names, other hiders and unknown
 // shaders are skipped with one warning per name, as are primitives affray cannot make (the image
-// lacks them): see rib/unsupported.cpp. A request whose absence would render another scene
-// (Perspective) and a name that is no request are errors. Problems are reported through
+// lacks them): see rib/unsupported.cpp. Perspective is the camera's projection where it is one
+// (first in the camera transform), else an error, as is a name that is no request. Problems are reported through
 // diag/diagnostic.h, at the file (the scene or an archive), line and column of the token.
 //
 // Frames: each world block is one frame, a SceneDesc. Options before the first FrameBegin are

@@ -2,10 +2,9 @@
 // does with each. Real exporters (Houdini, Maya's MTOR and RenderMan Artist Tools, Blender's
 // RenderMan exporters, BMRT-era tools) write requests for other renderers' features; as prman
 // does with what it lacks, affray accepts them with one warning (or note) per name, so that the
-// scene still renders. A request is refused only where skipping it would render another scene
-// than the one described in a way no warning can make up for (a projective transform), or where
-// its name is no RenderMan request at all. Unsupported primitives are skipped with a warning: the
-// image lacks them, the rest renders.
+// scene still renders. A request is refused only where its name is no RenderMan request at all
+// (a projective Perspective is refused by its handler). Unsupported primitives are skipped with a
+// warning: the image lacks them, the rest renders.
 //
 // To support a request: give it a handler in rib.cpp's table and take it out of these lists.
 #include <algorithm>
@@ -43,14 +42,6 @@ constexpr std::string_view kSkippedPrimitives[] = {
 };
 // clang-format on
 
-// Requests that change the scene in a way a warning cannot make up for, with the reason.
-struct Refused {
-    std::string_view name, reason;
-};
-constexpr Refused kRefused[] = {
-    {"Perspective", "a projective transform (transforms must be affine)"},
-};
-
 bool ListedP(const std::string_view* begin, const std::string_view* end, std::string_view name) {
     return std::find(begin, end, name) != end;
 }
@@ -77,9 +68,6 @@ bool RibParser::DoUnhandled(const RibRequest& r) {
         Warn(r.at, Quote(r.name) + " is not supported yet: skipped, so the image lacks these primitives");
         return true;
     }
-    for (const Refused& refused : kRefused)
-        if (refused.name == r.name)
-            return Fail(r.at, Quote(r.name) + " is not supported yet: " + std::string(refused.reason));
     return Fail(r.at, "unknown RIB request " + Quote(r.name));
 }
 

@@ -277,8 +277,9 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
     CHECK(ErrorOf("Fooo 1 2\n") == "t.rib:1: error: unknown RIB request 'Fooo'");
     CHECK(ErrorOf("WorldBegin\nNuPatch 2 2 [0 0 1 1] 0 1\nWorldEnd\n") ==
           "t.rib:2: error: 'NuPatch' expects nu uorder uknot umin umax nv vorder vknot vmin vmax, got 5 arguments");
-    CHECK(ErrorOf("Perspective 45\n") ==
-          "t.rib:1: error: 'Perspective' is not supported yet: a projective transform (transforms must be affine)");
+    CHECK(ErrorOf("WorldBegin\nPerspective 45\nWorldEnd\n") ==
+          "t.rib:2: error: 'Perspective 45' inside the world block makes the object transform projective (affray's "
+          "transforms are affine); not supported");
     CHECK(ErrorOf("WorldBegin\nPatch \"bicubic\" \"P\" [0 0 0]\nWorldEnd\n") ==
           "t.rib:2: error: 'Patch \"bicubic\"' parameter 'P' expects 48 numbers, got 3");
 

@@ -245,7 +245,55 @@ TEST_CASE("rib: other renderers' requests warn once per name, a projective one a
               "t.rib:11: warning: request 'Shader' is not supported yet; ignored",
               "t.rib:12: warning: request 'Interior' is not supported yet; ignored",
           });
-    CHECK(FirstError("Perspective 45\nWorldBegin\nWorldEnd\n") ==
-          "t.rib:1: error: 'Perspective' is not supported yet: a projective transform (transforms must be affine)");
     CHECK(FirstError("WorldBegin\nSpehre 1 -1 1 360\nWorldEnd\n") == "t.rib:2: error: unknown RIB request 'Spehre'");
+}
+
+TEST_CASE("rib: Perspective before any camera transform is the camera's projection; elsewhere refused", "[rib]") {
+    // The same camera as Projection "perspective" "fov" [40], over the default orthographic
+    // projection or a given one, the transforms after it being the camera transform.
+    Messages messages;
+    const SceneDesc reference =
+        Scene("Projection \"perspective\" \"fov\" [40]\nTranslate 0 0 5\nWorldBegin\nWorldEnd\n", &messages);
+    for (const char* projection : {"", "Projection \"orthographic\"\n"}) {
+        const SceneDesc scene =
+            Scene(std::string(projection) + "Perspective 40\nTranslate 0 0 5\nWorldBegin\nWorldEnd\n", &messages);
+        CHECK(scene.camera.perspective);
+        CHECK(scene.camera.fovDegrees == 40);
+        CHECK(scene.camera.worldToCamera == reference.camera.worldToCamera);
+        CHECK(messages == Messages{"t.rib:" + std::string(*projection ? "2" : "1") +
+                                   ": note: 'Perspective 40' before any other camera transform is the camera's "
+                                   "projection: taken as 'Projection \"perspective\" \"fov\" [40]'"});
+    }
+    // Identity, Transform and the end of a TransformBegin block replace or restore it with the CTM:
+    // the camera stays orthographic.
+    for (const char* around :
+         {"Perspective 40\nIdentity\n", "Perspective 40\nTransform [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1]\n",
+          "TransformBegin\nPerspective 40\nTransformEnd\n"})
+        CHECK(!Scene(std::string(around) + "WorldBegin\nWorldEnd\n", &messages).camera.perspective);
+    // A Projection after it makes it a screen transform, which is ignored with a warning.
+    const SceneDesc screen =
+        Scene("Perspective 40\nProjection \"perspective\" \"fov\" [30]\nWorldBegin\nWorldEnd\n", &messages);
+    CHECK(screen.camera.fovDegrees == 30);
+    CHECK(messages.back() ==
+          "t.rib:2: warning: transforms before 'Projection' (screen transforms) are not supported; ignored");
+
+    CHECK(FirstError("WorldBegin\nPerspective 40\nWorldEnd\n") ==
+          "t.rib:2: error: 'Perspective 40' inside the world block makes the object transform projective (affray's "
+          "transforms are affine); not supported");
+    CHECK(FirstError("Rotate 10 0 1 0\nPerspective 40\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:2: error: 'Perspective 40' after other transforms makes the camera transform projective (affray's "
+          "transforms are affine); not supported: give 'Projection \"perspective\" \"fov\" [40]' before the "
+          "camera's transforms instead");
+    CHECK(FirstError("Projection \"perspective\"\nPerspective 40\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:2: error: 'Perspective 40' after 'Projection \"perspective\"' composes two perspective "
+          "transforms, a projective camera transform (affray's transforms are affine); not supported");
+    CHECK(FirstError("Perspective 40\nPerspective 30\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:2: error: 'Perspective 30' after the 'Perspective' on line 1 composes two perspective "
+          "transforms, a projective camera transform (affray's transforms are affine); not supported");
+    CHECK(FirstError("Perspective 40\nCoordinateSystem \"lens\"\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:2: error: 'CoordinateSystem' after 'Perspective' on line 1 is placed in the projective space it "
+          "makes (affray's transforms are affine); not supported: give it after 'WorldBegin', or 'Projection "
+          "\"perspective\"' instead of 'Perspective'");
+    CHECK(FirstError("Perspective 180\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:1: error: 'Perspective' fov must be between 0 and 180 degrees, got 180");
 }
