@@ -35,8 +35,8 @@ bool RibParser::DoFrameBegin(const RibRequest& r) {
                               std::to_string(m_blocks.back().at.line));
     if (m_worldSeen) return Fail(r.at, "'FrameBegin' after a 'WorldBegin' outside any frame");
     // The options in effect now are every frame's defaults: FrameEnd restores them.
-    m_frameDefaults = FrameDefaults{m_scene,        m_archiveSearchPath, m_cameraLights,  m_cameraCoordinateSystems,
-                                    m_lightHandles, m_options,           m_relativeDetail};
+    m_frameDefaults = FrameDefaults{m_scene,        m_archiveSearchPath, m_cameraLights,   m_cameraCoordinateSystems,
+                                    m_lightHandles, m_options,           m_relativeDetail, m_resources};
     m_scene.frame = static_cast<int>(number);
     m_scene.frameLine = r.at.line;
     return Begin(r, Block::Frame);
@@ -52,6 +52,7 @@ bool RibParser::DoFrameEnd(const RibRequest& r) {
     m_lightHandles = std::move(defaults.lightHandles);
     m_options = std::move(defaults.options);
     m_relativeDetail = defaults.relativeDetail;
+    m_resources = std::move(defaults.resources);  // their lights are the frame's
     m_frameDefaults.reset();
     m_primitivesStamped = 0;
     m_worldSeen = m_worldEnded = false;

@@ -99,6 +99,7 @@ class RibParser : private RibArgChecks {
         std::map<std::string, int> lightHandles;
         std::map<std::string, ParamValue> options;
         double relativeDetail;
+        std::map<std::string, State> resources;
     };
     /// Solid: SolidBegin ... SolidEnd, which saves and restores nothing (RI 3.2 section 5.8).
     enum class Block { Frame, World, Attribute, Transform, Solid };
@@ -400,6 +401,11 @@ class RibParser : private RibArgChecks {
     /// primitive affray cannot render (skipped with a warning), one whose absence would render
     /// another scene (an error), or no request at all (an error).
     bool DoUnhandled(const RibRequest& r);
+    /// Resource "name" "attributes" (save or restore a graphics state), ResourceBegin, ResourceEnd
+    /// (rib/resource.cpp).
+    bool DoResource(const RibRequest& r);
+    bool DoResourceBegin(const RibRequest& r);
+    bool DoResourceEnd(const RibRequest& r);
 
     std::vector<Source> m_sources;
     std::vector<OpenReader> m_readers;
@@ -430,6 +436,9 @@ class RibParser : private RibArgChecks {
     std::map<std::string, glm::dmat4> m_cameraCoordinateSystems;
     std::map<std::string, ParamValue> m_options;  // Option values by "category:name" (conditional RIB)
     double m_relativeDetail = 1;                  // RelativeDetail (an option)
+    std::map<std::string, State> m_resources;     // Resource "attributes" saved, by name
+    /// Open ResourceBegin blocks: where, and the resources saved before them (ResourceEnd restores).
+    std::vector<std::pair<RibPos, std::map<std::string, State>>> m_resourceScopes;
 };
 
 }  // namespace affray::rib

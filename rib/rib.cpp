@@ -111,6 +111,8 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
     if (ok && m_defining) ok = Fail(m_defining->second.at, "'ObjectBegin' has no matching 'ObjectEnd'");
     if (ok && m_motion) ok = Fail(m_motion->at, "'MotionBegin' has no matching 'MotionEnd'");
     if (ok && !m_conditionals.empty()) ok = Fail(m_conditionals.back().at, "'IfBegin' has no matching 'IfEnd'");
+    if (ok && !m_resourceScopes.empty())
+        ok = Fail(m_resourceScopes.back().first, "'ResourceBegin' has no matching 'ResourceEnd'");
     if (ok && !m_blocks.empty()) {
         const OpenBlock& open = m_blocks.back();
         ok =
@@ -252,6 +254,9 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"ObjectEnd", &RibParser::DoObjectEnd},
         {"ObjectInstance", &RibParser::DoObjectInstance},
         {"CoordSysTransform", &RibParser::DoCoordSysTransform},
+        {"Resource", &RibParser::DoResource},
+        {"ResourceBegin", &RibParser::DoResourceBegin},
+        {"ResourceEnd", &RibParser::DoResourceEnd},
     };
     if (auto it = kHandlers.find(r.name); it != kHandlers.end()) {
         if (!(this->*(it->second))(r)) return false;
