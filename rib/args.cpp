@@ -158,7 +158,7 @@ bool RibArgChecks::LeadingString(const RibRequest& r, const char* what, std::str
 
 // Token-value pairs from args[first]. A token may carry an inline declaration ("uniform float
 // Km"); its last word is the name. A repeated name replaces the earlier value.
-bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibParam>* out) {
+bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibParam>* out, bool checkDeclared) {
     std::unordered_map<std::string, size_t> index;
     for (size_t i = 0; i < out->size(); ++i) index[(*out)[i].value.name] = i;
     for (size_t i = first; i < r.args.size(); i += 2) {
@@ -185,7 +185,7 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
         p.value.numbers = value.numbers;
         p.value.strings = value.strings;
         p.at = value.at;
-        if (!p.value.declaration.empty() && !CheckDeclared(r, token, p)) return false;
+        if (checkDeclared && !p.value.declaration.empty() && !CheckDeclared(r, token, p)) return false;
         // An index by name keeps long parameter lists linear.
         auto [slot, isNew] = index.try_emplace(p.value.name, out->size());
         if (isNew)

@@ -76,8 +76,10 @@ class RibArgChecks {
     /// before it the inline declaration; a name without one takes its Declare'd declaration, if
     /// any. A declared parameter must have values of its type (strings or numbers) and, unless
     /// its class varies over a primitive, exactly as many as the type holds. A repeated name
-    /// replaces the earlier value.
-    bool ParamList(const RibRequest& r, size_t first, std::vector<RibParam>* out);
+    /// replaces the earlier value. `checkDeclared` false skips the declarations' checks, for the
+    /// parameters of a shader affray does not have, which are ignored (the RI 3.2 specification's
+    /// own example gives a "uniform point" one number).
+    bool ParamList(const RibRequest& r, size_t first, std::vector<RibParam>* out, bool checkDeclared = true);
     /// `p` (the value of `token`) against its declaration, as ParamList describes.
     bool CheckDeclared(const RibRequest& r, const RibArg& token, const RibParam& p);
     /// A parameter of exactly `count` numbers; `context` names the request ("'Surface \"matte\"'").

@@ -260,7 +260,10 @@ bool RibParser::DoOrientation(const RibRequest& r) {
 bool RibParser::DoSurface(const RibRequest& r) {
     std::string name;
     std::vector<RibParam> params;
-    if (!LeadingString(r, "a surface shader name", &name) || !ParamList(r, 1, &params)) return false;
+    if (!LeadingString(r, "a surface shader name", &name)) return false;
+    // The parameters of a shader affray replaces are ignored, their declarations unchecked.
+    const bool known = name == "matte" || name == "metal" || name == "constant" || name == "plastic";
+    if (!ParamList(r, 1, &params, known)) return false;
     SurfaceDesc surface;  // plastic defaults
     using Model = SurfaceDesc::Model;
     if (name == "matte") {
@@ -330,17 +333,17 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     if (!LeadingString(r, "a light shader name", &name)) return false;
     if (r.args.size() < 2 || r.args[1].isArray)
         return Fail(r.at, "'LightSource' expects a light handle (a number or a string) after the shader name");
-    std::vector<RibParam> params;
-    if (!ParamList(r, 2, &params)) return false;
+    const LightShader* shader = nullptr;
+    for (const LightShader& known : kLightShaders)
+        if (known.name == name) shader = &known;
+    std::vector<RibParam> params;  // those of a light affray does not have are unchecked
+    if (!ParamList(r, 2, &params, shader != nullptr)) return false;
     if (m_worldEnded) return Fail(r.at, "'LightSource' after 'WorldEnd'");
 
     LightDesc light;
     light.line = r.at.line;
     const RibArg& handle = r.args[1];
     light.handle = handle.StringsP() ? handle.strings[0] : FormatNumber(handle.numbers[0]);
-    const LightShader* shader = nullptr;
-    for (const LightShader& known : kLightShaders)
-        if (known.name == name) shader = &known;
     if (!shader) {
         Warn(r.at, "light source " + Quote(name) + " is not supported yet; ignored");
         m_lightHandles[light.handle] = -1;  // Illuminate may still name it
