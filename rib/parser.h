@@ -217,6 +217,7 @@ class RibParser : private RibArgChecks {
     /// something in the projective space it makes.
     bool NoPendingPerspective(const RibRequest& r);
     bool DoDisplay(const RibRequest& r);
+    bool DoDisplayChannel(const RibRequest& r);
     bool DoFrameAspectRatio(const RibRequest& r);
     bool DoScreenWindow(const RibRequest& r);
     bool DoCropWindow(const RibRequest& r);
@@ -437,6 +438,7 @@ class RibParser : private RibArgChecks {
     std::map<std::string, ParamValue> m_options;  // Option values by "category:name" (conditional RIB)
     double m_relativeDetail = 1;                  // RelativeDetail (an option)
     std::map<std::string, State> m_resources;     // Resource "attributes" saved, by name
+    std::set<std::string> m_displayChannels;      // DisplayChannel names, which Display may use
     /// Open ResourceBegin blocks: where, and the resources saved before them (ResourceEnd restores).
     std::vector<std::pair<RibPos, std::map<std::string, State>>> m_resourceScopes;
 };

@@ -182,6 +182,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"Projection", &RibParser::DoProjection},
         {"Perspective", &RibParser::DoPerspective},
         {"Display", &RibParser::DoDisplay},
+        {"DisplayChannel", &RibParser::DoDisplayChannel},
         {"FrameAspectRatio", &RibParser::DoFrameAspectRatio},
         {"ScreenWindow", &RibParser::DoScreenWindow},
         {"CropWindow", &RibParser::DoCropWindow},
@@ -485,26 +486,60 @@ bool RibParser::DoDisplay(const RibRequest& r) {
     }
     if (name.empty()) return Fail(r.args[0].at, "'Display' name must not be empty");
     // The mode is checked here so that a typo fails before a long render, not after it; a shadow
-    // map's mode (another renderer's) is not, since that frame is skipped.
+    // map's mode (another renderer's) is not, since that frame is skipped. A channel the scene
+    // declares (DisplayChannel, Declare, or inline as "color Ci") is one of prman's output
+    // variables: affray's own under its name, else left out with a warning (a typo is declared
+    // nowhere, so it still fails).
     const std::string& type = r.args[1].strings[0];
-    const std::string& mode = r.args[2].strings[0];
+    const std::string& given = r.args[2].strings[0];
     const bool shadowMap = ShadowMapTypeP(type);
+    std::string mode = shadowMap ? given : "";
     for (size_t begin = 0; !shadowMap;) {
-        size_t end = std::min(mode.find(',', begin), mode.size());
-        std::string_view group = std::string_view(mode).substr(begin, end - begin);
-        if (!renderer::DisplayGroupP(group))
-            return Fail(r.args[2].at, "'Display' mode " + Quote(mode) + " has an unknown channel group " +
-                                          Quote(std::string(group)) +
+        const size_t end = std::min(given.find(',', begin), given.size());
+        std::string group = given.substr(begin, end - begin);
+        const size_t first = group.find_first_not_of(' '), last = group.find_last_not_of(' ');
+        group = first == std::string::npos ? "" : group.substr(first, last + 1 - first);
+        const size_t space = group.find_last_of(' ');
+        const bool typed = space != std::string::npos;  // "color Ci"
+        if (typed) group = group.substr(space + 1);
+        const bool declared = typed || m_displayChannels.count(group) || m_declared.count(group);
+        if (renderer::DisplayGroupP(group)) {
+            mode += (mode.empty() ? "" : ",") + group;
+        } else if (declared) {
+            Warn(r.args[2].at, "'Display' channel " + Quote(group) +
+                                   " is an output variable affray does not compute: left out of the image");
+        } else {
+            return Fail(r.args[2].at, "'Display' mode " + Quote(given) + " has an unknown channel group " +
+                                          Quote(group) +
                                           " (expected rgb, rgba, rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost "
-                                          "or err, separated by commas)");
-        if (end == mode.size()) break;
+                                          "or err, or a channel declared by DisplayChannel, separated by commas)");
+        }
+        if (end == given.size()) break;
         begin = end + 1;
     }
+    if (mode.empty()) return Fail(r.args[2].at, "'Display' mode " + Quote(given) + " has no channel affray computes");
     m_scene.displayName = name;
     m_scene.displayType = type;
     m_scene.displayMode = mode;
     if (type != "file" && type != "openexr" && type != "exr" && !shadowMap)
         Warn(r.at, "display type " + Quote(type) + " is not supported; writing an OpenEXR file");
+    return true;
+}
+
+// DisplayChannel "[type] name" (prman): declares an output variable that a Display mode may name.
+// Its parameters (the channel's filter, quantization, ...) are ignored with a warning each.
+bool RibParser::DoDisplayChannel(const RibRequest& r) {
+    std::string channel;
+    std::vector<RibParam> params;
+    if (!BeforeWorld(r) || !LeadingString(r, "a channel (\"color Ci\")", &channel) || !ParamList(r, 1, &params))
+        return false;
+    const size_t last = channel.find_last_not_of(' ');
+    const size_t space = last == std::string::npos ? std::string::npos : channel.find_last_of(' ', last);
+    const std::string name = last == std::string::npos ? "" : channel.substr(space + 1, last - space);
+    if (name.empty()) return Fail(r.args[0].at, "'DisplayChannel' needs a channel name");
+    m_displayChannels.insert(name);
+    for (const RibParam& p : params)
+        Warn(p.at, "'DisplayChannel' parameter " + Quote(p.value.name) + " is not supported; ignored");
     return true;
 }
 

@@ -19,9 +19,9 @@ namespace {
 // RI 3.2 requests that tune what affray has no counterpart for (dicing, bounds,
 // quantizing an image affray writes as floats, the shutter of motion affray does not blur), and
 // later RenderMan requests that name things for other renderers' pipelines (prman's Camera,
-// DisplayChannel, PixelSampleImager, System): accepted with one warning per name.
+// PixelSampleImager, System): accepted with one warning per name.
 constexpr std::string_view kNoEffect[] = {
-    "Begin", "Bound", "Camera", "DisplayChannel", "End", "ErrorHandler",
+    "Begin", "Bound", "Camera", "End", "ErrorHandler",
     "PixelSampleImager", "PixelVariance", "Quantize",
     "Shutter", "System", "TransformPoints",
 };

@@ -660,13 +660,16 @@ TEST_CASE("RIB Display modes follow the channel grammar", "[renderer][rib]") {
     }
     CHECK(ErrorOf("Display \"o.exr\" \"file\" \"rgba,Cs\"\n") ==
           "t.rib:1: error: 'Display' mode 'rgba,Cs' has an unknown channel group 'Cs' (expected rgb, "
-          "rgba, rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost or err, separated by commas)");
+          "rgba, rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost or err, or a channel declared by "
+          "DisplayChannel, separated by commas)");
     CHECK(ErrorOf("Display \"o.exr\" \"file\" \"\"\n") ==
           "t.rib:1: error: 'Display' mode '' has an unknown channel group '' (expected rgb, rgba, "
-          "rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost or err, separated by commas)");
+          "rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost or err, or a channel declared by DisplayChannel, "
+          "separated by commas)");
     CHECK(ErrorOf("Display \"o.exr\" \"file\" \"rgb,,N\"\n") ==
           "t.rib:1: error: 'Display' mode 'rgb,,N' has an unknown channel group '' (expected rgb, "
-          "rgba, rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost or err, separated by commas)");
+          "rgba, rgbz, rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost or err, or a channel declared by "
+          "DisplayChannel, separated by commas)");
     CHECK(ErrorOf("Display \"o.exr\" \"file\" \"RGB\"\n").find("unknown channel group 'RGB'") != std::string::npos);
 }
 

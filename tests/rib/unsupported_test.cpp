@@ -219,7 +219,7 @@ TEST_CASE("rib: primitives affray cannot make are skipped with one warning per n
           "t.rib:1: error: 'Curves' must come between 'WorldBegin' and 'WorldEnd'");
 }
 
-TEST_CASE("rib: other renderers' requests warn once per name, a projective one and unknown names are errors", "[rib]") {
+TEST_CASE("rib: other renderers' requests warn once per name, unknown names are errors", "[rib]") {
     Messages messages;
     const SceneDesc scene = Scene(
         "Camera \"world\" \"float[2] shutteropening\" [0 1]\nDisplayChannel \"color Ci\"\n"
@@ -233,7 +233,6 @@ TEST_CASE("rib: other renderers' requests warn once per name, a projective one a
     CHECK(messages ==
           Messages{
               "t.rib:1: warning: 'Camera' does not apply to affray; ignored",
-              "t.rib:2: warning: 'DisplayChannel' does not apply to affray; ignored",
               "t.rib:3: warning: 'PixelVariance' does not apply to affray; ignored",
               "t.rib:5: warning: 'Deformation' is not supported (deformation shaders are an optional RI 3.2 "
               "capability); ignored: the geometry is not deformed",
@@ -296,4 +295,34 @@ TEST_CASE("rib: Perspective before any camera transform is the camera's projecti
           "\"perspective\"' instead of 'Perspective'");
     CHECK(FirstError("Perspective 180\nWorldBegin\nWorldEnd\n") ==
           "t.rib:1: error: 'Perspective' fov must be between 0 and 180 degrees, got 180");
+}
+
+TEST_CASE("rib: a Display mode may name channels DisplayChannel, Declare or an inline type declares", "[rib]") {
+    // RenderMan for Maya 21 and later: the beauty display with the denoiser's channels. affray's
+    // own are kept under their names; the others are left out with a warning.
+    Messages messages;
+    const SceneDesc scene = Scene(
+        "DisplayChannel \"color Ci\"\nDisplayChannel \"float a\"\nDisplayChannel \"color mse\" \"string filter\" "
+        "\"gaussian\"\nDeclare \"albedo\" \"varying color\"\n"
+        "Display \"beauty.exr\" \"openexr\" \"Ci,a,mse,albedo, color diffuse ,z\"\nWorldBegin\nWorldEnd\n",
+        &messages);
+    CHECK(scene.displayMode == "Ci,a,z");
+    CHECK(messages == Messages{
+                          "t.rib:3: warning: 'DisplayChannel' parameter 'filter' is not supported; ignored",
+                          "t.rib:5: warning: 'Display' channel 'mse' is an output variable affray does not compute: "
+                          "left out of the image",
+                          "t.rib:5: warning: 'Display' channel 'albedo' is an output variable affray does not "
+                          "compute: left out of the image",
+                          "t.rib:5: warning: 'Display' channel 'diffuse' is an output variable affray does not "
+                          "compute: left out of the image",
+                      });
+    // A channel declared nowhere is most often a typo; a mode of no channel affray has renders nothing.
+    CHECK(FirstError("Display \"x.exr\" \"openexr\" \"rgba,mse\"\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:1: error: 'Display' mode 'rgba,mse' has an unknown channel group 'mse' (expected rgb, rgba, rgbz, "
+          "rgbaz, r, g, b, a, z, Ci, Oi, Z, N, P, st, cost or err, or a channel declared by DisplayChannel, "
+          "separated by commas)");
+    CHECK(FirstError("DisplayChannel \"color mse\"\nDisplay \"x.exr\" \"openexr\" \"mse\"\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:2: error: 'Display' mode 'mse' has no channel affray computes");
+    CHECK(FirstError("DisplayChannel \"  \"\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:1: error: 'DisplayChannel' needs a channel name");
 }
