@@ -54,7 +54,10 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, c
 
 namespace {
 
-/// NAME.sl or, failing that, NAME.afb (compiled), in the first directory that has either.
+/// NAME.sl or, failing that, NAME.afb (compiled), in the first directory that has either. A name
+/// given with a compiled shader's extension, as scenes exported for one renderer name them
+/// (prman's .slo, BMRT's .slc, 3Delight's .sdl, Aqsis's .slx, Pixie's .sdr) or with .sl, is the
+/// shader of its stem.
 std::string FindShader(const std::string& name, const std::vector<std::string>& paths) {
     for (const std::string& dir : paths) {
         for (const char* extension : {".sl", ".afb"}) {
@@ -63,6 +66,9 @@ std::string FindShader(const std::string& name, const std::vector<std::string>& 
             if (std::filesystem::is_regular_file(candidate, ec)) return candidate.string();
         }
     }
+    const std::string extension = std::filesystem::path(name).extension().string();
+    for (const char* compiled : {".sl", ".slo", ".slc", ".sdl", ".slx", ".sdr"})
+        if (extension == compiled) return FindShader(name.substr(0, name.size() - extension.size()), paths);
     return {};
 }
 
