@@ -1,5 +1,6 @@
 // rib/frames.cpp: frames and world blocks (FrameBegin, FrameEnd, WorldBegin, WorldEnd) and what
-// only serves a scanline renderer's shadow passes (their frames, the Make* requests). Each world
+// only serves a scanline renderer's shadow passes (their frames, the Make* requests) and prman's
+// other passes that make no image (photon maps, "null" displays). Each world
 // block is one frame, a SceneDesc pushed at WorldEnd; FrameBegin saves the options (and the
 // camera-space lights and coordinate systems) that FrameEnd restores, so options before the first
 // frame are every frame's defaults (RI 3.2 section 4.1). Rules shared with rib.cpp are in
@@ -36,7 +37,8 @@ bool RibParser::DoFrameBegin(const RibRequest& r) {
     if (m_worldSeen) return Fail(r.at, "'FrameBegin' after a 'WorldBegin' outside any frame");
     // The options in effect now are every frame's defaults: FrameEnd restores them.
     m_frameDefaults = FrameDefaults{m_scene,        m_archiveSearchPath, m_cameraLights,   m_cameraCoordinateSystems,
-                                    m_lightHandles, m_options,           m_relativeDetail, m_resources};
+                                    m_lightHandles, m_options,           m_relativeDetail, m_resources,
+                                    m_hider};
     m_scene.frame = static_cast<int>(number);
     m_scene.frameLine = r.at.line;
     return Begin(r, Block::Frame);
@@ -53,6 +55,7 @@ bool RibParser::DoFrameEnd(const RibRequest& r) {
     m_options = std::move(defaults.options);
     m_relativeDetail = defaults.relativeDetail;
     m_resources = std::move(defaults.resources);  // their lights are the frame's
+    m_hider = std::move(defaults.hider);
     m_frameDefaults.reset();
     m_primitivesStamped = 0;
     m_worldSeen = m_worldEnded = false;
@@ -65,9 +68,14 @@ std::string RibParser::SkipReason() const {
     // Depth alone to a file that is not OpenEXR (prman's "file" is a TIFF) is a depth map pass;
     // to OpenEXR it is affray's depth image.
     const bool depthOnly = m_scene.displayMode == "z" && type != "openexr" && type != "exr";
+    const std::string display =
+        "Display " + Quote(m_scene.displayName) + " " + Quote(type) + " " + Quote(m_scene.displayMode);
+    // prman's photon map pass and its "null" display (a pass run for what its shaders write:
+    // baked point clouds, brick maps) make no image either.
+    if (m_hider == "photon") return "a photon map (Hider \"photon\") for a global illumination pass";
+    if (type == "null") return "no image (" + display + "): a pass run for what its shaders write (baked maps)";
     if (!shadow && type != "zfile" && !depthOnly) return "";
-    return std::string(shadow ? "a shadow map" : "a depth map") + " for a scanline renderer (Display " +
-           Quote(m_scene.displayName) + " " + Quote(type) + " " + Quote(m_scene.displayMode) + ")";
+    return std::string(shadow ? "a shadow map" : "a depth map") + " for a scanline renderer (" + display + ")";
 }
 
 bool RibParser::DoWorldBegin(const RibRequest& r) {
@@ -115,7 +123,10 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
         const std::string what =
             m_frameDefaults ? "frame " + std::to_string(*m_scene.frame) : std::string("the world block");
         const RibPos at = m_frameDefaults ? m_blocks.front().at : r.at;  // FrameBegin opens no block inside another
-        Note(at, what + " renders " + m_scene.skipped + "; affray traces shadows: skipped");
+        const char* why = m_hider == "photon"             ? "affray computes no global illumination"
+                          : m_scene.displayType == "null" ? "affray's shaders write no files"
+                                                          : "affray traces shadows";
+        Note(at, what + " renders " + m_scene.skipped + "; " + why + ": skipped");
     }
     m_worldSeen = true;
     Begin(r, Block::World);

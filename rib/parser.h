@@ -100,6 +100,7 @@ class RibParser : private RibArgChecks {
         std::map<std::string, ParamValue> options;
         double relativeDetail;
         std::map<std::string, State> resources;
+        std::string hider;
     };
     /// Solid: SolidBegin ... SolidEnd, which saves and restores nothing (RI 3.2 section 5.8).
     enum class Block { Frame, World, Attribute, Transform, Solid };
@@ -269,7 +270,8 @@ class RibParser : private RibArgChecks {
     bool DoFrameEnd(const RibRequest& r);
     bool DoWorldBegin(const RibRequest& r);
     bool DoWorldEnd(const RibRequest& r);
-    /// Why the current frame renders no image (a shadow or depth map pass), or "".
+    /// Why the current frame renders no image (a shadow, depth or photon map pass, a "null"
+    /// display), or "".
     std::string SkipReason() const;
     /// Whether a Display of type `type` writes a shadow or depth map (another renderer's).
     static bool ShadowMapTypeP(std::string_view type);
@@ -439,6 +441,7 @@ class RibParser : private RibArgChecks {
     double m_relativeDetail = 1;                  // RelativeDetail (an option)
     std::map<std::string, State> m_resources;     // Resource "attributes" saved, by name
     std::set<std::string> m_displayChannels;      // DisplayChannel names, which Display may use
+    std::string m_hider = "hidden";               // Hider (an option)
     /// Open ResourceBegin blocks: where, and the resources saved before them (ResourceEnd restores).
     std::vector<std::pair<RibPos, std::map<std::string, State>>> m_resourceScopes;
 };

@@ -486,15 +486,15 @@ bool RibParser::DoDisplay(const RibRequest& r) {
     }
     if (name.empty()) return Fail(r.args[0].at, "'Display' name must not be empty");
     // The mode is checked here so that a typo fails before a long render, not after it; a shadow
-    // map's mode (another renderer's) is not, since that frame is skipped. A channel the scene
+    // map's or a "null" display's mode (another renderer's) is not, since that frame is skipped. A channel the scene
     // declares (DisplayChannel, Declare, or inline as "color Ci") is one of prman's output
     // variables: affray's own under its name, else left out with a warning (a typo is declared
     // nowhere, so it still fails).
     const std::string& type = r.args[1].strings[0];
     const std::string& given = r.args[2].strings[0];
-    const bool shadowMap = ShadowMapTypeP(type);
-    std::string mode = shadowMap ? given : "";
-    for (size_t begin = 0; !shadowMap;) {
+    const bool noImage = ShadowMapTypeP(type) || type == "null";  // a skipped frame (SkipReason)
+    std::string mode = noImage ? given : "";
+    for (size_t begin = 0; !noImage;) {
         const size_t end = std::min(given.find(',', begin), given.size());
         std::string group = given.substr(begin, end - begin);
         const size_t first = group.find_first_not_of(' '), last = group.find_last_not_of(' ');
@@ -521,7 +521,7 @@ bool RibParser::DoDisplay(const RibRequest& r) {
     m_scene.displayName = name;
     m_scene.displayType = type;
     m_scene.displayMode = mode;
-    if (type != "file" && type != "openexr" && type != "exr" && !shadowMap)
+    if (type != "file" && type != "openexr" && type != "exr" && !noImage)
         Warn(r.at, "display type " + Quote(type) + " is not supported; writing an OpenEXR file");
     return true;
 }

@@ -66,7 +66,8 @@ bool RibParser::DoHider(const RibRequest& r) {
     std::string name;
     std::vector<RibParam> params;
     if (!BeforeWorld(r) || !LeadingString(r, "a hider name", &name) || !ParamList(r, 1, &params)) return false;
-    if (name != "hidden")
+    m_hider = name;  // "photon" makes the frame a photon map pass (SkipReason)
+    if (name != "hidden" && name != "photon")
         Warn(r.at, "hider " + Quote(name) + " is not supported; rendering with affray's ray tracer (as \"hidden\")");
     const std::string context = "'Hider \"" + name + "\"'";
     for (const RibParam& p : params) {
