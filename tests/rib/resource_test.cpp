@@ -80,7 +80,7 @@ TEST_CASE("rib: ResourceBegin and ResourceEnd scope the names saved", "[rib]") {
     CHECK(WorldError("ResourceBegin\n") == "t.rib:2: error: 'ResourceBegin' has no matching 'ResourceEnd'");
 }
 
-TEST_CASE("rib: Resource checks its arguments; other types are ignored with a warning", "[rib]") {
+TEST_CASE("rib: Resource checks its arguments, and other types are ignored with a warning", "[rib]") {
     CHECK(WorldError("Resource \"a\"\n") ==
           "t.rib:2: error: 'Resource' expects a name, a resource type and parameters");
     CHECK(WorldError("Resource \"a\" \"attributes\" \"operation\" [1]\n") ==

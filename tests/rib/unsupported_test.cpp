@@ -247,7 +247,7 @@ TEST_CASE("rib: other renderers' requests warn once per name, unknown names are 
     CHECK(FirstError("WorldBegin\nSpehre 1 -1 1 360\nWorldEnd\n") == "t.rib:2: error: unknown RIB request 'Spehre'");
 }
 
-TEST_CASE("rib: Perspective before any camera transform is the camera's projection; elsewhere refused", "[rib]") {
+TEST_CASE("rib: Perspective before any camera transform is the camera's projection, elsewhere refused", "[rib]") {
     // The same camera as Projection "perspective" "fov" [40], over the default orthographic
     // projection or a given one, the transforms after it being the camera transform.
     Messages messages;
