@@ -78,14 +78,20 @@
 //        as wide (mean over parts 0.5 to 0.001 of a cell wide), and it is cheaper (bench/real's
 //        subdivision scene, a crop of 7,956 camera rays: 42.6 bounds evaluated per ray instead
 //        of 73.5, 2.9 thread-seconds of bounds instead of 5.0).
-//        ReducedAffine goes one step further (LocalCellOnRegion): its coordinates are affine in
-//        the region's own eps_u and eps_v, so the cell polynomial is evaluated on those symbols
-//        (and one per coordinate for its error) rather than on independent sigma_i: a surface's
-//        region is a parallelogram in noise space, and over it the products of coordinates
-//        cancel as on the surface. Its error over regions 0.1 and 0.01 of a cell wide is 4.2
-//        and 3.6 times the noise's true deviation from the bound's plane, against 6.7 and 5.9
-//        on the sigma_i (tests/vm/numbers/noise_test.cpp); the subdivision scene's crop above
-//        evaluates 40.0 bounds per ray instead of 42.6, and the teapot renders in 0.87 times the time.
+//        ReducedAffine takes a third way (QuadraticCellOnRegion): its coordinates are affine in
+//        the region's own eps_u and eps_v (a surface's region is a parallelogram in noise space,
+//        not the box of its coordinate ranges), so the cell polynomial is evaluated on those
+//        symbols, in QuadForm arithmetic (vm/numbers/quad_form.h), which keeps the second-order
+//        terms in eps_u, eps_v exactly through the fades and the lerps and reduces only third and
+//        fourth order (u^3 = 0.75 u +- 0.25, ...); each fade is its Taylor polynomial over the
+//        coordinate's part of the cell (MakeQuadAxis), its terms beyond second order on a symbol
+//        of the coordinate's own. The error left is the quadratic part's range over the region
+//        plus small change: over regions 0.3, 0.2, 0.1 and 0.01 of a cell wide it is 3.1, 2.1,
+//        1.4 and 1.03 times the noise's true deviation from the bound's plane inside a cell, and
+//        6.1, 5.4, 4.3 and 1.1 across faces (tests/vm/numbers/noise_test.cpp). The LocalForm
+//        on eps_u and eps_v that it replaces (one symbol per product) gave 5.4, 5.0, 4.4 and 3.7
+//        inside, and costs about twice as much per cell. bench/real's subdivision scene: 25.3 s
+//        -> 19.9 s (paired runs), 25.8 -> 22.4 bounds evaluated per camera ray.
 //        The mean-value form raw(c) + grad raw(B).(t - c), with the gradient over B enclosed by
 //        interval forward differentiation, was tried first and dropped: as slow (the interval
 //        gradient costs as much as the affine polynomial) and 1.2-8 times wider at 1/64 (the
@@ -149,6 +155,7 @@
 #include <type_traits>
 
 #include "vm/numbers/number.h"
+#include "vm/numbers/quad_form.h"
 
 namespace affray::vm {
 
@@ -548,69 +555,130 @@ LocalAxis MakeLocalAxis(const T& p, double k) {
     return axis;
 }
 
+/// One coordinate of a reduced affine region in one cell, for QuadraticCellOnRegion: the cell's
+/// local coordinate t = p - k and its fade, as QuadForms on eps_u and eps_v.
+struct QuadAxis {
+    QuadForm t, fade;
+};
+
+/// The QuadAxis of reduced affine coordinate p in the cell whose index along it is k; `own` is
+/// the QuadForm symbol this coordinate's fade may use. The double t_d = p_d - k at a point of the
+/// region lies in tc + L +- xi, with tc = p's centre - k (rounded), L = a eps_u + b eps_v (p's
+/// coefficients) and xi = p's error plus the roundings of tc and t_d: that is the form t.
+/// The fade is needed only at the points of the region inside this cell, whose t_d lie in the
+/// part [lo, hi] of [0, 1] that p - k reaches (as in MakeLocalAxis): with c its centre and R its
+/// reach, delta = t_d - c is in [-R, R] there, and s(c + delta) = sum q_k delta^k (q_k =
+/// s^(k)(c)/k!, k <= 5) is reduced in sigma = delta/R in [-1, 1]: delta^3 = 0.75 R^2 delta +-
+/// 0.25 R^3, delta^4 = R^2 delta^2 - R^4/8 +- R^4/8, delta^5 = +-R^5 (these remainders are a
+/// function of delta alone: the own symbol). What is left, a0 + a1 delta + a2 delta^2, is
+/// written on eps_u and eps_v through delta = (tc - c) + L +- xi exactly but for the +- xi,
+/// whose effect, at most xi (|a1| + |a2| (2R + 3xi)), goes to the error. A part clipped to the
+/// cell keeps a region straddling a face from paying for the cell polynomial's continuation past
+/// it (the neighbouring cell bounds those points). The rounding: of each q_k (16 ulps of its
+/// terms' magnitudes, as in MakeLocalAxis), of the form's coefficients (8 ulps of their
+/// magnitudes), and of Fade in doubles at any t_d of the part (8 ulps of 6 t^5 + 15 t^4 + 10 t^3
+/// <= 31 hi^3).
+inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
+    const double tc = p.center() - k;
+    const double a = p.coefficientU(), b = p.coefficientV();
+    const double xi = AddUp(AddUp(p.error(), std::fabs(tc) * kEpsilon), kEpsilon);
+    QuadAxis axis;
+    axis.t = QuadForm::Linear(tc, a, b, xi);
+    const Interval range = RangeOf(p) - k;
+    const double lo = std::clamp(range.lo(), 0.0, 1.0), hi = std::clamp(range.hi(), 0.0, 1.0);
+    const double c = 0.5 * (lo + hi);  // in [0, 1]
+    const double R = std::max(SubUp(c, lo), SubUp(hi, c));
+    const double offset = tc - c;                                     // rounded: an ulp of it, in xiOffset
+    const double xiOffset = AddUp(xi, std::fabs(offset) * kEpsilon);  // delta = offset + L +- xiOffset
+    const double c2 = c * c, c3 = c2 * c;
+    const double q0 = c3 * (c * (c * 6.0 - 15.0) + 10.0), m0 = c3 * (c * (c * 6.0 + 15.0) + 10.0);
+    const double q1 = 30.0 * c2 * (c - 1.0) * (c - 1.0), m1 = 30.0 * c2 * (c2 + 2.0 * c + 1.0);
+    const double q2 = c * (c * (60.0 * c - 90.0) + 30.0), m2 = c * (c * (60.0 * c + 90.0) + 30.0);
+    const double q3 = c * (60.0 * c - 60.0) + 10.0, m3 = c * (60.0 * c + 60.0) + 10.0;
+    const double q4 = 30.0 * c - 15.0, m4 = 30.0 * c + 15.0;
+    const double R2 = R * R, R3 = R2 * R, R4 = R3 * R, R5 = R4 * R;
+    double alpha0 = q0 - 0.125 * q4 * R4, alpha1 = q1 + 0.75 * q3 * R2, alpha2 = q2 + q4 * R2;
+    double ownPart = 0.25 * std::fabs(q3) * R3 + 0.125 * std::fabs(q4) * R4 + 6.0 * R5;
+    if (range.lo() < 0 || range.hi() > 1) {
+        // A straddling region: a quadratic in eps_u, eps_v would be ranged over the whole region
+        // at the end, where past the face |delta| exceeds R; delta^2 = R^2/2 +- R^2/2 instead.
+        alpha0 += 0.5 * alpha2 * R2;
+        ownPart += 0.5 * std::fabs(alpha2) * R2;
+        alpha2 = 0;
+    }
+    // delta's form without xi, and its square.
+    const QuadForm delta = QuadForm::Linear(offset, a, b, 0.0);
+    QuadForm& f = axis.fade;
+    f.c[QuadForm::k0] = alpha0 + alpha1 * offset + alpha2 * (offset * offset);
+    f.c[QuadForm::kU] = alpha1 * a + alpha2 * (2 * offset * a);
+    f.c[QuadForm::kV] = alpha1 * b + alpha2 * (2 * offset * b);
+    f.c[QuadForm::kUU] = alpha2 * (a * a);
+    f.c[QuadForm::kUV] = alpha2 * (2 * a * b);
+    f.c[QuadForm::kVV] = alpha2 * (b * b);
+    f.o[own] = ownPart * kSumSlack;
+    const double perturbed = xiOffset * (std::fabs(alpha1) + std::fabs(alpha2) * (2 * R + 3 * xiOffset));
+    const double coefficients = m0 + m1 * R + m2 * R2 + m3 * R3 + m4 * R4 + 6.0 * R5;
+    const double d = delta.coefficientSum();
+    const double formed = std::fabs(alpha0) + std::fabs(alpha1) * d + std::fabs(alpha2) * d * d + std::fabs(q3) * R3 +
+                          std::fabs(q4) * R4 + f.coefficientSum();
+    const double scalar = 31.0 * hi * hi * hi;
+    f.r = (perturbed + (16 * coefficients + 8 * formed + 8 * scalar) * kEpsilon) * kSumSlack + kUnderflowSlack;
+    return axis;
+}
+
+/// One cell's noise value before the final clamp, raw * NoiseScale(dims) + 0.5, over a reduced
+/// affine region, by the cell polynomial in QuadForm arithmetic (vm/numbers/quad_form.h) on the
+/// region's own eps_u and eps_v: the operations of FadedCellPolynomial in its order (so each
+/// form contains the double result at every point of the region in this cell, rounding
+/// included). Second order is kept exactly through the fades and the lerps, so the error left is
+/// the quadratic part's range over the region, the truncated higher orders and the rounding:
+/// about the noise's own deviation from its plane (tests/vm/numbers/noise_test.cpp).
+[[gnu::flatten]] inline ReducedAffine QuadraticCellOnRegion(const QuadAxis* const* axes, int dims,
+                                                            const double (*g)[4]) {
+    QuadForm below[4];  // t_i - 1
+    for (int i = 0; i < dims; ++i) below[i] = axes[i]->t + (-1.0);
+    QuadForm v[16];
+    const int corners = 1 << dims;
+    for (int o = 0; o < corners; ++o) {
+        // AddTerm's sum g_o . (t - o), term by term.
+        QuadForm& acc = v[o];
+        bool any = false;
+        for (int i = 0; i < dims; ++i) {
+            const double gi = g[o][i];
+            if (gi == 0) continue;
+            const QuadForm& x = (o >> i) & 1 ? below[i] : axes[i]->t;
+            if (!any)
+                acc = gi == 1 ? x : gi == -1 ? -x : gi * x;
+            else
+                acc = gi == 1 ? acc + x : gi == -1 ? acc - x : acc + gi * x;
+            any = true;
+        }
+    }
+    // Lerp away dimension 0, then 1, ...: v[a] + s_i (v[b] - v[a]).
+    for (int i = 0, stride = 1; i < dims; ++i, stride *= 2)
+        for (int a = 0; a < corners; a += 2 * stride) {
+            const int b = a + stride;
+            v[a] = v[a] + axes[i]->fade * (v[b] - v[a]);
+        }
+    const QuadForm raw = v[0] * NoiseScale(dims) + 0.5;
+    double lo, hi;
+    raw.quadraticRange(&lo, &hi);
+    const double quadratic =
+        std::fabs(raw.c[QuadForm::kUU]) + std::fabs(raw.c[QuadForm::kUV]) + std::fabs(raw.c[QuadForm::kVV]);
+    const double mid = 0.5 * (lo + hi), center = raw.c[QuadForm::k0] + mid;
+    const double error = (raw.r + raw.ownSum() + 0.5 * (hi - lo) +
+                          (8 * quadratic + std::fabs(raw.c[QuadForm::k0]) + std::fabs(center)) * kEpsilon) *
+                             kSumSlack +
+                         kUnderflowSlack;
+    return ReducedAffine::FromForm(center, raw.c[QuadForm::kU], raw.c[QuadForm::kV], error);
+}
+
 /// One cell's noise value before the final clamp, raw * NoiseScale(dims) + 0.5, over a region by
 /// LocalForm (see the head comment): p the noise coordinates, k the cell, axes[i] the LocalAxis
 /// of p[i] in it, g[o] the gradients of its corners. Contains the double value at every double
 /// point of the region that lies in this cell (t_d = p - k in double, in [0, 1]^dims).
-/// LocalCell for reduced affine coordinates, on the region's own symbols: t_i = p_i - k_i is
-/// exactly (p_i's centre - k_i) + a_i eps_u + b_i eps_v + e_i xi_i in LocalForm (xi_i a symbol
-/// of its own for p_i's error and the rounding of t_d = p_d - k_i, at most one ulp of 1), and
-/// the fade's linear part, fadeLinear (t_i - centre)/reach, is carried onto the same symbols.
-/// The cell polynomial is then a function of (eps_u, eps_v) whose correlations across the
-/// coordinates are kept: the region of a surface is a parallelogram in noise space, not the box
-/// of its coordinate ranges (whose corners the sigma_i of LocalCell also cover), so products of
-/// coordinates cancel as they do on the surface. The result is read off directly: centre and
-/// eps_u, eps_v coefficients, everything else (xi, the fades' own symbols, the products' fresh
-/// symbols, e) its error.
-inline ReducedAffine LocalCellOnRegion(const ReducedAffine* p, const double* k, int dims, const LocalAxis* const* axes,
-                                       const double (*g)[4]) {
-    // Symbols: eps_u, eps_v in slots 0, 1; xi_i in slot 2 + i; the fade of coordinate i's own
-    // symbol in slot 2 + dims + i; then the fresh symbols of this cell's products.
-    constexpr int kU = 0, kV = 1, kFirstXi = 2;
-    const int firstOwn = kFirstXi + dims;
-    LocalForm t[4], fade[4];
-    LocalForm::Begin(firstOwn + dims);
-    for (int i = 0; i < dims; ++i) {
-        const LocalAxis& a = *axes[i];
-        const double tc = p[i].center() - k[i];
-        // p_i's error, the rounding of tc (an ulp of it) and of t_d (one ulp of 1: t_d <= 1).
-        const double xi = AddUp(AddUp(p[i].error(), std::fabs(tc) * kEpsilon), kEpsilon);
-        LocalForm& ti = t[i];
-        ti.c0 = tc;
-        ti.e = 0;
-        ti.n = kFirstXi + i + 1;
-        for (int s = 0; s < ti.n; ++s) ti.c[s] = 0;
-        ti.c[kU] = p[i].coefficientU();
-        ti.c[kV] = p[i].coefficientV();
-        ti.c[kFirstXi + i] = xi;
-        // fade = fade0 + fadeLinear sigma + fadeOwn own +- fadeError, sigma = (t - centre)/reach,
-        // so the linear part is slope (t - centre) with slope = fadeLinear/reach (rounded: its
-        // rounding, and that of each product below, is an ulp of the term at most, two taken).
-        LocalForm& f = fade[i];
-        f.n = firstOwn + i + 1;
-        for (int s = 0; s < f.n; ++s) f.c[s] = 0;
-        f.c[firstOwn + i] = a.fadeOwn;
-        const double slope = a.reach > 0 && a.fadeLinear != 0 ? a.fadeLinear / a.reach : 0.0;
-        const double offset = tc - a.centre;  // rounded: an ulp of it, counted below
-        f.c0 = a.fade0 + slope * offset;
-        f.c[kU] = slope * ti.c[kU];
-        f.c[kV] = slope * ti.c[kV];
-        f.c[kFirstXi + i] = slope * xi;
-        const double terms =
-            std::fabs(slope) * (2 * std::fabs(offset) + std::fabs(ti.c[kU]) + std::fabs(ti.c[kV]) + xi);
-        f.e = AddUp(a.fadeError, (terms + std::fabs(a.fade0)) * (4 * kEpsilon));
-    }
-    const LocalForm raw = FadedCellPolynomialInPlace(t, fade, dims, g) * NoiseScale(dims) + 0.5;
-    UpperSum error;
-    error.add(raw.e);
-    for (int s = kFirstXi; s < raw.n; ++s) error.add(std::fabs(raw.c[s]));
-    const double u = raw.n > kU ? raw.c[kU] : 0.0, v = raw.n > kV ? raw.c[kV] : 0.0;
-    return ReducedAffine::FromForm(raw.c0, u, v, AddUp(error.value(), kUnderflowSlack));
-}
-
 template <class T>
 T LocalCell(const T* p, const double* k, int dims, const LocalAxis* const* axes, const double (*g)[4]) {
-    if constexpr (std::is_same_v<T, ReducedAffine>) return LocalCellOnRegion(p, k, dims, axes, g);
     // Symbols: sigma_i in slot i, the fade of coordinate i's own symbol in slot dims + i, then
     // the fresh symbols of this cell's products.
     LocalForm t[4], fade[4];
@@ -717,12 +785,18 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
     T raw(0.0);
     if (cellwise) {
         // Local: each coordinate's axes, one per cell index it touches (at most kNoiseCellCap).
-        LocalAxis axes[4][kNoiseCellCap];
+        constexpr bool kQuadratic = std::is_same_v<T, ReducedAffine>;  // QuadraticCellOnRegion
+        LocalAxis axes[4][kQuadratic ? 1 : kNoiseCellCap];
+        QuadAxis quads[4][kQuadratic ? kNoiseCellCap : 1];
         if constexpr (kLocalNoise<T>) {
             if (local)
                 for (int i = 0; i < dims; ++i)
-                    for (int j = 0; j < static_cast<int>(box.count[i]); ++j)
-                        axes[i][j] = MakeLocalAxis(p[i], box.kLo[i] + j);
+                    for (int j = 0; j < static_cast<int>(box.count[i]); ++j) {
+                        if constexpr (kQuadratic)
+                            quads[i][j] = MakeQuadAxis(p[i], box.kLo[i] + j, i);
+                        else
+                            axes[i][j] = MakeLocalAxis(p[i], box.kLo[i] + j);
+                    }
         }
         bool first = true;
         box.ForEach(dims, [&](const double* k, const int* j) {
@@ -744,9 +818,15 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
             T v(0.0);
             if constexpr (kLocalNoise<T>) {
                 if (local) {
-                    const LocalAxis* cellAxes[4];
-                    for (int i = 0; i < dims; ++i) cellAxes[i] = &axes[i][j[i]];
-                    v = LocalCell(p, k, dims, cellAxes, g);
+                    if constexpr (kQuadratic) {
+                        const QuadAxis* cellAxes[4];
+                        for (int i = 0; i < dims; ++i) cellAxes[i] = &quads[i][j[i]];
+                        v = QuadraticCellOnRegion(cellAxes, dims, g);
+                    } else {
+                        const LocalAxis* cellAxes[4];
+                        for (int i = 0; i < dims; ++i) cellAxes[i] = &axes[i][j[i]];
+                        v = LocalCell(p, k, dims, cellAxes, g);
+                    }
                 }
             }
             if (!local) v = CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; });

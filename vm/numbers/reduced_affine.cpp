@@ -371,17 +371,26 @@ ReducedAffine Max(const ReducedAffine& a, const ReducedAffine& b) {
     return ReducedAffine::Tighten(ReducedAffine::MinMaxForm(a, b, true), Max(a.range(), b.range()));
 }
 
-// m = (a + b)/2 plus JoinSlack(max |(a - b)/2|, max |m|) of error, within the hull of the ranges
-// (vm/numbers/affine_logic.cpp's Join).
+// A value in a or in b, at each point: m = (a + b)/2 on the linear parts, and the error
+// max(ea, eb) + max |a - b|/2 over the linear parts (|x - m| <= |a_lin - m_lin| + ea where x is in
+// a), plus the rounding of m's terms and of that maximum; within the hull of the ranges. (Taking
+// (a + b)/2 and (a - b)/2 as reduced affine operations would count both errors twice over:
+// ea + eb + max |a_lin - b_lin|/2, about twice as wide when the errors are alike, which is the case
+// of noise joined over the lattice cells a region straddles.)
 ReducedAffine Join(const ReducedAffine& a, const ReducedAffine& b) {
     if (a.isUnbounded() || b.isUnbounded()) return ReducedAffine::UnboundedWithin(Hull(a.range(), b.range()));
     const Interval hull = Hull(a.range(), b.range());
-    const ReducedAffine m = (a + b) * 0.5;
-    const ReducedAffine h = (a - b) * 0.5;
-    if (m.isUnbounded() || h.isUnbounded()) return ReducedAffine::FromInterval(hull);
-    const double extra = JoinSlack(MaxAbs(h.range()), MaxAbs(m.range()));
-    if (!(extra <= kMaxFinite)) return ReducedAffine::FromInterval(hull);
-    return ReducedAffine::Tighten(m.withExtraError(extra), hull);
+    const double c = 0.5 * (a.center() + b.center()), u = 0.5 * (a.coefficientU() + b.coefficientU()),
+                 v = 0.5 * (a.coefficientV() + b.coefficientV());
+    const double spread = std::fabs(a.center() - b.center()) + std::fabs(a.coefficientU() - b.coefficientU()) +
+                          std::fabs(a.coefficientV() - b.coefficientV());
+    const double error = (std::fmax(a.error(), b.error()) + 0.5 * spread +
+                          (std::fabs(c) + std::fabs(u) + std::fabs(v) + spread) * kEpsilon) *
+                             kSumSlack +
+                         kUnderflowSlack;
+    if (!(error <= kMaxFinite) || !std::isfinite(c) || !std::isfinite(u) || !std::isfinite(v))
+        return ReducedAffine::FromInterval(hull);
+    return ReducedAffine::Tighten(ReducedAffine::FromForm(c, u, v, error), hull);
 }
 
 }  // namespace affray::vm

@@ -1,0 +1,145 @@
+// tests/vm/numbers/quad_form_test.cpp: vm/numbers/quad_form.h. Every operation contains the double
+// result of the same operation at every point (Stolfi's aavalid method, as for noise's
+// LocalForm), the product's reductions of degrees 3 and 4 included; the quadratic part's range is
+// exact.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "tests/test_random.h"
+#include "vm/numbers/quad_form.h"
+
+using namespace affray::vm;
+using affray::test::Rng;
+using affray::test::Samples;
+
+namespace {
+
+/// The polynomial part of x at (u, v) and own symbol values w, in long double.
+long double PolynomialAt(const QuadForm& x, long double u, long double v, const long double* w) {
+    const double* c = x.c;
+    long double s = c[QuadForm::k0] + c[QuadForm::kU] * u + c[QuadForm::kV] * v + c[QuadForm::kUU] * u * u +
+                    c[QuadForm::kUV] * u * v + c[QuadForm::kVV] * v * v;
+    for (int k = 0; k < QuadForm::kOwn; ++k) s += x.o[k] * w[k];
+    return s;
+}
+
+QuadForm RandomForm(Rng& rng) {
+    QuadForm x;
+    const double scale = std::ldexp(1.0, rng.integer(-30, 3));
+    for (double& ck : x.c) ck = rng.chance(0.2) ? 0.0 : rng.uniform(-1, 1) * scale;
+    for (double& ok : x.o) ok = rng.chance(0.5) ? 0.0 : rng.uniform(-1, 1) * scale * 0.1;
+    if (rng.chance(0.1)) {  // an exact constant
+        const double c0 = x.c[QuadForm::k0];
+        x = QuadForm();
+        x.c[QuadForm::k0] = c0;
+        return x;
+    }
+    x.r = (std::fabs(x.c[QuadForm::k0]) + scale) * (rng.chance(0.5) ? 0x1p-45 : rng.uniform(0, 1) * 1e-3);
+    return x;
+}
+
+}  // namespace
+
+TEST_CASE("QuadForm operations contain the double results (aavalid)", "[vm][quadform]") {
+    Rng rng(41);
+    affray::test::Tally tally;
+    int skipped = 0;
+    for (int n = 0; n < Samples(4000); ++n) {
+        const QuadForm x = RandomForm(rng);
+        const bool square = rng.chance(0.2);
+        const QuadForm y = square ? x : RandomForm(rng);
+        const double k = rng.chance(0.3) ? rng.integer(-15, 15) : rng.uniform(-16, 16);
+        const int op = rng.integer(0, 6);
+        const QuadForm z = op == 0   ? x + y
+                           : op == 1 ? x - y
+                           : op == 2 ? x * y
+                           : op == 3 ? x * k
+                           : op == 4 ? x + k
+                           : op == 5 ? -x
+                                     : k * x;
+        for (int trial = 0; trial < 16; ++trial) {
+            // Corners, edges and the inside of the square; own symbols anywhere in [-1, 1].
+            auto coordinate = [&] {
+                return rng.chance(0.3) ? static_cast<long double>(rng.integer(-1, 1)) : rng.eps();
+            };
+            const long double u = coordinate(), v = coordinate();
+            long double w[QuadForm::kOwn];
+            for (long double& wk : w) wk = coordinate();
+            auto value = [&](const QuadForm& f) {
+                const long double m = PolynomialAt(f, u, v, w);
+                const double s = static_cast<double>(m + static_cast<long double>(rng.eps()) * f.r);
+                return std::fabs(s - m) <= f.r ? s : std::numeric_limits<double>::quiet_NaN();
+            };
+            const double a = value(x), b = square ? a : value(y);
+            if (std::isnan(a) || std::isnan(b)) {
+                ++skipped;
+                continue;
+            }
+            const double scalar = op == 0   ? a + b
+                                  : op == 1 ? a - b
+                                  : op == 2 ? a * b
+                                  : op == 3 ? a * k
+                                  : op == 4 ? a + k
+                                  : op == 5 ? -a
+                                            : k * a;
+            tally.samples++;
+            const long double mid = PolynomialAt(z, u, v, w);
+            if (!(std::fabs(static_cast<long double>(scalar) - mid) <= z.r))
+                tally.fail("op " + std::to_string(op) + " at (" + std::to_string(static_cast<double>(u)) + ", " +
+                           std::to_string(static_cast<double>(v)) + "): " + std::to_string(scalar) + " outside " +
+                           std::to_string(static_cast<double>(mid)) + " +- " + std::to_string(z.r));
+        }
+    }
+    INFO(tally.samples << " samples, " << skipped << " skipped\n" << tally.first.str());
+    CHECK(tally.failures == 0);
+    CHECK(skipped < tally.samples / 2);
+}
+
+TEST_CASE("QuadForm products keep the quadratic part exactly and lose little to degrees 3 and 4", "[vm][quadform]") {
+    // (1 + u)(1 + v) = 1 + u + v + uv: nothing to reduce, no remainder beyond rounding.
+    const QuadForm a = QuadForm::Linear(1, 1, 0, 0), b = QuadForm::Linear(1, 0, 1, 0);
+    const QuadForm p = a * b;
+    CHECK(p.c[QuadForm::k0] == 1);
+    CHECK(p.c[QuadForm::kU] == 1);
+    CHECK(p.c[QuadForm::kV] == 1);
+    CHECK(p.c[QuadForm::kUV] == 1);
+    CHECK(p.r < 1e-13);
+    // u * u^2 = u^3 = 0.75 u +- 0.25 (Chebyshev: the best line), u^2 * u^2 = u^4 = u^2 - 1/8 +- 1/8.
+    QuadForm u = QuadForm::Linear(0, 1, 0, 0), uu;
+    uu.c[QuadForm::kUU] = 1;
+    const QuadForm cube = u * uu, fourth = uu * uu;
+    CHECK(cube.c[QuadForm::kU] == 0.75);
+    CHECK(cube.r == Approx(0.25).epsilon(1e-12));
+    CHECK(fourth.c[QuadForm::kUU] == 1);
+    CHECK(fourth.c[QuadForm::k0] == -0.125);
+    CHECK(fourth.r == Approx(0.125).epsilon(1e-12));
+}
+
+TEST_CASE("QuadForm's quadratic range is the exact range over the square", "[vm][quadform]") {
+    Rng rng(43);
+    for (int n = 0; n < Samples(500); ++n) {
+        QuadForm x;
+        x.c[QuadForm::kUU] = rng.chance(0.2) ? 0.0 : rng.uniform(-2, 2);
+        x.c[QuadForm::kUV] = rng.chance(0.2) ? 0.0 : rng.uniform(-2, 2);
+        x.c[QuadForm::kVV] = rng.chance(0.2) ? 0.0 : rng.uniform(-2, 2);
+        double lo, hi;
+        x.quadraticRange(&lo, &hi);
+        double sampledLo = INFINITY, sampledHi = -INFINITY;
+        for (int i = 0; i <= 200; ++i)
+            for (int j = 0; j <= 200; ++j) {
+                const double u = -1 + i / 100.0, v = -1 + j / 100.0;
+                const double q = x.c[QuadForm::kUU] * u * u + x.c[QuadForm::kUV] * u * v + x.c[QuadForm::kVV] * v * v;
+                sampledLo = std::fmin(sampledLo, q);
+                sampledHi = std::fmax(sampledHi, q);
+            }
+        INFO(x.c[QuadForm::kUU] << " u^2 + " << x.c[QuadForm::kUV] << " uv + " << x.c[QuadForm::kVV] << " v^2: [" << lo
+                                << ", " << hi << "], sampled [" << sampledLo << ", " << sampledHi << "]");
+        CHECK(lo <= sampledLo + 1e-12);
+        CHECK(hi >= sampledHi - 1e-12);
+        // The grid's spacing is 0.01, so the sampled extremes are within 1e-3 of the exact ones.
+        CHECK(lo >= sampledLo - 1e-3);
+        CHECK(hi <= sampledHi + 1e-3);
+    }
+}
