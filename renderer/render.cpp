@@ -17,6 +17,7 @@
 #include <fstream>
 #include <map>
 #include <thread>
+#include <tuple>
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -596,6 +597,11 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
         const std::string& file = ref.file.empty() ? desc.path : ref.file;
         return diag::Location(file, ref.line, ref.column, diag::ReadLine(file, ref.line));
     };
+    // Specialising a program for a surface's constant globals (below) gives the same program for
+    // every surface with the same constants (E, du and dv for all but flat bilinear patches): made
+    // once per shader instance and constants, copied to the others.
+    std::map<std::pair<const void*, std::vector<double>>, std::pair<vm::Program, vm::Program>> specialised;
+    out->primitives.reserve(desc.primitives.size());
     for (const PrimitiveDesc& patch : desc.primitives) {
         Primitive prim;
         switch (patch.shape) {
@@ -678,10 +684,29 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
         } else {
             prim.bound = prim.shade = vm::IdentityProgram();
         }
-        std::vector<std::string> unused;  // no overrides here: nothing can go wrong
-        std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(prim.base, eye);
-        prim.bound = *compiler::Specialise(prim.bound, {}, &unused, constants);
-        prim.shade = *compiler::Specialise(prim.shade, {}, &unused, constants);
+        const std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(prim.base, eye);
+        std::pair<const void*, std::vector<double>> key{prim.shader.get(), {}};
+        bool finite = true;  // (a NaN would break the map's order)
+        for (const compiler::ConstantGlobal& c : constants) {
+            key.second.push_back(static_cast<double>(c.global));
+            for (double x : c.value) {
+                key.second.push_back(x);
+                finite = finite && std::isfinite(x);
+            }
+        }
+        auto specialise = [&] {
+            std::vector<std::string> unused;  // no overrides here: nothing can go wrong
+            return std::pair{*compiler::Specialise(prim.bound, {}, &unused, constants),
+                             *compiler::Specialise(prim.shade, {}, &unused, constants)};
+        };
+        if (finite) {
+            auto [found, added] = specialised.try_emplace(std::move(key));
+            if (added) found->second = specialise();
+            prim.bound = found->second.first;
+            prim.shade = found->second.second;
+        } else {
+            std::tie(prim.bound, prim.shade) = specialise();
+        }
         out->primitives.push_back(std::move(prim));
     }
 

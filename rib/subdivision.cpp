@@ -235,6 +235,11 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     renderer::SubdivisionResult result;
     if (std::string problem = renderer::BuildSubdivisionPatches(mesh, &result); !problem.empty())
         return Fail(r.at, context + " " + problem);
+    // Room for the patches at once (a PrimitiveDesc is some 3 KB, and a mesh thousands of them),
+    // growing geometrically still so that a scene of many meshes is not copied once per mesh.
+    auto& primitives = m_scene.primitives;
+    if (const size_t needed = primitives.size() + result.patches.size(); needed > primitives.capacity())
+        primitives.reserve(std::max(needed, 2 * primitives.capacity()));
     for (size_t i = 0; i < result.patches.size(); ++i) {
         const renderer::SubdivPatch& patch = result.patches[i];
         if (!patch.geometry.FiniteP()) return Fail(r.at, context + " has a patch that overflows in world space");
