@@ -20,6 +20,7 @@
 #include "renderer/geometry/primvar.h"
 #include "renderer/geometry/quadric.h"
 #include "renderer/geometry/subdivision.h"
+#include "renderer/number_text.h"
 
 namespace affray::renderer {
 
@@ -204,19 +205,23 @@ struct SceneDesc {
 // Printing. Every value type prints itself on one line (the scene on several), for logs and tests.
 
 inline std::string ToString(const glm::dvec3& v) {
-    std::ostringstream out;
-    out << '[' << v.x << ' ' << v.y << ' ' << v.z << ']';
-    return out.str();
+    std::string out = "[";
+    for (int i = 0; i < 3; ++i) {
+        if (i) out += ' ';
+        AppendNumber(out, v[i]);
+    }
+    return out + ']';
 }
 
 inline std::string ToString(const glm::dmat4& m) {
     // Printed row by row in column-vector convention (row r = m[0][r] m[1][r] m[2][r] m[3][r]).
-    std::ostringstream out;
-    out << '[';
+    std::string out = "[";
     for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) out << (r || c ? " " : "") << m[c][r];
-    out << ']';
-    return out.str();
+        for (int c = 0; c < 4; ++c) {
+            if (r || c) out += ' ';
+            AppendNumber(out, m[c][r]);
+        }
+    return out + ']';
 }
 
 inline std::string ToString(const ParamValue& p) {

@@ -3,6 +3,7 @@
 #include "renderer/geometry/bicubic.h"
 
 #include "renderer/geometry/pole.h"
+#include "renderer/number_text.h"
 
 #include <cmath>
 #include <sstream>
@@ -309,11 +310,17 @@ bool RegionFrame(const BicubicPatch& patch, const vm::ReducedAffine& u, const vm
 }  // namespace bicubic_detail
 
 std::string ToString(const BicubicPatch& p) {
-    std::ostringstream out;
-    out << "bicubic [";
-    for (int k = 0; k < 16; ++k) out << (k ? " " : "") << '[' << p.c[k].x << ' ' << p.c[k].y << ' ' << p.c[k].z << ']';
-    out << ']';
-    return out.str();
+    std::string out = "bicubic [";
+    for (int k = 0; k < 16; ++k) {
+        out += k ? " [" : "[";
+        for (int i = 0; i < 3; ++i) {
+            if (i) out += ' ';
+            AppendNumber(out, p.c[k][i]);
+        }
+        out += ']';
+    }
+    out += ']';
+    return out;
 }
 
 }  // namespace affray::renderer
