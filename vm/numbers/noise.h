@@ -86,12 +86,15 @@
 //        fourth order (u^3 = 0.75 u +- 0.25, ...); each fade is its Taylor polynomial over the
 //        coordinate's part of the cell (MakeQuadAxis), its terms beyond second order on a symbol
 //        of the coordinate's own. The error left is the quadratic part's range over the region
-//        plus small change: over regions 0.3, 0.2, 0.1 and 0.01 of a cell wide it is 3.1, 2.1,
-//        1.4 and 1.03 times the noise's true deviation from the bound's plane inside a cell, and
-//        6.1, 5.4, 4.3 and 1.1 across faces (tests/vm/numbers/noise_test.cpp). The LocalForm
-//        on eps_u and eps_v that it replaces (one symbol per product) gave 5.4, 5.0, 4.4 and 3.7
-//        inside, and costs about twice as much per cell. bench/real's subdivision scene: 25.3 s
-//        -> 19.9 s (paired runs), 25.8 -> 22.4 bounds evaluated per camera ray.
+//        plus small change: over regions 0.3, 0.2, 0.1 and 0.01 of a cell wide it is 3.1, 2.0,
+//        1.4 and 1.04 times the noise's true deviation from the bound's plane inside a cell, and
+//        5.8, 5.5, 4.9 and 1.1 across faces (tests/vm/numbers/noise_test.cpp). The LocalForm
+//        on eps_u and eps_v that it replaces (one symbol per product) gave 5.6, 4.8, 4.0 and 3.6
+//        inside and 5.3, 5.1, 4.7 and 1.5 across faces, at about twice the cost per cell. Each
+//        coordinate's error (the region's own, and the rounding of t = p - k) is a symbol of the
+//        coordinate's too, shared by t and its fade: left in the QuadForm's error, every product
+//        would multiply it (the teapot of bench/real tested 207 regions per camera ray so, 124
+//        with the symbol, 128 with the LocalForms).
 //        The mean-value form raw(c) + grad raw(B).(t - c), with the gradient over B enclosed by
 //        interval forward differentiation, was tried first and dropped: as slow (the interval
 //        gradient costs as much as the affine polynomial) and 1.2-8 times wider at 1/64 (the
@@ -561,18 +564,20 @@ struct QuadAxis {
     QuadForm t, fade;
 };
 
-/// The QuadAxis of reduced affine coordinate p in the cell whose index along it is k; `own` is
-/// the QuadForm symbol this coordinate's fade may use. The double t_d = p_d - k at a point of the
-/// region lies in tc + L +- xi, with tc = p's centre - k (rounded), L = a eps_u + b eps_v (p's
-/// coefficients) and xi = p's error plus the roundings of tc and t_d: that is the form t.
+/// The QuadAxis of reduced affine coordinate p in the cell whose index along it is k; the
+/// coordinate's QuadForm symbols are own (its fade's terms beyond second order) and kOwn/2 + own
+/// (its error). The double t_d = p_d - k at a point of the region is tc + L + xi xi_own, with
+/// tc = p's centre - k (rounded), L = a eps_u + b eps_v (p's coefficients), xi = p's error plus
+/// the roundings of tc and t_d, and xi_own in [-1, 1] a function of the point: that is the form t.
 /// The fade is needed only at the points of the region inside this cell, whose t_d lie in the
 /// part [lo, hi] of [0, 1] that p - k reaches (as in MakeLocalAxis): with c its centre and R its
 /// reach, delta = t_d - c is in [-R, R] there, and s(c + delta) = sum q_k delta^k (q_k =
 /// s^(k)(c)/k!, k <= 5) is reduced in sigma = delta/R in [-1, 1]: delta^3 = 0.75 R^2 delta +-
 /// 0.25 R^3, delta^4 = R^2 delta^2 - R^4/8 +- R^4/8, delta^5 = +-R^5 (these remainders are a
 /// function of delta alone: the own symbol). What is left, a0 + a1 delta + a2 delta^2, is
-/// written on eps_u and eps_v through delta = (tc - c) + L +- xi exactly but for the +- xi,
-/// whose effect, at most xi (|a1| + |a2| (2R + 3xi)), goes to the error. A part clipped to the
+/// written on eps_u and eps_v through delta = (tc - c) + L + xi xi_own: a1 delta exactly (the
+/// rounding of tc - c aside), a2 delta^2 but for the terms in xi, at most |a2| xi (2R + 3xi),
+/// which go to the error. A part clipped to the
 /// cell keeps a region straddling a face from paying for the cell polynomial's continuation past
 /// it (the neighbouring cell bounds those points). The rounding: of each q_k (16 ulps of its
 /// terms' magnitudes, as in MakeLocalAxis), of the form's coefficients (8 ulps of their
@@ -583,7 +588,8 @@ inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
     const double a = p.coefficientU(), b = p.coefficientV();
     const double xi = AddUp(AddUp(p.error(), std::fabs(tc) * kEpsilon), kEpsilon);
     QuadAxis axis;
-    axis.t = QuadForm::Linear(tc, a, b, xi);
+    axis.t = QuadForm::Linear(tc, a, b, 0.0);
+    axis.t.o[QuadForm::kOwn / 2 + own] = xi;  // the point's own deviation from tc + L
     const Interval range = RangeOf(p) - k;
     const double lo = std::clamp(range.lo(), 0.0, 1.0), hi = std::clamp(range.hi(), 0.0, 1.0);
     const double c = 0.5 * (lo + hi);  // in [0, 1]
@@ -616,7 +622,11 @@ inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
     f.c[QuadForm::kUV] = alpha2 * (2 * a * b);
     f.c[QuadForm::kVV] = alpha2 * (b * b);
     f.o[own] = ownPart * kSumSlack;
-    const double perturbed = xiOffset * (std::fabs(alpha1) + std::fabs(alpha2) * (2 * R + 3 * xiOffset));
+    // delta = offset + L + xi xi_own (xi_own the coordinate's symbol) exactly but for the rounding
+    // of offset: alpha1 delta puts alpha1 xi on the symbol; the rest is error.
+    f.o[QuadForm::kOwn / 2 + own] = alpha1 * xi;
+    const double perturbed = std::fabs(alpha1) * std::fabs(offset) * kEpsilon + std::fabs(alpha1 * xi) * kEpsilon +
+                             std::fabs(alpha2) * xiOffset * (2 * R + 3 * xiOffset);
     const double coefficients = m0 + m1 * R + m2 * R2 + m3 * R3 + m4 * R4 + 6.0 * R5;
     const double d = delta.coefficientSum();
     const double formed = std::fabs(alpha0) + std::fabs(alpha1) * d + std::fabs(alpha2) * d * d + std::fabs(q3) * R3 +

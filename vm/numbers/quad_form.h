@@ -30,11 +30,12 @@ namespace affray::vm {
 struct QuadForm {
     enum { k0, kU, kV, kUU, kUV, kVV, kCount };
     /// Symbols of the caller's own, each a function of the point with values in [-1, 1] (noise:
-    /// one per coordinate, the part of its fade beyond second order), carried linearly so that
-    /// their contributions cancel where the caller's operations make them cancel.
-    static constexpr int kOwn = 4;
+    /// per coordinate, the part of its fade beyond second order and the coordinate's own error),
+    /// carried linearly so that their contributions cancel where the caller's operations make
+    /// them cancel.
+    static constexpr int kOwn = 8;
     double c[kCount] = {0, 0, 0, 0, 0, 0};
-    double o[kOwn] = {0, 0, 0, 0};
+    double o[kOwn] = {0, 0, 0, 0, 0, 0, 0, 0};
     double r = 0;
 
     /// c0 + cu u + cv v +- r exactly.
