@@ -587,7 +587,7 @@ inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
     const double tc = p.center() - k;
     const double a = p.coefficientU(), b = p.coefficientV();
     const double xi = AddUp(AddUp(p.error(), std::fabs(tc) * kEpsilon), kEpsilon);
-    QuadAxis axis;
+    QuadAxis axis{};
     axis.t = QuadForm::Linear(tc, a, b, 0.0);
     axis.t.o[QuadForm::kOwn / 2 + own] = xi;  // the point's own deviation from tc + L
     const Interval range = RangeOf(p) - k;
@@ -663,6 +663,7 @@ inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
                 acc = gi == 1 ? acc + x : gi == -1 ? acc - x : acc + gi * x;
             any = true;
         }
+        if (!any) acc = QuadForm{};
     }
     // Lerp away dimension 0, then 1, ...: v[a] + s_i (v[b] - v[a]).
     for (int i = 0, stride = 1; i < dims; ++i, stride *= 2)

@@ -34,13 +34,15 @@ struct QuadForm {
     /// carried linearly so that their contributions cancel where the caller's operations make
     /// them cancel.
     static constexpr int kOwn = 8;
-    double c[kCount] = {0, 0, 0, 0, 0, 0};
-    double o[kOwn] = {0, 0, 0, 0, 0, 0, 0, 0};
-    double r = 0;
+    // No initialisers: an array of forms is left uninitialised (a noise call holds dozens),
+    // and QuadForm{} is zero.
+    double c[kCount];
+    double o[kOwn];
+    double r;
 
     /// c0 + cu u + cv v +- r exactly.
     static QuadForm Linear(double c0, double cu, double cv, double r) {
-        QuadForm x;
+        QuadForm x{};
         x.c[k0] = c0;
         x.c[kU] = cu;
         x.c[kV] = cv;
@@ -81,7 +83,7 @@ struct QuadForm {
 
 /// -x (exact).
 inline QuadForm operator-(const QuadForm& x) {
-    QuadForm z;
+    QuadForm z{};
     for (int k = 0; k < QuadForm::kCount; ++k) z.c[k] = -x.c[k];
     for (int k = 0; k < QuadForm::kOwn; ++k) z.o[k] = -x.o[k];
     z.r = x.r;
@@ -91,7 +93,7 @@ inline QuadForm operator-(const QuadForm& x) {
 /// x + y (x - y with kSubtract): coefficient by coefficient, LinearError's rounding.
 template <bool kSubtract>
 QuadForm Add(const QuadForm& x, const QuadForm& y) {
-    QuadForm z;
+    QuadForm z{};
     for (int k = 0; k < QuadForm::kCount; ++k) z.c[k] = kSubtract ? x.c[k] - y.c[k] : x.c[k] + y.c[k];
     for (int k = 0; k < QuadForm::kOwn; ++k) z.o[k] = kSubtract ? x.o[k] - y.o[k] : x.o[k] + y.o[k];
     z.r = LinearError(x.r + y.r, z.coefficientSum());
@@ -110,7 +112,7 @@ inline QuadForm operator+(const QuadForm& x, double k) {
 
 /// k * x for a double k (vm/numbers/affine.cpp's Scale).
 inline QuadForm operator*(const QuadForm& x, double k) {
-    QuadForm z;
+    QuadForm z{};
     for (int i = 0; i < QuadForm::kCount; ++i) z.c[i] = x.c[i] * k;
     for (int i = 0; i < QuadForm::kOwn; ++i) z.o[i] = x.o[i] * k;
     z.r = LinearError(std::fabs(k) * x.r * (1 + kEpsilon), z.coefficientSum()) + kUnderflowSlack;
@@ -137,7 +139,7 @@ inline QuadForm operator*(const QuadForm& x, const QuadForm& y) {
     const double uuvv = a[kUU] * b[kVV] + a[kVV] * b[kUU] + a[kUV] * b[kUV];
     const double uvvv = a[kUV] * b[kVV] + a[kVV] * b[kUV];
     const double vvvv = a[kVV] * b[kVV];
-    QuadForm z;
+    QuadForm z{};
     double* c = z.c;
     // u^4 = u^2 - 1/8 +- 1/8, v^4 likewise, u^2 v^2 = 1/2 +- 1/2.
     c[k0] = a[k0] * b[k0] - 0.125 * (uuuu + vvvv) + 0.5 * uuvv;

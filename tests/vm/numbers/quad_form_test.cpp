@@ -26,7 +26,7 @@ long double PolynomialAt(const QuadForm& x, long double u, long double v, const 
 }
 
 QuadForm RandomForm(Rng& rng) {
-    QuadForm x;
+    QuadForm x{};
     const double scale = std::ldexp(1.0, rng.integer(-30, 3));
     for (double& ck : x.c) ck = rng.chance(0.2) ? 0.0 : rng.uniform(-1, 1) * scale;
     for (double& ok : x.o) ok = rng.chance(0.5) ? 0.0 : rng.uniform(-1, 1) * scale * 0.1;
@@ -107,7 +107,7 @@ TEST_CASE("QuadForm products keep the quadratic part exactly and lose little to 
     CHECK(p.c[QuadForm::kUV] == 1);
     CHECK(p.r < 1e-13);
     // u * u^2 = u^3 = 0.75 u +- 0.25 (Chebyshev: the best line), u^2 * u^2 = u^4 = u^2 - 1/8 +- 1/8.
-    QuadForm u = QuadForm::Linear(0, 1, 0, 0), uu;
+    QuadForm u = QuadForm::Linear(0, 1, 0, 0), uu{};
     uu.c[QuadForm::kUU] = 1;
     const QuadForm cube = u * uu, fourth = uu * uu;
     CHECK(cube.c[QuadForm::kU] == 0.75);
@@ -120,7 +120,7 @@ TEST_CASE("QuadForm products keep the quadratic part exactly and lose little to 
 TEST_CASE("QuadForm's quadratic range is the exact range over the square", "[vm][quadform]") {
     Rng rng(43);
     for (int n = 0; n < Samples(500); ++n) {
-        QuadForm x;
+        QuadForm x{};
         x.c[QuadForm::kUU] = rng.chance(0.2) ? 0.0 : rng.uniform(-2, 2);
         x.c[QuadForm::kUV] = rng.chance(0.2) ? 0.0 : rng.uniform(-2, 2);
         x.c[QuadForm::kVV] = rng.chance(0.2) ? 0.0 : rng.uniform(-2, 2);
