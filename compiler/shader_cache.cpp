@@ -1,6 +1,8 @@
 // compiler/shader_cache.cpp: the key is everything the result depends on.
 #include "compiler/shader_cache.h"
 
+#include <sys/stat.h>
+
 #include <bit>
 #include <fstream>
 #include <sstream>
@@ -51,10 +53,24 @@ std::string Key(const std::string& path, const std::string& bytes, const std::ve
 
 }  // namespace
 
+const std::string& ShaderCache::Bytes(const std::string& path) {
+    // A file is read again only when its identity, size or modification time (nanoseconds)
+    // changed: a mesh's thousands of faces name one shader, and reading it per face was a third
+    // of the cost of loading.
+    struct stat st {};
+    const bool known = ::stat(path.c_str(), &st) == 0;
+    FileStamp stamp{known ? static_cast<uint64_t>(st.st_dev) : 0, known ? static_cast<uint64_t>(st.st_ino) : 0,
+                    known ? static_cast<int64_t>(st.st_size) : -1,
+                    known ? static_cast<int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec : 0};
+    auto [it, added] = m_files.try_emplace(path);
+    if (added || !known || !(it->second.first == stamp)) it->second = {stamp, ReadAll(path)};
+    return it->second.second;
+}
+
 CompileResult ShaderCache::Load(const std::string& path, const std::vector<ParamOverride>& overrides,
                                 const lang::PreprocessOptions& preprocess, const Spaces* spaces,
                                 const SceneFacts* facts) {
-    const std::string bytes = ReadAll(path);
+    const std::string& bytes = Bytes(path);
     const std::string key = Key(path, bytes, overrides, preprocess, spaces, facts);
     if (!bytes.empty()) {
         auto it = m_compiled.find(key);

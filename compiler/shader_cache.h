@@ -1,8 +1,10 @@
 // compiler/shader_cache.h: compiled shaders kept by the content of their source, so that a scene
 // naming one shader for many primitives compiles it once per distinct parameter set, and an
-// edited file is never served stale (the key is a hash of its bytes, not its name or date).
+// edited file is never served stale (the key is a hash of its bytes, not its name or date; the
+// bytes are read again whenever stat gives the file another identity, size or modification time).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -25,6 +27,17 @@ class ShaderCache {
     int misses() const { return m_misses; }
 
   private:
+    /// A file's identity, size and modification time, as stat gives them (size -1: no file).
+    struct FileStamp {
+        uint64_t device = 0, inode = 0;
+        int64_t size = -1, mtimeNs = 0;
+        bool operator==(const FileStamp&) const = default;
+    };
+    /// The bytes of the file at `path` (empty if unreadable), read again only when its stamp
+    /// changed since the last call.
+    const std::string& Bytes(const std::string& path);
+
+    std::map<std::string, std::pair<FileStamp, std::string>> m_files;
     std::map<std::string, std::shared_ptr<const CompiledShader>> m_compiled;
     int m_hits = 0, m_misses = 0;
 };
