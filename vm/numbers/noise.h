@@ -513,6 +513,20 @@ struct LocalAxis {
     double fade0, fadeLinear, fadeOwn, fadeError;
 };
 
+/// The fade's Taylor coefficients at c in [0, 1], s^(k)(c)/k! for k = 0..4 (the fifth is 6), as
+/// doubles compute them, and the magnitudes of their terms (each within 16 ulps of its exact value
+/// relative to these: at most nine roundings).
+struct FadeTaylor {
+    double a[5], m[5];
+};
+inline FadeTaylor FadeTaylorAt(double c) {
+    const double c2 = c * c, c3 = c2 * c;
+    return {{c3 * (c * (c * 6.0 - 15.0) + 10.0), 30.0 * c2 * (c - 1.0) * (c - 1.0), c * (c * (60.0 * c - 90.0) + 30.0),
+             c * (60.0 * c - 60.0) + 10.0, 30.0 * c - 15.0},
+            {c3 * (c * (c * 6.0 + 15.0) + 10.0), 30.0 * c2 * (c2 + 2.0 * c + 1.0), c * (c * (60.0 * c + 90.0) + 30.0),
+             c * (60.0 * c + 60.0) + 10.0, 30.0 * c + 15.0}};
+}
+
 /// The LocalAxis of coordinate p (a bound) in the cell whose index along it is k.
 /// B holds every t_d = p - k in double: Interval subtraction contains the double one.
 /// The fade over B is its Taylor polynomial at the centre c in sigma (t = c + reach sigma), in
@@ -530,13 +544,10 @@ LocalAxis MakeLocalAxis(const T& p, double k) {
     axis.centre = 0.5 * (lo + hi);  // between lo and hi: both are in [0, 1]
     axis.reach = std::fmax(SubUp(axis.centre, lo), SubUp(hi, axis.centre));
     const double c = axis.centre, h = axis.reach;  // both in [0, 1]
-    const double c2 = c * c, c3 = c2 * c, h2 = h * h, h3 = h2 * h, h4 = h3 * h, h5 = h4 * h;
-    // s^(k)(c)/k!: the terms of each, and their magnitudes (c >= 0).
-    const double a0 = c3 * (c * (c * 6.0 - 15.0) + 10.0), m0 = c3 * (c * (c * 6.0 + 15.0) + 10.0);
-    const double a1 = 30.0 * c2 * (c - 1.0) * (c - 1.0), m1 = 30.0 * c2 * (c2 + 2.0 * c + 1.0);
-    const double a2 = c * (c * (60.0 * c - 90.0) + 30.0), m2 = c * (c * (60.0 * c + 90.0) + 30.0);
-    const double a3 = c * (60.0 * c - 60.0) + 10.0, m3 = c * (60.0 * c + 60.0) + 10.0;
-    const double a4 = 30.0 * c - 15.0, m4 = 30.0 * c + 15.0;
+    const double h2 = h * h, h3 = h2 * h, h4 = h3 * h, h5 = h4 * h;
+    const FadeTaylor taylor = FadeTaylorAt(c);
+    const double a0 = taylor.a[0], a1 = taylor.a[1], a2 = taylor.a[2], a3 = taylor.a[3], a4 = taylor.a[4];
+    const double m0 = taylor.m[0], m1 = taylor.m[1], m2 = taylor.m[2], m3 = taylor.m[3], m4 = taylor.m[4];
     const double q0 = a0, q1 = a1 * h, q2 = a2 * h2, q3 = a3 * h3, q4 = a4 * h4, q5 = 6.0 * h5;
     axis.fade0 = q0 + 0.5 * q2 + 0.5 * q4;
     axis.fadeLinear = q1 + 0.75 * q3;
@@ -596,12 +607,9 @@ inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
     const double R = std::max(SubUp(c, lo), SubUp(hi, c));
     const double offset = tc - c;                                     // rounded: an ulp of it, in xiOffset
     const double xiOffset = AddUp(xi, std::fabs(offset) * kEpsilon);  // delta = offset + L +- xiOffset
-    const double c2 = c * c, c3 = c2 * c;
-    const double q0 = c3 * (c * (c * 6.0 - 15.0) + 10.0), m0 = c3 * (c * (c * 6.0 + 15.0) + 10.0);
-    const double q1 = 30.0 * c2 * (c - 1.0) * (c - 1.0), m1 = 30.0 * c2 * (c2 + 2.0 * c + 1.0);
-    const double q2 = c * (c * (60.0 * c - 90.0) + 30.0), m2 = c * (c * (60.0 * c + 90.0) + 30.0);
-    const double q3 = c * (60.0 * c - 60.0) + 10.0, m3 = c * (60.0 * c + 60.0) + 10.0;
-    const double q4 = 30.0 * c - 15.0, m4 = 30.0 * c + 15.0;
+    const FadeTaylor taylor = FadeTaylorAt(c);
+    const double q0 = taylor.a[0], q1 = taylor.a[1], q2 = taylor.a[2], q3 = taylor.a[3], q4 = taylor.a[4];
+    const double m0 = taylor.m[0], m1 = taylor.m[1], m2 = taylor.m[2], m3 = taylor.m[3], m4 = taylor.m[4];
     const double R2 = R * R, R3 = R2 * R, R4 = R3 * R, R5 = R4 * R;
     double alpha0 = q0 - 0.125 * q4 * R4, alpha1 = q1 + 0.75 * q3 * R2, alpha2 = q2 + q4 * R2;
     double ownPart = 0.25 * std::fabs(q3) * R3 + 0.125 * std::fabs(q4) * R4 + 6.0 * R5;
