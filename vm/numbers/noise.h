@@ -620,8 +620,6 @@ inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
         ownPart += 0.5 * std::fabs(alpha2) * R2;
         alpha2 = 0;
     }
-    // delta's form without xi, and its square.
-    const QuadForm delta = QuadForm::Linear(offset, a, b, 0.0);
     QuadForm& f = axis.fade;
     f.c[QuadForm::k0] = alpha0 + alpha1 * offset + alpha2 * (offset * offset);
     f.c[QuadForm::kU] = alpha1 * a + alpha2 * (2 * offset * a);
@@ -636,7 +634,7 @@ inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
     const double perturbed = std::fabs(alpha1) * std::fabs(offset) * kEpsilon + std::fabs(alpha1 * xi) * kEpsilon +
                              std::fabs(alpha2) * xiOffset * (2 * R + 3 * xiOffset);
     const double coefficients = m0 + m1 * R + m2 * R2 + m3 * R3 + m4 * R4 + 6.0 * R5;
-    const double d = delta.coefficientSum();
+    const double d = std::fabs(offset) + std::fabs(a) + std::fabs(b);  // the largest |offset + L|
     const double formed = std::fabs(alpha0) + std::fabs(alpha1) * d + std::fabs(alpha2) * d * d + std::fabs(q3) * R3 +
                           std::fabs(q4) * R4 + f.coefficientSum();
     const double scalar = 31.0 * hi * hi * hi;
@@ -653,33 +651,13 @@ inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
 /// about the noise's own deviation from its plane (tests/vm/numbers/noise_test.cpp).
 [[gnu::flatten]] inline ReducedAffine QuadraticCellOnRegion(const QuadAxis* const* axes, int dims,
                                                             const double (*g)[4]) {
-    QuadForm below[4];  // t_i - 1
-    for (int i = 0; i < dims; ++i) below[i] = axes[i]->t + (-1.0);
-    QuadForm v[16];
-    const int corners = 1 << dims;
-    for (int o = 0; o < corners; ++o) {
-        // AddTerm's sum g_o . (t - o), term by term.
-        QuadForm& acc = v[o];
-        bool any = false;
-        for (int i = 0; i < dims; ++i) {
-            const double gi = g[o][i];
-            if (gi == 0) continue;
-            const QuadForm& x = (o >> i) & 1 ? below[i] : axes[i]->t;
-            if (!any)
-                acc = gi == 1 ? x : gi == -1 ? -x : gi * x;
-            else
-                acc = gi == 1 ? acc + x : gi == -1 ? acc - x : acc + gi * x;
-            any = true;
-        }
-        if (!any) acc = QuadForm{};
+    QuadForm t[4], fade[4];
+    for (int i = 0; i < dims; ++i) {
+        t[i] = axes[i]->t;
+        fade[i] = axes[i]->fade;
     }
-    // Lerp away dimension 0, then 1, ...: v[a] + s_i (v[b] - v[a]).
-    for (int i = 0, stride = 1; i < dims; ++i, stride *= 2)
-        for (int a = 0; a < corners; a += 2 * stride) {
-            const int b = a + stride;
-            v[a] = v[a] + axes[i]->fade * (v[b] - v[a]);
-        }
-    const QuadForm raw = v[0] * NoiseScale(dims) + 0.5;
+    const QuadForm raw =
+        FadedCellPolynomial(t, fade, dims, [&](int o, int i) { return g[o][i]; }) * NoiseScale(dims) + 0.5;
     double lo, hi;
     raw.quadraticRange(&lo, &hi);
     const double quadratic =

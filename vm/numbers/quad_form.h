@@ -40,6 +40,10 @@ struct QuadForm {
     double o[kOwn];
     double r;
 
+    QuadForm() = default;
+    /// The exact constant c0 (as the cell polynomial's template makes its zero).
+    explicit QuadForm(double c0) : c{c0}, o{}, r(0) {}
+
     /// c0 + cu u + cv v +- r exactly.
     static QuadForm Linear(double c0, double cu, double cv, double r) {
         QuadForm x{};
@@ -109,6 +113,8 @@ inline QuadForm operator+(const QuadForm& x, double k) {
     z.r = LinearError(x.r, z.coefficientSum());
     return z;
 }
+
+inline QuadForm operator-(const QuadForm& x, double k) { return x + (-k); }
 
 /// k * x for a double k (vm/numbers/affine.cpp's Scale).
 inline QuadForm operator*(const QuadForm& x, double k) {
