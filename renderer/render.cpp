@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,7 +18,6 @@
 #include <fstream>
 #include <map>
 #include <thread>
-#include <tuple>
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -600,7 +600,7 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
     // Specialising a program for a surface's constant globals (below) gives the same program for
     // every surface with the same constants (E, du and dv for all but flat bilinear patches): made
     // once per shader instance and constants, copied to the others.
-    std::map<std::pair<const void*, std::vector<double>>, std::pair<vm::Program, vm::Program>> specialised;
+    std::map<std::pair<const void*, std::vector<uint64_t>>, std::pair<vm::Program, vm::Program>> specialised;
     out->primitives.reserve(desc.primitives.size());
     for (const PrimitiveDesc& patch : desc.primitives) {
         Primitive prim;
@@ -685,28 +685,20 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
             prim.bound = prim.shade = vm::IdentityProgram();
         }
         const std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(prim.base, eye);
-        std::pair<const void*, std::vector<double>> key{prim.shader.get(), {}};
-        bool finite = true;  // (a NaN would break the map's order)
+        // (The values by their bits: the same bits fold to the same program, a NaN included.)
+        std::pair<const void*, std::vector<uint64_t>> key{prim.shader.get(), {}};
         for (const compiler::ConstantGlobal& c : constants) {
-            key.second.push_back(static_cast<double>(c.global));
-            for (double x : c.value) {
-                key.second.push_back(x);
-                finite = finite && std::isfinite(x);
-            }
+            key.second.push_back(static_cast<uint64_t>(c.global));
+            for (double x : c.value) key.second.push_back(std::bit_cast<uint64_t>(x));
         }
-        auto specialise = [&] {
+        auto [found, added] = specialised.try_emplace(std::move(key));
+        if (added) {
             std::vector<std::string> unused;  // no overrides here: nothing can go wrong
-            return std::pair{*compiler::Specialise(prim.bound, {}, &unused, constants),
+            found->second = {*compiler::Specialise(prim.bound, {}, &unused, constants),
                              *compiler::Specialise(prim.shade, {}, &unused, constants)};
-        };
-        if (finite) {
-            auto [found, added] = specialised.try_emplace(std::move(key));
-            if (added) found->second = specialise();
-            prim.bound = found->second.first;
-            prim.shade = found->second.second;
-        } else {
-            std::tie(prim.bound, prim.shade) = specialise();
         }
+        prim.bound = found->second.first;
+        prim.shade = found->second.second;
         out->primitives.push_back(std::move(prim));
     }
 
