@@ -156,6 +156,21 @@ bool RibArgChecks::LeadingString(const RibRequest& r, const char* what, std::str
     return true;
 }
 
+DeclaredName SplitDeclaredName(const std::string& text, const char* blanks) {
+    DeclaredName out;
+    const size_t last = text.find_last_not_of(blanks);
+    if (last == std::string::npos) return out;
+    const size_t space = text.find_last_of(blanks, last);
+    const size_t start = space == std::string::npos ? 0 : space + 1;
+    out.name = text.substr(start, last + 1 - start);
+    if (start > 0) {
+        const size_t declBegin = text.find_first_not_of(blanks);
+        const size_t declEnd = text.find_last_not_of(blanks, start - 1);
+        if (declBegin <= declEnd) out.declaration = text.substr(declBegin, declEnd + 1 - declBegin);
+    }
+    return out;
+}
+
 // Token-value pairs from args[first]. A token may carry an inline declaration ("uniform float
 // Km"); its last word is the name. A repeated name replaces the earlier value.
 bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibParam>* out, bool checkDeclared) {
@@ -165,20 +180,14 @@ bool RibArgChecks::ParamList(const RibRequest& r, size_t first, std::vector<RibP
         const RibArg& token = r.args[i];
         if (token.isArray || !token.StringsP())
             return Fail(token.at, Quote(r.name) + " expects a parameter name string, found " + token.Describe());
-        const std::string& text = token.strings[0];
-        size_t last = text.find_last_not_of(" \t\n\r");
-        if (last == std::string::npos) return Fail(token.at, Quote(r.name) + " has an empty parameter name");
-        size_t space = text.find_last_of(" \t\n\r", last);
-        size_t start = space == std::string::npos ? 0 : space + 1;
+        DeclaredName split = SplitDeclaredName(token.strings[0]);
+        if (split.name.empty()) return Fail(token.at, Quote(r.name) + " has an empty parameter name");
         RibParam p;
-        p.value.name = text.substr(start, last + 1 - start);
-        if (start > 0) {
-            size_t declBegin = text.find_first_not_of(" \t\n\r");
-            size_t declEnd = text.find_last_not_of(" \t\n\r", start - 1);
-            if (declBegin <= declEnd) p.value.declaration = text.substr(declBegin, declEnd + 1 - declBegin);
-        } else if (auto declared = m_declared.find(p.value.name); declared != m_declared.end()) {
-            p.value.declaration = declared->second;
-        }
+        p.value.name = std::move(split.name);
+        p.value.declaration = std::move(split.declaration);
+        if (p.value.declaration.empty())
+            if (auto declared = m_declared.find(p.value.name); declared != m_declared.end())
+                p.value.declaration = declared->second;
         if (i + 1 >= r.args.size())
             return Fail(token.at, Quote(r.name) + " parameter " + Quote(p.value.name) + " has no value");
         const RibArg& value = r.args[i + 1];

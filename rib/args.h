@@ -52,6 +52,15 @@ struct RibDeclaration {
 /// "P", "varying float[2]" for "st"...), or "" for a name it does not predeclare.
 std::string StandardDeclaration(const std::string& name);
 
+/// A name string that may carry a declaration before its last word ("uniform float Km",
+/// DisplayChannel's "color Ci"): the last word, and the words before it, with the characters of
+/// `blanks` (parameter names: spaces, tabs, line ends) separating and trimmed; both empty for a
+/// blank string, `declaration` empty for a bare name.
+struct DeclaredName {
+    std::string declaration, name;
+};
+DeclaredName SplitDeclaredName(const std::string& text, const char* blanks = " \t\n\r");
+
 /// Argument checks for the RIB reader, which derives from this class. Messages name the request.
 class RibArgChecks {
   protected:

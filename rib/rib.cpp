@@ -496,13 +496,10 @@ bool RibParser::DoDisplay(const RibRequest& r) {
     std::string mode = noImage ? given : "";
     for (size_t begin = 0; !noImage;) {
         const size_t end = std::min(given.find(',', begin), given.size());
-        std::string group = given.substr(begin, end - begin);
-        const size_t first = group.find_first_not_of(' '), last = group.find_last_not_of(' ');
-        group = first == std::string::npos ? "" : group.substr(first, last + 1 - first);
-        const size_t space = group.find_last_of(' ');
-        const bool typed = space != std::string::npos;  // "color Ci"
-        if (typed) group = group.substr(space + 1);
-        const bool declared = typed || m_displayChannels.count(group) || m_declared.count(group);
+        // A typed channel, "color Ci", by spaces only (a line break in a mode is no separator).
+        const DeclaredName channel = SplitDeclaredName(given.substr(begin, end - begin), " ");
+        const std::string& group = channel.name;
+        const bool declared = !channel.declaration.empty() || m_displayChannels.count(group) || m_declared.count(group);
         if (renderer::DisplayGroupP(group)) {
             mode += (mode.empty() ? "" : ",") + group;
         } else if (declared) {
@@ -533,9 +530,7 @@ bool RibParser::DoDisplayChannel(const RibRequest& r) {
     std::vector<RibParam> params;
     if (!BeforeWorld(r) || !LeadingString(r, "a channel (\"color Ci\")", &channel) || !ParamList(r, 1, &params))
         return false;
-    const size_t last = channel.find_last_not_of(' ');
-    const size_t space = last == std::string::npos ? std::string::npos : channel.find_last_of(' ', last);
-    const std::string name = last == std::string::npos ? "" : channel.substr(space + 1, last - space);
+    const std::string name = SplitDeclaredName(channel, " ").name;
     if (name.empty()) return Fail(r.args[0].at, "'DisplayChannel' needs a channel name");
     m_displayChannels.insert(name);
     for (const RibParam& p : params)
