@@ -238,6 +238,15 @@ T Fade(const T& x) {
     return x * x * x * (x * (x * 6.0 - 15.0) + 10.0);
 }
 
+/// The cell polynomial's lerp v0 + s (v1 - v0) in T's arithmetic; in QuadForms by Lerp, whose
+/// remainder is a convex combination of the ends' (the fades lie in [0, 1] wherever a cell's
+/// bound must hold).
+template <class T>
+T CellLerp(const T& v0, const T& v1, const T& s) {
+    return v0 + s * (v1 - v0);
+}
+inline QuadForm CellLerp(const QuadForm& v0, const QuadForm& v1, const QuadForm& s) { return Lerp(v0, v1, s); }
+
 /// raw(t) of one cell given the fades of its local coordinates, fade[i] = Fade(t[i]) (see
 /// CellPolynomial).
 template <class T, class GradientOf>
@@ -258,7 +267,7 @@ T FadedCellPolynomial(const T* t, const T* fade, int dims, GradientOf&& gradient
     // Lerp away dimension 0, then 1, ...: v[o] + s_i (v[o + 2^i] - v[o]) over the remaining o.
     for (int i = 0, n = corners; i < dims; ++i) {
         n >>= 1;
-        for (int j = 0; j < n; ++j) v[j] = v[2 * j] + fade[i] * (v[2 * j + 1] - v[2 * j]);
+        for (int j = 0; j < n; ++j) v[j] = CellLerp(v[2 * j], v[2 * j + 1], fade[i]);
     }
     return v[0];
 }
@@ -646,9 +655,10 @@ inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
 /// affine region, by the cell polynomial in QuadForm arithmetic (vm/numbers/quad_form.h) on the
 /// region's own eps_u and eps_v: the operations of FadedCellPolynomial in its order (so each
 /// form contains the double result at every point of the region in this cell, rounding
-/// included). Second order is kept exactly through the fades and the lerps, so the error left is
-/// the quadratic part's range over the region, the truncated higher orders and the rounding:
-/// about the noise's own deviation from its plane (tests/vm/numbers/noise_test.cpp).
+/// included; each lerp by Lerp, valid there since the fades lie in [0, 1]). Second order is kept
+/// exactly through the fades and the lerps, so the error left is the quadratic part's range over
+/// the region, the truncated higher orders and the rounding: about the noise's own deviation
+/// from its plane (tests/vm/numbers/noise_test.cpp).
 [[gnu::flatten]] inline ReducedAffine QuadraticCellOnRegion(const QuadAxis* const* axes, int dims,
                                                             const double (*g)[4]) {
     QuadForm t[4], fade[4];

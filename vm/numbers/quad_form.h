@@ -173,4 +173,27 @@ inline QuadForm operator*(const QuadForm& x, const QuadForm& y) {
     return z;
 }
 
+/// v0 + s (v1 - v0), as the double computes it, for an s whose double values at the points that
+/// matter lie in [0, 1] (up to 2^-40: a noise fade at a local coordinate in [0, 1]); elsewhere the
+/// result holds nothing. The same real number is (1 - s) v0 + s v1, so the remainders of v0 and
+/// v1 weigh 1 - s and s, a convex combination: max(r0, r1), where the product of forms would
+/// count r0 twice (in v0 and in v1 - v0) and a chain of lerps compound it. The rest: the product
+/// s (v1 - v0) of the polynomial parts (its reductions, s's remainder, the roundings of the
+/// difference's coefficients), the sum's roundings, and the three roundings of the double lerp
+/// against the real one, at most 3.01 u (|v0| + |v1|).
+inline QuadForm Lerp(const QuadForm& v0, const QuadForm& v1, const QuadForm& s) {
+    QuadForm d{};
+    for (int k = 0; k < QuadForm::kCount; ++k) d.c[k] = v1.c[k] - v0.c[k];
+    for (int k = 0; k < QuadForm::kOwn; ++k) d.o[k] = v1.o[k] - v0.o[k];
+    d.r = LinearError(0.0, d.coefficientSum());
+    const QuadForm p = s * d;
+    QuadForm z{};
+    for (int k = 0; k < QuadForm::kCount; ++k) z.c[k] = v0.c[k] + p.c[k];
+    for (int k = 0; k < QuadForm::kOwn; ++k) z.o[k] = v0.o[k] + p.o[k];
+    const double magnitudes = v0.coefficientSum() + v0.r + v1.coefficientSum() + v1.r;
+    const double convex = (v0.r > v1.r ? v0.r : v1.r) * (1 + 0x1p-38);
+    z.r = (LinearError(p.r, z.coefficientSum()) + convex + 2 * kEpsilon * magnitudes) * kSumSlack + kUnderflowSlack;
+    return z;
+}
+
 }  // namespace affray::vm

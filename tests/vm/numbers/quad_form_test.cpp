@@ -97,6 +97,69 @@ TEST_CASE("QuadForm operations contain the double results (aavalid)", "[vm][quad
     CHECK(skipped < tally.samples / 2);
 }
 
+TEST_CASE("QuadForm Lerp contains the double lerp wherever s lies between 0 and 1 (aavalid)", "[vm][quadform]") {
+    Rng rng(47);
+    affray::test::Tally tally;
+    int skipped = 0;
+    for (int n = 0; n < Samples(4000); ++n) {
+        const QuadForm v0 = RandomForm(rng), v1 = rng.chance(0.1) ? v0 : RandomForm(rng);
+        // A fade-like s: mostly inside [0, 1] over the square, sometimes reaching its ends.
+        QuadForm s = RandomForm(rng);
+        const double c0 = rng.chance(0.2) ? static_cast<double>(rng.integer(0, 1)) : rng.uniform(0, 1);
+        const double spread = s.coefficientSum() - std::fabs(s.c[QuadForm::k0]) + s.r;
+        const double room = rng.chance(0.2) ? 0.5 : std::min(c0, 1 - c0);
+        s = s * (spread > 0 ? rng.uniform(0, 1) * room / spread : 1.0);
+        s.c[QuadForm::k0] = c0;
+        const QuadForm z = Lerp(v0, v1, s);
+        for (int trial = 0; trial < 16; ++trial) {
+            auto coordinate = [&] {
+                return rng.chance(0.3) ? static_cast<long double>(rng.integer(-1, 1)) : rng.eps();
+            };
+            const long double u = coordinate(), v = coordinate();
+            long double w[QuadForm::kOwn];
+            for (long double& wk : w) wk = coordinate();
+            auto value = [&](const QuadForm& f) {
+                const long double m = PolynomialAt(f, u, v, w);
+                const double x = static_cast<double>(m + static_cast<long double>(rng.eps()) * f.r);
+                return std::fabs(x - m) <= f.r ? x : std::numeric_limits<double>::quiet_NaN();
+            };
+            const double a = value(v0), b = value(v1), f = value(s);
+            if (std::isnan(a) || std::isnan(b) || !(f >= 0 && f <= 1)) {
+                ++skipped;
+                continue;
+            }
+            const double scalar = a + f * (b - a);
+            tally.samples++;
+            const long double mid = PolynomialAt(z, u, v, w);
+            if (!(std::fabs(static_cast<long double>(scalar) - mid) <= z.r))
+                tally.fail("lerp at (" + std::to_string(static_cast<double>(u)) + ", " +
+                           std::to_string(static_cast<double>(v)) + "): " + std::to_string(scalar) + " outside " +
+                           std::to_string(static_cast<double>(mid)) + " +- " + std::to_string(z.r));
+        }
+    }
+    INFO(tally.samples << " samples, " << skipped << " skipped\n" << tally.first.str());
+    CHECK(tally.failures == 0);
+    CHECK(tally.samples >= 4 * Samples(4000));  // a quarter of the draws or more
+}
+
+TEST_CASE("QuadForm Lerp weighs the ends' remainders by 1 - s and s", "[vm][quadform]") {
+    // Two constants with remainder 0.01 each, s = 1/2 exactly: the lerp's remainder is about
+    // 0.01 (the product v0 + s (v1 - v0) would give 0.02).
+    QuadForm v0(1.0), v1(3.0);
+    v0.r = v1.r = 0.01;
+    const QuadForm half(0.5);
+    const QuadForm z = Lerp(v0, v1, half), product = v0 + half * (v1 - v0);
+    CHECK(z.c[QuadForm::k0] == 2.0);
+    CHECK(z.r == Approx(0.01).epsilon(1e-9));
+    CHECK(product.r == Approx(0.02).epsilon(1e-9));
+    // A linear s keeps its slope: (1 + u)/2 between 0 and 2 is 1 + u.
+    const QuadForm s = QuadForm::Linear(0.5, 0.5, 0, 0);
+    const QuadForm line = Lerp(QuadForm(0.0), QuadForm(2.0), s);
+    CHECK(line.c[QuadForm::k0] == 1.0);
+    CHECK(line.c[QuadForm::kU] == 1.0);
+    CHECK(line.r < 1e-14);
+}
+
 TEST_CASE("QuadForm products keep the quadratic part exactly and lose little to degrees 3 and 4", "[vm][quadform]") {
     // (1 + u)(1 + v) = 1 + u + v + uv: nothing to reduce, no remainder beyond rounding.
     const QuadForm a = QuadForm::Linear(1, 1, 0, 0), b = QuadForm::Linear(1, 0, 1, 0);
