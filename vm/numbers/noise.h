@@ -85,12 +85,21 @@
 //        terms in eps_u, eps_v exactly through the fades and the lerps and reduces only third and
 //        fourth order (u^3 = 0.75 u +- 0.25, ...); each fade is its Taylor polynomial over the
 //        coordinate's part of the cell (MakeQuadAxis), its terms beyond second order on a symbol
-//        of the coordinate's own. The error left is the quadratic part's range over the region
-//        plus small change: over regions 0.3, 0.2, 0.1 and 0.01 of a cell wide it is 3.1, 2.0,
-//        1.4 and 1.04 times the noise's true deviation from the bound's plane inside a cell, and
-//        5.8, 5.5, 4.9 and 1.1 across faces (tests/vm/numbers/noise_test.cpp). The LocalForm
-//        on eps_u and eps_v that it replaces (one symbol per product) gave 5.6, 4.8, 4.0 and 3.6
-//        inside and 5.3, 5.1, 4.7 and 1.5 across faces, at about twice the cost per cell. Each
+//        of the coordinate's own. Each lerp is QuadForm's Lerp, whose remainder is the convex
+//        combination of its ends' (a product would count the first end's twice, compounding over
+//        the lerps). A region straddling faces is bounded cell by cell over each cell's own part
+//        of it (CellPartOf: the bounding box, in eps_u and eps_v, of the parallelogram clipped to
+//        the cell; a cell the region cannot reach, often half of the box of cells, is skipped), and
+//        the pieces are joined over their own boxes (JoinPieces), not over the whole region,
+//        where a cell's polynomial continued past its faces strays. The error left is the
+//        quadratic part's range over the region plus small change: over regions 0.3, 0.2, 0.1
+//        and 0.01 of a cell wide it is 2.0, 1.5, 1.2 and 1.02 times the noise's true deviation
+//        from the bound's plane inside a cell, and 2.3, 2.2, 2.1 and 1.1 across faces
+//        (tests/vm/numbers/noise_test.cpp). Products for lerps gave 3.1, 2.0, 1.4 and 1.04 inside;
+//        joining the cells' bounds over the whole region, 5.8, 5.5, 4.9 and 1.1 across faces. The
+//        LocalForm on eps_u and eps_v that the QuadForms replace (one symbol per product) gave
+//        5.6, 4.8, 4.0 and 3.6 inside and 5.3, 5.1, 4.7 and 1.5 across faces, at about twice the
+//        cost per cell. Each
 //        coordinate's error (the region's own, and the rounding of t = p - k) is a symbol of the
 //        coordinate's too, shared by t and its fade: left in the QuadForm's error, every product
 //        would multiply it (the teapot of bench/real tested 207 regions per camera ray so, 124
@@ -680,6 +689,140 @@ inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
     return ReducedAffine::FromForm(center, raw.c[QuadForm::kU], raw.c[QuadForm::kV], error);
 }
 
+/// The part of a reduced affine region that can lie in one lattice cell, as a box of its eps:
+/// eps_u = mu + su sigma_u, eps_v = mv + sv sigma_v with sigma in [-1, 1]^2.
+struct CellPart {
+    double mu, su, mv, sv;
+};
+
+/// The CellPart of cell k (its lowest corner) for coordinates p[0..dims): the bounding box of
+/// the eps in [-1, 1]^2 at which some value of every p_i's form lies in [k_i, k_i + 1], the
+/// square clipped by 2 dims half-planes (Sutherland-Hodgman), each widened by its coordinate's
+/// error and far more than the rounding of its evaluation, and the box by far more than that of
+/// the vertices (each a convex combination of two, computed without cancellation). False if no
+/// eps can reach the cell: a plane through a box of cells meets only some of them.
+inline bool CellPartOf(const ReducedAffine* p, const double* k, int dims, CellPart* part) {
+    constexpr int kMaxVertices = 4 + 2 * 4;
+    double xs[2][kMaxVertices + 1], ys[2][kMaxVertices + 1];
+    int n = 4, from = 0;
+    const double squareX[4] = {-1, 1, 1, -1}, squareY[4] = {-1, -1, 1, 1};
+    for (int i = 0; i < 4; ++i) xs[0][i] = squareX[i], ys[0][i] = squareY[i];
+    for (int i = 0; i < dims; ++i) {
+        const double c = p[i].center(), a = p[i].coefficientU(), b = p[i].coefficientV();
+        const double slack = p[i].error() + 1e-12 * (std::fabs(c) + std::fabs(a) + std::fabs(b) + std::fabs(k[i]) + 1);
+        for (int side = 0; side < 2; ++side) {
+            // Keep offset + sign (a x + b y) >= 0: c + a x + b y >= k_i, or <= k_i + 1.
+            const double sign = side == 0 ? 1.0 : -1.0;
+            const double offset = (side == 0 ? c - k[i] : k[i] + 1 - c) + slack;
+            const double *x = xs[from], *y = ys[from];
+            double *outX = xs[1 - from], *outY = ys[1 - from];
+            int m = 0;
+            for (int v = 0; v < n; ++v) {
+                const int w = v + 1 == n ? 0 : v + 1;
+                const double gv = offset + sign * (a * x[v] + b * y[v]), gw = offset + sign * (a * x[w] + b * y[w]);
+                if (gv >= 0) outX[m] = x[v], outY[m++] = y[v];
+                if ((gv >= 0) != (gw >= 0)) {
+                    const double t = gv / (gv - gw);  // opposite signs: no cancellation
+                    outX[m] = x[v] + t * (x[w] - x[v]);
+                    outY[m++] = y[v] + t * (y[w] - y[v]);
+                }
+            }
+            n = m;
+            from = 1 - from;
+            if (n == 0) return false;
+        }
+    }
+    double u0 = INFINITY, u1 = -INFINITY, v0 = INFINITY, v1 = -INFINITY;
+    for (int v = 0; v < n; ++v) {
+        u0 = std::min(u0, xs[from][v]);
+        u1 = std::max(u1, xs[from][v]);
+        v0 = std::min(v0, ys[from][v]);
+        v1 = std::max(v1, ys[from][v]);
+    }
+    constexpr double kMargin = 1e-12;
+    u0 = std::max(-1.0, u0 - kMargin), u1 = std::min(1.0, u1 + kMargin);
+    v0 = std::max(-1.0, v0 - kMargin), v1 = std::min(1.0, v1 + kMargin);
+    if (!(u0 <= u1 && v0 <= v1)) return false;
+    part->mu = 0.5 * (u0 + u1);
+    part->su = std::max(u1 - part->mu, part->mu - u0) * (1 + 4 * kEpsilon);
+    part->mv = 0.5 * (v0 + v1);
+    part->sv = std::max(v1 - part->mv, part->mv - v0) * (1 + 4 * kEpsilon);
+    return true;
+}
+
+/// x on a CellPart's sigma: x0 + a (mu + su sigma_u) + b (mv + sv sigma_v) +- e, the rounding
+/// of the new coefficients (at most 3u of their terms) in the error.
+inline ReducedAffine OnCellPart(const ReducedAffine& x, const CellPart& part) {
+    const double a = x.coefficientU(), b = x.coefficientV();
+    const double am = a * part.mu, bm = b * part.mv, as = a * part.su, bs = b * part.sv;
+    const double rounding =
+        2 * kEpsilon * (std::fabs(x.center()) + std::fabs(am) + std::fabs(bm) + std::fabs(as) + std::fabs(bs));
+    return ReducedAffine::FromForm(x.center() + am + bm, as, bs, (x.error() + rounding) * kSumSlack + kUnderflowSlack);
+}
+
+/// A cell's bound r on its part's sigma, as a plane in the region's eps valid over the part's box,
+/// c + a eps_u + b eps_v +- e (a = r's sigma_u coefficient / su; its rounding and that of c, at most
+/// 4u of their terms over the box, in e), with r's range.
+struct CellPiece {
+    CellPart part;
+    double c, a, b, e;
+    Interval range;
+};
+
+inline CellPiece PieceOnRegion(const ReducedAffine& r, const CellPart& part) {
+    CellPiece piece{part, 0, 0, 0, 0, r.range()};
+    const double ru = r.coefficientU(), rv = r.coefficientV();
+    double extra = 0;
+    // A box of zero width along a parameter fixes it: the sigma term is then any value of its range.
+    if (part.su > 0)
+        piece.a = ru / part.su;
+    else
+        extra += std::fabs(ru);
+    if (part.sv > 0)
+        piece.b = rv / part.sv;
+    else
+        extra += std::fabs(rv);
+    const double am = piece.a * part.mu, bm = piece.b * part.mv;
+    piece.c = r.center() - am - bm;
+    const double rounding = 2 * kEpsilon *
+                            (std::fabs(r.center()) + std::fabs(am) + std::fabs(bm) + std::fabs(piece.a) * part.su +
+                             std::fabs(piece.b) * part.sv);
+    piece.e = (r.error() + extra + rounding) * kSumSlack + kUnderflowSlack;
+    return piece;
+}
+
+/// The join of the pieces of a region's cells: the plane their planes average, weighted by their
+/// boxes' areas, and the error that holds each piece over its own box: |difference of planes|
+/// at most over the box plus the piece's error (not over the whole region, where a small piece's
+/// plane would extrapolate far). Enclosed by the hull of the pieces' ranges.
+inline ReducedAffine JoinPieces(const CellPiece* pieces, int count) {
+    double weight = 0, c = 0, a = 0, b = 0;
+    for (int k = 0; k < count; ++k) {
+        const double w = pieces[k].part.su * pieces[k].part.sv + 1e-300;
+        weight += w;
+        c += w * pieces[k].c;
+        a += w * pieces[k].a;
+        b += w * pieces[k].b;
+    }
+    c /= weight, a /= weight, b /= weight;
+    double error = 0;
+    Interval hull = pieces[0].range;
+    for (int k = 0; k < count; ++k) {
+        const CellPiece& q = pieces[k];
+        const double dc = c - q.c, da = a - q.a, db = b - q.b;
+        const double at = std::fabs(dc + da * q.part.mu + db * q.part.mv),
+                     spread = std::fabs(da) * q.part.su + std::fabs(db) * q.part.sv;
+        const double rounding = 2 * kEpsilon *
+                                (std::fabs(c) + std::fabs(q.c) + std::fabs(a) + std::fabs(q.a) + std::fabs(b) +
+                                 std::fabs(q.b) + at + spread);
+        error = std::max(error, at + spread + q.e + rounding);
+        hull = Hull(hull, q.range);
+    }
+    error = error * kSumSlack + kUnderflowSlack;
+    if (!(error <= kMaxFinite) || !std::isfinite(c + a + b)) return ReducedAffine::FromInterval(hull);
+    return ReducedAffine::Within(ReducedAffine::FromForm(c, a, b, error), hull);
+}
+
 /// One cell's noise value before the final clamp, raw * NoiseScale(dims) + 0.5, over a region by
 /// LocalForm (see the head comment): p the noise coordinates, k the cell, axes[i] the LocalAxis
 /// of p[i] in it, g[o] the gradients of its corners. Contains the double value at every double
@@ -791,29 +934,11 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
                 (method == NoiseBoundMethod::Local || (method == NoiseBoundMethod::Auto && kLocalNoiseByDefault<T>));
     T raw(0.0);
     if (cellwise) {
-        // Local: each coordinate's axes, one per cell index it touches (at most kNoiseCellCap).
         constexpr bool kQuadratic = std::is_same_v<T, ReducedAffine>;  // QuadraticCellOnRegion
-        LocalAxis axes[4][kQuadratic ? 1 : kNoiseCellCap];
-        QuadAxis quads[4][kQuadratic ? kNoiseCellCap : 1];
-        if constexpr (kLocalNoise<T>) {
-            if (local)
-                for (int i = 0; i < dims; ++i)
-                    for (int j = 0; j < static_cast<int>(box.count[i]); ++j) {
-                        if constexpr (kQuadratic)
-                            quads[i][j] = MakeQuadAxis(p[i], box.kLo[i] + j, i);
-                        else
-                            axes[i][j] = MakeLocalAxis(p[i], box.kLo[i] + j);
-                    }
-        }
-        bool first = true;
-        box.ForEach(dims, [&](const double* k, const int* j) {
-            T t[4];
+        // The gradients of cell k's corners.
+        const auto cornerGradients = [&](const double* k, double(*g)[4]) {
             int64_t cell[4];
-            for (int i = 0; i < dims; ++i) {
-                if (!local) t[i] = ClampUnit(T(p[i] - k[i]), kNoiseOverhang);
-                cell[i] = CellIndex(k[i]);
-            }
-            double g[16][4];
+            for (int i = 0; i < dims; ++i) cell[i] = CellIndex(k[i]);
             for (int o = 0; o < (1 << dims); ++o) {
                 int64_t c[4];
                 for (int i = 0; i < dims; ++i) {
@@ -822,24 +947,72 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
                 }
                 LatticeGradient(c, dims, seed, g[o]);
             }
-            T v(0.0);
-            if constexpr (kLocalNoise<T>) {
-                if (local) {
-                    if constexpr (kQuadratic) {
-                        const QuadAxis* cellAxes[4];
-                        for (int i = 0; i < dims; ++i) cellAxes[i] = &quads[i][j[i]];
-                        v = QuadraticCellOnRegion(cellAxes, dims, g);
-                    } else {
-                        const LocalAxis* cellAxes[4];
-                        for (int i = 0; i < dims; ++i) cellAxes[i] = &axes[i][j[i]];
-                        v = LocalCell(p, k, dims, cellAxes, g);
+        };
+        bool first = true;
+        if constexpr (kQuadratic) {
+            // A region straddling faces: each cell bounded over the box of its own part of the
+            // region (CellPartOf; the cells the region cannot reach skipped), the pieces joined
+            // over their boxes (JoinPieces). Should no cell be reachable (rounding), as below.
+            if (local && box.cells > 1) {
+                CellPiece pieces[kNoiseCellCap];
+                int count = 0;
+                box.ForEach(dims, [&](const double* k, const int*) {
+                    CellPart part;
+                    if (!CellPartOf(p, k, dims, &part)) return;
+                    QuadAxis cellQuads[4];
+                    const QuadAxis* cellAxes[4];
+                    for (int i = 0; i < dims; ++i) {
+                        cellQuads[i] = MakeQuadAxis(OnCellPart(p[i], part), k[i], i);
+                        cellAxes[i] = &cellQuads[i];
                     }
+                    double g[16][4];
+                    cornerGradients(k, g);
+                    pieces[count++] = PieceOnRegion(QuadraticCellOnRegion(cellAxes, dims, g), part);
+                });
+                if (count > 0) {
+                    raw = JoinPieces(pieces, count);
+                    first = false;
                 }
             }
-            if (!local) v = CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; });
-            raw = first ? v : Join(raw, v);
-            first = false;
-        });
+        }
+        // Local: each coordinate's axes, one per cell index it touches (at most kNoiseCellCap).
+        LocalAxis axes[4][kQuadratic ? 1 : kNoiseCellCap];
+        QuadAxis quads[4][kQuadratic ? kNoiseCellCap : 1];
+        if constexpr (kLocalNoise<T>) {
+            if (local && first)
+                for (int i = 0; i < dims; ++i)
+                    for (int j = 0; j < static_cast<int>(box.count[i]); ++j) {
+                        if constexpr (kQuadratic)
+                            quads[i][j] = MakeQuadAxis(p[i], box.kLo[i] + j, i);
+                        else
+                            axes[i][j] = MakeLocalAxis(p[i], box.kLo[i] + j);
+                    }
+        }
+        if (first)
+            box.ForEach(dims, [&](const double* k, const int* j) {
+                T t[4];
+                for (int i = 0; i < dims; ++i)
+                    if (!local) t[i] = ClampUnit(T(p[i] - k[i]), kNoiseOverhang);
+                double g[16][4];
+                cornerGradients(k, g);
+                T v(0.0);
+                if constexpr (kLocalNoise<T>) {
+                    if (local) {
+                        if constexpr (kQuadratic) {
+                            const QuadAxis* cellAxes[4];
+                            for (int i = 0; i < dims; ++i) cellAxes[i] = &quads[i][j[i]];
+                            v = QuadraticCellOnRegion(cellAxes, dims, g);
+                        } else {
+                            const LocalAxis* cellAxes[4];
+                            for (int i = 0; i < dims; ++i) cellAxes[i] = &axes[i][j[i]];
+                            v = LocalCell(p, k, dims, cellAxes, g);
+                        }
+                    }
+                }
+                if (!local) v = CellPolynomial(t, dims, [&](int o, int i) { return g[o][i]; });
+                raw = first ? v : Join(raw, v);
+                first = false;
+            });
     } else {
         T t[4];
         for (int i = 0; i < dims; ++i) t[i] = ClampUnit(T(p[i] - floor(p[i])));

@@ -61,6 +61,9 @@ class ReducedAffine {
         if (!(error >= 0)) return Unbounded();
         return Make(center, u, v, error);
     }
+    /// `r` with its enclosure narrowed to `enclosure`, which must hold every scalar value r
+    /// holds (Join's hull of the operands' ranges, say).
+    static ReducedAffine Within(const ReducedAffine& r, const Interval& enclosure) { return Tighten(r, enclosure); }
     /// center +- radius(range) in the error term, with the range as enclosure (a point gives the
     /// constant).
     static ReducedAffine FromInterval(const Interval& range);
