@@ -98,6 +98,13 @@ std::optional<ValueId> Fold(IrBuilder& ir, const IrNode& n) {
             if (ka && *ka == -1.0) return ir.Unary(IrOp::Neg, b, line);
             // x * x => sqr(x): one operand keeps affine bounds correlated (x^2 >= 0)
             if (a == b) return ir.Unary(IrOp::Sqr, a, line);
+            // x * -x => -sqr(x), -x * x likewise: the same double (negation is exact and rounding
+            // symmetric; -0, infinities and NaN included), and a bound of sqr(x), not of a
+            // product of two operands whose errors are taken as independent.
+            if (ir.node(b).op == IrOp::Neg && ir.node(b).in[0] == a)
+                return ir.Unary(IrOp::Neg, ir.Unary(IrOp::Sqr, a, line), line);
+            if (ir.node(a).op == IrOp::Neg && ir.node(a).in[0] == b)
+                return ir.Unary(IrOp::Neg, ir.Unary(IrOp::Sqr, b, line), line);
             break;
         case IrOp::Div:
             // x / 1 => x

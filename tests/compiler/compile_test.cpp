@@ -227,6 +227,13 @@ TEST_CASE("constants fold, shared subexpressions are computed once, dead code go
     compiler::CompiledShader s =
         test::CompileOrThrow("displacement t() { P += vector(0, 0, u * u + sin(u) + sin(u)); }");
     CHECK(Opcodes(s.bound) == std::vector<Op>{Op::Sqr, Op::Sin, Op::AddRR, Op::AddRR, Op::AddRR});
+    // -u * u and u * -u are -sqr(u): the same double, and a square's bound.
+    for (const char* product : {"-u * u", "u * -u"}) {
+        compiler::CompiledShader q =
+            test::CompileOrThrow(std::string("displacement t() { P += vector(0, 0, ") + product + "); }");
+        INFO(product);
+        CHECK(Opcodes(q.bound) == std::vector<Op>{Op::Sqr, Op::Neg, Op::AddRR});
+    }
     // A parameter bound to a constant folds away; unused locals emit nothing.
     compiler::CompiledShader p = test::CompileOrThrow(
         "displacement t(float Km = 2) { float unused = sin(u) * 7; P += vector(0, 0, Km * 0.5); }");
