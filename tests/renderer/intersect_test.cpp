@@ -146,6 +146,23 @@ TEST_CASE("intersector: wave.sl against brute force, interval bounds", "[rendere
     RunAgainstReferences(r.shader->bound, BoundMode::Interval, 60, 12);
 }
 
+TEST_CASE("intersector: wave.sl against brute force, reduced affine bounds", "[renderer][intersect]") {
+    // The default bounds: no hit missed with children culled by their parent's bound (ParentMisses).
+    compiler::CompileResult r = compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl");
+    REQUIRE(r.ok());
+    RunAgainstReferences(r.shader->bound, BoundMode::Reduced, 100, 14);
+}
+
+TEST_CASE("intersector: stucco.sl (noise, thresholds) against brute force, reduced affine bounds",
+          "[renderer][intersect]") {
+    // Noise bounded cell by cell over each cell's part of a region (vm/numbers/noise.h), blobs
+    // 4 per unit across the unit square and 0.1 high.
+    compiler::CompileResult r =
+        compiler::CompileFile(test::SourceDir() + "/shaders/stucco.sl", {{"frequency", {9}}, {"Km", {0.1}}});
+    REQUIRE(r.ok());
+    RunAgainstReferences(r.shader->bound, BoundMode::Reduced, 60, 15);
+}
+
 TEST_CASE("intersector: a stiff wave (frequency 40, amplitude 0.05) is not missed", "[renderer][intersect]") {
     compiler::CompileResult r =
         compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl", {{"frequency", {40}}, {"Km", {0.05}}});
