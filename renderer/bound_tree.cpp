@@ -257,6 +257,13 @@ void CacheBudget::Enforce() {
 BoundTree::BoundTree(const BaseSurface& surface, const vm::Program& boundProgram, const glm::dvec3& eye, BoundMode mode,
                      int maxDepth, CacheBudget* budget)
     : m_surface(surface), m_program(&boundProgram), m_eye(eye), m_mode(mode), m_maxDepth(maxDepth) {
+    m_costlyBounds = boundProgram.code.size() >= 64;
+    for (const vm::Instr& in : boundProgram.code) {
+        const vm::Operation f = vm::OperationOf(in.op);
+        if (f == vm::Operation::Noise || f == vm::Operation::PNoise || f == vm::Operation::CellNoise ||
+            f == vm::Operation::Texture)
+            m_costlyBounds = true;
+    }
     if (!budget) m_ownBudget = std::make_unique<CacheBudget>(kDefaultCacheBytes);
     m_budget = budget ? budget : m_ownBudget.get();
     m_root.bound = MakeEvaluator()->Bound(0, 1, 0, 1);
@@ -451,6 +458,7 @@ void BoundTree::Walker::Enter() {
         m_tree.m_budget->m_clock.fetch_add(1, std::memory_order_relaxed);
     }
     m_clock = m_tree.m_budget->m_clock.load(std::memory_order_relaxed);
+    if (!m_privateBounds.empty()) m_privateBounds.clear();
 }
 
 void BoundTree::Walker::Leave() { m_slot->epoch.store(0, std::memory_order_release); }
@@ -493,8 +501,7 @@ const RegionBound& BoundTree::Walker::Bound(BoundNode& child, double u0, double 
     }
     // Claimed by another thread that has not finished: use a private copy rather than wait.
     ++m_private;
-    m_privateBound = bound;
-    return m_privateBound;
+    return m_privateBounds.emplace_back(bound);
 }
 
 }  // namespace affray::renderer

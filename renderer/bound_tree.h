@@ -23,6 +23,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -176,6 +177,9 @@ class BoundTree {
 
     BoundNode& root() { return m_root; }
     int maxDepth() const { return m_maxDepth; }
+    /// Whether a bound costs far more than testing one against a ray (the program calls noise or
+    /// texture, or runs 64 instructions or more): then a walk spends tests to spare evaluations.
+    bool costlyBounds() const { return m_costlyBounds; }
 
   private:
     /// A walker's announcement, one cache line each; never freed before the tree (a list that
@@ -204,7 +208,7 @@ class BoundTree {
         BoundNode* Children(BoundNode& node);
         /// The bound of `child` (one of a node's children) over its region [u0,u1] x [v0,v1],
         /// evaluated with `evaluator` if no thread published it yet (then `*evaluated` grows).
-        /// Valid until the next call or Leave().
+        /// Valid until the next Enter().
         const RegionBound& Bound(BoundNode& child, double u0, double u1, double v0, double v1,
                                  RegionEvaluator& evaluator, uint64_t* evaluated);
 
@@ -213,7 +217,8 @@ class BoundTree {
         Slot* m_slot;
         uint32_t m_clock = 0;
         uint64_t m_lookups = 0, m_built = 0, m_evaluations = 0, m_private = 0;
-        RegionBound m_privateBound;  // a private copy (see Bound)
+        // The private copies of this ray (see Bound), kept to its end: a deque keeps them in place.
+        std::deque<RegionBound> m_privateBounds;
         double m_buildSeconds = 0;
         uint64_t m_epoch = 0;
     };
@@ -247,6 +252,7 @@ class BoundTree {
     glm::dvec3 m_eye;
     BoundMode m_mode;
     int m_maxDepth;
+    bool m_costlyBounds = false;
     std::unique_ptr<CacheBudget> m_ownBudget;
     CacheBudget* m_budget;
     BoundNode m_root;

@@ -15,9 +15,11 @@
 //    the region is missed, and if it is smaller than the tolerance the region is a hit there,
 //    certified by that size, without subdividing further ("affine leaves": a smooth surface stops
 //    levels earlier, since the parallelogram's thickness shrinks quadratically with the region).
-//    A child's bound is evaluated only if the parent's, restricted to the child's part of E,
-//    can still meet the ray (ParentMisses): the parent's bound holds the child's points at their
-//    own parameters. Subdivision scene of bench/real: 6 % fewer bounds evaluated.
+//    Where bounds are costly (BoundTree::costlyBounds), a child's bound is evaluated only if
+//    the parent's, restricted to the child's part of E, can still meet the ray (ChildrenMissed):
+//    the parent's bound holds the child's points at their own parameters. Subdivision scene of
+//    bench/real: 6 % fewer bounds evaluated; on the wave (one sine, 3.6 regions per ray) the
+//    check, about a test per split, made the render 1.17 times slower, so cheap bounds skip it.
 // Every quantity carries its rounding (kSlack): a region is discarded only when its bound provably
 // misses the ray.
 //
@@ -182,38 +184,13 @@ struct Entry {
     // The parameters where the ray can meet the surface within the region (the region itself
     // unless narrowed), widened by their rounding: children outside it are not looked at.
     double ru0, ru1, rv0, rv1;
-    Measure m[3];  // the bound's measures along the ray frame (set by Test), to cull its children
+    const RegionBound* bound;  // the bound it was measured with (valid for the rest of the ray)
 };
 
-/// Whether the parent's measures over the child's part of the parent's reachable parameters
-/// show that the ray misses the child (then its bound need not be evaluated): the parent's bound
-/// holds every displaced point of the child at the child's eps (u = pu + pr eps_u, surface.h).
-bool ParentMisses(const Entry& r, const Entry& c, double tMin, double tMax) {
-    const Measure &d1 = r.m[0], &d2 = r.m[1], &t = r.m[2];
-    if (!d1.bounded || !d2.bounded || !t.bounded) return false;
-    double pu, pr, pv, prv;
-    RegionParameter(r.u0, r.u1, &pu, &pr);
-    RegionParameter(r.v0, r.v1, &pv, &prv);
-    // (x - p) / r rounds twice, by an ulp of 1 at most each; the pad covers it many times over.
-    constexpr double kPad = 1e-12;
-    auto toEps = [](double lo, double hi, double p, double rad, double* centre, double* radius) {
-        double a = -1, b = 1;
-        if (rad > 0 && std::isfinite(rad)) {
-            a = std::max(-1.0, (lo - p) / rad - kPad);
-            b = std::min(1.0, (hi - p) / rad + kPad);
-        }
-        *centre = 0.5 * (a + b);
-        *radius = std::max(b - *centre, *centre - a) * (1 + 4 * kUlp);
-    };
-    double cu, ru, cv, rv;
-    toEps(std::max(c.u0, r.ru0), std::min(c.u1, r.ru1), pu, pr, &cu, &ru);
-    toEps(std::max(c.v0, r.rv0), std::min(c.v1, r.rv1), pv, prv, &cv, &rv);
-    const Range e1 = Over(d1, cu, ru, cv, rv), e2 = Over(d2, cu, ru, cv, rv), et = Over(t, cu, ru, cv, rv);
-    return e1.excludesZero() || e2.excludesZero() || et.hi < tMin || et.lo > tMax;
-}
-
 /// The entry of the whole domain (not yet measured).
-Entry RootEntry(BoundNode& root) { return Entry{&root, 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, false, 0, 1, 0, 1, {}}; }
+Entry RootEntry(BoundNode& root) {
+    return Entry{&root, 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, false, 0, 1, 0, 1, &root.bound};
+}
 
 /// How many children the split of `r` gives (2 across one parameter, 4 across both).
 int ChildCount(const Entry& r) { return r.axis == kSplitBoth ? 4 : 2; }
@@ -335,6 +312,11 @@ class TreeIntersector final : public SurfaceIntersector {
     void BuildFrontier(const RayGroup& group, IntersectStats& stats);
     /// Measures the entry's bound `b` against the ray; false if it provably misses.
     bool Test(Entry& e, const RegionBound& b, double tMin, double tMax);
+    /// The children of the measured entry `e`, split by e.axis, that the ray provably misses by
+    /// e's bound over each child's part of the parameters where that bound can meet the ray (the
+    /// bound holds every child's points at their own parameters): bit i for child i. Their
+    /// bounds need not be evaluated.
+    uint8_t ChildrenMissed(const Entry& e, double tMin, double tMax) const;
     /// The ray's t range through the box of the bound's bounded coordinates, within [lo, hi]
     /// (narrowed); false if it misses.
     bool BoxRange(const RegionBound& b, double* lo, double* hi) const;
@@ -436,7 +418,6 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
     if (!BoxRange(b, &lo, &hi)) return false;
     Measure m[3];
     AlongFrame(b, m_origin, m_frame, m);
-    for (int k = 0; k < 3; ++k) e.m[k] = m[k];
     const Measure &d1 = m[0], &d2 = m[1], &t = m[2];
     const Range r1 = Over(d1, 0, 1, 0, 1), r2 = Over(d2, 0, 1, 0, 1), rt = Over(t, 0, 1, 0, 1);
     // Each bounded measure may rule the region out on its own, even if another is unbounded.
@@ -539,6 +520,53 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
     return true;
 }
 
+uint8_t TreeIntersector::ChildrenMissed(const Entry& e, double tMin, double tMax) const {
+    Measure m[3];
+    AlongFrame(*e.bound, m_origin, m_frame, m);
+    if (!m[0].bounded || !m[1].bounded || !m[2].bounded) return 0;
+    // The parameters where the bound can meet the ray, and each child's part of them, in the
+    // bound's eps (u = pu + pr eps_u, surface.h): (x - pu) / pr rounds twice, by an ulp of 1 at
+    // most each, and a half's side at the split lies within a few ulps of u of eps = 0 (the
+    // midpoint and pu round differently): the pads cover both many times over.
+    double pu, pr, pv, prv;
+    RegionParameter(e.u0, e.u1, &pu, &pr);
+    RegionParameter(e.v0, e.v1, &pv, &prv);
+    if (!(pr > 0 && prv > 0)) return 0;
+    const double padU = 1e-12 + 8 * kUlp * (std::fabs(pu) + pr) / pr;
+    const double padV = 1e-12 + 8 * kUlp * (std::fabs(pv) + prv) / prv;
+    const double reachU0 = (e.ru0 - pu) / pr - padU, reachU1 = (e.ru1 - pu) / pr + padU;
+    const double reachV0 = (e.rv0 - pv) / prv - padV, reachV1 = (e.rv1 - pv) / prv + padV;
+    if (!std::isfinite(padU + padV + reachU0 + reachU1 + reachV0 + reachV1)) return 0;
+    const bool splitU = e.axis != kSplitV, splitV = e.axis != kSplitU;
+    uint8_t missed = 0;
+    for (int i = 0; i < ChildCount(e); ++i) {
+        const bool highU = splitU && (i & 1), highV = splitV && (splitU ? (i & 2) : (i & 1));
+        double uLo = std::max(-1.0, reachU0), uHi = std::min(1.0, reachU1);
+        double vLo = std::max(-1.0, reachV0), vHi = std::min(1.0, reachV1);
+        if (splitU) {
+            if (highU)
+                uLo = std::max(uLo, -padU);
+            else
+                uHi = std::min(uHi, padU);
+        }
+        if (splitV) {
+            if (highV)
+                vLo = std::max(vLo, -padV);
+            else
+                vHi = std::min(vHi, padV);
+        }
+        if (uLo > uHi || vLo > vHi) {
+            missed |= uint8_t(1u << i);
+            continue;
+        }
+        const double cu = 0.5 * (uLo + uHi), ru = std::max(uHi - cu, cu - uLo) * (1 + 4 * kUlp);
+        const double cv = 0.5 * (vLo + vHi), rv = std::max(vHi - cv, cv - vLo) * (1 + 4 * kUlp);
+        const Range e1 = Over(m[0], cu, ru, cv, rv), e2 = Over(m[1], cu, ru, cv, rv), et = Over(m[2], cu, ru, cv, rv);
+        if (e1.excludesZero() || e2.excludesZero() || et.hi < tMin || et.lo > tMax) missed |= uint8_t(1u << i);
+    }
+    return missed;
+}
+
 bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit,
                                 Hit* hit, IntersectStats& stats, const RayGroup* group) {
     m_origin = ray.origin;
@@ -576,6 +604,7 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
         Entry& e = m_stack[m_top];
         if (!Test(e, b, tMin, best)) return;
         e.axis = SplitAxis(b, e.levelU, e.levelV, maxDepth);
+        e.bound = &b;
         ++m_top;
     };
     // Orders the entries from `first` up farthest first, so that they pop nearest first.
@@ -654,12 +683,13 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
         // first). A child outside the parameters where the parent's parallelogram meets the ray
         // is missed without being looked at.
         BoundNode* kids = m_walker.Children(*r.node);
+        const uint8_t missed = m_tree.costlyBounds() ? ChildrenMissed(r, tMin, best) : 0;
         const size_t first = m_top;
         for (int i = 0; i < ChildCount(r); ++i) {
             Entry& c = m_stack[m_top];
             SetChild(r, kids, i, &c);
             if (c.u1 < r.ru0 || c.u0 > r.ru1 || c.v1 < r.rv0 || c.v0 > r.rv1) continue;
-            if (ParentMisses(r, c, tMin, best)) continue;
+            if (missed & (1u << i)) continue;
             measure(m_walker.Bound(kids[i], c.u0, c.u1, c.v0, c.v1, *m_evaluator, &m_evaluated));
         }
         sortFrom(first);
