@@ -21,25 +21,38 @@ std::string ReadAll(const std::string& path) {
     return in ? text.str() : std::string();
 }
 
-std::string Key(const std::string& path, const std::string& bytes, const std::vector<ParamOverride>& overrides,
-                const lang::PreprocessOptions& preprocess, const Spaces* spaces, const SceneFacts* facts) {
+/// The number's bits, as eight raw bytes.
+void AppendBits(std::string* key, double x) {
+    const uint64_t bits = std::bit_cast<uint64_t>(x);
+    key->append(reinterpret_cast<const char*>(&bits), sizeof bits);
+}
+
+/// The numbers, counted, each as its bits: a key is built per primitive of a mesh, so no text.
+void AppendNumbers(std::string* key, const double* x, size_t n) {
+    *key += std::to_string(n) + ':';
+    for (size_t i = 0; i < n; ++i) AppendBits(key, x[i]);
+}
+
+std::string Key(const std::string& path, uint64_t sourceHash, size_t sourceSize,
+                const std::vector<ParamOverride>& overrides, const lang::PreprocessOptions& preprocess,
+                const Spaces* spaces, const SceneFacts* facts) {
     // The path is part of the key too: #include "x.h" resolves next to the including file.
-    std::string key = path + '\n' + std::to_string(vm::HashSource(bytes)) + '\n' + std::to_string(bytes.size());
+    std::string key = path + '\n' + std::to_string(sourceHash) + '\n' + std::to_string(sourceSize);
     for (const std::string& d : preprocess.includeDirs) key += "\n-I" + d;
     for (const std::string& d : preprocess.defines) key += "\n-D" + d;
     for (const ParamOverride& o : overrides) {
         key += "\n" + o.name + "=";
-        for (double x : o.numbers) key += std::to_string(std::bit_cast<uint64_t>(x)) + ",";
+        AppendNumbers(&key, o.numbers.data(), o.numbers.size());
         if (o.text) key += "\"" + *o.text + "\"";
     }
     for (const auto& [name, t] : spaces ? *spaces : Spaces{}) {
         key += "\nspace " + name + ":";
-        for (double x : t.toCurrent) key += std::to_string(std::bit_cast<uint64_t>(x)) + ",";
+        AppendNumbers(&key, t.toCurrent.data(), t.toCurrent.size());
     }
     auto addFacts = [&](const char* kind, const std::map<std::string, FactValue>& named) {
         for (const auto& [name, value] : named) {
             key += std::string("\n") + kind + " " + name + "=";
-            for (double x : value.numbers) key += std::to_string(std::bit_cast<uint64_t>(x)) + ",";
+            AppendNumbers(&key, value.numbers.data(), value.numbers.size());
             if (value.text) key += "\"" + *value.text + "\"";
         }
     };
@@ -53,7 +66,7 @@ std::string Key(const std::string& path, const std::string& bytes, const std::ve
 
 }  // namespace
 
-const std::string& ShaderCache::Bytes(const std::string& path) {
+const ShaderCache::FileBytes& ShaderCache::Bytes(const std::string& path) {
     // A file is read again only when its identity, size or modification time (nanoseconds)
     // changed: a mesh's thousands of faces name one shader, and reading it per face was a third
     // of the cost of loading.
@@ -63,16 +76,21 @@ const std::string& ShaderCache::Bytes(const std::string& path) {
                     known ? static_cast<int64_t>(st.st_size) : -1,
                     known ? static_cast<int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec : 0};
     auto [it, added] = m_files.try_emplace(path);
-    if (added || !known || !(it->second.first == stamp)) it->second = {stamp, ReadAll(path)};
-    return it->second.second;
+    if (added || !known || !(it->second.stamp == stamp)) {
+        std::string bytes = ReadAll(path);
+        const uint64_t hash = vm::HashSource(bytes);
+        it->second = {stamp, std::move(bytes), hash};
+    }
+    return it->second;
 }
 
 CompileResult ShaderCache::Load(const std::string& path, const std::vector<ParamOverride>& overrides,
                                 const lang::PreprocessOptions& preprocess, const Spaces* spaces,
                                 const SceneFacts* facts) {
-    const std::string& bytes = Bytes(path);
-    const std::string key = Key(path, bytes, overrides, preprocess, spaces, facts);
-    if (!bytes.empty()) {
+    const FileBytes& file = Bytes(path);
+    const bool readable = !file.bytes.empty();
+    const std::string key = Key(path, file.hash, file.bytes.size(), overrides, preprocess, spaces, facts);
+    if (readable) {
         auto it = m_compiled.find(key);
         if (it != m_compiled.end()) {
             ++m_hits;
@@ -84,7 +102,7 @@ CompileResult ShaderCache::Load(const std::string& path, const std::vector<Param
     }
     ++m_misses;
     CompileResult result = LoadShader(path, overrides, preprocess, spaces, facts);
-    if (result.ok() && !bytes.empty()) m_compiled.emplace(key, result.shader);
+    if (result.ok() && readable) m_compiled.emplace(key, result.shader);
     return result;
 }
 

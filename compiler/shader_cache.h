@@ -33,11 +33,16 @@ class ShaderCache {
         int64_t size = -1, mtimeNs = 0;
         bool operator==(const FileStamp&) const = default;
     };
-    /// The bytes of the file at `path` (empty if unreadable), read again only when its stamp
-    /// changed since the last call.
-    const std::string& Bytes(const std::string& path);
+    /// A file as read: its stamp, its bytes (empty if unreadable) and their vm::HashSource.
+    struct FileBytes {
+        FileStamp stamp;
+        std::string bytes;
+        uint64_t hash = 0;
+    };
+    /// The file at `path`, read (and hashed) again only when its stamp changed since the last call.
+    const FileBytes& Bytes(const std::string& path);
 
-    std::map<std::string, std::pair<FileStamp, std::string>> m_files;
+    std::map<std::string, FileBytes> m_files;
     std::map<std::string, std::shared_ptr<const CompiledShader>> m_compiled;
     int m_hits = 0, m_misses = 0;
 };

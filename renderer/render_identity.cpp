@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -97,20 +98,60 @@ const char* BoundsName(BoundMode mode) {
     return "?";
 }
 
+/// The same numbers, bit for bit.
+bool SameBits(const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+/// Whether two programs are the same in everything vm::SaveBytecode writes (texture slots: the
+/// same shared slots; slots are never changed once made).
+bool SameProgram(const vm::Program& a, const vm::Program& b) {
+    if (a.shaderName != b.shaderName || a.sourcePath != b.sourcePath || a.code.size() != b.code.size() ||
+        a.lines != b.lines || !SameBits(a.constants, b.constants) || a.registerCount != b.registerCount ||
+        a.globalRegisters != b.globalRegisters || a.spaces != b.spaces || a.textures != b.textures ||
+        a.outputs.size() != b.outputs.size() || a.params.size() != b.params.size())
+        return false;
+    for (size_t i = 0; i < a.code.size(); ++i) {
+        const vm::Instr &x = a.code[i], &y = b.code[i];
+        if (x.op != y.op || x.flags != y.flags || x.a != y.a || x.b != y.b || x.c != y.c) return false;
+    }
+    for (size_t i = 0; i < a.outputs.size(); ++i) {
+        const vm::ProgramOutput &x = a.outputs[i], &y = b.outputs[i];
+        if (x.name != y.name || x.size != y.size || x.registers != y.registers) return false;
+    }
+    for (size_t i = 0; i < a.params.size(); ++i) {
+        const vm::ProgramParam &x = a.params[i], &y = b.params[i];
+        if (x.name != y.name || x.type != y.type || x.size != y.size || x.firstRegister != y.firstRegister ||
+            !SameBits(x.defaults, y.defaults))
+            return false;
+    }
+    return true;
+}
+
 /// The digest of what a render's identity and its frame's share: the RIB file's bytes, the
 /// scene as read after its camera, and each primitive's specialised programs, its shader's source
 /// and the texture files they read. Computed once per prepared scene (PreparedScene::
-/// identityDigest): for a mesh of thousands of faces it is most of the cost of an identity.
+/// identityDigest): for a mesh of thousands of faces it is most of the cost of an identity. A
+/// primitive whose shader and programs are the previous one's (the faces of a mesh) adds a
+/// field saying so instead of its programs, source and texture stamps again.
 const std::string& InputsDigest(const PreparedScene& scene) {
     if (!scene.identityDigest.empty()) return scene.identityDigest;
     Fnv128 h;
     h.Field("rib", ReadFileBytes(scene.desc.path));
     h.Field("scene", ToStringAfterCamera(scene.desc));
+    const Primitive* previous = nullptr;
     for (const Primitive& prim : scene.primitives) {
         if (!prim.shader) {
             h.Field("primitive", "no shader");
+            previous = nullptr;
             continue;
         }
+        if (previous && previous->shader == prim.shader && SameProgram(previous->bound, prim.bound) &&
+            SameProgram(previous->shade, prim.shade)) {
+            h.Field("primitive", "as the previous one");
+            continue;
+        }
+        previous = &prim;
         vm::BytecodeFile programs;
         programs.shaderName = prim.shader->name;
         programs.sourcePath = FileName(prim.shader->sourcePath);
@@ -130,7 +171,7 @@ const std::string& InputsDigest(const PreparedScene& scene) {
 /// frame in the scene's hash and has no line in the options.
 RenderIdentity Identify(const PreparedScene& scene, const RenderOptions& options, bool withCrop) {
     Fnv128 h;
-    h.Field("affray render identity", "2");
+    h.Field("affray render identity", "3");
     h.Field("inputs", InputsDigest(scene));
     CameraDesc camera = scene.desc.camera;
     if (!withCrop) camera.cropWindow = glm::dvec4(0.0, 1.0, 0.0, 1.0);

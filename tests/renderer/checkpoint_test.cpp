@@ -243,3 +243,31 @@ TEST_CASE("checkpoint: the render identity changes with the scene, the shader an
     rib.replace(rib.find("[1.1]"), 5, "[1.2]");
     CHECK(IdentifyRender(Prepare(dir, rib), options).scene != base.scene);
 }
+
+TEST_CASE(
+    "checkpoint: the render identity follows each primitive's texture files, the mesh's faces after the first too",
+    "[renderer][checkpoint]") {
+    // Consecutive primitives with the same programs add them once (InputsDigest); two patches whose
+    // programs differ only in their map must still each bring their map's stamp.
+    test::TempDir dir;
+    namespace fs = std::filesystem;
+    const std::string maps = test::SourceDir() + "/shaders/maps/tiles.exr";
+    fs::copy_file(maps, dir.Path("a.exr"));
+    fs::copy_file(maps, dir.Path("b.exr"));
+    std::string rib = kScene;
+    const std::string patch = "  Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n";
+    rib.replace(rib.find("  Displacement"), rib.find("WorldEnd") - rib.find("  Displacement"),
+                "  Displacement \"texmap\" \"mapname\" [\"" + dir.Path("a.exr") + "\"]\n" + patch +
+                    "  Displacement \"texmap\" \"mapname\" [\"" + dir.Path("b.exr") + "\"]\n" + patch + patch);
+    RenderOptions options;
+    const std::string base = IdentifyRender(Prepare(dir, rib), options).Hash();
+    CHECK(IdentifyRender(Prepare(dir, rib), options).Hash() == base);
+    for (const char* name : {"a.exr", "b.exr"}) {
+        const fs::path file = dir.Path(name);
+        fs::last_write_time(file, fs::last_write_time(file) + std::chrono::seconds(10));
+        INFO(name);
+        CHECK(IdentifyRender(Prepare(dir, rib), options).Hash() != base);
+        fs::last_write_time(file, fs::last_write_time(file) - std::chrono::seconds(10));
+        CHECK(IdentifyRender(Prepare(dir, rib), options).Hash() == base);
+    }
+}
