@@ -25,6 +25,35 @@ long double PolynomialAt(const QuadForm& x, long double u, long double v, const 
     return s;
 }
 
+/// A random point: (u, v) at a corner, on an edge or inside the square, and the own symbols'
+/// values anywhere in [-1, 1]; Value draws a double that a form allows there.
+struct SamplePoint {
+    long double u, v, w[QuadForm::kOwn];
+
+    explicit SamplePoint(Rng& rng) {
+        auto coordinate = [&] { return rng.chance(0.3) ? static_cast<long double>(rng.integer(-1, 1)) : rng.eps(); };
+        u = coordinate();
+        v = coordinate();
+        for (long double& wk : w) wk = coordinate();
+    }
+    /// A double within f at this point (NaN if the rounding to double left f).
+    double Value(const QuadForm& f, Rng& rng) const {
+        const long double m = PolynomialAt(f, u, v, w);
+        const double x = static_cast<double>(m + static_cast<long double>(rng.eps()) * f.r);
+        return std::fabs(x - m) <= f.r ? x : std::numeric_limits<double>::quiet_NaN();
+    }
+    /// Whether the double `scalar` lies in f at this point.
+    bool Holds(const QuadForm& f, double scalar) const {
+        return std::fabs(static_cast<long double>(scalar) - PolynomialAt(f, u, v, w)) <= f.r;
+    }
+    /// "at (u, v): scalar outside mid +- r", for a failure.
+    std::string Outside(const QuadForm& f, double scalar) const {
+        return "at (" + std::to_string(static_cast<double>(u)) + ", " + std::to_string(static_cast<double>(v)) +
+               "): " + std::to_string(scalar) + " outside " +
+               std::to_string(static_cast<double>(PolynomialAt(f, u, v, w))) + " +- " + std::to_string(f.r);
+    }
+};
+
 QuadForm RandomForm(Rng& rng) {
     QuadForm x{};
     const double scale = std::ldexp(1.0, rng.integer(-30, 3));
@@ -60,19 +89,8 @@ TEST_CASE("QuadForm operations contain the double results (aavalid)", "[vm][quad
                            : op == 5 ? -x
                                      : k * x;
         for (int trial = 0; trial < 16; ++trial) {
-            // Corners, edges and the inside of the square; own symbols anywhere in [-1, 1].
-            auto coordinate = [&] {
-                return rng.chance(0.3) ? static_cast<long double>(rng.integer(-1, 1)) : rng.eps();
-            };
-            const long double u = coordinate(), v = coordinate();
-            long double w[QuadForm::kOwn];
-            for (long double& wk : w) wk = coordinate();
-            auto value = [&](const QuadForm& f) {
-                const long double m = PolynomialAt(f, u, v, w);
-                const double s = static_cast<double>(m + static_cast<long double>(rng.eps()) * f.r);
-                return std::fabs(s - m) <= f.r ? s : std::numeric_limits<double>::quiet_NaN();
-            };
-            const double a = value(x), b = square ? a : value(y);
+            const SamplePoint at(rng);
+            const double a = at.Value(x, rng), b = square ? a : at.Value(y, rng);
             if (std::isnan(a) || std::isnan(b)) {
                 ++skipped;
                 continue;
@@ -85,11 +103,7 @@ TEST_CASE("QuadForm operations contain the double results (aavalid)", "[vm][quad
                                   : op == 5 ? -a
                                             : k * a;
             tally.samples++;
-            const long double mid = PolynomialAt(z, u, v, w);
-            if (!(std::fabs(static_cast<long double>(scalar) - mid) <= z.r))
-                tally.fail("op " + std::to_string(op) + " at (" + std::to_string(static_cast<double>(u)) + ", " +
-                           std::to_string(static_cast<double>(v)) + "): " + std::to_string(scalar) + " outside " +
-                           std::to_string(static_cast<double>(mid)) + " +- " + std::to_string(z.r));
+            if (!at.Holds(z, scalar)) tally.fail("op " + std::to_string(op) + " " + at.Outside(z, scalar));
         }
     }
     INFO(tally.samples << " samples, " << skipped << " skipped\n" << tally.first.str());
@@ -112,29 +126,15 @@ TEST_CASE("QuadForm Lerp contains the double lerp wherever s lies between 0 and 
         s.c[QuadForm::k0] = c0;
         const QuadForm z = Lerp(v0, v1, s);
         for (int trial = 0; trial < 16; ++trial) {
-            auto coordinate = [&] {
-                return rng.chance(0.3) ? static_cast<long double>(rng.integer(-1, 1)) : rng.eps();
-            };
-            const long double u = coordinate(), v = coordinate();
-            long double w[QuadForm::kOwn];
-            for (long double& wk : w) wk = coordinate();
-            auto value = [&](const QuadForm& f) {
-                const long double m = PolynomialAt(f, u, v, w);
-                const double x = static_cast<double>(m + static_cast<long double>(rng.eps()) * f.r);
-                return std::fabs(x - m) <= f.r ? x : std::numeric_limits<double>::quiet_NaN();
-            };
-            const double a = value(v0), b = value(v1), f = value(s);
+            const SamplePoint at(rng);
+            const double a = at.Value(v0, rng), b = at.Value(v1, rng), f = at.Value(s, rng);
             if (std::isnan(a) || std::isnan(b) || !(f >= 0 && f <= 1)) {
                 ++skipped;
                 continue;
             }
             const double scalar = a + f * (b - a);
             tally.samples++;
-            const long double mid = PolynomialAt(z, u, v, w);
-            if (!(std::fabs(static_cast<long double>(scalar) - mid) <= z.r))
-                tally.fail("lerp at (" + std::to_string(static_cast<double>(u)) + ", " +
-                           std::to_string(static_cast<double>(v)) + "): " + std::to_string(scalar) + " outside " +
-                           std::to_string(static_cast<double>(mid)) + " +- " + std::to_string(z.r));
+            if (!at.Holds(z, scalar)) tally.fail("lerp " + at.Outside(z, scalar));
         }
     }
     INFO(tally.samples << " samples, " << skipped << " skipped\n" << tally.first.str());
