@@ -195,12 +195,22 @@ Entry RootEntry(BoundNode& root) {
 /// How many children the split of `r` gives (2 across one parameter, 4 across both).
 int ChildCount(const Entry& r) { return r.axis == kSplitBoth ? 4 : 2; }
 
-/// Sets `c` to child i of `r`: its node in `kids`, its region and levels (the rest is set when it
-/// is measured). Child i: bit 0 the high half across the split parameter (u first), bit 1 high in v.
+/// Where child i of a region split by `axis` lies: which parameters the split halves and which
+/// halves it takes. Child i: bit 0 the high half across the split parameter (u first), bit 1
+/// high in v.
+struct ChildSide {
+    bool splitU, splitV, highU, highV;
+};
+ChildSide SideOf(int axis, int i) {
+    const bool splitU = axis != kSplitV, splitV = axis != kSplitU;
+    return {splitU, splitV, splitU && (i & 1), splitV && (splitU ? (i & 2) : (i & 1))};
+}
+
+/// Sets `c` to child i of `r` (SideOf): its node in `kids`, its region and levels (the rest is set
+/// when it is measured).
 void SetChild(const Entry& r, BoundNode* kids, int i, Entry* c) {
     const double uMid = 0.5 * (r.u0 + r.u1), vMid = 0.5 * (r.v0 + r.v1);
-    const bool splitU = r.axis != kSplitV, splitV = r.axis != kSplitU;
-    const bool highU = splitU && (i & 1), highV = splitV && (splitU ? (i & 2) : (i & 1));
+    const auto [splitU, splitV, highU, highV] = SideOf(r.axis, i);
     c->node = &kids[i];
     c->u0 = splitU && highU ? uMid : r.u0;
     c->u1 = splitU && !highU ? uMid : r.u1;
@@ -537,10 +547,9 @@ uint8_t TreeIntersector::ChildrenMissed(const Entry& e, double tMin, double tMax
     const double reachU0 = (e.ru0 - pu) / pr - padU, reachU1 = (e.ru1 - pu) / pr + padU;
     const double reachV0 = (e.rv0 - pv) / prv - padV, reachV1 = (e.rv1 - pv) / prv + padV;
     if (!std::isfinite(padU + padV + reachU0 + reachU1 + reachV0 + reachV1)) return 0;
-    const bool splitU = e.axis != kSplitV, splitV = e.axis != kSplitU;
     uint8_t missed = 0;
     for (int i = 0; i < ChildCount(e); ++i) {
-        const bool highU = splitU && (i & 1), highV = splitV && (splitU ? (i & 2) : (i & 1));
+        const auto [splitU, splitV, highU, highV] = SideOf(e.axis, i);
         double uLo = std::max(-1.0, reachU0), uHi = std::min(1.0, reachU1);
         double vLo = std::max(-1.0, reachV0), vHi = std::min(1.0, reachV1);
         if (splitU) {

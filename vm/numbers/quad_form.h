@@ -95,11 +95,19 @@ inline QuadForm operator-(const QuadForm& x) {
 }
 
 /// x + y (x - y with kSubtract): coefficient by coefficient, LinearError's rounding.
+/// The coefficients of x + y (x - y with kSubtract), as rounded; the remainder left 0 for the
+/// caller.
 template <bool kSubtract>
-QuadForm Add(const QuadForm& x, const QuadForm& y) {
+QuadForm AddCoefficients(const QuadForm& x, const QuadForm& y) {
     QuadForm z{};
     for (int k = 0; k < QuadForm::kCount; ++k) z.c[k] = kSubtract ? x.c[k] - y.c[k] : x.c[k] + y.c[k];
     for (int k = 0; k < QuadForm::kOwn; ++k) z.o[k] = kSubtract ? x.o[k] - y.o[k] : x.o[k] + y.o[k];
+    return z;
+}
+
+template <bool kSubtract>
+QuadForm Add(const QuadForm& x, const QuadForm& y) {
+    QuadForm z = AddCoefficients<kSubtract>(x, y);
     z.r = LinearError(x.r + y.r, z.coefficientSum());
     return z;
 }
@@ -182,14 +190,10 @@ inline QuadForm operator*(const QuadForm& x, const QuadForm& y) {
 /// difference's coefficients), the sum's roundings, and the three roundings of the double lerp
 /// against the real one, at most 3.01 u (|v0| + |v1|).
 inline QuadForm Lerp(const QuadForm& v0, const QuadForm& v1, const QuadForm& s) {
-    QuadForm d{};
-    for (int k = 0; k < QuadForm::kCount; ++k) d.c[k] = v1.c[k] - v0.c[k];
-    for (int k = 0; k < QuadForm::kOwn; ++k) d.o[k] = v1.o[k] - v0.o[k];
+    QuadForm d = AddCoefficients<true>(v1, v0);
     d.r = LinearError(0.0, d.coefficientSum());
     const QuadForm p = s * d;
-    QuadForm z{};
-    for (int k = 0; k < QuadForm::kCount; ++k) z.c[k] = v0.c[k] + p.c[k];
-    for (int k = 0; k < QuadForm::kOwn; ++k) z.o[k] = v0.o[k] + p.o[k];
+    QuadForm z = AddCoefficients<false>(v0, p);
     const double magnitudes = v0.coefficientSum() + v0.r + v1.coefficientSum() + v1.r;
     const double convex = (v0.r > v1.r ? v0.r : v1.r) * (1 + 0x1p-38);
     z.r = (LinearError(p.r, z.coefficientSum()) + convex + 2 * kEpsilon * magnitudes) * kSumSlack + kUnderflowSlack;
