@@ -6,8 +6,10 @@
 #include <chrono>
 #include <cmath>
 #include <tuple>
+#include <type_traits>
 
 #include "vm/interpreter.h"
+#include "vm/prune.h"
 
 namespace affray::renderer {
 
@@ -141,18 +143,44 @@ RegionBound Reduce(const vm::Vec3<vm::Dual<T>>& p) {
     return Reduce(vm::Vec3<T>{p.x.v, p.y.v, p.z.v});
 }
 
+}  // namespace
+
+class EvaluatorPool {
+  public:
+    /// The pool's interpreter for type N, first made for `program`.
+    template <class N>
+    std::shared_ptr<vm::Interpreter<N>> Get(const vm::Program& program) {
+        std::shared_ptr<vm::Interpreter<N>>& slot = std::get<std::shared_ptr<vm::Interpreter<N>>>(m_interpreters);
+        if (!slot) slot = std::make_shared<vm::Interpreter<N>>(program);
+        return slot;
+    }
+
+  private:
+    std::tuple<std::shared_ptr<vm::Interpreter<vm::Dual<double>>>, std::shared_ptr<vm::Interpreter<vm::Interval>>,
+               std::shared_ptr<vm::Interpreter<vm::Affine>>, std::shared_ptr<vm::Interpreter<vm::ReducedAffine>>,
+               std::shared_ptr<vm::Interpreter<vm::Dual<vm::Interval>>>,
+               std::shared_ptr<vm::Interpreter<vm::Dual<vm::Affine>>>,
+               std::shared_ptr<vm::Interpreter<vm::Dual<vm::ReducedAffine>>>>
+        m_interpreters;
+};
+
+namespace {
+
 template <class N>
 class RegionEvaluatorT final : public RegionEvaluator {
   public:
-    /// With `shared` (a pool's interpreter, which must outlive this), each evaluation runs on it
-    /// after pointing it at `program`; without, on an interpreter of its own.
+    /// With `pool` (a thread's, which must outlive this), each evaluation runs on the pool's
+    /// interpreter of its type after pointing it at `program`; without, on interpreters of its own.
     RegionEvaluatorT(const BaseSurface& surface, const vm::Program& program, const glm::dvec3& eye,
-                     std::shared_ptr<vm::Interpreter<N>> shared = nullptr)
+                     std::shared_ptr<EvaluatorPool> pool = nullptr)
         : m_surface(surface),
           m_program(program),
-          m_interp(shared ? std::move(shared) : std::make_shared<vm::Interpreter<N>>(program)),
+          m_interp(pool ? pool->Get<N>(program) : std::make_shared<vm::Interpreter<N>>(program)),
           m_output(*program.findOutput("P")),
-          m_eye(eye) {}
+          m_eye(eye),
+          m_pool(std::move(pool)),
+          m_slopes(kPlainBound && !program.usesDerivatives() && vm::SlopesCanBound(program)),
+          m_jumps(vm::HasJumps(program)) {}
 
     RegionBound Bound(double u0, double u1, double v0, double v1) override {
         return Reduce(EvaluateOnSurface(Interp(), m_surface, u0, u1, v0, v1, m_eye, m_output));
@@ -168,10 +196,65 @@ class RegionEvaluatorT final : public RegionEvaluator {
         return true;
     }
 
+    bool slopes() const override { return m_slopes; }
+
+    bool Slopes(double u0, double u1, double v0, double v1, const glm::dvec3 (&dirs)[3],
+                vm::Interval (&out)[3][2]) override {
+        if constexpr (!kPlainBound) {
+            return false;
+        } else {
+            if (!m_slopes) return false;
+            vm::Interpreter<vm::Dual<N>>& interp = Shared(m_dual);
+            interp.SetRecording(m_jumps);
+            const Vec3<vm::Dual<N>> x = EvaluateOnSurface(interp, m_surface, u0, u1, v0, v1, m_eye, m_output);
+            interp.SetRecording(false);
+            if (m_jumps && !vm::JumpsDecided(m_program, interp.decisions())) return false;
+            const double rate[2] = {m_surface.DualRate(0), m_surface.DualRate(1)};
+            for (int k = 0; k < 3; ++k)
+                for (int j = 0; j < 2; ++j) {
+                    // Along a direction first, then its range: a displacement along N keeps its
+                    // correlation across the coordinates. The Dual's derivative is along the
+                    // mesh's parameter: divided by the rate, outward.
+                    N sum(0.0);
+                    for (int i = 0; i < 3; ++i)
+                        if (dirs[k][i] != 0) sum = sum + (j == 0 ? x[i].du : x[i].dv) * dirs[k][i];
+                    const vm::Interval r = RangeOf(sum);
+                    if (r.isUnbounded()) return false;
+                    out[k][j] = rate[j] == 1 ? r : r / vm::Interval(rate[j]);
+                    if (out[k][j].isUnbounded()) return false;
+                }
+            return true;
+        }
+    }
+
+    bool PointFrame(double u, double v, glm::dvec3* p, glm::dvec3* pu, glm::dvec3* pv) override {
+        if (!m_slopes) return false;
+        const Vec3<vm::Dual<double>> x = EvaluateOnSurface(Shared(m_point), m_surface, u, u, v, v, m_eye, m_output);
+        const double ru = m_surface.DualRate(0), rv = m_surface.DualRate(1);
+        for (int i = 0; i < 3; ++i) {
+            (*p)[i] = x[i].v;
+            (*pu)[i] = x[i].du / ru;
+            (*pv)[i] = x[i].dv / rv;
+        }
+        return std::isfinite(glm::dot(*p, *p) + glm::dot(*pu, *pu) + glm::dot(*pv, *pv));
+    }
+
   private:
+    /// A bound type without derivatives of its own: only then are slopes bounded (a program that
+    /// takes derivatives runs as a Dual already, and its P' needs derivatives it does not keep).
+    static constexpr bool kPlainBound = !vm::NumberTraits<N>::kHasDerivatives;
+    using SlopeType = std::conditional_t<kPlainBound, vm::Dual<N>, N>;
+
     vm::Interpreter<N>& Interp() {
         if (&m_interp->program() != &m_program) m_interp->SetProgram(m_program);
         return *m_interp;
+    }
+    /// The interpreter in `slot` (the pool's, or one of its own made on first use), running m_program.
+    template <class M>
+    vm::Interpreter<M>& Shared(std::shared_ptr<vm::Interpreter<M>>& slot) {
+        if (!slot) slot = m_pool ? m_pool->Get<M>(m_program) : std::make_shared<vm::Interpreter<M>>(m_program);
+        if (&slot->program() != &m_program) slot->SetProgram(m_program);
+        return *slot;
     }
 
     const BaseSurface& m_surface;
@@ -179,28 +262,13 @@ class RegionEvaluatorT final : public RegionEvaluator {
     std::shared_ptr<vm::Interpreter<N>> m_interp;
     const vm::ProgramOutput& m_output;
     glm::dvec3 m_eye;
+    std::shared_ptr<EvaluatorPool> m_pool;  // null: interpreters of its own
+    bool m_slopes = false, m_jumps = false;
+    std::shared_ptr<vm::Interpreter<SlopeType>> m_dual;
+    std::shared_ptr<vm::Interpreter<vm::Dual<double>>> m_point;
 };
 
 }  // namespace
-
-class EvaluatorPool {
-  public:
-    /// The pool's interpreter for type N, first made for `program`.
-    template <class N>
-    std::shared_ptr<vm::Interpreter<N>> Get(const vm::Program& program) {
-        std::shared_ptr<vm::Interpreter<N>>& slot = std::get<std::shared_ptr<vm::Interpreter<N>>>(m_interpreters);
-        if (!slot) slot = std::make_shared<vm::Interpreter<N>>(program);
-        return slot;
-    }
-
-  private:
-    std::tuple<std::shared_ptr<vm::Interpreter<vm::Interval>>, std::shared_ptr<vm::Interpreter<vm::Affine>>,
-               std::shared_ptr<vm::Interpreter<vm::ReducedAffine>>,
-               std::shared_ptr<vm::Interpreter<vm::Dual<vm::Interval>>>,
-               std::shared_ptr<vm::Interpreter<vm::Dual<vm::Affine>>>,
-               std::shared_ptr<vm::Interpreter<vm::Dual<vm::ReducedAffine>>>>
-        m_interpreters;
-};
 
 std::shared_ptr<EvaluatorPool> MakeEvaluatorPool() { return std::make_shared<EvaluatorPool>(); }
 
@@ -302,8 +370,7 @@ std::unique_ptr<RegionEvaluator> BoundTree::MakeEvaluator(const std::shared_ptr<
     const bool share = pool && m_program->params.empty();
     auto make = [&](auto type) -> std::unique_ptr<RegionEvaluator> {
         using N = decltype(type);
-        return std::make_unique<RegionEvaluatorT<N>>(m_surface, *m_program, m_eye,
-                                                     share ? pool->Get<N>(*m_program) : nullptr);
+        return std::make_unique<RegionEvaluatorT<N>>(m_surface, *m_program, m_eye, share ? pool : nullptr);
     };
     const bool dual = m_program->usesDerivatives();
     if (m_mode == BoundMode::Affine) return dual ? make(vm::Dual<vm::Affine>()) : make(vm::Affine());

@@ -65,6 +65,22 @@ class RegionEvaluator {
     /// The displaced point at (u, v), evaluated in the bounding type (the middle of its bound);
     /// false if it is not finite.
     virtual bool PointAt(double u, double v, glm::dvec3* p) = 0;
+
+    /// Whether Slopes can ever answer (the program's derivative bounds can bound how far P'
+    /// moves: vm::SlopesCanBound, and it takes no derivatives itself).
+    virtual bool slopes() const { return false; }
+    /// Slope bounds of the displaced surface over [u0,u1] x [v0,v1], for certified Newton
+    /// (renderer/newton.h): for each unit direction dirs[k], out[k][0] and out[k][1] hold
+    /// dirs[k] . dP'/du and dirs[k] . dP'/dv (along the region's own parameters) at every point of
+    /// the region, and so bound how far dirs[k] . P' moves across it (the mean value theorem). False
+    /// where that does not hold: the shader may jump within the region (vm::JumpsDecided), or a
+    /// bound is not finite.
+    virtual bool Slopes(double, double, double, double, const glm::dvec3 (&)[3], vm::Interval (&)[3][2]) {
+        return false;
+    }
+    /// P' and its derivatives along the region's parameters at (u, v), in doubles (Dual<double>,
+    /// not bounded): for Newton's steps. False if not finite.
+    virtual bool PointFrame(double, double, glm::dvec3*, glm::dvec3*, glm::dvec3*) { return false; }
 };
 
 /// A node of the hierarchy: the bound of its region and, once some ray needed them, its children

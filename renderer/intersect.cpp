@@ -33,6 +33,8 @@
 #include <cmath>
 #include <vector>
 
+#include "renderer/newton.h"
+
 namespace affray::renderer {
 
 void IntersectStats::Merge(const IntersectStats& o) {
@@ -43,6 +45,9 @@ void IntersectStats::Merge(const IntersectStats& o) {
     depthLimitHits += o.depthLimitHits;
     budgetExhausted += o.budgetExhausted;
     parallelogramHits += o.parallelogramHits;
+    newtonHits += o.newtonHits;
+    newtonMisses += o.newtonMisses;
+    newtonUnknown += o.newtonUnknown;
     maxHitError = std::max(maxHitError, o.maxHitError);
     frontiers += o.frontiers;
     frontierRegions += o.frontierRegions;
@@ -606,6 +611,8 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
     double best = tMax;
     bool found = false;
     const int maxDepth = m_tree.maxDepth();
+    const bool newton = tolerance.newtonReach > 0 && m_evaluator->slopes();
+    const RayFrame frame{m_origin, {m_n1, m_n2, m_dir}};
     const BaseSurface& surface = m_tree.surface();
     // Measures the entry in the stack's next slot against the ray, with its bound `b`: it stays
     // on the stack if the ray can meet it.
@@ -657,6 +664,28 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
 
         const bool small = r.size <= tolerance.At(r.tLo);
         const bool atLimit = r.levelU >= maxDepth && r.levelV >= maxDepth;
+        if (newton && std::isfinite(r.size) && r.size <= tolerance.newtonReach * tolerance.At(r.tLo)) {
+            // Near the tolerance, Krawczyk's test may prove that the region meets the ray's line
+            // exactly once (then Newton's point is the hit, certified to rounding) or never. It
+            // never rules on another region: a nearer one still on the stack is still walked.
+            const NewtonHit n = CertifyRegion(*m_evaluator, frame, r.ru0, r.ru1, r.rv0, r.rv1, r.hu, r.hv);
+            ++m_evaluated;
+            if (n.roots == Roots::None || (n.roots == Roots::One && (n.tHi < tMin || n.tLo > best))) {
+                ++stats.newtonMisses;
+                continue;
+            }
+            if (n.roots == Roots::One && n.tLo >= tMin && n.tHi <= best) {
+                ++stats.newtonHits;
+                // The region's one point is trimmed away: no hit in it.
+                if (!surface.KeptP(n.u, n.v)) continue;
+                best = n.t;
+                found = true;
+                *hit = Hit{n.t, n.u, n.v, n.error, false};
+                if (anyHit) break;
+                continue;
+            }
+            ++stats.newtonUnknown;
+        }
         if (small || atLimit) {
             // A trimmed NuPatch has no surface where the hit would be: the search goes on.
             if (!surface.KeptP(r.hu, r.hv)) continue;

@@ -23,6 +23,10 @@ namespace affray::renderer {
 struct Tolerance {
     double base = 0;
     double slope = 0;
+    /// Certified Newton (renderer/newton.h) is tried on a region whose reachable part is within
+    /// this many tolerances (size <= newtonReach * At(t)): 1 at the leaves only; 0 never (the
+    /// hit is the leaf region, certified by its size).
+    double newtonReach = 0;
     double At(double t) const { return base + slope * std::max(t, 0.0); }
 };
 
@@ -45,6 +49,12 @@ struct IntersectStats {
     uint64_t budgetExhausted = 0;
     /// Hits resolved by the parallelogram of a node's affine bound before its box was small.
     uint64_t parallelogramHits = 0;
+    /// Certified Newton: hits it proved (one root, found to rounding), regions it proved the
+    /// ray's line never meets (or meets once outside the ray's segment), and tries that proved
+    /// nothing (the region is then split or a leaf, as without it).
+    uint64_t newtonHits = 0;
+    uint64_t newtonMisses = 0;
+    uint64_t newtonUnknown = 0;
     double maxHitError = 0;
     /// Coherent rays (RayGroup): frontiers built, and the region bounds tested to build them
     /// (shared by the group's rays, so not in regionsBounded).

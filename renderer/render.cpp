@@ -176,7 +176,7 @@ std::vector<double> ToleranceScales(const PreparedScene& scene, const RenderOpti
 /// `tol` for primitive i of the thread's scene.
 Tolerance ToleranceOf(const ThreadState& ts, int i, const Tolerance& tol) {
     const double k = ts.toleranceScale[i];
-    return k == 1 ? tol : Tolerance{tol.base * k, tol.slope * k};
+    return k == 1 ? tol : Tolerance{tol.base * k, tol.slope * k, tol.newtonReach};
 }
 
 struct NearestHit {
@@ -507,6 +507,7 @@ std::string RenderStats::ToJson() const {
         "\"depth_limit_hits\":%llu,\"max_certified_error\":%.6g,\"parallelogram_hits\":%llu,"
         "\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f,\"shadow_evaluations_per_ray_mean\":%.3f,"
         "\"budget_exhausted_rays\":%llu,\"frontiers\":%llu,\"frontier_regions_mean\":%.2f,"
+        "\"newton\":{\"camera_hits\":%llu,\"shadow_hits\":%llu,\"misses\":%llu,\"unknown\":%llu},"
         "\"cache\":{\"budget_mb\":%.1f,\"peak_mb\":%.2f,\"final_mb\":%.2f,\"nodes\":%llu,"
         "\"lookups\":%llu,\"hit_rate\":%.4f,\"evaluations\":%llu,\"private_copies\":%llu,"
         "\"evictions\":%llu,\"eviction_passes\":%llu,\"build_thread_seconds\":%.3f},"
@@ -521,6 +522,9 @@ std::string RenderStats::ToJson() const {
         perRay(shadow.regionsEvaluated, shadow.rays),
         static_cast<unsigned long long>(camera.budgetExhausted) + shadow.budgetExhausted,
         static_cast<unsigned long long>(camera.frontiers), perRay(camera.frontierRegions, camera.frontiers),
+        static_cast<unsigned long long>(camera.newtonHits), static_cast<unsigned long long>(shadow.newtonHits),
+        static_cast<unsigned long long>(camera.newtonMisses) + shadow.newtonMisses,
+        static_cast<unsigned long long>(camera.newtonUnknown) + shadow.newtonUnknown,
         double(cacheBudgetBytes) / (1 << 20), double(cachePeakBytes) / (1 << 20), double(cache.bytes) / (1 << 20),
         static_cast<unsigned long long>(cache.nodes), static_cast<unsigned long long>(cache.lookups), hitRate,
         static_cast<unsigned long long>(cache.evaluations), static_cast<unsigned long long>(cache.privateCopies),
@@ -868,7 +872,8 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     ParseDisplayMode(scene.desc.displayMode, &channels, &modeError);  // checked by the RIB reader
     const Film film(cam, channels);
     *image = film.MakeImage();
-    const Tolerance tol{options.tolerancePixels * camera.PixelWidth(), options.tolerancePixels * camera.PixelAngle()};
+    const Tolerance tol{options.tolerancePixels * camera.PixelWidth(), options.tolerancePixels * camera.PixelAngle(),
+                        options.newton ? 1.0 : 0.0};
     const int nThreads = RenderThreads(options);
     std::vector<PixelRange> tiles = film.Tiles(RenderTileSize(cam, options));
     if (options.reverseTileOrder) std::reverse(tiles.begin(), tiles.end());

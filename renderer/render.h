@@ -57,6 +57,9 @@ struct RenderOptions {
     /// given by the user (--tolerance).
     bool sceneTolerance = true;
     BoundMode bounds = BoundMode::Reduced;
+    /// Certified Newton hits (renderer/newton.h) at the leaves of the walk: a hit to rounding
+    /// where Krawczyk's test proves the leaf meets the ray once, the leaf's own bound elsewhere.
+    bool newton = false;
     int maxDepth = 24;
     size_t cacheBytes = kDefaultCacheBytes;        // the bound hierarchies' memory budget (renderer/bound_tree.h)
     uint64_t regionBudget = kDefaultRegionBudget;  // per ray (renderer/intersect.h)

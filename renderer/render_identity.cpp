@@ -192,6 +192,8 @@ RenderIdentity Identify(const PreparedScene& scene, const RenderOptions& options
          << "max-depth=" << options.maxDepth << "\n"
          << "region-budget=" << options.regionBudget << "\n"
          << "ray-groups=" << options.rayGroupPixels << "\n";
+    // Only when on, so that the identity of a render without it is what it was before the option.
+    if (options.newton) text << "newton=on\n";
     return {h.Hex(), text.str()};
 }
 

@@ -221,6 +221,7 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     options.regionBudget = cmd.regionBudget;
     options.cacheBytes = cmd.cacheBytes;
     options.rayGroupPixels = cmd.rayGroupPixels;
+    options.newton = cmd.newton;
     options.reverseTileOrder = cmd.reverseTiles;
     // Outputs checked, checkpoint started or resumed, signals stop the render.
     FrameOutput files(outputPath, pngPath);

@@ -55,6 +55,7 @@ struct RenderCommand {
     size_t cacheBytes = renderer::kDefaultCacheBytes;
     std::optional<size_t> textureBytes;  // --texture-mb: the texture tiles' budget (else the default)
     int rayGroupPixels = renderer::kDefaultRayGroupPixels;
+    bool newton = false;        // certified Newton hits (renderer/newton.h)
     std::optional<int> frame;   // --frame N: only the frames numbered N (FrameBegin N)
     bool resume = false;        // --resume: continue the checkpoint beside the output (tools/frame_output.h)
     bool reverseTiles = false;  // --tile-order reverse (a test option: the image must not change)

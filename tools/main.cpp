@@ -26,7 +26,7 @@ const char* const kUsage =
     "  affray render SCENE.rib [-o OUT.exr] [--threads N] [--tolerance PIXELS] [-I DIR] [-D NAME[=VALUE]]\n"
     "                [--bounds affine|reduced|interval] [--max-depth N] [--stats] [--png PREVIEW.png] [--quiet]\n"
     "                [--crop XMIN,XMAX,YMIN,YMAX] [--samples N] [--region-budget N] [--cache-mb MB]\n"
-    "                [--texture-mb MB] [--ray-groups PIXELS] [--frame N] [--resume] [--time-limit S]\n"
+    "                [--texture-mb MB] [--ray-groups PIXELS] [--newton] [--frame N] [--resume] [--time-limit S]\n"
     "  affray compile SHADER.sl [-o OUT.afb] [--disasm] [--stats] [-I DIR] [-D NAME[=VALUE]]\n"
     "  affray eval SHADER.sl [--param NAME=VALUE]... (--at U,V ... | --region U0,U1,V0,V1)\n"
     "              [--mode scalar|affine|interval] [-I DIR] [-D NAME[=VALUE]]\n"
@@ -259,6 +259,8 @@ bool RenderOption(const std::string& a, Args& args, affray::tools::RenderCommand
         cmd.reverseTiles = order == "reverse";
     } else if (a == "--ray-groups")
         cmd.rayGroupPixels = ParseInt(args.Value(a), a, 0, 256);
+    else if (a == "--newton")
+        cmd.newton = true;
     else if (a == "--cache-mb") {
         const double mb = ParseNumber(args.Value(a), a);
         if (!(mb >= 0 && mb <= 1 << 20)) throw UsageError{"--cache-mb takes a size in MiB from 0 to 1048576"};

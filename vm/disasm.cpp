@@ -120,6 +120,8 @@ std::string OpcodeTable() {
         fact(kCommutative, "commutative");
         fact(kSwapsExactly, "swaps exactly");
         fact(kDerivative, "derivative");
+        fact(kJumps, "jumps");
+        fact(kPointwiseSlope, "pointwise slope");
         std::string meaning = info.meaning;
         for (size_t at = meaning.find('|'); at != std::string::npos; at = meaning.find('|', at + 2))
             meaning.replace(at, 1, "\\|");

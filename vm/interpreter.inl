@@ -32,7 +32,9 @@ inline int StrictOrder(const Interval& a, const Interval& b) {
 }
 
 // The one double every value of x stands for, if x is a bound that proves it; a point value
-// proves nothing about a region, and a dual's derivatives need not be constant where its value is.
+// proves nothing about a region. A dual's value may be constant where its derivatives are not
+// zero (a bound's point value is not the function's), so a dual is a constant only with both
+// derivatives exactly zero as well: then LoadK, whose derivatives are zero, stands for it.
 inline bool PointValue(double, double*) { return false; }
 inline bool PointValue(const Interval& x, double* c) {
     if (x.isUnbounded() || !x.isPoint()) return false;
@@ -50,8 +52,8 @@ inline bool PointValue(const ReducedAffine& x, double* c) {
     return true;
 }
 template <class T>
-bool PointValue(const Dual<T>&, double*) {
-    return false;
+bool PointValue(const Dual<T>& x, double* c) {
+    return IsExactlyZero(x.du) && IsExactlyZero(x.dv) && PointValue(x.v, c);
 }
 
 // The constant result `x` of `op` stands for at every point, or Decisions::kNone. The scalar

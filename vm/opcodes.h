@@ -45,6 +45,15 @@ enum OperationFlag : uint8_t {
     kSwapsExactly = 8,
     /// Reads the derivatives of its operand (a number type without them gives "unknown").
     kDerivative = 16,
+    /// The scalar result jumps where an operand crosses a threshold (a comparison's, an integer
+    /// for a rounding, 0 for sign, a cell's face, a Select's condition): its derivative rule (zero,
+    /// or the picked operand's) holds between the jumps only. Over a region where such an
+    /// instruction is undecided, derivative bounds do not bound how far the value moves
+    /// (vm/prune.h: JumpsDecided).
+    kJumps = 32,
+    /// Its derivative bounds over a region hold point by point only, never as a bound of how far
+    /// the value moves across the region: atan2's branch cut, a texture's filtering.
+    kPointwiseSlope = 64,
 };
 
 // The operations of the VM: each is implemented by one opcode per operand form (below). The
@@ -52,45 +61,45 @@ enum OperationFlag : uint8_t {
 // needs about an operation is a column here.
 //  X(name, operands (-1: varies, the noise and texture functions), flags, RSL spelling)
 // Texture is not foldable: its value depends on a file, read when the program is made.
-#define AFFRAY_OPERATIONS(X)                                              \
-    X(Neg, 1, kFoldable, "-x")                                            \
-    X(Sqr, 1, kFoldable, "x * x")                                         \
-    X(Sqrt, 1, kFoldable, "sqrt(x)")                                      \
-    X(Exp, 1, kFoldable, "exp(x)")                                        \
-    X(Log, 1, kFoldable, "log(x)")                                        \
-    X(Sin, 1, kFoldable, "sin(x)")                                        \
-    X(Cos, 1, kFoldable, "cos(x)")                                        \
-    X(Tan, 1, kFoldable, "tan(x)")                                        \
-    X(Abs, 1, kFoldable, "abs(x)")                                        \
-    X(Sign, 1, kFoldable, "sign(x)")                                      \
-    X(DerivU, 1, kDerivative, "Du(x)")                                    \
-    X(DerivV, 1, kDerivative, "Dv(x)")                                    \
-    X(Floor, 1, kFoldable, "floor(x)")                                    \
-    X(Ceil, 1, kFoldable, "ceil(x)")                                      \
-    X(Round, 1, kFoldable, "round(x)")                                    \
-    X(Asin, 1, kFoldable, "asin(x)")                                      \
-    X(Acos, 1, kFoldable, "acos(x)")                                      \
-    X(Atan, 1, kFoldable, "atan(x)")                                      \
-    X(Not, 1, kFoldable | kTruth, "!x")                                   \
-    X(Add, 2, kFoldable | kCommutative | kSwapsExactly, "x + y")          \
-    X(Sub, 2, kFoldable, "x - y")                                         \
-    X(Mul, 2, kFoldable | kCommutative | kSwapsExactly, "x * y")          \
-    X(Div, 2, kFoldable, "x / y")                                         \
-    X(Pow, 2, kFoldable, "pow(x, y)")                                     \
-    X(Min, 2, kFoldable | kCommutative, "min(x, y)")                      \
-    X(Max, 2, kFoldable | kCommutative, "max(x, y)")                      \
-    X(Atan2, 2, kFoldable, "atan(y, x)")                                  \
-    X(Lt, 2, kFoldable | kTruth, "x < y")                                 \
-    X(Le, 2, kFoldable | kTruth, "x <= y")                                \
-    X(Eq, 2, kFoldable | kTruth | kCommutative | kSwapsExactly, "x == y") \
-    X(Ne, 2, kFoldable | kTruth | kCommutative | kSwapsExactly, "x != y") \
-    X(And, 2, kFoldable | kTruth | kCommutative, "x && y")                \
-    X(Or, 2, kFoldable | kTruth | kCommutative, "x || y")                 \
-    X(Select, 3, kFoldable, "c ? x : y")                                  \
-    X(Noise, -1, kFoldable, "noise(p)")                                   \
-    X(PNoise, -1, kFoldable, "pnoise(p, period)")                         \
-    X(CellNoise, -1, kFoldable, "cellnoise(p)")                           \
-    X(Texture, -1, 0, "texture(name, s, t)")
+#define AFFRAY_OPERATIONS(X)                                                       \
+    X(Neg, 1, kFoldable, "-x")                                                     \
+    X(Sqr, 1, kFoldable, "x * x")                                                  \
+    X(Sqrt, 1, kFoldable, "sqrt(x)")                                               \
+    X(Exp, 1, kFoldable, "exp(x)")                                                 \
+    X(Log, 1, kFoldable, "log(x)")                                                 \
+    X(Sin, 1, kFoldable, "sin(x)")                                                 \
+    X(Cos, 1, kFoldable, "cos(x)")                                                 \
+    X(Tan, 1, kFoldable, "tan(x)")                                                 \
+    X(Abs, 1, kFoldable, "abs(x)")                                                 \
+    X(Sign, 1, kFoldable | kJumps, "sign(x)")                                      \
+    X(DerivU, 1, kDerivative, "Du(x)")                                             \
+    X(DerivV, 1, kDerivative, "Dv(x)")                                             \
+    X(Floor, 1, kFoldable | kJumps, "floor(x)")                                    \
+    X(Ceil, 1, kFoldable | kJumps, "ceil(x)")                                      \
+    X(Round, 1, kFoldable | kJumps, "round(x)")                                    \
+    X(Asin, 1, kFoldable, "asin(x)")                                               \
+    X(Acos, 1, kFoldable, "acos(x)")                                               \
+    X(Atan, 1, kFoldable, "atan(x)")                                               \
+    X(Not, 1, kFoldable | kTruth | kJumps, "!x")                                   \
+    X(Add, 2, kFoldable | kCommutative | kSwapsExactly, "x + y")                   \
+    X(Sub, 2, kFoldable, "x - y")                                                  \
+    X(Mul, 2, kFoldable | kCommutative | kSwapsExactly, "x * y")                   \
+    X(Div, 2, kFoldable, "x / y")                                                  \
+    X(Pow, 2, kFoldable, "pow(x, y)")                                              \
+    X(Min, 2, kFoldable | kCommutative, "min(x, y)")                               \
+    X(Max, 2, kFoldable | kCommutative, "max(x, y)")                               \
+    X(Atan2, 2, kFoldable | kPointwiseSlope, "atan(y, x)")                         \
+    X(Lt, 2, kFoldable | kTruth | kJumps, "x < y")                                 \
+    X(Le, 2, kFoldable | kTruth | kJumps, "x <= y")                                \
+    X(Eq, 2, kFoldable | kTruth | kCommutative | kSwapsExactly | kJumps, "x == y") \
+    X(Ne, 2, kFoldable | kTruth | kCommutative | kSwapsExactly | kJumps, "x != y") \
+    X(And, 2, kFoldable | kTruth | kCommutative | kJumps, "x && y")                \
+    X(Or, 2, kFoldable | kTruth | kCommutative | kJumps, "x || y")                 \
+    X(Select, 3, kFoldable | kJumps, "c ? x : y")                                  \
+    X(Noise, -1, kFoldable, "noise(p)")                                            \
+    X(PNoise, -1, kFoldable, "pnoise(p, period)")                                  \
+    X(CellNoise, -1, kFoldable | kJumps, "cellnoise(p)")                           \
+    X(Texture, -1, kPointwiseSlope, "texture(name, s, t)")
 
 enum class Operation : uint8_t {
     None,  // not an operation: LoadK, Move, Ext

@@ -17,6 +17,30 @@
 
 namespace affray::vm {
 
+bool SlopesCanBound(const Program& program) {
+    for (size_t pc = 0; pc < program.code.size(); pc += Words(program.code[pc].op)) {
+        const Operation f = OperationOf(program.code[pc].op);
+        if (Has(f, kDerivative) || Has(f, kPointwiseSlope)) return false;
+    }
+    return true;
+}
+
+bool HasJumps(const Program& program) {
+    for (size_t pc = 0; pc < program.code.size(); pc += Words(program.code[pc].op))
+        if (Has(OperationOf(program.code[pc].op), kJumps)) return true;
+    return false;
+}
+
+bool JumpsDecided(const Program& program, const Decisions& decisions) {
+    if (decisions.size() != program.code.size()) return false;
+    for (size_t pc = 0; pc < program.code.size(); pc += Words(program.code[pc].op)) {
+        if (!Has(OperationOf(program.code[pc].op), kJumps)) continue;
+        double c;
+        if (decisions.operandAt(pc) == 0 && !decisions.constantAt(pc, &c)) return false;
+    }
+    return true;
+}
+
 size_t Decisions::usefulCount(const Program& program) const {
     size_t n = 0;
     for (size_t pc = 0; pc < program.code.size() && pc < size(); pc += Words(program.code[pc].op)) {

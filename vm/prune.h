@@ -74,6 +74,22 @@ class Decisions {
     bool m_merge = false;
 };
 
+/// Whether `program`'s derivative bounds over a region can bound how far its values move across
+/// it (the mean value theorem, which a Newton certificate rests on: renderer/newton.h): none of
+/// its instructions reads derivatives (Du, Dv: the derivatives of their results are not tracked)
+/// or has pointwise slope bounds only (kPointwiseSlope: atan2, texture).
+bool SlopesCanBound(const Program& program);
+/// Whether `program` has an instruction that jumps (kJumps): only then need JumpsDecided be asked,
+/// and the evaluation recorded.
+bool HasJumps(const Program& program);
+/// Whether every instruction of `program` that jumps (kJumps) is decided over the region
+/// `decisions` were recorded over (a Select's operand, a constant for the others, in every
+/// floor-split run). With SlopesCanBound, the program is then, over the region, a composition of
+/// continuous functions, each Lipschitz where its derivative bound is finite (abs, min and max
+/// join the derivatives of both sides where undecided, which holds their generalised gradients),
+/// so finite derivative bounds bound the change of every value: f(x) - f(y) lies in J (x - y).
+bool JumpsDecided(const Program& program, const Decisions& decisions);
+
 /// Builds, into *out, the program equal to `program` at every point of the region `decisions`
 /// were recorded over, bit for bit in the scalar semantics: an instruction with a constant result
 /// becomes LoadK, one that gives an operand disappears (its readers read that operand), moves

@@ -100,14 +100,20 @@ Vec3<T> Constant(const glm::dvec3& p) {
 /// RegionParameter maps the region, which the intersector relies on) and the mesh's u, v (what
 /// the shader reads; Dual derivatives are along them), with ds/du and dt/dv to carry the
 /// patch's tangents to the mesh's parameters. For a lone patch u is s and v is t.
+/// ds/du and dt/dv of a patch that covers `range` of its mesh, as PatchParameters seeds them.
+inline double PatchRate(const ParameterRange& range, int axis) {
+    if (range.unitP()) return 1.0;
+    return axis == 0 ? 1.0 / (range.u1 - range.u0) : 1.0 / (range.v1 - range.v0);
+}
+
 template <class T>
 struct PatchParameters {
     double dsdu, dtdv;
     T s, t, u, v;
 
     PatchParameters(const ParameterRange& range, double s0, double s1, double t0, double t1)
-        : dsdu(range.unitP() ? 1.0 : 1.0 / (range.u1 - range.u0)),
-          dtdv(range.unitP() ? 1.0 : 1.0 / (range.v1 - range.v0)),
+        : dsdu(PatchRate(range, 0)),
+          dtdv(PatchRate(range, 1)),
           s(SurfaceParameterOf<T>::Make(s0, s1, 0, dsdu)),
           t(SurfaceParameterOf<T>::Make(t0, t1, 1, dtdv)),
           u(s),
@@ -386,6 +392,15 @@ struct BaseSurface {
     BaseSurface(const RationalPatch& p, bool flip = false, const ParameterRange& r = {},
                 std::shared_ptr<const TrimCurves> t = nullptr)
         : kind(Kind::RationalPatch), rational(p), trim(std::move(t)), range(r), flipNormal(flip) {}
+    /// The rate with which Dual derivatives run along the surface's own parameter `axis` (what
+    /// the intersector splits): a patch's derivatives are along its mesh's (u,v) (PatchRate),
+    /// every other surface's along its own. A derivative along the region's parameter is the
+    /// Dual's divided by it.
+    double DualRate(int axis) const {
+        const bool patchOfMesh =
+            kind == Kind::BilinearPatch || kind == Kind::BicubicPatch || kind == Kind::RationalPatch;
+        return patchOfMesh ? PatchRate(range, axis) : 1.0;
+    }
     /// Whether the surface is kept at the point (s, t) of its own [0,1]^2 (false where trimmed).
     bool KeptP(double s, double t) const { return !trim || trim->KeptP(range.U(s), range.V(t)); }
     BaseSurface(const SubdivPatch& p, bool flip = false) : kind(Kind::SubdivPatch), subdiv(p), flipNormal(flip) {}

@@ -66,12 +66,13 @@ glm::dvec3 RandomDirectionAbove(std::mt19937_64& rng, double minElevationDeg) {
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-void RunAgainstReferences(const vm::Program& program, BoundMode mode, int nRays, uint64_t seed) {
+void RunAgainstReferences(const vm::Program& program, BoundMode mode, int nRays, uint64_t seed,
+                          double newtonReach = 0) {
     auto intersector = renderer::MakeSurfaceIntersector(kSquare, program, glm::dvec3(0, 0, 5), mode, 24);
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     IntersectStats stats;
-    const Tolerance tol{2e-4, 0.0};
+    const Tolerance tol{2e-4, 0.0, newtonReach};
 
     // Rays aimed at a known surface point must hit no farther than it.
     for (int i = 0; i < nRays; ++i) {
@@ -111,6 +112,8 @@ void RunAgainstReferences(const vm::Program& program, BoundMode mode, int nRays,
     CHECK(hits > nRays / 10);
     CHECK(misses > nRays / 10);
     CHECK(stats.regionsBounded > 0);
+    // With certified Newton, most hits are its own (to rounding), the rest leaves.
+    if (newtonReach > 0) CHECK(stats.newtonHits > uint64_t(nRays));
 }
 
 }  // namespace
@@ -151,6 +154,18 @@ TEST_CASE("intersector: wave.sl against brute force, reduced affine bounds", "[r
     compiler::CompileResult r = compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl");
     REQUIRE(r.ok());
     RunAgainstReferences(r.shader->bound, BoundMode::Reduced, 100, 14);
+}
+
+TEST_CASE("intersector: wave.sl against brute force, certified Newton near the tolerance", "[renderer][intersect]") {
+    // Krawczyk's test tried on regions up to 4 tolerances across: a proof of one root never
+    // drops a nearer region, a proof of none drops only its own.
+    compiler::CompileResult r = compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl");
+    REQUIRE(r.ok());
+    RunAgainstReferences(r.shader->bound, BoundMode::Reduced, 100, 16, 4);
+    compiler::CompileResult stiff =
+        compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl", {{"frequency", {40}}, {"Km", {0.05}}});
+    REQUIRE(stiff.ok());
+    RunAgainstReferences(stiff.shader->bound, BoundMode::Reduced, 80, 17, 1);
 }
 
 TEST_CASE("intersector: stucco.sl (noise, thresholds) against brute force, reduced affine bounds",
