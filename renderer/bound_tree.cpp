@@ -3,6 +3,7 @@
 #include "renderer/bound_tree.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <tuple>
@@ -147,6 +148,28 @@ RegionBound Reduce(const vm::Vec3<vm::Dual<T>>& p) {
 
 class EvaluatorPool {
   public:
+    /// A region's slopes as a thread last computed them (RegionEvaluator::Slopes), keyed by the
+    /// program, the surface and the region: a function of those alone, so a kept entry is what
+    /// computing them again would give, and the image does not depend on what the cache held.
+    struct SlopeEntry {
+        const void* program = nullptr;
+        const void* surface = nullptr;
+        double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+        bool filled = false, valid = false;
+        SlopeBound slopes;
+    };
+    /// The entry of a region: the kept one, or an emptied slot now keyed by it (direct-mapped:
+    /// a region takes the slot of another that hashes alike).
+    SlopeEntry* FindSlopes(const void* program, const void* surface, double u0, double u1, double v0, double v1) {
+        if (m_slopes.empty()) m_slopes.resize(kSlopeEntries);
+        uint64_t h = std::bit_cast<uint64_t>(program) * 0x9e3779b97f4a7c15ull ^ std::bit_cast<uint64_t>(surface);
+        for (double x : {u0, u1, v0, v1}) h = (h ^ std::bit_cast<uint64_t>(x)) * 0xff51afd7ed558ccdull;
+        SlopeEntry& e = m_slopes[(h >> 40) % kSlopeEntries];
+        if (e.program != program || e.surface != surface || e.u0 != u0 || e.u1 != u1 || e.v0 != v0 || e.v1 != v1)
+            e = SlopeEntry{program, surface, u0, u1, v0, v1, false, false, {}};
+        return &e;
+    }
+
     /// The pool's interpreter for type N, first made for `program`.
     template <class N>
     std::shared_ptr<vm::Interpreter<N>> Get(const vm::Program& program) {
@@ -162,6 +185,8 @@ class EvaluatorPool {
                std::shared_ptr<vm::Interpreter<vm::Dual<vm::Affine>>>,
                std::shared_ptr<vm::Interpreter<vm::Dual<vm::ReducedAffine>>>>
         m_interpreters;
+    static constexpr size_t kSlopeEntries = 2048;  // about 0.9 MB per thread
+    std::vector<SlopeEntry> m_slopes;
 };
 
 namespace {
@@ -198,32 +223,35 @@ class RegionEvaluatorT final : public RegionEvaluator {
 
     bool slopes() const override { return m_slopes; }
 
-    bool Slopes(double u0, double u1, double v0, double v1, const glm::dvec3 (&dirs)[3],
-                vm::Interval (&out)[3][2]) override {
+    bool Slopes(double u0, double u1, double v0, double v1, SlopeBound* out) override {
         if constexpr (!kPlainBound) {
             return false;
         } else {
             if (!m_slopes) return false;
+            EvaluatorPool::SlopeEntry* kept =
+                m_pool ? m_pool->FindSlopes(&m_program, &m_surface, u0, u1, v0, v1) : nullptr;
+            if (kept && kept->filled) {
+                *out = kept->slopes;
+                return kept->valid;
+            }
             vm::Interpreter<vm::Dual<N>>& interp = Shared(m_dual);
             interp.SetRecording(m_jumps);
             const Vec3<vm::Dual<N>> x = EvaluateOnSurface(interp, m_surface, u0, u1, v0, v1, m_eye, m_output);
             interp.SetRecording(false);
-            if (m_jumps && !vm::JumpsDecided(m_program, interp.decisions())) return false;
-            const double rate[2] = {m_surface.DualRate(0), m_surface.DualRate(1)};
-            for (int k = 0; k < 3; ++k)
-                for (int j = 0; j < 2; ++j) {
-                    // Along a direction first, then its range: a displacement along N keeps its
-                    // correlation across the coordinates. The Dual's derivative is along the
-                    // mesh's parameter: divided by the rate, outward.
-                    N sum(0.0);
-                    for (int i = 0; i < 3; ++i)
-                        if (dirs[k][i] != 0) sum = sum + (j == 0 ? x[i].du : x[i].dv) * dirs[k][i];
-                    const vm::Interval r = RangeOf(sum);
-                    if (r.isUnbounded()) return false;
-                    out[k][j] = rate[j] == 1 ? r : r / vm::Interval(rate[j]);
-                    if (out[k][j].isUnbounded()) return false;
-                }
-            return true;
+            bool valid = !m_jumps || vm::JumpsDecided(m_program, interp.decisions());
+            if (valid) {
+                out->du = Reduce(Vec3<N>{x[0].du, x[1].du, x[2].du});
+                out->dv = Reduce(Vec3<N>{x[0].dv, x[1].dv, x[2].dv});
+                out->rate[0] = m_surface.DualRate(0);
+                out->rate[1] = m_surface.DualRate(1);
+                valid = out->du.bounded() && out->dv.bounded();
+            }
+            if (kept) {
+                kept->filled = true;
+                kept->valid = valid;
+                kept->slopes = *out;
+            }
+            return valid;
         }
     }
 

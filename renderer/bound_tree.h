@@ -56,6 +56,16 @@ struct RegionBound {
     bool bounded() const { return boundedMask == 7; }
 };
 
+/// The slopes of the displaced surface over a region, for certified Newton (renderer/newton.h):
+/// du holds dP'/du * rate[0] and dv holds dP'/dv * rate[1] at every point of the region, in the
+/// form of a RegionBound over the region's (eps_u, eps_v) (u, v the region's own parameters, as
+/// the intersector splits them; `rate` the Dual's rate along them, BaseSurface::DualRate). They
+/// bound how far P' moves across the region as well (the mean value theorem).
+struct SlopeBound {
+    RegionBound du, dv;
+    double rate[2] = {1, 1};
+};
+
 /// Bounds regions of one displaced surface; one per thread (it holds an interpreter).
 class RegionEvaluator {
   public:
@@ -69,15 +79,11 @@ class RegionEvaluator {
     /// Whether Slopes can ever answer (the program's derivative bounds can bound how far P'
     /// moves: vm::SlopesCanBound, and it takes no derivatives itself).
     virtual bool slopes() const { return false; }
-    /// Slope bounds of the displaced surface over [u0,u1] x [v0,v1], for certified Newton
-    /// (renderer/newton.h): for each unit direction dirs[k], out[k][0] and out[k][1] hold
-    /// dirs[k] . dP'/du and dirs[k] . dP'/dv (along the region's own parameters) at every point of
-    /// the region, and so bound how far dirs[k] . P' moves across it (the mean value theorem). False
-    /// where that does not hold: the shader may jump within the region (vm::JumpsDecided), or a
-    /// bound is not finite.
-    virtual bool Slopes(double, double, double, double, const glm::dvec3 (&)[3], vm::Interval (&)[3][2]) {
-        return false;
-    }
+    /// The slopes of the displaced surface over [u0,u1] x [v0,v1] (one Dual bound evaluation,
+    /// kept in the thread's pool for the next ray that needs the same region). False where they
+    /// do not bound how far P' moves: the shader may jump within the region (vm::JumpsDecided), or
+    /// a bound is not finite.
+    virtual bool Slopes(double, double, double, double, SlopeBound*) { return false; }
     /// P' and its derivatives along the region's parameters at (u, v), in doubles (Dual<double>,
     /// not bounded): for Newton's steps. False if not finite.
     virtual bool PointFrame(double, double, glm::dvec3*, glm::dvec3*, glm::dvec3*) { return false; }

@@ -668,7 +668,8 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
             // Near the tolerance, Krawczyk's test may prove that the region meets the ray's line
             // exactly once (then Newton's point is the hit, certified to rounding) or never. It
             // never rules on another region: a nearer one still on the stack is still walked.
-            const NewtonHit n = CertifyRegion(*m_evaluator, frame, r.ru0, r.ru1, r.rv0, r.rv1, r.hu, r.hv);
+            const NewtonHit n = CertifyRegion(*m_evaluator, frame,
+                                              {r.u0, r.u1, r.v0, r.v1, r.ru0, r.ru1, r.rv0, r.rv1}, r.hu, r.hv);
             ++m_evaluated;
             if (n.roots == Roots::None || (n.roots == Roots::One && (n.tHi < tMin || n.tLo > best))) {
                 ++stats.newtonMisses;

@@ -21,6 +21,35 @@ bool Intersect(const Interval& a, const Interval& b, Interval* out) {
 /// The largest |x| over `a`.
 double Magnitude(const Interval& a) { return std::max(std::fabs(a.lo()), std::fabs(a.hi())); }
 
+constexpr double kUlp = 0x1p-53;
+
+/// The relative rounding slack of the few-term sums and products below: an eight-fold margin over
+/// the gamma_n bounds of their error (n <= 6 operations in a chain), as the intersector's.
+constexpr double kSlack = 4e-15;
+
+/// n . x over the points x of the bound `b` whose eps lie in [eu0, eu1] x [ev0, ev1] (within
+/// [-1, 1]): its centre, parallelogram, segment and box along n, in doubles with their rounding
+/// bounded (a slack on the magnitudes of every term).
+Interval Along(const RegionBound& b, const glm::dvec3& n, double eu0, double eu1, double ev0, double ev1) {
+    double c = 0, a = 0, bb = 0, g = 0, r = 0, magnitude = 0;
+    for (int i = 0; i < 3; ++i) {
+        if (n[i] == 0) continue;
+        c += n[i] * b.c[i];
+        a += n[i] * b.a[i];
+        bb += n[i] * b.b[i];
+        g += n[i] * b.g[i];
+        const double an = std::fabs(n[i]);
+        r += an * b.r[i];
+        magnitude += an * (std::fabs(b.c[i]) + std::fabs(b.a[i]) + std::fabs(b.b[i]) + std::fabs(b.g[i]) + b.r[i]);
+    }
+    const double mu = 0.5 * (eu0 + eu1), ru = 0.5 * (eu1 - eu0) * (1 + 4 * kUlp);
+    const double mv = 0.5 * (ev0 + ev1), rv = 0.5 * (ev1 - ev0) * (1 + 4 * kUlp);
+    const double mid = c + a * mu + bb * mv;
+    double rad = std::fabs(a) * ru + std::fabs(bb) * rv + std::fabs(g) + r;
+    rad += kSlack * (3 * magnitude + std::fabs(mid) + rad) + 1e-300;
+    return Interval(mid - rad, mid + rad);
+}
+
 /// Newton's steps for G = 0 in doubles from (u, v), kept within the region: where they end. They
 /// need not converge: Krawczyk's test decides, and its box narrows to rounding only if they did.
 void NewtonSteps(RegionEvaluator& evaluator, const RayFrame& ray, double u0, double u1, double v0, double v1, double* u,
@@ -129,24 +158,45 @@ Roots Krawczyk(const Box2& X, const double (&c)[2], const Interval (&g)[2], cons
     return Verdict(X, *image);
 }
 
-NewtonHit CertifyRegion(RegionEvaluator& evaluator, const RayFrame& ray, double u0, double u1, double v0, double v1,
-                        double uStart, double vStart) {
+NewtonHit CertifyRegion(RegionEvaluator& evaluator, const RayFrame& ray, const NewtonRegion& region, double uStart,
+                        double vStart) {
     NewtonHit hit;
-    // The slopes along the ray frame over the whole region: S[k][j] holds n_k . dP'/d(u, v)_j.
+    SlopeBound slopes;
+    if (!evaluator.Slopes(region.u0, region.u1, region.v0, region.v1, &slopes)) return hit;
+    const double u0 = region.ru0, u1 = region.ru1, v0 = region.rv0, v1 = region.rv1;
+    // The reachable part in the region's eps (u = pu + pr eps_u, surface.h), padded for the
+    // rounding of the division (as the intersector's child cull pads it).
+    double pu, pr, pv, prv;
+    RegionParameter(region.u0, region.u1, &pu, &pr);
+    RegionParameter(region.v0, region.v1, &pv, &prv);
+    if (!(pr > 0 && prv > 0)) return hit;
+    const double padU = 1e-12 + 8 * kUlp * (std::fabs(pu) + pr) / pr;
+    const double padV = 1e-12 + 8 * kUlp * (std::fabs(pv) + prv) / prv;
+    const double eu0 = std::max(-1.0, (u0 - pu) / pr - padU), eu1 = std::min(1.0, (u1 - pu) / pr + padU);
+    const double ev0 = std::max(-1.0, (v0 - pv) / prv - padV), ev1 = std::min(1.0, (v1 - pv) / prv + padV);
+    if (!(eu0 <= eu1 && ev0 <= ev1)) return hit;
+    // S[k][j]: n_k . dP'/d(u, v)_j over the reachable part.
     Interval S[3][2];
-    if (!evaluator.Slopes(u0, u1, v0, v1, ray.n, S)) return hit;
+    for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 2; ++j) {
+            S[k][j] = Along(j == 0 ? slopes.du : slopes.dv, ray.n[k], eu0, eu1, ev0, ev1);
+            if (slopes.rate[j] != 1) S[k][j] = S[k][j] / Interval(slopes.rate[j]);
+            if (S[k][j].isUnbounded()) return hit;
+        }
     double c[2] = {std::clamp(uStart, u0, u1), std::clamp(vStart, v0, v1)};
     NewtonSteps(evaluator, ray, u0, u1, v0, v1, &c[0], &c[1]);
     // G(c), rounding included: the bound of the surface at the point c, along the frame.
     const RegionBound at = evaluator.Bound(c[0], c[0], c[1], c[1]);
     if (!at.bounded()) return hit;
-    Interval q[3];  // n_k . (P'(c) - o)
-    for (int k = 0; k < 3; ++k) {
-        Interval sum(0.0);
-        for (int i = 0; i < 3; ++i)
-            if (ray.n[k][i] != 0) sum = sum + (Interval(at.lo[i], at.hi[i]) - ray.origin[i]) * ray.n[k][i];
-        q[k] = sum;
+    // n_k . (P'(c) - o): the point's box relative to o, as a bound of centre and radius only.
+    RegionBound rel;
+    for (int i = 0; i < 3; ++i) {
+        rel.c[i] = 0.5 * at.lo[i] + 0.5 * at.hi[i] - ray.origin[i];
+        const double r = std::max(at.hi[i] - ray.origin[i] - rel.c[i], rel.c[i] - (at.lo[i] - ray.origin[i]));
+        rel.r[i] = r * (1 + 4 * kUlp) + kSlack * (std::fabs(at.lo[i]) + std::fabs(at.hi[i]) + std::fabs(ray.origin[i]));
     }
+    Interval q[3];
+    for (int k = 0; k < 3; ++k) q[k] = Along(rel, ray.n[k], 0, 0, 0, 0);
     const Interval g[2] = {q[0], q[1]};
     const Interval J[2][2] = {{S[0][0], S[0][1]}, {S[1][0], S[1][1]}};
     const Box2 X{{Interval(u0, u1), Interval(v0, v1)}};

@@ -56,12 +56,18 @@ struct NewtonHit {
     double error = 0;
 };
 
-/// Certifies where the ray's line meets the displaced surface over the region [u0,u1] x [v0,v1]
-/// of `evaluator`'s surface: its slopes over the region (one Dual bound evaluation), Newton's
-/// steps in doubles from (uStart, vStart) within the region, and Krawczyk's test at their end;
-/// on success the box is narrowed by further Krawczyk steps (no more evaluations) to rounding
-/// size. The region's own parameters are what the intersector splits (surface.h).
-NewtonHit CertifyRegion(RegionEvaluator& evaluator, const RayFrame& ray, double u0, double u1, double v0, double v1,
-                        double uStart, double vStart);
+/// A region [u0,u1] x [v0,v1] of the surface's own parameters (what the intersector splits) and
+/// the part of it where the ray can meet the surface, [ru0,ru1] x [rv0,rv1].
+struct NewtonRegion {
+    double u0, u1, v0, v1;
+    double ru0, ru1, rv0, rv1;
+};
+
+/// Certifies where the ray's line meets the displaced surface over the reachable part of the
+/// region: the region's slopes (RegionEvaluator::Slopes), restricted to that part; Newton's steps
+/// in doubles from (uStart, vStart) within it; Krawczyk's test at their end, and on success a
+/// second test of a box of about the root's rounding (no further evaluation).
+NewtonHit CertifyRegion(RegionEvaluator& evaluator, const RayFrame& ray, const NewtonRegion& region, double uStart,
+                        double vStart);
 
 }  // namespace affray::renderer

@@ -300,7 +300,7 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
         2.0 * std::max(std::isfinite(nh.hit.error) ? nh.hit.error : footprint, footprint) + 1e-9 * glm::length(at.P);
     // A cone: as wide as the camera ray's footprint where it left, widening at the pixel's angle,
     // so an occluder is resolved no finer than the pixel that sees its shadow needs.
-    Tolerance shadowTol{footprint, tol.slope};
+    Tolerance shadowTol{footprint, tol.slope, tol.newtonReach};
     auto transmitted = [&](const glm::dvec3& toLight, double distance) {
         Ray shadowRay{sp.P + sp.Nf * offset, toLight};
         double tMax = std::isfinite(distance) ? distance - offset : INFINITY;

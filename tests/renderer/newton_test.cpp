@@ -122,15 +122,13 @@ class PlaneEvaluator final : public renderer::RegionEvaluator {
         return true;
     }
     bool slopes() const override { return true; }
-    bool Slopes(double, double, double, double, const glm::dvec3 (&dirs)[3], Interval (&out)[3][2]) override {
-        for (int k = 0; k < 3; ++k) {
-            out[k][0] = Interval(0.0);
-            out[k][1] = Interval(0.0);
-            for (int i = 0; i < 3; ++i) {
-                out[k][0] = out[k][0] + Interval(dirs[k][i]) * m_a[i];
-                out[k][1] = out[k][1] + Interval(dirs[k][i]) * m_b[i];
-            }
+    bool Slopes(double, double, double, double, renderer::SlopeBound* out) override {
+        *out = renderer::SlopeBound{};
+        for (int i = 0; i < 3; ++i) {
+            out->du.c[i] = out->du.lo[i] = out->du.hi[i] = m_a[i];
+            out->dv.c[i] = out->dv.lo[i] = out->dv.hi[i] = m_b[i];
         }
+        out->du.boundedMask = out->dv.boundedMask = 7;
         return true;
     }
     bool PointFrame(double u, double v, glm::dvec3* p, glm::dvec3* pu, glm::dvec3* pv) override {
@@ -169,7 +167,8 @@ TEST_CASE("newton: a plane's region holds the ray's point exactly when it says s
         const double dv = (holds ? 0.6 * (2 * unit(rng) - 1) : 2 * unit(rng) - 1) * half;
         const double cu = us + du, cv = vs + dv;
         const renderer::NewtonHit hit =
-            renderer::CertifyRegion(plane, frame, cu - half, cu + half, cv - half, cv + half, cu, cv);
+            renderer::CertifyRegion(
+            plane, frame, {cu - half, cu + half, cv - half, cv + half, cu - half, cu + half, cv - half, cv + half}, cu, cv);
         INFO("trial " << trial << " root (" << us << ", " << vs << ") centre (" << cu << ", " << cv << ") half "
                       << half);
         if (holds) {
@@ -209,12 +208,16 @@ TEST_CASE("newton: certified regions of every shader hold the aimed point and no
             const glm::dvec3 up(s * std::cos(phi), s * std::sin(phi), z);
             const glm::dvec3 origin = target + 3.0 * up;
             const renderer::RayFrame frame = FrameOf(origin, -up);
-            // A region around the aimed point (or beside it), of size 2^-3 .. 2^-12.
+            // A region around the aimed point (or beside it), of size 2^-3 .. 2^-12: the part of
+            // a larger one (its slopes those of the larger one) where the ray can meet it.
             const double half = std::ldexp(1.0, -3 - static_cast<int>(10 * unit(rng)));
             const double cu = std::clamp(u + (unit(rng) - 0.5) * 3 * half, half, 1 - half);
             const double cv = std::clamp(v + (unit(rng) - 0.5) * 3 * half, half, 1 - half);
             const double u0 = cu - half, u1 = cu + half, v0 = cv - half, v1 = cv + half;
-            const renderer::NewtonHit hit = renderer::CertifyRegion(*evaluator, frame, u0, u1, v0, v1, cu, cv);
+            const renderer::NewtonHit hit = renderer::CertifyRegion(*evaluator, frame,
+                                        {std::max(0.0, u0 - (trial % 2) * half), u1, v0,
+                                         std::min(1.0, v1 + (trial % 3) * half), u0, u1, v0, v1},
+                                        cu, cv);
             const bool aimedInside = u > u0 && u < u1 && v > v0 && v < v1;
             INFO(path << " trial " << trial << " aimed (" << u << ", " << v << ") region [" << u0 << ", " << u1
                       << "] x [" << v0 << ", " << v1 << "]");
