@@ -153,15 +153,20 @@ constexpr Sample NoiseSample(RefFn f, int dims, int periods, double maxRadius) {
 }
 
 /// The texture slots every texture sample reads (the flags byte picks one): a 16x16 map of two
-/// channels with random texels, and a 1x1 map, under every wrap mode and filter, with blur, a
+/// channels with random texels, a 1x1 map, and a 4x16 one (its slopes along s and t differ, so a
+/// bound that takes one for the other shows), under every wrap mode and filter, with blur, a
 /// channel the map lacks and a missing map (both the fill value).
 const std::shared_ptr<const vm::TextureSlots>& TestTextures() {
     static const std::shared_ptr<const vm::TextureSlots> slots = [] {
         test::Rng rng(0x7E47);
-        std::vector<float> texels(size_t{16} * 16 * 2);
-        for (float& x : texels) x = static_cast<float>(rng.chance(0.1) ? rng.uniform(-40, 40) : rng.uniform(0, 1));
-        auto map = texture::TextureMap::FromPixels(16, 16, 2, texels);
+        auto draw = [&](size_t count) {
+            std::vector<float> texels(count);
+            for (float& x : texels) x = static_cast<float>(rng.chance(0.1) ? rng.uniform(-40, 40) : rng.uniform(0, 1));
+            return texels;
+        };
+        auto map = texture::TextureMap::FromPixels(16, 16, 2, draw(size_t{16} * 16 * 2));
         auto tiny = texture::TextureMap::FromPixels(1, 1, 1, {0.75f}, texture::Wrap::Clamp, texture::Wrap::Clamp);
+        auto tall = texture::TextureMap::FromPixels(4, 16, 1, draw(size_t{4} * 16));
         using W = texture::Wrap;
         using F = texture::Filter;
         auto slot = [&](std::shared_ptr<const texture::TextureMap> m, int channel, W s, W t, F f, double blur,
@@ -184,11 +189,12 @@ const std::shared_ptr<const vm::TextureSlots>& TestTextures() {
         out->push_back(slot(map, 2, W::Periodic, W::Periodic, F::Box, 0, 0.25));
         out->push_back(slot(nullptr, 0, W::Periodic, W::Periodic, F::Box, 0, -3));
         out->push_back(slot(tiny, 0, W::Clamp, W::Clamp, F::CatmullRom, 0, 0));
+        out->push_back(slot(tall, 0, W::Periodic, W::Clamp, F::Box, 0, 0));
         return out;
     }();
     return slots;
 }
-constexpr int kTextureSlots = 9;
+constexpr int kTextureSlots = 10;
 
 // The scalar references, on the operand values in format order: vm/numbers/number.h's semantics of
 // double (std's functions, fmin/fmax with the first operand on a tie of -0 and +0, sign in {-1,
@@ -296,9 +302,9 @@ bool CellFace(const double* x, double reach) {
         if (NearInteger(x[i], reach)) return true;
     return false;
 }
-// A lookup in the 16-texel test map is piecewise smooth between texel centres and edges (and
-// the blurred ones' taps, a quarter of the map wide in four steps, land on them too): kinks
-// where s or t is a multiple of 1/32.
+// A lookup in the test maps (16 or 4 texels a side) is piecewise smooth between texel centres and
+// edges (and the blurred ones' taps, a quarter of the map wide in four steps, land on them too):
+// kinks where s or t is a multiple of 1/32.
 bool TexelGrid(const double* x, double reach) {
     for (int i = 0; i < 2; ++i)
         if (NearInteger(32 * x[i], 32 * reach)) return true;
@@ -932,8 +938,10 @@ void CheckDerivative(const Sample& s, const Case& c, const PointValues& p, const
         return;
     }
     ++rep.fdChecked;
+    // (An infinite dual fails: the tolerance, relative to the larger of the two, would be infinite
+    // too. Finite differences that agree mean a finite derivative.)
     const double tol = 1e-6 * std::max(std::fabs(r2), std::fabs(dual)) + noise;
-    if (!(std::fabs(dual - r2) <= tol)) {
+    if (!(std::isfinite(dual) && std::fabs(dual - r2) <= tol)) {
         std::string at;
         for (int k = 0; k < n; ++k) at += (k ? ", " : "") + Num(p.x[k]);
         rep.fail(Describe(c) + " at (" + at + "): dual " + which + " = " + Num(dual) + ", finite differences " +
