@@ -96,6 +96,9 @@ bool RayGroup::Contains(const glm::dvec3& p, double slack) const {
 namespace {
 
 constexpr double kUlp = 0x1p-53;
+/// With certified Newton, a leaf it does not prove is a hit only below this fraction of the
+/// tolerance (it is split until then).
+constexpr double kUnprovedLeaf = 0.125;
 /// The relative rounding slack of the few-term sums and products below: an eight-fold margin over
 /// the gamma_n bounds of their error (n <= 6 operations in a chain).
 constexpr double kSlack = 4e-15;
@@ -642,6 +645,10 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
     }
 
     while (m_top > 0) {
+        if (m_tested >= m_budget && tolerance.certifiedOnly) {
+            ++stats.budgetExhausted;
+            break;
+        }
         if (m_tested >= m_budget) {
             // Out of budget (a shader too stiff to resolve at this tolerance, or bounds that
             // overflow everywhere): the nearest region left is a possible hit, uncertified, unless
@@ -662,14 +669,14 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
         const Entry r = m_stack[--m_top];
         if (r.tLo > best) continue;  // a nearer hit was found since this region was measured
 
-        const bool small = r.size <= tolerance.At(r.tLo);
+        bool small = r.size <= tolerance.At(r.tLo);
         const bool atLimit = r.levelU >= maxDepth && r.levelV >= maxDepth;
         if (newton && std::isfinite(r.size) && r.size <= tolerance.newtonReach * tolerance.At(r.tLo)) {
             // Near the tolerance, Krawczyk's test may prove that the region meets the ray's line
             // exactly once (then Newton's point is the hit, certified to rounding) or never. It
             // never rules on another region: a nearer one still on the stack is still walked.
-            const NewtonHit n = CertifyRegion(*m_evaluator, frame,
-                                              {r.u0, r.u1, r.v0, r.v1, r.ru0, r.ru1, r.rv0, r.rv1}, r.hu, r.hv);
+            const NewtonHit n =
+                CertifyRegion(*m_evaluator, frame, {r.u0, r.u1, r.v0, r.v1, r.ru0, r.ru1, r.rv0, r.rv1}, r.hu, r.hv);
             ++m_evaluated;
             if (n.roots == Roots::None || (n.roots == Roots::One && (n.tHi < tMin || n.tLo > best))) {
                 ++stats.newtonMisses;
@@ -686,8 +693,13 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
                 continue;
             }
             ++stats.newtonUnknown;
+            // Not proved (a silhouette, a grazing ray, a crease): such a leaf is split further,
+            // down to a fraction of the tolerance, where its bound may miss the ray or a
+            // smaller region be proved.
+            if (small && r.size > kUnprovedLeaf * tolerance.At(r.tLo)) small = false;
         }
         if (small || atLimit) {
+            if (tolerance.certifiedOnly) continue;  // not proved: not a hit here
             // A trimmed NuPatch has no surface where the hit would be: the search goes on.
             if (!surface.KeptP(r.hu, r.hv)) continue;
             double tHit = 0, error = 0;

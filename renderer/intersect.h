@@ -27,6 +27,10 @@ struct Tolerance {
     /// this many tolerances (size <= newtonReach * At(t)): 1 at the leaves only; 0 never (the
     /// hit is the leaf region, certified by its size).
     double newtonReach = 0;
+    /// Report only hits certified by Newton (a proved root): leaves, depth-limit and budget hits
+    /// are not hits. For shadow rays that start close to the surface they leave, where a leaf
+    /// may be that surface itself (render.cpp: ShadeHit).
+    bool certifiedOnly = false;
     double At(double t) const { return base + slope * std::max(t, 0.0); }
 };
 

@@ -284,6 +284,24 @@ glm::dvec3 ShadowTransmission(const PreparedScene& scene, ThreadState& ts, const
     return through;
 }
 
+/// Whether a surface that casts shadows and is opaque to them has a root proved by certified
+/// Newton (Tolerance::certifiedOnly) on the segment [tMin, tMax] of `ray`.
+bool ProvedBlocked(const PreparedScene& scene, ThreadState& ts, const Ray& ray, double tMin, double tMax,
+                   const Tolerance& tol) {
+    using Transmission = PrimitiveDesc::Transmission;
+    bool blocked = false;
+    double tEnd = tMax;
+    scene.bvh->Traverse(ray, tMin, &tEnd, [&](int i, double) {
+        const Primitive& prim = scene.primitives[i];
+        if (prim.transmission == Transmission::Transparent) return true;
+        if (prim.transmission == Transmission::Opacity && !prim.OpaqueP()) return true;
+        Hit hit;
+        blocked = ts.Intersector(i).Intersect(ray, tMin, tMax, ToleranceOf(ts, i, tol), true, &hit, ts.shadowStats);
+        return !blocked;
+    });
+    return blocked;
+}
+
 /// Shades the nearest hit of a camera ray: the surface model at P, N (EvaluateHit) with Cs at
 /// the hit and shadow rays through the same intersector. The colour is not yet multiplied by Os.
 glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh,
@@ -301,10 +319,18 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
     // A cone: as wide as the camera ray's footprint where it left, widening at the pixel's angle,
     // so an occluder is resolved no finer than the pixel that sees its shadow needs.
     Tolerance shadowTol{footprint, tol.slope, tol.newtonReach};
+    const double nearOffset = 2.0 * nh.hit.error + 1e-9 * glm::length(at.P);
+    const bool searchNear = tol.newtonReach > 0 && std::isfinite(nh.hit.error) && nearOffset < offset;
+    Tolerance nearTol = shadowTol;
+    nearTol.certifiedOnly = true;
     auto transmitted = [&](const glm::dvec3& toLight, double distance) {
         Ray shadowRay{sp.P + sp.Nf * offset, toLight};
         double tMax = std::isfinite(distance) ? distance - offset : INFINITY;
-        return ShadowTransmission(scene, ts, shadowRay, offset, tMax, shadowTol);
+        const glm::dvec3 through = ShadowTransmission(scene, ts, shadowRay, offset, tMax, shadowTol);
+        if (!searchNear || through == glm::dvec3(0.0)) return through;
+        const Ray nearRay{sp.P + sp.Nf * nearOffset, toLight};
+        const double nearEnd = std::isfinite(distance) ? distance - nearOffset : INFINITY;
+        return ProvedBlocked(scene, ts, nearRay, nearOffset, nearEnd, nearTol) ? glm::dvec3(0.0) : through;
     };
     return ShadeSurface(prim.surface, prim.ColorAt(nh.hit.u, nh.hit.v), sp, scene.lightSets[prim.lightSet],
                         transmitted);

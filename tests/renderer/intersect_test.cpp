@@ -221,3 +221,43 @@ TEST_CASE("intersector: unbounded regions are subdivided, never dropped, and cou
     CHECK(hit.t == Approx(5.0 + 0.001 / 0.25).margin(1e-2));
     CheckCertificate(s.bound, away, hit);
 }
+
+TEST_CASE("intersector: certified-only walks report proved roots alone", "[renderer][intersect][newton]") {
+    // Tolerance::certifiedOnly (a shadow ray's search near the surface it leaves): a hit is a
+    // root Krawczyk's test proved, found to rounding; a shader that jumps everywhere (a step of
+    // u) has no proved roots where it jumps, and leaves there are not hits.
+    compiler::CompileResult r = compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl");
+    REQUIRE(r.ok());
+    auto intersector =
+        renderer::MakeSurfaceIntersector(kSquare, r.shader->bound, glm::dvec3(0, 0, 5), BoundMode::Reduced, 24);
+    Tolerance tol{2e-4, 0.0, 1.0};
+    tol.certifiedOnly = true;
+    std::mt19937_64 rng(18);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    IntersectStats stats;
+    int found = 0;
+    for (int i = 0; i < 100; ++i) {
+        const double u = 0.05 + 0.9 * unit(rng), v = 0.05 + 0.9 * unit(rng);
+        const glm::dvec3 target = test::PointOnSquare(r.shader->bound, u, v);
+        const glm::dvec3 up = RandomDirectionAbove(rng, 30.0);
+        Ray ray{target + up * 2.0, -up};
+        Hit hit;
+        if (!intersector->Intersect(ray, 0.0, INFINITY, tol, false, &hit, stats)) continue;
+        ++found;
+        CHECK(hit.error < 1e-9);
+        CHECK(hit.t <= 2.0 + 1e-9);
+        CheckCertificate(r.shader->bound, ray, hit);
+    }
+    CHECK(found > 80);
+    CHECK(stats.newtonHits >= uint64_t(found));
+
+    compiler::CompiledShader steps =
+        test::CompileOrThrow("displacement steps() { P += vector(0, 0, 0.05 * step(0.5, mod(u * 8, 1))); }");
+    auto stepped = renderer::MakeSurfaceIntersector(kSquare, steps.bound, glm::dvec3(0, 0, 5), BoundMode::Reduced, 24);
+    // Straight down onto a riser (u = 1/16 + k/8, where the step jumps): the leaves there are not
+    // proved, so nothing is reported, while the default walk reports a leaf hit.
+    Ray riser{{0.5 + 1.0 / 16, 0.3, 2.0}, {0, 0, -1}};
+    Hit hit;
+    CHECK_FALSE(stepped->Intersect(riser, 0.0, INFINITY, tol, false, &hit, stats));
+    CHECK(stepped->Intersect(riser, 0.0, INFINITY, Tolerance{2e-4, 0.0}, false, &hit, stats));
+}

@@ -166,9 +166,9 @@ TEST_CASE("newton: a plane's region holds the ray's point exactly when it says s
         const double du = (holds ? 0.6 : 1.4 + 0.6 * unit(rng)) * half * (unit(rng) < 0.5 ? -1 : 1);
         const double dv = (holds ? 0.6 * (2 * unit(rng) - 1) : 2 * unit(rng) - 1) * half;
         const double cu = us + du, cv = vs + dv;
-        const renderer::NewtonHit hit =
-            renderer::CertifyRegion(
-            plane, frame, {cu - half, cu + half, cv - half, cv + half, cu - half, cu + half, cv - half, cv + half}, cu, cv);
+        const renderer::NewtonHit hit = renderer::CertifyRegion(
+            plane, frame, {cu - half, cu + half, cv - half, cv + half, cu - half, cu + half, cv - half, cv + half}, cu,
+            cv);
         INFO("trial " << trial << " root (" << us << ", " << vs << ") centre (" << cu << ", " << cv << ") half "
                       << half);
         if (holds) {
@@ -214,7 +214,8 @@ TEST_CASE("newton: certified regions of every shader hold the aimed point and no
             const double cu = std::clamp(u + (unit(rng) - 0.5) * 3 * half, half, 1 - half);
             const double cv = std::clamp(v + (unit(rng) - 0.5) * 3 * half, half, 1 - half);
             const double u0 = cu - half, u1 = cu + half, v0 = cv - half, v1 = cv + half;
-            const renderer::NewtonHit hit = renderer::CertifyRegion(*evaluator, frame,
+            const renderer::NewtonHit hit =
+                renderer::CertifyRegion(*evaluator, frame,
                                         {std::max(0.0, u0 - (trial % 2) * half), u1, v0,
                                          std::min(1.0, v1 + (trial % 3) * half), u0, u1, v0, v1},
                                         cu, cv);
