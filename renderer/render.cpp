@@ -319,6 +319,11 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
     // A cone: as wide as the camera ray's footprint where it left, widening at the pixel's angle,
     // so an occluder is resolved no finer than the pixel that sees its shadow needs.
     Tolerance shadowTol{footprint, tol.slope, tol.newtonReach};
+    // With certified Newton, each shadow ray is searched again from just above the hit (twice its
+    // certified error): there only a root Krawczyk's test proves blocks the light, since a leaf
+    // may be the surface the ray leaves, whose own root the test places before the start. Such a
+    // root is a surface point on the ray: the light the offset let past a nearby crest is blocked
+    // (the terminators of the default scene move by the offset without it).
     const double nearOffset = 2.0 * nh.hit.error + 1e-9 * glm::length(at.P);
     const bool searchNear = tol.newtonReach > 0 && std::isfinite(nh.hit.error) && nearOffset < offset;
     Tolerance nearTol = shadowTol;
