@@ -6,6 +6,7 @@
 // hold the aimed point.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <random>
 
 #include "renderer/bound_tree.h"
@@ -198,7 +199,7 @@ TEST_CASE("newton: certified regions of every shader hold the aimed point and no
         const vm::Program& program = compiled.shader->bound;
         renderer::BoundTree tree(surface, program, glm::dvec3(0, 0, 5), renderer::BoundMode::Reduced, 24);
         auto evaluator = tree.MakeEvaluator();
-        std::mt19937_64 rng(std::hash<std::string>()(path) & 0xffff);
+        std::mt19937_64 rng(std::hash<std::string>()(std::filesystem::path(path).filename().string()) & 0xffff);
         std::uniform_real_distribution<double> unit(0.0, 1.0);
         int here = 0;
         for (int trial = 0; trial < 60; ++trial) {
