@@ -161,11 +161,11 @@ TEST_CASE("intersector: wave.sl against brute force, certified Newton near the t
     // drops a nearer region, a proof of none drops only its own.
     compiler::CompileResult r = compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl");
     REQUIRE(r.ok());
-    RunAgainstReferences(r.shader->bound, BoundMode::Reduced, 100, 16, 4);
+    RunAgainstReferences(r.shader->bound, BoundMode::Reduced, 60, 16, 4);
     compiler::CompileResult stiff =
         compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl", {{"frequency", {40}}, {"Km", {0.05}}});
     REQUIRE(stiff.ok());
-    RunAgainstReferences(stiff.shader->bound, BoundMode::Reduced, 80, 17, 1);
+    RunAgainstReferences(stiff.shader->bound, BoundMode::Reduced, 40, 17, 1);
 }
 
 TEST_CASE("intersector: stucco.sl (noise, thresholds) against brute force, reduced affine bounds",

@@ -240,9 +240,9 @@ TEST_CASE("newton: certified regions of every shader hold the aimed point and no
             CHECK(hit.t <= hit.tHi);
             // The one root: if the aimed point is in the region, it is the hit.
             if (aimedInside) CHECK(glm::length(target - reported) <= hit.error * (1 + 1e-6) + 1e-12);
-            // No second root: on a 40 x 40 grid of the region, from every cell where both frame
+            // No second root: on a 24 x 24 grid of the region, from every cell where both frame
             // components of P' - o change sign, Newton's steps reach no root but the hit.
-            const int n = 40;
+            const int n = 24;
             std::vector<double> g0((n + 1) * (n + 1)), g1((n + 1) * (n + 1));
             for (int i = 0; i <= n; ++i)
                 for (int j = 0; j <= n; ++j) {
