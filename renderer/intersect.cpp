@@ -599,6 +599,12 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
     m_tested = 0;
     m_evaluated = 0;
     m_top = 0;
+    const bool newton = tolerance.newtonReach > 0 && m_evaluator->slopes();
+    if (tolerance.certifiedOnly && !newton) {
+        // Nothing can be proved on this surface (its shader may jump, or has no slopes): no hit.
+        ++stats.rays;
+        return false;
+    }
     m_walker.Enter();
     if (group && (group->id != m_groupId || m_walker.epoch() != m_groupEpoch)) {
         IntersectWorkspace& w = *m_workspace;
@@ -614,7 +620,6 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
     double best = tMax;
     bool found = false;
     const int maxDepth = m_tree.maxDepth();
-    const bool newton = tolerance.newtonReach > 0 && m_evaluator->slopes();
     const RayFrame frame{m_origin, {m_n1, m_n2, m_dir}};
     const BaseSurface& surface = m_tree.surface();
     // Measures the entry in the stack's next slot against the ray, with its bound `b`: it stays
