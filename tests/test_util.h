@@ -96,6 +96,23 @@ inline CliOutput RunCli(const std::string& args, bool withStderr = false) {
     return RunShell(std::string(AFFRAY_CLI) + " " + args + (withStderr ? " 2>&1" : " 2>/dev/null"));
 }
 
+/// `affray render RIB -o OUT --stats --quiet EXTRA`, which must succeed: its output (the stats line).
+inline std::string RenderWithStats(const std::string& rib, const std::string& out, const std::string& extra = "") {
+    const CliOutput r = RunCli("render " + rib + " -o " + out + " --stats --quiet " + extra, true);
+    INFO(r.out);
+    REQUIRE(r.status == 0);
+    return r.out;
+}
+
+/// The RMSE `affray diff REFERENCE TEST` reports.
+inline double DiffRmse(const std::string& reference, const std::string& test) {
+    const CliOutput diff = RunCli("diff " + reference + " " + test);
+    INFO(diff.out);
+    const size_t at = diff.out.find("\"rmse\":");
+    REQUIRE(at != std::string::npos);
+    return std::stod(diff.out.substr(at + 7));
+}
+
 /// `s` in single quotes, for a RunCli command line (test paths hold no quote).
 inline std::string Quote(const std::string& s) { return "'" + s + "'"; }
 

@@ -14,23 +14,12 @@ TEST_CASE("newton cli: --newton certifies hits by Newton and keeps the image", "
     test::TempDir dir;
     const std::string rib = dir.Write("wave.rib", "Option \"searchpath\" \"shader\" [\"" + test::SourceDir() +
                                                       "/shaders\"]\n" + test::WaveSphereScene(48, 36, "wave.exr"));
-    auto render = [&](const std::string& name, const std::string& extra) {
-        const test::CliOutput r =
-            test::RunCli("render " + rib + " -o " + dir.Path(name) + " --stats --quiet " + extra, true);
-        INFO(r.out);
-        REQUIRE(r.status == 0);
-        return r.out;
-    };
-    const std::string leaves = render("leaves.exr", "");
-    const std::string newton = render("newton.exr", "--newton");
+    const std::string leaves = test::RenderWithStats(rib, dir.Path("leaves.exr"));
+    const std::string newton = test::RenderWithStats(rib, dir.Path("newton.exr"), "--newton");
     CHECK(leaves.find("\"newton\":{\"camera_hits\":0,") != std::string::npos);
     CHECK(newton.find("\"newton\":{\"camera_hits\":0,") == std::string::npos);
     CHECK(newton.find("\"newton\":{\"camera_hits\":") != std::string::npos);
-    const test::CliOutput diff = test::RunCli("diff " + dir.Path("leaves.exr") + " " + dir.Path("newton.exr"));
-    INFO(diff.out);
-    const size_t at = diff.out.find("\"rmse\":");
-    REQUIRE(at != std::string::npos);
-    CHECK(std::stod(diff.out.substr(at + 7)) < 0.02);
+    CHECK(test::DiffRmse(dir.Path("leaves.exr"), dir.Path("newton.exr")) < 0.02);
     // Another render identity: the halves of a split rendered with and without it do not merge.
     REQUIRE(test::RunCli("render " + rib + " -o " + dir.Path("left.exr") + " --quiet --crop 0,0.5,0,1", true).status ==
             0);
@@ -56,17 +45,10 @@ TEST_CASE("newton cli: shadow terminators of the default scene are where the ref
     const std::string rib =
         dir.Write("wave.rib", "Option \"searchpath\" \"shader\" [\"" + test::SourceDir() + "/shaders\"]\n" + scene);
     auto rmse = [&](const std::string& name, const std::string& extra) {
-        REQUIRE(test::RunCli("render " + rib + " -o " + dir.Path(name) + " --quiet " + extra, true).status == 0);
-        const test::CliOutput diff = test::RunCli("diff " + dir.Path("reference.exr") + " " + dir.Path(name));
-        INFO(diff.out);
-        const size_t at = diff.out.find("\"rmse\":");
-        REQUIRE(at != std::string::npos);
-        return std::stod(diff.out.substr(at + 7));
+        test::RenderWithStats(rib, dir.Path(name), extra);
+        return test::DiffRmse(dir.Path("reference.exr"), dir.Path(name));
     };
-    REQUIRE(
-        test::RunCli("render " + rib + " -o " + dir.Path("reference.exr") + " --quiet --tolerance 0.02 --bounds affine",
-                     true)
-            .status == 0);
+    test::RenderWithStats(rib, dir.Path("reference.exr"), "--tolerance 0.02 --bounds affine");
     const double leaves = rmse("leaves.exr", "");
     const double newton = rmse("newton.exr", "--newton");
     INFO("RMSE against the reference: " << leaves << " without --newton, " << newton << " with it");

@@ -19,15 +19,8 @@ TEST_CASE("texture cli: a tiny texture budget drops tiles and gives the same ima
                                    "Displacement \"texmap\" \"Km\" [0.1]\n"
                                    "Patch \"bilinear\" \"P\" [-0.5 -0.5 0  0.5 -0.5 0  -0.5 0.5 0  0.5 0.5 0]\n"
                                    "WorldEnd\n");
-    auto render = [&](const std::string& name, const std::string& extra) {
-        const test::CliOutput r =
-            test::RunCli("render " + rib + " -o " + dir.Path(name) + " --stats --quiet " + extra, true);
-        INFO(r.out);
-        REQUIRE(r.status == 0);
-        return r.out;
-    };
-    const std::string full = render("full.exr", "");
-    const std::string tiny = render("tiny.exr", "--texture-mb 0.01");
+    const std::string full = test::RenderWithStats(rib, dir.Path("full.exr"));
+    const std::string tiny = test::RenderWithStats(rib, dir.Path("tiny.exr"), "--texture-mb 0.01");
     CHECK(full.find("\"textures\":{\"budget_mb\":512.0,") != std::string::npos);
     CHECK(full.find("\"tiles_dropped\":0,") != std::string::npos);
     CHECK(tiny.find("\"budget_mb\":0.0,") != std::string::npos);
