@@ -106,44 +106,40 @@ bool RibArgChecks::TakeNumbers(const RibRequest& r, const std::vector<double>& v
     return true;
 }
 
-// Exactly `count` numbers, either bare or as one array (the RIB binding allows both).
-bool RibArgChecks::Numbers(const RibRequest& r, size_t count, const char* names, double* out) {
+// The leading numbers of a request: bare numbers and numeric arrays in any grouping, flattened
+// (the RIB binding gives a request's numbers bare or as one array; exporters also group a point's
+// three, as `Hyperboloid [x1 y1 z1] [x2 y2 z2] thetamax`, which prman and Aqsis read alike). They
+// end at the first string (a parameter list) or once `count` are taken; an array that would
+// carry them past `count` is reported.
+static std::vector<double> LeadingValues(const RibRequest& r, size_t count, size_t* next, const RibArg** bad) {
     std::vector<double> values;
-    const RibArg* bad = nullptr;
-    if (r.args.size() == 1 && r.args[0].isArray && r.args[0].NumericP()) {
-        values = r.args[0].numbers;
-    } else {
-        for (const RibArg& arg : r.args) {
-            if (arg.isArray || !arg.NumericP()) {
-                bad = &arg;
-                break;
-            }
-            values.push_back(arg.numbers[0]);
+    size_t i = 0;
+    for (; i < r.args.size() && values.size() < count; ++i) {
+        const RibArg& arg = r.args[i];
+        if (!arg.NumericP()) break;
+        if (values.size() + arg.numbers.size() > count) {
+            *bad = &arg;
+            break;
         }
+        values.insert(values.end(), arg.numbers.begin(), arg.numbers.end());
     }
+    *next = i;
+    return values;
+}
+
+// Exactly `count` numbers and nothing after them.
+bool RibArgChecks::Numbers(const RibRequest& r, size_t count, const char* names, double* out) {
+    size_t next = 0;
+    const RibArg* bad = nullptr;
+    const std::vector<double> values = LeadingValues(r, count, &next, &bad);
+    if (!bad && next < r.args.size()) bad = &r.args[next];
     return TakeNumbers(r, values, bad, count, names, out);
 }
 
 // Like Numbers, but a parameter list may follow: the numbers end at the first non-number.
 bool RibArgChecks::LeadingNumbers(const RibRequest& r, size_t count, const char* names, double* out, size_t* next) {
-    std::vector<double> values;
     const RibArg* bad = nullptr;
-    if (!r.args.empty() && r.args[0].isArray && r.args[0].NumericP()) {
-        values = r.args[0].numbers;
-        *next = 1;
-    } else {
-        size_t i = 0;
-        for (; i < r.args.size() && values.size() < count; ++i) {
-            const RibArg& arg = r.args[i];
-            if (arg.isArray || !arg.NumericP()) {
-                // A string ends the numbers early (a parameter list); an array is misplaced.
-                if (arg.isArray) bad = &arg;
-                break;
-            }
-            values.push_back(arg.numbers[0]);
-        }
-        *next = i;
-    }
+    const std::vector<double> values = LeadingValues(r, count, next, &bad);
     return TakeNumbers(r, values, bad, count, names, out);
 }
 

@@ -106,6 +106,7 @@ bool RibParser::DoNuPatch(const RibRequest& r) {
             RibDeclaration d;
             std::string problem;
             if (!RibDeclaration::Parse(declared, &d, &problem)) return Fail(p->at, context + " parameter: " + problem);
+            ResolveStorage(*p, context, {segU * segV, nPoints, 0, (segU + 1) * (segV + 1)}, false, &d);
             const std::optional<StorageClass> storage =
                 d.Storage() == StorageClass::FaceVarying ? std::nullopt : std::optional(d.Storage());
             if (!storage)

@@ -387,6 +387,13 @@ class RibParser : private RibArgChecks {
     /// The Attribute requests affray follows (rib/attributes.cpp): "light", "visibility", "render".
     bool LightAttribute(const std::vector<RibParam>& params);
     bool VisibilityAttribute(const std::string& name, const std::vector<RibParam>& params);
+    /// A declaration without a storage class is uniform (RI Spec 3.2, section 3), but exporters
+    /// write "float[2] st" with a value per vertex: when p's count does not fit uniform, *d takes
+    /// the first class whose count does (the standard variable's own, then varying, vertex,
+    /// facevarying where `facevarying`, constant), with a note; otherwise *d is left as it is
+    /// (the caller reports the count).
+    void ResolveStorage(const RibParam& p, const std::string& context, const PrimvarCounts& counts, bool facevarying,
+                        RibDeclaration* d);
     /// A primitive variable of a mesh (polygons, subdivision) against its declaration, inline or
     /// standard, and its value count against `counts`. False after a Fail; *declared false, with a
     /// warning, for a parameter that has no declaration (the caller skips it). `context` names the

@@ -199,6 +199,7 @@ bool RibParser::MeshPrimvar(const RibParam& p, const std::string& context, const
     }
     std::string problem;
     if (!RibDeclaration::Parse(declaration, d, &problem)) return Fail(p.at, context + " parameter: " + problem);
+    ResolveStorage(p, context, counts, true, d);
     const size_t values = counts.Of(d->Storage()), each = d->UniformCount();
     const size_t got = d->type == "string" ? p.value.strings.size() : p.value.numbers.size();
     if (got != values * each)

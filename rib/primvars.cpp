@@ -23,6 +23,31 @@ size_t RibParser::PrimvarCounts::Of(StorageClass s) const {
     return 1;
 }
 
+void RibParser::ResolveStorage(const RibParam& p, const std::string& context, const PrimvarCounts& counts,
+                               bool facevarying, RibDeclaration* d) {
+    const size_t got = d->type == "string" ? p.value.strings.size() : p.value.numbers.size();
+    const size_t each = d->UniformCount();
+    if (!d->storage.empty() || got == counts.Of(StorageClass::Uniform) * each) return;
+    std::vector<std::string> classes;
+    RibDeclaration standard;
+    std::string problem;
+    if (const std::string text = StandardDeclaration(p.value.name);
+        !text.empty() && RibDeclaration::Parse(text, &standard, &problem) && !standard.storage.empty())
+        classes.push_back(standard.storage);
+    for (const char* c : {"varying", "vertex", "facevarying", "constant"})
+        if (facevarying || std::string(c) != "facevarying") classes.emplace_back(c);
+    for (const std::string& c : classes) {
+        RibDeclaration candidate = *d;
+        candidate.storage = c;
+        if (counts.Of(candidate.Storage()) * each != got) continue;
+        Note(p.at, context + " parameter " + Quote(p.value.name) + " is declared \"" + p.value.declaration +
+                       "\" without a storage class, which means uniform, but has " + std::to_string(got) +
+                       (d->type == "string" ? " strings" : " numbers") + ": read as " + c);
+        d->storage = c;
+        return;
+    }
+}
+
 bool RibParser::ColorPrimvar(const RibParam& p, const std::string& context, const PrimvarCounts& counts,
                              bool facevarying, ColorValues* out) {
     const std::string& name = p.value.name;
@@ -33,6 +58,7 @@ bool RibParser::ColorPrimvar(const RibParam& p, const std::string& context, cons
     if (d.type == "string" || d.UniformCount() != 3)
         return Fail(p.at, context + " parameter " + Quote(name) + " must be a color (3 numbers a value), declared " +
                               Quote(declaration));
+    ResolveStorage(p, context, counts, facevarying, &d);
     StorageClass storage = d.Storage();
     if (storage == StorageClass::FaceVarying && !facevarying)  // (NuPatch)
         return Fail(p.at, context + " parameter " + Quote(name) + ": storage class " + Quote(d.storage) +

@@ -233,6 +233,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"PointsPolygons", &RibParser::DoPointsPolygons},
         {"PointsGeneralPolygons", &RibParser::DoPointsGeneralPolygons},
         {"SubdivisionMesh", &RibParser::DoSubdivisionMesh},
+        {"HierarchicalSubdivisionMesh", &RibParser::DoSubdivisionMesh},
         {"version", &RibParser::DoVersion},
         {"Hider", &RibParser::DoHider},
         {"Declare", &RibParser::DoDeclare},

@@ -1,5 +1,7 @@
 // rib/subdivision.cpp: RI Spec 3.2 section 5.5, SubdivisionMesh "catmull-clark" nvertices vertices
-// [tags nargs intargs floatargs] parameterlist. The mesh becomes a renderer::SubdivisionMesh in
+// [tags nargs intargs floatargs] parameterlist, and prman's HierarchicalSubdivisionMesh (what
+// RenderMan 16 and later exporters write), the same with a fifth array, stringargs, and three
+// nargs a tag; its hierarchical edits (tags that take strings) are warned about and ignored. The mesh becomes a renderer::SubdivisionMesh in
 // world space, which renderer::BuildSubdivisionPatches refines and turns into patches, one
 // primitive each (renderer/geometry/subdivision.h). Tags: "hole" (face indices), "crease" (a
 // chain of vertices, one sharpness), "corner" (vertices, one sharpness or one each),
@@ -36,20 +38,27 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     }
     std::vector<int> nvertices, vertices;
     if (!IntArray(r, 1, "nvertices", 3, &nvertices) || !IntArray(r, 2, "vertices", 0, &vertices)) return false;
-    // The tags come as four arrays, or not at all (the parameter list's tokens are bare strings).
+    // The tags come as four arrays (five for a HierarchicalSubdivisionMesh: its tags may take
+    // strings too), or not at all (the parameter list's tokens are bare strings).
+    const bool hierarchical = r.name == "HierarchicalSubdivisionMesh";
+    const size_t perTag = hierarchical ? 3 : 2;  // entries of nargs per tag: integers, floats (, strings)
     size_t first = 3;
     std::vector<std::string> tags;
     std::vector<int> nargs, intargs;
     std::vector<double> floatargs;
     if (r.args.size() > 3 && r.args[3].isArray) {
-        if (r.args.size() < 7 || !r.args[3].StringsP())
-            return Fail(r.args[3].at,
-                        context + " expects the arrays tags, nargs, intargs and floatargs after vertices");
+        if (r.args.size() < 4 + perTag + 1 || !r.args[3].StringsP())
+            return Fail(r.args[3].at, context + " expects the arrays tags, nargs, intargs" +
+                                          (hierarchical ? ", floatargs and stringargs" : " and floatargs") +
+                                          " after vertices");
         tags = r.args[3].strings;
         for (size_t i = 4; i < 7; ++i)
             if (!r.args[i].isArray || !r.args[i].NumericP())
                 return Fail(r.args[i].at, context + " expects an array of numbers as argument " +
                                               std::to_string(i + 1) + ", found " + r.args[i].Describe());
+        if (hierarchical && !r.args[7].isArray)
+            return Fail(r.args[7].at, context + " expects an array of strings (stringargs) as argument 8, found " +
+                                          r.args[7].Describe());
         nargs.clear();
         for (double x : r.args[4].numbers) {
             if (x != std::floor(x) || x < 0 || x > 1e9)
@@ -62,7 +71,7 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
             intargs.push_back(static_cast<int>(x));
         }
         floatargs = r.args[6].numbers;
-        first = 7;
+        first = hierarchical ? 8 : 7;
     }
     std::vector<RibParam> params;
     m_uniformVaries = true;
@@ -95,11 +104,14 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     mesh.faceSizes = nvertices;
     mesh.faceVerts = vertices;
 
-    // Tags: each takes nargs[2i] integers and nargs[2i + 1] floats, in order.
-    if (nargs.size() != 2 * tags.size())
+    // Tags: each takes nargs[2i] integers and nargs[2i + 1] floats, in order (nargs[3i] and
+    // nargs[3i + 1], and nargs[3i + 2] strings, in a HierarchicalSubdivisionMesh).
+    if (nargs.size() != perTag * tags.size())
         return Fail(r.args[4].at, context + " has " + std::to_string(tags.size()) + " tags, so nargs needs " +
-                                      std::to_string(2 * tags.size()) + " entries, got " +
+                                      std::to_string(perTag * tags.size()) + " entries, got " +
                                       std::to_string(nargs.size()));
+    const size_t nStrings = hierarchical ? r.args[7].strings.size() : 0;
+    size_t stringAt = 0;
     size_t intAt = 0, floatAt = 0;
     std::set<std::pair<int, int>> edges;
     for (size_t f = 0, c = 0; f < nFaces; c += static_cast<size_t>(nvertices[f]), ++f)
@@ -109,10 +121,13 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
             edges.insert(std::minmax(a, b));
         }
     for (size_t i = 0; i < tags.size(); ++i) {
-        const size_t ni = static_cast<size_t>(nargs[2 * i]), nf = static_cast<size_t>(nargs[2 * i + 1]);
-        if (intAt + ni > intargs.size() || floatAt + nf > floatargs.size())
-            return Fail(r.args[4].at, context + " nargs ask for more arguments than intargs and floatargs hold (tag " +
-                                          Quote(tags[i]) + ")");
+        const size_t ni = static_cast<size_t>(nargs[perTag * i]), nf = static_cast<size_t>(nargs[perTag * i + 1]);
+        const size_t ns = hierarchical ? static_cast<size_t>(nargs[perTag * i + 2]) : 0;
+        if (intAt + ni > intargs.size() || floatAt + nf > floatargs.size() || stringAt + ns > nStrings)
+            return Fail(r.args[4].at, context + " nargs ask for more arguments than intargs" +
+                                          (hierarchical ? ", floatargs and stringargs" : " and floatargs") +
+                                          " hold (tag " + Quote(tags[i]) + ")");
+        stringAt += ns;
         const std::vector<int> ints(intargs.begin() + static_cast<long>(intAt),
                                     intargs.begin() + static_cast<long>(intAt + ni));
         const std::vector<double> floats(floatargs.begin() + static_cast<long>(floatAt),

@@ -48,7 +48,8 @@ TEST_CASE("primvars: Cs of every storage class on polygons", "[rib][primvar]") {
         CHECK_FALSE(p.colorField);
     }
     SECTION("varying and vertex: bilinear between the corners") {
-        for (const char* storage : {"", "varying color ", "vertex color "}) {
+        // "color Cs" (no class, so uniform) with a colour per vertex reads as varying, with a note.
+        for (const char* storage : {"", "varying color ", "vertex color ", "color "}) {
             INFO(storage);
             const PrimitiveDesc p =
                 test::ParseWorld(quad + "\"" + storage + "Cs\" [1 0 0  0 1 0  0 0 1  1 1 1]").primitives[0];
@@ -266,4 +267,29 @@ TEST_CASE("primvars: Cs on NuPatches, by span", "[rib][primvar]") {
         CHECK(test::WorldError(head + "\"P\" " + points + " \"facevarying color Cs\" [1 0 0]") ==
               "t.rib:2: error: 'NuPatch' parameter 'Cs': storage class 'facevarying' is not defined on a NuPatch");
     }
+}
+
+TEST_CASE("primvars: a declaration without a class takes the class its count fits", "[rib][primvar]") {
+    // Uniform by RI 3.2, but exporters write "float[2] st" with a value per vertex: the first class
+    // whose count fits (the standard variable's own first) is taken, with a note; a count no class
+    // fits is an error, as before.
+    const std::string quad = "Polygon \"P\" [0 0 0  1 0 0  1 1 0  0 1 0] ";
+    diag::Report report;
+    test::ParseWorld(quad + "\"float[2] st\" [0 0 1 0 1 1 0 1]", &report);
+    REQUIRE(report.all().size() == 1);
+    CHECK(test::ShortDiagnostic(report.all()[0]) ==
+          "t.rib:2: note: 'Polygon' parameter 'st' is declared \"float[2]\" without a storage class, which means "
+          "uniform, but has 8 numbers: read as varying");
+    diag::Report quiet;
+    test::ParseWorld(quad + "\"float[2] st\" [0 0]", &quiet);  // uniform: one value for the one face
+    CHECK(quiet.all().empty());
+    diag::Report blue;
+    const PrimitiveDesc p =
+        test::ParseWorld(
+            "PointsPolygons [4 4] [0 1 2 3 1 4 5 2] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0 2 0 0 2 1 0] \"color Cs\" [0 0 1]",
+            &blue)
+            .primitives[1];
+    CHECK(p.color == kBlue);  // one colour for two faces: constant
+    CHECK(test::WorldError(quad + "\"float[2] st\" [0 0 1 0 1 1]") ==
+          "t.rib:2: error: 'Polygon' parameter 'st' (float[2]) expects 1 value of 2 numbers, got 6 numbers");
 }

@@ -931,7 +931,7 @@ TEST_CASE("RIB spotlight", "[renderer][rib]") {
     CHECK(light("\"coneangle\" [1 2]") == ctx + "parameter 'coneangle' expects 1 number, got 2");
 }
 
-TEST_CASE("RIB quadrics take their arguments bare or as one array", "[renderer][rib]") {
+TEST_CASE("RIB quadrics take their arguments bare or in arrays", "[renderer][rib]") {
     auto both = [](const std::string& bare, const std::string& array) {
         Quadric a = OnlyPrimitive(bare).quadric, b = OnlyPrimitive(array).quadric;
         CHECK(ToString(a) == ToString(b));
@@ -972,6 +972,11 @@ TEST_CASE("RIB quadrics take their arguments bare or as one array", "[renderer][
     CHECK(q.phimax == 180);
     CHECK(q.thetamax == 300);
 
+    // Grouped any way: a point per array (as exporters write a hyperboloid), or one-element arrays.
+    CHECK(ToString(OnlyPrimitive("Hyperboloid [1 0 -1] [0 1 1] 360").quadric) ==
+          ToString(OnlyPrimitive("Hyperboloid 1 0 -1 0 1 1 360").quadric));
+    CHECK(ToString(OnlyPrimitive("Sphere [2] -1 [1.5] [270]").quadric) ==
+          ToString(OnlyPrimitive("Sphere 2 -1 1.5 270").quadric));
     q = both("Hyperboloid 1 0 -1 0 1 1 360", "Hyperboloid [1 0 -1 0 1 1 360]");
     CHECK(q.kind == Quadric::Kind::Hyperboloid);
     CHECK(q.point1[0] == 1);
@@ -1024,9 +1029,11 @@ TEST_CASE("RIB quadric arguments give exact errors", "[renderer][rib]") {
     auto error = [](const std::string& request) { return ErrorOf("WorldBegin\n" + request + "\nWorldEnd\n"); };
     CHECK(error("Sphere 1 -1 1") == "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 3");
     CHECK(error("Sphere [1 -1 1]") == "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got 3");
-    CHECK(error("Sphere 1 -1 [1] 360") ==
-          "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got array of 1 "
-          "number");
+    // Numbers may be grouped in arrays any way (flattened), but not past the count.
+    CHECK(error("Sphere 1 -1 [1 360 2]") ==
+          "t.rib:2: error: 'Sphere' expects 4 numbers (radius zmin zmax thetamax), got array of 3 "
+          "numbers");
+    CHECK(error("Translate [1 2] 3 4") == "t.rib:2: error: 'Translate' expects 3 numbers (dx dy dz), got number 4");
     CHECK(error("Sphere 1 -1 1 360 5") == "t.rib:2: error: 'Sphere' expects a parameter name string, found number 5");
     CHECK(error("Cone 1 1") == "t.rib:2: error: 'Cone' expects 3 numbers (height radius thetamax), got 2");
     CHECK(error("Torus 1 1 1 1") ==

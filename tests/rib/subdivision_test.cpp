@@ -68,6 +68,38 @@ TEST_CASE("rib subdivision: SubdivisionMesh makes patches with its tags", "[rib]
     }
 }
 
+TEST_CASE("rib subdivision: HierarchicalSubdivisionMesh is the same mesh with string arguments", "[rib][subdivision]") {
+    // The same tags as SubdivisionMesh, with three nargs a tag and a fifth array (stringargs);
+    // a hierarchical edit (a tag that takes strings) is warned about and ignored.
+    const std::string tags = " [\"hole\" \"crease\" \"corner\"] [1 0 2 1 1 1] [3 0 1 6] [2 10] ";
+    const SceneDesc plain =
+        ParseWorld(std::string("SubdivisionMesh \"catmull-clark\" ") + kCube + tags + kCubeP + "\n");
+    const std::string htags =
+        " [\"hole\" \"crease\" \"corner\" \"vertexedit\"] [1 0 0 2 1 0 1 1 0 2 1 2] [3 0 1 6 1 0] [2 10 0.5] "
+        "[\"value\" \"add\"] ";
+    affray::diag::Report report;
+    const SceneDesc h = ParseWorld(
+        std::string("HierarchicalSubdivisionMesh \"catmull-clark\" ") + kCube + htags + kCubeP + "\n", &report);
+    REQUIRE(h.primitives.size() == plain.primitives.size());
+    CHECK(h.primitives.size() == 80u);
+    for (size_t i = 0; i < h.primitives.size(); ++i)
+        CHECK(h.primitives[i].subdiv.geometry.At(0.3, 0.6) == plain.primitives[i].subdiv.geometry.At(0.3, 0.6));
+    REQUIRE(report.all().size() == 1);
+    CHECK(ShortDiagnostic(report.all()[0]) ==
+          "t.rib:2: warning: 'HierarchicalSubdivisionMesh' tag 'vertexedit' is not supported; ignored");
+    CHECK(WorldError(std::string("HierarchicalSubdivisionMesh \"catmull-clark\" ") + kCube +
+                     " [\"crease\"] [2 1] [0 1] [1] [] " + kCubeP + "\n") ==
+          "t.rib:2: error: 'HierarchicalSubdivisionMesh' has 1 tags, so nargs needs 3 entries, got 2");
+    CHECK(WorldError(std::string("HierarchicalSubdivisionMesh \"catmull-clark\" ") + kCube +
+                     " [\"vertexedit\"] [0 0 1] [] [] [] " + kCubeP + "\n") ==
+          "t.rib:2: error: 'HierarchicalSubdivisionMesh' nargs ask for more arguments than intargs, floatargs and "
+          "stringargs hold (tag 'vertexedit')");
+    CHECK(WorldError(std::string("HierarchicalSubdivisionMesh \"catmull-clark\" ") + kCube +
+                     " [\"hole\"] [1 0 0] [3] [] " + kCubeP + "\n") ==
+          "t.rib:2: error: 'HierarchicalSubdivisionMesh' expects an array of strings (stringargs) as argument 8, "
+          "found string \"P\"");
+}
+
 TEST_CASE("rib subdivision: wrong meshes are errors at their place", "[rib][subdivision]") {
     const std::string cube = std::string(kCube) + " ";
     // Another scheme's mesh is skipped with a warning, as an unsupported primitive is.
