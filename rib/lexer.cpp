@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 
 namespace affray::rib {
@@ -39,7 +40,7 @@ std::string DescribeChar(char c) {
     auto byte = static_cast<unsigned char>(c);
     if (byte >= 0x21 && byte < 0x7f) return std::string("character '") + c + "'";
     char buffer[48];
-    std::snprintf(buffer, sizeof buffer, "byte 0x%02x%s", byte, byte >= 0x80 ? " (binary RIB is not supported)" : "");
+    std::snprintf(buffer, sizeof buffer, "byte 0x%02x", byte);
     return buffer;
 }
 
@@ -55,6 +56,15 @@ RibToken RibLexer::Error(RibPos at, std::string message) {
 }
 
 RibToken RibLexer::Next() {
+    if (m_queued < m_queue.size()) return m_queue[m_queued++];
+    // A binary definition (of a request or a string) gives no token: the one after it. (A loop,
+    // not a recursion: a file may hold any number of definitions in a row.)
+    RibToken token;
+    while (!NextToken(&token)) {}
+    return token;
+}
+
+bool RibLexer::NextToken(RibToken* out) {
     // Skip white space and # comments (## structure comments included).
     while (m_pos < m_text.size()) {
         char c = m_text[m_pos];
@@ -70,18 +80,185 @@ RibToken RibLexer::Next() {
     }
     RibToken token;
     token.at = Here();
-    if (m_pos >= m_text.size()) return token;  // End
+    if (m_pos >= m_text.size()) {  // End
+        *out = token;
+        return true;
+    }
 
     char c = m_text[m_pos];
-    if (c == '"') return LexString();
+    if (static_cast<unsigned char>(c) >= 0200) return LexBinary(out);
+    if (c == '"') {
+        *out = LexString();
+        return true;
+    }
     if (c == '[' || c == ']') {
         ++m_pos;
         token.kind = c == '[' ? RibToken::Kind::ArrayBegin : RibToken::Kind::ArrayEnd;
-        return token;
+        *out = token;
+        return true;
     }
-    if (DigitP(c) || c == '.' || c == '+' || c == '-') return LexNumber();
-    if (AlphaP(c)) return LexName();
-    return Error(Here(), "unexpected " + DescribeChar(c));
+    if (DigitP(c) || c == '.' || c == '+' || c == '-')
+        *out = LexNumber();
+    else if (AlphaP(c))
+        *out = LexName();
+    else
+        *out = Error(Here(), "unexpected " + DescribeChar(c));
+    return true;
+}
+
+bool RibLexer::Unsigned(int n, uint64_t* out) {
+    if (m_text.size() - m_pos < static_cast<size_t>(n)) return false;
+    uint64_t v = 0;
+    for (int i = 0; i < n; ++i) v = v << 8 | static_cast<unsigned char>(m_text[m_pos++]);
+    *out = v;
+    return true;
+}
+
+bool RibLexer::BinaryString(std::string* out) {
+    if (m_pos >= m_text.size()) return false;
+    const auto b = static_cast<unsigned char>(m_text[m_pos]);
+    if (b == '"') {
+        const RibToken t = LexString();
+        if (t.kind != RibToken::Kind::String) return false;
+        *out = t.text;
+        return true;
+    }
+    uint64_t length = 0;
+    if (b >= 0220 && b <= 0237) {
+        ++m_pos;
+        length = b - 0220;
+    } else if (b >= 0240 && b <= 0243) {
+        ++m_pos;
+        if (!Unsigned(b - 0240 + 1, &length)) return false;
+    } else {
+        return false;
+    }
+    if (length > m_text.size() - m_pos) return false;
+    out->assign(m_text.substr(m_pos, length));
+    m_pos += length;
+    return true;
+}
+
+bool RibLexer::LexBinary(RibToken* out) {
+    // RI Spec 3.2, Appendix C.2. Each branch reads its whole value, so a byte inside one (a
+    // newline, a '#') is never taken for ASCII; line numbers count only ASCII newlines.
+    const auto give = [&](RibToken token) {
+        *out = std::move(token);
+        return true;
+    };
+    const RibPos at = Here();
+    const auto b = static_cast<unsigned char>(m_text[m_pos++]);
+    const auto truncated = [&] { return give(Error(at, "binary RIB ends inside the value that starts here")); };
+    RibToken token;
+    token.at = at;
+    if (b <= 0217) {
+        // 0200 + 4d + w: a number of w + 1 bytes, big-endian, d of them after the point;
+        // signed when it has an integer part.
+        const int bytes = (b & 3) + 1, fraction = (b >> 2) & 3;
+        if (fraction > bytes) return give(Error(at, "invalid binary RIB number code " + DescribeChar(char(b))));
+        uint64_t raw = 0;
+        if (!Unsigned(bytes, &raw)) return truncated();
+        double v = static_cast<double>(raw);
+        if (fraction < bytes && raw >> (8 * bytes - 1)) v -= std::ldexp(1.0, 8 * bytes);
+        token.kind = RibToken::Kind::Number;
+        token.number = std::ldexp(v, -8 * fraction);
+        token.text = std::to_string(token.number);
+        return give(std::move(token));
+    }
+    if (b <= 0243) {
+        --m_pos;
+        if (!BinaryString(&token.text)) return truncated();
+        token.kind = RibToken::Kind::String;
+        return give(std::move(token));
+    }
+    if (b == 0244 || b == 0245) {
+        uint64_t raw = 0;
+        if (!Unsigned(b == 0244 ? 4 : 8, &raw)) return truncated();
+        double v;
+        if (b == 0244) {
+            const auto bits = static_cast<uint32_t>(raw);
+            float f;
+            std::memcpy(&f, &bits, sizeof f);
+            v = f;
+        } else {
+            std::memcpy(&v, &raw, sizeof v);
+        }
+        if (!std::isfinite(v)) return give(Error(at, "invalid binary RIB number: NaN and infinity are not allowed"));
+        token.kind = RibToken::Kind::Number;
+        token.number = v;
+        token.text = std::to_string(v);
+        return give(std::move(token));
+    }
+    if (b == 0246) {
+        uint64_t code = 0;
+        if (!Unsigned(1, &code)) return truncated();
+        if (code >= m_requests.size() || m_requests[code].empty())
+            return give(Error(at, "binary RIB request code " + std::to_string(code) + " was never defined"));
+        token.kind = RibToken::Kind::Name;
+        token.text = m_requests[code];
+        return give(std::move(token));
+    }
+    if (b >= 0310 && b <= 0313) {
+        // A float array: its length in 1 to 4 bytes, then that many 32-bit floats.
+        uint64_t length = 0;
+        if (!Unsigned(b - 0310 + 1, &length)) return truncated();
+        if (length > (m_text.size() - m_pos) / 4) return truncated();
+        if (static_cast<int64_t>(length) > diag::LimitValue(diag::Limit::RibArray))
+            return give(Error(at, "array longer than " + std::to_string(diag::LimitValue(diag::Limit::RibArray)) +
+                                      " values " + diag::LimitNote(diag::Limit::RibArray)));
+        m_queue.clear();
+        m_queued = 0;
+        for (uint64_t i = 0; i < length; ++i) {
+            uint64_t raw = 0;
+            Unsigned(4, &raw);
+            const auto bits = static_cast<uint32_t>(raw);
+            float f;
+            std::memcpy(&f, &bits, sizeof f);
+            if (!std::isfinite(f))
+                return give(Error(at, "invalid number in a binary RIB array: NaN and infinity are not allowed"));
+            RibToken n;
+            n.kind = RibToken::Kind::Number;
+            n.number = f;
+            n.text = std::to_string(n.number);
+            n.at = at;
+            m_queue.push_back(std::move(n));
+        }
+        RibToken end;
+        end.kind = RibToken::Kind::ArrayEnd;
+        end.at = at;
+        m_queue.push_back(std::move(end));
+        token.kind = RibToken::Kind::ArrayBegin;
+        return give(std::move(token));
+    }
+    if (b == 0314) {
+        // Defines request `code`: a name to be named by 0246 code later.
+        uint64_t code = 0;
+        std::string name;
+        if (!Unsigned(1, &code) || !BinaryString(&name)) return truncated();
+        if (name.empty() || !AlphaP(name[0]))
+            return give(Error(at, "binary RIB defines request code " + std::to_string(code) + " as \"" + name +
+                                      "\", which is no request name"));
+        if (m_requests.size() <= code) m_requests.resize(code + 1);
+        m_requests[code] = std::move(name);
+    } else if (b == 0315 || b == 0316) {
+        // Defines string token `id` (1 or 2 bytes).
+        uint64_t id = 0;
+        std::string value;
+        if (!Unsigned(b - 0315 + 1, &id) || !BinaryString(&value)) return truncated();
+        if (m_strings.size() <= id) m_strings.resize(id + 1);
+        m_strings[id] = std::move(value);
+    } else if (b == 0317 || b == 0320) {
+        uint64_t id = 0;
+        if (!Unsigned(b - 0317 + 1, &id)) return truncated();
+        if (id >= m_strings.size())
+            return give(Error(at, "binary RIB string token " + std::to_string(id) + " was never defined"));
+        token.kind = RibToken::Kind::String;
+        token.text = m_strings[id];
+        return give(std::move(token));
+    } else {
+        return give(Error(at, "unexpected " + DescribeChar(char(b)) + " (reserved in binary RIB)"));
+    }
+    return false;
 }
 
 RibToken RibLexer::LexString() {

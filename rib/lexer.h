@@ -1,10 +1,13 @@
-// rib/lexer.h: the RIB ASCII tokenizer and the grouping of tokens into requests.
+// rib/lexer.h: the RIB tokenizer and the grouping of tokens into requests.
 // Owns the syntax of RIB (RI Spec 3.2, Appendix C): request names, numbers, "strings" with C
-// escapes, [ arrays ] and # comments. It knows nothing about what a request means; that is
+// escapes, [ arrays ] and # comments, and the binary encoding of Appendix C.2 (bytes 0200 to
+// 0377: encoded numbers, strings, float arrays, and requests and strings defined once and then
+// named by a code), which may be mixed with ASCII anywhere between tokens. It knows nothing about what a request means; that is
 // rib/rib.cpp. Rules: every token carries the line it starts on; lexing always advances, so
 // no input can make it loop; a bad token is an Error token with a message, never an exception.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,6 +44,16 @@ class RibLexer {
     RibToken LexString();
     RibToken LexNumber();
     RibToken LexName();
+    /// The next token into *out; false if it was a binary definition, which gives none.
+    bool NextToken(RibToken* out);
+    /// One binary token at m_pos (a byte from 0200) into *out: a number, a string, a request or
+    /// a float array (its tokens queued in m_queue); false for a definition (of a request or a
+    /// string), which gives none.
+    bool LexBinary(RibToken* out);
+    /// A string at m_pos for a binary definition: binary-encoded or "quoted".
+    bool BinaryString(std::string* out);
+    /// The next n bytes as an unsigned big-endian integer; false if the text ends first.
+    bool Unsigned(int n, uint64_t* out);
     RibToken Error(RibPos at, std::string message);
     /// Steps over a line break at m_pos.
     void NewLine() {
@@ -52,6 +65,11 @@ class RibLexer {
     size_t m_pos = 0;
     size_t m_lineStart = 0;  // where line m_line starts
     int m_line = 1;
+    // Binary RIB: the requests (by code, 0 to 255) and strings (by token, 0 to 65535) defined so
+    // far, and the tokens of a decoded float array not yet returned.
+    std::vector<std::string> m_requests, m_strings;
+    std::vector<RibToken> m_queue;
+    size_t m_queued = 0;
 };
 
 /// One argument of a request: a bare number, a bare string, or an array of either.
