@@ -87,8 +87,12 @@ def run_stats(cmd):
 def render(affray, rib, out, tolerance, mode, threads, samples):
     """Renders `rib` to `out`; returns the --stats JSON (with the process time and peak RSS
     measured here too)."""
-    cmd = [affray, "render", rib, "-o", out, "--tolerance", str(tolerance), "--bounds", mode, "--stats", "--quiet",
+    # Mode "newton": the default reduced affine bounds with certified Newton hits (render --newton).
+    bounds = "reduced" if mode == "newton" else mode
+    cmd = [affray, "render", rib, "-o", out, "--tolerance", str(tolerance), "--bounds", bounds, "--stats", "--quiet",
            "--samples", str(samples)]
+    if mode == "newton":
+        cmd.append("--newton")
     if threads:
         cmd += ["--threads", str(threads)]
     return run_stats(cmd)
@@ -138,8 +142,8 @@ def plot(rows, path):
         print("no plot: python3-matplotlib is not installed (sudo apt-get install python3-matplotlib)", file=sys.stderr)
         return False
     fig, axes = plt.subplots(1, 2, figsize=(13, 5.2))
-    styles = {"affine": "-o", "reduced": "-.d", "interval": "--s", "tessellation": ":^"}
-    colours = {"wave": "tab:blue", "terrain": "tab:brown", "needles": "tab:green"}
+    styles = {"affine": "-o", "reduced": "-.d", "interval": "--s", "newton": "-*", "tessellation": ":^"}
+    colours = {"wave": "tab:blue", "terrain": "tab:brown", "needles": "tab:green", "creature": "tab:purple"}
     panels = [(axes[0], "wall_seconds", "time to image (s)", "Error against run time"),
               (axes[1], "peak_rss_mb", "peak memory, process RSS (MB)", "Error against peak memory")]
     for ax, xkey, xlabel, title in panels:
@@ -195,7 +199,8 @@ def main():
     parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="CMake build directory (Release)")
     parser.add_argument("--size", default="96x72", help="image size WxH (default 96x72)")
     parser.add_argument("--scenes", default="wave,terrain,needles")
-    parser.add_argument("--modes", default="reduced,affine,interval")
+    parser.add_argument("--modes", default="reduced,affine,interval",
+                        help="bound modes (reduced, affine, interval) and newton (reduced with --newton)")
     parser.add_argument("--tolerances", default="4,2,1,0.5,0.25,0.1", help="pixel tolerances to sweep")
     parser.add_argument("--reference-tolerance", type=float, default=0.02)
     parser.add_argument("--threads", type=int, default=0)

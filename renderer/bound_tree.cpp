@@ -9,14 +9,13 @@
 #include <tuple>
 #include <type_traits>
 
+#include "renderer/measure.h"
 #include "vm/interpreter.h"
 #include "vm/prune.h"
 
 namespace affray::renderer {
 
 namespace {
-
-constexpr double kUlp = 0x1p-53;  // unit roundoff of round-to-nearest doubles
 
 /// x rounded up by a relative margin covering the rounding of a sum of n terms of the same sign.
 double RoundedUpSum(double x, int n) { return x * (1 + 2 * (n + 2) * kUlp) + 1e-300; }

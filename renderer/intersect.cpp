@@ -20,8 +20,8 @@
 //    the parent's bound holds the child's points at their own parameters. Subdivision scene of
 //    bench/real: 6 % fewer bounds evaluated; on the wave (one sine, 3.6 regions per ray) the
 //    check, about a test per split, made the render 1.17 times slower, so cheap bounds skip it.
-// Every quantity carries its rounding (kSlack): a region is discarded only when its bound provably
-// misses the ray.
+// Every quantity carries its rounding (kSlack, renderer/measure.h): a region is discarded only
+// when its bound provably misses the ray.
 //
 // Coherent rays (RayGroup): the camera rays of a block of pixels lie between four planes. A node
 // whose bound lies wholly outside one of them meets none of those rays, so the walk of the top
@@ -33,6 +33,7 @@
 #include <cmath>
 #include <vector>
 
+#include "renderer/measure.h"
 #include "renderer/newton.h"
 
 namespace affray::renderer {
@@ -95,66 +96,9 @@ bool RayGroup::Contains(const glm::dvec3& p, double slack) const {
 
 namespace {
 
-constexpr double kUlp = 0x1p-53;
 /// With certified Newton, a leaf it does not prove is a hit only below this fraction of the
 /// tolerance (it is split until then).
 constexpr double kUnprovedLeaf = 0.125;
-/// The relative rounding slack of the few-term sums and products below: an eight-fold margin over
-/// the gamma_n bounds of their error (n <= 6 operations in a chain).
-constexpr double kSlack = 4e-15;
-
-/// A measure of the region's bound along a unit direction n: c + u eps_u + v eps_v + w eps_w, plus
-/// or minus rad. It contains n.(P' - o) for every displaced point of the region, rounding included.
-struct Measure {
-    double c = 0, u = 0, v = 0, w = 0, rad = 0;
-    bool bounded = true;
-};
-
-/// The measures of the bound along the ray frame's three directions n[0..2], in one pass.
-void AlongFrame(const RegionBound& b, const glm::dvec3& o, const glm::dvec3 (&n)[3], Measure (&m)[3]) {
-    double magnitude[3] = {0, 0, 0};
-    for (int i = 0; i < 3; ++i) {
-        const bool bounded = b.boundedMask & (1u << i);
-        const double rel = b.c[i] - o[i];
-        const double size =
-            std::fabs(b.c[i]) + std::fabs(o[i]) + std::fabs(b.a[i]) + std::fabs(b.b[i]) + std::fabs(b.g[i]) + b.r[i];
-        for (int k = 0; k < 3; ++k) {
-            const double nk = n[k][i];
-            // A coordinate n does not weigh cannot make the measure unbounded.
-            if (nk == 0) continue;
-            if (!bounded) {
-                m[k].bounded = false;
-                continue;
-            }
-            m[k].c += nk * rel;
-            m[k].u += nk * b.a[i];
-            m[k].v += nk * b.b[i];
-            m[k].w += nk * b.g[i];
-            const double an = std::fabs(nk);
-            m[k].rad += an * b.r[i];
-            magnitude[k] += an * size;
-        }
-    }
-    for (int k = 0; k < 3; ++k) {
-        m[k].rad += kSlack * magnitude[k] + 1e-300;
-        if (!std::isfinite(m[k].rad) || !std::isfinite(m[k].c)) m[k].bounded = false;
-    }
-}
-
-/// A closed range [lo, hi].
-struct Range {
-    double lo, hi;
-    bool excludesZero() const { return lo > 0 || hi < 0; }
-    double width() const { return hi - lo; }
-};
-
-/// The range of a measure with eps_u in cu +- ru and eps_v in cv +- rv (eps_w free).
-Range Over(const Measure& m, double cu, double ru, double cv, double rv) {
-    const double mid = m.c + m.u * cu + m.v * cv;
-    double rad = std::fabs(m.u) * ru + std::fabs(m.v) * rv + std::fabs(m.w) + m.rad;
-    rad += kSlack * (std::fabs(m.c) + std::fabs(m.u * cu) + std::fabs(m.v * cv) + rad);
-    return {mid - rad, mid + rad};
-}
 
 /// Whether a line along the generator (p1, p2) of the (d1, d2) zonotope separates it from the
 /// origin: the combination -p2 d1 + p1 d2 cancels that generator.
@@ -435,7 +379,7 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
     // The box first: cheap, and it may be tighter than the forms (it holds the bound's enclosure).
     if (!BoxRange(b, &lo, &hi)) return false;
     Measure m[3];
-    AlongFrame(b, m_origin, m_frame, m);
+    MeasureAlong<3>(b, m_origin, m_frame, m);
     const Measure &d1 = m[0], &d2 = m[1], &t = m[2];
     const Range r1 = Over(d1, 0, 1, 0, 1), r2 = Over(d2, 0, 1, 0, 1), rt = Over(t, 0, 1, 0, 1);
     // Each bounded measure may rule the region out on its own, even if another is unbounded.
@@ -540,7 +484,7 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
 
 uint8_t TreeIntersector::ChildrenMissed(const Entry& e, double tMin, double tMax) const {
     Measure m[3];
-    AlongFrame(*e.bound, m_origin, m_frame, m);
+    MeasureAlong<3>(*e.bound, m_origin, m_frame, m);
     if (!m[0].bounded || !m[1].bounded || !m[2].bounded) return 0;
     // The parameters where the bound can meet the ray, and each child's part of them, in the
     // bound's eps (u = pu + pr eps_u, surface.h): (x - pu) / pr rounds twice, by an ulp of 1 at

@@ -1,6 +1,8 @@
 // renderer/newton.cpp: Krawczyk's test and the certified Newton hit of a region (newton.h).
 #include "renderer/newton.h"
 
+#include "renderer/measure.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -21,33 +23,15 @@ bool Intersect(const Interval& a, const Interval& b, Interval* out) {
 /// The largest |x| over `a`.
 double Magnitude(const Interval& a) { return std::max(std::fabs(a.lo()), std::fabs(a.hi())); }
 
-constexpr double kUlp = 0x1p-53;
-
-/// The relative rounding slack of the few-term sums and products below: an eight-fold margin over
-/// the gamma_n bounds of their error (n <= 6 operations in a chain), as the intersector's.
-constexpr double kSlack = 4e-15;
-
 /// n . x over the points x of the bound `b` whose eps lie in [eu0, eu1] x [ev0, ev1] (within
-/// [-1, 1]): its centre, parallelogram, segment and box along n, in doubles with their rounding
-/// bounded (a slack on the magnitudes of every term).
+/// [-1, 1]), rounding included (renderer/measure.h); unbounded if b is along n.
 Interval Along(const RegionBound& b, const glm::dvec3& n, double eu0, double eu1, double ev0, double ev1) {
-    double c = 0, a = 0, bb = 0, g = 0, r = 0, magnitude = 0;
-    for (int i = 0; i < 3; ++i) {
-        if (n[i] == 0) continue;
-        c += n[i] * b.c[i];
-        a += n[i] * b.a[i];
-        bb += n[i] * b.b[i];
-        g += n[i] * b.g[i];
-        const double an = std::fabs(n[i]);
-        r += an * b.r[i];
-        magnitude += an * (std::fabs(b.c[i]) + std::fabs(b.a[i]) + std::fabs(b.b[i]) + std::fabs(b.g[i]) + b.r[i]);
-    }
-    const double mu = 0.5 * (eu0 + eu1), ru = 0.5 * (eu1 - eu0) * (1 + 4 * kUlp);
-    const double mv = 0.5 * (ev0 + ev1), rv = 0.5 * (ev1 - ev0) * (1 + 4 * kUlp);
-    const double mid = c + a * mu + bb * mv;
-    double rad = std::fabs(a) * ru + std::fabs(bb) * rv + std::fabs(g) + r;
-    rad += kSlack * (3 * magnitude + std::fabs(mid) + rad) + 1e-300;
-    return Interval(mid - rad, mid + rad);
+    const glm::dvec3 direction[1] = {n};
+    Measure m[1];
+    MeasureAlong<1>(b, glm::dvec3(0.0), direction, m);
+    if (!m[0].bounded) return Interval::Unbounded();
+    const Range r = OverBox(m[0], eu0, eu1, ev0, ev1);
+    return Interval(r.lo, r.hi);
 }
 
 /// Newton's steps for G = 0 in doubles from (u, v), kept within the region: where they end. They
@@ -190,6 +174,7 @@ NewtonHit CertifyRegion(RegionEvaluator& evaluator, const RayFrame& ray, const N
     if (!at.bounded()) return hit;
     // n_k . (P'(c) - o): the point's box relative to o, as a bound of centre and radius only.
     RegionBound rel;
+    rel.boundedMask = 7;
     for (int i = 0; i < 3; ++i) {
         rel.c[i] = 0.5 * at.lo[i] + 0.5 * at.hi[i] - ray.origin[i];
         const double r = std::max(at.hi[i] - ray.origin[i] - rel.c[i], rel.c[i] - (at.lo[i] - ray.origin[i]));

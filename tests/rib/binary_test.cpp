@@ -56,8 +56,7 @@ std::string Request(unsigned code) { return Byte(0246) + Byte(code); }
 
 /// The value of one binary number token, read as Translate's x.
 double NumberOf(const std::string& encoded) {
-    const renderer::SceneDesc s =
-        test::ParseWorld("Translate " + encoded + " 0 0\nSphere 1 -1 1 360", nullptr);
+    const renderer::SceneDesc s = test::ParseWorld("Translate " + encoded + " 0 0\nSphere 1 -1 1 360", nullptr);
     REQUIRE(s.primitives.size() == 1);
     return s.primitives[0].objectToWorld[3][0];
 }
@@ -71,12 +70,12 @@ TEST_CASE("rib binary: every number encoding", "[rib][binary]") {
     CHECK(NumberOf(Byte(0201) + BigEndian(0x1234, 2)) == 0x1234);
     CHECK(NumberOf(Byte(0202) + BigEndian(0x010000, 3)) == 65536);
     CHECK(NumberOf(Byte(0203) + BigEndian(0xfffffffe, 4)) == -2);
-    CHECK(NumberOf(Byte(0204) + Byte(0x80)) == 0.5);            // .B: unsigned
+    CHECK(NumberOf(Byte(0204) + Byte(0x80)) == 0.5);                // .B: unsigned
     CHECK(NumberOf(Byte(0205) + Byte(0xff) + Byte(0x80)) == -0.5);  // B.B: -1 + 0.5
     CHECK(NumberOf(Byte(0206) + BigEndian(0x0102, 2) + Byte(0x40)) == 258.25);
-    CHECK(NumberOf(Byte(0211) + BigEndian(0xc000, 2)) == 0.75);  // .BB
+    CHECK(NumberOf(Byte(0211) + BigEndian(0xc000, 2)) == 0.75);      // .BB
     CHECK(NumberOf(Byte(0213) + BigEndian(0x00024000, 4)) == 2.25);  // BB.BB
-    CHECK(NumberOf(Byte(0216) + BigEndian(0x400000, 3)) == 0.25);  // .BBB
+    CHECK(NumberOf(Byte(0216) + BigEndian(0x400000, 3)) == 0.25);    // .BBB
     CHECK(NumberOf(Byte(0217) + BigEndian(0xfe800000, 4)) == -1.5);  // B.BBB
     CHECK(NumberOf(Float(-3.25f)) == -3.25);
     CHECK(NumberOf(Double(0.1)) == 0.1);
@@ -92,15 +91,15 @@ TEST_CASE("rib binary: a binary scene reads as its ASCII text", "[rib][binary]")
     // The same requests: names defined once and then named by code, a string token defined and
     // interpolated, numbers in several encodings, float arrays; ASCII and binary mixed.
     const std::string binary =
-        DefineRequest(1, "Surface") + DefineRequest(2, "Sphere") + Byte(0315) + Byte(7) + String("Kd") +
-        Request(1) + String("matte") + Byte(0317) + Byte(7) + FloatArray({0.75f}) + "\n" +  //
-        "Translate " + Byte(0200) + Byte(1) + Float(2) + Double(3) + "\n" +                   //
+        DefineRequest(1, "Surface") + DefineRequest(2, "Sphere") + Byte(0315) + Byte(7) + String("Kd") + Request(1) +
+        String("matte") + Byte(0317) + Byte(7) + FloatArray({0.75f}) + "\n" +  //
+        "Translate " + Byte(0200) + Byte(1) + Float(2) + Double(3) + "\n" +    //
         Request(2) + Byte(0205) + Byte(1) + Byte(0x80) + Byte(0200) + Byte(0xff) + "1 " + Double(360) + "\n" +
         "Polygon " + String("P") + FloatArray({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}) + "\n" +
         // A name of more than 15 bytes: the long string form (0240, a one-byte length).
         DefineRequest(3, "AttributeBegin") + Request(3) + DefineRequest(5, "ReverseOrientation") + Request(5) +
-        "\nColor" + FloatArray({0.25f, 0.5f, 1}) + "\n" +
-        Byte(0314) + Byte(4) + "\"Disk\"" + Request(4) + FloatArray({0, 2, 180}) + "\nAttributeEnd\n";
+        "\nColor" + FloatArray({0.25f, 0.5f, 1}) + "\n" + Byte(0314) + Byte(4) + "\"Disk\"" + Request(4) +
+        FloatArray({0, 2, 180}) + "\nAttributeEnd\n";
     diag::Report report;
     const renderer::SceneDesc a = test::ParseWorld(ascii), b = test::ParseWorld(binary, &report);
     CHECK(report.all().empty());
@@ -126,8 +125,7 @@ TEST_CASE("rib binary: malformed encodings are errors at their place", "[rib][bi
           "t.rib:2: error: binary RIB string token 300 was never defined");
     CHECK(error("Sphere 1 -1 1 " + Byte(0247)) == "t.rib:2: error: unexpected byte 0xa7 (reserved in binary RIB)");
     CHECK(error("Sphere 1 -1 1 " + Byte(0377)) == "t.rib:2: error: unexpected byte 0xff (reserved in binary RIB)");
-    CHECK(error("Sphere 1 -1 1 " + Byte(0210) + Byte(1)) ==
-          "t.rib:2: error: invalid binary RIB number code byte 0x88");
+    CHECK(error("Sphere 1 -1 1 " + Byte(0210) + Byte(1)) == "t.rib:2: error: invalid binary RIB number code byte 0x88");
     CHECK(error("Sphere 1 -1 1 " + Float(std::numeric_limits<float>::quiet_NaN())) ==
           "t.rib:2: error: invalid binary RIB number: NaN and infinity are not allowed");
     CHECK(error("Sphere " + FloatArray({1, -1, std::numeric_limits<float>::infinity(), 360})) ==
