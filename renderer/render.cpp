@@ -193,9 +193,10 @@ double Beyond(const Hit& hit, const Tolerance& tol) {
 
 glm::dvec3 ToGlm(const vm::Vec3<vm::Dual<double>>& v) { return {v.x.v, v.y.v, v.z.v}; }
 
-/// The displaced point and its unit normal at a hit, from the shade program in dual numbers.
+/// The displaced point and its unit normal at a hit, from the shade program in dual numbers, and
+/// the displaced surface's geometric normal Ng there (unit; zero where its tangents are parallel).
 struct HitPoint {
-    glm::dvec3 P, N;
+    glm::dvec3 P, N, Ng{0.0};
 };
 
 HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh,
@@ -204,8 +205,16 @@ HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray
     vm::Interpreter<vm::Dual<double>>& interp = ts.Shader(nh.primitive);
     const double u = nh.hit.u, v = nh.hit.v;
     HitPoint h;
-    h.P = ToGlm(EvaluateOnSurface(interp, prim.base, u, u, v, v, eye, *prim.shade.findOutput("P")));
+    const vm::Vec3<vm::Dual<double>> p =
+        EvaluateOnSurface(interp, prim.base, u, u, v, v, eye, *prim.shade.findOutput("P"));
+    h.P = ToGlm(p);
     h.N = ToGlm(interp.OutputTriple(*prim.shade.findOutput("N")));
+    // Ng = dP'/du x dP'/dv on the side ParametricSide says (the derivatives' rates along the
+    // surface's parameters are positive: they keep the sign).
+    const glm::dvec3 ng = ParametricSide(prim.base, u, v) *
+                          glm::cross(glm::dvec3(p.x.du, p.y.du, p.z.du), glm::dvec3(p.x.dv, p.y.dv, p.z.dv));
+    const double lengthNg = glm::length(ng);
+    if (lengthNg > 0 && std::isfinite(lengthNg)) h.Ng = ng / lengthNg;
     if (!std::isfinite(glm::dot(h.P, h.P))) h.P = ray.origin + nh.hit.t * ray.dir;
     double lengthN = glm::length(h.N);
     h.N = lengthN > 0 && std::isfinite(lengthN) ? h.N / lengthN : -ray.dir;
@@ -213,7 +222,8 @@ HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray
 }
 
 /// The nearest hit along `ray` in [tMin, tMax] over the primitives the BVH offers. A one-sided
-/// primitive (Sides 1) seen from behind is not hit: the search goes on past it.
+/// primitive (Sides 1) seen from behind (its geometric normal away from the ray) is not hit: the
+/// search goes on past it.
 NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& ray, double tMin, double tMax,
                         const Tolerance& tol, IntersectStats& stats, const glm::dvec3& eye, const RayGroup* group) {
     constexpr int kMaxBackFaces = 16;
@@ -230,7 +240,10 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
             return true;
         });
         if (nearest.primitive < 0 || scene.primitives[nearest.primitive].twoSided) return nearest;
-        if (glm::dot(EvaluateHit(scene, ts, ray, nearest, eye).N, ray.dir) < 0) return nearest;
+        // Facing is the geometric normal's (RI 3.2, 4.2), whatever N says; N only where the
+        // surface's tangents are parallel (a pole) and Ng is undefined.
+        const HitPoint at = EvaluateHit(scene, ts, ray, nearest, eye);
+        if (glm::dot(at.Ng != glm::dvec3(0.0) ? at.Ng : at.N, ray.dir) < 0) return nearest;
         // Seen from behind: look again beyond this hit's certified error.
         tMin = Beyond(nearest.hit, tol);
     }

@@ -450,6 +450,22 @@ void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, d
         });
 }
 
+/// The side of `surface` that dPdu x dPdv points to at (u, v): +1 where it is the side of the
+/// geometric normal Ng (N's side, the orientation applied), -1 where it is the other. Ng is
+/// dPdu x dPdv (or the frame's normal direction, which points the same way) flipped by the
+/// orientation, except on a mesh piece, whose Ng is its face's normal (the winding's) flipped.
+/// So Ng of the displaced surface is this sign times dP'/du x dP'/dv.
+inline double ParametricSide(const BaseSurface& surface, double u, double v) {
+    double side = surface.flipNormal ? -1.0 : 1.0;
+    if (surface.kind == BaseSurface::Kind::MeshPiece) {
+        const SurfaceFrame<double> frame = MeshPieceFrame(surface.piece, u, v);
+        const glm::dvec3 cross = glm::cross(glm::dvec3(frame.dPdu.x, frame.dPdu.y, frame.dPdu.z),
+                                            glm::dvec3(frame.dPdv.x, frame.dPdv.y, frame.dPdv.z));
+        if (glm::dot(cross, surface.piece.faceNormal) < 0) side = -side;
+    }
+    return side;
+}
+
 /// Runs `interp`'s program over the region [u0,u1] x [v0,v1] of `surface` and returns its triple
 /// output `output`.
 template <class T>
