@@ -1,8 +1,9 @@
-// tests/rib/binary_test.cpp: binary RIB (RI Spec 3.2, Appendix C.2; rib/lexer.cpp): each
-// encoding of numbers, strings, float arrays and defined requests and strings, written by a small
-// encoder here, reads as the same scene as its ASCII text; mixed with ASCII; and every malformed
-// encoding (a value cut short, a request or string never defined, a reserved byte) is an error
-// at its place.
+// tests/rib/lexer_test.cpp: the RIB tokenizer (rib/lexer.cpp), its binary encoding (RI Spec 3.2,
+// Appendix C.2): each encoding of numbers, strings, float arrays and defined requests and
+// strings, written by a small encoder here, reads as the same scene as its ASCII text; mixed with
+// ASCII; and every malformed encoding (a value cut short, a request or string never defined, a
+// reserved byte) is an error at its place. (ASCII tokens and their errors are tested through
+// whole requests in rib_test.cpp and the rib_lex_* golden cases.)
 #include <catch2/catch.hpp>
 
 #include <cstring>
