@@ -44,6 +44,13 @@ std::string DescribeChar(char c) {
     return buffer;
 }
 
+/// A binary number as a message shows it (the ASCII lexer keeps the numeral as written).
+std::string NumberText(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.9g", v);
+    return buffer;
+}
+
 }  // namespace
 
 RibToken RibLexer::Error(RibPos at, std::string message) {
@@ -56,7 +63,20 @@ RibToken RibLexer::Error(RibPos at, std::string message) {
 }
 
 RibToken RibLexer::Next() {
-    if (m_queued < m_queue.size()) return m_queue[m_queued++];
+    if (m_inFloats) {
+        // A binary float array's values, then its ']'.
+        RibToken token;
+        token.at = m_floatsAt;
+        if (m_nextFloat < m_floats.size()) {
+            token.kind = RibToken::Kind::Number;
+            token.number = m_floats[m_nextFloat++];
+            token.text = NumberText(token.number);
+        } else {
+            token.kind = RibToken::Kind::ArrayEnd;
+            m_inFloats = false;
+        }
+        return token;
+    }
     // A binary definition (of a request or a string) gives no token: the one after it. (A loop,
     // not a recursion: a file may hold any number of definitions in a row.)
     RibToken token;
@@ -162,7 +182,7 @@ bool RibLexer::LexBinary(RibToken* out) {
         if (fraction < bytes && raw >> (8 * bytes - 1)) v -= std::ldexp(1.0, 8 * bytes);
         token.kind = RibToken::Kind::Number;
         token.number = std::ldexp(v, -8 * fraction);
-        token.text = std::to_string(token.number);
+        token.text = NumberText(token.number);
         return give(std::move(token));
     }
     if (b <= 0243) {
@@ -186,7 +206,7 @@ bool RibLexer::LexBinary(RibToken* out) {
         if (!std::isfinite(v)) return give(Error(at, "invalid binary RIB number: NaN and infinity are not allowed"));
         token.kind = RibToken::Kind::Number;
         token.number = v;
-        token.text = std::to_string(v);
+        token.text = NumberText(v);
         return give(std::move(token));
     }
     if (b == 0246) {
@@ -206,27 +226,18 @@ bool RibLexer::LexBinary(RibToken* out) {
         if (static_cast<int64_t>(length) > diag::LimitValue(diag::Limit::RibArray))
             return give(Error(at, "array longer than " + std::to_string(diag::LimitValue(diag::Limit::RibArray)) +
                                       " values " + diag::LimitNote(diag::Limit::RibArray)));
-        m_queue.clear();
-        m_queued = 0;
+        m_floats.resize(length);
+        m_nextFloat = 0;
         for (uint64_t i = 0; i < length; ++i) {
             uint64_t raw = 0;
             Unsigned(4, &raw);
             const auto bits = static_cast<uint32_t>(raw);
-            float f;
-            std::memcpy(&f, &bits, sizeof f);
-            if (!std::isfinite(f))
+            std::memcpy(&m_floats[i], &bits, sizeof bits);
+            if (!std::isfinite(m_floats[i]))
                 return give(Error(at, "invalid number in a binary RIB array: NaN and infinity are not allowed"));
-            RibToken n;
-            n.kind = RibToken::Kind::Number;
-            n.number = f;
-            n.text = std::to_string(n.number);
-            n.at = at;
-            m_queue.push_back(std::move(n));
         }
-        RibToken end;
-        end.kind = RibToken::Kind::ArrayEnd;
-        end.at = at;
-        m_queue.push_back(std::move(end));
+        m_inFloats = true;
+        m_floatsAt = at;
         token.kind = RibToken::Kind::ArrayBegin;
         return give(std::move(token));
     }

@@ -47,7 +47,8 @@ class RibLexer {
     /// The next token into *out; false if it was a binary definition, which gives none.
     bool NextToken(RibToken* out);
     /// One binary token at m_pos (a byte from 0200) into *out: a number, a string, a request or
-    /// a float array (its tokens queued in m_queue); false for a definition (of a request or a
+    /// a float array (its '[', then its values from m_floats one token at a time); false for a
+    /// definition (of a request or a
     /// string), which gives none.
     bool LexBinary(RibToken* out);
     /// A string at m_pos for a binary definition: binary-encoded or "quoted".
@@ -68,8 +69,10 @@ class RibLexer {
     // Binary RIB: the requests (by code, 0 to 255) and strings (by token, 0 to 65535) defined so
     // far, and the tokens of a decoded float array not yet returned.
     std::vector<std::string> m_requests, m_strings;
-    std::vector<RibToken> m_queue;
-    size_t m_queued = 0;
+    std::vector<float> m_floats;  // the binary float array being returned, with its ']' after it
+    size_t m_nextFloat = 0;
+    bool m_inFloats = false;
+    RibPos m_floatsAt;
 };
 
 /// One argument of a request: a bare number, a bare string, or an array of either.
