@@ -348,8 +348,9 @@ TEST_CASE("render: Sides 1 culls by the geometric normal, whatever N says", "[re
     // A closed cube seen from outside: with Sides 1 it must show exactly what Sides 2 shows (its
     // front faces), with or without outward vertex normals N (corner-averaged, so near the edges
     // N turns away from the viewer while the face itself faces it: 188 of its pixels differed
-    // when N decided), displaced or not, and with either orientation when the winding follows it.
-    // RenderMan culls by Ng (RI 3.2, 4.2).
+    // when N decided), displaced or not, and with either orientation when the winding follows it;
+    // so must the same cube made of bilinear, bicubic and NuPatch faces, mirrored or not, and curved
+    // closed surfaces of the other kinds. RenderMan culls by Ng (RI 3.2, 4.2).
     test::TempDir dir;
     const char* const camera = R"(Format 48 48 1
 Projection "orthographic"
@@ -370,6 +371,28 @@ Rotate 40 0 1 0
             Render(dir, std::string(camera) + "WorldBegin\n" + sides + "\n" + body + "\nWorldEnd\n");
         return Channel(image, "Z");
     };
+    // The same cube as six patches of each kind: face loop (a, b, c, d) is the patch (a, b, d, c),
+    // whose dPdu x dPdv points where the loop's winding normal does.
+    const int loops[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    const auto corner = [](int i) { return glm::dvec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1); };
+    const auto text = [](const glm::dvec3& p) {
+        std::ostringstream out;
+        out << p.x << " " << p.y << " " << p.z << " ";
+        return out.str();
+    };
+    std::string bilinear, bicubic, nurbs;
+    for (const auto& loop : loops) {
+        const glm::dvec3 a = corner(loop[0]), b = corner(loop[1]), c = corner(loop[3]), d = corner(loop[2]);
+        bilinear += "Patch \"bilinear\" \"P\" [" + text(a) + text(b) + text(c) + text(d) + "]\n";
+        nurbs += "NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"P\" [" + text(a) + text(b) + text(c) + text(d) + "]\n";
+        bicubic += "Patch \"bicubic\" \"P\" [";
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) {
+                const double u = i / 3.0, v = j / 3.0;
+                bicubic += text((1 - v) * ((1 - u) * a + u * b) + v * ((1 - u) * c + u * d));
+            }
+        bicubic += "]\n";
+    }
     struct Case {
         const char* name;
         std::string body;
@@ -390,6 +413,10 @@ Rotate 40 0 1 0
         {"sphere, mirrored (its normals stay out)", "Scale -1 1 1\nSphere 1.3 -1.3 1.3 360", false},
         {"torus", "Rotate 60 1 0 0\nTorus 1 0.4 0 360 360", false},
         {"subdivision cube", "SubdivisionMesh \"catmull-clark\" " + faces + points, false},
+        {"bilinear patches", bilinear, true},
+        {"bicubic patches", "Basis \"bezier\" 3 \"bezier\" 3\n" + bicubic, true},
+        {"NuPatches", nurbs, true},
+        {"bilinear patches, mirrored", "Scale 1 -1 1\n" + bilinear, true},
     };
     for (const auto& [name, body, flat] : cases) {
         INFO(name);
@@ -408,5 +435,15 @@ Rotate 40 0 1 0
             // silhouette, where Ng turns away (4 pixels on the displaced cube; N deciding hid 194).
             CHECK(differ <= covered / 100);
         }
+    }
+    // Turned inside out, the same patches show the insides of the far faces wherever the cube is.
+    for (const std::string& body : {"ReverseOrientation\n" + bilinear, "ReverseOrientation\n" + nurbs}) {
+        const std::vector<float> one = depth("Sides 1", body), two = depth("Sides 2", body);
+        int covered = 0, behind = 0;
+        for (size_t i = 0; i < one.size(); ++i) {
+            covered += two[i] < 1e29f;
+            behind += two[i] < 1e29f && one[i] > two[i] && one[i] < 1e29f;
+        }
+        CHECK(behind > covered * 9 / 10);
     }
 }
