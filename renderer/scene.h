@@ -162,6 +162,9 @@ struct CameraDesc {
     bool jitter = true;
     FilterDesc filter;
     double exposureGain = 1, exposureGamma = 1;  ///< Exposure: out = (gain * color)^(1/gamma)
+    /// Imager "background": the colour composited under every pixel (colour += (1 - alpha) *
+    /// background, alpha = 1), before the exposure, as RI 3.2's standard imager does. Unset: none.
+    std::optional<glm::dvec3> background;
 };
 
 /// Everything a render needs from one frame of a RIB file: the world block with the options in
@@ -331,6 +334,7 @@ inline std::string ToString(const CameraDesc& c) {
         << (c.jitter ? "" : " jitter=0")
         << " filter=" << (c.filter.kind == FilterDesc::Kind::Box ? "box " : "gaussian ") << c.filter.xwidth << ' '
         << c.filter.ywidth << " exposure=" << c.exposureGain << ' ' << c.exposureGamma;
+    if (c.background) out << " imager=background " << ToString(*c.background);
     return out.str();
 }
 

@@ -226,6 +226,7 @@ class RibParser : private RibArgChecks {
     bool DoPixelSamples(const RibRequest& r);
     bool DoPixelFilter(const RibRequest& r);
     bool DoExposure(const RibRequest& r);
+    bool DoImager(const RibRequest& r);
     bool DoOption(const RibRequest& r);
     /// Option "searchpath" "shader" or "archive": a ':'-separated list into *out.
     bool SetSearchPath(const RibParam& p, std::vector<std::string>* out);

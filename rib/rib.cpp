@@ -190,6 +190,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"PixelSamples", &RibParser::DoPixelSamples},
         {"PixelFilter", &RibParser::DoPixelFilter},
         {"Exposure", &RibParser::DoExposure},
+        {"Imager", &RibParser::DoImager},
         {"Option", &RibParser::DoOption},
         {"FrameBegin", &RibParser::DoFrameBegin},
         {"FrameEnd", &RibParser::DoFrameEnd},
@@ -637,6 +638,35 @@ bool RibParser::DoExposure(const RibRequest& r) {
                     "'Exposure' gain and gamma must be positive, got " + FormatNumber(v[0]) + " " + FormatNumber(v[1]));
     m_scene.camera.exposureGain = v[0];
     m_scene.camera.exposureGamma = v[1];
+    return true;
+}
+
+// Imager "background" ["background" color] (RI 3.2's standard imager; BMRT's and Houdini's
+// exports name the colour "bgcolor"): the colour composited under every pixel, white by default.
+// "" or "null" removes the imager; any other imager shader is warned about and ignored.
+bool RibParser::DoImager(const RibRequest& r) {
+    std::string name;
+    std::vector<RibParam> params;
+    if (!BeforeWorld(r) || !LeadingString(r, "an imager shader name", &name) || !ParamList(r, 1, &params)) return false;
+    if (name.empty() || name == "null") {
+        m_scene.camera.background.reset();
+        return true;
+    }
+    if (name != "background") {
+        Warn(r.args[0].at, "imager shader " + Quote(name) + " is not supported (only \"background\"); ignored");
+        return true;
+    }
+    glm::dvec3 color(1.0);
+    for (const RibParam& p : params) {
+        if (p.value.name != "background" && p.value.name != "bgcolor") {
+            Warn(p.at, "'Imager \"background\"' parameter " + Quote(p.value.name) + " is not supported; ignored");
+            continue;
+        }
+        double v[3];
+        if (!ParamNumbers(p, "'Imager \"background\"'", 3, v)) return false;
+        color = glm::dvec3(v[0], v[1], v[2]);
+    }
+    m_scene.camera.background = color;
     return true;
 }
 

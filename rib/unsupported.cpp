@@ -31,7 +31,7 @@ constexpr std::string_view kNoEffect[] = {
 // Integrator and filters). Skipped with one warning per name.
 constexpr std::string_view kIgnored[] = {
     "AreaLightSource", "Atmosphere", "Bxdf", "ClippingPlane", "ColorSamples", "DepthOfField",
-    "DisplayFilter", "Exterior", "Imager", "Integrator", "Interior", "Light", "LightFilter", "Matte",
+    "DisplayFilter", "Exterior", "Integrator", "Interior", "Light", "LightFilter", "Matte",
     "Pattern", "SampleFilter", "Shader",
 };
 

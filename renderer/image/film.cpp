@@ -125,8 +125,15 @@ PixelSums Gather(const Film& film, int x, int y, const PixelRange& region, const
 void WritePixel(const Film& film, const PixelSums& sums, size_t pixel, const ChannelPointers& ch, ImageBuffer* image) {
     float* rgba = &image->rgba[pixel * 4];
     const double norm = sums.weight > 0 ? 1.0 / sums.weight : 0.0;
-    for (int c = 0; c < 3; ++c) rgba[c] = static_cast<float>(film.Expose(sums.rgb[c] * norm));
-    rgba[3] = static_cast<float>(sums.alpha * norm);
+    glm::dvec3 rgb = sums.rgb * norm;
+    double alpha = sums.alpha * norm;
+    if (const std::optional<glm::dvec3>& background = film.Background()) {
+        // Imager "background", before the exposure (RI 3.2's imaging pipeline).
+        rgb += (1.0 - alpha) * *background;
+        alpha = 1;
+    }
+    for (int c = 0; c < 3; ++c) rgba[c] = static_cast<float>(film.Expose(rgb[c]));
+    rgba[3] = static_cast<float>(alpha);
 
     const SampleValue none;  // a pixel without samples reads as a miss
     const SampleValue& n = sums.nearest ? *sums.nearest : none;
@@ -218,6 +225,7 @@ Film::Film(const CameraDesc& camera, const DisplayChannels& channels, std::uint6
       m_marginY(MarginFor(m_halfY)),
       m_gain(camera.exposureGain),
       m_gamma(camera.exposureGamma),
+      m_background(camera.background),
       m_channels(channels),
       m_seed(seed) {}
 

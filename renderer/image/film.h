@@ -33,6 +33,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -151,6 +152,8 @@ class Film {
     /// RI Exposure: (gain * c)^(1/gamma) per component; negative components become 0 unless
     /// gamma is 1 (a power of a negative number is undefined).
     double Expose(double c) const;
+    /// Imager "background": the colour composited under each pixel before the exposure, if any.
+    const std::optional<glm::dvec3>& Background() const { return m_background; }
 
   private:
     int m_xres, m_yres;
@@ -161,6 +164,7 @@ class Film {
     double m_halfX, m_halfY;  ///< Filter half-widths, pixels.
     int m_marginX, m_marginY;
     double m_gain, m_gamma;
+    std::optional<glm::dvec3> m_background;
     DisplayChannels m_channels;
     std::uint64_t m_seed;
 };

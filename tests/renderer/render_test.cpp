@@ -447,3 +447,29 @@ Rotate 40 0 1 0
         CHECK(behind > covered * 9 / 10);
     }
 }
+
+TEST_CASE("render: Imager \"background\" composites its colour under every pixel, before the exposure",
+          "[renderer][render]") {
+    // RI 3.2's standard imager: colour += (1 - alpha) * background, alpha = 1; Exposure after it.
+    test::TempDir dir;
+    const std::string scene = std::string(kCamera) +
+                              "Imager \"background\" \"background\" [0.1 0.2 0.3]\nExposure 2 1\nWorldBegin\n"
+                              "Patch \"bilinear\" \"P\" [-1 -1 1  0 -1 1  -1 1 1  0 1 1]\nWorldEnd\n";
+    const ImageBuffer image = Render(dir, scene);
+    int background = 0, covered = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            CHECK(Alpha(image, x, y) == 1.0f);
+            const float* rgba = &image.rgba[(size_t(y) * image.width + x) * 4];
+            if (Channel(image, "Z")[size_t(y) * image.width + x] < 1e29f) {
+                ++covered;
+                continue;
+            }
+            ++background;
+            CHECK(rgba[0] == Approx(0.2).epsilon(1e-3));
+            CHECK(rgba[1] == Approx(0.4).epsilon(1e-3));
+            CHECK(rgba[2] == Approx(0.6).epsilon(1e-3));
+        }
+    CHECK(background == 32);
+    CHECK(covered == 32);
+}

@@ -322,6 +322,7 @@ FrameEnd
     CHECK(scene->primitives.size() == 1);
     CHECK(scene->camera.xsamples == 3);
     CHECK(scene->camera.jitter);
+    CHECK(scene->camera.background == glm::dvec3(0.0));  // Imager "background" "color bgcolor" [0 0 0]
     CHECK(messages == Messages{
 
                           "t.rib:7: warning: 'Option \"limits\"' does not apply to affray; ignored",
@@ -329,7 +330,6 @@ FrameEnd
                           "t.rib:9: warning: 'Option \"trace\"' does not apply to affray; ignored",
                           "t.rib:18: warning: 'PixelVariance' does not apply to affray; ignored",
                           "t.rib:21: warning: 'Quantize' does not apply to affray; ignored",
-                          "t.rib:22: warning: request 'Imager' is not supported yet; ignored",
                           "t.rib:23: warning: request 'DepthOfField' is not supported yet; ignored",
                           "t.rib:24: warning: 'Shutter' does not apply to affray; ignored",
                           "t.rib:30: warning: 'Attribute \"identifier\"' does not apply to affray; ignored",

@@ -1178,3 +1178,23 @@ TEST_CASE("RIB numbers at the very end of a text without a NUL are read within i
     CHECK_FALSE(ParseRib("Translate 0 0 -Infx", "t.rib", &report));
     CHECK(Short(report.all().at(0)) == "t.rib:1: error: malformed number '-Infx'");
 }
+
+TEST_CASE("RIB Imager: \"background\" sets the colour under the image; others are warned about", "[renderer][rib]") {
+    const auto camera = [](const std::string& options) {
+        affray::diag::Report report;
+        std::optional<SceneDesc> scene = ParseRib(options + "WorldBegin\nWorldEnd\n", "t.rib", &report);
+        REQUIRE(scene);
+        return std::make_pair(scene->camera, WarningsOf(report));
+    };
+    CHECK(camera("Imager \"background\" \"background\" [0.2 0.3 0.4]\n").first.background == glm::dvec3(0.2, 0.3, 0.4));
+    CHECK(camera("Imager \"background\" \"color bgcolor\" [1 0 0]\n").first.background == glm::dvec3(1, 0, 0));
+    CHECK(camera("Imager \"background\"\n").first.background == glm::dvec3(1.0));  // its default, white
+    CHECK_FALSE(camera("Imager \"background\"\nImager \"null\"\n").first.background);
+    const auto [sepia, warnings] = camera("Imager \"sepia\" \"amount\" [1]\n");
+    CHECK_FALSE(sepia.background);
+    CHECK(warnings == std::vector<std::string>{"t.rib:1: warning: imager shader 'sepia' is not supported (only "
+                                               "\"background\"); ignored"});
+    CHECK(ErrorOf("Imager \"background\" \"background\" [1 0]\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:1: error: 'Imager \"background\"' parameter 'background' expects 3 numbers, got 2");
+    CHECK(ErrorOf("WorldBegin\nImager \"background\"\nWorldEnd\n").find("'Imager' is an option") != std::string::npos);
+}
