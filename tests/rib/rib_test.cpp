@@ -1179,7 +1179,7 @@ TEST_CASE("RIB numbers at the very end of a text without a NUL are read within i
     CHECK(Short(report.all().at(0)) == "t.rib:1: error: malformed number '-Infx'");
 }
 
-TEST_CASE("RIB Imager: \"background\" sets the colour under the image; others are warned about", "[renderer][rib]") {
+TEST_CASE("RIB Imager: background sets the colour under the image, other imagers are warned about", "[renderer][rib]") {
     const auto camera = [](const std::string& options) {
         affray::diag::Report report;
         std::optional<SceneDesc> scene = ParseRib(options + "WorldBegin\nWorldEnd\n", "t.rib", &report);
