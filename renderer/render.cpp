@@ -194,9 +194,9 @@ double Beyond(const Hit& hit, const Tolerance& tol) {
 glm::dvec3 ToGlm(const vm::Vec3<vm::Dual<double>>& v) { return {v.x.v, v.y.v, v.z.v}; }
 
 /// The displaced point and its unit normal at a hit, from the shade program in dual numbers, and
-/// the displaced surface's geometric normal Ng there (unit; zero where its tangents are parallel).
+/// the displaced point's derivatives along the surface's parameters (for its geometric normal).
 struct HitPoint {
-    glm::dvec3 P, N, Ng{0.0};
+    glm::dvec3 P, N, dPdu, dPdv;
 };
 
 HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh,
@@ -209,12 +209,8 @@ HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray
         EvaluateOnSurface(interp, prim.base, u, u, v, v, eye, *prim.shade.findOutput("P"));
     h.P = ToGlm(p);
     h.N = ToGlm(interp.OutputTriple(*prim.shade.findOutput("N")));
-    // Ng = dP'/du x dP'/dv on the side ParametricSide says (the derivatives' rates along the
-    // surface's parameters are positive: they keep the sign).
-    const glm::dvec3 ng = ParametricSide(prim.base, u, v) *
-                          glm::cross(glm::dvec3(p.x.du, p.y.du, p.z.du), glm::dvec3(p.x.dv, p.y.dv, p.z.dv));
-    const double lengthNg = glm::length(ng);
-    if (lengthNg > 0 && std::isfinite(lengthNg)) h.Ng = ng / lengthNg;
+    h.dPdu = glm::dvec3(p.x.du, p.y.du, p.z.du);
+    h.dPdv = glm::dvec3(p.x.dv, p.y.dv, p.z.dv);
     if (!std::isfinite(glm::dot(h.P, h.P))) h.P = ray.origin + nh.hit.t * ray.dir;
     double lengthN = glm::length(h.N);
     h.N = lengthN > 0 && std::isfinite(lengthN) ? h.N / lengthN : -ray.dir;
@@ -240,10 +236,16 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
             return true;
         });
         if (nearest.primitive < 0 || scene.primitives[nearest.primitive].twoSided) return nearest;
-        // Facing is the geometric normal's (RI 3.2, 4.2), whatever N says; N only where the
-        // surface's tangents are parallel (a pole) and Ng is undefined.
+        // Facing is the geometric normal's (RI 3.2, 4.2), whatever N says: Ng = dP'/du x dP'/dv on
+        // the side ParametricSide says (the derivatives' rates along the surface's parameters are
+        // positive: they keep the sign); N only where the tangents are parallel (a pole) and Ng is
+        // undefined.
         const HitPoint at = EvaluateHit(scene, ts, ray, nearest, eye);
-        if (glm::dot(at.Ng != glm::dvec3(0.0) ? at.Ng : at.N, ray.dir) < 0) return nearest;
+        const glm::dvec3 ng = ParametricSide(scene.primitives[nearest.primitive].base, nearest.hit.u, nearest.hit.v) *
+                              glm::cross(at.dPdu, at.dPdv);
+        const double length = glm::length(ng);
+        const glm::dvec3 facing = length > 0 && std::isfinite(length) ? ng / length : at.N;
+        if (glm::dot(facing, ray.dir) < 0) return nearest;
         // Seen from behind: look again beyond this hit's certified error.
         tMin = Beyond(nearest.hit, tol);
     }

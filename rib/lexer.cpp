@@ -44,6 +44,14 @@ std::string DescribeChar(char c) {
     return buffer;
 }
 
+/// The IEEE single-precision float of the 32 bits `raw` (binary RIB's 0244 and float arrays).
+float FloatOfBits(uint64_t raw) {
+    const auto bits = static_cast<uint32_t>(raw);
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
 /// A binary number as a message shows it (the ASCII lexer keeps the numeral as written).
 std::string NumberText(double v) {
     char buffer[32];
@@ -195,14 +203,10 @@ bool RibLexer::LexBinary(RibToken* out) {
         uint64_t raw = 0;
         if (!Unsigned(b == 0244 ? 4 : 8, &raw)) return truncated();
         double v;
-        if (b == 0244) {
-            const auto bits = static_cast<uint32_t>(raw);
-            float f;
-            std::memcpy(&f, &bits, sizeof f);
-            v = f;
-        } else {
+        if (b == 0244)
+            v = FloatOfBits(raw);
+        else
             std::memcpy(&v, &raw, sizeof v);
-        }
         if (!std::isfinite(v)) return give(Error(at, "invalid binary RIB number: NaN and infinity are not allowed"));
         token.kind = RibToken::Kind::Number;
         token.number = v;
@@ -231,8 +235,7 @@ bool RibLexer::LexBinary(RibToken* out) {
         for (uint64_t i = 0; i < length; ++i) {
             uint64_t raw = 0;
             Unsigned(4, &raw);
-            const auto bits = static_cast<uint32_t>(raw);
-            std::memcpy(&m_floats[i], &bits, sizeof bits);
+            m_floats[i] = FloatOfBits(raw);
             if (!std::isfinite(m_floats[i]))
                 return give(Error(at, "invalid number in a binary RIB array: NaN and infinity are not allowed"));
         }

@@ -2,8 +2,8 @@
 // Owns the syntax of RIB (RI Spec 3.2, Appendix C): request names, numbers, "strings" with C
 // escapes, [ arrays ] and # comments, and the binary encoding of Appendix C.2 (bytes 0200 to
 // 0377: encoded numbers, strings, float arrays, and requests and strings defined once and then
-// named by a code), which may be mixed with ASCII anywhere between tokens. It knows nothing about what a request means; that is
-// rib/rib.cpp. Rules: every token carries the line it starts on; lexing always advances, so
+// named by a code), which may be mixed with ASCII anywhere between tokens. It knows nothing
+// about what a request means; that is rib/rib.cpp. Rules: every token carries the line it starts on; lexing always advances, so
 // no input can make it loop; a bad token is an Error token with a message, never an exception.
 #pragma once
 
@@ -48,8 +48,7 @@ class RibLexer {
     bool NextToken(RibToken* out);
     /// One binary token at m_pos (a byte from 0200) into *out: a number, a string, a request or
     /// a float array (its '[', then its values from m_floats one token at a time); false for a
-    /// definition (of a request or a
-    /// string), which gives none.
+    /// definition (of a request or a string), which gives none.
     bool LexBinary(RibToken* out);
     /// A string at m_pos for a binary definition: binary-encoded or "quoted".
     bool BinaryString(std::string* out);
@@ -67,7 +66,8 @@ class RibLexer {
     size_t m_lineStart = 0;  // where line m_line starts
     int m_line = 1;
     // Binary RIB: the requests (by code, 0 to 255) and strings (by token, 0 to 65535) defined so
-    // far, and the tokens of a decoded float array not yet returned.
+    // far, and the decoded float array being returned (m_nextFloat its next value, m_floatsAt
+    // where it starts).
     std::vector<std::string> m_requests, m_strings;
     std::vector<float> m_floats;  // the binary float array being returned, with its ']' after it
     size_t m_nextFloat = 0;

@@ -1,9 +1,10 @@
 // rib/subdivision.cpp: RI Spec 3.2 section 5.5, SubdivisionMesh "catmull-clark" nvertices vertices
 // [tags nargs intargs floatargs] parameterlist, and prman's HierarchicalSubdivisionMesh (what
 // RenderMan 16 and later exporters write), the same with a fifth array, stringargs, and three
-// nargs a tag; its hierarchical edits (tags that take strings) are warned about and ignored. The mesh becomes a renderer::SubdivisionMesh in
-// world space, which renderer::BuildSubdivisionPatches refines and turns into patches, one
-// primitive each (renderer/geometry/subdivision.h). Tags: "hole" (face indices), "crease" (a
+// nargs a tag; its hierarchical edits (tags that take strings) are warned about and ignored.
+// The mesh becomes a renderer::SubdivisionMesh in world space, which
+// renderer::BuildSubdivisionPatches refines and turns into patches, one primitive each
+// (renderer/geometry/subdivision.h). Tags: "hole" (face indices), "crease" (a
 // chain of vertices, one sharpness), "corner" (vertices, one sharpness or one each),
 // "interpolateboundary" (no argument, or one integer: 0 none, 1 edges and corners, 2 edges only);
 // any other tag is warned about once and ignored. Parameters: "P" or "Pw" (w must be 1), "st" or
@@ -42,15 +43,14 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     // strings too), or not at all (the parameter list's tokens are bare strings).
     const bool hierarchical = r.name == "HierarchicalSubdivisionMesh";
     const size_t perTag = hierarchical ? 3 : 2;  // entries of nargs per tag: integers, floats (, strings)
+    const std::string argArrays = hierarchical ? "intargs, floatargs and stringargs" : "intargs and floatargs";
     size_t first = 3;
     std::vector<std::string> tags;
     std::vector<int> nargs, intargs;
     std::vector<double> floatargs;
     if (r.args.size() > 3 && r.args[3].isArray) {
         if (r.args.size() < 4 + perTag + 1 || !r.args[3].StringsP())
-            return Fail(r.args[3].at, context + " expects the arrays tags, nargs, intargs" +
-                                          (hierarchical ? ", floatargs and stringargs" : " and floatargs") +
-                                          " after vertices");
+            return Fail(r.args[3].at, context + " expects the arrays tags, nargs, " + argArrays + " after vertices");
         tags = r.args[3].strings;
         for (size_t i = 4; i < 7; ++i)
             if (!r.args[i].isArray || !r.args[i].NumericP())
@@ -124,9 +124,8 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
         const size_t ni = static_cast<size_t>(nargs[perTag * i]), nf = static_cast<size_t>(nargs[perTag * i + 1]);
         const size_t ns = hierarchical ? static_cast<size_t>(nargs[perTag * i + 2]) : 0;
         if (intAt + ni > intargs.size() || floatAt + nf > floatargs.size() || stringAt + ns > nStrings)
-            return Fail(r.args[4].at, context + " nargs ask for more arguments than intargs" +
-                                          (hierarchical ? ", floatargs and stringargs" : " and floatargs") +
-                                          " hold (tag " + Quote(tags[i]) + ")");
+            return Fail(r.args[4].at, context + " nargs ask for more arguments than " + argArrays + " hold (tag " +
+                                          Quote(tags[i]) + ")");
         stringAt += ns;
         const std::vector<int> ints(intargs.begin() + static_cast<long>(intAt),
                                     intargs.begin() + static_cast<long>(intAt + ni));
