@@ -179,11 +179,6 @@ Tolerance ToleranceOf(const ThreadState& ts, int i, const Tolerance& tol) {
     return k == 1 ? tol : Tolerance{tol.base * k, tol.slope * k, tol.newtonReach};
 }
 
-struct NearestHit {
-    Hit hit;
-    int primitive = -1;
-};
-
 /// Where a search for the next surface along a ray starts after `hit`: past its certified error
 /// (or the tolerance, if larger or the error unknown) twice, so it cannot find the same region.
 double Beyond(const Hit& hit, const Tolerance& tol) {
@@ -199,8 +194,17 @@ struct HitPoint {
     glm::dvec3 P, N, dPdu, dPdv;
 };
 
+/// The nearest hit of a search, on primitive number `primitive` (-1: none); `point` its
+/// EvaluateHit if the search needed it (a one-sided primitive's facing), so it is not run twice.
+struct NearestHit {
+    Hit hit;
+    int primitive = -1;
+    std::optional<HitPoint> point;
+};
+
 HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh,
                      const glm::dvec3& eye) {
+    if (nh.point) return *nh.point;
     const Primitive& prim = scene.primitives[nh.primitive];
     vm::Interpreter<vm::Dual<double>>& interp = ts.Shader(nh.primitive);
     const double u = nh.hit.u, v = nh.hit.v;
@@ -231,7 +235,7 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
             Hit hit;
             if (ts.Intersector(i).Intersect(ray, tMin, best, ToleranceOf(ts, i, tol), false, &hit, stats, group)) {
                 best = hit.t;
-                nearest = {hit, i};
+                nearest = {hit, i, std::nullopt};
             }
             return true;
         });
@@ -240,7 +244,7 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
         // the side ParametricSide says (the derivatives' rates along the surface's parameters are
         // positive: they keep the sign); N only where the tangents are parallel (a pole) and Ng is
         // undefined.
-        const HitPoint at = EvaluateHit(scene, ts, ray, nearest, eye);
+        const HitPoint& at = *(nearest.point = EvaluateHit(scene, ts, ray, nearest, eye));
         const glm::dvec3 ng = ParametricSide(scene.primitives[nearest.primitive].base, nearest.hit.u, nearest.hit.v) *
                               glm::cross(at.dPdu, at.dPdv);
         const double length = glm::length(ng);
