@@ -183,14 +183,14 @@ struct Mesh {
 /// number type T (double, or Dual<double> when the bound program takes derivatives).
 template <class T>
 void EvaluateRows(const renderer::Primitive& prim, const glm::dvec3& eye, Mesh* mesh, std::atomic<int>* nextRow) {
-    vm::Interpreter<T> interp(prim.bound);
-    const vm::ProgramOutput& output = *prim.bound.findOutput("P");
+    vm::Interpreter<T> interp(prim.bound());
+    const vm::ProgramOutput& output = *prim.bound().findOutput("P");
     const int n = mesh->n;
     for (int i = (*nextRow)++; i <= n; i = (*nextRow)++) {
         const double u = double(i) / n;
         for (int j = 0; j <= n; ++j) {
             const double v = double(j) / n;
-            const vm::Vec3<T> p = renderer::EvaluateOnSurface(interp, prim.base, u, u, v, v, eye, output);
+            const vm::Vec3<T> p = renderer::EvaluateOnSurface(interp, prim.base(), u, u, v, v, eye, output);
             float* out = &mesh->vertices[3 * (static_cast<size_t>(i) * (n + 1) + j)];
             out[0] = static_cast<float>(vm::ValueOf(p.x));
             out[1] = static_cast<float>(vm::ValueOf(p.y));
@@ -206,7 +206,7 @@ void Tessellate(const renderer::Primitive& prim, const glm::dvec3& eye, int n, i
     mesh->vertices.assign(3 * side * side + 1, 0.0f);
     std::atomic<int> nextRow{0};
     auto work = [&] {
-        if (prim.bound.usesDerivatives())
+        if (prim.bound().usesDerivatives())
             EvaluateRows<vm::Dual<double>>(prim, eye, mesh, &nextRow);
         else
             EvaluateRows<double>(prim, eye, mesh, &nextRow);

@@ -18,6 +18,7 @@
 #include <fstream>
 #include <map>
 #include <thread>
+#include <unordered_map>
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -36,8 +37,8 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, c
     std::vector<compiler::ConstantGlobal> out = {{Global::E, {eye.x, eye.y, eye.z}},
                                                  {Global::du, {kParametricStep, 0, 0}},
                                                  {Global::dv, {kParametricStep, 0, 0}}};
-    if (base.kind != BaseSurface::Kind::BilinearPatch) return out;
-    const BilinearPatch& patch = base.patch;
+    if (base.kind() != BaseSurface::Kind::BilinearPatch) return out;
+    const BilinearPatch& patch = base.patch();
     // The tangents along the mesh's (u,v), as SetPatchGlobals scales them.
     const double dsdu = base.range.unitP() ? 1.0 : 1.0 / (base.range.u1 - base.range.u0);
     const double dtdv = base.range.unitP() ? 1.0 : 1.0 / (base.range.v1 - base.range.v0);
@@ -73,6 +74,50 @@ std::string FindShader(const std::string& name, const std::vector<std::string>& 
     return {};
 }
 
+/// The bound hierarchy of each primitive (renderer/bound_tree.h), shared by every thread and ray of
+/// a render, made when a ray first meets the primitive, by whichever thread that is: a scene of a
+/// million faces pays only for the faces its rays reach (a hierarchy evaluates its root's bound
+/// when made, and holds some 0.5 KB).
+class LazyTrees {
+  public:
+    LazyTrees(const PreparedScene& scene, const RenderOptions& options, const glm::dvec3& eye, CacheBudget* budget)
+        : m_scene(scene), m_options(options), m_eye(eye), m_budget(budget), m_trees(scene.primitives.size()) {}
+    ~LazyTrees() {
+        for (std::atomic<BoundTree*>& tree : m_trees) delete tree.load();
+    }
+    LazyTrees(const LazyTrees&) = delete;
+    LazyTrees& operator=(const LazyTrees&) = delete;
+
+    BoundTree& operator[](size_t i) {
+        BoundTree* tree = m_trees[i].load(std::memory_order_acquire);
+        if (tree) return *tree;
+        const Primitive& prim = m_scene.primitives[i];
+        auto made = std::make_unique<BoundTree>(prim.base(), prim.bound(), m_eye, m_options.bounds, m_options.maxDepth,
+                                                m_budget);
+        // Another thread may have made it meanwhile: the first made is kept (both are the same).
+        if (m_trees[i].compare_exchange_strong(tree, made.get(), std::memory_order_acq_rel)) return *made.release();
+        return *tree;
+    }
+
+    /// The statistics summed over the hierarchies made.
+    void Merge(BoundTreeStats* stats) const {
+        for (const std::atomic<BoundTree*>& tree : m_trees)
+            if (const BoundTree* t = tree.load()) stats->Merge(t->stats());
+    }
+    size_t made() const {
+        size_t n = 0;
+        for (const std::atomic<BoundTree*>& tree : m_trees) n += tree.load() != nullptr;
+        return n;
+    }
+
+  private:
+    const PreparedScene& m_scene;
+    const RenderOptions& m_options;
+    glm::dvec3 m_eye;
+    CacheBudget* m_budget;
+    std::vector<std::atomic<BoundTree*>> m_trees;
+};
+
 /// Everything one thread needs: per primitive an intersector (a walker over the primitive's shared
 /// bound hierarchy) and a shading interpreter.
 struct ThreadState {
@@ -82,8 +127,8 @@ struct ThreadState {
     /// Per primitive, the factor its tolerance is scaled by (ToleranceScales).
     const std::vector<double>& toleranceScale;
 
-    ThreadState(const PreparedScene& scene, const RenderOptions& options,
-                const std::vector<std::unique_ptr<BoundTree>>& trees, const std::vector<double>& scales)
+    ThreadState(const PreparedScene& scene, const RenderOptions& options, LazyTrees& trees,
+                const std::vector<double>& scales)
         : toleranceScale(scales),
           m_scene(scene),
           m_options(options),
@@ -122,7 +167,7 @@ struct ThreadState {
         k.used = true;
         k.intersector = m_options.intersectorFactory
                             ? m_options.intersectorFactory(m_scene.primitives[i], i)
-                            : MakeSurfaceIntersector(*m_trees[i], m_options.regionBudget, m_workspace);
+                            : MakeSurfaceIntersector(m_trees[i], m_options.regionBudget, m_workspace);
         m_slotOf[i] = slot;
         return *k.intersector;
     }
@@ -131,7 +176,7 @@ struct ThreadState {
     /// parameters (every specialised one) runs on the thread's one interpreter, pointed at it;
     /// one with parameters gets an interpreter of its own, made on first use.
     vm::Interpreter<vm::Dual<double>>& Shader(int i) {
-        const vm::Program& program = m_scene.primitives[i].shade;
+        const vm::Program& program = m_scene.primitives[i].shade();
         if (!program.params.empty()) {
             if (!m_ownShaders[i]) m_ownShaders[i] = std::make_unique<vm::Interpreter<vm::Dual<double>>>(program);
             return *m_ownShaders[i];
@@ -153,7 +198,7 @@ struct ThreadState {
 
     const PreparedScene& m_scene;
     const RenderOptions& m_options;
-    const std::vector<std::unique_ptr<BoundTree>>& m_trees;
+    LazyTrees& m_trees;
     std::shared_ptr<IntersectWorkspace> m_workspace;
     std::vector<int> m_slotOf;  // per primitive, its place in m_kept or -1
     std::vector<Kept> m_kept;
@@ -169,7 +214,7 @@ std::vector<double> ToleranceScales(const PreparedScene& scene, const RenderOpti
     std::vector<double> scales(scene.primitives.size(), 1.0);
     if (!options.sceneTolerance) return scales;
     for (size_t i = 0; i < scales.size(); ++i)
-        scales[i] = std::max(1.0, scene.primitives[i].sceneTolerance / options.tolerancePixels);
+        scales[i] = std::max(1.0, scene.primitives[i].sceneTolerance() / options.tolerancePixels);
     return scales;
 }
 
@@ -210,9 +255,9 @@ HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray
     const double u = nh.hit.u, v = nh.hit.v;
     HitPoint h;
     const vm::Vec3<vm::Dual<double>> p =
-        EvaluateOnSurface(interp, prim.base, u, u, v, v, eye, *prim.shade.findOutput("P"));
+        EvaluateOnSurface(interp, prim.base(), u, u, v, v, eye, *prim.shade().findOutput("P"));
     h.P = ToGlm(p);
-    h.N = ToGlm(interp.OutputTriple(*prim.shade.findOutput("N")));
+    h.N = ToGlm(interp.OutputTriple(*prim.shade().findOutput("N")));
     h.dPdu = glm::dvec3(p.x.du, p.y.du, p.z.du);
     h.dPdv = glm::dvec3(p.x.dv, p.y.dv, p.z.dv);
     if (!std::isfinite(glm::dot(h.P, h.P))) h.P = ray.origin + nh.hit.t * ray.dir;
@@ -231,7 +276,7 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
         NearestHit nearest;
         double best = tMax;
         scene.bvh->Traverse(ray, tMin, &best, [&](int i, double) {
-            if (!scene.primitives[i].cameraVisible) return true;  // Attribute "visibility" "camera" 0
+            if (!scene.primitives[i].cameraVisible()) return true;  // Attribute "visibility" "camera" 0
             Hit hit;
             if (ts.Intersector(i).Intersect(ray, tMin, best, ToleranceOf(ts, i, tol), false, &hit, stats, group)) {
                 best = hit.t;
@@ -239,13 +284,13 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
             }
             return true;
         });
-        if (nearest.primitive < 0 || scene.primitives[nearest.primitive].twoSided) return nearest;
+        if (nearest.primitive < 0 || scene.primitives[nearest.primitive].twoSided()) return nearest;
         // Facing is the geometric normal's (RI 3.2, 4.2), whatever N says: Ng = dP'/du x dP'/dv on
         // the side ParametricSide says (the derivatives' rates along the surface's parameters are
         // positive: they keep the sign); N only where the tangents are parallel (a pole) and Ng is
         // undefined.
         const HitPoint& at = *(nearest.point = EvaluateHit(scene, ts, ray, nearest, eye));
-        const glm::dvec3 ng = ParametricSide(scene.primitives[nearest.primitive].base, nearest.hit.u, nearest.hit.v) *
+        const glm::dvec3 ng = ParametricSide(scene.primitives[nearest.primitive].base(), nearest.hit.u, nearest.hit.v) *
                               glm::cross(at.dPdu, at.dPdv);
         const double length = glm::length(ng);
         const glm::dvec3 facing = length > 0 && std::isfinite(length) ? ng / length : at.N;
@@ -272,8 +317,8 @@ glm::dvec3 ShadowTransmission(const PreparedScene& scene, ThreadState& ts, const
     double tEnd = tMax;
     scene.bvh->Traverse(ray, tMin, &tEnd, [&](int i, double) {
         const Primitive& prim = scene.primitives[i];
-        if (prim.transmission == Transmission::Transparent) return true;
-        if (prim.transmission == Transmission::Opacity && !prim.OpaqueP()) {
+        if (prim.transmission() == Transmission::Transparent) return true;
+        if (prim.transmission() == Transmission::Opacity && !prim.OpaqueP()) {
             partly = true;  // in the second pass
             return true;
         }
@@ -287,7 +332,7 @@ glm::dvec3 ShadowTransmission(const PreparedScene& scene, ThreadState& ts, const
     tEnd = tMax;
     scene.bvh->Traverse(ray, tMin, &tEnd, [&](int i, double) {
         const Primitive& prim = scene.primitives[i];
-        if (prim.transmission != Transmission::Opacity || prim.OpaqueP()) return true;
+        if (prim.transmission() != Transmission::Opacity || prim.OpaqueP()) return true;
         double from = tMin;
         for (int layer = 0; layer < kMaxLayers; ++layer) {
             Hit hit;
@@ -312,8 +357,8 @@ bool ProvedBlocked(const PreparedScene& scene, ThreadState& ts, const Ray& ray, 
     double tEnd = tMax;
     scene.bvh->Traverse(ray, tMin, &tEnd, [&](int i, double) {
         const Primitive& prim = scene.primitives[i];
-        if (prim.transmission == Transmission::Transparent) return true;
-        if (prim.transmission == Transmission::Opacity && !prim.OpaqueP()) return true;
+        if (prim.transmission() == Transmission::Transparent) return true;
+        if (prim.transmission() == Transmission::Opacity && !prim.OpaqueP()) return true;
         Hit hit;
         blocked = ts.Intersector(i).Intersect(ray, tMin, tMax, ToleranceOf(ts, i, tol), true, &hit, ts.shadowStats);
         return !blocked;
@@ -356,7 +401,7 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
         const double nearEnd = std::isfinite(distance) ? distance - nearOffset : INFINITY;
         return ProvedBlocked(scene, ts, nearRay, nearOffset, nearEnd, nearTol) ? glm::dvec3(0.0) : through;
     };
-    return ShadeSurface(prim.surface, prim.ColorAt(nh.hit.u, nh.hit.v), sp, scene.lightSets[prim.lightSet],
+    return ShadeSurface(prim.surface(), prim.ColorAt(nh.hit.u, nh.hit.v), sp, scene.lightSets[prim.lightSet],
                         transmitted);
 }
 
@@ -370,12 +415,12 @@ using CellRanges = std::vector<std::array<vm::Interval, 3>>;
 /// The cells bounded with number type N.
 template <class N>
 CellRanges BoundCells(const Primitive& prim, const glm::dvec3& eye, int n) {
-    vm::Interpreter<N> interp(prim.bound);
-    const vm::ProgramOutput& output = *prim.bound.findOutput("P");
+    vm::Interpreter<N> interp(prim.bound());
+    const vm::ProgramOutput& output = *prim.bound().findOutput("P");
     CellRanges cells;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
-            Vec3<N> p = EvaluateOnSurface(interp, prim.base, double(i) / n, double(i + 1) / n, double(j) / n,
+            Vec3<N> p = EvaluateOnSurface(interp, prim.base(), double(i) / n, double(i + 1) / n, double(j) / n,
                                           double(j + 1) / n, eye, output);
             cells.push_back({RangeOf(vm::ValueOf(p.x)), RangeOf(vm::ValueOf(p.y)), RangeOf(vm::ValueOf(p.z))});
         }
@@ -386,7 +431,7 @@ CellRanges BoundCells(const Primitive& prim, const glm::dvec3& eye, int n) {
 /// derivatives.
 template <class B>
 CellRanges BoundCellsIn(const Primitive& prim, const glm::dvec3& eye, int n) {
-    return prim.bound.usesDerivatives() ? BoundCells<vm::Dual<B>>(prim, eye, n) : BoundCells<B>(prim, eye, n);
+    return prim.bound().usesDerivatives() ? BoundCells<vm::Dual<B>>(prim, eye, n) : BoundCells<B>(prim, eye, n);
 }
 
 /// The grid the PrepareScene checks and the BVH boxes use: kGridCells across for a scene of a few
@@ -478,7 +523,7 @@ compiler::Matrix4 RowMajor(const glm::dmat4& m) {
 bool IsAffine(const compiler::Matrix4& m) { return m[12] == 0 && m[13] == 0 && m[14] == 0 && m[15] == 1; }
 
 /// The spaces a shader on `patch` sees. "current" is world space: P is computed there.
-compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveDesc& patch) {
+compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveAttributes& patch) {
     const CameraDesc& camera = scene.camera;
     auto space = [](const glm::dmat4& toWorld) {
         return compiler::SpaceTransform{RowMajor(toWorld), RowMajor(glm::inverse(toWorld))};
@@ -502,7 +547,7 @@ std::string FromSceneDir(const SceneDesc& scene, const std::string& path) {
 
 /// The options and attributes a shader on `patch` may query (option(), attribute(), depth()):
 /// those of RI Spec 3.2 tables 15.4 and 15.5 that the scene holds.
-compiler::SceneFacts FactsOf(const SceneDesc& scene, const PrimitiveDesc& patch) {
+compiler::SceneFacts FactsOf(const SceneDesc& scene, const PrimitiveAttributes& patch) {
     const CameraDesc& camera = scene.camera;
     const double frameAspect = camera.frameAspectRatio.value_or(camera.xres * camera.pixelAspect / camera.yres);
     compiler::SceneFacts facts;
@@ -636,7 +681,7 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
     std::vector<int> allLights(desc.lights.size());
     for (size_t i = 0; i < allLights.size(); ++i) allLights[i] = static_cast<int>(i);
     lightSetKeys[allLights] = 0;
-    auto lightSetOf = [&](const PrimitiveDesc& p) {
+    auto lightSetOf = [&](const PrimitiveAttributes& p) {
         if (!p.lights) return 0;
         std::vector<int> key;
         for (int light : *p.lights)
@@ -651,109 +696,110 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
         const std::string& file = ref.file.empty() ? desc.path : ref.file;
         return diag::Location(file, ref.line, ref.column, diag::ReadLine(file, ref.line));
     };
+    // Each request's attributes (shared by its primitives: a mesh's faces) are looked at once:
+    // the shader instance compiled, its generic programs and the lights.
+    struct Instance {
+        std::shared_ptr<const compiler::CompiledShader> shader;  // null: no displacement
+        const vm::Program* bound = nullptr;
+        const vm::Program* shade = nullptr;
+        int lightSet = 0;
+        /// The programs of the primitives whose surfaces have no constants beyond E, du, dv
+        /// (every kind but the bilinear patch), once made.
+        const PrimitivePrograms* general = nullptr;
+    };
+    std::unordered_map<const PrimitiveAttributes*, Instance> instances;
+    const vm::Program identity = vm::IdentityProgram();
     // Specialising a program for a surface's constant globals (below) gives the same program for
     // every surface with the same constants (E, du and dv for all but flat bilinear patches): made
-    // once per shader instance and constants, copied to the others.
-    std::map<std::pair<const void*, std::vector<uint64_t>>, std::pair<vm::Program, vm::Program>> specialised;
-    out->primitives.reserve(desc.primitives.size());
-    for (const PrimitiveDesc& patch : desc.primitives) {
-        Primitive prim;
-        switch (patch.shape) {
-            case PrimitiveDesc::Shape::BilinearPatch:
-                prim.base = BaseSurface(BilinearPatch{patch.corners}, patch.flipNormal, patch.range);
-                break;
-            case PrimitiveDesc::Shape::BicubicPatch:
-                prim.base = BaseSurface(patch.bicubic, patch.flipNormal, patch.range);
-                break;
-            case PrimitiveDesc::Shape::MeshPiece: prim.base = BaseSurface(patch.piece, patch.flipNormal); break;
-            case PrimitiveDesc::Shape::RationalPatch:
-                prim.base = BaseSurface(patch.rational, patch.flipNormal, patch.range, patch.trim);
-                break;
-            case PrimitiveDesc::Shape::SubdivPatch: prim.base = BaseSurface(patch.subdiv, patch.flipNormal); break;
-            case PrimitiveDesc::Shape::Quadric:
-                prim.base = BaseSurface(PlacedQuadric{patch.quadric, patch.objectToWorld}, patch.flipNormal);
-                break;
-        }
-        prim.base.textureCoordinates = patch.textureCoordinates;
-        prim.surface = patch.surface;
-        prim.color = patch.color;
-        prim.opacity = patch.opacity;
-        prim.colorField = patch.colorField;
-        prim.opacityField = patch.opacityField;
-        prim.transmission = patch.transmission;
-        prim.cameraVisible = patch.cameraVisible;
-        prim.sceneTolerance = patch.sceneTolerance;
-        prim.twoSided = patch.twoSided;
-        prim.lightSet = lightSetOf(patch);
-        prim.line = patch.line;
-        // The shader's file, looked up once per name; a shader that is not found leaves the
-        // surface undisplaced, as prman does, with one warning per name (a scene exported with
-        // shaders its renderer had but this machine has not).
-        std::string path;
-        if (patch.displacement) {
-            const ShaderRef& ref = *patch.displacement;
-            auto [known, added] = shaderFiles.try_emplace(ref.name);
-            if (added) {
-                known->second = FindShader(ref.name, searchPath);
-                if (known->second.empty() && report) {
-                    std::string searched;
-                    for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
-                    report->warning(requestAt(ref), "shader '" + ref.name + "' not found (searched " + searched +
-                                                        "); its surfaces render undisplaced");
-                }
-            }
-            path = known->second;
-        }
-        if (!path.empty()) {
-            const ShaderRef& ref = *patch.displacement;
-            auto where = [&] { return requestAt(ref); };
-            std::vector<compiler::ParamOverride> overrides;
-            for (const ParamValue& p : ref.params) {
-                if (p.strings.size() > 1)
-                    return fail(where(),
-                                "parameter '" + p.name + "' takes one string, got " + std::to_string(p.strings.size()));
-                if (p.strings.empty())
-                    overrides.emplace_back(p.name, p.numbers);
-                else
-                    overrides.push_back(compiler::ParamOverride::String(p.name, p.strings[0]));
-            }
-            const compiler::Spaces spaces = SpacesOf(desc, patch);
-            const compiler::SceneFacts facts = FactsOf(desc, patch);
-            compiler::CompileResult result = cache.Load(path, overrides, preprocess, &spaces, &facts);
-            // The shader's own diagnostics (its warnings too), then what the scene asked of it.
-            if (report) report->add(result.diagnostics);
-            if (!result.ok()) {
-                for (const std::string& e : result.paramErrors) fail(where(), e);
-                if (result.paramErrors.empty()) fail(where(), "cannot compile shader '" + ref.name + "'");
-                return false;
-            }
-            prim.shader = result.shader;
-            for (const std::string& name : prim.shader->genericBound.spaces) {
-                if (spaces.count(name) && !IsAffine(spaces.at(name).toCurrent))
-                    return fail(where(), "shader '" + ref.name + "' uses coordinate space '" + name +
-                                             "', which the scene makes projective (not supported)");
-            }
-            prim.bound = prim.shader->bound;
-            prim.shade = prim.shader->shade;
-        } else {
-            prim.bound = prim.shade = vm::IdentityProgram();
-        }
-        const std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(prim.base, eye);
+    // once per shader instance and constants, shared by the others.
+    std::map<std::pair<const void*, std::vector<uint64_t>>, const PrimitivePrograms*> specialised;
+    auto specialise = [&](const Instance& instance, const BaseSurface& base) {
+        const std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(base, eye);
         // (The values by their bits: the same bits fold to the same program, a NaN included.)
-        std::pair<const void*, std::vector<uint64_t>> key{prim.shader.get(), {}};
+        std::pair<const void*, std::vector<uint64_t>> key{instance.shader.get(), {}};
         for (const compiler::ConstantGlobal& c : constants) {
             key.second.push_back(static_cast<uint64_t>(c.global));
             for (double x : c.value) key.second.push_back(std::bit_cast<uint64_t>(x));
         }
-        auto [found, added] = specialised.try_emplace(std::move(key));
+        auto [found, added] = specialised.try_emplace(std::move(key), nullptr);
         if (added) {
             std::vector<std::string> unused;  // no overrides here: nothing can go wrong
-            found->second = {*compiler::Specialise(prim.bound, {}, &unused, constants),
-                             *compiler::Specialise(prim.shade, {}, &unused, constants)};
+            out->programs.push_back({instance.shader, *compiler::Specialise(*instance.bound, {}, &unused, constants),
+                                     *compiler::Specialise(*instance.shade, {}, &unused, constants)});
+            found->second = &out->programs.back();
         }
-        prim.bound = found->second.first;
-        prim.shade = found->second.second;
-        out->primitives.push_back(std::move(prim));
+        return found->second;
+    };
+    out->primitives.reserve(desc.primitives.size());
+    for (const PrimitiveDesc& patch : desc.primitives) {
+        const PrimitiveAttributes& attributes = *patch.attributes;
+        auto [entry, newAttributes] = instances.try_emplace(&attributes);
+        Instance& instance = entry->second;
+        if (newAttributes) {
+            instance.lightSet = lightSetOf(attributes);
+            // The shader's file, looked up once per name; a shader that is not found leaves the
+            // surface undisplaced, as prman does, with one warning per name (a scene exported with
+            // shaders its renderer had but this machine has not).
+            std::string path;
+            if (attributes.displacement) {
+                const ShaderRef& ref = *attributes.displacement;
+                auto [known, added] = shaderFiles.try_emplace(ref.name);
+                if (added) {
+                    known->second = FindShader(ref.name, searchPath);
+                    if (known->second.empty() && report) {
+                        std::string searched;
+                        for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
+                        report->warning(requestAt(ref), "shader '" + ref.name + "' not found (searched " + searched +
+                                                            "); its surfaces render undisplaced");
+                    }
+                }
+                path = known->second;
+            }
+            if (!path.empty()) {
+                const ShaderRef& ref = *attributes.displacement;
+                auto where = [&] { return requestAt(ref); };
+                std::vector<compiler::ParamOverride> overrides;
+                for (const ParamValue& p : ref.params) {
+                    if (p.strings.size() > 1)
+                        return fail(where(), "parameter '" + p.name + "' takes one string, got " +
+                                                 std::to_string(p.strings.size()));
+                    if (p.strings.empty())
+                        overrides.emplace_back(p.name, p.numbers);
+                    else
+                        overrides.push_back(compiler::ParamOverride::String(p.name, p.strings[0]));
+                }
+                const compiler::Spaces spaces = SpacesOf(desc, attributes);
+                const compiler::SceneFacts facts = FactsOf(desc, attributes);
+                compiler::CompileResult result = cache.Load(path, overrides, preprocess, &spaces, &facts);
+                // The shader's own diagnostics (its warnings too), then what the scene asked of it.
+                if (report) report->add(result.diagnostics);
+                if (!result.ok()) {
+                    for (const std::string& e : result.paramErrors) fail(where(), e);
+                    if (result.paramErrors.empty()) fail(where(), "cannot compile shader '" + ref.name + "'");
+                    return false;
+                }
+                instance.shader = result.shader;
+                for (const std::string& name : instance.shader->genericBound.spaces) {
+                    if (spaces.count(name) && !IsAffine(spaces.at(name).toCurrent))
+                        return fail(where(), "shader '" + ref.name + "' uses coordinate space '" + name +
+                                                 "', which the scene makes projective (not supported)");
+                }
+                instance.bound = &instance.shader->bound;
+                instance.shade = &instance.shader->shade;
+            } else {
+                instance.bound = instance.shade = &identity;
+            }
+        }
+        Primitive prim;
+        prim.desc = &patch;
+        prim.lightSet = instance.lightSet;
+        if (patch.base.kind() == BaseSurface::Kind::BilinearPatch) {
+            prim.programs = specialise(instance, patch.base);
+        } else {
+            if (!instance.general) instance.general = specialise(instance, patch.base);
+            prim.programs = instance.general;
+        }
+        out->primitives.push_back(prim);
     }
 
     // Each primitive's box, and the check that its displaced surface can be bounded somewhere:
@@ -766,8 +812,8 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
         for (size_t i = next++; i < out->primitives.size(); i = next++) {
             Primitive& prim = out->primitives[i];
             const CellRanges intervalCells = BoundCellsIn<vm::Interval>(prim, eye, cells);
-            if (prim.shader)  // a displacement whose shader was found
-                problems[i] = UnboundedEverywhere(prim, *desc.primitives[i].displacement, eye, cells, intervalCells);
+            if (prim.shader())  // a displacement whose shader was found
+                problems[i] = UnboundedEverywhere(prim, *prim.attributes().displacement, eye, cells, intervalCells);
             prim.box = UnionBox(intervalCells);
         }
     };
@@ -779,7 +825,7 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
     for (std::thread& t : workers) t.join();
     for (size_t i = 0; i < problems.size(); ++i) {
         if (problems[i].empty()) continue;
-        return fail(requestAt(*desc.primitives[i].displacement), problems[i]);
+        return fail(requestAt(*out->primitives[i].attributes().displacement), problems[i]);
     }
     std::vector<Box> boxes;
     for (const Primitive& prim : out->primitives) boxes.push_back(prim.box);
@@ -868,7 +914,7 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
             value.N = at.N;
             value.P = at.P;
             // The mesh's (u,v), which the shader saw: the hit's are the patch's own.
-            const ParameterRange& range = prim.base.range;
+            const ParameterRange& range = prim.base().range;
             value.st = {range.U(nh.hit.u), range.V(nh.hit.v)};
             value.err = nh.hit.error;
         }
@@ -944,11 +990,7 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     std::vector<uint64_t> cameraRays(nThreads);
     // One bound hierarchy per primitive, shared by every thread and ray of this render.
     CacheBudget budget(options.cacheBytes);
-    std::vector<std::unique_ptr<BoundTree>> trees;
-    if (!options.intersectorFactory)
-        for (const Primitive& prim : scene.primitives)
-            trees.push_back(
-                std::make_unique<BoundTree>(prim.base, prim.bound, eye, options.bounds, options.maxDepth, &budget));
+    LazyTrees trees(scene, options, eye, &budget);
     const std::vector<double> toleranceScales = ToleranceScales(scene, options);
     const int side = options.rayGroupPixels;
     const int blocksX = side > 0 ? (cam.xres + side - 1) / side : 0;
@@ -999,8 +1041,8 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
     if (options.progress) options.progress->Finish();
 
     *stats = RenderStats();
-    for (const auto& tree : trees) stats->cache.Merge(tree->stats());
-    if (!trees.empty()) stats->cache.evictionPasses = budget.passes();  // one pass serves every tree
+    trees.Merge(&stats->cache);
+    if (trees.made() > 0) stats->cache.evictionPasses = budget.passes();  // one pass serves every tree
     stats->cacheBudgetBytes = options.cacheBytes;
     stats->cachePeakBytes = budget.peakBytes.load();
     for (int i = 0; i < nThreads; ++i) {

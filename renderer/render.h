@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -106,40 +107,56 @@ struct RenderStats {
     std::string ToJson() const;
 };
 
-/// A primitive ready to render: its base surface, its compiled shader instance and its looks.
-struct Primitive {
-    BaseSurface base;
+/// The programs a primitive runs: its shader instance and the instance's programs specialised
+/// further for the globals constant on its surface (E, du, dv, and N, Ng, dPdu, dPdv of a flat
+/// patch). One per distinct (instance, constants), shared by the primitives that have them (every
+/// face of a mesh, say).
+struct PrimitivePrograms {
     std::shared_ptr<const compiler::CompiledShader> shader;  // null: no displacement
-    /// The shader instance's programs specialised further for this surface: globals that are
-    /// constant on it (E, du, dv, and N, Ng, dPdu, dPdv of a flat patch) folded in.
     vm::Program bound;
     vm::Program shade;
-    SurfaceDesc surface;
-    glm::dvec3 color{1.0}, opacity{1.0};                         // Cs and Os, where no field is given
-    std::shared_ptr<const ColorField> colorField, opacityField;  // over the primitive's own (u,v), or null
-    PrimitiveDesc::Transmission transmission = PrimitiveDesc::Transmission::Opaque;
-    bool cameraVisible = true;
-    double sceneTolerance = 0.5;  // PrimitiveDesc::sceneTolerance: pixels
-    bool twoSided = true;
+};
+
+/// A primitive ready to render: its description (base surface, colours and attributes, in
+/// PreparedScene::desc), its programs and lights, and its box. A handful of words: a mesh of a
+/// million faces is a million of these, sharing everything else.
+struct Primitive {
+    const PrimitiveDesc* desc = nullptr;
+    const PrimitivePrograms* programs = nullptr;
     int lightSet = 0;  // the lights that illuminate it: PreparedScene::lightSets[lightSet]
-    int line = 0;      // the RIB request
     /// The displaced surface's bound over its whole (u,v) domain, for the BVH; infinite if the
     /// bound overflows somewhere.
     Box box;
 
+    const BaseSurface& base() const { return desc->base; }
+    const PrimitiveAttributes& attributes() const { return *desc->attributes; }
+    const std::shared_ptr<const compiler::CompiledShader>& shader() const { return programs->shader; }
+    const vm::Program& bound() const { return programs->bound; }
+    const vm::Program& shade() const { return programs->shade; }
+    const SurfaceDesc& surface() const { return attributes().surface; }
+    PrimitiveDesc::Transmission transmission() const { return attributes().transmission; }
+    bool cameraVisible() const { return attributes().cameraVisible; }
+    bool twoSided() const { return attributes().twoSided; }
+    double sceneTolerance() const { return attributes().sceneTolerance; }  // pixels
+    int line() const { return attributes().line; }                         // the RIB request
+
     /// Cs and Os at the point (u, v) of the primitive's own parameters (a hit's); Os clamped to
     /// [0, 1] (a field may overshoot between its values).
-    glm::dvec3 ColorAt(double u, double v) const { return colorField ? colorField->At(u, v) : color; }
+    glm::dvec3 ColorAt(double u, double v) const { return desc->colorField ? desc->colorField->At(u, v) : desc->color; }
     glm::dvec3 OpacityAt(double u, double v) const {
-        return opacityField ? glm::clamp(opacityField->At(u, v), 0.0, 1.0) : opacity;
+        return desc->opacityField ? glm::clamp(desc->opacityField->At(u, v), 0.0, 1.0) : desc->opacity;
     }
     /// Whether Os is 1 everywhere.
-    bool OpaqueP() const { return !opacityField && opacity == glm::dvec3(1.0); }
+    bool OpaqueP() const { return !desc->opacityField && desc->opacity == glm::dvec3(1.0); }
 };
 
 struct PreparedScene {
+    /// The scene as read; its primitives are those `primitives` point to (never changed after
+    /// PrepareScene: a vector moved with the scene keeps its elements in place).
     SceneDesc desc;
     std::vector<Primitive> primitives;
+    /// The distinct programs of the primitives (a deque: they stay in place as it grows).
+    std::deque<PrimitivePrograms> programs;
     std::unique_ptr<Bvh> bvh;       // over the primitives' boxes
     std::vector<LightDesc> lights;  // the scene's, or a default key light if it has none
     /// The distinct sets of lights that illuminate primitives (Illuminate): each a subset of

@@ -141,27 +141,28 @@ const std::string& InputsDigest(const PreparedScene& scene) {
     h.Field("scene", ToStringAfterCamera(scene.desc));
     const Primitive* previous = nullptr;
     for (const Primitive& prim : scene.primitives) {
-        if (!prim.shader) {
+        if (!prim.shader()) {
             h.Field("primitive", "no shader");
             previous = nullptr;
             continue;
         }
-        if (previous && previous->shader == prim.shader && SameProgram(previous->bound, prim.bound) &&
-            SameProgram(previous->shade, prim.shade)) {
+        if (previous && (previous->programs == prim.programs ||
+                         (previous->shader() == prim.shader() && SameProgram(previous->bound(), prim.bound()) &&
+                          SameProgram(previous->shade(), prim.shade())))) {
             h.Field("primitive", "as the previous one");
             continue;
         }
         previous = &prim;
         vm::BytecodeFile programs;
-        programs.shaderName = prim.shader->name;
-        programs.sourcePath = FileName(prim.shader->sourcePath);
-        programs.sourceHash = vm::HashSource(prim.shader->sourceText);
-        programs.bound = WithoutDirectories(prim.bound);
-        programs.shade = WithoutDirectories(prim.shade);
+        programs.shaderName = prim.shader()->name;
+        programs.sourcePath = FileName(prim.shader()->sourcePath);
+        programs.sourceHash = vm::HashSource(prim.shader()->sourceText);
+        programs.bound = WithoutDirectories(prim.bound());
+        programs.shade = WithoutDirectories(prim.shade());
         h.Field("primitive", vm::SaveBytecode(programs));
-        h.Field("source", prim.shader->sourceText);
-        AddTextures(prim.bound, &h);
-        AddTextures(prim.shade, &h);
+        h.Field("source", prim.shader()->sourceText);
+        AddTextures(prim.bound(), &h);
+        AddTextures(prim.shade(), &h);
     }
     scene.identityDigest = h.Hex();
     return scene.identityDigest;

@@ -14,12 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "renderer/geometry/bicubic.h"
-#include "renderer/geometry/mesh.h"
-#include "renderer/geometry/nurbs.h"
 #include "renderer/geometry/primvar.h"
-#include "renderer/geometry/quadric.h"
-#include "renderer/geometry/subdivision.h"
+#include "renderer/geometry/surface.h"
 #include "renderer/number_text.h"
 
 namespace affray::renderer {
@@ -68,35 +64,10 @@ struct LightDesc {
     bool castShadows = false;
 };
 
-/// One geometric primitive with its shading attributes: a bilinear patch (corners already in
-/// world space), a quadric (in object space, placed by objectToWorld) or one piece of a polygon
-/// face (world space; renderer/geometry/mesh.h).
-struct PrimitiveDesc {
-    enum class Shape {
-        BilinearPatch,
-        Quadric,
-        BicubicPatch,
-        MeshPiece,
-        RationalPatch,
-        SubdivPatch
-    } shape = Shape::BilinearPatch;
-    std::array<glm::dvec3, 4> corners{};     ///< Patch: world space, RenderMan order u0v0, u1v0, u0v1, u1v1.
-    Quadric quadric;                         ///< Quadric: its request's arguments (object space).
-    BicubicPatch bicubic;                    ///< Bicubic patch: world space, power basis.
-    MeshPiece piece;                         ///< MeshPiece: a triangle or quad of a polygon face.
-    RationalPatch rational;                  ///< Rational Patch/PatchMesh or NuPatch span: world space.
-    std::shared_ptr<const TrimCurves> trim;  ///< NuPatch spans: the TrimCurve in effect, or null.
-    SubdivPatch subdiv;                      ///< SubdivPatch: one patch of a subdivision mesh.
-    /// Patches: the part of the mesh's (u,v) this patch covers ([0,1]^2 for a lone Patch).
-    ParameterRange range;
-    /// TextureCoordinates in effect (s1 t1 ... s4 t4 at (u,v) = (0,0), (1,0), (0,1), (1,1)), or
-    /// null: the s, t of quadrics and patches without their own "st" (BaseSurface::textureCoordinates).
-    std::shared_ptr<const std::array<double, 8>> textureCoordinates;
-    glm::dvec3 color{1.0};    ///< The RIB Color in effect, or the primitive's constant or uniform "Cs".
-    glm::dvec3 opacity{1.0};  ///< The RIB Opacity in effect, or the primitive's constant or uniform "Os".
-    /// A "Cs" or "Os" that varies over the primitive (varying, vertex, facevarying values), over
-    /// its own (s,t) as the intersector's hits give them; null: `color` or `opacity` everywhere.
-    std::shared_ptr<const ColorField> colorField, opacityField;
+/// The attributes a primitive takes from the graphics state at its request: shared by every
+/// primitive the request makes (a mesh's pieces, a patch mesh's patches), so a mesh of a
+/// million faces holds them once.
+struct PrimitiveAttributes {
     /// How the primitive stops shadow rays (Attribute "visibility" "transmission", BMRT's
     /// Attribute "render" "casts_shadows"): wholly (Opaque, the default, BMRT's), by its opacity
     /// Os (Opacity: the light passing a hit is scaled by 1 - Os there), or not at all.
@@ -120,20 +91,51 @@ struct PrimitiveDesc {
     /// of the graphics state at the request (RI 3.2: a light is on from its LightSource, Illuminate
     /// turns it on or off, AttributeEnd restores the list). Unset: every light of the scene.
     std::optional<std::vector<int>> lights;
-    /// Whether RenderMan's normal is the negation of dPdu x dPdv computed in world space. A
-    /// primitive's natural normal is dPdu x dPdv in object space carried to world as a normal
-    /// (by the inverse transpose, which keeps a sphere's normals outward under any placement);
-    /// the world-space cross product of the placed tangents is that times sign(det objectToWorld).
-    /// RI 3.2 section 4.2 then turns the primitive inside out when the current orientation differs
-    /// from the handedness of the current coordinate system; a mirroring transform flips both, so
-    /// only Orientation ("inside"; "lh"/"rh" against the system's handedness at the request) and
-    /// ReverseOrientation make them differ. So flipNormal = (det objectToWorld < 0) XOR insideOut.
-    /// Default: a sphere's normals point out, whatever the camera and placement.
-    bool flipNormal = false;
     /// The named spaces ScopedCoordinateSystem defined in the attribute blocks around the request
     /// (name -> world, column vectors), or null: its shaders see them, over the scene's
     /// coordinateSystems of the same names.
     std::shared_ptr<const std::map<std::string, glm::dmat4>> scopedSpaces;
+};
+
+/// One geometric primitive: its base surface (a bilinear, bicubic or rational patch with the part
+/// of its mesh's (u,v) it covers, a placed quadric, a polygon mesh's piece or a subdivision
+/// mesh's patch; renderer/geometry/surface.h, world space) and its colours, with the attributes
+/// of its request.
+///
+/// The base surface's flipNormal is whether RenderMan's normal is the negation of dPdu x dPdv
+/// computed in world space. A primitive's natural normal is dPdu x dPdv in object space carried to
+/// world as a normal (by the inverse transpose, which keeps a sphere's normals outward under any
+/// placement); the world-space cross product of the placed tangents is that times sign(det
+/// objectToWorld). RI 3.2 section 4.2 then turns the primitive inside out when the current
+/// orientation differs from the handedness of the current coordinate system; a mirroring
+/// transform flips both, so only Orientation ("inside"; "lh"/"rh" against the system's handedness
+/// at the request) and ReverseOrientation make them differ. So flipNormal = (det objectToWorld <
+/// 0) XOR insideOut. Default: a sphere's normals point out, whatever the camera and placement.
+/// Its textureCoordinates are the TextureCoordinates in effect: the s, t of quadrics and patches
+/// without their own "st".
+struct PrimitiveDesc {
+    using Transmission = PrimitiveAttributes::Transmission;
+    BaseSurface base;
+    glm::dvec3 color{1.0};    ///< The RIB Color in effect, or the primitive's constant or uniform "Cs".
+    glm::dvec3 opacity{1.0};  ///< The RIB Opacity in effect, or the primitive's constant or uniform "Os".
+    /// A "Cs" or "Os" that varies over the primitive (varying, vertex, facevarying values), over
+    /// its own (s,t) as the intersector's hits give them; null: `color` or `opacity` everywhere.
+    std::shared_ptr<const ColorField> colorField, opacityField;
+    /// Never null: the defaults unless the RIB reader gives the request's.
+    std::shared_ptr<const PrimitiveAttributes> attributes = DefaultAttributes();
+
+    const PrimitiveAttributes& attr() const { return *attributes; }
+    /// A copy of the attributes to change (shared ones are never changed in place).
+    PrimitiveAttributes& MutableAttributes() {
+        auto copy = std::make_shared<PrimitiveAttributes>(*attributes);
+        PrimitiveAttributes& a = *copy;
+        attributes = std::move(copy);
+        return a;
+    }
+    static const std::shared_ptr<const PrimitiveAttributes>& DefaultAttributes() {
+        static const std::shared_ptr<const PrimitiveAttributes> defaults = std::make_shared<PrimitiveAttributes>();
+        return defaults;
+    }
 };
 
 /// The pixel reconstruction filter (PixelFilter): "box" or "gaussian", with its widths in pixels.
@@ -263,57 +265,61 @@ inline std::string ToString(const LightDesc& l) {
 }
 
 inline std::string ToString(const PrimitiveDesc& p) {
+    const PrimitiveAttributes& a = p.attr();
+    const BaseSurface& b = p.base;
+    const std::string line = std::to_string(a.line);
     std::string text;
-    if (p.shape == PrimitiveDesc::Shape::BilinearPatch) {
-        text = "patch line " + std::to_string(p.line) + ":";
-        for (const glm::dvec3& c : p.corners) text += " " + ToString(c);
-    } else if (p.shape == PrimitiveDesc::Shape::BicubicPatch) {
-        text = "patch line " + std::to_string(p.line) + ": " + ToString(p.bicubic);
-    } else if (p.shape == PrimitiveDesc::Shape::RationalPatch) {
-        text = "patch line " + std::to_string(p.line) + ": " + ToString(p.rational);
-        if (p.trim) text += " trimmed (" + std::to_string(p.trim->loops.size()) + " loops)";
-    } else if (p.shape == PrimitiveDesc::Shape::MeshPiece) {
-        text = "polygon line " + std::to_string(p.line) + ": " + ToString(p.piece);
-    } else if (p.shape == PrimitiveDesc::Shape::SubdivPatch) {
-        text = "subdivision line " + std::to_string(p.line) + ": " + ToString(p.subdiv);
-    } else {
-        text = std::string(Quadric::Name(p.quadric.kind)) + " line " + std::to_string(p.line) + ": " +
-               ToString(p.quadric) + " objectToWorld=" + ToString(p.objectToWorld);
+    switch (b.kind()) {
+        case BaseSurface::Kind::BilinearPatch:
+            text = "patch line " + line + ":";
+            for (const glm::dvec3& c : b.patch().corners) text += " " + ToString(c);
+            break;
+        case BaseSurface::Kind::BicubicPatch: text = "patch line " + line + ": " + ToString(b.bicubic()); break;
+        case BaseSurface::Kind::RationalPatch:
+            text = "patch line " + line + ": " + ToString(b.rational());
+            if (b.trim) text += " trimmed (" + std::to_string(b.trim->loops.size()) + " loops)";
+            break;
+        case BaseSurface::Kind::MeshPiece: text = "polygon line " + line + ": " + ToString(b.piece()); break;
+        case BaseSurface::Kind::SubdivPatch: text = "subdivision line " + line + ": " + ToString(b.subdiv()); break;
+        case BaseSurface::Kind::Quadric:
+            text = std::string(Quadric::Name(b.quadric().quadric.kind)) + " line " + line + ": " +
+                   ToString(b.quadric().quadric) + " objectToWorld=" + ToString(b.quadric().objectToWorld);
+            break;
     }
-    if (!p.range.unitP()) {
+    if (!b.range.unitP()) {
         std::ostringstream range;
-        range << " uv=[" << p.range.u0 << ' ' << p.range.u1 << ' ' << p.range.v0 << ' ' << p.range.v1 << ']';
+        range << " uv=[" << b.range.u0 << ' ' << b.range.u1 << ' ' << b.range.v0 << ' ' << b.range.v1 << ']';
         text += range.str();
     }
-    if (!p.twoSided) text += " sides=1";
-    if (p.lights) {
+    if (!a.twoSided) text += " sides=1";
+    if (a.lights) {
         text += " lights=[";
-        for (size_t i = 0; i < p.lights->size(); ++i) text += (i ? " " : "") + std::to_string((*p.lights)[i]);
+        for (size_t i = 0; i < a.lights->size(); ++i) text += (i ? " " : "") + std::to_string((*a.lights)[i]);
         text += "]";
     }
-    if (p.flipNormal) text += " flipnormal";
-    if (p.textureCoordinates) {
+    if (b.flipNormal) text += " flipnormal";
+    if (b.textureCoordinates) {
         std::ostringstream st;
         st << " st=[";
-        for (size_t i = 0; i < 8; ++i) st << (i ? " " : "") << (*p.textureCoordinates)[i];
+        for (size_t i = 0; i < 8; ++i) st << (i ? " " : "") << (*b.textureCoordinates)[i];
         text += st.str() + "]";
     }
-    if (p.scopedSpaces)
-        for (const auto& [name, m] : *p.scopedSpaces) text += " space " + name + "=" + ToString(m);
-    if (p.transmission == PrimitiveDesc::Transmission::Opacity) text += " transmission=Os";
-    if (p.transmission == PrimitiveDesc::Transmission::Transparent) text += " transmission=transparent";
-    if (!p.cameraVisible) text += " camera=0";
-    if (p.sceneTolerance != 0.5) {
+    if (a.scopedSpaces)
+        for (const auto& [name, m] : *a.scopedSpaces) text += " space " + name + "=" + ToString(m);
+    if (a.transmission == PrimitiveDesc::Transmission::Opacity) text += " transmission=Os";
+    if (a.transmission == PrimitiveDesc::Transmission::Transparent) text += " transmission=transparent";
+    if (!a.cameraVisible) text += " camera=0";
+    if (a.sceneTolerance != 0.5) {
         std::ostringstream tolerance;
-        tolerance << " tolerance=" << p.sceneTolerance;
+        tolerance << " tolerance=" << a.sceneTolerance;
         text += tolerance.str();
     }
     text += " color=" + ToString(p.color);
     if (p.colorField) text += " Cs=(" + ToString(*p.colorField) + ")";
     if (p.opacity != glm::dvec3(1.0)) text += " opacity=" + ToString(p.opacity);
     if (p.opacityField) text += " Os=(" + ToString(*p.opacityField) + ")";
-    text += " " + ToString(p.surface);
-    if (p.displacement) text += " displacement " + ToString(*p.displacement);
+    text += " " + ToString(a.surface);
+    if (a.displacement) text += " displacement " + ToString(*a.displacement);
     return text;
 }
 

@@ -24,17 +24,26 @@ bool RibParser::FlipNormalP() const {
 void RibParser::SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) const {
     p->color = m_state.color;
     p->opacity = m_state.opacity;
-    p->transmission = m_state.transmission;
-    p->cameraVisible = m_state.cameraVisible;
-    p->sceneTolerance = std::max(0.5 * std::sqrt(m_state.shadingRate), m_state.flatness);
-    p->surface = m_state.surface;
-    p->displacement = m_state.displacement;
-    p->line = r.at.line;
-    p->column = r.at.column;
-    p->objectToWorld = m_state.ctm;
-    p->twoSided = m_state.twoSided;
-    p->flipNormal = FlipNormalP();
-    p->textureCoordinates = m_state.textureCoordinates;
+    p->base.flipNormal = FlipNormalP();
+    p->base.textureCoordinates = m_state.textureCoordinates;
+    // Made once per request: the primitives of one request (a mesh's pieces) share them.
+    if (m_attributesSerial != m_requestSerial || !m_attributes) {
+        auto a = std::make_shared<renderer::PrimitiveAttributes>();
+        a->transmission = m_state.transmission;
+        a->cameraVisible = m_state.cameraVisible;
+        a->sceneTolerance = std::max(0.5 * std::sqrt(m_state.shadingRate), m_state.flatness);
+        a->surface = m_state.surface;
+        a->displacement = m_state.displacement;
+        a->line = r.at.line;
+        a->column = r.at.column;
+        a->objectToWorld = m_state.ctm;
+        a->twoSided = m_state.twoSided;
+        a->lights = m_state.lights;
+        a->scopedSpaces = m_state.scopedSpaces;
+        m_attributes = std::move(a);
+        m_attributesSerial = m_requestSerial;
+    }
+    p->attributes = m_attributes;
 }
 
 bool RibParser::PatchPoints(const RibRequest& r, const std::vector<RibParam>& params, const std::string& context,
@@ -81,13 +90,14 @@ bool RibParser::PatchPoints(const RibRequest& r, const std::vector<RibParam>& pa
 
 bool RibParser::AddBilinear(const RibRequest& r, const std::string& context, const std::array<glm::dvec3, 4>& corners,
                             const renderer::ParameterRange& range) {
-    PrimitiveDesc patch;
+    renderer::BilinearPatch world;
     for (int i = 0; i < 4; ++i) {
-        patch.corners[i] = TransformPoint(m_state.ctm, corners[i]);
-        if (!FiniteP(patch.corners[i]))
+        world.corners[i] = TransformPoint(m_state.ctm, corners[i]);
+        if (!FiniteP(world.corners[i]))
             return Fail(r.at, context + " corner " + std::to_string(i) + " overflows in world space");
     }
-    patch.range = range;
+    PrimitiveDesc patch;
+    patch.base = renderer::BaseSurface(world, false, range);
     SetPrimitiveAttributes(r, &patch);
     m_scene.primitives.push_back(std::move(patch));
     return true;
@@ -95,11 +105,11 @@ bool RibParser::AddBilinear(const RibRequest& r, const std::string& context, con
 
 bool RibParser::AddBicubic(const RibRequest& r, const std::string& context, const std::array<glm::dvec3, 16>& points,
                            const renderer::ParameterRange& range) {
+    const renderer::BicubicPatch bicubic =
+        renderer::BicubicPatch::FromControlPoints(points, m_state.uBasis, m_state.vBasis, m_state.ctm);
+    if (!bicubic.FiniteP()) return Fail(r.at, context + " overflows in world space");
     PrimitiveDesc patch;
-    patch.shape = PrimitiveDesc::Shape::BicubicPatch;
-    patch.bicubic = renderer::BicubicPatch::FromControlPoints(points, m_state.uBasis, m_state.vBasis, m_state.ctm);
-    if (!patch.bicubic.FiniteP()) return Fail(r.at, context + " overflows in world space");
-    patch.range = range;
+    patch.base = renderer::BaseSurface(bicubic, false, range);
     SetPrimitiveAttributes(r, &patch);
     m_scene.primitives.push_back(std::move(patch));
     return true;
@@ -401,15 +411,14 @@ bool RibParser::DoQuadric(const RibRequest& r, Quadric::Kind kind) {
         colors[p.value.name == "Os"] = std::move(c);
     }
 
-    PrimitiveDesc prim;
-    prim.shape = PrimitiveDesc::Shape::Quadric;
-    prim.quadric = MakeQuadric(kind, v);
-    if (const std::string empty = EmptyReason(prim.quadric); !empty.empty()) {
+    const Quadric quadric = MakeQuadric(kind, v);
+    if (const std::string empty = EmptyReason(quadric); !empty.empty()) {
         Warn(r.at, Quote(r.name) + " " + empty + ": the surface is empty; skipped");
         return true;
     }
-    if (std::string problem = prim.quadric.Problem(); !problem.empty())
-        return Fail(r.at, Quote(r.name) + " " + problem);
+    if (std::string problem = quadric.Problem(); !problem.empty()) return Fail(r.at, Quote(r.name) + " " + problem);
+    PrimitiveDesc prim;
+    prim.base = renderer::BaseSurface(renderer::PlacedQuadric{quadric, m_state.ctm});
     SetPrimitiveAttributes(r, &prim);
     PatchColorFields(&prim, colors, 0, {0, 1, 2, 3}, {0, 1, 2, 3}, {}, false, false);
     m_scene.primitives.push_back(std::move(prim));

@@ -18,12 +18,9 @@ using renderer::TrimCurves;
 
 bool RibParser::AddRational(const RibRequest& r, const std::string& context, const renderer::RationalPatch& patch,
                             const renderer::ParameterRange& range, std::shared_ptr<const TrimCurves> trim) {
+    if (!patch.FiniteP()) return Fail(r.at, context + " overflows in world space");
     PrimitiveDesc prim;
-    prim.shape = PrimitiveDesc::Shape::RationalPatch;
-    prim.rational = patch;
-    if (!prim.rational.FiniteP()) return Fail(r.at, context + " overflows in world space");
-    prim.range = range;
-    prim.trim = std::move(trim);
+    prim.base = renderer::BaseSurface(patch, false, range, std::move(trim));
     SetPrimitiveAttributes(r, &prim);
     m_scene.primitives.push_back(std::move(prim));
     return true;

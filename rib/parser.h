@@ -202,7 +202,9 @@ class RibParser : private RibArgChecks {
     bool RightHandedP() const { return glm::determinant(ObjectToCamera()) < 0; }
     /// PrimitiveDesc::flipNormal for a primitive made now (see its comment in scene.h).
     bool FlipNormalP() const;
-    /// Fills the attributes every primitive shares (color, shading, sides, orientation, line).
+    /// Fills the attributes every primitive takes from the graphics state (color, shading, sides,
+    /// orientation, lights, line): those of p->attributes made once per request and shared by
+    /// its primitives. Call it once p->base has its shape.
     void SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) const;
     /// A quadric request: positional numbers (bare or one array), then ignored parameters.
     bool DoQuadric(const RibRequest& r, Quadric::Kind kind);
@@ -439,8 +441,12 @@ class RibParser : private RibArgChecks {
     std::vector<SceneDesc> m_frames;               // one per world block ended
     std::optional<FrameDefaults> m_frameDefaults;  // inside FrameBegin ... FrameEnd
     std::map<std::string, int> m_lightHandles;     // light handle -> index into the frame's lights; -1: ignored
-    size_t m_primitivesStamped = 0;                // primitives given their lights (see Dispatch)
-    bool m_worldSeen = false;                      // in the current frame (or the file, outside frames)
+    size_t m_primitivesStamped = 0;                // primitives of requests finished (see Dispatch)
+    uint64_t m_requestSerial = 0;                  // requests dispatched
+    // The attributes of the primitives of request m_attributesSerial (SetPrimitiveAttributes).
+    mutable std::shared_ptr<const renderer::PrimitiveAttributes> m_attributes;
+    mutable uint64_t m_attributesSerial = 0;
+    bool m_worldSeen = false;  // in the current frame (or the file, outside frames)
     bool m_worldEnded = false;
     std::vector<LightDesc> m_cameraLights;  // lights given before WorldBegin, in camera space
     // CoordinateSystem given before WorldBegin: object -> camera, mapped to world at WorldBegin.

@@ -158,13 +158,18 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
             return Fail(position->at, context + " point " + std::to_string(i) + " overflows in world space");
     }
 
-    std::vector<renderer::MeshPiece> pieces;
-    if (std::string problem = renderer::SplitMesh(mesh, &pieces); !problem.empty())
+    // One mesh that every piece's primitive shares (renderer::PieceMesh).
+    auto split = std::make_shared<renderer::PieceMesh>();
+    if (std::string problem = renderer::SplitMesh(std::move(mesh), split.get()); !problem.empty())
         return Fail(r.at, context + " " + problem);
-    for (const renderer::MeshPiece& piece : pieces) {
+    const std::shared_ptr<const renderer::PieceMesh> shared = split;
+    auto& primitives = m_scene.primitives;
+    if (const size_t needed = primitives.size() + split->pieces.size(); needed > primitives.capacity())
+        primitives.reserve(std::max(needed, 2 * primitives.capacity()));
+    for (size_t index = 0; index < split->pieces.size(); ++index) {
+        const renderer::PieceMesh::Corners& piece = split->pieces[index];
         PrimitiveDesc prim;
-        prim.shape = PrimitiveDesc::Shape::MeshPiece;
-        prim.piece = piece;
+        prim.base = renderer::BaseSurface(renderer::MeshPieceRef{shared, static_cast<uint32_t>(index)});
         SetPrimitiveAttributes(r, &prim);
         // Cs and Os bilinear over the piece between its corners' values (so, on a triangle,
         // linear between the face's vertices, as RenderMan's varying values are).
@@ -177,7 +182,7 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
                     case StorageClass::Constant: corner[i] = colors[k]->values[0]; break;
                     case StorageClass::Uniform: corner[i] = colors[k]->values[size_t(piece.face)]; break;
                     case StorageClass::Varying:
-                    case StorageClass::Vertex: corner[i] = colors[k]->values[size_t(mesh.corners[c])]; break;
+                    case StorageClass::Vertex: corner[i] = colors[k]->values[size_t(split->mesh.corners[c])]; break;
                     case StorageClass::FaceVarying: corner[i] = colors[k]->values[c]; break;
                 }
             }

@@ -131,6 +131,7 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
 }
 
 bool RibParser::Dispatch(const RibRequest& r) {
+    ++m_requestSerial;  // the primitives of one request share their attributes (SetPrimitiveAttributes)
     // Inside a solid that affray skips, only the requests that open and close blocks run, so
     // that the blocks still nest as written and the solid ends at its own SolidEnd.
     if (m_skipping > 0 && !ContainsP(std::begin(kBlockRequests), std::end(kBlockRequests), r.name)) return true;
@@ -266,13 +267,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         // A level of detail not drawn at its size on screen: its primitives are dropped (read
         // and checked all the same, except in a delayed archive, which is not opened).
         if (m_state.detailHidden) m_scene.primitives.resize(m_primitivesStamped);
-        // Every primitive takes the lights on at its request (RI 3.2: the light list is an
-        // attribute). Stamped here, for every geometry request alike; an ObjectInstance's
-        // primitives were stamped by the replayed requests, with the state of the instance.
-        for (; m_primitivesStamped < m_scene.primitives.size(); ++m_primitivesStamped) {
-            m_scene.primitives[m_primitivesStamped].lights = m_state.lights;
-            m_scene.primitives[m_primitivesStamped].scopedSpaces = m_state.scopedSpaces;
-        }
+        m_primitivesStamped = m_scene.primitives.size();
         return true;
     }
     if (ContainsP(std::begin(kMakeRequests), std::end(kMakeRequests), r.name)) return DoMake(r);

@@ -254,12 +254,14 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     auto& primitives = m_scene.primitives;
     if (const size_t needed = primitives.size() + result.patches.size(); needed > primitives.capacity())
         primitives.reserve(std::max(needed, 2 * primitives.capacity()));
-    for (size_t i = 0; i < result.patches.size(); ++i) {
-        const renderer::SubdivPatch& patch = result.patches[i];
+    for (const renderer::SubdivPatch& patch : result.patches)
         if (!patch.geometry.FiniteP()) return Fail(r.at, context + " has a patch that overflows in world space");
+    // The patches kept once, shared by their primitives (each an index into them).
+    const auto patches = std::make_shared<const std::vector<renderer::SubdivPatch>>(std::move(result.patches));
+    for (size_t i = 0; i < patches->size(); ++i) {
+        const renderer::SubdivPatch& patch = (*patches)[i];
         PrimitiveDesc prim;
-        prim.shape = PrimitiveDesc::Shape::SubdivPatch;
-        prim.subdiv = patch;
+        prim.base = renderer::BaseSurface(renderer::SubdivPatchRef{patches, static_cast<uint32_t>(i)});
         SetPrimitiveAttributes(r, &prim);
         for (int k = 0; k < 2; ++k) {
             if (!colors[k]) continue;

@@ -182,12 +182,14 @@ std::string FrameName(const renderer::SceneDesc& frame) {
 /// once per shader and name over the run (`warned`).
 void WarnUndeclared(const renderer::PreparedScene& prepared, std::set<std::string>* warned, diag::Report* report) {
     const renderer::SceneDesc& desc = prepared.desc;
-    for (size_t i = 0; i < prepared.primitives.size() && i < desc.primitives.size(); ++i) {
-        const renderer::Primitive& prim = prepared.primitives[i];
-        if (!prim.shader || prim.shader->undeclared.empty() || !desc.primitives[i].displacement) continue;
-        const renderer::ShaderRef& ref = *desc.primitives[i].displacement;
+    const renderer::PrimitiveAttributes* previous = nullptr;  // a mesh's faces share theirs
+    for (const renderer::Primitive& prim : prepared.primitives) {
+        if (!prim.shader() || prim.shader()->undeclared.empty() || !prim.attributes().displacement) continue;
+        if (&prim.attributes() == previous) continue;
+        previous = &prim.attributes();
+        const renderer::ShaderRef& ref = *prim.attributes().displacement;
         const std::string& file = ref.file.empty() ? desc.path : ref.file;
-        for (const std::string& sentence : prim.shader->undeclared)
+        for (const std::string& sentence : prim.shader()->undeclared)
             if (warned->insert(sentence).second)
                 report->warning({file, ref.line, ref.column, diag::ReadLine(file, ref.line)}, sentence + "; ignored");
     }
@@ -271,8 +273,8 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
         };
         std::vector<Entry> entries;
         for (const renderer::Primitive& prim : prepared.primitives) {
-            if (!prim.shader) continue;
-            const Entry key{prim.shader.get(), prim.bound.code.size(), prim.shade.code.size(), 1};
+            if (!prim.shader()) continue;
+            const Entry key{prim.shader().get(), prim.bound().code.size(), prim.shade().code.size(), 1};
             auto same = std::find_if(entries.begin(), entries.end(), [&](const Entry& e) {
                 return e.shader == key.shader && e.bound == key.bound && e.shade == key.shade;
             });

@@ -44,7 +44,7 @@ double Fetch(const MeshVariable& var, int face, const Corner& c, int k) {
     return var.values[index * static_cast<size_t>(var.components) + static_cast<size_t>(k)];
 }
 
-/// The piece with corners `c` in patch order (a triangle repeats its last corner).
+/// The piece of `face` with corners `c` in patch order (a triangle repeats its last corner).
 MeshPiece MakePiece(const PolygonMesh& mesh, int face, const glm::dvec3& normal, const std::array<Corner, 4>& c,
                     bool triangle) {
     MeshPiece piece;
@@ -54,7 +54,7 @@ MeshPiece MakePiece(const PolygonMesh& mesh, int face, const glm::dvec3& normal,
     piece.hasNormals = mesh.normals.has_value();
     piece.hasST = mesh.st || mesh.s || mesh.t;
     for (int i = 0; i < 4; ++i) {
-        piece.P[i] = mesh.points[c[i].point];
+        piece.P[i] = mesh.points[static_cast<size_t>(c[i].point)];
         piece.faceCorner[i] = c[i].faceCorner;
         if (mesh.normals)
             for (int k = 0; k < 3; ++k) piece.N[i][k] = Fetch(*mesh.normals, face, c[i], k);
@@ -204,7 +204,23 @@ bool ConvexQuadP(const std::array<glm::dvec3, 4>& p, const glm::dvec3& normal) {
 
 }  // namespace
 
-std::string SplitMesh(const PolygonMesh& mesh, std::vector<MeshPiece>* pieces) {
+MeshPiece PieceMesh::Piece(size_t index) const {
+    const Corners& p = pieces[index];
+    std::array<Corner, 4> c;
+    for (int i = 0; i < 4; ++i) c[i] = {mesh.corners[static_cast<size_t>(p.faceCorner[i])], p.faceCorner[i]};
+    return MakePiece(mesh, p.face, faceNormals[static_cast<size_t>(p.face)], c, p.triangle != 0);
+}
+
+std::string SplitMesh(PolygonMesh polygons, PieceMesh* out) {
+    out->mesh = std::move(polygons);
+    const PolygonMesh& mesh = out->mesh;
+    out->faceNormals.clear();
+    out->pieces.clear();
+    out->faceNormals.reserve(mesh.loops.size());
+    out->pieces.reserve(mesh.loops.size());
+    auto add = [&](int face, const std::array<Corner, 4>& c, bool triangle) {
+        out->pieces.push_back({{c[0].faceCorner, c[1].faceCorner, c[2].faceCorner, c[3].faceCorner}, face, triangle});
+    };
     size_t loopIndex = 0, cornerIndex = 0;
     for (size_t f = 0; f < mesh.loops.size(); ++f) {
         const int face = static_cast<int>(f);
@@ -221,17 +237,18 @@ std::string SplitMesh(const PolygonMesh& mesh, std::vector<MeshPiece>* pieces) {
         if (!(length > 0) || !std::isfinite(length))
             return name + " is degenerate: its outline has no area (its corners are collinear or coincide)";
         const glm::dvec3 normal = newell / length;
+        out->faceNormals.push_back(normal);
         auto point = [&](const Corner& c) { return mesh.points[c.point]; };
         // A triangle, or a convex quad without holes: one piece.
         if (loops.size() == 1 && loops[0].size() == 3) {
             const auto& l = loops[0];
-            pieces->push_back(MakePiece(mesh, face, normal, {l[0], l[1], l[2], l[2]}, true));
+            add(face, {l[0], l[1], l[2], l[2]}, true);
             continue;
         }
         if (loops.size() == 1 && loops[0].size() == 4) {
             const auto& l = loops[0];
             if (ConvexQuadP({point(l[0]), point(l[1]), point(l[2]), point(l[3])}, normal)) {
-                pieces->push_back(MakePiece(mesh, face, normal, {l[0], l[1], l[3], l[2]}, false));
+                add(face, {l[0], l[1], l[3], l[2]}, false);
                 continue;
             }
         }
@@ -273,10 +290,20 @@ std::string SplitMesh(const PolygonMesh& mesh, std::vector<MeshPiece>* pieces) {
         std::vector<std::array<Corner, 3>> triangles;
         if (!ClipEars(outline, &triangles) || triangles.empty())
             return name + " cannot be triangulated: its loops intersect themselves or each other";
-        for (const auto& t : triangles)
-            pieces->push_back(MakePiece(mesh, face, normal, {t[0], t[1], t[2], t[2]}, true));
+        for (const auto& t : triangles) add(face, {t[0], t[1], t[2], t[2]}, true);
     }
+    // Splitting is done: a piece needs only the face corners' points and values.
+    out->mesh.loops = {};
+    out->mesh.loopSizes = {};
+    out->pieces.shrink_to_fit();
     return "";
+}
+
+std::string SplitMesh(const PolygonMesh& mesh, std::vector<MeshPiece>* pieces) {
+    PieceMesh split;
+    std::string problem = SplitMesh(mesh, &split);
+    for (size_t i = 0; i < split.pieces.size(); ++i) pieces->push_back(split.Piece(i));
+    return problem;
 }
 
 std::string ToString(const MeshPiece& piece) {

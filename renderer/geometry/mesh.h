@@ -29,6 +29,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -79,6 +80,32 @@ struct PolygonMesh {
     std::vector<int> loops, loopSizes, corners;
     std::optional<MeshVariable> normals, st, s, t;
 };
+
+/// A polygon mesh split into pieces, kept as one object that every piece's primitive shares: the
+/// mesh's arrays once, and per piece only the face corners it joins (24 bytes). A piece's
+/// corner values (MeshPiece) are gathered from the arrays when it is evaluated (Piece), so a
+/// mesh of a million faces is not a million copies of its corners.
+struct PieceMesh {
+    /// The mesh (world space); its loops and loop sizes are dropped once it is split.
+    PolygonMesh mesh;
+    /// Per face, its unit Newell normal (MeshPiece::faceNormal).
+    std::vector<glm::dvec3> faceNormals;
+    /// A piece: its corners' indices among the mesh's face corners, in patch order (a triangle
+    /// repeats its last), and its face.
+    struct Corners {
+        std::array<int32_t, 4> faceCorner{};
+        int32_t face = 0;
+        int32_t triangle = 0;
+    };
+    std::vector<Corners> pieces;
+
+    /// Piece `index` with its corner values, as SplitMesh's vector form gives it.
+    MeshPiece Piece(size_t index) const;
+};
+
+/// Splits every face of `mesh` into `out`'s pieces (taking the mesh's arrays); the same as the
+/// vector form below, with the same messages.
+std::string SplitMesh(PolygonMesh mesh, PieceMesh* out);
 
 /// Splits every face of `mesh` into pieces: a convex planar quad without holes is one quad
 /// piece, a triangle is one triangle piece, any other face (concave, more corners, holes) is

@@ -8,6 +8,10 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <memory>
+#include <variant>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -347,27 +351,34 @@ void SetSubdivGlobals(vm::Interpreter<T>& interp, const SubdivPatch& patch, doub
     if (patch.hasST) SetSTGlobals(interp, [&](T* s, T* t) { SubdivPatchST(patch, u, v, s, t); });
 }
 
+/// One piece of a shared polygon mesh: the mesh and the piece's index in it.
+struct MeshPieceRef {
+    std::shared_ptr<const PieceMesh> mesh;
+    uint32_t index = 0;
+};
+
+/// One patch of a shared subdivision mesh's patches: the patches and the patch's index.
+struct SubdivPatchRef {
+    std::shared_ptr<const std::vector<SubdivPatch>> patches;
+    uint32_t index = 0;
+};
+
 /// A base surface for the intersector and the shading: a bilinear or bicubic patch (with the part
 /// of its mesh's (u,v) it covers), a placed quadric, a polygon mesh's piece or a subdivision
-/// mesh's patch, with the orientation of its normal.
-struct BaseSurface {
-    enum class Kind {
-        BilinearPatch,
-        Quadric,
-        BicubicPatch,
-        MeshPiece,
-        RationalPatch,
-        SubdivPatch
-    } kind = Kind::BilinearPatch;
-    BilinearPatch patch{};
-    PlacedQuadric quadric{};
-    BicubicPatch bicubic{};
-    MeshPiece piece{};
-    RationalPatch rational{};
+/// mesh's patch, with the orientation of its normal. One sum type with one dispatch
+/// (SetSurfaceGlobals); the shape itself is shared and immutable, so copying a BaseSurface
+/// copies a handle (a mesh's piece or a subdivision patch is its mesh and an index, not a copy).
+class BaseSurface {
+  public:
+    /// In the order of the alternatives of Shape.
+    enum class Kind { BilinearPatch, Quadric, BicubicPatch, MeshPiece, RationalPatch, SubdivPatch };
+    using Shape = std::variant<std::shared_ptr<const BilinearPatch>, std::shared_ptr<const PlacedQuadric>,
+                               std::shared_ptr<const BicubicPatch>, MeshPieceRef, std::shared_ptr<const RationalPatch>,
+                               SubdivPatchRef>;
+
     /// NuPatch spans only: the trim curves (in the range's (u,v)) whose trimmed side the
     /// intersector never reports a hit on; null if untrimmed.
     std::shared_ptr<const TrimCurves> trim;
-    SubdivPatch subdiv{};
     ParameterRange range{};  ///< Patches only; a quadric's or mesh piece's (u,v) is always [0,1]^2.
     bool flipNormal = false;
     /// RenderMan's TextureCoordinates (s1 t1 s2 t2 s3 t3 s4 t4 at (u,v) = (0,0), (1,0), (0,1),
@@ -375,60 +386,108 @@ struct BaseSurface {
     /// without an "st" of their own (meshes and subdivision surfaces keep theirs). Null: none.
     std::shared_ptr<const std::array<double, 8>> textureCoordinates;
 
-    /// Whether s and t come from textureCoordinates.
-    bool TextureCoordinatesP() const {
-        return textureCoordinates && (kind == Kind::BilinearPatch || kind == Kind::BicubicPatch ||
-                                      kind == Kind::Quadric || (kind == Kind::RationalPatch && !rational.hasST));
-    }
-
-    BaseSurface() = default;
+    /// The unit square's bilinear patch (BilinearPatch::UnitSquare).
+    BaseSurface() : BaseSurface(BilinearPatch::UnitSquare()) {}
     // Implicit on purpose: a patch is a base surface (as in every caller of the intersector).
     BaseSurface(const BilinearPatch& p, bool flip = false, const ParameterRange& r = {})
-        : kind(Kind::BilinearPatch), patch(p), range(r), flipNormal(flip) {}
-    BaseSurface(const PlacedQuadric& q, bool flip = false) : kind(Kind::Quadric), quadric(q), flipNormal(flip) {}
+        : range(r), flipNormal(flip), m_shape(std::make_shared<const BilinearPatch>(p)) {}
+    BaseSurface(const PlacedQuadric& q, bool flip = false)
+        : flipNormal(flip), m_shape(std::make_shared<const PlacedQuadric>(q)) {}
     BaseSurface(const BicubicPatch& p, bool flip = false, const ParameterRange& r = {})
-        : kind(Kind::BicubicPatch), bicubic(p), range(r), flipNormal(flip) {}
-    BaseSurface(const MeshPiece& m, bool flip = false) : kind(Kind::MeshPiece), piece(m), flipNormal(flip) {}
+        : range(r), flipNormal(flip), m_shape(std::make_shared<const BicubicPatch>(p)) {}
+    /// A lone piece (tests): a mesh of its own.
+    BaseSurface(const MeshPiece& m, bool flip = false);
+    BaseSurface(MeshPieceRef m, bool flip = false) : flipNormal(flip), m_shape(std::move(m)) {}
     BaseSurface(const RationalPatch& p, bool flip = false, const ParameterRange& r = {},
                 std::shared_ptr<const TrimCurves> t = nullptr)
-        : kind(Kind::RationalPatch), rational(p), trim(std::move(t)), range(r), flipNormal(flip) {}
+        : trim(std::move(t)), range(r), flipNormal(flip), m_shape(std::make_shared<const RationalPatch>(p)) {}
+    BaseSurface(const SubdivPatch& p, bool flip = false)
+        : flipNormal(flip), m_shape(SubdivPatchRef{std::make_shared<const std::vector<SubdivPatch>>(1, p), 0}) {}
+    BaseSurface(SubdivPatchRef p, bool flip = false) : flipNormal(flip), m_shape(std::move(p)) {}
+
+    Kind kind() const { return static_cast<Kind>(m_shape.index()); }
+    /// The shape, for its kind only.
+    const BilinearPatch& patch() const { return *std::get<0>(m_shape); }
+    const PlacedQuadric& quadric() const { return *std::get<1>(m_shape); }
+    const BicubicPatch& bicubic() const { return *std::get<2>(m_shape); }
+    /// A mesh piece's corner values, gathered from its mesh (PieceMesh::Piece).
+    MeshPiece piece() const {
+        const MeshPieceRef& r = std::get<3>(m_shape);
+        return r.mesh->Piece(r.index);
+    }
+    const MeshPieceRef& pieceRef() const { return std::get<3>(m_shape); }
+    const RationalPatch& rational() const { return *std::get<4>(m_shape); }
+    const SubdivPatch& subdiv() const {
+        const SubdivPatchRef& r = std::get<5>(m_shape);
+        return (*r.patches)[r.index];
+    }
+
+    /// Whether s and t come from textureCoordinates.
+    bool TextureCoordinatesP() const {
+        const Kind k = kind();
+        return textureCoordinates && (k == Kind::BilinearPatch || k == Kind::BicubicPatch || k == Kind::Quadric ||
+                                      (k == Kind::RationalPatch && !rational().hasST));
+    }
     /// The rate with which Dual derivatives run along the surface's own parameter `axis` (what
     /// the intersector splits): a patch's derivatives are along its mesh's (u,v) (PatchRate),
     /// every other surface's along its own. A derivative along the region's parameter is the
     /// Dual's divided by it.
     double DualRate(int axis) const {
-        const bool patchOfMesh =
-            kind == Kind::BilinearPatch || kind == Kind::BicubicPatch || kind == Kind::RationalPatch;
+        const Kind k = kind();
+        const bool patchOfMesh = k == Kind::BilinearPatch || k == Kind::BicubicPatch || k == Kind::RationalPatch;
         return patchOfMesh ? PatchRate(range, axis) : 1.0;
     }
     /// Whether the surface is kept at the point (s, t) of its own [0,1]^2 (false where trimmed).
     bool KeptP(double s, double t) const { return !trim || trim->KeptP(range.U(s), range.V(t)); }
-    BaseSurface(const SubdivPatch& p, bool flip = false) : kind(Kind::SubdivPatch), subdiv(p), flipNormal(flip) {}
+
+  private:
+    Shape m_shape;
 };
+
+inline BaseSurface::BaseSurface(const MeshPiece& m, bool flip) : flipNormal(flip) {
+    // A mesh of the piece alone: its corners as four points, four face corners, one face.
+    auto mesh = std::make_shared<PieceMesh>();
+    PolygonMesh& p = mesh->mesh;
+    p.points.assign(m.P.begin(), m.P.end());
+    p.corners = {0, 1, 2, 3};
+    if (m.hasNormals) {
+        MeshVariable n{StorageClass::Vertex, 3, {}};
+        for (const glm::dvec3& v : m.N) n.values.insert(n.values.end(), {v.x, v.y, v.z});
+        p.normals = std::move(n);
+    }
+    if (m.hasST) {
+        MeshVariable st{StorageClass::Vertex, 2, {}};
+        for (const glm::dvec2& v : m.st) st.values.insert(st.values.end(), {v.x, v.y});
+        p.st = std::move(st);
+    }
+    mesh->faceNormals.assign(static_cast<size_t>(m.face) + 1, m.faceNormal);
+    mesh->pieces.push_back({{0, 1, 2, 3}, m.face, m.triangle ? 1 : 0});
+    m_shape = MeshPieceRef{std::move(mesh), 0};
+}
 
 /// SetPatchGlobals, SetBicubicGlobals, SetQuadricGlobals, SetMeshPieceGlobals or SetRationalGlobals,
 /// as `surface` is.
 template <class T>
 void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, double u0, double u1, double v0,
                        double v1, const glm::dvec3& eye) {
-    switch (surface.kind) {
+    switch (surface.kind()) {
         case BaseSurface::Kind::BilinearPatch:
-            SetPatchGlobals(interp, surface.patch, u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
+            SetPatchGlobals(interp, surface.patch(), u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
             break;
         case BaseSurface::Kind::BicubicPatch:
-            SetBicubicGlobals(interp, surface.bicubic, u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
+            SetBicubicGlobals(interp, surface.bicubic(), u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
             break;
         case BaseSurface::Kind::Quadric:
-            SetQuadricGlobals(interp, surface.quadric, u0, u1, v0, v1, eye, surface.flipNormal);
+            SetQuadricGlobals(interp, surface.quadric(), u0, u1, v0, v1, eye, surface.flipNormal);
             break;
         case BaseSurface::Kind::MeshPiece:
-            SetMeshPieceGlobals(interp, surface.piece, u0, u1, v0, v1, eye, surface.flipNormal);
+            SetMeshPieceGlobals(interp, surface.piece(), u0, u1, v0, v1, eye, surface.flipNormal);
             break;
         case BaseSurface::Kind::RationalPatch:
-            SetRationalGlobals(interp, surface.rational, u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
+            SetRationalGlobals(interp, surface.rational(), u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
             break;
         case BaseSurface::Kind::SubdivPatch:
-            SetSubdivGlobals(interp, surface.subdiv, u0, u1, v0, v1, eye, surface.flipNormal);
+            SetSubdivGlobals(interp, surface.subdiv(), u0, u1, v0, v1, eye, surface.flipNormal);
             break;
     }
     if (surface.TextureCoordinatesP())
@@ -457,11 +516,12 @@ void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, d
 /// So Ng of the displaced surface is this sign times dP'/du x dP'/dv.
 inline double ParametricSide(const BaseSurface& surface, double u, double v) {
     double side = surface.flipNormal ? -1.0 : 1.0;
-    if (surface.kind == BaseSurface::Kind::MeshPiece) {
-        const SurfaceFrame<double> frame = MeshPieceFrame(surface.piece, u, v);
+    if (surface.kind() == BaseSurface::Kind::MeshPiece) {
+        const MeshPiece piece = surface.piece();
+        const SurfaceFrame<double> frame = MeshPieceFrame(piece, u, v);
         const glm::dvec3 cross = glm::cross(glm::dvec3(frame.dPdu.x, frame.dPdu.y, frame.dPdu.z),
                                             glm::dvec3(frame.dPdv.x, frame.dPdv.y, frame.dPdv.z));
-        if (glm::dot(cross, surface.piece.faceNormal) < 0) side = -side;
+        if (glm::dot(cross, piece.faceNormal) < 0) side = -side;
     }
     return side;
 }

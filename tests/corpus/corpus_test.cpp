@@ -138,7 +138,7 @@ void SmokeRender(const std::string& name, const std::string& primitive) {
     INFO(error);
     REQUIRE(prepared_ok);
     REQUIRE(prepared.primitives.size() == 1);
-    REQUIRE(prepared.primitives[0].shader);
+    REQUIRE(prepared.primitives[0].shader());
     renderer::RenderOptions options;
     options.threads = 2;
     renderer::ImageBuffer image;

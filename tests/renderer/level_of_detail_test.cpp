@@ -54,11 +54,11 @@ TEST_CASE("level of detail: ShadingRate and flatness are attributes giving each 
                                            "GeometricApproximation \"motionfactor\" 1\nSphere 1 -1 1 360\n"
                                            "WorldEnd\n");
     REQUIRE(desc.primitives.size() == 5);
-    CHECK(desc.primitives[0].sceneTolerance == 0.5);  // RI defaults: ShadingRate 1
-    CHECK(desc.primitives[1].sceneTolerance == 1.0);  // 0.5 sqrt(4)
-    CHECK(desc.primitives[2].sceneTolerance == 3.0);  // the larger of the two
-    CHECK(desc.primitives[3].sceneTolerance == 0.25);
-    CHECK(desc.primitives[4].sceneTolerance == 0.5);  // AttributeEnd restored; motionfactor ignored
+    CHECK(desc.primitives[0].attr().sceneTolerance == 0.5);  // RI defaults: ShadingRate 1
+    CHECK(desc.primitives[1].attr().sceneTolerance == 1.0);  // 0.5 sqrt(4)
+    CHECK(desc.primitives[2].attr().sceneTolerance == 3.0);  // the larger of the two
+    CHECK(desc.primitives[3].attr().sceneTolerance == 0.25);
+    CHECK(desc.primitives[4].attr().sceneTolerance == 0.5);  // AttributeEnd restored; motionfactor ignored
     diag::Report error;
     CHECK_FALSE(
         rib::ParseRib(std::string(kHead) + "GeometricApproximation \"flatness\" -1\nWorldEnd\n", "x.rib", &error));

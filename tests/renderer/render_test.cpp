@@ -130,7 +130,7 @@ TEST_CASE("render: shaders are found on the scene's search path and see its coor
     CHECK(error.format().find("warning: shader 'lifted' not found") != std::string::npos);
     CHECK_FALSE(error.hasErrors());
     REQUIRE(prepared.primitives.size() == 1);
-    CHECK_FALSE(prepared.primitives[0].shader);
+    CHECK_FALSE(prepared.primitives[0].shader());
 }
 
 TEST_CASE("render: shaders see the scene's clipping planes and format through depth() and option()",
@@ -325,11 +325,11 @@ TEST_CASE("render: scenes/wavy_sheet.rib, a displaced bicubic patch mesh, render
     // Each patch's BVH box holds its displaced points (the patches' corners included).
     test::Rng rng(5);
     for (const Primitive& prim : prepared.primitives) {
-        CHECK(prim.base.kind == BaseSurface::Kind::BicubicPatch);
+        CHECK(prim.base().kind() == BaseSurface::Kind::BicubicPatch);
         for (int k = 0; k < 40; ++k) {
             const double u = k < 4 ? (k & 1) : rng.uniform(0, 1), v = k < 4 ? (k >> 1) : rng.uniform(0, 1);
-            const glm::dvec3 p = test::PointOnSurface(prim.bound, prim.base, u, v);
-            INFO("patch line " << prim.line << " at (" << u << ", " << v << ")");
+            const glm::dvec3 p = test::PointOnSurface(prim.bound(), prim.base(), u, v);
+            INFO("patch line " << prim.line() << " at (" << u << ", " << v << ")");
             CHECK(glm::all(glm::lessThanEqual(prim.box.lo, p)));
             CHECK(glm::all(glm::lessThanEqual(p, prim.box.hi)));
         }

@@ -42,7 +42,7 @@ SphereCase LoadSphere() {
     REQUIRE(desc);
     REQUIRE(renderer::PrepareScene(*desc, {dir}, {}, &c.prepared, &error));
     REQUIRE(c.prepared.primitives.size() == 1);
-    REQUIRE(c.primitive().base.kind == renderer::BaseSurface::Kind::Quadric);
+    REQUIRE(c.primitive().base().kind() == renderer::BaseSurface::Kind::Quadric);
     c.camera = std::make_unique<renderer::Camera>(desc->camera);
     return c;
 }
@@ -51,10 +51,10 @@ SphereCase LoadSphere() {
 class DisplacedSphere {
   public:
     explicit DisplacedSphere(const renderer::Primitive& prim)
-        : m_prim(prim), m_interp(prim.bound), m_output(*prim.bound.findOutput("P")) {}
+        : m_prim(prim), m_interp(prim.bound()), m_output(*prim.bound().findOutput("P")) {}
 
     glm::dvec3 At(double u, double v) {
-        auto p = renderer::EvaluateOnSurface(m_interp, m_prim.base, u, u, v, v, glm::dvec3(0), m_output);
+        auto p = renderer::EvaluateOnSurface(m_interp, m_prim.base(), u, u, v, v, glm::dvec3(0), m_output);
         return {p.x.v, p.y.v, p.z.v};
     }
 
@@ -132,7 +132,8 @@ TEST_CASE("stiff: a displaced sphere seen at its poles", "[renderer][stiff]") {
     const renderer::Primitive& prim = scene.primitive();
     DisplacedSphere surface(prim);
     const glm::dvec3 eye = scene.camera->Position();
-    auto intersector = renderer::MakeSurfaceIntersector(prim.base, prim.bound, eye, renderer::BoundMode::Affine, 24);
+    auto intersector =
+        renderer::MakeSurfaceIntersector(prim.base(), prim.bound(), eye, renderer::BoundMode::Affine, 24);
     const Tolerance cameraTol{0, 0.5 * scene.camera->PixelAngle()};
     Tally tally;
 

@@ -103,7 +103,7 @@ StiffScene LoadStiff(const std::string& name) {
 class HeightField {
   public:
     HeightField(const renderer::Primitive& prim, const glm::dvec3& eye)
-        : m_patch(prim.base.patch), m_program(prim.bound), m_eye(eye), m_output(*prim.bound.findOutput("P")) {
+        : m_patch(prim.base().patch()), m_program(prim.bound()), m_eye(eye), m_output(*prim.bound().findOutput("P")) {
         REQUIRE(m_patch.flat());
         m_normal = m_patch.flatNormal();
         m_toPlane = glm::inverse(glm::dmat3(m_patch.a(), m_patch.b(), m_normal));
@@ -238,7 +238,7 @@ class CaseRunner {
           m_hLo(hLo),
           m_hHi(hHi),
           m_field(scene.primitive(), scene.camera->Position()),
-          m_intersector(renderer::MakeSurfaceIntersector(scene.primitive().base, scene.primitive().bound,
+          m_intersector(renderer::MakeSurfaceIntersector(scene.primitive().base(), scene.primitive().bound(),
                                                          scene.camera->Position(), scene.options.bounds,
                                                          scene.options.maxDepth)) {
         m_field.RequireNormalDisplacement(12);
@@ -277,7 +277,7 @@ class CaseRunner {
     /// (widened by `margin`), where the whole surface lies.
     bool ProvablyMisses(const Ray& ray, double margin) const {
         double t0, t1;
-        const renderer::BilinearPatch& patch = m_scene.primitive().base.patch;
+        const renderer::BilinearPatch& patch = m_scene.primitive().base().patch();
         double uvMargin = margin / std::min(glm::length(patch.a()), glm::length(patch.b()));
         if (!m_field.FootInside(ray, uvMargin, &t0, &t1)) return true;
         // The height above the plane is linear along the ray.
@@ -426,8 +426,8 @@ TEST_CASE("stiff: amplitude 1000, an oblique ray needs few regions", "[renderer]
     const glm::dvec3 target = field.Surface(0.3, 0.6);
     const double e = M_PI / 3;
     const glm::dvec3 dir(std::cos(e) * 0.6, std::cos(e) * 0.8, std::sin(e));
-    auto intersector = renderer::MakeSurfaceIntersector(scene.primitive().base, scene.primitive().bound, glm::dvec3(0),
-                                                        renderer::BoundMode::Affine, 9);
+    auto intersector = renderer::MakeSurfaceIntersector(scene.primitive().base(), scene.primitive().bound(),
+                                                        glm::dvec3(0), renderer::BoundMode::Affine, 9);
     Ray ray{target + 3000.0 * dir, -dir};
     Hit hit;
     IntersectStats stats;
@@ -559,13 +559,18 @@ TEST_CASE("stiff: the patch placed 1e6 units from the origin", "[renderer][stiff
     // The same scene moved back to the origin: the same rays hit at the same distances, within
     // the two certified errors.
     renderer::SceneDesc near = ReadStiffDesc("far-offset");
-    const glm::dvec3 offset = near.primitives.at(0).corners[0];
+    const glm::dvec3 offset = near.primitives.at(0).base.patch().corners[0];
     REQUIRE(glm::length(offset) >= 1e6);
-    for (glm::dvec3& c : near.primitives[0].corners) c -= offset;
+    renderer::BilinearPatch shifted = near.primitives[0].base.patch();
+    for (glm::dvec3& c : shifted.corners) c -= offset;
+    const renderer::BaseSurface& old = near.primitives[0].base;
+    renderer::BaseSurface base(shifted, old.flipNormal, old.range);
+    base.textureCoordinates = old.textureCoordinates;
+    near.primitives[0].base = base;
     near.camera.worldToCamera = near.camera.worldToCamera * glm::translate(glm::dmat4(1.0), offset);
     StiffScene moved = PrepareDesc(near, scene.options);
     CaseRunner runNear(moved, -0.06, 0.06);
-    auto farIntersector = renderer::MakeSurfaceIntersector(scene.primitive().base, scene.primitive().bound,
+    auto farIntersector = renderer::MakeSurfaceIntersector(scene.primitive().base(), scene.primitive().bound(),
                                                            scene.camera->Position(), renderer::BoundMode::Affine, 24);
     int compared = 0;
     for (int j = 0; j < 8; ++j)

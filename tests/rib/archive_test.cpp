@@ -107,7 +107,7 @@ TEST_CASE("ReadArchive reads a file in place, relative to the file that reads it
     CHECK(report.all().empty());
     REQUIRE(desc->primitives.size() == 2);
     CHECK(desc->primitives[0].color == glm::dvec3(0, 1, 0));
-    CHECK(desc->primitives[1].corners[0] == glm::dvec3(-2, -2, 0));
+    CHECK(desc->primitives[1].base.patch().corners[0] == glm::dvec3(-2, -2, 0));
     // The square at the origin covers pixels 4-5 across and rows 2-3; the moved one the corner.
     CHECK(Coverage(Render(*desc)) ==
           "........\n"
@@ -159,7 +159,7 @@ TEST_CASE("ReadArchive errors name the archive's own file, line and column", "[r
         std::optional<SceneDesc> desc = ReadRib(scene, &report);
         REQUIRE(desc);
         CHECK(desc->primitives.size() == 1);
-        CHECK(desc->primitives[0].line == 4);
+        CHECK(desc->primitives[0].attr().line == 4);
         CHECK(Lines(report) ==
               std::vector<std::string>{
                   "warn.rib:2:1: note: 'ShadingRate' 2: the primitives that follow are certified to 0.707107 "
@@ -213,7 +213,7 @@ TEST_CASE("Displacement shader messages inside an archive name the archive", "[r
     std::optional<SceneDesc> desc = ReadRib(scene, &report);
     REQUIRE(desc);
     REQUIRE(desc->primitives.size() == 1);
-    CHECK(desc->primitives[0].displacement->file == dir.Path("part.rib"));
+    CHECK(desc->primitives[0].attr().displacement->file == dir.Path("part.rib"));
     PreparedScene prepared;
     CHECK(PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &report));
     REQUIRE(!report.all().empty());
@@ -244,14 +244,14 @@ TEST_CASE("ObjectInstance places a retained object with the instance's transform
     REQUIRE(desc);
     CHECK(report.all().empty());
     REQUIRE(desc->primitives.size() == 4);
-    CHECK(desc->primitives[0].corners[0] == glm::dvec3(-1, 0, 0));
+    CHECK(desc->primitives[0].base.patch().corners[0] == glm::dvec3(-1, 0, 0));
     CHECK(desc->primitives[0].color == glm::dvec3(0, 0, 1));  // the instance's colour
-    CHECK(desc->primitives[1].corners[0] == glm::dvec3(1, 1, 0));
+    CHECK(desc->primitives[1].base.patch().corners[0] == glm::dvec3(1, 1, 0));
     CHECK(desc->primitives[1].color == glm::dvec3(1, 0, 0));  // the object's own colour
-    CHECK(desc->primitives[2].corners[0] == glm::dvec3(1, -1, 0));
+    CHECK(desc->primitives[2].base.patch().corners[0] == glm::dvec3(1, -1, 0));
     CHECK(desc->primitives[2].color == glm::dvec3(0, 0, 1));
-    CHECK(desc->primitives[3].corners[0] == glm::dvec3(-1, 0, 0));
-    CHECK(desc->primitives[1].line == 17);  // where the object defines it
+    CHECK(desc->primitives[3].base.patch().corners[0] == glm::dvec3(-1, 0, 0));
+    CHECK(desc->primitives[1].attr().line == 17);  // where the object defines it
     CHECK(Coverage(Render(*desc)) ==
           "......##\n"
           "......##\n"
@@ -291,11 +291,11 @@ TEST_CASE("Inline archives (ArchiveBegin) are read where ReadArchive names them,
     REQUIRE(desc);
     CHECK(report.all().empty());
     REQUIRE(desc->primitives.size() == 2);
-    CHECK(desc->primitives[0].corners[0] == glm::dvec3(0, 0, 0));
+    CHECK(desc->primitives[0].base.patch().corners[0] == glm::dvec3(0, 0, 0));
     CHECK(desc->primitives[0].color == glm::dvec3(1, 1, 1));
-    CHECK(desc->primitives[1].corners[0] == glm::dvec3(-2, -2, 0));
+    CHECK(desc->primitives[1].base.patch().corners[0] == glm::dvec3(-2, -2, 0));
     CHECK(desc->primitives[1].color == glm::dvec3(0, 1, 0));
-    CHECK(desc->primitives[1].line == 13);  // where the archive says it
+    CHECK(desc->primitives[1].attr().line == 13);  // where the archive says it
     CHECK(Coverage(Render(*desc)) ==
           "........\n"
           "........\n"
@@ -370,10 +370,10 @@ TEST_CASE("Procedural DelayedReadArchive reads its archive at once, in an attrib
     REQUIRE(desc->primitives.size() == 3);
     CHECK(desc->primitives[0].color == glm::dvec3(1, 0, 0));
     CHECK(desc->primitives[1].color == glm::dvec3(0, 0, 1));
-    CHECK(desc->primitives[1].corners[0] == glm::dvec3(-2, -2, 0));
+    CHECK(desc->primitives[1].base.patch().corners[0] == glm::dvec3(-2, -2, 0));
     // After it: the colour and transform of before it.
     CHECK(desc->primitives[2].color == glm::dvec3(0, 1, 0));
-    CHECK(desc->primitives[2].corners[0] == glm::dvec3(0, 0, 0));
+    CHECK(desc->primitives[2].base.patch().corners[0] == glm::dvec3(0, 0, 0));
 
     // Procedural2 "DelayedReadArchive2" names the file as a parameter; in an object definition
     // the archive's requests are part of the object, in their block.
@@ -388,10 +388,10 @@ TEST_CASE("Procedural DelayedReadArchive reads its archive at once, in an attrib
     REQUIRE(desc);
     REQUIRE(desc->primitives.size() == 5);
     CHECK(desc->primitives[2].color == glm::dvec3(1, 0, 0));
-    CHECK(desc->primitives[2].corners[0] == glm::dvec3(1, 0, 0));
-    CHECK(desc->primitives[3].corners[0] == glm::dvec3(-1, -2, 0));
+    CHECK(desc->primitives[2].base.patch().corners[0] == glm::dvec3(1, 0, 0));
+    CHECK(desc->primitives[3].base.patch().corners[0] == glm::dvec3(-1, -2, 0));
     CHECK(desc->primitives[4].color == glm::dvec3(0, 1, 0));
-    CHECK(desc->primitives[4].corners[0] == glm::dvec3(1, 0, 0));
+    CHECK(desc->primitives[4].base.patch().corners[0] == glm::dvec3(1, 0, 0));
 }
 
 TEST_CASE("Procedurals that run programs are skipped, unknown ones and bad arguments refused", "[renderer][rib]") {
@@ -502,7 +502,7 @@ TEST_CASE("gzip-compressed scenes and archives read as their text, within rib-by
     REQUIRE(gz);
     REQUIRE(gz->primitives.size() == 2);
     CHECK(gz->primitives[0].color == glm::dvec3(0, 1, 0));
-    CHECK(gz->primitives[1].corners[0] == glm::dvec3(-2, -2, 0));
+    CHECK(gz->primitives[1].base.patch().corners[0] == glm::dvec3(-2, -2, 0));
     CHECK(Coverage(Render(*gz)) == Coverage(Render(*plain)));
 
     auto error = [&](const std::string& path) {

@@ -79,7 +79,7 @@ TEST_CASE("attributes: transmission and camera visibility, prman's and BMRT's", 
         REQUIRE(scene.primitives.size() == 1);
         return scene.primitives[0];
     };
-    auto transmission = [&](const std::string& attributes) { return primitive(attributes).transmission; };
+    auto transmission = [&](const std::string& attributes) { return primitive(attributes).attr().transmission; };
     CHECK(transmission("") == Transmission::Opaque);  // BMRT's default: every object casts shadows
     CHECK(transmission("Attribute \"visibility\" \"transmission\" \"transparent\"\n") == Transmission::Transparent);
     CHECK(transmission("Attribute \"visibility\" \"string transmission\" [\"opaque\"]\n") == Transmission::Opaque);
@@ -95,21 +95,22 @@ TEST_CASE("attributes: transmission and camera visibility, prman's and BMRT's", 
     CHECK(transmission("Attribute \"render\" \"visibility\" [3]\n") == Transmission::Transparent);
     CHECK(transmission("Attribute \"render\" \"visibility\" [3]\nAttribute \"render\" \"visibility\" [7]\n") ==
           Transmission::Opaque);
-    CHECK_FALSE(primitive("Attribute \"render\" \"visibility\" [4]\n").cameraVisible);
-    CHECK_FALSE(primitive("Attribute \"visibility\" \"int camera\" [0]\n").cameraVisible);
-    CHECK(
-        primitive("Attribute \"visibility\" \"camera\" [0]\nAttribute \"visibility\" \"camera\" [1]\n").cameraVisible);
+    CHECK_FALSE(primitive("Attribute \"render\" \"visibility\" [4]\n").attr().cameraVisible);
+    CHECK_FALSE(primitive("Attribute \"visibility\" \"int camera\" [0]\n").attr().cameraVisible);
+    CHECK(primitive("Attribute \"visibility\" \"camera\" [0]\nAttribute \"visibility\" \"camera\" [1]\n")
+              .attr()
+              .cameraVisible);
     // Attributes: restored by AttributeEnd.
     const renderer::SceneDesc scene = test::ParseWorld(
         "AttributeBegin\nAttribute \"visibility\" \"transmission\" \"transparent\"\n"
         "Attribute \"visibility\" \"camera\" [0]\nOpacity 0.5 0.5 0.5\nSphere 1 -1 1 360\nAttributeEnd\n" +
         std::string(kSphere));
     REQUIRE(scene.primitives.size() == 2);
-    CHECK(scene.primitives[0].transmission == Transmission::Transparent);
-    CHECK_FALSE(scene.primitives[0].cameraVisible);
+    CHECK(scene.primitives[0].attr().transmission == Transmission::Transparent);
+    CHECK_FALSE(scene.primitives[0].attr().cameraVisible);
     CHECK(scene.primitives[0].opacity == glm::dvec3(0.5));
-    CHECK(scene.primitives[1].transmission == Transmission::Opaque);
-    CHECK(scene.primitives[1].cameraVisible);
+    CHECK(scene.primitives[1].attr().transmission == Transmission::Opaque);
+    CHECK(scene.primitives[1].attr().cameraVisible);
     CHECK(scene.primitives[1].opacity == glm::dvec3(1.0));
     // The scene's description prints them.
     const std::string text = renderer::ToString(scene.primitives[0]);
@@ -133,7 +134,7 @@ TEST_CASE("attributes: unknown values and parameters of these attributes are war
         "Attribute \"render\" \"casts_shadows\" \"none\"\n"
         "Attribute \"render\" \"casts_shadows\" \"sometimes\"\n" +
         std::string(kSphere));
-    CHECK(scene.primitives[0].transmission == Transmission::Transparent);
+    CHECK(scene.primitives[0].attr().transmission == Transmission::Transparent);
     // Opacity outside [0, 1] is clamped, with a warning.
     CHECK(Warnings("Opacity 1.5 0.5 -1\n") ==
           std::vector<std::string>{"t.rib:2: warning: 'Opacity' components must be from 0 to 1; clamped"});
@@ -159,13 +160,13 @@ TEST_CASE("attributes: TextureCoordinates give the s, t of the quadrics and patc
     CHECK(report.all().empty());
     REQUIRE(scene.primitives.size() == 6);
     const std::array<double, 8> flipped = {1, 0, 0, 0, 1, 1, 0, 1};
-    CHECK_FALSE(scene.primitives[0].textureCoordinates);
+    CHECK_FALSE(scene.primitives[0].base.textureCoordinates);
     for (size_t i : {1, 2, 3}) {
-        REQUIRE(scene.primitives[i].textureCoordinates);
-        CHECK(*scene.primitives[i].textureCoordinates == flipped);
+        REQUIRE(scene.primitives[i].base.textureCoordinates);
+        CHECK(*scene.primitives[i].base.textureCoordinates == flipped);
     }
-    CHECK_FALSE(scene.primitives[4].textureCoordinates);
-    CHECK_FALSE(scene.primitives[5].textureCoordinates);  // AttributeEnd restored none
+    CHECK_FALSE(scene.primitives[4].base.textureCoordinates);
+    CHECK_FALSE(scene.primitives[5].base.textureCoordinates);  // AttributeEnd restored none
     CHECK(test::FirstError(test::InWorld("TextureCoordinates 0 0 1 0\n")) ==
           "t.rib:2: error: 'TextureCoordinates' expects 8 numbers (s1 t1 s2 t2 s3 t3 s4 t4), got 4");
 }

@@ -300,7 +300,7 @@ WorldEnd
     const std::vector<PrimitiveDesc>& prims = frames.at(0).primitives;
     REQUIRE(prims.size() == 8);
     using Lights = std::vector<int>;
-    auto lightsOf = [&](size_t i) { return prims[i].lights.value_or(Lights{-1}); };
+    auto lightsOf = [&](size_t i) { return prims[i].attr().lights.value_or(Lights{-1}); };
     CHECK(lightsOf(0) == Lights{0});        // only the light declared before it
     CHECK(lightsOf(1) == Lights{0, 1, 2});  // every light is on when declared
     CHECK(lightsOf(2) == Lights{2});        // two turned off

@@ -152,8 +152,8 @@ TEST_CASE("Declare and inline declarations work on every parameter list", "[rend
     REQUIRE(scene->lights.size() == 1);
     CHECK(scene->lights[0].intensity == 2);
     REQUIRE(scene->primitives.size() == 2);
-    CHECK(scene->primitives[0].surface.Ks == 0.25);
-    const ShaderRef& wave = *scene->primitives[0].displacement;
+    CHECK(scene->primitives[0].attr().surface.Ks == 0.25);
+    const ShaderRef& wave = *scene->primitives[0].attr().displacement;
     REQUIRE(wave.params.size() == 8);
     CHECK(wave.params[0].name == "Km");
     CHECK(wave.params[0].declaration == "uniform float");
@@ -166,7 +166,7 @@ TEST_CASE("Declare and inline declarations work on every parameter list", "[rend
         "Sphere 1 -1 1 360\nWorldEnd\n",
         &messages);
     REQUIRE(scene);
-    CHECK(scene->primitives[0].displacement->params[0].declaration == "string");
+    CHECK(scene->primitives[0].attr().displacement->params[0].declaration == "string");
 
     // Declarations are checked against the values.
     CHECK(ErrorsOf("Declare \"Km\" \"uniform float\"\nWorldBegin\nDisplacement \"w\" \"Km\" [1 2]\n") ==
@@ -234,7 +234,7 @@ TEST_CASE("Illuminate turns lights on and off, and an unknown handle warns", "[r
         &messages);
     REQUIRE(scene);
     CHECK(scene->lights.size() == 1);
-    CHECK(scene->primitives.at(0).lights == std::vector<int>{});  // (tests/rib/frames_test.cpp has more)
+    CHECK(scene->primitives.at(0).attr().lights == std::vector<int>{});  // (tests/rib/frames_test.cpp has more)
     CHECK(messages == Messages{"t.rib:4: warning: 'Illuminate': no light source has the handle '2'; ignored"});
     CHECK(ErrorsOf("WorldBegin\nIlluminate \"k\"\n") ==
           Messages{"t.rib:2: error: 'Illuminate' expects a light handle and 0 or 1"});

@@ -59,7 +59,7 @@ std::string Request(unsigned code) { return Byte(0246) + Byte(code); }
 double NumberOf(const std::string& encoded) {
     const renderer::SceneDesc s = test::ParseWorld("Translate " + encoded + " 0 0\nSphere 1 -1 1 360", nullptr);
     REQUIRE(s.primitives.size() == 1);
-    return s.primitives[0].objectToWorld[3][0];
+    return s.primitives[0].attr().objectToWorld[3][0];
 }
 
 }  // namespace

@@ -38,33 +38,33 @@ TEST_CASE("rib nurbs: a NuPatch becomes one rational patch per knot span, on the
     std::vector<PrimitiveDesc> prims = Primitives("NuPatch 4 4 [0 0 0 0 1 1 1 1] 0 1 3 2 [0 0 0.5 1 1] 0 1 " + kGridP);
     REQUIRE(prims.size() == 2);
     for (const PrimitiveDesc& p : prims) {
-        CHECK(p.shape == PrimitiveDesc::Shape::RationalPatch);
-        CHECK_FALSE(p.rational.rational);
-        CHECK(p.rational.degreeU == 3);
-        CHECK(p.rational.degreeV == 1);
-        CHECK(p.line == 2);
+        CHECK(p.base.kind() == BaseSurface::Kind::RationalPatch);
+        CHECK_FALSE(p.base.rational().rational);
+        CHECK(p.base.rational().degreeU == 3);
+        CHECK(p.base.rational().degreeV == 1);
+        CHECK(p.attr().line == 2);
     }
-    CHECK(prims[0].range.v0 == 0);
-    CHECK(prims[0].range.v1 == 0.5);
-    CHECK(prims[1].range.v0 == 0.5);
+    CHECK(prims[0].base.range.v0 == 0);
+    CHECK(prims[0].base.range.v1 == 0.5);
+    CHECK(prims[1].base.range.v0 == 0.5);
     // Bezier ends interpolate the corners: (0, 0, 0) at u = v = 0 and (3, 2, 0.2) at u = v = 1.
-    affray::test::RequireVec(prims[0].rational.At(0, 0), {0, 0, 0});
-    affray::test::RequireVec(prims[1].rational.At(1, 1), {3, 2, 0.2});
+    affray::test::RequireVec(prims[0].base.rational().At(0, 0), {0, 0, 0});
+    affray::test::RequireVec(prims[1].base.rational().At(1, 1), {3, 2, 0.2});
     // The middle row is interpolated at v = 0.5 (order 2).
-    affray::test::RequireVec(prims[0].rational.At(0, 1), {0, 1, 0.3});
+    affray::test::RequireVec(prims[0].base.rational().At(0, 1), {0, 1, 0.3});
 
     // Clipped by umin umax vmin vmax: the ranges are the clipped knot parameters.
     prims = Primitives("NuPatch 4 4 [0 0 0 0 1 1 1 1] 0.25 0.75 3 2 [0 0 0.5 1 1] 0.6 1 " + kGridP);
     REQUIRE(prims.size() == 1);
-    CHECK(prims[0].range.u0 == 0.25);
-    CHECK(prims[0].range.u1 == 0.75);
-    CHECK(prims[0].range.v0 == 0.6);
+    CHECK(prims[0].base.range.u0 == 0.25);
+    CHECK(prims[0].base.range.u1 == 0.75);
+    CHECK(prims[0].base.range.v0 == 0.6);
 
     // Rational: a quarter cylinder of radius 1, placed by the current transform.
     prims = Primitives("Translate 0 0 5\n" + kQuarter);
     REQUIRE(prims.size() == 1);
-    CHECK(prims[0].rational.rational);
-    const glm::dvec3 mid = prims[0].rational.At(0.5, 0.5);
+    CHECK(prims[0].base.rational().rational);
+    const glm::dvec3 mid = prims[0].base.rational().At(0.5, 0.5);
     CHECK(std::hypot(mid.x, mid.y) == Approx(1).margin(1e-15));
     CHECK(mid.z == Approx(5.5));
 }
@@ -74,19 +74,19 @@ TEST_CASE("rib nurbs: texture coordinates of every storage class", "[rib][nurbs]
     // varying: one per segment corner, 2 x 3 here.
     std::vector<PrimitiveDesc> prims = Primitives(patch + " \"st\" [0 0  1 0  0 5  1 5  0 10  1 10]");
     REQUIRE(prims.size() == 2);
-    REQUIRE(prims[1].rational.hasST);
+    REQUIRE(prims[1].base.rational().hasST);
     double s, t;
-    RationalST<double>(prims[1].rational, 0.5, 0.5, &s, &t);
+    RationalST<double>(prims[1].base.rational(), 0.5, 0.5, &s, &t);
     CHECK(s == Approx(0.5));
     CHECK(t == Approx(7.5));
     // uniform: one per segment (1 x 2); "s" and "t" given apart.
     prims = Primitives(patch + " \"uniform float s\" [3 4] \"uniform float t\" [7 8]");
-    RationalST<double>(prims[1].rational, 0.2, 0.9, &s, &t);
+    RationalST<double>(prims[1].base.rational(), 0.2, 0.9, &s, &t);
     CHECK(s == 4);
     CHECK(t == 8);
     // vertex: interpolated like P.
     prims = Primitives(patch + " \"vertex float[2] st\" [0 0 1 0 2 0 3 0  0 1 1 1 2 1 3 1  0 2 1 2 2 2 3 2]");
-    RationalST<double>(prims[0].rational, 0.0, 1.0, &s, &t);
+    RationalST<double>(prims[0].base.rational(), 0.0, 1.0, &s, &t);
     CHECK(s == Approx(0).margin(1e-15));
     CHECK(t == Approx(1));
 }
@@ -105,16 +105,16 @@ TEST_CASE("rib nurbs: TrimCurve is attribute state that cuts the NuPatches after
     // With the sense "outside" the hole lies inside the middle span: all 9 spans stay, trimmed;
     // after AttributeEnd the next NuPatch is untrimmed.
     REQUIRE(prims.size() == 18);
-    REQUIRE(prims[4].trim);
-    CHECK_FALSE(prims[4].trim->keepInside);
-    CHECK_FALSE(prims[4].trim->KeptP(1.5, 1.5));
-    CHECK(prims[4].trim->KeptP(1.1, 1.5));
-    CHECK_FALSE(prims[9].trim);
+    REQUIRE(prims[4].base.trim);
+    CHECK_FALSE(prims[4].base.trim->keepInside);
+    CHECK_FALSE(prims[4].base.trim->KeptP(1.5, 1.5));
+    CHECK(prims[4].base.trim->KeptP(1.1, 1.5));
+    CHECK_FALSE(prims[9].base.trim);
     // With the default sense "inside" only the middle span holds kept surface.
     prims = Primitives(hole + "\n" + square);
     REQUIRE(prims.size() == 1);
-    CHECK(prims[0].range.u0 == 1);
-    CHECK(prims[0].range.v0 == 1);
+    CHECK(prims[0].base.range.u0 == 1);
+    CHECK(prims[0].base.range.v0 == 1);
     // The C binding's leading nloops is accepted; empty arrays remove the trim.
     prims = Primitives(
         "TrimCurve 1 [1] [2] [0 0 1 2 3 4 4] [0] [4] [5] [1.2 1.8 1.8 1.2 1.2] [1.2 1.2 1.8 1.8 1.2] "
@@ -131,17 +131,17 @@ TEST_CASE("rib nurbs: rational Patch and PatchMesh", "[rib][nurbs]") {
         "PatchMesh \"bilinear\" 2 \"nonperiodic\" 2 \"nonperiodic\" \"Pw\" [0 0 0 1  2 0 0 2  0 1 0 1  1 1 0 1]\n"
         "Patch \"bilinear\" \"Pw\" [0 0 0 1  1 0 0 1  0 1 0 1  1 1 0 1]");
     REQUIRE(prims.size() == 4);
-    CHECK(prims[0].shape == PrimitiveDesc::Shape::RationalPatch);
+    CHECK(prims[0].base.kind() == BaseSurface::Kind::RationalPatch);
     // The corners are the points x / w; between them the weights pull the patch.
-    affray::test::RequireVec(prims[0].rational.At(0, 0), {1, 0, 0});
-    affray::test::RequireVec(prims[0].rational.At(1, 1), {1, 1, 0});
+    affray::test::RequireVec(prims[0].base.rational().At(0, 0), {1, 0, 0});
+    affray::test::RequireVec(prims[0].base.rational().At(1, 1), {1, 1, 0});
     // At s = 0.5, t = 0: (2 * 1 * 0.5 + ...) / (2 * 0.5 + 1 * 0.5): (w0 P0 + w1 P1) / (w0 + w1).
-    affray::test::RequireVec(prims[0].rational.At(0.5, 0), {1, 0, 0});
-    CHECK(prims[1].shape == PrimitiveDesc::Shape::RationalPatch);
-    CHECK(prims[1].rational.rational);
-    CHECK(prims[2].shape == PrimitiveDesc::Shape::RationalPatch);
+    affray::test::RequireVec(prims[0].base.rational().At(0.5, 0), {1, 0, 0});
+    CHECK(prims[1].base.kind() == BaseSurface::Kind::RationalPatch);
+    CHECK(prims[1].base.rational().rational);
+    CHECK(prims[2].base.kind() == BaseSurface::Kind::RationalPatch);
     // Every w = 1: the bilinear fast path.
-    CHECK(prims[3].shape == PrimitiveDesc::Shape::BilinearPatch);
+    CHECK(prims[3].base.kind() == BaseSurface::Kind::BilinearPatch);
 }
 
 TEST_CASE("rib nurbs: bad knots, orders, counts, ranges and weights are errors at their line", "[rib][nurbs]") {

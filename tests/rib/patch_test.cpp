@@ -74,23 +74,25 @@ TEST_CASE("rib patches: Patch \"bicubic\" with every basis, Basis saved by attri
         "]");
     REQUIRE(prims.size() == 6);
     for (const PrimitiveDesc& p : prims) {
-        CHECK(p.shape == PrimitiveDesc::Shape::BicubicPatch);
-        CHECK(p.range.unitP());
+        CHECK(p.base.kind() == BaseSurface::Kind::BicubicPatch);
+        CHECK(p.base.range.unitP());
     }
     const CubicBasis bezier = CubicBasis::Bezier();
     auto named = [](const char* name) { return *CubicBasis::Named(name); };
-    CheckSame(prims[0].bicubic, BicubicPatch::FromControlPoints(points, bezier, bezier,
-                                                                glm::translate(glm::dmat4(1.0), glm::dvec3(1, 2, 3))));
+    CheckSame(
+        prims[0].base.bicubic(),
+        BicubicPatch::FromControlPoints(points, bezier, bezier, glm::translate(glm::dmat4(1.0), glm::dvec3(1, 2, 3))));
     // A bezier patch passes through its corner points.
-    CHECK(prims[0].bicubic.At(0, 0) == g[0] + glm::dvec3(1, 2, 3));
-    CHECK(glm::length(prims[0].bicubic.At(1, 1) - (g[15] + glm::dvec3(1, 2, 3))) < 1e-12);
-    CheckSame(prims[1].bicubic,
+    CHECK(prims[0].base.bicubic().At(0, 0) == g[0] + glm::dvec3(1, 2, 3));
+    CHECK(glm::length(prims[0].base.bicubic().At(1, 1) - (g[15] + glm::dvec3(1, 2, 3))) < 1e-12);
+    CheckSame(prims[1].base.bicubic(),
               BicubicPatch::FromControlPoints(points, named("b-spline"), named("catmull-rom"), glm::dmat4(1.0)));
-    CheckSame(prims[2].bicubic,
+    CheckSame(prims[2].base.bicubic(),
               BicubicPatch::FromControlPoints(points, named("hermite"), named("power"), glm::dmat4(1.0)));
-    CheckSame(prims[3].bicubic, BicubicPatch::FromControlPoints(points, bezier, bezier, glm::dmat4(1.0)));
-    CheckSame(prims[4].bicubic, BicubicPatch::FromControlPoints(points, bezier, named("b-spline"), glm::dmat4(1.0)));
-    CheckSame(prims[5].bicubic, prims[4].bicubic);  // Pw with w = 1 is P
+    CheckSame(prims[3].base.bicubic(), BicubicPatch::FromControlPoints(points, bezier, bezier, glm::dmat4(1.0)));
+    CheckSame(prims[4].base.bicubic(),
+              BicubicPatch::FromControlPoints(points, bezier, named("b-spline"), glm::dmat4(1.0)));
+    CheckSame(prims[5].base.bicubic(), prims[4].base.bicubic());  // Pw with w = 1 is P
 }
 
 TEST_CASE("rib patches: PatchMesh is split into its patches, each on its part of the mesh's (u,v)", "[rib][bicubic]") {
@@ -101,13 +103,13 @@ TEST_CASE("rib patches: PatchMesh is split into its patches, each on its part of
         REQUIRE(prims.size() == 2);
         const CubicBasis bezier = CubicBasis::Bezier();
         for (int i = 0; i < 2; ++i) {
-            CheckSame(prims[i].bicubic,
+            CheckSame(prims[i].base.bicubic(),
                       BicubicPatch::FromControlPoints(Gather(g, 7, 4, 3 * i, 0), bezier, bezier, glm::dmat4(1.0)));
-            CHECK(prims[i].range.u0 == 0.5 * i);
-            CHECK(prims[i].range.u1 == 0.5 * (i + 1));
-            CHECK(prims[i].range.v0 == 0);
-            CHECK(prims[i].range.v1 == 1);
-            CHECK(prims[i].line == 2);
+            CHECK(prims[i].base.range.u0 == 0.5 * i);
+            CHECK(prims[i].base.range.u1 == 0.5 * (i + 1));
+            CHECK(prims[i].base.range.v0 == 0);
+            CHECK(prims[i].base.range.v1 == 1);
+            CHECK(prims[i].attr().line == 2);
         }
     }
     SECTION("bicubic b-spline, periodic in u and v: nu / 1 x nv / 1 patches whose points wrap") {
@@ -122,13 +124,13 @@ TEST_CASE("rib patches: PatchMesh is split into its patches, each on its part of
             for (int i = 0; i < 5; ++i) {
                 INFO("patch " << i << ", " << j);
                 const PrimitiveDesc& p = prims[size_t(j) * 5 + size_t(i)];
-                CheckSame(p.bicubic,
+                CheckSame(p.base.bicubic(),
                           BicubicPatch::FromControlPoints(Gather(g, 5, 4, i, j), bspline, bspline, glm::dmat4(1.0)));
-                CHECK(p.range.u0 == Approx(i / 5.0));
-                CHECK(p.range.v1 == Approx((j + 1) / 4.0));
+                CHECK(p.base.range.u0 == Approx(i / 5.0));
+                CHECK(p.base.range.v1 == Approx((j + 1) / 4.0));
             }
         // Periodic b-spline patches meet: patch 4's right edge is patch 0's left edge.
-        CHECK(glm::length(prims[4].bicubic.At(1, 0.3) - prims[0].bicubic.At(0, 0.3)) < 1e-12);
+        CHECK(glm::length(prims[4].base.bicubic().At(1, 0.3) - prims[0].base.bicubic().At(0, 0.3)) < 1e-12);
     }
     SECTION("catmull-rom, periodic in u only; hermite with step 2") {
         const std::vector<glm::dvec3> g = Grid(6, 4);
@@ -150,15 +152,15 @@ TEST_CASE("rib patches: PatchMesh is split into its patches, each on its part of
         const std::vector<PrimitiveDesc> prims =
             Primitives("Translate 0 0 1\nPatchMesh \"bilinear\" 3 \"periodic\" 2 \"nonperiodic\" " + PArray(g));
         REQUIRE(prims.size() == 3);
-        for (const PrimitiveDesc& p : prims) CHECK(p.shape == PrimitiveDesc::Shape::BilinearPatch);
+        for (const PrimitiveDesc& p : prims) CHECK(p.base.kind() == BaseSurface::Kind::BilinearPatch);
         const glm::dvec3 up(0, 0, 1);
         // The last patch wraps from column 2 back to column 0.
-        CHECK(prims[2].corners[0] == g[2] + up);
-        CHECK(prims[2].corners[1] == g[0] + up);
-        CHECK(prims[2].corners[2] == g[5] + up);
-        CHECK(prims[2].corners[3] == g[3] + up);
-        CHECK(prims[1].range.u0 == Approx(1 / 3.0));
-        CHECK(prims[1].range.u1 == Approx(2 / 3.0));
+        CHECK(prims[2].base.patch().corners[0] == g[2] + up);
+        CHECK(prims[2].base.patch().corners[1] == g[0] + up);
+        CHECK(prims[2].base.patch().corners[2] == g[5] + up);
+        CHECK(prims[2].base.patch().corners[3] == g[3] + up);
+        CHECK(prims[1].base.range.u0 == Approx(1 / 3.0));
+        CHECK(prims[1].base.range.u1 == Approx(2 / 3.0));
         CHECK(Primitives("PatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" " + PArray(g)).size() == 2);
     }
 }

@@ -15,10 +15,10 @@ using namespace affray::test;
 
 namespace {
 
-const MeshPiece& PieceOf(const SceneDesc& scene, size_t i) {
+MeshPiece PieceOf(const SceneDesc& scene, size_t i) {
     REQUIRE(i < scene.primitives.size());
-    REQUIRE(scene.primitives[i].shape == PrimitiveDesc::Shape::MeshPiece);
-    return scene.primitives[i].piece;
+    REQUIRE(scene.primitives[i].base.kind() == BaseSurface::Kind::MeshPiece);
+    return scene.primitives[i].base.piece();
 }
 
 }  // namespace
@@ -36,7 +36,7 @@ TEST_CASE("rib polygons: Polygon, GeneralPolygon, PointsPolygons, PointsGeneralP
         affray::test::RequireVec(p.P[2], {0, 1, 2});
         affray::test::RequireVec(p.P[3], {1, 1, 2});
         affray::test::RequireVec(p.faceNormal, {0, 0, 1});
-        CHECK(s.primitives[0].line == 3);
+        CHECK(s.primitives[0].attr().line == 3);
     }
     SECTION("GeneralPolygon with a hole") {
         const SceneDesc s =

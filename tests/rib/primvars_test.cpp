@@ -9,6 +9,7 @@
 #include "tests/rib/rib_test_util.h"
 
 using namespace affray;
+using renderer::BaseSurface;
 using renderer::PrimitiveDesc;
 
 namespace {
@@ -26,10 +27,10 @@ void RequireNear(const glm::dvec3& got, const glm::dvec3& want, double tolerance
 
 /// The point of a primitive's surface at (u, v) of its own parameters (patches only).
 glm::dvec3 SurfaceAt(const PrimitiveDesc& p, double u, double v) {
-    switch (p.shape) {
-        case PrimitiveDesc::Shape::BicubicPatch: return p.bicubic.At(u, v);
-        case PrimitiveDesc::Shape::RationalPatch: return p.rational.At(u, v);
-        case PrimitiveDesc::Shape::SubdivPatch: return p.subdiv.geometry.At(u, v);
+    switch (p.base.kind()) {
+        case BaseSurface::Kind::BicubicPatch: return p.base.bicubic().At(u, v);
+        case BaseSurface::Kind::RationalPatch: return p.base.rational().At(u, v);
+        case BaseSurface::Kind::SubdivPatch: return p.base.subdiv().geometry.At(u, v);
         default: FAIL("not a patch"); return {};
     }
 }
@@ -104,7 +105,7 @@ TEST_CASE("primvars: Cs and Os of every storage class on a subdivision mesh", "[
         REQUIRE(u.primitives.size() == 96);
         for (const PrimitiveDesc& p : u.primitives) {
             CHECK_FALSE(p.colorField);
-            RequireNear(p.color, glm::dvec3(0.2 * p.subdiv.controlFace, 0, 0));
+            RequireNear(p.color, glm::dvec3(0.2 * p.base.subdiv().controlFace, 0, 0));
         }
     }
     SECTION("vertex: refined and evaluated as P is, so Cs = P gives the limit surface") {
@@ -130,7 +131,7 @@ TEST_CASE("primvars: Cs and Os of every storage class on a subdivision mesh", "[
             for (int k = 0; k < 4; ++k) values += " " + std::to_string(f / 5.0) + " 0 0";
         const renderer::SceneDesc s = test::ParseWorld(cube + "\"facevarying color Cs\" [" + values + "]");
         for (const PrimitiveDesc& p : s.primitives)
-            RequireNear(ColorAt(p, 0.4, 0.8), glm::dvec3(p.subdiv.controlFace / 5.0, 0, 0), 1e-12);
+            RequireNear(ColorAt(p, 0.4, 0.8), glm::dvec3(p.base.subdiv().controlFace / 5.0, 0, 0), 1e-12);
     }
     SECTION("bad counts and declarations are errors") {
         CHECK(test::WorldError(cube + "\"vertex color Cs\" [1 0 0  0 1 0]") ==
@@ -174,7 +175,7 @@ TEST_CASE("primvars: Cs on patches, patch meshes and quadrics", "[rib][primvar]"
             cs += " " + std::to_string(i % 4) + " " + std::to_string(i / 4) + " " + std::to_string(0.1 * (i % 5));
         const PrimitiveDesc r =
             test::ParseWorld("Patch \"bicubic\" \"Pw\" " + pw + "] \"vertex color Cs\" " + cs + "]").primitives[0];
-        REQUIRE(r.shape == PrimitiveDesc::Shape::RationalPatch);
+        REQUIRE(r.base.kind() == BaseSurface::Kind::RationalPatch);
         for (double u : {0.0, 0.4, 1.0})
             for (double v : {0.2, 0.7}) RequireNear(ColorAt(r, u, v), SurfaceAt(r, u, v), 1e-9);
     }

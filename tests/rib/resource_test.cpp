@@ -39,17 +39,17 @@ TEST_CASE("rib: Resource saves the graphics state and restores the subset asked 
     REQUIRE(scene.primitives.size() == 4);
     const auto& p = scene.primitives;
     CHECK(p[0].color == glm::dvec3(0, 1, 0));
-    CHECK(p[0].twoSided);
-    CHECK(p[0].objectToWorld[3] == glm::dvec4(1, 2, 0, 1));
+    CHECK(p[0].attr().twoSided);
+    CHECK(p[0].attr().objectToWorld[3] == glm::dvec4(1, 2, 0, 1));
     CHECK(p[1].color == glm::dvec3(1, 0, 0));
-    CHECK(p[1].twoSided);
-    CHECK(p[1].objectToWorld[3] == glm::dvec4(1, 2, 0, 1));
+    CHECK(p[1].attr().twoSided);
+    CHECK(p[1].attr().objectToWorld[3] == glm::dvec4(1, 2, 0, 1));
     CHECK(p[2].color == glm::dvec3(1, 0, 0));
-    CHECK(!p[2].twoSided);
-    CHECK(p[2].objectToWorld[3] == glm::dvec4(1, 0, 0, 1));
+    CHECK(!p[2].attr().twoSided);
+    CHECK(p[2].attr().objectToWorld[3] == glm::dvec4(1, 0, 0, 1));
     CHECK(p[3].color == glm::dvec3(1, 0, 0));
-    CHECK(!p[3].twoSided);
-    CHECK(p[3].objectToWorld[3] == glm::dvec4(1, 0, 0, 1));
+    CHECK(!p[3].attr().twoSided);
+    CHECK(p[3].attr().objectToWorld[3] == glm::dvec4(1, 0, 0, 1));
 }
 
 TEST_CASE("rib: Resource restores the lights that were on, outside the attribute stack", "[rib]") {
@@ -62,9 +62,9 @@ TEST_CASE("rib: Resource restores the lights that were on, outside the attribute
         "Resource \"lights\" \"attributes\" \"string operation\" \"restore\" \"string subset\" \"shading\"\n" +
         kSphere);
     REQUIRE(scene.primitives.size() == 3);
-    CHECK(scene.primitives[0].lights == std::optional<std::vector<int>>{{0}});
-    CHECK(scene.primitives[1].lights == std::optional<std::vector<int>>{{1}});
-    CHECK(scene.primitives[2].lights == std::optional<std::vector<int>>{{0, 1}});
+    CHECK(scene.primitives[0].attr().lights == std::optional<std::vector<int>>{{0}});
+    CHECK(scene.primitives[1].attr().lights == std::optional<std::vector<int>>{{1}});
+    CHECK(scene.primitives[2].attr().lights == std::optional<std::vector<int>>{{0, 1}});
 }
 
 TEST_CASE("rib: ResourceBegin and ResourceEnd scope the names saved", "[rib]") {

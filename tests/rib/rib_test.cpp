@@ -169,38 +169,38 @@ TEST_CASE("A full RIB scene parses into world space", "[renderer][rib]") {
         REQUIRE(scene->primitives.size() == 3);
         const PrimitiveDesc& p = scene->primitives[0];
         // Scale 2, then Rotate 90 about z (x -> y), then Translate (1,0,0).
-        RequireVec(p.corners[0], {1, 0, 0});
-        RequireVec(p.corners[1], {1, 2, 0});
-        RequireVec(p.corners[2], {-1, 0, 0});
-        RequireVec(p.corners[3], {-1, 2, 0});
-        CHECK(p.line == 24);
+        RequireVec(p.base.patch().corners[0], {1, 0, 0});
+        RequireVec(p.base.patch().corners[1], {1, 2, 0});
+        RequireVec(p.base.patch().corners[2], {-1, 0, 0});
+        RequireVec(p.base.patch().corners[3], {-1, 2, 0});
+        CHECK(p.attr().line == 24);
     }
 
     SECTION("AttributeBegin/End scopes the transform, color, surface and displacement") {
         const PrimitiveDesc& inside = scene->primitives[0];
         RequireVec(inside.color, {0, 1, 0});
-        CHECK(inside.surface.model == SurfaceDesc::Model::Matte);
-        CHECK(inside.surface.Ka == 1);
-        CHECK(inside.surface.Kd == 0.25);
-        REQUIRE(inside.displacement);
+        CHECK(inside.attr().surface.model == SurfaceDesc::Model::Matte);
+        CHECK(inside.attr().surface.Ka == 1);
+        CHECK(inside.attr().surface.Kd == 0.25);
+        REQUIRE(inside.attr().displacement);
 
         const PrimitiveDesc& after = scene->primitives[1];
-        RequireVec(after.corners[3], {1, 1, 0});
+        RequireVec(after.base.patch().corners[3], {1, 1, 0});
         RequireVec(after.color, {1, 0, 0});
-        CHECK(after.surface.model == SurfaceDesc::Model::Plastic);
-        CHECK(after.surface.Ks == Approx(0.7));
-        CHECK(after.surface.roughness == Approx(0.2));
-        CHECK(after.surface.Kd == 0.5);
-        CHECK_FALSE(after.displacement);
+        CHECK(after.attr().surface.model == SurfaceDesc::Model::Plastic);
+        CHECK(after.attr().surface.Ks == Approx(0.7));
+        CHECK(after.attr().surface.roughness == Approx(0.2));
+        CHECK(after.attr().surface.Kd == 0.5);
+        CHECK_FALSE(after.attr().displacement);
     }
 
     SECTION("ConcatTransform takes RIB's row-vector matrix order") {
-        RequireVec(scene->primitives[2].corners[0], {3, 4, 5});
-        RequireVec(scene->primitives[2].corners[3], {4, 5, 5});
+        RequireVec(scene->primitives[2].base.patch().corners[0], {3, 4, 5});
+        RequireVec(scene->primitives[2].base.patch().corners[3], {4, 5, 5});
     }
 
     SECTION("displacement parameters keep their raw values and drop inline declarations") {
-        const ShaderRef& d = *scene->primitives[0].displacement;
+        const ShaderRef& d = *scene->primitives[0].attr().displacement;
         CHECK(d.name == "wave");
         CHECK(d.line == 23);
         REQUIRE(d.params.size() == 3);
@@ -223,7 +223,7 @@ TEST_CASE("RIB transforms follow the RenderMan conventions", "[renderer][rib]") 
             "t.rib", &error);
         INFO(error);
         REQUIRE(scene);
-        return scene->primitives.at(0).corners[0];
+        return scene->primitives.at(0).base.patch().corners[0];
     };
     RequireVec(corner("Translate 1 2 3"), {2, 2, 3});
     RequireVec(corner("Rotate 90 0 0 1"), {0, 1, 0});
@@ -258,9 +258,9 @@ TEST_CASE("RIB defaults and variants", "[renderer][rib]") {
         "t.rib", &error);
     INFO(error);
     REQUIRE(scene);
-    REQUIRE(scene->primitives[0].shape == PrimitiveDesc::Shape::RationalPatch);
-    RequireVec(scene->primitives[0].rational.At(0, 0), {1, 0, 0});
-    RequireVec(scene->primitives[1].corners[3], {1, 1, 4});
+    REQUIRE(scene->primitives[0].base.kind() == BaseSurface::Kind::RationalPatch);
+    RequireVec(scene->primitives[0].base.rational().At(0, 0), {1, 0, 0});
+    RequireVec(scene->primitives[1].base.patch().corners[3], {1, 1, 4});
 }
 
 TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors", "[renderer][rib]") {
@@ -724,9 +724,9 @@ TEST_CASE("RIB motion blocks take their first sample, with one warning", "[rende
     CHECK(warnings[1] ==
           "t.rib:6: warning: motion blur is not rendered: each motion block takes its first sample (time 0.25)");
     REQUIRE(scene->primitives.size() == 2);
-    CHECK(scene->primitives[0].quadric.radius == 1);
-    RequireVec(Apply(scene->primitives[0].objectToWorld, {0, 0, 0}), {1, 0, 0});
-    CHECK(scene->primitives[1].surface.model == SurfaceDesc::Model::Matte);
+    CHECK(scene->primitives[0].base.quadric().quadric.radius == 1);
+    RequireVec(Apply(scene->primitives[0].attr().objectToWorld, {0, 0, 0}), {1, 0, 0});
+    CHECK(scene->primitives[1].attr().surface.model == SurfaceDesc::Model::Matte);
 
     CHECK(ErrorOf("WorldBegin\nMotionBegin [0 1]\nTranslate 1 0 0\nRotate 1 0 0 1\nMotionEnd\nWorldEnd\n") ==
           "t.rib:4: error: a motion block holds one kind of request, one per time: 'Rotate' after 'Translate'");
@@ -793,15 +793,15 @@ TEST_CASE("RIB ScopedCoordinateSystem names a space until the end of its block",
     REQUIRE(scene.coordinateSystems.size() == 1);
     CHECK(scene.coordinateSystems.at("paint") == glm::dmat4(1.0));
     // The inner block sees both scoped spaces; the outer one only its own; after it, none.
-    REQUIRE(scene.primitives[0].scopedSpaces);
-    CHECK(scene.primitives[0].scopedSpaces->size() == 2);
-    RequireVec(Apply(scene.primitives[0].scopedSpaces->at("paint"), {0, 0, 0}), {1, 2, 3});
-    RequireVec(Apply(scene.primitives[0].scopedSpaces->at("inner"), {0, 0, 0}), {1, 2, 4});
-    REQUIRE(scene.primitives[1].scopedSpaces);
-    CHECK(scene.primitives[1].scopedSpaces->size() == 1);
+    REQUIRE(scene.primitives[0].attr().scopedSpaces);
+    CHECK(scene.primitives[0].attr().scopedSpaces->size() == 2);
+    RequireVec(Apply(scene.primitives[0].attr().scopedSpaces->at("paint"), {0, 0, 0}), {1, 2, 3});
+    RequireVec(Apply(scene.primitives[0].attr().scopedSpaces->at("inner"), {0, 0, 0}), {1, 2, 4});
+    REQUIRE(scene.primitives[1].attr().scopedSpaces);
+    CHECK(scene.primitives[1].attr().scopedSpaces->size() == 1);
     // CoordSysTransform finds the scoped space first.
-    RequireVec(Apply(scene.primitives[2].objectToWorld, {0, 0, 0}), {1, 2, 3});
-    CHECK_FALSE(scene.primitives[3].scopedSpaces);
+    RequireVec(Apply(scene.primitives[2].attr().objectToWorld, {0, 0, 0}), {1, 2, 3});
+    CHECK_FALSE(scene.primitives[3].attr().scopedSpaces);
     CHECK(ErrorOf("WorldBegin\nScopedCoordinateSystem \"shader\"\nWorldEnd\n") ==
           "t.rib:2: error: 'ScopedCoordinateSystem' cannot redefine the standard space 'shader'");
 }
@@ -820,11 +820,11 @@ TEST_CASE("RIB CoordSysTransform makes a named space current", "[renderer][rib]"
         "  CoordSysTransform \"eye1\"\n  Sphere 1 -1 1 360\n"
         "WorldEnd\n");
     REQUIRE(scene.primitives.size() == 5);
-    CHECK(scene.primitives[0].objectToWorld == glm::translate(glm::dmat4(1.0), glm::dvec3(1, 2, 3)));
-    CHECK(scene.primitives[1].objectToWorld == glm::dmat4(1.0));
-    RequireVec(Apply(scene.primitives[2].objectToWorld, {0, 0, 0}), {0, 0, -5});  // the eye
-    RequireVec(Apply(scene.primitives[3].objectToWorld, {0, 0, 0}), {0, 0, -4});  // unchanged + 1
-    RequireVec(Apply(scene.primitives[4].objectToWorld, {0, 0, 0}), {1, 0, -5});  // camera (1, 0, 0)
+    CHECK(scene.primitives[0].attr().objectToWorld == glm::translate(glm::dmat4(1.0), glm::dvec3(1, 2, 3)));
+    CHECK(scene.primitives[1].attr().objectToWorld == glm::dmat4(1.0));
+    RequireVec(Apply(scene.primitives[2].attr().objectToWorld, {0, 0, 0}), {0, 0, -5});  // the eye
+    RequireVec(Apply(scene.primitives[3].attr().objectToWorld, {0, 0, 0}), {0, 0, -4});  // unchanged + 1
+    RequireVec(Apply(scene.primitives[4].attr().objectToWorld, {0, 0, 0}), {1, 0, -5});  // camera (1, 0, 0)
     RequireVec(Apply(scene.coordinateSystems.at("eye1again"), {0, 0, 0}), {1, 0, -5});
 
     CHECK(ErrorOf("WorldBegin\nCoordSysTransform \"nowhere\"\nWorldEnd\n") ==
@@ -856,17 +856,17 @@ TEST_CASE("RIB Attribute warns once, Opacity and visibility are attributes", "[r
 
 TEST_CASE("RIB constant and metal surfaces", "[renderer][rib]") {
     const std::string sphere = "\nSphere 1 -1 1 360";
-    SurfaceDesc s = OnlyPrimitive("Surface \"constant\"" + sphere).surface;
+    SurfaceDesc s = OnlyPrimitive("Surface \"constant\"" + sphere).attr().surface;
     CHECK(s.model == SurfaceDesc::Model::Constant);
 
-    s = OnlyPrimitive("Surface \"metal\"" + sphere).surface;
+    s = OnlyPrimitive("Surface \"metal\"" + sphere).attr().surface;
     CHECK(s.model == SurfaceDesc::Model::Metal);
     CHECK(s.Ka == 1);
     CHECK(s.Ks == 1);
     CHECK(s.Kd == 0);
     CHECK(s.roughness == 0.1);
 
-    s = OnlyPrimitive("Surface \"metal\" \"Ka\" 0.5 \"Ks\" [0.25] \"roughness\" 0.3" + sphere).surface;
+    s = OnlyPrimitive("Surface \"metal\" \"Ka\" 0.5 \"Ks\" [0.25] \"roughness\" 0.3" + sphere).attr().surface;
     CHECK(s.Ka == 0.5);
     CHECK(s.Ks == 0.25);
     CHECK(s.roughness == 0.3);
@@ -933,7 +933,7 @@ TEST_CASE("RIB spotlight", "[renderer][rib]") {
 
 TEST_CASE("RIB quadrics take their arguments bare or in arrays", "[renderer][rib]") {
     auto both = [](const std::string& bare, const std::string& array) {
-        Quadric a = OnlyPrimitive(bare).quadric, b = OnlyPrimitive(array).quadric;
+        Quadric a = OnlyPrimitive(bare).base.quadric().quadric, b = OnlyPrimitive(array).base.quadric().quadric;
         CHECK(ToString(a) == ToString(b));
         CHECK(a.kind == b.kind);
         return a;
@@ -973,10 +973,10 @@ TEST_CASE("RIB quadrics take their arguments bare or in arrays", "[renderer][rib
     CHECK(q.thetamax == 300);
 
     // Grouped any way: a point per array (as exporters write a hyperboloid), or one-element arrays.
-    CHECK(ToString(OnlyPrimitive("Hyperboloid [1 0 -1] [0 1 1] 360").quadric) ==
-          ToString(OnlyPrimitive("Hyperboloid 1 0 -1 0 1 1 360").quadric));
-    CHECK(ToString(OnlyPrimitive("Sphere [2] -1 [1.5] [270]").quadric) ==
-          ToString(OnlyPrimitive("Sphere 2 -1 1.5 270").quadric));
+    CHECK(ToString(OnlyPrimitive("Hyperboloid [1 0 -1] [0 1 1] 360").base.quadric().quadric) ==
+          ToString(OnlyPrimitive("Hyperboloid 1 0 -1 0 1 1 360").base.quadric().quadric));
+    CHECK(ToString(OnlyPrimitive("Sphere [2] -1 [1.5] [270]").base.quadric().quadric) ==
+          ToString(OnlyPrimitive("Sphere 2 -1 1.5 270").base.quadric().quadric));
     q = both("Hyperboloid 1 0 -1 0 1 1 360", "Hyperboloid [1 0 -1 0 1 1 360]");
     CHECK(q.kind == Quadric::Kind::Hyperboloid);
     CHECK(q.point1[0] == 1);
@@ -1004,16 +1004,16 @@ TEST_CASE("RIB quadrics take the graphics state", "[renderer][rib]") {
         &warnings);
     REQUIRE(scene.primitives.size() == 2);
     const PrimitiveDesc& p = scene.primitives[0];
-    CHECK(p.shape == PrimitiveDesc::Shape::Quadric);
-    CHECK(p.line == 6);
+    CHECK(p.base.kind() == BaseSurface::Kind::Quadric);
+    CHECK(p.attr().line == 6);
     RequireVec(p.color, {0, 1, 0});  // one colour for a varying "Cs": the sphere's
-    CHECK(p.surface.model == SurfaceDesc::Model::Matte);
-    REQUIRE(p.displacement);
-    CHECK(p.displacement->name == "bumps");
-    RequireVec(Apply(p.objectToWorld, {0, 0, 0}), {0, 0, 3});
-    CHECK(p.twoSided);
-    CHECK_FALSE(p.flipNormal);
-    CHECK(scene.primitives[1].quadric.kind == Quadric::Kind::Disk);
+    CHECK(p.attr().surface.model == SurfaceDesc::Model::Matte);
+    REQUIRE(p.attr().displacement);
+    CHECK(p.attr().displacement->name == "bumps");
+    RequireVec(Apply(p.attr().objectToWorld, {0, 0, 0}), {0, 0, 3});
+    CHECK(p.attr().twoSided);
+    CHECK_FALSE(p.base.flipNormal);
+    CHECK(scene.primitives[1].base.quadric().quadric.kind == Quadric::Kind::Disk);
     RequireVec(scene.primitives[1].color, {0, 0, 1});
     REQUIRE(warnings.size() == 3);
     CHECK(warnings[0] ==
@@ -1076,7 +1076,7 @@ TEST_CASE("RIB quadric arguments give exact errors", "[renderer][rib]") {
 TEST_CASE("RIB Sides and orientation set twoSided and flipNormal", "[renderer][rib]") {
     const std::string sphere = "\nSphere 1 -1 1 360";
     auto flip = [&](const std::string& body, const std::string& options = "") {
-        return OnlyPrimitive(body + sphere, options).flipNormal;
+        return OnlyPrimitive(body + sphere, options).base.flipNormal;
     };
     // flipNormal = (det objectToWorld < 0) XOR insideOut (scene.h).
     CHECK_FALSE(flip(""));              // normals point out
@@ -1101,17 +1101,17 @@ TEST_CASE("RIB Sides and orientation set twoSided and flipNormal", "[renderer][r
     CHECK_FALSE(flip("AttributeBegin ReverseOrientation AttributeEnd"));
     CHECK(flip("TransformBegin ReverseOrientation TransformEnd"));
 
-    CHECK(OnlyPrimitive("Sides 2" + sphere).twoSided);
-    CHECK_FALSE(OnlyPrimitive("Sides 1" + sphere).twoSided);
-    CHECK_FALSE(OnlyPrimitive("Sides [1]" + sphere).twoSided);
-    CHECK(OnlyPrimitive("AttributeBegin Sides 1 AttributeEnd" + sphere).twoSided);
-    CHECK_FALSE(OnlyPrimitive(sphere, "Sides 1\n").twoSided);  // attributes carry into the world
+    CHECK(OnlyPrimitive("Sides 2" + sphere).attr().twoSided);
+    CHECK_FALSE(OnlyPrimitive("Sides 1" + sphere).attr().twoSided);
+    CHECK_FALSE(OnlyPrimitive("Sides [1]" + sphere).attr().twoSided);
+    CHECK(OnlyPrimitive("AttributeBegin Sides 1 AttributeEnd" + sphere).attr().twoSided);
+    CHECK_FALSE(OnlyPrimitive(sphere, "Sides 1\n").attr().twoSided);  // attributes carry into the world
 
     // Patches get them too.
     PrimitiveDesc patch =
         OnlyPrimitive("Sides 1 ReverseOrientation\nPatch \"bilinear\" \"P\" [0 0 0 1 0 0 0 1 0 1 1 0]");
-    CHECK_FALSE(patch.twoSided);
-    CHECK(patch.flipNormal);
+    CHECK_FALSE(patch.attr().twoSided);
+    CHECK(patch.base.flipNormal);
 
     CHECK(ErrorOf("WorldBegin\nSides 3\nWorldEnd\n") == "t.rib:2: error: 'Sides' must be 1 or 2, got 3");
     CHECK(ErrorOf("WorldBegin\nOrientation \"up\"\nWorldEnd\n") ==
@@ -1150,13 +1150,13 @@ TEST_CASE("A RIB scene with quadrics, options and a mirrored camera", "[renderer
     for (size_t i = 0; i < 7; ++i) {
         const PrimitiveDesc& p = scene.primitives[i];
         INFO(ToString(p));
-        CHECK(p.quadric.kind == kinds[i]);
-        CHECK(p.line == static_cast<int>(i < 3 ? 22 + i : 25 + i));
+        CHECK(p.base.quadric().quadric.kind == kinds[i]);
+        CHECK(p.attr().line == static_cast<int>(i < 3 ? 22 + i : 25 + i));
         // Inside the attribute block: one-sided and "inside"; after it ReverseOrientation: all
         // inside out, whatever the mirrored camera.
-        CHECK(p.twoSided == (i >= 3));
-        CHECK(p.flipNormal);
-        CHECK(p.surface.model == (i < 3 ? SurfaceDesc::Model::Metal : SurfaceDesc::Model::Constant));
+        CHECK(p.attr().twoSided == (i >= 3));
+        CHECK(p.base.flipNormal);
+        CHECK(p.attr().surface.model == (i < 3 ? SurfaceDesc::Model::Metal : SurfaceDesc::Model::Constant));
     }
 }
 

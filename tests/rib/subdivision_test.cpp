@@ -26,10 +26,10 @@ TEST_CASE("rib subdivision: SubdivisionMesh makes patches with its tags", "[rib]
                                        " " + kCubeP + "\n");
         REQUIRE(s.primitives.size() == 96u);
         for (const PrimitiveDesc& p : s.primitives) {
-            REQUIRE(p.shape == PrimitiveDesc::Shape::SubdivPatch);
-            const glm::dvec3 c = p.subdiv.geometry.At(0.5, 0.5);
+            REQUIRE(p.base.kind() == BaseSurface::Kind::SubdivPatch);
+            const glm::dvec3 c = p.base.subdiv().geometry.At(0.5, 0.5);
             CHECK(std::fabs(c.z - 5) < 1);
-            CHECK(p.line == 3);
+            CHECK(p.attr().line == 3);
         }
     }
     SECTION("tags: a hole, a crease, a corner, an unknown tag (warned about)") {
@@ -56,9 +56,9 @@ TEST_CASE("rib subdivision: SubdivisionMesh makes patches with its tags", "[rib]
                 ParseWorld(std::string("SubdivisionMesh \"catmull-clark\" ") + kCube + " " + kCubeP + " " + st + "\n");
             REQUIRE(!s.primitives.empty());
             for (const PrimitiveDesc& p : s.primitives) {
-                CHECK(p.subdiv.hasST);
+                CHECK(p.base.subdiv().hasST);
                 double sv, tv;
-                SubdivPatchST<double>(p.subdiv, 0.5, 0.5, &sv, &tv);
+                SubdivPatchST<double>(p.base.subdiv(), 0.5, 0.5, &sv, &tv);
                 CHECK(sv >= -1e-9);
                 CHECK(sv <= 1 + 1e-9);
                 CHECK(tv >= -1e-9);
@@ -83,7 +83,8 @@ TEST_CASE("rib subdivision: HierarchicalSubdivisionMesh is the same mesh with st
     REQUIRE(h.primitives.size() == plain.primitives.size());
     CHECK(h.primitives.size() == 80u);
     for (size_t i = 0; i < h.primitives.size(); ++i)
-        CHECK(h.primitives[i].subdiv.geometry.At(0.3, 0.6) == plain.primitives[i].subdiv.geometry.At(0.3, 0.6));
+        CHECK(h.primitives[i].base.subdiv().geometry.At(0.3, 0.6) ==
+              plain.primitives[i].base.subdiv().geometry.At(0.3, 0.6));
     REQUIRE(report.all().size() == 1);
     CHECK(ShortDiagnostic(report.all()[0]) ==
           "t.rib:2: warning: 'HierarchicalSubdivisionMesh' tag 'vertexedit' is not supported; ignored");

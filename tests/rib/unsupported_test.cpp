@@ -71,7 +71,7 @@ TEST_CASE("rib: a world inside TransformBegin or AttributeBegin starts from the 
         "Translate 1 0 0\nTransformBegin\n" + camera + "WorldBegin\n" + kPatch + "WorldEnd\nTransformEnd\n", &messages);
     CHECK(scene.camera.worldToCamera[3] == glm::dvec4(1, 0, 5, 1));  // Translate, then the first sample
     REQUIRE(scene.primitives.size() == 1);
-    CHECK(scene.primitives[0].corners[3] == glm::dvec3(1, 1, 0));  // world space starts at identity
+    CHECK(scene.primitives[0].base.patch().corners[3] == glm::dvec3(1, 1, 0));  // world space starts at identity
     CHECK(messages == Messages{
                           "t.rib:3: warning: motion blur is not rendered: each motion block takes its first sample "
                           "(time 0)",
@@ -117,7 +117,7 @@ TEST_CASE("rib: Skew shears along the second axis, turning the first by the angl
     SceneDesc scene = Scene(InWorld("Skew 45 0 1 0 1 0 0\n" + kPatch), &messages);
     CHECK(messages.empty());
     REQUIRE(scene.primitives.size() == 1);
-    const auto& corners = scene.primitives[0].corners;
+    const auto& corners = scene.primitives[0].base.patch().corners;
     CHECK(corners[1] == glm::dvec3(1, 0, 0));  // points on the second axis do not move
     CHECK(glm::length(corners[2] - glm::dvec3(1, 1, 0)) < 1e-15);
     CHECK(glm::length(corners[3] - glm::dvec3(2, 1, 0)) < 1e-15);
@@ -126,10 +126,10 @@ TEST_CASE("rib: Skew shears along the second axis, turning the first by the angl
     scene = Scene(InWorld("Skew -30 0.5 0.8660254037844386 0  2 0 0\n"
                           "Patch \"bilinear\" \"P\" [0 0 0  0.5 0.8660254037844386 0  0 0 1  1 0 0]\n"),
                   &messages);
-    const glm::dvec3 d1 = scene.primitives[0].corners[1];
+    const glm::dvec3 d1 = scene.primitives[0].base.patch().corners[1];
     CHECK(std::abs(d1.x) < 1e-15);
     CHECK(std::abs(d1.y - 0.8660254037844386) < 1e-15);
-    CHECK(scene.primitives[0].corners[3] == glm::dvec3(1, 0, 0));
+    CHECK(scene.primitives[0].base.patch().corners[3] == glm::dvec3(1, 0, 0));
 
     CHECK(WorldError("Skew 45 0 1 0 0 2 0\n") == "t.rib:2: error: 'Skew' axes must be nonzero and not parallel");
     CHECK(WorldError("Skew 45 0 0 0 1 0 0\n") == "t.rib:2: error: 'Skew' axes must be nonzero and not parallel");
@@ -162,7 +162,7 @@ TEST_CASE("rib: solids render their parts for unions and are skipped for interse
                   &messages);
     REQUIRE(scene.primitives.size() == 1);
     CHECK(scene.primitives[0].color == glm::dvec3(1));
-    CHECK(scene.primitives[0].corners[1] == glm::dvec3(1, 0, 0));
+    CHECK(scene.primitives[0].base.patch().corners[1] == glm::dvec3(1, 0, 0));
     CHECK(messages ==
           Messages{"t.rib:2: warning: 'SolidBegin \"difference\"' (constructive solid geometry) is not supported yet: "
                    "the solid is skipped",
