@@ -436,7 +436,8 @@ CellRanges BoundCellsIn(const Primitive& prim, const glm::dvec3& eye, int n) {
 
 /// The grid the PrepareScene checks and the BVH boxes use: kGridCells across for a scene of a few
 /// primitives, coarser for many (a mesh of thousands of faces), so that the whole scene costs
-/// about kGridCells^2 * kGridPrimitives bounds, and never fewer than 2 x 2 cells per primitive.
+/// about kGridCells^2 * kGridPrimitives bounds (one cell per primitive past 1,024 primitives: a
+/// mesh of a million faces costs a million bounds).
 /// A coarser grid only loosens a primitive's box (its bound's union over fewer cells), never the
 /// bounds the intersector tests.
 constexpr int kGridCells = 8;
@@ -444,7 +445,7 @@ constexpr size_t kGridPrimitives = 64;
 int GridCellsFor(size_t primitives) {
     if (primitives <= kGridPrimitives) return kGridCells;
     const double n = kGridCells * std::sqrt(double(kGridPrimitives) / double(primitives));
-    return std::max(2, static_cast<int>(n));
+    return std::max(1, static_cast<int>(n));
 }
 
 /// Whether P's bound is measurable (finite, within kMeasurableLimit) over at least one cell.
@@ -589,6 +590,10 @@ void MakeTextures(const SceneDesc& desc, diag::Report* report) {
 }
 
 }  // namespace
+
+Box DisplacedBox(const Primitive& prim, const glm::dvec3& eye, int cells) {
+    return UnionBox(BoundCellsIn<vm::Interval>(prim, eye, cells));
+}
 
 std::string RenderStats::ToJson() const {
     auto perRay = [](uint64_t n, uint64_t rays) { return rays ? double(n) / double(rays) : 0.0; };
@@ -807,6 +812,7 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
     // many primitives, spread over the machine's threads (each primitive on its own).
     const int cells = GridCellsFor(out->primitives.size());
     std::vector<std::string> problems(out->primitives.size());
+    std::vector<Box> boxes(out->primitives.size());
     std::atomic<size_t> next{0};
     auto boxWorker = [&] {
         for (size_t i = next++; i < out->primitives.size(); i = next++) {
@@ -814,7 +820,7 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
             const CellRanges intervalCells = BoundCellsIn<vm::Interval>(prim, eye, cells);
             if (prim.shader())  // a displacement whose shader was found
                 problems[i] = UnboundedEverywhere(prim, *prim.attributes().displacement, eye, cells, intervalCells);
-            prim.box = UnionBox(intervalCells);
+            boxes[i] = UnionBox(intervalCells);
         }
     };
     const size_t nThreads = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()),
@@ -827,8 +833,6 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
         if (problems[i].empty()) continue;
         return fail(requestAt(*out->primitives[i].attributes().displacement), problems[i]);
     }
-    std::vector<Box> boxes;
-    for (const Primitive& prim : out->primitives) boxes.push_back(prim.box);
     out->bvh = std::make_unique<Bvh>(boxes);
     out->shadersCompiled = cache.misses();
     out->shadersReused = cache.hits();

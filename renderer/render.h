@@ -124,9 +124,6 @@ struct Primitive {
     const PrimitiveDesc* desc = nullptr;
     const PrimitivePrograms* programs = nullptr;
     int lightSet = 0;  // the lights that illuminate it: PreparedScene::lightSets[lightSet]
-    /// The displaced surface's bound over its whole (u,v) domain, for the BVH; infinite if the
-    /// bound overflows somewhere.
-    Box box;
 
     const BaseSurface& base() const { return desc->base; }
     const PrimitiveAttributes& attributes() const { return *desc->attributes; }
@@ -173,6 +170,11 @@ struct PreparedScene {
 /// The shader globals that do not vary over `base` seen from `eye`, for specialising its programs:
 /// E, du, dv, and for a flat patch N, Ng, dPdu and dPdv.
 std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, const glm::dvec3& eye);
+
+/// The box of `prim`'s displaced surface over its whole domain seen from `eye`, as its BVH box is
+/// made: the union of its interval bounds over a grid of `cells` x `cells` cells of its (u,v);
+/// infinite if a bound overflows somewhere.
+Box DisplacedBox(const Primitive& prim, const glm::dvec3& eye, int cells);
 
 /// Compiles every displacement instance of `desc` (each with its own parameter values) and
 /// specialises it for its surface (an instance like an earlier one reuses its compilation).

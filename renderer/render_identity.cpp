@@ -23,9 +23,18 @@ __extension__ using Uint128 = unsigned __int128;
 /// prime 2^88 + 2^8 + 0x3b).
 class Fnv128 {
   public:
+    /// FNV-1a's step over 8 bytes at a time (a scene's RIB file and meshes run to hundreds of
+    /// megabytes), the last few bytes one by one.
     void Add(std::string_view bytes) {
-        for (unsigned char c : bytes) {
-            m_h ^= c;
+        size_t i = 0;
+        for (; i + 8 <= bytes.size(); i += 8) {
+            uint64_t word;
+            std::memcpy(&word, bytes.data() + i, 8);
+            m_h ^= word;
+            m_h *= kPrime;
+        }
+        for (; i < bytes.size(); ++i) {
+            m_h ^= static_cast<unsigned char>(bytes[i]);
             m_h *= kPrime;
         }
     }
@@ -128,6 +137,78 @@ bool SameProgram(const vm::Program& a, const vm::Program& b) {
     return true;
 }
 
+/// The bytes of a vector of plain values.
+template <class T>
+std::string_view BytesOf(const std::vector<T>& v) {
+    return {reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T)};
+}
+
+template <class T>
+std::string_view BytesOf(const T& x) {
+    return {reinterpret_cast<const char*>(&x), sizeof x};
+}
+
+/// A polygon mesh's arrays (PieceMesh), as bytes: every value a piece of it can read.
+void HashMesh(const PieceMesh& m, Fnv128* h) {
+    h->Field("points", BytesOf(m.mesh.points));
+    h->Field("corners", BytesOf(m.mesh.corners));
+    for (const auto* var : {&m.mesh.normals, &m.mesh.st, &m.mesh.s, &m.mesh.t}) {
+        if (!*var) {
+            h->Field("variable", "none");
+            continue;
+        }
+        h->Field("variable",
+                 std::to_string(static_cast<int>((*var)->storage)) + " " + std::to_string((*var)->components));
+        h->Field("values", BytesOf((*var)->values));
+    }
+    h->Field("face normals", BytesOf(m.faceNormals));
+    for (const PieceMesh::Corners& p : m.pieces) {
+        h->Add(BytesOf(p.faceCorner));
+        h->Add(BytesOf(p.face));
+        h->Add(BytesOf(p.triangle));
+    }
+}
+
+/// The scene's primitives: what ToString prints of each, except that what primitives share (a
+/// request's attributes, a polygon or subdivision mesh) is hashed once, where it first appears,
+/// and a mesh's arrays as bytes: a million faces are not a million lines of text.
+void HashPrimitives(const SceneDesc& scene, Fnv128* h) {
+    const PrimitiveAttributes* attributes = nullptr;
+    const void* mesh = nullptr;
+    for (const PrimitiveDesc& p : scene.primitives) {
+        if (p.attributes.get() != attributes) {
+            attributes = p.attributes.get();
+            // The attributes as ToString prints them, with a primitive without shape or colours.
+            PrimitiveDesc alone;
+            alone.attributes = p.attributes;
+            h->Field("attributes", ToString(alone));
+            h->Field("object", BytesOf(attributes->objectToWorld));
+        }
+        const BaseSurface& b = p.base;
+        if (b.kind() == BaseSurface::Kind::MeshPiece) {
+            const MeshPieceRef& ref = b.pieceRef();
+            if (ref.mesh.get() != mesh) {
+                mesh = ref.mesh.get();
+                HashMesh(*ref.mesh, h);
+            }
+            h->Field("piece", BytesOf(ref.index));
+        } else if (b.kind() == BaseSurface::Kind::SubdivPatch) {
+            h->Field("subdivision", ToString(b.subdiv()));
+        } else {
+            PrimitiveDesc shape;
+            shape.base = b;
+            h->Field("shape", ToString(shape));
+        }
+        std::string looks(BytesOf(p.color));
+        looks.append(BytesOf(p.opacity));
+        if (b.flipNormal) looks += " flip";
+        if (b.textureCoordinates) looks.append(BytesOf(*b.textureCoordinates));
+        if (p.colorField) looks += " Cs " + ToString(*p.colorField);
+        if (p.opacityField) looks += " Os " + ToString(*p.opacityField);
+        h->Field("looks", looks);
+    }
+}
+
 /// The digest of what a render's identity and its frame's share: the RIB file's bytes, the
 /// scene as read after its camera, and each primitive's specialised programs, its shader's source
 /// and the texture files they read. Computed once per prepared scene (PreparedScene::
@@ -138,7 +219,8 @@ const std::string& InputsDigest(const PreparedScene& scene) {
     if (!scene.identityDigest.empty()) return scene.identityDigest;
     Fnv128 h;
     h.Field("rib", ReadFileBytes(scene.desc.path));
-    h.Field("scene", ToStringAfterCamera(scene.desc));
+    h.Field("scene", ToStringSettings(scene.desc));
+    HashPrimitives(scene.desc, &h);
     const Primitive* previous = nullptr;
     for (const Primitive& prim : scene.primitives) {
         if (!prim.shader()) {
@@ -172,7 +254,7 @@ const std::string& InputsDigest(const PreparedScene& scene) {
 /// frame in the scene's hash and has no line in the options.
 RenderIdentity Identify(const PreparedScene& scene, const RenderOptions& options, bool withCrop) {
     Fnv128 h;
-    h.Field("affray render identity", "3");
+    h.Field("affray render identity", "4");
     h.Field("inputs", InputsDigest(scene));
     CameraDesc camera = scene.desc.camera;
     if (!withCrop) camera.cropWindow = glm::dvec4(0.0, 1.0, 0.0, 1.0);

@@ -344,9 +344,9 @@ inline std::string ToString(const CameraDesc& c) {
     return out.str();
 }
 
-/// The scene after its camera: display, lights, coordinate systems, search paths, texture
-/// requests and primitives, one per line (ToString(SceneDesc)'s lines after the camera's).
-inline std::string ToStringAfterCamera(const SceneDesc& s) {
+/// The scene after its camera but for its primitives: display, lights, coordinate systems, search
+/// paths and texture requests, one per line.
+inline std::string ToStringSettings(const SceneDesc& s) {
     std::string text = "  display \"" + s.displayName + "\" \"" + s.displayType + "\" \"" + s.displayMode + "\"\n";
     for (const LightDesc& l : s.lights) text += "  light " + ToString(l) + "\n";
     for (const auto& [name, m] : s.coordinateSystems) text += "  coordinatesystem " + name + " " + ToString(m) + "\n";
@@ -354,6 +354,13 @@ inline std::string ToStringAfterCamera(const SceneDesc& s) {
     for (const std::string& dir : s.textureSearchPath) text += "  searchpath texture " + dir + "\n";
     for (const SceneDesc::MakeTextureDesc& m : s.makeTextures)
         text += "  maketexture " + m.picture + " " + m.texture + " " + m.swrap + " " + m.twrap + "\n";
+    return text;
+}
+
+/// The scene after its camera: ToStringSettings, then the primitives, one per line
+/// (ToString(SceneDesc)'s lines after the camera's).
+inline std::string ToStringAfterCamera(const SceneDesc& s) {
+    std::string text = ToStringSettings(s);
     for (const PrimitiveDesc& p : s.primitives) text += "  " + ToString(p) + "\n";
     return text;
 }

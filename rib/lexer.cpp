@@ -334,25 +334,34 @@ RibToken RibLexer::LexNumber() {
     if (NonFiniteWordP(word))
         return Error(at, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
 
-    // from_chars accepts no leading '+'; parse in long double so that overflow past double's
-    // range is detected here rather than silently becoming infinity. libstdc++ parses a long
-    // double with strtold, which reads to a NUL: parse a NUL-terminated copy, since the text
-    // (a string_view) need not end with one.
+    // from_chars accepts no leading '+'. A double is read correctly rounded; only where it is out
+    // of double's range is the numeral read again in long double, to tell overflow (an error
+    // here, rather than a silent infinity) from underflow (a value below double's range, which
+    // rounds to 0). libstdc++ parses a long double with strtold, which reads to a NUL: that
+    // parse takes a NUL-terminated copy, since the text (a string_view) need not end with one.
     std::string_view numeral = word;
     if (numeral.size() > 1 && numeral[0] == '+' && numeral[1] != '-' && numeral[1] != '+') numeral.remove_prefix(1);
-    const std::string digits(numeral);
-    long double value = 0;
-    auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-    if (ec == std::errc::result_out_of_range ||
-        (ec == std::errc() && std::isfinite(value) && std::fabs(value) > DBL_MAX))
-        return Error(at, "number '" + std::string(word) + "' is out of range");
-    if (ec != std::errc() || end != digits.data() + digits.size())
+    double value = 0;
+    auto [end, ec] = std::from_chars(numeral.data(), numeral.data() + numeral.size(), value);
+    if (ec == std::errc::result_out_of_range) {
+        const std::string digits(numeral);
+        long double wide = 0;
+        auto [wideEnd, wideEc] = std::from_chars(digits.data(), digits.data() + digits.size(), wide);
+        if (wideEc == std::errc::result_out_of_range || (wideEc == std::errc() && std::fabs(wide) > DBL_MAX))
+            return Error(at, "number '" + std::string(word) + "' is out of range");
+        if (wideEc != std::errc() || wideEnd != digits.data() + digits.size())
+            return Error(at, "malformed number '" + std::string(word) + "'");
+        value = static_cast<double>(wide);  // below double's range: 0 or a subnormal
+        ec = std::errc();
+        end = numeral.data() + numeral.size();
+    }
+    if (ec != std::errc() || end != numeral.data() + numeral.size())
         return Error(at, "malformed number '" + std::string(word) + "'");
     if (!std::isfinite(value))
         return Error(at, "invalid number '" + std::string(word) + "': NaN and infinity are not allowed");
     RibToken token;
     token.kind = RibToken::Kind::Number;
-    token.number = static_cast<double>(value);  // values below double's range round to 0
+    token.number = value;
     token.text = std::string(word);
     token.at = at;
     return token;

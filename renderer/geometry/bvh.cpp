@@ -32,19 +32,33 @@ bool Box::Clip(const Ray& ray, double* t0, double* t1) const {
 }
 
 Bvh::Bvh(const std::vector<Box>& boxes) {
-    std::vector<int> items;
     for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
-        if (!boxes[i].empty()) items.push_back(i);
-    if (!items.empty()) m_root = Build(items, 0, static_cast<int>(items.size()), boxes);
+        if (!boxes[i].empty()) m_items.push_back(i);
+    m_items.shrink_to_fit();
+    m_nodes.reserve(m_items.size() / 2 + 1);
+    if (!m_items.empty()) m_root = Build(0, static_cast<int>(m_items.size()), boxes);
+    // Each primitive's box in floats, rounded outwards (infinite sides stay infinite).
+    m_itemBoxes.resize(m_items.size());
+    for (size_t k = 0; k < m_items.size(); ++k) {
+        const Box& b = boxes[static_cast<size_t>(m_items[k])];
+        for (int i = 0; i < 3; ++i) {
+            float lo = static_cast<float>(b.lo[i]), hi = static_cast<float>(b.hi[i]);
+            if (double(lo) > b.lo[i]) lo = std::nextafter(lo, -INFINITY);
+            if (double(hi) < b.hi[i]) hi = std::nextafter(hi, INFINITY);
+            m_itemBoxes[k].lo[i] = lo;
+            m_itemBoxes[k].hi[i] = hi;
+        }
+    }
 }
 
-int Bvh::Build(std::vector<int>& items, int begin, int end, const std::vector<Box>& boxes) {
+int Bvh::Build(int begin, int end, const std::vector<Box>& boxes) {
     Node node;
-    for (int i = begin; i < end; ++i) node.box.Extend(boxes[items[i]]);
+    for (int i = begin; i < end; ++i) node.box.Extend(boxes[m_items[i]]);
     const int index = static_cast<int>(m_nodes.size());
     m_nodes.push_back(node);
-    if (end - begin == 1) {
-        m_nodes[index].primitive = items[begin];
+    if (end - begin <= kLeafPrimitives) {
+        m_nodes[index].a = begin;
+        m_nodes[index].b = begin - end;
         return index;
     }
     // Split at the median of the centres along their longest axis. Infinite boxes have no
@@ -56,16 +70,16 @@ int Bvh::Build(std::vector<int>& items, int begin, int end, const std::vector<Bo
             if (!std::isfinite(c[i])) c[i] = std::isfinite(boxes[item].lo[i]) ? boxes[item].lo[i] : 0.0;
         return c;
     };
-    for (int i = begin; i < end; ++i) centres.Extend(centre(items[i]));
+    for (int i = begin; i < end; ++i) centres.Extend(centre(m_items[i]));
     const glm::dvec3 extent = centres.hi - centres.lo;
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     const int mid = (begin + end) / 2;
-    std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+    std::nth_element(m_items.begin() + begin, m_items.begin() + mid, m_items.begin() + end,
                      [&](int a, int b) { return centre(a)[axis] < centre(b)[axis]; });
-    const int left = Build(items, begin, mid, boxes);
-    const int right = Build(items, mid, end, boxes);
-    m_nodes[index].left = left;
-    m_nodes[index].right = right;
+    const int left = Build(begin, mid, boxes);
+    const int right = Build(mid, end, boxes);
+    m_nodes[index].a = left;
+    m_nodes[index].b = right;
     return index;
 }
 

@@ -3,10 +3,12 @@
 // (u,v), renderer/render.cpp), so a ray only starts the guaranteed intersector of the primitives
 // whose boxes it crosses, nearest box first. The boxes are conservative (a primitive's points lie
 // inside its box), and so is the slab test (widened for rounding): the hierarchy never hides a hit.
-// Built by splitting at the median of the longest axis of the box centres (nth_element: O(n log n)).
-// A scene's primitives are its quadrics, patches and mesh pieces: thousands, not the millions of a
-// tessellation, and the time goes into bounding the displaced surfaces, not into this tree: a
-// surface-area heuristic would buy little here.
+// Built by splitting at the median of the longest axis of the box centres (nth_element: O(n log n)),
+// down to leaves of at most kLeafPrimitives primitives, each with its box in floats (rounded
+// outwards, so still conservative): a node is 56 bytes and there are about n / 2 of them, a leaf's
+// primitive 28 bytes, so a mesh of a million faces costs some 56 bytes per face here (a leaf per
+// primitive with its box in doubles cost 128). A surface-area heuristic would buy little: the time
+// goes into bounding the displaced surfaces.
 #pragma once
 
 #include <cstdint>
@@ -43,22 +45,37 @@ class Bvh {
     explicit Bvh(const std::vector<Box>& boxes);
 
     /// Calls visit(i, tEntry) for every primitive whose box the ray crosses within [tMin, *tMax],
-    /// nearer boxes first (by entry), skipping boxes entered beyond *tMax, which `visit` may
-    /// lower (to the nearest hit so far) through the caller's variable; Traverse only reads it. visit returns false to stop the traversal (any-hit).
+    /// nearer leaves first (by entry; a leaf's primitives in its order), skipping boxes entered
+    /// beyond *tMax, which `visit` may lower (to the nearest hit so far) through the caller's
+    /// variable; Traverse only reads it. visit returns false to stop the traversal (any-hit).
     template <class Visit>
     void Traverse(const Ray& ray, double tMin, const double* tMax, Visit&& visit) const;
 
     int nodeCount() const { return static_cast<int>(m_nodes.size()); }
+    /// The memory the hierarchy holds.
+    size_t bytes() const {
+        return m_nodes.capacity() * sizeof(Node) + m_items.capacity() * (sizeof(int) + sizeof(FloatBox));
+    }
+
+    static constexpr int kLeafPrimitives = 4;
 
   private:
     struct Node {
         Box box;
-        int left = -1, right = -1;  // children; -1 -1 for a leaf
-        int primitive = -1;         // a leaf's primitive
+        /// An inner node's children are nodes a and b; a leaf (b < 0) holds the -b primitives
+        /// m_items[a .. a - b).
+        int32_t a = -1, b = 0;
     };
-    int Build(std::vector<int>& items, int begin, int end, const std::vector<Box>& boxes);
+    int Build(int begin, int end, const std::vector<Box>& boxes);
 
     std::vector<Node> m_nodes;
+    /// A primitive's box in floats, rounded outwards.
+    struct FloatBox {
+        float lo[3], hi[3];
+        Box ToBox() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+    };
+    std::vector<int> m_items;           // the primitives, leaf by leaf
+    std::vector<FloatBox> m_itemBoxes;  // their boxes
     int m_root = -1;
 };
 
@@ -66,7 +83,7 @@ template <class Visit>
 void Bvh::Traverse(const Ray& ray, double tMin, const double* tMax, Visit&& visit) const {
     if (m_root < 0) return;
     struct Entry {
-        int node;
+        int node;  // a node, or in a leaf a primitive
         double tEntry;
     };
     Entry stack[64];
@@ -78,13 +95,24 @@ void Bvh::Traverse(const Ray& ray, double tMin, const double* tMax, Visit&& visi
         const Entry e = stack[--top];
         if (e.tEntry > *tMax) continue;
         const Node& node = m_nodes[e.node];
-        if (node.left < 0) {
-            if (!visit(node.primitive, e.tEntry)) return;
+        if (node.b < 0) {
+            // The leaf's primitives whose boxes the ray crosses, nearest entry first.
+            Entry hits[kLeafPrimitives];
+            int n = 0;
+            for (int k = node.a; k < node.a - node.b; ++k) {
+                double c0 = tMin, c1 = *tMax;
+                if (!m_itemBoxes[k].ToBox().Clip(ray, &c0, &c1)) continue;
+                int j = n++;
+                for (; j > 0 && hits[j - 1].tEntry > c0; --j) hits[j] = hits[j - 1];
+                hits[j] = {m_items[k], c0};
+            }
+            for (int j = 0; j < n; ++j)
+                if (hits[j].tEntry <= *tMax && !visit(hits[j].node, hits[j].tEntry)) return;
             continue;
         }
         Entry children[2];
         int n = 0;
-        for (int child : {node.left, node.right}) {
+        for (int child : {node.a, node.b}) {
             double c0 = tMin, c1 = *tMax;
             if (m_nodes[child].box.Clip(ray, &c0, &c1)) children[n++] = {child, c0};
         }

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string>
 
+#include "rib/lexer.h"
 #include "rib/rib.h"
 #include "tests/rib/rib_test_util.h"
 
@@ -136,4 +137,31 @@ TEST_CASE("rib binary: malformed encodings are errors at their place", "[rib][bi
     // A byte inside a binary value is never read as ASCII: a newline or '#' there is data.
     CHECK(NumberOf(Byte(0200) + Byte('\n')) == 10);
     CHECK(NumberOf(Byte(0200) + Byte('#')) == '#');
+}
+
+TEST_CASE("rib ascii numbers: correctly rounded, underflow to zero, overflow an error", "[rib][lexer]") {
+    using rib::RibLexer;
+    using rib::RibToken;
+    auto number = [](const std::string& text) {
+        RibLexer lexer(text);
+        const RibToken t = lexer.Next();
+        REQUIRE(t.kind == RibToken::Kind::Number);
+        return t.number;
+    };
+    // Correctly rounded to the nearest double (a parse through long double may round twice).
+    CHECK(number("0.1") == 0.1);
+    CHECK(number("+2.5e3") == 2500.0);
+    CHECK(number("-7") == -7.0);
+    CHECK(number("1.7976931348623157e308") == 1.7976931348623157e308);
+    CHECK(number("9007199254740993") == 9007199254740992.0);  // 2^53 + 1: ties to even
+    CHECK(number("2.2250738585072011e-308") == 2.2250738585072011e-308);
+    // Below double's range: zero (or a subnormal), as RenderMan renderers read it.
+    CHECK(number("1e-400") == 0.0);
+    CHECK(number("4e-320") == 4e-320);
+    for (const char* bad : {"1e400", "-2e308"}) {
+        RibLexer lexer(bad);
+        const RibToken t = lexer.Next();
+        CHECK(t.kind == RibToken::Kind::Error);
+        CHECK(t.text.find("out of range") != std::string::npos);
+    }
 }
