@@ -99,6 +99,12 @@ struct RenderStats {
     /// film yet) and its peak over the process's life (what the budgets bound: the tracing adds
     /// at most --cache-mb + --texture-mb + the film + per-thread state to the first).
     uint64_t residentAtStartBytes = 0, peakResidentBytes = 0;
+    /// The scene's own data as the render holds it (SceneBytes), and its primitives: what a
+    /// primitive costs before any bound is computed is their ratio.
+    uint64_t sceneBytes = 0, primitives = 0;
+    /// Set by the caller (the command line): the seconds reading the RIB file and preparing the
+    /// scene took (0 if not given).
+    double readSeconds = 0, prepareSeconds = 0;
     int width = 0, height = 0;
     bool stopped = false;   // RenderOptions::stop was set in time: some tiles are missing from the image
     int tilesRestored = 0;  // tiles the TileStore gave back instead of being rendered
@@ -184,6 +190,13 @@ Box DisplacedBox(const Primitive& prim, const glm::dvec3& eye, int cells);
 /// (may be null); on error returns false with an error there at the Displacement request.
 bool PrepareScene(SceneDesc desc, const std::vector<std::string>& shaderPaths,
                   const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report);
+
+/// The memory `scene` holds, by structure (not the allocator's overhead): the primitives, their
+/// descriptions, the shapes, meshes, attributes and colour fields they share (each once), the
+/// BVH, and what a render adds per primitive (a bound hierarchy's slot, and per thread an
+/// intersector's slot and a shading interpreter's) with `threads` threads. Programs and shaders
+/// are left out (a few per scene).
+uint64_t SceneBytes(const PreparedScene& scene, int threads);
 
 /// The side of the tiles RenderImage cuts `camera`'s image (its crop) into with `options`:
 /// options.tileSize, halved for small images down to 8 pixels so that every thread gets four

@@ -4,6 +4,7 @@
 #include "diag/limits.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -198,7 +199,7 @@ void WarnUndeclared(const renderer::PreparedScene& prepared, std::set<std::strin
 /// Renders one frame to `outputPath` (and `pngPath` if not empty); prints the frame's shader
 /// diagnostics (with WarnUndeclared's warnings, `warned` over the run) and, with --stats, its figures.
 int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::string& outputPath,
-                const std::string& pngPath, std::set<std::string>* warned, FILE* out, FILE* err) {
+                const std::string& pngPath, std::set<std::string>* warned, double readSeconds, FILE* out, FILE* err) {
     diag::Report report;
     std::filesystem::path ribDir = std::filesystem::path(cmd.scenePath).parent_path();
     if (ribDir.empty()) ribDir = ".";
@@ -209,7 +210,10 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     const texture::CacheStats texturesBefore = texture::Stats();
     renderer::PreparedScene prepared;
     const std::optional<int> frameNumber = scene.frame;
+    const auto prepareStart = std::chrono::steady_clock::now();
     const bool preparedOk = renderer::PrepareScene(std::move(scene), shaderPaths, cmd.preprocess, &prepared, &report);
+    const double prepareSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();
     if (preparedOk) WarnUndeclared(prepared, warned, &report);
     // The shaders' warnings are printed before the render starts.
     Print(report, err);
@@ -234,6 +238,8 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     renderer::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
+    stats.readSeconds = readSeconds;
+    stats.prepareSeconds = prepareSeconds;
     if (const int status = files.AfterRender(stats, err); status != diag::kExitSuccess) return status;
     // The header says which render and which pixels this is, for affray merge (renderer/tiling.h).
     renderer::StampTile(renderer::IdentifyFrame(prepared, options), renderer::CropPixels(prepared.desc.camera),
@@ -358,8 +364,11 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
     interrupts.StopAfter(static_cast<double>(diag::LimitValue(diag::Limit::TimeLimit)));
     std::vector<renderer::SceneDesc> frames;
     int status = diag::kExitSuccess;
+    const auto readStart = std::chrono::steady_clock::now();
     const std::vector<const renderer::SceneDesc*> chosen =
         ReadChosenFrames(cmd.scenePath, cmd.frame, err, &frames, &status);
+    // The whole file's, given with every frame's figures.
+    const double readSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - readStart).count();
     if (chosen.empty()) return status;
 
     // Each frame's files: -o or its Display name, numbered when several frames would share it.
@@ -386,7 +395,7 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
         // Each frame is rendered once: its description moves into the render (no copy of its
         // primitives).
         renderer::SceneDesc& frame = frames[static_cast<size_t>(chosen[i] - frames.data())];
-        const int status = RenderFrame(cmd, std::move(frame), outputs[i], pngs[i], &warned, out, err);
+        const int status = RenderFrame(cmd, std::move(frame), outputs[i], pngs[i], &warned, readSeconds, out, err);
         if (status != diag::kExitSuccess) return status;
     }
     return diag::kExitSuccess;

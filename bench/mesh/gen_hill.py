@@ -2,10 +2,11 @@
 """gen_hill.py: writes a displaced hill of N x N quads as one PointsPolygons with vertex normals,
 the production-size mesh benchmark of issue 32 (a grid bent into a hill, noise displacement).
 
-    python3 bench/mesh/gen_hill.py N OUT.rib [--xres 640 --yres 480]
+    python3 bench/mesh/gen_hill.py N OUT.rib [--xres 640 --yres 480] [--subdivision]
 
 The grid spans 20 x 20 units; the hill is a Gaussian bump 4 units high; normals are the
-analytic surface normals at the vertices. The displacement is shaders/dented.sl (two octaves,
+analytic surface normals at the vertices. With --subdivision the same grid is a Catmull-Clark
+SubdivisionMesh (no normals: the limit surface's). The displacement is shaders/dented.sl (two octaves,
 Km 0.3, frequency 1.5), under one shadowed distant light.
 """
 import argparse
@@ -20,6 +21,7 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--xres", type=int, default=640)
     ap.add_argument("--yres", type=int, default=480)
+    ap.add_argument("--subdivision", action="store_true")
     a = ap.parse_args()
     n = a.n
     size = 20.0
@@ -47,7 +49,10 @@ def main():
         w('Displacement "dented" "Km" [0.3] "frequency" [1.5] "octaves" [2]\n')
         w('Surface "matte"\n')
         nv = (n + 1) * (n + 1)
-        w("PointsPolygons [")
+        if a.subdivision:
+            w('SubdivisionMesh "catmull-clark" [')
+        else:
+            w("PointsPolygons [")
         w(" ".join("4" for _ in range(n * n)))
         w("]\n[")
         idx = []
@@ -56,7 +61,10 @@ def main():
                 v0 = j * (n + 1) + i
                 idx.append("%d %d %d %d" % (v0, v0 + 1, v0 + n + 2, v0 + n + 1))
         w(" ".join(idx))
-        w("]\n\"P\" [")
+        w("]\n")
+        if a.subdivision:
+            w('["interpolateboundary"] [0 0] [] []\n')
+        w("\"P\" [")
         pts, nrm = [], []
         for j in range(n + 1):
             for i in range(n + 1):
@@ -64,8 +72,9 @@ def main():
                 pts.append("%.6g %.6g %.6g" % (x, y, height(x, y)))
                 nrm.append("%.6g %.6g %.6g" % normal(x, y))
         w(" ".join(pts))
-        w("]\n\"N\" [")
-        w(" ".join(nrm))
+        if not a.subdivision:
+            w("]\n\"N\" [")
+            w(" ".join(nrm))
         w("]\nWorldEnd\n")
     print("wrote %s: %d quads, %d vertices" % (a.out, n * n, nv), file=sys.stderr)
 

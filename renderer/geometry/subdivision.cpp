@@ -582,6 +582,12 @@ std::string BuildSubdivisionPatches(const SubdivisionMesh& mesh, SubdivisionResu
                 allRegular = info[level.verts[h]].regular;
         }
         levels = allRegular ? 0 : kSubdivisionLevels;
+        // A dense control mesh takes fewer steps (each makes four faces of one), so that its
+        // patches stay within kSubdivisionPatchBudget; faces that are not quads need one.
+        bool allQuads = true;
+        for (int f = 0; f < level.Faces(); ++f) allQuads = allQuads && level.Size(f) == 4;
+        const int fewest = allQuads ? 0 : 1;
+        while (levels > fewest && (size_t(level.Faces()) << (2 * levels)) > kSubdivisionPatchBudget) --levels;
         for (const auto& [edge, s] : level.sharp)
             if (s < kInfiniteSharpness / 2)
                 levels = std::max(levels, std::min(kMaxSubdivisionLevels, static_cast<int>(std::ceil(s))));

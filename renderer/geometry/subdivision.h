@@ -5,8 +5,8 @@
 // BuildSubdivisionPatches for its patches, one primitive each.
 //
 // Refinement. The control mesh is refined uniformly: kSubdivisionLevels Catmull-Clark steps
-// (more, up to kMaxSubdivisionLevels, while a semi-sharp crease is left), or none when every
-// face already is a regular quad. After one step every face is a quad with at most one
+// (fewer for a dense mesh, kSubdivisionPatchBudget; more, up to kMaxSubdivisionLevels, while a
+// semi-sharp crease is left), or none when every face already is a regular quad. After one step every face is a quad with at most one
 // extraordinary vertex (valence != 4); after two, such faces are a sixteenth of each face
 // around an extraordinary vertex, so the approximation below covers little of the surface.
 // Sharp rules (DeRose, Kass and Truong 1998): an edge of sharpness s >= 1 is split at its
@@ -69,6 +69,12 @@ namespace affray::renderer {
 
 /// Catmull-Clark steps before patches are built (fewer only when every face is already regular).
 inline constexpr int kSubdivisionLevels = 2;
+/// The patches the default steps may make: a control mesh of more than a 16th as many faces takes
+/// fewer steps (one, or none if its faces are all quads). Its faces are then small: the
+/// approximated patches' deviation from the limit surface is a fraction of a face's size
+/// (kAccDeviation is measured on meshes of a few faces), and a 100,000-face mesh makes 100,000
+/// patches, not 1.6 million (2.5 GB).
+inline constexpr size_t kSubdivisionPatchBudget = size_t{1} << 16;
 /// The most steps taken to resolve semi-sharp creases (sharpness left after them counts as sharp).
 inline constexpr int kMaxSubdivisionLevels = 4;
 /// A bound on the distance, relative to the mesh's bounding box diagonal, between the patches and

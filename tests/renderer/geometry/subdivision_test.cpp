@@ -219,6 +219,40 @@ TEST_CASE("subdivision: limit positions are exact and the patches stay near the 
     }
 }
 
+TEST_CASE("subdivision: a dense control mesh takes fewer steps and its patches stay near the limit surface",
+          "[renderer][subdivision]") {
+    // Past kSubdivisionPatchBudget patches the default steps are cut: a cube refined five times
+    // (6,144 quads, valence-3 corners) takes one step, not two (98,304 patches).
+    const SubdivisionMesh dense = renderer::RefineSubdivisionMesh(Cube(), 5);
+    REQUIRE(dense.faceSizes.size() == 6144);
+    const SubdivisionResult r = Build(dense);
+    CHECK(r.levels == 1);
+    CHECK(r.patches.size() == 4 * 6144);
+    // Its patches without any step (what a mesh of more than 65,536 quads gets), against the
+    // limit surface (the limit positions of the mesh refined twice), near an extraordinary corner
+    // where the patches are approximated: within a small part of a face's size.
+    const SubdivisionMesh mesh = renderer::RefineSubdivisionMesh(Cube(), 3);  // 384 faces
+    const SubdivisionResult none = Build(mesh, 0);
+    CHECK(none.levels == 0);
+    REQUIRE(none.patches.size() == 384);
+    CHECK(none.regularPatches < 384);
+    const SubdivisionResult deep = Build(mesh, 2);
+    const double face = Diagonal(mesh) / (std::sqrt(3.0) * 8);  // a face's side: the cube's over 8
+    const glm::dvec3 corner = deep.refinedPoints[0];            // a limit corner of valence 3
+    double worst = 0;
+    int near = 0;
+    for (const glm::dvec3& x : deep.refinedPoints) {
+        if (glm::length(x - corner) > 2 * face) continue;
+        ++near;
+        worst = std::max(worst, DistanceToPatches(none.patches, x));
+    }
+    CHECK(near > 10);
+    WARN("no step, 384 faces: largest distance to the limit surface near a corner " << worst / face
+                                                                                    << " of a face's side");
+    CHECK(worst / face < 0.002);  // measured 3.1e-4
+    CHECK(worst > 0);
+}
+
 TEST_CASE("subdivision: neighbours share points and normal directions along every edge", "[renderer][subdivision]") {
     for (auto [name, mesh] : {std::pair{"cube", Cube()}, {"tower", Tower()}}) {
         INFO(name);
