@@ -1,6 +1,7 @@
 // renderer/geometry/surface.h: base surfaces and the shader globals they supply, for every number type.
-// A new base surface kind gets its frame template in its own header (quadric.h, bicubic.h), a
-// case in BaseSurface and SetSurfaceGlobals, and a Shape in the scene (scene.h).
+// A new base surface kind gets its frame template in its own header (quadric.h, bicubic.h), an
+// alternative of BaseSurface::Shape (with its Kind and accessor) and a case in SetSurfaceGlobals;
+// the scene (scene.h) holds BaseSurfaces as they are.
 // A base surface is evaluated over a (u,v) *region* with the same templated code whatever the
 // number type: doubles at a point, intervals or affine forms over a region (a bound), duals for
 // exact derivatives. So the displaced point P' = shader(base(u,v)) is bounded by one machinery.
