@@ -2,6 +2,7 @@
 #include "renderer/geometry/bvh.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 namespace affray::renderer {
@@ -37,16 +38,27 @@ Bvh::Bvh(const std::vector<Box>& boxes) {
     m_items.shrink_to_fit();
     m_nodes.reserve(m_items.size() / 2 + 1);
     if (!m_items.empty()) m_root = Build(0, static_cast<int>(m_items.size()), boxes);
-    // Each primitive's box in floats, rounded outwards (infinite sides stay infinite).
+    // Each primitive's box in floats, rounded outwards (infinite sides stay infinite; a side past
+    // float's range is the infinity beyond it or float's largest on its side, whichever keeps the
+    // box a superset: converting such a double is undefined).
+    auto down = [](double x) {
+        if (x > FLT_MAX) return FLT_MAX;
+        if (!(x >= -FLT_MAX)) return -INFINITY;
+        const float f = static_cast<float>(x);
+        return double(f) > x ? std::nextafter(f, -INFINITY) : f;
+    };
+    auto up = [](double x) {
+        if (x < -FLT_MAX) return -FLT_MAX;
+        if (!(x <= FLT_MAX)) return INFINITY;
+        const float f = static_cast<float>(x);
+        return double(f) < x ? std::nextafter(f, INFINITY) : f;
+    };
     m_itemBoxes.resize(m_items.size());
     for (size_t k = 0; k < m_items.size(); ++k) {
         const Box& b = boxes[static_cast<size_t>(m_items[k])];
         for (int i = 0; i < 3; ++i) {
-            float lo = static_cast<float>(b.lo[i]), hi = static_cast<float>(b.hi[i]);
-            if (double(lo) > b.lo[i]) lo = std::nextafter(lo, -INFINITY);
-            if (double(hi) < b.hi[i]) hi = std::nextafter(hi, INFINITY);
-            m_itemBoxes[k].lo[i] = lo;
-            m_itemBoxes[k].hi[i] = hi;
+            m_itemBoxes[k].lo[i] = down(b.lo[i]);
+            m_itemBoxes[k].hi[i] = up(b.hi[i]);
         }
     }
 }

@@ -387,8 +387,8 @@ class BaseSurface {
     /// without an "st" of their own (meshes and subdivision surfaces keep theirs). Null: none.
     std::shared_ptr<const std::array<double, 8>> textureCoordinates;
 
-    /// The unit square's bilinear patch (BilinearPatch::UnitSquare).
-    BaseSurface() : BaseSurface(BilinearPatch::UnitSquare()) {}
+    /// The unit square's bilinear patch (BilinearPatch::UnitSquare), one shared by every default.
+    BaseSurface() : m_shape(UnitSquareShape()) {}
     // Implicit on purpose: a patch is a base surface (as in every caller of the intersector).
     BaseSurface(const BilinearPatch& p, bool flip = false, const ParameterRange& r = {})
         : range(r), flipNormal(flip), m_shape(std::make_shared<const BilinearPatch>(p)) {}
@@ -442,6 +442,11 @@ class BaseSurface {
     bool KeptP(double s, double t) const { return !trim || trim->KeptP(range.U(s), range.V(t)); }
 
   private:
+    static const std::shared_ptr<const BilinearPatch>& UnitSquareShape() {
+        static const std::shared_ptr<const BilinearPatch> square =
+            std::make_shared<const BilinearPatch>(BilinearPatch::UnitSquare());
+        return square;
+    }
     Shape m_shape;
 };
 

@@ -94,3 +94,28 @@ TEST_CASE("bvh: nearer boxes are visited first and a lowered tMax skips farther 
     });
     CHECK(order == std::vector<int>{0});
 }
+
+TEST_CASE("bvh: boxes past float's range keep their primitives (the leaves' float boxes round outwards)",
+          "[renderer][bvh]") {
+    // Sides beyond float's largest, on either side, and a box of width 1e-30 near 1e7 (narrower
+    // than a float's step there): a ray through each still visits it.
+    std::vector<Box> boxes = {MakeBox(glm::dvec3(-1e300, -1, -1), glm::dvec3(1e300, 1, 1)),
+                              MakeBox(glm::dvec3(1e200, -1, -1), glm::dvec3(1e201, 1, 1)),
+                              MakeBox(glm::dvec3(-1e201, -1, -1), glm::dvec3(-1e200, 1, 1)),
+                              MakeBox(glm::dvec3(1e7, 5, -1), glm::dvec3(1e7 + 1e-30, 6, 1))};
+    const Bvh bvh(boxes);
+    auto visits = [&](const Ray& ray) {
+        std::vector<int> seen;
+        double tMax = INFINITY;
+        bvh.Traverse(ray, 0, &tMax, [&](int i, double) {
+            seen.push_back(i);
+            return true;
+        });
+        std::sort(seen.begin(), seen.end());
+        return seen;
+    };
+    CHECK(visits({{0, 0, -5}, {0, 0, 1}}) == std::vector<int>{0});
+    CHECK(visits({{1.5e200, 0, -5}, {0, 0, 1}}) == std::vector<int>{0, 1});
+    CHECK(visits({{-1.5e200, 0, -5}, {0, 0, 1}}) == std::vector<int>{0, 2});
+    CHECK(visits({{1e7, 5.5, -5}, {0, 0, 1}}) == std::vector<int>{3});
+}
