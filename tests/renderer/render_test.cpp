@@ -518,10 +518,10 @@ TEST_CASE("render: a mesh's faces share its arrays, attributes and programs, and
     test::RequireVec(piece.P[3], {-1 + 4.0 / n, -1 + 4.0 / n, 0});
     test::RequireVec(piece.N[2], {0, 0.3, 1});
     // By structure, with two threads' slots: the primitive, its description, its piece of the
-    // mesh's arrays (P, N and the face corners' indices), its share of the BVH. Measured 461.
+    // mesh's arrays (P, N and the face corners' indices), its share of the BVH. Measured 517.
     const double perFace = double(SceneBytes(prepared, 2)) / double(n * n);
     INFO(perFace << " bytes per face");
     CHECK(perFace > 300);  // counts what is there: a piece's own record and corners alone are 40
-    CHECK(perFace < 520);
+    CHECK(perFace < 600);
     CHECK(Covered(image) == 64);
 }
