@@ -135,8 +135,7 @@ struct ThreadState {
           m_options(options),
           m_trees(trees),
           m_workspace(MakeIntersectWorkspace()),
-          m_slotOf(scene.primitives.size(), -1),
-          m_ownShaders(scene.primitives.size()) {}
+          m_slotOf(scene.primitives.size(), -1) {}
 
     /// The intersector of primitive i, made when a ray of this thread first tests the primitive.
     /// At most kKeptIntersectors are kept, the least recently used (by the clock algorithm) made
@@ -175,12 +174,14 @@ struct ThreadState {
 
     /// The shading interpreter of primitive i, running its shade program. A program without
     /// parameters (every specialised one) runs on the thread's one interpreter, pointed at it;
-    /// one with parameters gets an interpreter of its own, made on first use.
+    /// one with parameters gets an interpreter of its own, made on first use (one per program,
+    /// which the primitives that share it share).
     vm::Interpreter<vm::Dual<double>>& Shader(int i) {
         const vm::Program& program = m_scene.primitives[i].shade();
         if (!program.params.empty()) {
-            if (!m_ownShaders[i]) m_ownShaders[i] = std::make_unique<vm::Interpreter<vm::Dual<double>>>(program);
-            return *m_ownShaders[i];
+            std::unique_ptr<vm::Interpreter<vm::Dual<double>>>& own = m_ownShaders[&program];
+            if (!own) own = std::make_unique<vm::Interpreter<vm::Dual<double>>>(program);
+            return *own;
         }
         if (!m_shared)
             m_shared = std::make_unique<vm::Interpreter<vm::Dual<double>>>(program);
@@ -205,7 +206,7 @@ struct ThreadState {
     std::vector<Kept> m_kept;
     size_t m_hand = 0;
     std::unique_ptr<vm::Interpreter<vm::Dual<double>>> m_shared;
-    std::vector<std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> m_ownShaders;
+    std::unordered_map<const vm::Program*, std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> m_ownShaders;
 };
 
 /// The factor each primitive's tolerance is scaled by: its scene's coarser level of detail
@@ -599,8 +600,8 @@ void MakeTextures(const SceneDesc& desc, diag::Report* report) {
 uint64_t SceneBytes(const PreparedScene& scene, int threads) {
     uint64_t bytes = scene.primitives.capacity() * sizeof(Primitive) +
                      scene.desc.primitives.capacity() * sizeof(PrimitiveDesc) + (scene.bvh ? scene.bvh->bytes() : 0);
-    // Per primitive in a render: LazyTrees's slot, and per thread ThreadState's two.
-    bytes += scene.primitives.size() * (sizeof(void*) + size_t(threads) * (sizeof(int) + sizeof(void*)));
+    // Per primitive in a render: LazyTrees's slot, and per thread ThreadState's intersector slot.
+    bytes += scene.primitives.size() * (sizeof(void*) + size_t(threads) * sizeof(int));
     // What primitives share is counted once (a set of the shared objects met, which the
     // previous primitive's mostly answers); a patch's or quadric's shape, its own, once each.
     std::unordered_set<const void*> seen;
@@ -707,7 +708,7 @@ std::string CheckImageLimits(const CameraDesc& camera, const std::string& displa
 }  // namespace
 
 bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
-                  const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report) {
+                  const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report, int threads) {
     auto fail = [&](const diag::Location& where, std::string message) {
         if (report) report->error(where, std::move(message));
         return false;
@@ -870,8 +871,8 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
             boxes[i] = UnionBox(intervalCells);
         }
     };
-    const size_t nThreads = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()),
-                                             std::max<size_t>(1, out->primitives.size() / 16));
+    const size_t cores = threads > 0 ? size_t(threads) : std::max(1u, std::thread::hardware_concurrency());
+    const size_t nThreads = std::min<size_t>(cores, std::max<size_t>(1, out->primitives.size() / 16));
     std::vector<std::thread> workers;
     for (size_t t = 1; t < nThreads; ++t) workers.emplace_back(boxWorker);
     boxWorker();

@@ -188,13 +188,14 @@ Box DisplacedBox(const Primitive& prim, const glm::dvec3& eye, int cells);
 /// directories taken from the RIB file's directory), then in `shaderPaths`;
 /// `preprocess` gives the -I and -D of the C preprocessor. The shaders' diagnostics go to *report
 /// (may be null); on error returns false with an error there at the Displacement request.
+/// `threads` bound the primitives' boxes (0: one per core), as RenderOptions::threads renders.
 bool PrepareScene(SceneDesc desc, const std::vector<std::string>& shaderPaths,
-                  const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report);
+                  const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report, int threads = 0);
 
 /// The memory `scene` holds, by structure (not the allocator's overhead): the primitives, their
 /// descriptions, the shapes, meshes, attributes and colour fields they share (each once), the
 /// BVH, and what a render adds per primitive (a bound hierarchy's slot, and per thread an
-/// intersector's slot and a shading interpreter's) with `threads` threads. Programs and shaders
+/// intersector's slot) with `threads` threads. Programs and shaders
 /// are left out (a few per scene).
 uint64_t SceneBytes(const PreparedScene& scene, int threads);
 

@@ -211,7 +211,8 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     renderer::PreparedScene prepared;
     const std::optional<int> frameNumber = scene.frame;
     const auto prepareStart = std::chrono::steady_clock::now();
-    const bool preparedOk = renderer::PrepareScene(std::move(scene), shaderPaths, cmd.preprocess, &prepared, &report);
+    const bool preparedOk =
+        renderer::PrepareScene(std::move(scene), shaderPaths, cmd.preprocess, &prepared, &report, cmd.threads);
     const double prepareSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();
     if (preparedOk) WarnUndeclared(prepared, warned, &report);

@@ -518,7 +518,7 @@ TEST_CASE("render: a mesh's faces share its arrays, attributes and programs, and
     test::RequireVec(piece.P[3], {-1 + 4.0 / n, -1 + 4.0 / n, 0});
     test::RequireVec(piece.N[2], {0, 0.3, 1});
     // By structure, with two threads' slots: the primitive, its description, its piece of the
-    // mesh's arrays (P, N and the face corners' indices), its share of the BVH. Measured 517.
+    // mesh's arrays (P, N and the face corners' indices), its share of the BVH. Measured 501.
     const double perFace = double(SceneBytes(prepared, 2)) / double(n * n);
     INFO(perFace << " bytes per face");
     CHECK(perFace > 300);  // counts what is there: a piece's own record and corners alone are 40
