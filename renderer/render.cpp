@@ -210,7 +210,7 @@ struct ThreadState {
 };
 
 /// The factor each primitive's tolerance is scaled by: its scene's coarser level of detail
-/// (PrimitiveDesc::sceneTolerance) over the render's tolerance, at least 1; all 1 when the
+/// (PrimitiveAttributes::sceneTolerance) over the render's tolerance, at least 1; all 1 when the
 /// tolerance was given by the user.
 std::vector<double> ToleranceScales(const PreparedScene& scene, const RenderOptions& options) {
     std::vector<double> scales(scene.primitives.size(), 1.0);

@@ -53,7 +53,7 @@ inline constexpr int kDefaultRayGroupPixels = 8;
 struct RenderOptions {
     int threads = 0;               // 0: one per core
     double tolerancePixels = 0.5;  // a region is a hit once its bound is smaller than this many pixels
-    /// Whether a primitive whose scene asks for a coarser tolerance (PrimitiveDesc::sceneTolerance:
+    /// Whether a primitive whose scene asks for a coarser tolerance (PrimitiveAttributes::sceneTolerance:
     /// ShadingRate, GeometricApproximation) is certified to that; false when tolerancePixels was
     /// given by the user (--tolerance).
     bool sceneTolerance = true;

@@ -1,7 +1,7 @@
 // rib/geometry.cpp: RIB requests that place geometry: Patch, PatchMesh (rational with "Pw"), the quadrics (Sphere,
 // Cylinder, Cone, Disk, Torus, Hyperboloid, Paraboloid) and CoordinateSystem. Rules shared with
 // rib.cpp are in rib_parser.h. Every primitive takes the graphics state current at its request;
-// its orientation is resolved here into PrimitiveDesc::flipNormal, since the camera transform it
+// its orientation is resolved here into BaseSurface::flipNormal, since the camera transform it
 // depends on is known once geometry is allowed (inside the world block).
 #include <algorithm>
 #include <array>

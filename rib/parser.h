@@ -58,7 +58,7 @@ class RibParser : private RibArgChecks {
         PrimitiveDesc::Transmission transmission = PrimitiveDesc::Transmission::Opaque;
         bool cameraVisible = true;
         /// ShadingRate and GeometricApproximation "flatness" (0: none given), for
-        /// PrimitiveDesc::sceneTolerance.
+        /// PrimitiveAttributes::sceneTolerance.
         double shadingRate = 1, flatness = 0;
         SurfaceDesc surface;
         std::optional<ShaderRef> displacement;
@@ -84,7 +84,7 @@ class RibParser : private RibArgChecks {
         /// TextureCoordinates (null: none given, s, t are u, v).
         std::shared_ptr<const std::array<double, 8>> textureCoordinates;
         /// ScopedCoordinateSystem: the named spaces of this block and those around it (null:
-        /// none), given to every primitive (PrimitiveDesc::scopedSpaces).
+        /// none), given to every primitive (PrimitiveAttributes::scopedSpaces).
         std::shared_ptr<const std::map<std::string, glm::dmat4>> scopedSpaces;
         /// Attribute values by "category:name" (null: none), for conditional RIB's $category:name.
         std::shared_ptr<const std::map<std::string, ParamValue>> attributes;
@@ -200,7 +200,7 @@ class RibParser : private RibArgChecks {
     glm::dmat4 ObjectToCamera() const;
     /// Whether the current coordinate system is right-handed (camera space is left-handed).
     bool RightHandedP() const { return glm::determinant(ObjectToCamera()) < 0; }
-    /// PrimitiveDesc::flipNormal for a primitive made now (see its comment in scene.h).
+    /// BaseSurface::flipNormal for a primitive made now (see PrimitiveDesc's comment in scene.h).
     bool FlipNormalP() const;
     /// Fills the attributes every primitive takes from the graphics state (color, shading, sides,
     /// orientation, lights, line): those of p->attributes made once per request and shared by

@@ -111,7 +111,7 @@ bool RibParser::DoDeclare(const RibRequest& r) {
 // "flatness" is the largest distance in pixels it allows between its facets and the surface.
 // affray certifies every hit to its tolerance in pixels (0.5 by default); a primitive whose
 // scene asks for less accuracy, 0.5 sqrt(ShadingRate) or the flatness, whichever is larger, is
-// certified to that instead (PrimitiveDesc::sceneTolerance; --tolerance overrides). A finer
+// certified to that instead (PrimitiveAttributes::sceneTolerance; --tolerance overrides). A finer
 // request keeps the default: affray shades every ray hit, so a finer shading rate has nothing
 // more to shade.
 bool RibParser::DoShadingRate(const RibRequest& r) {

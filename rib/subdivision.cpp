@@ -249,7 +249,7 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     renderer::SubdivisionResult result;
     if (std::string problem = renderer::BuildSubdivisionPatches(mesh, &result); !problem.empty())
         return Fail(r.at, context + " " + problem);
-    // Room for the patches at once (a PrimitiveDesc is some 3 KB, and a mesh thousands of them),
+    // Room for the patches at once (a mesh makes thousands of PrimitiveDescs),
     // growing geometrically still so that a scene of many meshes is not copied once per mesh.
     auto& primitives = m_scene.primitives;
     if (const size_t needed = primitives.size() + result.patches.size(); needed > primitives.capacity())

@@ -1,5 +1,5 @@
 // tests/renderer/level_of_detail_test.cpp: the scene's level of detail (ShadingRate,
-// GeometricApproximation "flatness"; rib/settings.cpp, PrimitiveDesc::sceneTolerance): read as
+// GeometricApproximation "flatness"; rib/settings.cpp, PrimitiveAttributes::sceneTolerance): read as
 // attributes, honoured where coarser than the render's tolerance (cheaper, every hit still
 // certified to the tolerance asked for), and not at all when the tolerance is the user's.
 #include <catch2/catch.hpp>
