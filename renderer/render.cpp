@@ -720,6 +720,7 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
     out->desc = std::move(input);
     const SceneDesc& desc = out->desc;
     out->primitives.clear();
+    out->programs.clear();  // (a PreparedScene prepared again holds only its new programs)
     out->identityDigest.clear();
     MakeTextures(desc, report);
     const glm::dvec3 eye = Camera(desc.camera).Position();
