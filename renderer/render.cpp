@@ -105,11 +105,6 @@ class LazyTrees {
         for (const std::atomic<BoundTree*>& tree : m_trees)
             if (const BoundTree* t = tree.load()) stats->Merge(t->stats());
     }
-    size_t made() const {
-        size_t n = 0;
-        for (const std::atomic<BoundTree*>& tree : m_trees) n += tree.load() != nullptr;
-        return n;
-    }
 
   private:
     const PreparedScene& m_scene;
@@ -605,7 +600,7 @@ uint64_t SceneBytes(const PreparedScene& scene, int threads) {
     // What primitives share is counted once (a set of the shared objects met, which the
     // previous primitive's mostly answers); a patch's or quadric's shape, its own, once each.
     std::unordered_set<const void*> seen;
-    const void* previous[4] = {nullptr, nullptr, nullptr, nullptr};
+    const void* previous[3] = {nullptr, nullptr, nullptr};  // attributes, colour fields, meshes
     auto once = [&](int kind, const void* p) {
         if (!p || p == previous[kind]) return false;
         previous[kind] = p;
@@ -753,9 +748,7 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
     // Each request's attributes (shared by its primitives: a mesh's faces) are looked at once:
     // the shader instance compiled, its generic programs and the lights.
     struct Instance {
-        std::shared_ptr<const compiler::CompiledShader> shader;  // null: no displacement
-        const vm::Program* bound = nullptr;
-        const vm::Program* shade = nullptr;
+        std::shared_ptr<const compiler::CompiledShader> shader;  // null: no displacement (the identity)
         int lightSet = 0;
         /// The programs of the primitives whose surfaces have no constants beyond E, du, dv
         /// (every kind but the bilinear patch), once made.
@@ -778,8 +771,10 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
         auto [found, added] = specialised.try_emplace(std::move(key), nullptr);
         if (added) {
             std::vector<std::string> unused;  // no overrides here: nothing can go wrong
-            out->programs.push_back({instance.shader, *compiler::Specialise(*instance.bound, {}, &unused, constants),
-                                     *compiler::Specialise(*instance.shade, {}, &unused, constants)});
+            const vm::Program& bound = instance.shader ? instance.shader->bound : identity;
+            const vm::Program& shade = instance.shader ? instance.shader->shade : identity;
+            out->programs.push_back({instance.shader, *compiler::Specialise(bound, {}, &unused, constants),
+                                     *compiler::Specialise(shade, {}, &unused, constants)});
             found->second = &out->programs.back();
         }
         return found->second;
@@ -838,10 +833,6 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
                         return fail(where(), "shader '" + ref.name + "' uses coordinate space '" + name +
                                                  "', which the scene makes projective (not supported)");
                 }
-                instance.bound = &instance.shader->bound;
-                instance.shade = &instance.shader->shade;
-            } else {
-                instance.bound = instance.shade = &identity;
             }
         }
         Primitive prim;
@@ -1095,7 +1086,7 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, Image
 
     *stats = RenderStats();
     trees.Merge(&stats->cache);
-    if (trees.made() > 0) stats->cache.evictionPasses = budget.passes();  // one pass serves every tree
+    stats->cache.evictionPasses = budget.passes();  // one pass serves every tree (none if none was made)
     stats->cacheBudgetBytes = options.cacheBytes;
     stats->cachePeakBytes = budget.peakBytes.load();
     for (int i = 0; i < nThreads; ++i) {

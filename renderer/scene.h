@@ -125,13 +125,6 @@ struct PrimitiveDesc {
     std::shared_ptr<const PrimitiveAttributes> attributes = DefaultAttributes();
 
     const PrimitiveAttributes& attr() const { return *attributes; }
-    /// A copy of the attributes to change (shared ones are never changed in place).
-    PrimitiveAttributes& MutableAttributes() {
-        auto copy = std::make_shared<PrimitiveAttributes>(*attributes);
-        PrimitiveAttributes& a = *copy;
-        attributes = std::move(copy);
-        return a;
-    }
     static const std::shared_ptr<const PrimitiveAttributes>& DefaultAttributes() {
         static const std::shared_ptr<const PrimitiveAttributes> defaults = std::make_shared<PrimitiveAttributes>();
         return defaults;

@@ -19,6 +19,18 @@ Box MakeBox(const glm::dvec3& lo, const glm::dvec3& hi) {
     return b;
 }
 
+/// The primitives `bvh` offers `ray` (from t = 0, no hit lowering tMax), in increasing order.
+std::vector<int> Visited(const Bvh& bvh, const Ray& ray) {
+    std::vector<int> visited;
+    double tMax = INFINITY;
+    bvh.Traverse(ray, 0, &tMax, [&](int i, double) {
+        visited.push_back(i);
+        return true;
+    });
+    std::sort(visited.begin(), visited.end());
+    return visited;
+}
+
 }  // namespace
 
 TEST_CASE("bvh: a ray visits exactly the boxes it crosses, nearest entry first", "[renderer][bvh]") {
@@ -41,14 +53,7 @@ TEST_CASE("bvh: a ray visits exactly the boxes it crosses, nearest entry first",
             double t0 = 0, t1 = INFINITY;
             if (boxes[i].Clip(ray, &t0, &t1)) expected.push_back(i);
         }
-        std::vector<int> visited;
-        double tMax = INFINITY;
-        bvh.Traverse(ray, 0, &tMax, [&](int i, double) {
-            visited.push_back(i);
-            return true;
-        });
-        std::sort(visited.begin(), visited.end());
-        CHECK(visited == expected);
+        CHECK(Visited(bvh, ray) == expected);
     }
 }
 
@@ -104,18 +109,8 @@ TEST_CASE("bvh: boxes past float's range keep their primitives (the leaves' floa
                               MakeBox(glm::dvec3(-1e201, -1, -1), glm::dvec3(-1e200, 1, 1)),
                               MakeBox(glm::dvec3(1e7, 5, -1), glm::dvec3(1e7 + 1e-30, 6, 1))};
     const Bvh bvh(boxes);
-    auto visits = [&](const Ray& ray) {
-        std::vector<int> seen;
-        double tMax = INFINITY;
-        bvh.Traverse(ray, 0, &tMax, [&](int i, double) {
-            seen.push_back(i);
-            return true;
-        });
-        std::sort(seen.begin(), seen.end());
-        return seen;
-    };
-    CHECK(visits({{0, 0, -5}, {0, 0, 1}}) == std::vector<int>{0});
-    CHECK(visits({{1.5e200, 0, -5}, {0, 0, 1}}) == std::vector<int>{0, 1});
-    CHECK(visits({{-1.5e200, 0, -5}, {0, 0, 1}}) == std::vector<int>{0, 2});
-    CHECK(visits({{1e7, 5.5, -5}, {0, 0, 1}}) == std::vector<int>{3});
+    CHECK(Visited(bvh, {{0, 0, -5}, {0, 0, 1}}) == std::vector<int>{0});
+    CHECK(Visited(bvh, {{1.5e200, 0, -5}, {0, 0, 1}}) == std::vector<int>{0, 1});
+    CHECK(Visited(bvh, {{-1.5e200, 0, -5}, {0, 0, 1}}) == std::vector<int>{0, 2});
+    CHECK(Visited(bvh, {{1e7, 5.5, -5}, {0, 0, 1}}) == std::vector<int>{3});
 }
