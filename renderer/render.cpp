@@ -623,9 +623,19 @@ uint64_t SceneBytes(const PreparedScene& scene, int threads) {
                              vectorBytes(m.faceNormals) + vectorBytes(m.pieces);
                     for (const auto* var : {&m.mesh.normals, &m.mesh.st, &m.mesh.s, &m.mesh.t})
                         if (*var) bytes += vectorBytes((*var)->values);
+                    for (const auto& color : m.colors)
+                        if (color) bytes += vectorBytes(color->values);
                 }
                 break;
-            case BaseSurface::Kind::SubdivPatch: bytes += sizeof(SubdivPatch); break;
+            case BaseSurface::Kind::SubdivPatch:
+                if (const SubdivPatches& m = *b.subdivRef().patches; once(2, &m)) {
+                    bytes += sizeof(SubdivPatches) + vectorBytes(m.patches);
+                    for (int k = 0; k < 2; ++k) {
+                        if (m.colors[k]) bytes += vectorBytes(m.colors[k]->values);
+                        bytes += vectorBytes(m.colorFields[k]);
+                    }
+                }
+                break;
         }
     }
     return bytes;
@@ -779,7 +789,9 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
         }
         return found->second;
     };
-    out->primitives.reserve(desc.primitives.size());
+    size_t elements = 0;
+    for (const PrimitiveDesc& p : desc.primitives) elements += p.elements;
+    out->primitives.reserve(elements);
     for (const PrimitiveDesc& patch : desc.primitives) {
         const PrimitiveAttributes& attributes = *patch.attributes;
         auto [entry, newAttributes] = instances.try_emplace(&attributes);
@@ -844,7 +856,11 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
             if (!instance.general) instance.general = specialise(instance, patch.base);
             prim.programs = instance.general;
         }
-        out->primitives.push_back(prim);
+        // A mesh's pieces or patches: one primitive each, the same but for the element.
+        for (uint32_t e = 0; e < patch.elements; ++e) {
+            prim.element = e;
+            out->primitives.push_back(prim);
+        }
     }
 
     // Each primitive's box, and the check that its displaced surface can be bounded somewhere:
@@ -958,7 +974,7 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
             value.N = at.N;
             value.P = at.P;
             // The mesh's (u,v), which the shader saw: the hit's are the patch's own.
-            const ParameterRange& range = prim.base().range;
+            const ParameterRange range = prim.desc->base.range;  // a patch's: never an element's own
             value.st = {range.U(nh.hit.u), range.V(nh.hit.v)};
             value.err = nh.hit.error;
         }

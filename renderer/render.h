@@ -124,14 +124,17 @@ struct PrimitivePrograms {
 };
 
 /// A primitive ready to render: its description (base surface, colours and attributes, in
-/// PreparedScene::desc), its programs and lights, and its box. A handful of words: a mesh of a
-/// million faces is a million of these, sharing everything else.
+/// PreparedScene::desc; for a mesh's piece or patch, the mesh's and its element's index), its
+/// programs and lights. A handful of words: a mesh of a million faces is a million of these,
+/// sharing everything else.
 struct Primitive {
     const PrimitiveDesc* desc = nullptr;
     const PrimitivePrograms* programs = nullptr;
-    int lightSet = 0;  // the lights that illuminate it: PreparedScene::lightSets[lightSet]
+    int32_t lightSet = 0;  // the lights that illuminate it: PreparedScene::lightSets[lightSet]
+    uint32_t element = 0;  // which of desc's elements (PrimitiveDesc::elements) it is
 
-    const BaseSurface& base() const { return desc->base; }
+    /// Its base surface (a mesh's piece or patch made from the mesh's: a handle and an index).
+    BaseSurface base() const { return element == 0 ? desc->base : desc->base.Element(element); }
     const PrimitiveAttributes& attributes() const { return *desc->attributes; }
     const std::shared_ptr<const compiler::CompiledShader>& shader() const { return programs->shader; }
     const vm::Program& bound() const { return programs->bound; }
@@ -143,14 +146,12 @@ struct Primitive {
     double sceneTolerance() const { return attributes().sceneTolerance; }  // pixels
     int line() const { return attributes().line; }                         // the RIB request
 
-    /// Cs and Os at the point (u, v) of the primitive's own parameters (a hit's); Os clamped to
-    /// [0, 1] (a field may overshoot between its values).
-    glm::dvec3 ColorAt(double u, double v) const { return desc->colorField ? desc->colorField->At(u, v) : desc->color; }
-    glm::dvec3 OpacityAt(double u, double v) const {
-        return desc->opacityField ? glm::clamp(desc->opacityField->At(u, v), 0.0, 1.0) : desc->opacity;
-    }
+    /// Cs and Os at the point (u, v) of the primitive's own parameters (a hit's), as
+    /// PrimitiveDesc::ColorAt gives them.
+    glm::dvec3 ColorAt(double u, double v) const { return desc->ColorAt(element, 0, u, v); }
+    glm::dvec3 OpacityAt(double u, double v) const { return desc->ColorAt(element, 1, u, v); }
     /// Whether Os is 1 everywhere.
-    bool OpaqueP() const { return !desc->opacityField && desc->opacity == glm::dvec3(1.0); }
+    bool OpaqueP() const { return desc->OpaqueP(element); }
 };
 
 struct PreparedScene {

@@ -165,8 +165,13 @@ void HashMesh(const PieceMesh& m, Fnv128* h) {
     for (const PieceMesh::Corners& p : m.pieces) {
         h->Add(BytesOf(p.faceCorner));
         h->Add(BytesOf(p.face));
-        h->Add(BytesOf(p.triangle));
+        h->Add(BytesOf(p.normal));
     }
+    for (const auto& color : m.colors)
+        if (color) {
+            h->Field("color", std::to_string(int(color->storage)));
+            h->Field("values", BytesOf(color->values));
+        }
 }
 
 /// The scene's primitives: what ToString prints of each, except that what primitives share (a
@@ -185,27 +190,33 @@ void HashPrimitives(const SceneDesc& scene, Fnv128* h) {
             h->Field("object", BytesOf(attributes->objectToWorld));
         }
         const BaseSurface& b = p.base;
-        if (b.kind() == BaseSurface::Kind::MeshPiece) {
-            const MeshPieceRef& ref = b.pieceRef();
-            if (ref.mesh.get() != mesh) {
-                mesh = ref.mesh.get();
-                HashMesh(*ref.mesh, h);
+        for (uint32_t i = 0; i < p.elements; ++i) {
+            if (b.kind() == BaseSurface::Kind::MeshPiece) {
+                const MeshPieceRef& ref = b.pieceRef();
+                if (ref.mesh.get() != mesh) {
+                    mesh = ref.mesh.get();
+                    HashMesh(*ref.mesh, h);
+                }
+                h->Field("piece", BytesOf(ref.index + i));
+            } else if (b.kind() == BaseSurface::Kind::SubdivPatch) {
+                h->Field("subdivision", ToString(b.Element(i).subdiv()));
+            } else {
+                PrimitiveDesc shape;
+                shape.base = b;
+                h->Field("shape", ToString(shape));
             }
-            h->Field("piece", BytesOf(ref.index));
-        } else if (b.kind() == BaseSurface::Kind::SubdivPatch) {
-            h->Field("subdivision", ToString(b.subdiv()));
-        } else {
-            PrimitiveDesc shape;
-            shape.base = b;
-            h->Field("shape", ToString(shape));
+            // The colours: a polygon mesh's own are in its arrays, a subdivision patch's fields.
+            PrimitiveDesc patch;
+            if (b.kind() == BaseSurface::Kind::SubdivPatch) patch = p.Element(i);
+            const PrimitiveDesc& e = b.kind() == BaseSurface::Kind::SubdivPatch ? patch : p;
+            std::string looks(BytesOf(e.color));
+            looks.append(BytesOf(e.opacity));
+            if (b.flipNormal) looks += " flip";
+            if (b.textureCoordinates) looks.append(BytesOf(*b.textureCoordinates));
+            if (e.colorField) looks += " Cs " + ToString(*e.colorField);
+            if (e.opacityField) looks += " Os " + ToString(*e.opacityField);
+            h->Field("looks", looks);
         }
-        std::string looks(BytesOf(p.color));
-        looks.append(BytesOf(p.opacity));
-        if (b.flipNormal) looks += " flip";
-        if (b.textureCoordinates) looks.append(BytesOf(*b.textureCoordinates));
-        if (p.colorField) looks += " Cs " + ToString(*p.colorField);
-        if (p.opacityField) looks += " Os " + ToString(*p.opacityField);
-        h->Field("looks", looks);
     }
 }
 

@@ -113,18 +113,82 @@ struct PrimitiveAttributes {
 /// 0) XOR insideOut. Default: a sphere's normals point out, whatever the camera and placement.
 /// Its textureCoordinates are the TextureCoordinates in effect: the s, t of quadrics and patches
 /// without their own "st".
+///
+/// A mesh is one PrimitiveDesc for all its pieces or patches: `elements` of them from its base's
+/// onwards, sharing everything but their shape and colours (which the mesh's shared arrays hold),
+/// so that a mesh of a million faces is one description, not a million. Element(i) is element i
+/// as a primitive of its own.
 struct PrimitiveDesc {
     using Transmission = PrimitiveAttributes::Transmission;
     BaseSurface base;
+    /// The primitives this one stands for: a polygon mesh's pieces or a subdivision mesh's
+    /// patches; 1 for any other shape.
+    uint32_t elements = 1;
     glm::dvec3 color{1.0};    ///< The RIB Color in effect, or the primitive's constant or uniform "Cs".
     glm::dvec3 opacity{1.0};  ///< The RIB Opacity in effect, or the primitive's constant or uniform "Os".
     /// A "Cs" or "Os" that varies over the primitive (varying, vertex, facevarying values), over
     /// its own (s,t) as the intersector's hits give them; null: `color` or `opacity` everywhere.
+    /// A mesh's own Cs and Os (PieceMesh::colors, SubdivPatches::colors) take their place.
     std::shared_ptr<const ColorField> colorField, opacityField;
     /// Never null: the defaults unless the RIB reader gives the request's.
     std::shared_ptr<const PrimitiveAttributes> attributes = DefaultAttributes();
 
     const PrimitiveAttributes& attr() const { return *attributes; }
+
+    /// Sets the colour (k = 0) or opacity (k = 1) from `field`: its value if it is constant,
+    /// else the field.
+    void SetColor(int k, ColorField field) {
+        glm::dvec3 value;
+        auto& target = k ? opacityField : colorField;
+        if (field.ConstantP(&value)) {
+            (k ? opacity : color) = value;
+            target = nullptr;
+        } else {
+            target = std::make_shared<const ColorField>(std::move(field));
+        }
+    }
+    /// Element i's Cs (k = 0) or Os (k = 1) as its mesh gives it, if the mesh has one.
+    std::optional<ColorField> MeshColor(uint32_t i, int k) const {
+        if (base.kind() == BaseSurface::Kind::MeshPiece) {
+            const MeshPieceRef& ref = base.pieceRef();
+            std::array<glm::dvec3, 4> corners;
+            if (!ref.mesh->CornerColors(ref.index + i, k, &corners)) return std::nullopt;
+            return ColorField::Bilinear(corners);
+        }
+        if (base.kind() == BaseSurface::Kind::SubdivPatch) {
+            const SubdivPatchRef& ref = base.subdivRef();
+            ColorField field;
+            if (!ref.patches->PatchColor(ref.index + i, k, &field)) return std::nullopt;
+            return field;
+        }
+        return std::nullopt;
+    }
+    /// Cs (k = 0) or Os (k = 1) of element i at the point (u, v) of its own parameters; Os from
+    /// a field clamped to [0, 1] (a field may overshoot between its values).
+    glm::dvec3 ColorAt(uint32_t i, int k, double u, double v) const {
+        auto at = [&](const ColorField& f) { return k ? glm::clamp(f.At(u, v), 0.0, 1.0) : f.At(u, v); };
+        if (std::optional<ColorField> f = MeshColor(i, k)) {
+            glm::dvec3 value;
+            return f->ConstantP(&value) ? value : at(*f);
+        }
+        const std::shared_ptr<const ColorField>& field = k ? opacityField : colorField;
+        return field ? at(*field) : (k ? opacity : color);
+    }
+    /// Whether element i's Os is 1 everywhere.
+    bool OpaqueP(uint32_t i) const {
+        glm::dvec3 value;
+        if (std::optional<ColorField> f = MeshColor(i, 1)) return f->ConstantP(&value) && value == glm::dvec3(1.0);
+        return !opacityField && opacity == glm::dvec3(1.0);
+    }
+    /// Element i as a primitive of its own (its shape, its colours as fields).
+    PrimitiveDesc Element(uint32_t i) const {
+        PrimitiveDesc e = *this;
+        e.base = base.Element(i);
+        e.elements = 1;
+        for (int k = 0; k < 2; ++k)
+            if (std::optional<ColorField> f = MeshColor(i, k)) e.SetColor(k, std::move(*f));
+        return e;
+    }
     static const std::shared_ptr<const PrimitiveAttributes>& DefaultAttributes() {
         static const std::shared_ptr<const PrimitiveAttributes> defaults = std::make_shared<PrimitiveAttributes>();
         return defaults;
@@ -284,6 +348,7 @@ inline std::string ToString(const PrimitiveDesc& p) {
         range << " uv=[" << b.range.u0 << ' ' << b.range.u1 << ' ' << b.range.v0 << ' ' << b.range.v1 << ']';
         text += range.str();
     }
+    if (p.elements != 1) text += " elements=" + std::to_string(p.elements);
     if (!a.twoSided) text += " sides=1";
     if (a.lights) {
         text += " lights=[";
@@ -354,8 +419,18 @@ inline std::string ToStringSettings(const SceneDesc& s) {
 /// (ToString(SceneDesc)'s lines after the camera's).
 inline std::string ToStringAfterCamera(const SceneDesc& s) {
     std::string text = ToStringSettings(s);
-    for (const PrimitiveDesc& p : s.primitives) text += "  " + ToString(p) + "\n";
+    for (const PrimitiveDesc& p : s.primitives)
+        for (uint32_t i = 0; i < p.elements; ++i) text += "  " + ToString(p.Element(i)) + "\n";
     return text;
+}
+
+/// The scene's primitives with each of a mesh's elements a primitive of its own
+/// (PrimitiveDesc::Element), in order: for tests and tools that look at faces one by one.
+inline std::vector<PrimitiveDesc> ElementPrimitives(const SceneDesc& s) {
+    std::vector<PrimitiveDesc> out;
+    for (const PrimitiveDesc& p : s.primitives)
+        for (uint32_t i = 0; i < p.elements; ++i) out.push_back(p.Element(i));
+    return out;
 }
 
 /// ToString(SceneDesc)'s first line, without its newline, naming the scene's file as `path`.

@@ -365,10 +365,7 @@ class RibParser : private RibArgChecks {
         size_t Of(renderer::StorageClass s) const;
     };
     /// A colour primitive variable ("Cs" or "Os") as given: its storage class, one colour per value.
-    struct ColorValues {
-        renderer::StorageClass storage = renderer::StorageClass::Constant;
-        std::vector<glm::dvec3> values;
-    };
+    using ColorValues = renderer::ColorValues;
     /// Reads `p` ("Cs" or "Os") into *out after checking its declaration (a color), its count
     /// against `counts` and its values (an opacity clamped to 0..1). `facevarying` false: the
     /// primitive has no such class (NuPatch). False after a Fail.

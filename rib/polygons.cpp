@@ -7,6 +7,7 @@
 // checked, then ignored with a warning.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "rib/parser.h"
@@ -146,6 +147,7 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
             Warn(p.at, context + " parameter " + Quote(name) + " is not supported yet; ignored");
         }
     }
+    mesh.points.reserve(nPoints);
     for (size_t i = 0; i < nPoints; ++i) {
         const double* v = position->value.numbers.data() + width * i;
         glm::dvec3 local(v[0], v[1], v[2]);
@@ -158,38 +160,23 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
             return Fail(position->at, context + " point " + std::to_string(i) + " overflows in world space");
     }
 
-    // One mesh that every piece's primitive shares (renderer::PieceMesh).
+    // One primitive for the mesh, its pieces its elements (renderer::PieceMesh); a constant Cs
+    // or Os is its colour, any other its mesh's.
     auto split = std::make_shared<renderer::PieceMesh>();
     if (std::string problem = renderer::SplitMesh(std::move(mesh), split.get()); !problem.empty())
         return Fail(r.at, context + " " + problem);
-    const std::shared_ptr<const renderer::PieceMesh> shared = split;
-    auto& primitives = m_scene.primitives;
-    if (const size_t needed = primitives.size() + split->pieces.size(); needed > primitives.capacity())
-        primitives.reserve(std::max(needed, 2 * primitives.capacity()));
-    for (size_t index = 0; index < split->pieces.size(); ++index) {
-        const renderer::PieceMesh::Corners& piece = split->pieces[index];
-        PrimitiveDesc prim;
-        prim.base = renderer::BaseSurface(renderer::MeshPieceRef{shared, static_cast<uint32_t>(index)});
-        SetPrimitiveAttributes(r, &prim);
-        // Cs and Os bilinear over the piece between its corners' values (so, on a triangle,
-        // linear between the face's vertices, as RenderMan's varying values are).
-        for (int k = 0; k < 2; ++k) {
-            if (!colors[k]) continue;
-            std::array<glm::dvec3, 4> corner;
-            for (int i = 0; i < 4; ++i) {
-                const size_t c = static_cast<size_t>(piece.faceCorner[i]);
-                switch (colors[k]->storage) {
-                    case StorageClass::Constant: corner[i] = colors[k]->values[0]; break;
-                    case StorageClass::Uniform: corner[i] = colors[k]->values[size_t(piece.face)]; break;
-                    case StorageClass::Varying:
-                    case StorageClass::Vertex: corner[i] = colors[k]->values[size_t(split->mesh.corners[c])]; break;
-                    case StorageClass::FaceVarying: corner[i] = colors[k]->values[c]; break;
-                }
-            }
-            SetColorField(&prim, k == 1, renderer::ColorField::Bilinear(corner));
-        }
-        m_scene.primitives.push_back(std::move(prim));
-    }
+    if (split->pieces.size() > std::numeric_limits<uint32_t>::max())
+        return Fail(r.at, context + " has more than 2^32 - 1 pieces");
+    for (int k = 0; k < 2; ++k)
+        if (colors[k] && colors[k]->storage != StorageClass::Constant) split->colors[k] = std::move(*colors[k]);
+    PrimitiveDesc prim;
+    prim.elements = static_cast<uint32_t>(split->pieces.size());
+    prim.base = renderer::BaseSurface(renderer::MeshPieceRef{std::move(split), 0});
+    SetPrimitiveAttributes(r, &prim);
+    for (int k = 0; k < 2; ++k)
+        if (colors[k] && colors[k]->storage == StorageClass::Constant)
+            (k ? prim.opacity : prim.color) = colors[k]->values[0];
+    m_scene.primitives.push_back(std::move(prim));
     return true;
 }
 

@@ -93,13 +93,7 @@ bool RibParser::ColorPrimvar(const RibParam& p, const std::string& context, cons
 }
 
 void RibParser::SetColorField(PrimitiveDesc* prim, bool opacity, ColorField field) {
-    glm::dvec3 value;
-    if (field.ConstantP(&value)) {
-        (opacity ? prim->opacity : prim->color) = value;
-        (opacity ? prim->opacityField : prim->colorField) = nullptr;
-    } else {
-        (opacity ? prim->opacityField : prim->colorField) = std::make_shared<const ColorField>(std::move(field));
-    }
+    prim->SetColor(opacity ? 1 : 0, std::move(field));
 }
 
 }  // namespace affray::rib

@@ -15,6 +15,7 @@
 // counts, then ignored with a warning.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <set>
 
@@ -249,35 +250,32 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     renderer::SubdivisionResult result;
     if (std::string problem = renderer::BuildSubdivisionPatches(mesh, &result); !problem.empty())
         return Fail(r.at, context + " " + problem);
-    // Room for the patches at once (a mesh makes thousands of PrimitiveDescs),
-    // growing geometrically still so that a scene of many meshes is not copied once per mesh.
-    auto& primitives = m_scene.primitives;
-    if (const size_t needed = primitives.size() + result.patches.size(); needed > primitives.capacity())
-        primitives.reserve(std::max(needed, 2 * primitives.capacity()));
     for (const renderer::SubdivPatch& patch : result.patches)
         if (!patch.geometry.FiniteP()) return Fail(r.at, context + " has a patch that overflows in world space");
-    // The patches kept once, shared by their primitives (each an index into them).
-    const auto patches = std::make_shared<const std::vector<renderer::SubdivPatch>>(std::move(result.patches));
-    for (size_t i = 0; i < patches->size(); ++i) {
-        const renderer::SubdivPatch& patch = (*patches)[i];
-        PrimitiveDesc prim;
-        prim.base = renderer::BaseSurface(renderer::SubdivPatchRef{patches, static_cast<uint32_t>(i)});
-        SetPrimitiveAttributes(r, &prim);
-        for (int k = 0; k < 2; ++k) {
-            if (!colors[k]) continue;
-            renderer::ColorField field;
-            if (variable[k] >= 0) {
-                const renderer::BicubicPatch& values = result.variables[size_t(variable[k])][i];
-                field.degreeU = field.degreeV = 3;
-                field.c.assign(values.c.begin(), values.c.end());
-            } else {
-                const bool uniform = colors[k]->storage == StorageClass::Uniform;
-                field.c = {colors[k]->values[uniform ? size_t(patch.controlFace) : 0]};
-            }
-            SetColorField(&prim, k == 1, std::move(field));
+    if (result.patches.empty()) return true;  // every face a hole, or on a boundary left out
+    if (result.patches.size() > std::numeric_limits<uint32_t>::max())
+        return Fail(r.at, context + " has more than 2^32 - 1 patches");
+    // One primitive for the mesh, its patches its elements (renderer::SubdivPatches), with the
+    // mesh's Cs and Os (a constant one is the primitive's colour).
+    auto patches = std::make_shared<renderer::SubdivPatches>();
+    for (int k = 0; k < 2; ++k) {
+        if (!colors[k] || colors[k]->storage == StorageClass::Constant) continue;
+        if (variable[k] < 0) {
+            patches->colors[k] = std::move(*colors[k]);
+            continue;
         }
-        m_scene.primitives.push_back(std::move(prim));
+        for (const renderer::BicubicPatch& values : result.variables[size_t(variable[k])])
+            patches->colorFields[k].push_back(values.c);
     }
+    patches->patches = std::move(result.patches);
+    PrimitiveDesc prim;
+    prim.elements = static_cast<uint32_t>(patches->patches.size());
+    prim.base = renderer::BaseSurface(renderer::SubdivPatchRef{std::move(patches), 0});
+    SetPrimitiveAttributes(r, &prim);
+    for (int k = 0; k < 2; ++k)
+        if (colors[k] && colors[k]->storage == StorageClass::Constant)
+            (k ? prim.opacity : prim.color) = colors[k]->values[0];
+    m_scene.primitives.push_back(std::move(prim));
     return true;
 }
 

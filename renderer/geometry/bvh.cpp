@@ -36,11 +36,20 @@ Bvh::Bvh(const std::vector<Box>& boxes) {
     for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
         if (!boxes[i].empty()) m_items.push_back(i);
     m_items.shrink_to_fit();
-    m_nodes.reserve(m_items.size() / 2 + 1);
+    // Exactly the nodes Build makes (a vector grown by doubling held up to twice as many).
+    auto nodes = [](auto&& self, size_t n) -> size_t {
+        return n <= size_t(kLeafPrimitives) ? 1 : 1 + self(self, n / 2) + self(self, n - n / 2);
+    };
+    if (!m_items.empty()) m_nodes.reserve(nodes(nodes, m_items.size()));
     if (!m_items.empty()) m_root = Build(0, static_cast<int>(m_items.size()), boxes);
-    // Each primitive's box in floats, rounded outwards (infinite sides stay infinite; a side past
-    // float's range is the infinity beyond it or float's largest on its side, whichever keeps the
-    // box a superset: converting such a double is undefined).
+    m_itemBoxes.resize(m_items.size());
+    for (size_t k = 0; k < m_items.size(); ++k) m_itemBoxes[k] = FloatBox::FromBox(boxes[size_t(m_items[k])]);
+}
+
+Bvh::FloatBox Bvh::FloatBox::FromBox(const Box& b) {
+    // Rounded outwards (infinite sides stay infinite; a side past float's range is the infinity
+    // beyond it or float's largest on its side, whichever keeps the box a superset: converting
+    // such a double is undefined).
     auto down = [](double x) {
         if (x > FLT_MAX) return FLT_MAX;
         if (!(x >= -FLT_MAX)) return -INFINITY;
@@ -53,21 +62,19 @@ Bvh::Bvh(const std::vector<Box>& boxes) {
         const float f = static_cast<float>(x);
         return double(f) < x ? std::nextafter(f, INFINITY) : f;
     };
-    m_itemBoxes.resize(m_items.size());
-    for (size_t k = 0; k < m_items.size(); ++k) {
-        const Box& b = boxes[static_cast<size_t>(m_items[k])];
-        for (int i = 0; i < 3; ++i) {
-            m_itemBoxes[k].lo[i] = down(b.lo[i]);
-            m_itemBoxes[k].hi[i] = up(b.hi[i]);
-        }
+    FloatBox f;
+    for (int i = 0; i < 3; ++i) {
+        f.lo[i] = down(b.lo[i]);
+        f.hi[i] = up(b.hi[i]);
     }
+    return f;
 }
 
 int Bvh::Build(int begin, int end, const std::vector<Box>& boxes) {
-    Node node;
-    for (int i = begin; i < end; ++i) node.box.Extend(boxes[m_items[i]]);
+    Box box;
+    for (int i = begin; i < end; ++i) box.Extend(boxes[m_items[i]]);
     const int index = static_cast<int>(m_nodes.size());
-    m_nodes.push_back(node);
+    m_nodes.push_back({FloatBox::FromBox(box)});
     if (end - begin <= kLeafPrimitives) {
         m_nodes[index].a = begin;
         m_nodes[index].b = begin - end;

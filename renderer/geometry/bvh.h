@@ -5,9 +5,9 @@
 // inside its box), and so is the slab test (widened for rounding): the hierarchy never hides a hit.
 // Built by splitting at the median of the longest axis of the box centres (nth_element: O(n log n)),
 // down to leaves of at most kLeafPrimitives primitives, each with its box in floats (rounded
-// outwards, so still conservative): a node is 56 bytes and there are about n of them, a leaf's
-// primitive 28 bytes, so a mesh of a million faces costs some 84 bytes per face here (a leaf per
-// primitive with its box in doubles cost 128). Leaves of two visit their primitives in the order a
+// outwards, so still conservative), and each node's box in floats likewise: a node is 32 bytes
+// and there are about n of them, a leaf's primitive 28 bytes, so a mesh of a million faces costs
+// some 60 bytes per face here (a leaf per primitive with its box in doubles cost 128). Leaves of two visit their primitives in the order a
 // leaf per primitive did (nearest entry first), so images do not change; leaves of four did
 // change them within the tolerance (a different one of two overlapping hits found first: the
 // showcase's RMSE 6e-4). A surface-area heuristic would buy little: the time goes into bounding the
@@ -63,20 +63,22 @@ class Bvh {
     static constexpr int kLeafPrimitives = 2;
 
   private:
+    /// A box in floats, rounded outwards (FromBox): a superset of the box it was made from.
+    struct FloatBox {
+        float lo[3], hi[3];
+        static FloatBox FromBox(const Box& b);
+        Box ToBox() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+    };
     struct Node {
-        Box box;
+        FloatBox box;
         /// An inner node's children are nodes a and b; a leaf (b < 0) holds the -b primitives
         /// m_items[a .. a - b).
         int32_t a = -1, b = 0;
     };
+
     int Build(int begin, int end, const std::vector<Box>& boxes);
 
     std::vector<Node> m_nodes;
-    /// A primitive's box in floats, rounded outwards.
-    struct FloatBox {
-        float lo[3], hi[3];
-        Box ToBox() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
-    };
     std::vector<int> m_items;           // the primitives, leaf by leaf
     std::vector<FloatBox> m_itemBoxes;  // their boxes
     int m_root = -1;
@@ -92,7 +94,7 @@ void Bvh::Traverse(const Ray& ray, double tMin, const double* tMax, Visit&& visi
     Entry stack[64];
     int top = 0;
     double t0 = tMin, t1 = *tMax;
-    if (!m_nodes[m_root].box.Clip(ray, &t0, &t1)) return;
+    if (!m_nodes[m_root].box.ToBox().Clip(ray, &t0, &t1)) return;
     stack[top++] = {m_root, t0};
     while (top > 0) {
         const Entry e = stack[--top];
@@ -117,7 +119,7 @@ void Bvh::Traverse(const Ray& ray, double tMin, const double* tMax, Visit&& visi
         int n = 0;
         for (int child : {node.a, node.b}) {
             double c0 = tMin, c1 = *tMax;
-            if (m_nodes[child].box.Clip(ray, &c0, &c1)) children[n++] = {child, c0};
+            if (m_nodes[child].box.ToBox().Clip(ray, &c0, &c1)) children[n++] = {child, c0};
         }
         // Push the farther first, so that the nearer is visited first.
         if (n == 2 && children[0].tEntry < children[1].tEntry) std::swap(children[0], children[1]);

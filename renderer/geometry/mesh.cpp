@@ -20,13 +20,17 @@ struct Corner {
     int faceCorner = 0;
 };
 
+/// The term of Newell's normal for the edge a -> b.
+glm::dvec3 NewellTerm(const glm::dvec3& a, const glm::dvec3& b) {
+    return glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+}
+
 /// Newell's normal of a loop: twice its vector area, robust for non-convex and slightly
 /// non-planar loops.
 glm::dvec3 NewellNormal(const PolygonMesh& mesh, const std::vector<Corner>& loop) {
     glm::dvec3 n(0.0);
     for (size_t i = 0; i < loop.size(); ++i) {
-        const glm::dvec3 &a = mesh.points[loop[i].point], &b = mesh.points[loop[(i + 1) % loop.size()].point];
-        n += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+        n += NewellTerm(mesh.points[loop[i].point], mesh.points[loop[(i + 1) % loop.size()].point]);
     }
     return n;
 }
@@ -208,7 +212,40 @@ MeshPiece PieceMesh::Piece(size_t index) const {
     const Corners& p = pieces[index];
     std::array<Corner, 4> c;
     for (int i = 0; i < 4; ++i) c[i] = {mesh.corners[static_cast<size_t>(p.faceCorner[i])], p.faceCorner[i]};
-    return MakePiece(mesh, p.face, faceNormals[static_cast<size_t>(p.face)], c, p.triangle != 0);
+    return MakePiece(mesh, p.face, FaceNormal(index), c, p.triangle());
+}
+
+glm::dvec3 PieceMesh::FaceNormal(size_t index) const {
+    const Corners& p = pieces[index];
+    if (p.normal != kOwnNormal) return faceNormals[static_cast<size_t>(p.normal)];
+    // The face's outline in its own order: a triangle's corners, a quad's 0 1 3 2 (patch order
+    // swaps the last two); the same sums as SplitMesh's, so the same bits.
+    const bool triangle = p.triangle();
+    const int order[4] = {0, 1, triangle ? 2 : 3, 2}, n = triangle ? 3 : 4;
+    glm::dvec3 newell(0.0);
+    for (int i = 0; i < n; ++i) {
+        auto point = [&](int k) { return mesh.points[size_t(mesh.corners[size_t(p.faceCorner[order[k]])])]; };
+        const glm::dvec3 a = point(i), b = point((i + 1) % n);
+        newell += NewellTerm(a, b);
+    }
+    return newell / glm::length(newell);
+}
+
+bool PieceMesh::CornerColors(size_t index, int k, std::array<glm::dvec3, 4>* out) const {
+    const std::optional<ColorValues>& color = colors[k];
+    if (!color) return false;
+    const Corners& piece = pieces[index];
+    for (int i = 0; i < 4; ++i) {
+        const size_t c = static_cast<size_t>(piece.faceCorner[i]);
+        switch (color->storage) {
+            case StorageClass::Constant: (*out)[i] = color->values[0]; break;
+            case StorageClass::Uniform: (*out)[i] = color->values[size_t(piece.face)]; break;
+            case StorageClass::Varying:
+            case StorageClass::Vertex: (*out)[i] = color->values[size_t(mesh.corners[c])]; break;
+            case StorageClass::FaceVarying: (*out)[i] = color->values[c]; break;
+        }
+    }
+    return true;
 }
 
 std::string SplitMesh(PolygonMesh polygons, PieceMesh* out) {
@@ -216,10 +253,11 @@ std::string SplitMesh(PolygonMesh polygons, PieceMesh* out) {
     const PolygonMesh& mesh = out->mesh;
     out->faceNormals.clear();
     out->pieces.clear();
-    out->faceNormals.reserve(mesh.loops.size());
     out->pieces.reserve(mesh.loops.size());
-    auto add = [&](int face, const std::array<Corner, 4>& c, bool triangle) {
-        out->pieces.push_back({{c[0].faceCorner, c[1].faceCorner, c[2].faceCorner, c[3].faceCorner}, face, triangle});
+    // A face that is one piece finds its normal from its corners; the pieces of a triangulated
+    // face share the one stored.
+    auto add = [&](int face, const std::array<Corner, 4>& c, int32_t normal) {
+        out->pieces.push_back({{c[0].faceCorner, c[1].faceCorner, c[2].faceCorner, c[3].faceCorner}, face, normal});
     };
     size_t loopIndex = 0, cornerIndex = 0;
     for (size_t f = 0; f < mesh.loops.size(); ++f) {
@@ -237,18 +275,17 @@ std::string SplitMesh(PolygonMesh polygons, PieceMesh* out) {
         if (!(length > 0) || !std::isfinite(length))
             return name + " is degenerate: its outline has no area (its corners are collinear or coincide)";
         const glm::dvec3 normal = newell / length;
-        out->faceNormals.push_back(normal);
         auto point = [&](const Corner& c) { return mesh.points[c.point]; };
         // A triangle, or a convex quad without holes: one piece.
         if (loops.size() == 1 && loops[0].size() == 3) {
             const auto& l = loops[0];
-            add(face, {l[0], l[1], l[2], l[2]}, true);
+            add(face, {l[0], l[1], l[2], l[2]}, PieceMesh::kOwnNormal);
             continue;
         }
         if (loops.size() == 1 && loops[0].size() == 4) {
             const auto& l = loops[0];
             if (ConvexQuadP({point(l[0]), point(l[1]), point(l[2]), point(l[3])}, normal)) {
-                add(face, {l[0], l[1], l[3], l[2]}, false);
+                add(face, {l[0], l[1], l[3], l[2]}, PieceMesh::kOwnNormal);
                 continue;
             }
         }
@@ -290,12 +327,16 @@ std::string SplitMesh(PolygonMesh polygons, PieceMesh* out) {
         std::vector<std::array<Corner, 3>> triangles;
         if (!ClipEars(outline, &triangles) || triangles.empty())
             return name + " cannot be triangulated: its loops intersect themselves or each other";
-        for (const auto& t : triangles) add(face, {t[0], t[1], t[2], t[2]}, true);
+        const auto stored = static_cast<int32_t>(out->faceNormals.size());
+        out->faceNormals.push_back(normal);
+        for (const auto& t : triangles) add(face, {t[0], t[1], t[2], t[2]}, stored);
     }
     // Splitting is done: a piece needs only the face corners' points and values.
     out->mesh.loops = {};
     out->mesh.loopSizes = {};
+    out->mesh.corners.shrink_to_fit();
     out->pieces.shrink_to_fit();
+    out->faceNormals.shrink_to_fit();
     return "";
 }
 

@@ -88,19 +88,31 @@ struct PolygonMesh {
 struct PieceMesh {
     /// The mesh (world space); its loops and loop sizes are dropped once it is split.
     PolygonMesh mesh;
-    /// Per face, its unit Newell normal (MeshPiece::faceNormal).
+    /// The face normals (MeshPiece::faceNormal) that a piece's own corners do not give: those of
+    /// the faces split into triangles (the normal of the whole outline), and of lone pieces.
     std::vector<glm::dvec3> faceNormals;
     /// A piece: its corners' indices among the mesh's face corners, in patch order (a triangle
-    /// repeats its last), and its face.
+    /// repeats its last), its face, and where its face's normal comes from: kOwnNormal for a
+    /// face that is the piece alone (the Newell normal of its corners in the face's order, as
+    /// the split computed it), else its index in faceNormals.
     struct Corners {
         std::array<int32_t, 4> faceCorner{};
         int32_t face = 0;
-        int32_t triangle = 0;
+        int32_t normal = kOwnNormal;
+        bool triangle() const { return faceCorner[3] == faceCorner[2]; }
     };
+    static constexpr int32_t kOwnNormal = -1;
     std::vector<Corners> pieces;
+    /// The mesh's "Cs" (colors[0]) and "Os" (colors[1]) if it varies over it (a constant one is
+    /// the primitive's colour).
+    std::optional<ColorValues> colors[2];
 
     /// Piece `index` with its corner values, as SplitMesh's vector form gives it.
     MeshPiece Piece(size_t index) const;
+    /// The face normal of piece `index` (MeshPiece::faceNormal).
+    glm::dvec3 FaceNormal(size_t index) const;
+    /// The values of colors[k] at piece `index`'s corners (patch order); false without colors[k].
+    bool CornerColors(size_t index, int k, std::array<glm::dvec3, 4>* out) const;
 };
 
 /// Splits every face of `mesh` into `out`'s pieces (taking the mesh's arrays); the same as the

@@ -18,6 +18,13 @@ namespace affray::renderer {
 /// and NuPatches all read their "st" through it (a NuPatch has no FaceVarying: its reader says so).
 enum class StorageClass { Constant, Uniform, Varying, Vertex, FaceVarying };
 
+/// A colour primitive variable (Cs or Os) of a primitive as given: one value, or one per face
+/// (patch), per point or per face corner, as its storage class says.
+struct ColorValues {
+    StorageClass storage = StorageClass::Constant;
+    std::vector<glm::dvec3> values;
+};
+
 /// A colour primitive variable (Cs or Os) over one primitive's own parameters (s, t) in [0,1]^2
 /// (the intersector's, before a patch mesh's range maps them): the polynomial
 ///     C(s, t) = sum over i <= degreeU, j <= degreeV of c[(degreeV + 1) i + j] s^i t^j,

@@ -703,4 +703,20 @@ std::string BuildSubdivisionPatches(const SubdivisionMesh& mesh, SubdivisionResu
     return "";
 }
 
+bool SubdivPatches::PatchColor(size_t index, int k, ColorField* out) const {
+    if (!colorFields[k].empty()) {
+        const std::array<glm::dvec3, 16>& c = colorFields[k][index];
+        out->degreeU = out->degreeV = 3;
+        out->c.assign(c.begin(), c.end());
+        out->w.clear();
+        return true;
+    }
+    const std::optional<ColorValues>& color = colors[k];
+    if (!color) return false;
+    const bool uniform = color->storage == StorageClass::Uniform;
+    *out = ColorField();
+    out->c = {color->values[uniform ? size_t(patches[index].controlFace) : 0]};
+    return true;
+}
+
 }  // namespace affray::renderer

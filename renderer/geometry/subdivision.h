@@ -143,6 +143,20 @@ struct SubdivPatch {
 /// The one-line description of a patch, for logs and tests.
 std::string ToString(const SubdivPatch& p);
 
+/// A subdivision mesh's patches as a scene keeps them: one object that every patch's primitive
+/// shares (each an index into it), with the mesh's "Cs" (k = 0) and "Os" (k = 1).
+struct SubdivPatches {
+    std::vector<SubdivPatch> patches;
+    /// A constant or uniform colour's values (one per control face), if the mesh has one.
+    std::optional<ColorValues> colors[2];
+    /// A colour that varies within a face: its field per patch, refined with the mesh (as
+    /// SubdivPatch::st is); empty if none.
+    std::vector<std::array<glm::dvec3, 16>> colorFields[2];
+
+    /// Colour k over patch `index`'s (u,v) into *out; false if the mesh has no colour k.
+    bool PatchColor(size_t index, int k, ColorField* out) const;
+};
+
 /// The refined mesh and its patches, for tests (BuildSubdivisionPatches's work).
 struct SubdivisionResult {
     std::vector<SubdivPatch> patches;

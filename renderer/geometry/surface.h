@@ -360,7 +360,7 @@ struct MeshPieceRef {
 
 /// One patch of a shared subdivision mesh's patches: the patches and the patch's index.
 struct SubdivPatchRef {
-    std::shared_ptr<const std::vector<SubdivPatch>> patches;
+    std::shared_ptr<const SubdivPatches> patches;
     uint32_t index = 0;
 };
 
@@ -403,7 +403,8 @@ class BaseSurface {
                 std::shared_ptr<const TrimCurves> t = nullptr)
         : trim(std::move(t)), range(r), flipNormal(flip), m_shape(std::make_shared<const RationalPatch>(p)) {}
     BaseSurface(const SubdivPatch& p, bool flip = false)
-        : flipNormal(flip), m_shape(SubdivPatchRef{std::make_shared<const std::vector<SubdivPatch>>(1, p), 0}) {}
+        : flipNormal(flip),
+          m_shape(SubdivPatchRef{std::make_shared<const SubdivPatches>(SubdivPatches{{p}, {}, {}}), 0}) {}
     BaseSurface(SubdivPatchRef p, bool flip = false) : flipNormal(flip), m_shape(std::move(p)) {}
 
     Kind kind() const { return static_cast<Kind>(m_shape.index()); }
@@ -420,7 +421,19 @@ class BaseSurface {
     const RationalPatch& rational() const { return *std::get<4>(m_shape); }
     const SubdivPatch& subdiv() const {
         const SubdivPatchRef& r = std::get<5>(m_shape);
-        return (*r.patches)[r.index];
+        return r.patches->patches[r.index];
+    }
+    const SubdivPatchRef& subdivRef() const { return std::get<5>(m_shape); }
+
+    /// Element `i` of a mesh's pieces or patches counted from this one (the next piece or patch
+    /// of the same mesh for i = 1); any other shape is its only element (i = 0).
+    BaseSurface Element(uint32_t i) const {
+        BaseSurface e(*this);
+        if (auto* piece = std::get_if<MeshPieceRef>(&e.m_shape))
+            piece->index += i;
+        else if (auto* patch = std::get_if<SubdivPatchRef>(&e.m_shape))
+            patch->index += i;
+        return e;
     }
 
     /// Whether s and t come from textureCoordinates.
@@ -466,8 +479,9 @@ inline BaseSurface::BaseSurface(const MeshPiece& m, bool flip) : flipNormal(flip
         for (const glm::dvec2& v : m.st) st.values.insert(st.values.end(), {v.x, v.y});
         p.st = std::move(st);
     }
-    mesh->faceNormals.assign(static_cast<size_t>(m.face) + 1, m.faceNormal);
-    mesh->pieces.push_back({{0, 1, 2, 3}, m.face, m.triangle ? 1 : 0});
+    // Its face normal as given (a test's may not be its corners' Newell normal).
+    mesh->faceNormals = {m.faceNormal};
+    mesh->pieces.push_back({{0, 1, 2, m.triangle ? 2 : 3}, m.face, 0});
     m_shape = MeshPieceRef{std::move(mesh), 0};
 }
 

@@ -16,9 +16,9 @@ using namespace affray::test;
 namespace {
 
 MeshPiece PieceOf(const SceneDesc& scene, size_t i) {
-    REQUIRE(i < scene.primitives.size());
-    REQUIRE(scene.primitives[i].base.kind() == BaseSurface::Kind::MeshPiece);
-    return scene.primitives[i].base.piece();
+    REQUIRE(i < ElementPrimitives(scene).size());
+    REQUIRE(ElementPrimitives(scene)[i].base.kind() == BaseSurface::Kind::MeshPiece);
+    return ElementPrimitives(scene)[i].base.piece();
 }
 
 }  // namespace
@@ -27,7 +27,7 @@ TEST_CASE("rib polygons: Polygon, GeneralPolygon, PointsPolygons, PointsGeneralP
           "[rib][polygons]") {
     SECTION("Polygon: a quad in world space, one piece") {
         const SceneDesc s = ParseWorld("Translate 0 0 2\nPolygon \"P\" [0 0 0  1 0 0  1 1 0  0 1 0]\n");
-        REQUIRE(s.primitives.size() == 1);
+        REQUIRE(ElementPrimitives(s).size() == 1);
         const MeshPiece& p = PieceOf(s, 0);
         CHECK_FALSE(p.triangle);
         // Patch order: a, b, d, c.
@@ -36,12 +36,12 @@ TEST_CASE("rib polygons: Polygon, GeneralPolygon, PointsPolygons, PointsGeneralP
         affray::test::RequireVec(p.P[2], {0, 1, 2});
         affray::test::RequireVec(p.P[3], {1, 1, 2});
         affray::test::RequireVec(p.faceNormal, {0, 0, 1});
-        CHECK(s.primitives[0].attr().line == 3);
+        CHECK(ElementPrimitives(s)[0].attr().line == 3);
     }
     SECTION("GeneralPolygon with a hole") {
         const SceneDesc s =
             ParseWorld("GeneralPolygon [4 4] \"P\" [0 0 0  4 0 0  4 4 0  0 4 0   1 1 0  1 3 0  3 3 0  3 1 0]\n");
-        CHECK(s.primitives.size() == 8);
+        CHECK(ElementPrimitives(s).size() == 8);
     }
     SECTION("PointsPolygons with vertex normals, facevarying st and uniform s") {
         const SceneDesc s = ParseWorld(
@@ -49,7 +49,7 @@ TEST_CASE("rib polygons: Polygon, GeneralPolygon, PointsPolygons, PointsGeneralP
             "PointsPolygons [3 3] [0 1 2  0 2 3] \"P\" [0 0 0  1 0 0  1 1 0  0 1 0]\n"
             "  \"N\" [0 0 1  1 0 1  0 0 1  0 0 1]\n"
             "  \"facevarying float[2] st\" [0 0 1 0 1 1  0 0 1 1 0 1]\n");
-        REQUIRE(s.primitives.size() == 2);
+        REQUIRE(ElementPrimitives(s).size() == 2);
         const MeshPiece& p = PieceOf(s, 0);
         CHECK(p.triangle);
         CHECK(p.hasNormals);
@@ -68,15 +68,15 @@ TEST_CASE("rib polygons: Polygon, GeneralPolygon, PointsPolygons, PointsGeneralP
             "  \"uniform float s\" [0.25 0.75] \"constant float t\" [0.5] \"Cs\" [1 0 0 0 1 0 0 0 1 1 1 1 0 0 0 "
             "1 0 0 0 1 0 0 0 1]\n",
             &report);
-        CHECK(s.primitives.size() == 8);  // 4 + 3 corners with a hole: 7 triangles; and the triangle
+        CHECK(ElementPrimitives(s).size() == 8);  // 4 + 3 corners with a hole: 7 triangles; and the triangle
         const MeshPiece& last = PieceOf(s, 7);
         CHECK(last.face == 1);
         CHECK(last.st[0] == glm::dvec2(0.75, 0.5));
         CHECK(report.all().empty());
         // Cs by point: the triangle's corners 0 7 1 are red, blue and green.
-        REQUIRE(s.primitives[7].colorField);
-        CHECK(s.primitives[7].colorField->At(0, 0) == glm::dvec3(1, 0, 0));
-        CHECK(s.primitives[7].colorField->At(0, 1) == glm::dvec3(0, 1, 0));
+        REQUIRE(ElementPrimitives(s)[7].colorField);
+        CHECK(ElementPrimitives(s)[7].colorField->At(0, 0) == glm::dvec3(1, 0, 0));
+        CHECK(ElementPrimitives(s)[7].colorField->At(0, 1) == glm::dvec3(0, 1, 0));
     }
 }
 

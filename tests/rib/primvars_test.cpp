@@ -43,8 +43,9 @@ TEST_CASE("primvars: Cs of every storage class on polygons", "[rib][primvar]") {
     // A convex quad a b c d is the piece (a, b, d, c): u runs a -> b, v runs a -> d.
     const std::string quad = "Polygon \"P\" [0 0 0  1 0 0  1 1 0  0 1 0] ";
     SECTION("constant and the Color in effect") {
-        CHECK(test::ParseWorld("Color 0.5 0.5 0.5\n" + quad).primitives[0].color == glm::dvec3(0.5));
-        const PrimitiveDesc p = test::ParseWorld(quad + "\"constant color Cs\" [1 0 0]").primitives[0];
+        CHECK(renderer::ElementPrimitives(test::ParseWorld("Color 0.5 0.5 0.5\n" + quad))[0].color == glm::dvec3(0.5));
+        const PrimitiveDesc p =
+            renderer::ElementPrimitives(test::ParseWorld(quad + "\"constant color Cs\" [1 0 0]"))[0];
         CHECK(p.color == kRed);
         CHECK_FALSE(p.colorField);
     }
@@ -52,8 +53,8 @@ TEST_CASE("primvars: Cs of every storage class on polygons", "[rib][primvar]") {
         // "color Cs" (no class, so uniform) with a colour per vertex reads as varying, with a note.
         for (const char* storage : {"", "varying color ", "vertex color ", "color "}) {
             INFO(storage);
-            const PrimitiveDesc p =
-                test::ParseWorld(quad + "\"" + storage + "Cs\" [1 0 0  0 1 0  0 0 1  1 1 1]").primitives[0];
+            const PrimitiveDesc p = renderer::ElementPrimitives(
+                test::ParseWorld(quad + "\"" + storage + "Cs\" [1 0 0  0 1 0  0 0 1  1 1 1]"))[0];
             REQUIRE(p.colorField);
             RequireNear(ColorAt(p, 0, 0), kRed);
             RequireNear(ColorAt(p, 1, 0), kGreen);
@@ -66,15 +67,16 @@ TEST_CASE("primvars: Cs of every storage class on polygons", "[rib][primvar]") {
         // Two triangles sharing the edge 1-2: (0 1 2) and (2 1 3).
         const std::string mesh = "PointsPolygons [3 3] [0 1 2  2 1 3] \"P\" [0 0 0  1 0 0  0 1 0  1 1 0] ";
         const renderer::SceneDesc uniform = test::ParseWorld(mesh + "\"uniform color Cs\" [1 0 0  0 0 1]");
-        REQUIRE(uniform.primitives.size() == 2);
-        CHECK(uniform.primitives[0].color == kRed);
-        CHECK(uniform.primitives[1].color == kBlue);
-        CHECK_FALSE(uniform.primitives[1].colorField);
+        REQUIRE(renderer::ElementPrimitives(uniform).size() == 2);
+        CHECK(renderer::ElementPrimitives(uniform)[0].color == kRed);
+        CHECK(renderer::ElementPrimitives(uniform)[1].color == kBlue);
+        CHECK_FALSE(renderer::ElementPrimitives(uniform)[1].colorField);
         // Vertex 1 is green in the first face and white in the second. A triangle's piece is
         // (a, b, c, c): (0,0) is a, (1,0) is b, v = 1 is c.
         const renderer::SceneDesc facevarying =
             test::ParseWorld(mesh + "\"facevarying color Cs\" [1 0 0  0 1 0  0 0 1   0 0 1  1 1 1  1 0 0]");
-        const PrimitiveDesc &first = facevarying.primitives[0], &second = facevarying.primitives[1];
+        const PrimitiveDesc first = renderer::ElementPrimitives(facevarying)[0],
+                            second = renderer::ElementPrimitives(facevarying)[1];
         RequireNear(ColorAt(first, 1, 0), kGreen);
         RequireNear(ColorAt(second, 1, 0), kWhite);
         RequireNear(ColorAt(first, 0.3, 1), kBlue);
@@ -84,9 +86,9 @@ TEST_CASE("primvars: Cs of every storage class on polygons", "[rib][primvar]") {
         diag::Report report;
         const renderer::SceneDesc os =
             test::ParseWorld(mesh + "\"vertex color Os\" [1 1 1  0 0 0  0.5 0.5 0.5  2 2 2]", &report);
-        RequireNear(ColorAt(os.primitives[0], 0, 0, true), kWhite);
-        RequireNear(ColorAt(os.primitives[0], 0.5, 0, true), glm::dvec3(0.5));
-        RequireNear(ColorAt(os.primitives[1], 0.2, 1, true), kWhite);  // 2 clamped to 1
+        RequireNear(ColorAt(renderer::ElementPrimitives(os)[0], 0, 0, true), kWhite);
+        RequireNear(ColorAt(renderer::ElementPrimitives(os)[0], 0.5, 0, true), glm::dvec3(0.5));
+        RequireNear(ColorAt(renderer::ElementPrimitives(os)[1], 0.2, 1, true), kWhite);  // 2 clamped to 1
         CHECK(report.all().size() == 1);
     }
 }
@@ -99,18 +101,18 @@ TEST_CASE("primvars: Cs and Os of every storage class on a subdivision mesh", "[
     const std::string points = "[-1 -1 1  1 -1 1  -1 1 1  1 1 1  -1 1 -1  1 1 -1  -1 -1 -1  1 -1 -1]";
     SECTION("constant and uniform: each patch's colour, from its control face") {
         const renderer::SceneDesc c = test::ParseWorld(cube + "\"constant color Cs\" [0 1 0]");
-        for (const PrimitiveDesc& p : c.primitives) CHECK(p.color == kGreen);
+        for (const PrimitiveDesc& p : renderer::ElementPrimitives(c)) CHECK(p.color == kGreen);
         const renderer::SceneDesc u =
             test::ParseWorld(cube + "\"uniform color Cs\" [0 0 0  0.2 0 0  0.4 0 0  0.6 0 0  0.8 0 0  1 0 0]");
-        REQUIRE(u.primitives.size() == 96);
-        for (const PrimitiveDesc& p : u.primitives) {
+        REQUIRE(renderer::ElementPrimitives(u).size() == 96);
+        for (const PrimitiveDesc& p : renderer::ElementPrimitives(u)) {
             CHECK_FALSE(p.colorField);
             RequireNear(p.color, glm::dvec3(0.2 * p.base.subdiv().controlFace, 0, 0));
         }
     }
     SECTION("vertex: refined and evaluated as P is, so Cs = P gives the limit surface") {
         const renderer::SceneDesc s = test::ParseWorld(cube + "\"vertex color Cs\" " + points);
-        for (const PrimitiveDesc& p : s.primitives) {
+        for (const PrimitiveDesc& p : renderer::ElementPrimitives(s)) {
             REQUIRE(p.colorField);
             for (double u : {0.0, 0.3, 1.0})
                 for (double v : {0.0, 0.6, 1.0}) RequireNear(ColorAt(p, u, v), SurfaceAt(p, u, v), 1e-12);
@@ -118,7 +120,7 @@ TEST_CASE("primvars: Cs and Os of every storage class on a subdivision mesh", "[
     }
     SECTION("varying: bilinear over the control faces, so Cs = P stays on the cube's faces") {
         const renderer::SceneDesc s = test::ParseWorld(cube + "\"varying color Cs\" " + points);
-        for (const PrimitiveDesc& p : s.primitives) {
+        for (const PrimitiveDesc& p : renderer::ElementPrimitives(s)) {
             REQUIRE(p.colorField);
             const glm::dvec3 c = p.colorField->At(0.3, 0.7);
             const double largest = std::max({std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
@@ -130,7 +132,7 @@ TEST_CASE("primvars: Cs and Os of every storage class on a subdivision mesh", "[
         for (int f = 0; f < 6; ++f)
             for (int k = 0; k < 4; ++k) values += " " + std::to_string(f / 5.0) + " 0 0";
         const renderer::SceneDesc s = test::ParseWorld(cube + "\"facevarying color Cs\" [" + values + "]");
-        for (const PrimitiveDesc& p : s.primitives)
+        for (const PrimitiveDesc& p : renderer::ElementPrimitives(s))
             RequireNear(ColorAt(p, 0.4, 0.8), glm::dvec3(p.base.subdiv().controlFace / 5.0, 0, 0), 1e-12);
     }
     SECTION("bad counts and declarations are errors") {
@@ -148,17 +150,15 @@ TEST_CASE("primvars: Cs on patches, patch meshes and quadrics", "[rib][primvar]"
         "[0 0 0  1 0 0.5  2 0 0  3 0 0.2   0 1 0  1 1 1  2 1 0.3  3 1 0 "
         " 0 2 0.1  1 2 0  2 2 1  3 2 0   0 3 0  1 3 0.4  2 3 0  3 3 0.6]";
     SECTION("a bicubic patch: varying values bilinear, vertex ones in the patch's basis") {
-        const PrimitiveDesc varying =
-            test::ParseWorld("Patch \"bicubic\" \"P\" " + bezier + " \"Cs\" [1 0 0  0 1 0  0 0 1  1 1 1]")
-                .primitives[0];
+        const PrimitiveDesc varying = renderer::ElementPrimitives(
+            test::ParseWorld("Patch \"bicubic\" \"P\" " + bezier + " \"Cs\" [1 0 0  0 1 0  0 0 1  1 1 1]"))[0];
         RequireNear(ColorAt(varying, 1, 0), kGreen);
         RequireNear(ColorAt(varying, 0, 1), kBlue);
         for (const char* basis : {"bezier", "b-spline", "catmull-rom"}) {
             INFO(basis);
-            const PrimitiveDesc p =
+            const PrimitiveDesc p = renderer::ElementPrimitives(
                 test::ParseWorld(std::string("Basis \"") + basis + "\" 1 \"" + basis +
-                                 "\" 1\nPatch \"bicubic\" \"P\" " + bezier + " \"vertex color Cs\" " + bezier)
-                    .primitives[0];
+                                 "\" 1\nPatch \"bicubic\" \"P\" " + bezier + " \"vertex color Cs\" " + bezier))[0];
             for (double u : {0.0, 0.25, 1.0})
                 for (double v : {0.0, 0.5, 0.9}) RequireNear(ColorAt(p, u, v), SurfaceAt(p, u, v), 1e-12);
         }
@@ -173,8 +173,8 @@ TEST_CASE("primvars: Cs on patches, patch meshes and quadrics", "[rib][primvar]"
         std::string cs = "[";
         for (int i = 0; i < 16; ++i)
             cs += " " + std::to_string(i % 4) + " " + std::to_string(i / 4) + " " + std::to_string(0.1 * (i % 5));
-        const PrimitiveDesc r =
-            test::ParseWorld("Patch \"bicubic\" \"Pw\" " + pw + "] \"vertex color Cs\" " + cs + "]").primitives[0];
+        const PrimitiveDesc r = renderer::ElementPrimitives(
+            test::ParseWorld("Patch \"bicubic\" \"Pw\" " + pw + "] \"vertex color Cs\" " + cs + "]"))[0];
         REQUIRE(r.base.kind() == BaseSurface::Kind::RationalPatch);
         for (double u : {0.0, 0.4, 1.0})
             for (double v : {0.2, 0.7}) RequireNear(ColorAt(r, u, v), SurfaceAt(r, u, v), 1e-9);
@@ -184,26 +184,26 @@ TEST_CASE("primvars: Cs on patches, patch meshes and quadrics", "[rib][primvar]"
             "PatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" "
             "\"P\" [0 0 0  1 0 0  2 0 0  0 1 0  1 1 0  2 1 0] ";
         const renderer::SceneDesc u = test::ParseWorld(mesh + "\"uniform color Cs\" [1 0 0  0 0 1]");
-        REQUIRE(u.primitives.size() == 2);
-        CHECK(u.primitives[1].color == kBlue);
+        REQUIRE(renderer::ElementPrimitives(u).size() == 2);
+        CHECK(renderer::ElementPrimitives(u)[1].color == kBlue);
         const renderer::SceneDesc v =
             test::ParseWorld(mesh + "\"Cs\" [1 0 0  0 1 0  0 0 1  1 1 1  0 0 0  0.5 0.5 0.5]");
-        RequireNear(ColorAt(v.primitives[1], 0, 0), kGreen);
-        RequireNear(ColorAt(v.primitives[1], 1, 0), kBlue);
-        RequireNear(ColorAt(v.primitives[1], 0, 1), glm::dvec3(0.0));
-        RequireNear(ColorAt(v.primitives[1], 1, 1), glm::dvec3(0.5));
+        RequireNear(ColorAt(renderer::ElementPrimitives(v)[1], 0, 0), kGreen);
+        RequireNear(ColorAt(renderer::ElementPrimitives(v)[1], 1, 0), kBlue);
+        RequireNear(ColorAt(renderer::ElementPrimitives(v)[1], 0, 1), glm::dvec3(0.0));
+        RequireNear(ColorAt(renderer::ElementPrimitives(v)[1], 1, 1), glm::dvec3(0.5));
         // Periodic in u: 3 patches, the last wrapping to the first column.
         const renderer::SceneDesc w = test::ParseWorld(
             "PatchMesh \"bilinear\" 3 \"periodic\" 2 \"nonperiodic\" \"P\" [0 0 0  1 0 0  2 0 0  0 1 0  1 1 0  2 1 0] "
             "\"Cs\" [1 0 0  0 1 0  0 0 1  1 1 1  0 0 0  0.5 0.5 0.5]");
-        REQUIRE(w.primitives.size() == 3);
-        RequireNear(ColorAt(w.primitives[2], 0, 0), kBlue);
-        RequireNear(ColorAt(w.primitives[2], 1, 0), kRed);
+        REQUIRE(renderer::ElementPrimitives(w).size() == 3);
+        RequireNear(ColorAt(renderer::ElementPrimitives(w)[2], 0, 0), kBlue);
+        RequireNear(ColorAt(renderer::ElementPrimitives(w)[2], 1, 0), kRed);
         CHECK(test::WorldError(mesh + "\"Cs\" [1 0 0  0 1 0]") ==
               "t.rib:2: error: 'PatchMesh \"bilinear\"' parameter 'Cs' (varying color) expects 6 colors (18 "
               "numbers), got 6 numbers");
         // One colour where the class needs more: the primitive's, with a warning.
-        CHECK(test::ParseWorld(mesh + "\"Cs\" [0 0 1]").primitives[1].color == kBlue);
+        CHECK(renderer::ElementPrimitives(test::ParseWorld(mesh + "\"Cs\" [0 0 1]"))[1].color == kBlue);
     }
     SECTION("a bicubic patch mesh: varying values one more than the patches across") {
         std::string points, colors;
@@ -212,19 +212,21 @@ TEST_CASE("primvars: Cs on patches, patch meshes and quadrics", "[rib][primvar]"
         const renderer::SceneDesc s = test::ParseWorld(
             "PatchMesh \"bicubic\" 7 \"nonperiodic\" 4 \"nonperiodic\" \"P\" [" + points +
             "] \"Cs\" [0 0 0  0.5 0 0  1 0 0  0 1 0  0.5 1 0  1 1 0]" + " \"vertex color Os\" [" + points + "]");
-        REQUIRE(s.primitives.size() == 2);
-        RequireNear(ColorAt(s.primitives[1], 0, 0), glm::dvec3(0.5, 0, 0));
-        RequireNear(ColorAt(s.primitives[1], 1, 1), glm::dvec3(1, 1, 0));
+        REQUIRE(renderer::ElementPrimitives(s).size() == 2);
+        RequireNear(ColorAt(renderer::ElementPrimitives(s)[1], 0, 0), glm::dvec3(0.5, 0, 0));
+        RequireNear(ColorAt(renderer::ElementPrimitives(s)[1], 1, 1), glm::dvec3(1, 1, 0));
         // The vertex values through the bezier basis: clamped to [0, 1] as Os, at a corner.
-        RequireNear(ColorAt(s.primitives[0], 0, 0, true), glm::dvec3(0.0));
+        RequireNear(ColorAt(renderer::ElementPrimitives(s)[0], 0, 0, true), glm::dvec3(0.0));
     }
     SECTION("quadrics: one value, or four at the corners of (u,v)") {
-        CHECK(test::ParseWorld("Sphere 1 -1 1 360 \"constant color Cs\" [0 0 1]").primitives[0].color == kBlue);
-        CHECK(test::ParseWorld("Disk 0 1 360 \"uniform color Cs\" [0 1 0]").primitives[0].color == kGreen);
+        CHECK(
+            renderer::ElementPrimitives(test::ParseWorld("Sphere 1 -1 1 360 \"constant color Cs\" [0 0 1]"))[0].color ==
+            kBlue);
+        CHECK(renderer::ElementPrimitives(test::ParseWorld("Disk 0 1 360 \"uniform color Cs\" [0 1 0]"))[0].color ==
+              kGreen);
         for (const char* storage : {"varying", "vertex", "facevarying"}) {
-            const PrimitiveDesc p = test::ParseWorld(std::string("Torus 1 0.25 0 360 360 \"") + storage +
-                                                     " color Cs\" [1 0 0  0 1 0  0 0 1  1 1 1]")
-                                        .primitives[0];
+            const PrimitiveDesc p = renderer::ElementPrimitives(test::ParseWorld(
+                std::string("Torus 1 0.25 0 360 360 \"") + storage + " color Cs\" [1 0 0  0 1 0  0 0 1  1 1 1]"))[0];
             RequireNear(ColorAt(p, 1, 0), kGreen);
             RequireNear(ColorAt(p, 0.5, 0.5), glm::dvec3(0.5));
         }
@@ -239,18 +241,18 @@ TEST_CASE("primvars: Cs on NuPatches, by span", "[rib][primvar]") {
     const std::string points = "[0 0 0  1 0 1  2 0 0  3 0 1  0 1 0  1 1 1  2 1 0  3 1 1]";
     SECTION("vertex values through the NURBS basis; uniform per span; varying at the segments' corners") {
         const renderer::SceneDesc s = test::ParseWorld(head + "\"P\" " + points + " \"vertex color Cs\" " + points);
-        REQUIRE(s.primitives.size() == 2);
-        for (const PrimitiveDesc& p : s.primitives)
+        REQUIRE(renderer::ElementPrimitives(s).size() == 2);
+        for (const PrimitiveDesc& p : renderer::ElementPrimitives(s))
             for (double u : {0.0, 0.3, 1.0}) RequireNear(ColorAt(p, u, 0.5), SurfaceAt(p, u, 0.5), 1e-12);
         const renderer::SceneDesc u =
             test::ParseWorld(head + "\"P\" " + points + " \"uniform color Cs\" [1 0 0  0 1 0]");
-        CHECK(u.primitives[0].color == kRed);
-        CHECK(u.primitives[1].color == kGreen);
+        CHECK(renderer::ElementPrimitives(u)[0].color == kRed);
+        CHECK(renderer::ElementPrimitives(u)[1].color == kGreen);
         const renderer::SceneDesc v =
             test::ParseWorld(head + "\"P\" " + points + " \"Cs\" [1 0 0  0 1 0  0 0 1  1 1 1  0 0 0  0.5 0.5 0.5]");
-        RequireNear(ColorAt(v.primitives[1], 0, 0), kGreen);
-        RequireNear(ColorAt(v.primitives[1], 1, 1), glm::dvec3(0.5));
-        RequireNear(ColorAt(v.primitives[0], 0.5, 0), (kRed + kGreen) / 2.0);
+        RequireNear(ColorAt(renderer::ElementPrimitives(v)[1], 0, 0), kGreen);
+        RequireNear(ColorAt(renderer::ElementPrimitives(v)[1], 1, 1), glm::dvec3(0.5));
+        RequireNear(ColorAt(renderer::ElementPrimitives(v)[0], 0.5, 0), (kRed + kGreen) / 2.0);
     }
     SECTION("rational: vertex values weighted as the points are") {
         std::string pw = "[", cs = "[";
@@ -261,7 +263,7 @@ TEST_CASE("primvars: Cs on NuPatches, by span", "[rib][primvar]") {
             pw += " " + std::to_string(w[i]);
         }
         const renderer::SceneDesc s = test::ParseWorld(head + "\"Pw\" " + pw + "] \"vertex color Cs\" " + cs + "]");
-        for (const PrimitiveDesc& q : s.primitives)
+        for (const PrimitiveDesc& q : renderer::ElementPrimitives(s))
             for (double u : {0.0, 0.3, 1.0}) RequireNear(ColorAt(q, u, 0.25), SurfaceAt(q, u, 0.25), 1e-12);
     }
     SECTION("facevarying is not defined on a NuPatch") {
@@ -285,11 +287,9 @@ TEST_CASE("primvars: a declaration without a class takes the class its count fit
     test::ParseWorld(quad + "\"float[2] st\" [0 0]", &quiet);  // uniform: one value for the one face
     CHECK(quiet.all().empty());
     diag::Report blue;
-    const PrimitiveDesc p =
-        test::ParseWorld(
-            "PointsPolygons [4 4] [0 1 2 3 1 4 5 2] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0 2 0 0 2 1 0] \"color Cs\" [0 0 1]",
-            &blue)
-            .primitives[1];
+    const PrimitiveDesc p = renderer::ElementPrimitives(test::ParseWorld(
+        "PointsPolygons [4 4] [0 1 2 3 1 4 5 2] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0 2 0 0 2 1 0] \"color Cs\" [0 0 1]",
+        &blue))[1];
     CHECK(p.color == kBlue);  // one colour for two faces: constant
     CHECK(test::WorldError(quad + "\"float[2] st\" [0 0 1 0 1 1]") ==
           "t.rib:2: error: 'Polygon' parameter 'st' (float[2]) expects 1 value of 2 numbers, got 6 numbers");

@@ -24,8 +24,8 @@ TEST_CASE("rib subdivision: SubdivisionMesh makes patches with its tags", "[rib]
     SECTION("a cube: 16 patches per face, in world space") {
         const SceneDesc s = ParseWorld(std::string("Translate 0 0 5\nSubdivisionMesh \"catmull-clark\" ") + kCube +
                                        " " + kCubeP + "\n");
-        REQUIRE(s.primitives.size() == 96u);
-        for (const PrimitiveDesc& p : s.primitives) {
+        REQUIRE(ElementPrimitives(s).size() == 96u);
+        for (const PrimitiveDesc& p : ElementPrimitives(s)) {
             REQUIRE(p.base.kind() == BaseSurface::Kind::SubdivPatch);
             const glm::dvec3 c = p.base.subdiv().geometry.At(0.5, 0.5);
             CHECK(std::fabs(c.z - 5) < 1);
@@ -39,7 +39,7 @@ TEST_CASE("rib subdivision: SubdivisionMesh makes patches with its tags", "[rib]
                                            "[2 10] " +
                                            kCubeP + " \"N\" [0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1 0 0 1]\n",
                                        &report);
-        CHECK(s.primitives.size() == 80u);
+        CHECK(ElementPrimitives(s).size() == 80u);
         int warnings = 0;
         for (const affray::diag::Diagnostic& d : report.all())
             if (d.severity == affray::diag::Severity::Warning) ++warnings;
@@ -54,8 +54,8 @@ TEST_CASE("rib subdivision: SubdivisionMesh makes patches with its tags", "[rib]
             INFO(st);
             const SceneDesc s =
                 ParseWorld(std::string("SubdivisionMesh \"catmull-clark\" ") + kCube + " " + kCubeP + " " + st + "\n");
-            REQUIRE(!s.primitives.empty());
-            for (const PrimitiveDesc& p : s.primitives) {
+            REQUIRE(!ElementPrimitives(s).empty());
+            for (const PrimitiveDesc& p : ElementPrimitives(s)) {
                 CHECK(p.base.subdiv().hasST);
                 double sv, tv;
                 SubdivPatchST<double>(p.base.subdiv(), 0.5, 0.5, &sv, &tv);
@@ -80,11 +80,11 @@ TEST_CASE("rib subdivision: HierarchicalSubdivisionMesh is the same mesh with st
     affray::diag::Report report;
     const SceneDesc h = ParseWorld(
         std::string("HierarchicalSubdivisionMesh \"catmull-clark\" ") + kCube + htags + kCubeP + "\n", &report);
-    REQUIRE(h.primitives.size() == plain.primitives.size());
-    CHECK(h.primitives.size() == 80u);
-    for (size_t i = 0; i < h.primitives.size(); ++i)
-        CHECK(h.primitives[i].base.subdiv().geometry.At(0.3, 0.6) ==
-              plain.primitives[i].base.subdiv().geometry.At(0.3, 0.6));
+    REQUIRE(ElementPrimitives(h).size() == ElementPrimitives(plain).size());
+    CHECK(ElementPrimitives(h).size() == 80u);
+    for (size_t i = 0; i < ElementPrimitives(h).size(); ++i)
+        CHECK(ElementPrimitives(h)[i].base.subdiv().geometry.At(0.3, 0.6) ==
+              ElementPrimitives(plain)[i].base.subdiv().geometry.At(0.3, 0.6));
     REQUIRE(report.all().size() == 1);
     CHECK(ShortDiagnostic(report.all()[0]) ==
           "t.rib:2: warning: 'HierarchicalSubdivisionMesh' tag 'vertexedit' is not supported; ignored");
@@ -105,7 +105,8 @@ TEST_CASE("rib subdivision: wrong meshes are errors at their place", "[rib][subd
     const std::string cube = std::string(kCube) + " ";
     // Another scheme's mesh is skipped with a warning, as an unsupported primitive is.
     affray::diag::Report report;
-    CHECK(ParseWorld("SubdivisionMesh \"loop\" [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\n", &report).primitives.empty());
+    CHECK(ElementPrimitives(ParseWorld("SubdivisionMesh \"loop\" [3] [0 1 2] \"P\" [0 0 0 1 0 0 0 1 0]\n", &report))
+              .empty());
     REQUIRE(report.all().size() == 1);
     CHECK(ShortDiagnostic(report.all()[0]) ==
           "t.rib:2: warning: 'SubdivisionMesh' scheme 'loop' is not supported (only \"catmull-clark\"): the mesh is "
