@@ -1001,7 +1001,8 @@ int RenderTileSize(const CameraDesc& camera, const RenderOptions& options) {
     return tileSize;
 }
 
-void RenderImage(const PreparedScene& scene, const RenderOptions& options, ImageBuffer* image, RenderStats* stats) {
+void RenderImage(const PreparedScene& scene, const RenderOptions& options, image::ImageBuffer* image,
+                 RenderStats* stats) {
     auto start = std::chrono::steady_clock::now();
     const uint64_t residentAtStart = ResidentBytes();
     const CameraDesc& cam = scene.desc.camera;

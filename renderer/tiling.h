@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/image/exr_writer.h"
+#include "image/exr_writer.h"
 #include "renderer/image/film.h"
 #include "renderer/render_identity.h"
 
@@ -43,10 +43,11 @@ struct TileHeader {
 
 /// Sets the header attributes of `image`, the render of `pixels` of the frame identified by
 /// `frame` (IdentifyFrame), by affray `version`.
-void StampTile(const RenderIdentity& frame, const PixelRange& pixels, const std::string& version, ImageBuffer* image);
+void StampTile(const RenderIdentity& frame, const PixelRange& pixels, const std::string& version,
+               image::ImageBuffer* image);
 
 /// Reads the header attributes of `image`; nullopt with *error (one phrase) if one is missing or
 /// malformed, or the pixels lie outside the image.
-std::optional<TileHeader> ReadTileHeader(const ImageBuffer& image, std::string* error);
+std::optional<TileHeader> ReadTileHeader(const image::ImageBuffer& image, std::string* error);
 
 }  // namespace affray::renderer

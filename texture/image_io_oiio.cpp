@@ -9,7 +9,7 @@
 #include <sstream>
 #include <vector>
 
-#include "renderer/image/exr_check.h"
+#include "image/exr_check.h"
 #include "texture/image_io.h"
 
 namespace affray::texture::io {
@@ -103,7 +103,7 @@ class OiioReader final : public ImageReader {
 class OiioImageIo final : public ImageIo {
   public:
     std::unique_ptr<ImageReader> Open(const std::string& path, std::string* error) const override {
-        if (std::string why = TruncatedPng(path) + renderer::OversizedExrHeader(path); !why.empty()) {
+        if (std::string why = TruncatedPng(path) + image::OversizedExrHeader(path); !why.empty()) {
             *error = why;
             return nullptr;
         }

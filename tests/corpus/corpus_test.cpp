@@ -141,7 +141,7 @@ void SmokeRender(const std::string& name, const std::string& primitive) {
     REQUIRE(prepared.primitives[0].shader());
     renderer::RenderOptions options;
     options.threads = 2;
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
     REQUIRE(image.width == kWidth);

@@ -41,7 +41,7 @@ const char* const kRipples =
 /// A rendered scene with its AOVs, one ray per pixel.
 struct Rendered {
     renderer::PreparedScene scene;
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     std::unique_ptr<renderer::Camera> camera;
 
     const std::vector<float>& Channel(const std::string& name) const {

@@ -33,7 +33,7 @@ std::vector<float> Bumps() {
 }
 
 struct Rendered {
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     renderer::RenderStats stats;
 };
 
@@ -53,7 +53,7 @@ Rendered RenderWithMap(const test::TempDir& dir, const std::string& map) {
 }
 
 /// The root mean square difference of the RGBA values of two images of one size.
-double Rmse(const renderer::ImageBuffer& a, const renderer::ImageBuffer& b) {
+double Rmse(const image::ImageBuffer& a, const image::ImageBuffer& b) {
     REQUIRE(a.rgba.size() == b.rgba.size());
     double sum = 0;
     for (size_t i = 0; i < a.rgba.size(); ++i) sum += std::pow(double(a.rgba[i]) - double(b.rgba[i]), 2);
@@ -172,7 +172,7 @@ TEST_CASE("texture render: only a scene that reads an image loads the image modu
     CHECK(texture::io::Loaded());
     dir.Write("heights.sl",
               "displacement heights(string map = \"\") {\n    P += 0.1 * texture(map, s, t) * normalize(N);\n}\n");
-    const renderer::ImageBuffer image = test::RenderRib(
+    const image::ImageBuffer image = test::RenderRib(
         dir, head + "Displacement \"heights\" \"string map\" [\"map.exr\"]\nSphere 1 -1 1 360\nWorldEnd\n");
     size_t hits = 0;
     for (size_t i = 3; i < image.rgba.size(); i += 4) hits += image.rgba[i] > 0;

@@ -10,6 +10,7 @@
 #include <functional>
 
 using namespace affray::renderer;
+using affray::image::ImageBuffer;
 
 namespace {
 
