@@ -11,8 +11,8 @@
 
 #include "compiler/compile.h"
 #include "image/exr_writer.h"
+#include "renderer/film.h"
 #include "renderer/geometry/bvh.h"
-#include "renderer/image/film.h"
 #include "renderer/intersect.h"
 #include "renderer/scene.h"
 
@@ -206,7 +206,7 @@ uint64_t SceneBytes(const PreparedScene& scene, int threads);
 int RenderTileSize(const CameraDesc& camera, const RenderOptions& options);
 
 /// Renders the prepared scene into `image`: full resolution, RGBA plus the AOVs the Display mode
-/// asks for, pixels outside the CropWindow zero (renderer/image/film.h), row 0 at the top.
+/// asks for, pixels outside the CropWindow zero (renderer/film.h), row 0 at the top.
 void RenderImage(const PreparedScene& scene, const RenderOptions& options, image::ImageBuffer* image,
                  RenderStats* stats);
 

@@ -3,7 +3,7 @@
 // checked and pasted back together bit for bit (affray merge).
 //
 // Tiles are exact pixel rectangles that cover the frame once. Each is rendered with a crop window
-// (renderer/image/film.h, CropPixels) chosen so that it maps to exactly that rectangle.
+// (renderer/film.h, CropPixels) chosen so that it maps to exactly that rectangle.
 //
 // Header attributes (string attributes of every image affray render writes, ImageBuffer::attributes):
 //   affray:version   the affray version that rendered it ("0.1.0")
@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "image/exr_writer.h"
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 #include "renderer/render_identity.h"
 
 namespace affray::renderer {

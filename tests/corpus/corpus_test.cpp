@@ -9,7 +9,7 @@
 #include <cmath>
 #include <set>
 
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"

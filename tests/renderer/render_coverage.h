@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"

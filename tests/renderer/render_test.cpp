@@ -8,7 +8,7 @@
 
 #include <sstream>
 
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 #include "rib/rib.h"
 #include "tests/test_random.h"
 #include "tests/test_util.h"

@@ -11,8 +11,8 @@
 #include <memory>
 #include <sstream>
 
+#include "renderer/film.h"
 #include "renderer/geometry/camera.h"
-#include "renderer/image/film.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"

@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "image/exr_writer.h"
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 #include "tests/test_util.h"
 
 using namespace affray;

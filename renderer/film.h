@@ -1,4 +1,4 @@
-// renderer/image/film.h: from camera samples to pixels: the crop window, stratified sample positions,
+// renderer/film.h: from camera samples to pixels: the crop window, stratified sample positions,
 // the reconstruction filter (RI Spec 3.2 appendix E), exposure and the AOV channels.
 //
 // How a renderer uses it (one Film per image, shared read-only by all threads):

@@ -1,5 +1,5 @@
-// renderer/image/film.cpp: crop window, sample positions, filtering and AOV rules (see film.h).
-#include "renderer/image/film.h"
+// renderer/film.cpp: crop window, sample positions, filtering and AOV rules (see film.h).
+#include "renderer/film.h"
 
 #include <algorithm>
 #include <cmath>
