@@ -28,9 +28,9 @@
 #include <thread>
 #include <vector>
 
+#include "image/exr_writer.h"
 #include "renderer/geometry/camera.h"
 #include "renderer/geometry/surface.h"
-#include "renderer/image/exr_writer.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
 
@@ -387,14 +387,14 @@ int main(int argc, char** argv) {
         return std::unique_ptr<renderer::SurfaceIntersector>(new MeshIntersector(meshes[static_cast<size_t>(index)]));
     };
     const Clock::time_point renderStart = Clock::now();
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
     const double renderSeconds = SecondsSince(renderStart);
 
     const std::string outputPath = opt.outputPath.empty() ? scene->displayName : opt.outputPath;
     diag::Report output;
-    if (!renderer::WriteExr(outputPath, image, &output)) {
+    if (!image::WriteExr(outputPath, image, &output)) {
         std::fputs(output.format().c_str(), stderr);
         return diag::kExitOutput;
     }

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "fuzz/fuzz_util.h"
-#include "texture/image_io.h"
+#include "image/image_io.h"
 #include "texture/texture.h"
 
 namespace {
@@ -26,15 +26,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace affray;
     const std::string path = fuzz::WriteTemp("input", std::string_view(reinterpret_cast<const char*>(data), size));
     std::string error;
-    const texture::io::ImageIo* images = texture::io::Get(&error);
+    const image::io::ImageIo* images = image::io::Get(&error);
     if (!images) {
         std::fprintf(stderr, "fuzz_texture: %s\n", error.c_str());
         std::abort();
     }
     {
-        std::unique_ptr<texture::io::ImageReader> reader = images->Open(path, &error);
+        std::unique_ptr<image::io::ImageReader> reader = images->Open(path, &error);
         if (!reader) return 0;
-        const texture::io::ImageHeader& h = reader->header();
+        const image::io::ImageHeader& h = reader->header();
         const bool accepted =
             h.width > 0 && h.height > 0 && h.channels > 0 && h.width <= kMaxSide && h.height <= kMaxSide;
         if (accepted && int64_t{h.width} * h.height * h.channels > kMaxTexels) return 0;

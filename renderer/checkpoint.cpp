@@ -10,7 +10,7 @@
 #include <iterator>
 #include <system_error>
 
-#include "renderer/image/atomic_file.h"
+#include "image/atomic_file.h"
 #include "vm/bytecode_file.h"
 
 namespace affray::renderer {
@@ -170,7 +170,7 @@ std::unique_ptr<CheckpointFile> CheckpointFile::Create(const std::string& path, 
     PutU32(header, static_cast<uint32_t>(tileSize));
     PutU64(header, vm::HashSource(header));
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0666);
-    int err = fd < 0 ? errno : WriteAll(fd, header);
+    int err = fd < 0 ? errno : image::WriteAll(fd, header);
     if (err != 0) {
         if (fd >= 0) {
             ::close(fd);
@@ -201,7 +201,7 @@ CheckpointFile::~CheckpointFile() {
     if (m_fd >= 0) ::close(m_fd);
 }
 
-bool CheckpointFile::Restore(const PixelRange& tile, ImageBuffer* image) {
+bool CheckpointFile::Restore(const PixelRange& tile, image::ImageBuffer* image) {
     auto it = m_restore.find(Key(tile));
     const int channels = 4 + static_cast<int>(image->extraChannels.size());
     if (it == m_restore.end() || channels != m_channels) return false;
@@ -215,7 +215,7 @@ bool CheckpointFile::Restore(const PixelRange& tile, ImageBuffer* image) {
     return true;
 }
 
-void CheckpointFile::Finished(const PixelRange& tile, const ImageBuffer& image) {
+void CheckpointFile::Finished(const PixelRange& tile, const image::ImageBuffer& image) {
     // The record is built outside the lock; only the write is serialised.
     std::string record(kTileMagic, 4);
     for (int x : {tile.x0, tile.x1, tile.y0, tile.y1}) PutU32(record, static_cast<uint32_t>(x));
@@ -235,7 +235,7 @@ void CheckpointFile::Finished(const PixelRange& tile, const ImageBuffer& image) 
     PutU64(record, vm::HashSource(record));
     std::lock_guard<std::mutex> lock(m_mutex);
     if (!m_error.empty() || m_fd < 0) return;
-    if (const int err = WriteAll(m_fd, record); err != 0) {
+    if (const int err = image::WriteAll(m_fd, record); err != 0) {
         m_error = std::generic_category().message(err);
         return;
     }

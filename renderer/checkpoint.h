@@ -69,8 +69,8 @@ class CheckpointFile : public TileStore {
                                                   std::string* error);
     ~CheckpointFile() override;
 
-    bool Restore(const PixelRange& tile, ImageBuffer* image) override;
-    void Finished(const PixelRange& tile, const ImageBuffer& image) override;
+    bool Restore(const PixelRange& tile, image::ImageBuffer* image) override;
+    void Finished(const PixelRange& tile, const image::ImageBuffer& image) override;
 
     /// The first error writing a tile ("" if none); tiles are no longer written after one.
     std::string error() const;

@@ -1,6 +1,6 @@
 // renderer/render.cpp: scene preparation and the tile loop.
 // Each thread owns its intersectors and shading interpreters (they hold registers), takes tiles
-// from a shared counter, traces the samples the film asks for (renderer/image/film.h) and resolves
+// from a shared counter, traces the samples the film asks for (renderer/film.h) and resolves
 // only its tile's pixels: the image does not depend on the thread count or the tile order, and
 // the statistics are sums and maxima, which do not either. Tiles a TileStore holds (a resumed
 // render's checkpoint) are copied in instead of rendered, each finished tile is handed to it, and
@@ -26,8 +26,8 @@
 
 #include "compiler/shader_cache.h"
 #include "diag/limits.h"
+#include "renderer/film.h"
 #include "renderer/geometry/camera.h"
-#include "renderer/image/film.h"
 #include "renderer/shade.h"
 #include "texture/texture.h"
 
@@ -1017,7 +1017,8 @@ int RenderTileSize(const CameraDesc& camera, const RenderOptions& options) {
     return tileSize;
 }
 
-void RenderImage(const PreparedScene& scene, const RenderOptions& options, ImageBuffer* image, RenderStats* stats) {
+void RenderImage(const PreparedScene& scene, const RenderOptions& options, image::ImageBuffer* image,
+                 RenderStats* stats) {
     auto start = std::chrono::steady_clock::now();
     const uint64_t residentAtStart = ResidentBytes();
     const CameraDesc& cam = scene.desc.camera;

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "compiler/compile.h"
+#include "image/exr_writer.h"
+#include "renderer/film.h"
 #include "renderer/geometry/bvh.h"
-#include "renderer/image/exr_writer.h"
-#include "renderer/image/film.h"
 #include "renderer/intersect.h"
 #include "renderer/scene.h"
 
@@ -41,10 +41,10 @@ class TileStore {
     /// Before any tile is rendered, on the calling thread: copies the tile's pixels, every
     /// channel, into `image` (from Film::MakeImage) and returns true if the store has them; the
     /// tile is then not rendered. False: the tile is rendered.
-    virtual bool Restore(const PixelRange& tile, ImageBuffer* image) = 0;
+    virtual bool Restore(const PixelRange& tile, image::ImageBuffer* image) = 0;
     /// The tile's pixels in `image` are final. Called from the worker threads as each tile is
     /// finished (so it must be thread-safe); other threads meanwhile write other tiles' pixels.
-    virtual void Finished(const PixelRange& tile, const ImageBuffer& image) = 0;
+    virtual void Finished(const PixelRange& tile, const image::ImageBuffer& image) = 0;
 };
 
 /// The side of a block of pixels whose camera rays are traced as a group (`--ray-groups`).
@@ -207,7 +207,8 @@ uint64_t SceneBytes(const PreparedScene& scene, int threads);
 int RenderTileSize(const CameraDesc& camera, const RenderOptions& options);
 
 /// Renders the prepared scene into `image`: full resolution, RGBA plus the AOVs the Display mode
-/// asks for, pixels outside the CropWindow zero (renderer/image/film.h), row 0 at the top.
-void RenderImage(const PreparedScene& scene, const RenderOptions& options, ImageBuffer* image, RenderStats* stats);
+/// asks for, pixels outside the CropWindow zero (renderer/film.h), row 0 at the top.
+void RenderImage(const PreparedScene& scene, const RenderOptions& options, image::ImageBuffer* image,
+                 RenderStats* stats);
 
 }  // namespace affray::renderer

@@ -1,5 +1,5 @@
 // renderer/render_identity.h: what identifies a render's pixels, as text that two processes can
-// compare: a checkpoint is resumed only by the render that wrote it (renderer/image/checkpoint.h),
+// compare: a checkpoint is resumed only by the render that wrote it (renderer/checkpoint.h),
 // and tiles rendered on many machines may be merged only if they come from the same render.
 //
 // A render is identified by two parts:

@@ -62,7 +62,8 @@ std::string CropWindowText(const PixelRange& range, int width, int height) {
            EdgeText(range.y1, height);
 }
 
-void StampTile(const RenderIdentity& frame, const PixelRange& pixels, const std::string& version, ImageBuffer* image) {
+void StampTile(const RenderIdentity& frame, const PixelRange& pixels, const std::string& version,
+               image::ImageBuffer* image) {
     image->attributes["affray:version"] = version;
     image->attributes["affray:identity"] = frame.Hash();
     image->attributes["affray:scene"] = frame.scene;
@@ -71,7 +72,7 @@ void StampTile(const RenderIdentity& frame, const PixelRange& pixels, const std:
                                          std::to_string(pixels.y0) + "," + std::to_string(pixels.y1);
 }
 
-std::optional<TileHeader> ReadTileHeader(const ImageBuffer& image, std::string* error) {
+std::optional<TileHeader> ReadTileHeader(const image::ImageBuffer& image, std::string* error) {
     TileHeader header;
     const std::pair<const char*, std::string*> fields[] = {{"affray:version", &header.version},
                                                            {"affray:identity", &header.identity},

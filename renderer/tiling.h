@@ -3,7 +3,7 @@
 // checked and pasted back together bit for bit (affray merge).
 //
 // Tiles are exact pixel rectangles that cover the frame once. Each is rendered with a crop window
-// (renderer/image/film.h, CropPixels) chosen so that it maps to exactly that rectangle.
+// (renderer/film.h, CropPixels) chosen so that it maps to exactly that rectangle.
 //
 // Header attributes (string attributes of every image affray render writes, ImageBuffer::attributes):
 //   affray:version   the affray version that rendered it ("0.1.0")
@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "renderer/image/exr_writer.h"
-#include "renderer/image/film.h"
+#include "image/exr_writer.h"
+#include "renderer/film.h"
 #include "renderer/render_identity.h"
 
 namespace affray::renderer {
@@ -43,10 +43,11 @@ struct TileHeader {
 
 /// Sets the header attributes of `image`, the render of `pixels` of the frame identified by
 /// `frame` (IdentifyFrame), by affray `version`.
-void StampTile(const RenderIdentity& frame, const PixelRange& pixels, const std::string& version, ImageBuffer* image);
+void StampTile(const RenderIdentity& frame, const PixelRange& pixels, const std::string& version,
+               image::ImageBuffer* image);
 
 /// Reads the header attributes of `image`; nullopt with *error (one phrase) if one is missing or
 /// malformed, or the pixels lie outside the image.
-std::optional<TileHeader> ReadTileHeader(const ImageBuffer& image, std::string* error);
+std::optional<TileHeader> ReadTileHeader(const image::ImageBuffer& image, std::string* error);
 
 }  // namespace affray::renderer

@@ -23,7 +23,7 @@
 #include <unordered_map>
 
 #include "diag/limits.h"
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 #include "rib/file.h"
 #include "rib/parser.h"
 

@@ -5,7 +5,7 @@
 // file.
 #include <filesystem>
 
-#include "texture/image_io.h"
+#include "image/image_io.h"
 #include "texture/texture.h"
 
 namespace affray::texture {
@@ -18,7 +18,7 @@ bool MakeTexture(const std::string& picture, const std::string& output, Wrap swr
         return false;
     }
     std::string why;
-    const io::ImageIo* images = io::Get(&why);
+    const image::io::ImageIo* images = image::io::Get(&why);
     if (!images ||
         !images->MakeTx(picture, output, std::string(WrapName(swrap)) + "," + WrapName(twrap), std::nullopt, &why)) {
         *error = "cannot make texture '" + output + "' from '" + picture + "': " + why;

@@ -11,7 +11,7 @@
 #include <system_error>
 #include <utility>
 
-#include "texture/image_io.h"
+#include "image/image_io.h"
 #include "texture/texture_impl.h"
 
 namespace affray::texture {
@@ -45,7 +45,7 @@ struct Slot {
 class FileSource {
   public:
     std::mutex inputMutex;  // one read at a time through the reader
-    std::unique_ptr<io::ImageReader> input;
+    std::unique_ptr<image::io::ImageReader> input;
     MapImpl* map = nullptr;
     int fileTileWidth = 0, fileTileHeight = 0;  // 0: a scanline file
     std::unique_ptr<Slot[]> slots;
@@ -329,11 +329,11 @@ std::shared_ptr<const TextureMap> ReadMap(const std::string& path, std::string* 
         return nullptr;
     };
     std::string why;
-    const io::ImageIo* images = io::Get(&why);
+    const image::io::ImageIo* images = image::io::Get(&why);
     if (!images) return fail(why);
-    std::unique_ptr<io::ImageReader> input = images->Open(path, &why);
+    std::unique_ptr<image::io::ImageReader> input = images->Open(path, &why);
     if (!input) return fail(why);
-    const io::ImageHeader spec = input->header();
+    const image::io::ImageHeader spec = input->header();
     if (spec.width <= 0 || spec.height <= 0 || spec.channels <= 0) return fail("the image has no pixels");
     // Sides and tile counts are ints (the tile index too): refuse what would overflow them,
     // counted in 64 bits, before anything is sized from the header.

@@ -12,9 +12,9 @@
 #include <set>
 
 #include "compiler/compile.h"
+#include "image/exr_writer.h"
+#include "image/png_writer.h"
 #include "renderer/geometry/surface.h"
-#include "renderer/image/exr_writer.h"
-#include "renderer/image/png_writer.h"
 #include "renderer/render.h"
 #include "renderer/render_identity.h"
 #include "renderer/tiling.h"
@@ -236,7 +236,7 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
         return status;
     ProgressBar bar(Progress::ShouldShow(cmd.quiet, stderr));
     options.progress = &bar;
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
     stats.readSeconds = readSeconds;
@@ -246,8 +246,8 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     renderer::StampTile(renderer::IdentifyFrame(prepared, options), renderer::CropPixels(prepared.desc.camera),
                         kVersion, &image);
     diag::Report output;
-    const bool written = renderer::WriteExr(outputPath, image, &output) &&
-                         (pngPath.empty() || renderer::WritePngPreview(pngPath, image, &output));
+    const bool written = image::WriteExr(outputPath, image, &output) &&
+                         (pngPath.empty() || image::WritePngPreview(pngPath, image, &output));
     files.Finish();
     if (!written) {
         Print(output, err);

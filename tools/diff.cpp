@@ -2,19 +2,19 @@
 // half of the error-against-run-time report, bench/error_report.py).
 #include <cmath>
 
-#include "renderer/image/exr_writer.h"
+#include "image/exr_writer.h"
 #include "tools/commands.h"
 
 namespace affray::tools {
 
 int RunDiff(const DiffCommand& cmd, FILE* out, FILE* err) {
-    renderer::ImageBuffer reference, test;
+    image::ImageBuffer reference, test;
     diag::Report report;
     auto fail = [&] {
         Print(report, err);
         return diag::kExitBadInput;
     };
-    if (!renderer::ReadExrRgba(cmd.reference, &reference, &report) || !renderer::ReadExrRgba(cmd.test, &test, &report))
+    if (!image::ReadExrRgba(cmd.reference, &reference, &report) || !image::ReadExrRgba(cmd.test, &test, &report))
         return fail();
     if (reference.width != test.width || reference.height != test.height) {
         report.error({cmd.test}, "the image is " + std::to_string(test.width) + "x" + std::to_string(test.height) +

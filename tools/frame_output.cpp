@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "renderer/image/atomic_file.h"
+#include "image/atomic_file.h"
 #include "renderer/render_identity.h"
 #include "tools/interrupt.h"
 
@@ -22,7 +22,7 @@ int FrameOutput::Begin(bool resume, const renderer::PreparedScene& scene, render
     // A render that could not write its image would be lost: check before it starts.
     for (const std::string& path : {m_output, m_png}) {
         std::string reason;
-        if (!path.empty() && !renderer::CheckWritable(path, &reason)) {
+        if (!path.empty() && !image::CheckWritable(path, &reason)) {
             Error(path, "cannot write file: " + reason, err);
             return diag::kExitOutput;
         }

@@ -3,14 +3,14 @@
 // Before anything is written it checks, from each tile's header (renderer/tiling.h), that the
 // tiles come from one render (same affray version, scene and options, crop left out), have the
 // same size and channels, and cover the frame exactly once; each refusal names the tile files and
-// exits 1 with nothing written. The image is written atomically (renderer/image/atomic_file.h).
+// exits 1 with nothing written. The image is written atomically (image/atomic_file.h).
 // Only the headers are read for the checks; then each tile's own band of rows is read and pasted
 // in turn, so merging holds the whole image and one band, not every tile.
 #include <algorithm>
 #include <cstdint>
 #include <optional>
 
-#include "renderer/image/exr_writer.h"
+#include "image/exr_writer.h"
 #include "renderer/tiling.h"
 #include "tools/commands.h"
 
@@ -19,11 +19,11 @@ namespace {
 
 struct Tile {
     std::string path;
-    renderer::ImageBuffer image;  // header: size, attributes, channel names (no pixels)
+    image::ImageBuffer image;  // header: size, attributes, channel names (no pixels)
     renderer::TileHeader header;
 };
 
-std::string Channels(const renderer::ImageBuffer& image) {
+std::string Channels(const image::ImageBuffer& image) {
     std::string names = "R,G,B,A";
     for (const auto& channel : image.extraChannels) names += "," + channel.first;
     return names;
@@ -31,7 +31,7 @@ std::string Channels(const renderer::ImageBuffer& image) {
 
 /// Why tile `b` cannot be merged with tile `a` (one render, one size, one channel list), or "".
 std::string Mismatch(const Tile& a, const Tile& b) {
-    const renderer::ImageBuffer &ia = a.image, &ib = b.image;
+    const image::ImageBuffer &ia = a.image, &ib = b.image;
     if (b.header.version != a.header.version)
         return "tiles of different affray versions: " + b.path + " was rendered by affray " + b.header.version + ", " +
                a.path + " by affray " + a.header.version;
@@ -68,7 +68,7 @@ int RunMerge(const MergeCommand& cmd, FILE* /*out*/, FILE* err) {
     std::vector<Tile> tiles;
     for (const std::string& path : cmd.tiles) {
         Tile tile{path, {}, {}};
-        if (!renderer::ReadExrHeader(path, &tile.image, &report)) {
+        if (!image::ReadExrHeader(path, &tile.image, &report)) {
             Print(report, err);
             return diag::kExitBadInput;
         }
@@ -114,13 +114,13 @@ int RunMerge(const MergeCommand& cmd, FILE* /*out*/, FILE* err) {
     }
     // Paste each tile's band of rows in turn; the header is the one a single render of the frame
     // writes, and the channels are in the tiles' order.
-    renderer::ImageBuffer whole{width, height, std::vector<float>(size_t(width) * height * 4, 0.0f), {}, {}};
+    image::ImageBuffer whole{width, height, std::vector<float>(size_t(width) * height * 4, 0.0f), {}, {}};
     for (const auto& channel : tiles[0].image.extraChannels)
         whole.extraChannels.emplace_back(channel.first, std::vector<float>(size_t(width) * height, 0.0f));
     for (const Tile& tile : tiles) {
         const renderer::PixelRange& r = tile.header.pixels;
-        renderer::ImageBuffer band;
-        if (!renderer::ReadExrRgba(tile.path, &band, &report, std::array<int, 2>{r.y0, r.y1})) {
+        image::ImageBuffer band;
+        if (!image::ReadExrRgba(tile.path, &band, &report, std::array<int, 2>{r.y0, r.y1})) {
             Print(report, err);
             return diag::kExitBadInput;
         }
@@ -137,7 +137,7 @@ int RunMerge(const MergeCommand& cmd, FILE* /*out*/, FILE* err) {
     }
     whole.attributes = tiles[0].image.attributes;
     whole.attributes["affray:pixels"] = "0," + std::to_string(width) + ",0," + std::to_string(height);
-    if (!renderer::WriteExr(cmd.outputPath, whole, &report)) {
+    if (!image::WriteExr(cmd.outputPath, whole, &report)) {
         Print(report, err);
         return diag::kExitOutput;
     }

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <set>
 
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"
@@ -141,7 +141,7 @@ void SmokeRender(const std::string& name, const std::string& primitive) {
     REQUIRE(prepared.primitives[0].shader());
     renderer::RenderOptions options;
     options.threads = 2;
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
     REQUIRE(image.width == kWidth);

@@ -44,7 +44,7 @@ WorldEnd
 )";
 
 struct Result {
-    ImageBuffer image;
+    image::ImageBuffer image;
     RenderStats stats;
 };
 
@@ -87,7 +87,7 @@ std::vector<Ray> RaysFromAbove(uint64_t seed, int count) {
     return rays;
 }
 
-bool SameImage(const ImageBuffer& a, const ImageBuffer& b) {
+bool SameImage(const image::ImageBuffer& a, const image::ImageBuffer& b) {
     if (a.rgba != b.rgba || a.extraChannels.size() != b.extraChannels.size()) return false;
     for (size_t i = 0; i < a.extraChannels.size(); ++i)
         if (a.extraChannels[i].second != b.extraChannels[i].second) return false;

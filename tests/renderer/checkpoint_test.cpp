@@ -42,7 +42,7 @@ PreparedScene Prepare(const test::TempDir& dir, const std::string& rib = kScene)
     return prepared;
 }
 
-bool SameBits(const ImageBuffer& a, const ImageBuffer& b) {
+bool SameBits(const image::ImageBuffer& a, const image::ImageBuffer& b) {
     auto same = [](const std::vector<float>& x, const std::vector<float>& y) {
         return std::equal(x.begin(), x.end(), y.begin(), y.end(),
                           [](float p, float q) { return std::bit_cast<uint32_t>(p) == std::bit_cast<uint32_t>(q); });
@@ -60,8 +60,8 @@ bool SameBits(const ImageBuffer& a, const ImageBuffer& b) {
 class StopAfter : public TileStore {
   public:
     StopAfter(TileStore* inner, int limit, std::atomic<bool>* stop) : m_inner(inner), m_limit(limit), m_stop(stop) {}
-    bool Restore(const PixelRange& tile, ImageBuffer* image) override { return m_inner->Restore(tile, image); }
-    void Finished(const PixelRange& tile, const ImageBuffer& image) override {
+    bool Restore(const PixelRange& tile, image::ImageBuffer* image) override { return m_inner->Restore(tile, image); }
+    void Finished(const PixelRange& tile, const image::ImageBuffer& image) override {
         m_inner->Finished(tile, image);
         if (++m_count >= m_limit) *m_stop = true;
     }
@@ -83,7 +83,7 @@ TEST_CASE("checkpoint: a render stopped part way and resumed equals the uninterr
     options.threads = 2;
     options.tileSize = 8;
     options.fixedTileSize = true;
-    ImageBuffer whole;
+    image::ImageBuffer whole;
     RenderStats stats;
     RenderImage(scene, options, &whole, &stats);
     REQUIRE_FALSE(stats.stopped);
@@ -100,7 +100,7 @@ TEST_CASE("checkpoint: a render stopped part way and resumed equals the uninterr
     RenderOptions first = options;
     first.stop = &stop;
     first.tileStore = &store;
-    ImageBuffer partial;
+    image::ImageBuffer partial;
     RenderImage(scene, first, &partial, &stats);
     CHECK(stats.stopped);
     const int kept = file->tiles();
@@ -127,7 +127,7 @@ TEST_CASE("checkpoint: a render stopped part way and resumed equals the uninterr
     second.threads = 3;
     second.reverseTileOrder = true;
     second.tileStore = file.get();
-    ImageBuffer resumed;
+    image::ImageBuffer resumed;
     RenderImage(scene, second, &resumed, &stats);
     CHECK(stats.tilesRestored == kept);
     CHECK(file->tiles() == 24);
@@ -143,7 +143,7 @@ TEST_CASE("checkpoint: a record cut short is dropped, other damage is refused", 
     std::string error;
     std::unique_ptr<CheckpointFile> file = CheckpointFile::Create(path, identity, 4, 4, 2, &error);
     REQUIRE(file);
-    ImageBuffer image;
+    image::ImageBuffer image;
     image.width = image.height = 4;
     image.rgba.resize(64);
     for (size_t i = 0; i < image.rgba.size(); ++i) image.rgba[i] = float(i) * 0.25f - 3;
@@ -162,7 +162,7 @@ TEST_CASE("checkpoint: a record cut short is dropped, other damage is refused", 
     // Restored pixels are the written ones, -0 included; other pixels are untouched.
     file = CheckpointFile::Resume(path, contents, &error);
     REQUIRE(file);
-    ImageBuffer restored = image;
+    image::ImageBuffer restored = image;
     std::fill(restored.rgba.begin(), restored.rgba.end(), 7.0f);
     std::fill(restored.extraChannels[0].second.begin(), restored.extraChannels[0].second.end(), 7.0f);
     CHECK(file->Restore({0, 2, 0, 2}, &restored));

@@ -34,7 +34,7 @@ renderer::RenderStats Render(const std::string& rib, bool given) {
     renderer::RenderOptions options;
     options.threads = 2;
     options.sceneTolerance = !given;
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
     CHECK(stats.camera.depthLimitHits == 0);

@@ -69,8 +69,9 @@ WorldBegin
 Sides 1
 )";
     const std::string mesh = SphereMeshRib(1);
-    const ImageBuffer base = test::RenderRib(dir, head + mesh + "WorldEnd\n");
-    const ImageBuffer displaced = test::RenderRib(dir, head + "Displacement \"outward\"\n" + mesh + "WorldEnd\n");
+    const image::ImageBuffer base = test::RenderRib(dir, head + mesh + "WorldEnd\n");
+    const image::ImageBuffer displaced =
+        test::RenderRib(dir, head + "Displacement \"outward\"\n" + mesh + "WorldEnd\n");
     const test::Coverage c = test::CompareCoverage(base, displaced);
     CHECK(c.covered > 300);
     CHECK(c.misses == 0);

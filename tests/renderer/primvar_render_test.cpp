@@ -10,11 +10,11 @@ using namespace affray;
 
 namespace {
 
-glm::dvec3 Rgb(const renderer::ImageBuffer& image, int x, int y) {
+glm::dvec3 Rgb(const image::ImageBuffer& image, int x, int y) {
     const size_t i = 4 * (static_cast<size_t>(y) * image.width + x);
     return {image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]};
 }
-float Alpha(const renderer::ImageBuffer& image, int x, int y) {
+float Alpha(const image::ImageBuffer& image, int x, int y) {
     return image.rgba[4 * (static_cast<size_t>(y) * image.width + x) + 3];
 }
 
@@ -30,7 +30,7 @@ TEST_CASE("primvar render: a vertex-coloured mesh is coloured corner to corner",
     const std::string rib = std::string(kCamera) +
                             "PointsPolygons [4] [0 1 2 3] \"P\" [-1 -1 0  1 -1 0  1 1 0  -1 1 0]\n"
                             "  \"Cs\" [1 0 0  0 1 0  0 0 1  1 1 1]\nWorldEnd\n";
-    const renderer::ImageBuffer image = test::RenderRib(dir, rib);
+    const image::ImageBuffer image = test::RenderRib(dir, rib);
     // The corners' pixels are nearest their vertices' colours; the image's y runs down and
     // world y up, so vertex 0 (-1, -1) is at the bottom left.
     const glm::dvec3 bottomLeft = Rgb(image, 0, 31), bottomRight = Rgb(image, 31, 31), topRight = Rgb(image, 31, 0),
@@ -56,7 +56,7 @@ TEST_CASE("primvar render: partly transparent surfaces composite front to back",
                             "AttributeBegin\nOpacity 0.5 0.5 0.5\nColor 1 0 0\n"
                             "Patch \"bilinear\" \"P\" [-1 -1 -1  0 -1 -1  -1 1 -1  0 1 -1]\nAttributeEnd\n"
                             "Color 0 0 1\nPatch \"bilinear\" \"P\" [-1 0 0  1 0 0  -1 1 0  1 1 0]\nWorldEnd\n";
-    const renderer::ImageBuffer image = test::RenderRib(dir, rib);
+    const image::ImageBuffer image = test::RenderRib(dir, rib);
     // Through both: half the red, then half of the blue behind it.
     CHECK(glm::length(Rgb(image, 4, 4) - glm::dvec3(0.5, 0, 0.5)) < 1e-6);
     CHECK(Alpha(image, 4, 4) == 1.0f);
@@ -71,7 +71,7 @@ TEST_CASE("primvar render: partly transparent surfaces composite front to back",
                                 "Color 1 0 0\nPatch \"bilinear\" \"P\" [-1 -1 -1  1 -1 -1  -1 1 -1  1 1 -1]"
                                 " \"Os\" [1 1 1  0 0 0  1 1 1  0 0 0]\n"
                                 "Color 0 0 1\nPatch \"bilinear\" \"P\" [-1 0 0  1 0 0  -1 1 0  1 1 0]\nWorldEnd\n";
-    const renderer::ImageBuffer ramp = test::RenderRib(dir, varying);
+    const image::ImageBuffer ramp = test::RenderRib(dir, varying);
     for (int x : {0, 10, 20, 31}) {
         const double os = 1 - (x + 0.5) / 32;  // at the pixel's centre
         CHECK(glm::length(Rgb(ramp, x, 4) - glm::dvec3(os, 0, 1 - os)) < 1e-6);

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"
@@ -17,8 +17,8 @@ namespace affray::test {
 
 /// Renders `rib` (one sample per pixel at its centre, box filter, 2 threads) with shaders from
 /// `dir`; no ray may reach the depth limit. The render's statistics go to *stats if given.
-inline renderer::ImageBuffer RenderRib(const TempDir& dir, const std::string& rib,
-                                       renderer::RenderStats* stats = nullptr) {
+inline image::ImageBuffer RenderRib(const TempDir& dir, const std::string& rib,
+                                    renderer::RenderStats* stats = nullptr) {
     affray::diag::Report error;
     std::optional<renderer::SceneDesc> desc = rib::ParseRib(rib, dir.Path("scene.rib"), &error);
     INFO(error);
@@ -32,7 +32,7 @@ inline renderer::ImageBuffer RenderRib(const TempDir& dir, const std::string& ri
     REQUIRE(ok);
     renderer::RenderOptions options;
     options.threads = 2;
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     renderer::RenderStats own;
     if (!stats) stats = &own;
     renderer::RenderImage(prepared, options, &image, stats);
@@ -40,7 +40,7 @@ inline renderer::ImageBuffer RenderRib(const TempDir& dir, const std::string& ri
     return image;
 }
 
-inline const std::vector<float>& DepthOf(const renderer::ImageBuffer& image) {
+inline const std::vector<float>& DepthOf(const image::ImageBuffer& image) {
     for (const auto& [n, values] : image.extraChannels)
         if (n == "Z") return values;
     FAIL("no Z channel");
@@ -53,7 +53,7 @@ struct Coverage {
     int covered = 0, misses = 0, farther = 0;
 };
 
-inline Coverage CompareCoverage(const renderer::ImageBuffer& base, const renderer::ImageBuffer& displaced) {
+inline Coverage CompareCoverage(const image::ImageBuffer& base, const image::ImageBuffer& displaced) {
     const std::vector<float>&zBase = DepthOf(base), &zDisplaced = DepthOf(displaced);
     Coverage c;
     for (size_t i = 0; i < zBase.size(); ++i) {

@@ -8,7 +8,7 @@
 
 #include <sstream>
 
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 #include "rib/rib.h"
 #include "tests/test_random.h"
 #include "tests/test_util.h"
@@ -21,7 +21,7 @@ namespace {
 
 /// Parses `rib` (the scene's path is `dir`/scene.rib, for the search path), prepares and renders
 /// it with one box-filtered sample per pixel; returns the image.
-ImageBuffer Render(const test::TempDir& dir, const std::string& rib, PreparedScene* keep = nullptr) {
+image::ImageBuffer Render(const test::TempDir& dir, const std::string& rib, PreparedScene* keep = nullptr) {
     affray::diag::Report error;
     std::optional<SceneDesc> desc = ParseRib(rib, dir.Path("scene.rib"), &error);
     INFO(error);
@@ -34,16 +34,16 @@ ImageBuffer Render(const test::TempDir& dir, const std::string& rib, PreparedSce
     REQUIRE(prepared_ok);
     RenderOptions options;
     options.threads = 2;
-    ImageBuffer image;
+    image::ImageBuffer image;
     RenderStats stats;
     RenderImage(prepared, options, &image, &stats);
     if (keep) *keep = std::move(prepared);
     return image;
 }
 
-float Alpha(const ImageBuffer& image, int x, int y) { return image.rgba[(size_t(y) * image.width + x) * 4 + 3]; }
+float Alpha(const image::ImageBuffer& image, int x, int y) { return image.rgba[(size_t(y) * image.width + x) * 4 + 3]; }
 
-const std::vector<float>& Channel(const ImageBuffer& image, const std::string& name) {
+const std::vector<float>& Channel(const image::ImageBuffer& image, const std::string& name) {
     for (const auto& [n, values] : image.extraChannels)
         if (n == name) return values;
     FAIL("no channel " << name);
@@ -61,7 +61,7 @@ Scale 1 1 -1
 Translate 0 0 -5
 )";
 
-int Covered(const ImageBuffer& image) {
+int Covered(const image::ImageBuffer& image) {
     int n = 0;
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) n += Alpha(image, x, y) == 1.0f;
@@ -78,7 +78,7 @@ TEST_CASE("render: clipping planes cut camera rays by camera depth", "[renderer]
     CHECK(Covered(Render(dir, std::string(kCamera) + world)) > 30);
     CHECK(Covered(Render(dir, std::string(kCamera) + "Clipping 6 100\n" + world)) == 0);
     CHECK(Covered(Render(dir, std::string(kCamera) + "Clipping 0.1 4\n" + world)) == 0);
-    const ImageBuffer cut = Render(dir, std::string(kCamera) + "Clipping 5 100\n" + world);
+    const image::ImageBuffer cut = Render(dir, std::string(kCamera) + "Clipping 5 100\n" + world);
     REQUIRE(Covered(cut) > 30);
     const std::vector<float>& z = Channel(cut, "Z");
     for (float depth : z)
@@ -95,8 +95,8 @@ TEST_CASE("render: a one-sided surface seen from behind is invisible", "[rendere
         return Render(dir,
                       std::string(kCamera) + "WorldBegin\n" + attributes + patch + "Sides 2\n" + sphere + "WorldEnd\n");
     };
-    const ImageBuffer front = render("Sides 1\n"), back = render("Sides 1\nReverseOrientation\n"),
-                      twoSided = render("ReverseOrientation\n");
+    const image::ImageBuffer front = render("Sides 1\n"), back = render("Sides 1\nReverseOrientation\n"),
+                             twoSided = render("ReverseOrientation\n");
     CHECK(Covered(front) == 64);
     CHECK(Covered(twoSided) == 64);
     const int sphereOnly = Covered(back);
@@ -118,7 +118,7 @@ TEST_CASE("render: shaders are found on the scene's search path and see its coor
         "WorldBegin\nTransformBegin\nTranslate 0 0 0.5\nCoordinateSystem \"lift\"\n"
         "TransformEnd\nDisplacement \"lifted\"\n"
         "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n";
-    const ImageBuffer image =
+    const image::ImageBuffer image =
         Render(dir, std::string(kCamera) + "Option \"searchpath\" \"shader\" [\"mine:&\"]\n" + world);
     REQUIRE(Covered(image) == 64);
     for (float depth : Channel(image, "Z")) CHECK(depth == Approx(4.5).margin(0.02));
@@ -146,7 +146,7 @@ TEST_CASE("render: shaders see the scene's clipping planes and format through de
     const std::string world =
         "Clipping 1 9\nOption \"searchpath\" \"shader\" [\"mine:&\"]\nWorldBegin\nDisplacement \"deep\"\n"
         "Patch \"bilinear\" \"P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\nWorldEnd\n";
-    const ImageBuffer image = Render(dir, std::string(kCamera) + world);
+    const image::ImageBuffer image = Render(dir, std::string(kCamera) + world);
     REQUIRE(Covered(image) == 64);
     for (float depth : Channel(image, "Z")) CHECK(depth == Approx(4.5).margin(0.02));
 }
@@ -156,12 +156,12 @@ TEST_CASE("render: quadrics and patches share the BVH, and AOVs describe the nea
     // A unit sphere in front of a far patch. Near the image centre the sphere is hit near its
     // north pole (v = 1), which faces the camera: P on the unit sphere, N = P, depth 5 - P.z.
     PreparedScene prepared;
-    const ImageBuffer image = Render(dir,
-                                     std::string(kCamera) +
-                                         "WorldBegin\nSphere 1 -1 1 360\n"
-                                         "Patch \"bilinear\" \"P\" [-1 -1 -2  1 -1 -2  -1 1 -2  1 1 -2]\n"
-                                         "WorldEnd\n",
-                                     &prepared);
+    const image::ImageBuffer image = Render(dir,
+                                            std::string(kCamera) +
+                                                "WorldBegin\nSphere 1 -1 1 360\n"
+                                                "Patch \"bilinear\" \"P\" [-1 -1 -2  1 -1 -2  -1 1 -2  1 1 -2]\n"
+                                                "WorldEnd\n",
+                                            &prepared);
     CHECK(prepared.bvh->nodeCount() == 1);  // one leaf holds both
     CHECK(Covered(image) == 64);
     const size_t centre = 4 * 8 + 4;  // pixel (4, 4), whose sample is jittered in [0, 0.25]^2
@@ -188,10 +188,11 @@ TEST_CASE("render: a crater field on a displaced sphere is bounded and renders",
     // most Km: every hit lies between radius 1 - Km and 1.
     const double km = 0.08;
     PreparedScene prepared;
-    const ImageBuffer image = Render(dir,
-                                     std::string(kCamera) + "WorldBegin\nDisplacement \"craters\" \"Km\" [" +
-                                         std::to_string(km) + "] \"frequency\" [12]\nSphere 1 -1 1 360\nWorldEnd\n",
-                                     &prepared);
+    const image::ImageBuffer image =
+        Render(dir,
+               std::string(kCamera) + "WorldBegin\nDisplacement \"craters\" \"Km\" [" + std::to_string(km) +
+                   "] \"frequency\" [12]\nSphere 1 -1 1 360\nWorldEnd\n",
+               &prepared);
     // The disc of radius 1 - Km is covered whatever the craters; the corners are empty.
     CHECK(Covered(image) >= 32);
     CHECK(Alpha(image, 0, 0) == 0.0f);
@@ -245,10 +246,10 @@ struct ImageDifference {
     int coverage = 0, beyondError = 0, differing = 0;
 };
 
-ImageDifference Compare(const ImageBuffer& a, const ImageBuffer& b) {
+ImageDifference Compare(const image::ImageBuffer& a, const image::ImageBuffer& b) {
     REQUIRE(a.rgba.size() == b.rgba.size());
     ImageDifference out;
-    auto P = [](const ImageBuffer& im, size_t i) {
+    auto P = [](const image::ImageBuffer& im, size_t i) {
         return glm::dvec3(Channel(im, "P.X")[i], Channel(im, "P.Y")[i], Channel(im, "P.Z")[i]);
     };
     for (size_t i = 0; i < a.rgba.size() / 4; ++i) {
@@ -272,7 +273,7 @@ TEST_CASE("render: bezier patches and patch meshes on a bilinear sheet render as
           "[renderer][render][bicubic]") {
     test::TempDir dir;
     const std::string camera = kSheetCamera;
-    const ImageBuffer reference = Render(dir, camera + "Patch \"bilinear\" " + SheetPoints(2, 2) + "WorldEnd\n");
+    const image::ImageBuffer reference = Render(dir, camera + "Patch \"bilinear\" " + SheetPoints(2, 2) + "WorldEnd\n");
     CHECK(Covered(reference) > 48 * 36 / 3);
     // P = c00 + c10 u + c01 v + c11 u v in the power basis, whose "points" are the coefficients of
     // [u^3 u^2 u 1] x [v^3 v^2 v 1]: u^a v^b at index 4 (3 - b) + (3 - a).
@@ -291,7 +292,7 @@ TEST_CASE("render: bezier patches and patch meshes on a bilinear sheet render as
     };
     for (const auto& [name, geometry] : variants) {
         INFO(name);
-        const ImageBuffer image = Render(dir, camera + geometry + "WorldEnd\n");
+        const image::ImageBuffer image = Render(dir, camera + geometry + "WorldEnd\n");
         const ImageDifference diff = Compare(reference, image);
         INFO(diff.coverage << " pixels hit by one render only, " << diff.beyondError
                            << " hit farther apart than their certified errors, " << diff.differing
@@ -340,7 +341,7 @@ TEST_CASE("render: scenes/wavy_sheet.rib, a displaced bicubic patch mesh, render
     }
     RenderOptions options;
     options.threads = 2;
-    ImageBuffer image;
+    image::ImageBuffer image;
     RenderStats stats;
     RenderImage(prepared, options, &image, &stats);
     CHECK(Covered(image) > 48 * 36 / 4);
@@ -371,7 +372,7 @@ Rotate 40 0 1 0
     const std::string normals = "\"N\" [-1 -1 -1  1 -1 -1  -1 1 -1  1 1 -1  -1 -1 1  1 -1 1  -1 1 1  1 1 1]";
     dir.Write("mine/swell.sl", "displacement swell() { P += 0.05 * normalize(N); }");
     const auto depth = [&](const std::string& sides, const std::string& body) {
-        const ImageBuffer image =
+        const image::ImageBuffer image =
             Render(dir, std::string(camera) + "WorldBegin\n" + sides + "\n" + body + "\nWorldEnd\n");
         return Channel(image, "Z");
     };
@@ -459,7 +460,7 @@ TEST_CASE("render: Imager \"background\" composites its colour under every pixel
     const std::string scene = std::string(kCamera) +
                               "Imager \"background\" \"background\" [0.1 0.2 0.3]\nExposure 2 1\nWorldBegin\n"
                               "Patch \"bilinear\" \"P\" [-1 -1 1  0 -1 1  -1 1 1  0 1 1]\nWorldEnd\n";
-    const ImageBuffer image = Render(dir, scene);
+    const image::ImageBuffer image = Render(dir, scene);
     int background = 0, covered = 0;
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
@@ -499,7 +500,7 @@ TEST_CASE("render: a mesh is one description whose faces share its arrays and pr
     rib << "]\nWorldEnd\n";
     test::TempDir dir;
     PreparedScene prepared;
-    const ImageBuffer image = Render(dir, rib.str(), &prepared);
+    const image::ImageBuffer image = Render(dir, rib.str(), &prepared);
     REQUIRE(prepared.primitives.size() == size_t(n * n));
     const Primitive& first = prepared.primitives[0];
     REQUIRE(first.base().kind() == BaseSurface::Kind::MeshPiece);

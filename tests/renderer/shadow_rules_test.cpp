@@ -17,7 +17,7 @@ namespace {
 
 /// The mean red of the pixels whose P (world space) lies within `radius` of `at`, and how many
 /// there are (the image must have a "P" channel).
-double MeanRedNear(const renderer::ImageBuffer& image, const glm::dvec3& at, double radius, int* count) {
+double MeanRedNear(const image::ImageBuffer& image, const glm::dvec3& at, double radius, int* count) {
     const std::vector<float>*x = nullptr, *y = nullptr, *z = nullptr;
     for (const auto& [name, values] : image.extraChannels) {
         if (name == "P.X") x = &values;
@@ -60,7 +60,7 @@ const double kLit = 0.1 + std::sqrt(0.5), kShadowed = 0.1;
 /// (1.2, 0, 0), outside the occluder's silhouette).
 std::pair<double, double> FloorShadeAndLight(const std::string& lights, const std::string& occluder) {
     test::TempDir dir;
-    const renderer::ImageBuffer image = test::RenderRib(dir, FloorScene(lights, occluder));
+    const image::ImageBuffer image = test::RenderRib(dir, FloorScene(lights, occluder));
     int inShadow = 0, inLight = 0;
     const double shade = MeanRedNear(image, {-1, 0, 0}, 0.3, &inShadow);
     const double light = MeanRedNear(image, {1.2, 0, 0}, 0.3, &inLight);
@@ -88,14 +88,14 @@ TEST_CASE("shadow rules: a constant sphere around the scene does not darken the 
     test::TempDir dir;
     int n = 0;
     // The sphere's point facing the camera and the light: N.L = 1.
-    const renderer::ImageBuffer lit = test::RenderRib(dir, scene(""));
+    const image::ImageBuffer lit = test::RenderRib(dir, scene(""));
     CHECK(MeanRedNear(lit, {0, 0, -1}, 0.1, &n) == Approx(1.1).epsilon(0.01));
     CHECK(n > 0);
     // The background is the constant sphere's colour.
     CHECK(lit.rgba[0] == Approx(0.2f));
     CHECK(lit.rgba[2] == Approx(0.4f));
     // Asked to trace shadows, the light is blocked by the background sphere: ambient only.
-    const renderer::ImageBuffer shadowed = test::RenderRib(dir, scene("Attribute \"light\" \"shadows\" \"on\"\n"));
+    const image::ImageBuffer shadowed = test::RenderRib(dir, scene("Attribute \"light\" \"shadows\" \"on\"\n"));
     CHECK(MeanRedNear(shadowed, {0, 0, -1}, 0.1, &n) == Approx(0.1).epsilon(0.01));
 }
 
@@ -130,7 +130,7 @@ TEST_CASE("shadow rules: transparent occluders cast no shadow, \"Os\" ones let 1
 
 TEST_CASE("shadow rules: an occluder invisible to the camera still casts its shadow", "[renderer][shadow]") {
     test::TempDir dir;
-    const renderer::ImageBuffer image = test::RenderRib(
+    const image::ImageBuffer image = test::RenderRib(
         dir, FloorScene("Attribute \"light\" \"shadows\" \"on\"\n", "Attribute \"visibility\" \"camera\" [0]\n"));
     int n = 0;
     CHECK(MeanRedNear(image, {-1, 0, 0}, 0.3, &n) == Approx(kShadowed).epsilon(1e-3));

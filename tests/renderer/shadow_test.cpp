@@ -11,8 +11,8 @@
 #include <memory>
 #include <sstream>
 
+#include "renderer/film.h"
 #include "renderer/geometry/camera.h"
-#include "renderer/image/film.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"
@@ -41,7 +41,7 @@ const char* const kRipples =
 /// A rendered scene with its AOVs, one ray per pixel.
 struct Rendered {
     renderer::PreparedScene scene;
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     std::unique_ptr<renderer::Camera> camera;
 
     const std::vector<float>& Channel(const std::string& name) const {

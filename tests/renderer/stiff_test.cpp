@@ -707,7 +707,7 @@ TEST_CASE("stiff: a wall 1e-4 thick covers every pixel of its projected rectangl
     REQUIRE(ok);
     renderer::RenderOptions options;
     options.threads = 2;
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
     const renderer::Camera camera(desc->camera);

@@ -47,8 +47,8 @@ WorldBegin
 Sides 1
 )";
     const std::string mesh = TowerRib();
-    const renderer::ImageBuffer base = test::RenderRib(dir, head + mesh + "WorldEnd\n");
-    const renderer::ImageBuffer displaced =
+    const image::ImageBuffer base = test::RenderRib(dir, head + mesh + "WorldEnd\n");
+    const image::ImageBuffer displaced =
         test::RenderRib(dir, head + "Displacement \"outward\"\n" + mesh + "WorldEnd\n");
     const test::Coverage c = test::CompareCoverage(base, displaced);
     CHECK(c.covered > 300);

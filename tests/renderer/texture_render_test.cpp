@@ -33,7 +33,7 @@ std::vector<float> Bumps() {
 }
 
 struct Rendered {
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     renderer::RenderStats stats;
 };
 
@@ -53,7 +53,7 @@ Rendered RenderWithMap(const test::TempDir& dir, const std::string& map) {
 }
 
 /// The root mean square difference of the RGBA values of two images of one size.
-double Rmse(const renderer::ImageBuffer& a, const renderer::ImageBuffer& b) {
+double Rmse(const image::ImageBuffer& a, const image::ImageBuffer& b) {
     REQUIRE(a.rgba.size() == b.rgba.size());
     double sum = 0;
     for (size_t i = 0; i < a.rgba.size(); ++i) sum += std::pow(double(a.rgba[i]) - double(b.rgba[i]), 2);
@@ -139,7 +139,7 @@ TEST_CASE("texture render: MakeTexture makes a tiled, mip-mapped texture that a 
                                      "WorldEnd\n",
                                  &made.stats);
     // The file: tiled, mip-mapped, the wrap modes of the request; texels those of the picture.
-    const texture::io::ImageHeader header = test::tex::ReadHeader(dir.Path(name));
+    const image::io::ImageHeader header = test::tex::ReadHeader(dir.Path(name));
     CHECK(header.tileWidth > 0);
     CHECK(header.mipLevels > 1);
     CHECK(header.wrapmodes == "clamp,black");
@@ -159,20 +159,20 @@ TEST_CASE("texture render: MakeTexture makes a tiled, mip-mapped texture that a 
 }
 
 TEST_CASE("texture render: only a scene that reads an image loads the image module", "[renderer][texture]") {
-    // OpenImageIO is a module loaded on first use (texture/image_io.h): a scene without maps
+    // OpenImageIO is a module loaded on first use (image/image_io.h): a scene without maps
     // must not pay its start-up. CTest runs each test case in a process of its own.
-    REQUIRE_FALSE(texture::io::Loaded());
+    REQUIRE_FALSE(image::io::Loaded());
     test::TempDir dir;
     dir.Write("bumps.sl", "displacement bumps(float Km = 0.05) {\n    P += Km * noise(P * 4) * normalize(N);\n}\n");
     const std::string head = "Format 16 12 1\nProjection \"perspective\" \"fov\" [40]\nTranslate 0 0 3\nWorldBegin\n";
     test::RenderRib(dir, head + "Displacement \"bumps\"\nSphere 1 -1 1 360\nWorldEnd\n");
-    CHECK_FALSE(texture::io::Loaded());
+    CHECK_FALSE(image::io::Loaded());
 
     test::tex::WriteImage(dir.Path("map.exr"), 8, 8, 1, std::vector<float>(64, 0.5f));
-    CHECK(texture::io::Loaded());
+    CHECK(image::io::Loaded());
     dir.Write("heights.sl",
               "displacement heights(string map = \"\") {\n    P += 0.1 * texture(map, s, t) * normalize(N);\n}\n");
-    const renderer::ImageBuffer image = test::RenderRib(
+    const image::ImageBuffer image = test::RenderRib(
         dir, head + "Displacement \"heights\" \"string map\" [\"map.exr\"]\nSphere 1 -1 1 360\nWorldEnd\n");
     size_t hits = 0;
     for (size_t i = 3; i < image.rgba.size(); i += 4) hits += image.rgba[i] > 0;

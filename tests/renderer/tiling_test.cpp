@@ -63,7 +63,7 @@ TEST_CASE("tiling: tiles cover the frame exactly once and their crop windows map
 }
 
 TEST_CASE("tiling: the header attributes round trip and are checked", "[renderer]") {
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     image.width = 10;
     image.height = 8;
     const renderer::RenderIdentity identity{"0123456789abcdef0123456789abcdef", "resolution=10x8\nsamples=2x2\n"};
@@ -78,15 +78,15 @@ TEST_CASE("tiling: the header attributes round trip and are checked", "[renderer
     CHECK(header->options == identity.options);
     CHECK(header->pixels == PixelRange{2, 7, 0, 8});
 
-    renderer::ImageBuffer outside = image;
+    image::ImageBuffer outside = image;
     outside.attributes["affray:pixels"] = "2,11,0,8";
     CHECK_FALSE(renderer::ReadTileHeader(outside, &error));
     CHECK(error.find("outside its 10x8 image") != std::string::npos);
-    renderer::ImageBuffer malformed = image;
+    image::ImageBuffer malformed = image;
     malformed.attributes["affray:pixels"] = "2,7,0";
     CHECK_FALSE(renderer::ReadTileHeader(malformed, &error));
     CHECK(error.find("affray:pixels") != std::string::npos);
-    renderer::ImageBuffer bare = image;
+    image::ImageBuffer bare = image;
     bare.attributes.erase("affray:scene");
     CHECK_FALSE(renderer::ReadTileHeader(bare, &error));
     CHECK(error == "its header has no affray:scene attribute (not an image of affray render)");

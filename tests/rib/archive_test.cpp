@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"
@@ -58,7 +58,7 @@ Translate 0 0 -5
 // A unit square in z = 0 with its lower left corner at the origin.
 const char* const kSquare = "Patch \"bilinear\" \"P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n";
 
-ImageBuffer Render(const SceneDesc& desc, const std::string& shaders = test::SourceDir() + "/shaders") {
+image::ImageBuffer Render(const SceneDesc& desc, const std::string& shaders = test::SourceDir() + "/shaders") {
     diag::Report error;
     PreparedScene prepared;
     const bool ok = PrepareScene(desc, {shaders}, {}, &prepared, &error);
@@ -66,7 +66,7 @@ ImageBuffer Render(const SceneDesc& desc, const std::string& shaders = test::Sou
     REQUIRE(ok);
     RenderOptions options;
     options.threads = 2;
-    ImageBuffer image;
+    image::ImageBuffer image;
     RenderStats stats;
     RenderImage(prepared, options, &image, &stats);
     return image;
@@ -80,7 +80,7 @@ std::vector<std::string> ErrorsOf(const std::string& rib) {
 }
 
 // The alpha channel as 8 rows of '#' (covered) and '.' (empty), top row first.
-std::string Coverage(const ImageBuffer& image) {
+std::string Coverage(const image::ImageBuffer& image) {
     std::string text;
     for (int y = 0; y < image.height; ++y) {
         for (int x = 0; x < image.width; ++x) {

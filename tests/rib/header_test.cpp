@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"
@@ -110,7 +110,7 @@ WorldEnd
     CHECK(film.SamplePosition(1, 0, 3) == glm::dvec2(1.75, 0.75));
     RenderOptions options;
     options.threads = 2;
-    ImageBuffer image;
+    image::ImageBuffer image;
     RenderStats stats;
     RenderImage(prepared, options, &image, &stats);
     REQUIRE(image.width == 4);

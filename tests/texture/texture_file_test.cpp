@@ -108,7 +108,7 @@ TEST_CASE("texture file: every format reads as OpenImageIO reads it", "[texture]
         layout.wrapmodes = "black";
         const int w = 150, h = 100;
         WriteImage(path, w, h, 1, RandomTexels(rng, static_cast<size_t>(w) * h), layout);
-        const affray::texture::io::ImageHeader header = ReadHeader(path);
+        const affray::image::io::ImageHeader header = ReadHeader(path);
         CHECK(header.tileWidth == 64);
         CHECK(header.mipLevels > 1);
         auto map = OpenAndCompare(path);
@@ -209,7 +209,7 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     CHECK(error.find(text) != std::string::npos);
 
     // PNG files that end early (fuzz/regressions/fuzz_texture): refused, naming the file and
-    // where it ends, before OpenImageIO reads them (texture/image_io_oiio.cpp says why).
+    // where it ends, before OpenImageIO reads them (image/image_io_oiio.cpp says why).
     const std::string signature = "\x89PNG\r\n\x1a\n";
     const std::string truncated = dir.path("truncated.png");
     std::ofstream(truncated, std::ios::binary) << signature;
@@ -234,7 +234,7 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     CHECK(error.find("but the file has " + std::to_string(bytes.size() / 2)) != std::string::npos);
 
     // OpenEXR files whose header attributes claim more bytes than the file holds: refused before
-    // OpenImageIO reads them (OpenEXR 3.1 would allocate the claim first; texture/image_io_oiio.cpp).
+    // OpenImageIO reads them (OpenEXR 3.1 would allocate the claim first; image/image_io_oiio.cpp).
     // A multi-part file (headers one after another) reads as usual.
     const std::string multipart = affray::test::SourceDir() + "/fuzz/corpus/fuzz_texture/multipart4x4.exr";
     REQUIRE(Open(multipart, &error));

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "image/image_io.h"
 #include "tests/test_random.h"
-#include "texture/image_io.h"
 #include "texture/texture.h"
 
 namespace affray::test::tex {
@@ -39,15 +39,15 @@ class ScratchDir {
 };
 
 /// How an image is laid out in its file.
-using texture::io::PixelFormat;
-struct ImageLayout : texture::io::WriteLayout {
+using image::io::PixelFormat;
+struct ImageLayout : image::io::WriteLayout {
     ImageLayout(PixelFormat f = PixelFormat::Float) { format = f; }
 };
 
 /// The image module, which the tests write and read their images through.
-inline const texture::io::ImageIo& Images() {
+inline const image::io::ImageIo& Images() {
     std::string error;
-    const texture::io::ImageIo* io = texture::io::Get(&error);
+    const image::io::ImageIo* io = image::io::Get(&error);
     INFO(error);
     REQUIRE(io);
     return *io;
@@ -63,7 +63,7 @@ inline void WriteImage(const std::string& path, int width, int height, int chann
 }
 
 /// The header of a file as the module reads it.
-inline texture::io::ImageHeader ReadHeader(const std::string& path) {
+inline image::io::ImageHeader ReadHeader(const std::string& path) {
     std::string error;
     auto in = Images().Open(path, &error);
     INFO(error);
@@ -77,7 +77,7 @@ inline std::vector<float> ReadImage(const std::string& path, int* width, int* he
     auto in = Images().Open(path, &error);
     INFO(error);
     REQUIRE(in);
-    const texture::io::ImageHeader h = in->header();
+    const image::io::ImageHeader h = in->header();
     *width = h.width;
     *height = h.height;
     *channels = h.channels;

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "renderer/image/exr_writer.h"
+#include "image/exr_writer.h"
 #include "tests/test_util.h"
 
 namespace fs = std::filesystem;
@@ -141,10 +141,10 @@ TEST_CASE("cli: a tiny render is lit, shadowed, and the same with any thread cou
     REQUIRE(
         Run("render " + (dir / "small.rib").string() + " -o " + (dir / "two.exr").string() + " --threads 2").status ==
         0);
-    renderer::ImageBuffer a, b;
+    image::ImageBuffer a, b;
     affray::diag::Report error;
-    REQUIRE(renderer::ReadExrRgba((dir / "one.exr").string(), &a, &error));
-    REQUIRE(renderer::ReadExrRgba((dir / "two.exr").string(), &b, &error));
+    REQUIRE(image::ReadExrRgba((dir / "one.exr").string(), &a, &error));
+    REQUIRE(image::ReadExrRgba((dir / "two.exr").string(), &b, &error));
     CHECK(a.rgba == b.rgba);
     // The patch covers the centre of the image; the corners see the background.
     auto pixel = [&](int x, int y, int c) { return a.rgba[(static_cast<size_t>(y) * a.width + x) * 4 + c]; };
@@ -324,14 +324,14 @@ TEST_CASE("cli: every scene in scenes/ parses and its shaders compile", "[tools]
 TEST_CASE("cli: diff reports the RMSE and largest RGB error of one image against another", "[tools]") {
     fs::path dir = TempDir("diff");
     // Two 2x1 images: the second differs by 0.5 in R of one pixel and 0.25 in B of the other.
-    renderer::ImageBuffer a{2, 1, {0.5f, 0.5f, 0.5f, 1, 0.25f, 0, 1, 1}, {}, {}};
-    renderer::ImageBuffer b = a;
+    image::ImageBuffer a{2, 1, {0.5f, 0.5f, 0.5f, 1, 0.25f, 0, 1, 1}, {}, {}};
+    image::ImageBuffer b = a;
     b.rgba[0] = 1.0f;
     b.rgba[6] = 0.75f;
-    renderer::ImageBuffer wide{3, 1, std::vector<float>(12, 0.0f), {}, {}};
-    REQUIRE(renderer::WriteExr((dir / "a.exr").string(), a, nullptr));
-    REQUIRE(renderer::WriteExr((dir / "b.exr").string(), b, nullptr));
-    REQUIRE(renderer::WriteExr((dir / "wide.exr").string(), wide, nullptr));
+    image::ImageBuffer wide{3, 1, std::vector<float>(12, 0.0f), {}, {}};
+    REQUIRE(image::WriteExr((dir / "a.exr").string(), a, nullptr));
+    REQUIRE(image::WriteExr((dir / "b.exr").string(), b, nullptr));
+    REQUIRE(image::WriteExr((dir / "wide.exr").string(), wide, nullptr));
     // RMSE over 6 values: sqrt((0.25 + 0.0625) / 6).
     Output same = Run("diff " + (dir / "a.exr").string() + " " + (dir / "a.exr").string());
     CHECK(same.status == 0);

@@ -13,8 +13,8 @@
 #include <filesystem>
 #include <sstream>
 
-#include "renderer/image/exr_writer.h"
-#include "renderer/image/film.h"
+#include "image/exr_writer.h"
+#include "renderer/film.h"
 #include "tests/test_util.h"
 
 using namespace affray;
@@ -25,16 +25,16 @@ constexpr int kWidth = 40, kHeight = 30;
 
 std::string Scene() { return test::WaveSphereScene(kWidth, kHeight, "crop.exr"); }
 
-renderer::ImageBuffer Read(const std::string& path) {
-    renderer::ImageBuffer image;
+image::ImageBuffer Read(const std::string& path) {
+    image::ImageBuffer image;
     affray::diag::Report error;
     INFO(error);
-    REQUIRE(renderer::ReadExrRgba(path, &image, &error));
+    REQUIRE(image::ReadExrRgba(path, &image, &error));
     return image;
 }
 
 /// Renders the scene in `dir` with `extra` arguments into `name`; returns the image.
-renderer::ImageBuffer Render(const test::TempDir& dir, const std::string& name, const std::string& extra) {
+image::ImageBuffer Render(const test::TempDir& dir, const std::string& name, const std::string& extra) {
     test::CliOutput out = test::RunCli(
         "render " + test::Quote(dir.Path("scene.rib")) + " -o " + test::Quote(dir.Path(name)) + " --quiet " + extra,
         true);
@@ -80,16 +80,16 @@ std::string FirstDifference(const std::vector<float>& a, const std::vector<float
 }
 
 /// Renders the crops of `windows` (a partition of the frame), pastes them and compares with `whole`.
-void CheckCropsRebuild(const test::TempDir& dir, const renderer::ImageBuffer& whole,
+void CheckCropsRebuild(const test::TempDir& dir, const image::ImageBuffer& whole,
                        const std::vector<std::array<double, 4>>& windows) {
-    renderer::ImageBuffer merged;
+    image::ImageBuffer merged;
     int pixels = 0;
     for (size_t k = 0; k < windows.size(); ++k) {
         const renderer::PixelRange range = Pixels(windows[k]);
         INFO("crop " << CropArg(windows[k]) << " = pixels " << renderer::ToString(range));
         REQUIRE_FALSE(range.empty());
         pixels += range.width() * range.height();
-        renderer::ImageBuffer crop = Render(dir, "crop" + std::to_string(k) + ".exr", "--crop " + CropArg(windows[k]));
+        image::ImageBuffer crop = Render(dir, "crop" + std::to_string(k) + ".exr", "--crop " + CropArg(windows[k]));
         REQUIRE(crop.width == kWidth);
         REQUIRE(crop.height == kHeight);
         REQUIRE(crop.extraChannels.size() == whole.extraChannels.size());
@@ -133,7 +133,7 @@ TEST_CASE("crop: crop renders pasted together equal the whole render bit for bit
     test::TempDir dir;
     dir.Write("scene.rib", Scene());
     std::filesystem::copy_file(test::SourceDir() + "/shaders/wave.sl", dir.Path("wave.sl"));
-    const renderer::ImageBuffer whole = Render(dir, "whole.exr", "");
+    const image::ImageBuffer whole = Render(dir, "whole.exr", "");
     REQUIRE(whole.width == kWidth);
     REQUIRE(whole.height == kHeight);
     // Every AOV of the Display mode is there, and the scene shows both surfaces and background.
@@ -158,10 +158,10 @@ TEST_CASE("crop: a pasted crop differs from the whole render when a crop is miss
     test::TempDir dir;
     dir.Write("scene.rib", Scene());
     std::filesystem::copy_file(test::SourceDir() + "/shaders/wave.sl", dir.Path("wave.sl"));
-    const renderer::ImageBuffer whole = Render(dir, "whole.exr", "--samples 1");
+    const image::ImageBuffer whole = Render(dir, "whole.exr", "--samples 1");
     const std::array<double, 4> window{0, 0.5, 0, 0.5};
-    renderer::ImageBuffer crop = Render(dir, "crop.exr", "--samples 1 --crop " + CropArg(window));
-    renderer::ImageBuffer merged;
+    image::ImageBuffer crop = Render(dir, "crop.exr", "--samples 1 --crop " + CropArg(window));
+    image::ImageBuffer merged;
     std::string error;
     REQUIRE(renderer::PasteCrop(crop, Pixels(window), &merged, &error));
     CHECK_FALSE(SameBits(merged.rgba, whole.rgba));

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "renderer/image/exr_writer.h"
+#include "image/exr_writer.h"
 #include "tests/test_util.h"
 
 namespace fs = std::filesystem;
@@ -96,8 +96,8 @@ TEST_CASE("farm cli: split --shell tiles merge into the single render byte for b
     REQUIRE(merged.status == 0);
     REQUIRE(RunIn(dir, "affray render scene.rib -o single.exr --quiet").status == 0);
     RequireSameFile(dir.Path("merged.exr"), dir.Path("single.exr"));
-    renderer::ImageBuffer image;
-    REQUIRE(renderer::ReadExrRgba(dir.Path("merged.exr"), &image, nullptr));
+    image::ImageBuffer image;
+    REQUIRE(image::ReadExrRgba(dir.Path("merged.exr"), &image, nullptr));
     CHECK(image.extraChannels.size() == 11);  // Z, N.X N.Y N.Z, P.X P.Y P.Z, st.s st.t, cost, err
     CHECK(image.attributes.at("affray:pixels") == "0,67,0,41");
 
@@ -141,8 +141,8 @@ TEST_CASE("farm cli: split --shell tiles merge into the single render byte for b
                 "different samples");
     }
     SECTION("an image that is no tile") {
-        renderer::ImageBuffer plain{67, 41, std::vector<float>(67 * 41 * 4, 0.5f), {}, {}};
-        REQUIRE(renderer::WriteExr(dir.Path("plain.exr"), plain, nullptr));
+        image::ImageBuffer plain{67, 41, std::vector<float>(67 * 41 * 4, 0.5f), {}, {}};
+        REQUIRE(image::WriteExr(dir.Path("plain.exr"), plain, nullptr));
         refused(tileList + " plain.exr", "plain.exr: error: not a tile: its header has no affray:version attribute");
     }
 }

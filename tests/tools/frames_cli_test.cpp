@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "renderer/image/exr_writer.h"
+#include "image/exr_writer.h"
 #include "tests/test_util.h"
 
 namespace fs = std::filesystem;
@@ -34,10 +34,10 @@ test::CliOutput Render(const std::string& args) { return test::RunCli("render --
 
 // The RGBA of pixel (x, y) of the image at `path`.
 std::array<float, 4> PixelOf(const std::string& path, int x, int y) {
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     diag::Report report;
     INFO(path);
-    REQUIRE(renderer::ReadExrRgba(path, &image, &report));
+    REQUIRE(image::ReadExrRgba(path, &image, &report));
     const size_t i = (size_t(y) * image.width + x) * 4;
     return {image.rgba[i], image.rgba[i + 1], image.rgba[i + 2], image.rgba[i + 3]};
 }

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "renderer/image/exr_writer.h"
+#include "image/exr_writer.h"
 #include "tests/test_util.h"
 
 namespace fs = std::filesystem;
@@ -19,7 +19,7 @@ using namespace affray;
 
 namespace {
 
-const std::vector<float>* Channel(const renderer::ImageBuffer& image, const std::string& name) {
+const std::vector<float>* Channel(const image::ImageBuffer& image, const std::string& name) {
     for (const auto& [n, values] : image.extraChannels)
         if (n == name) return &values;
     return nullptr;
@@ -44,9 +44,9 @@ TEST_CASE("scenes cli: the gallery scenes render shrunk with every AOV", "[tools
         test::CliOutput r = test::RunCli("render " + rib.string() + " -o " + exr + " --samples 1 --quiet", true);
         INFO(r.out);
         REQUIRE(r.status == 0);
-        renderer::ImageBuffer image;
+        image::ImageBuffer image;
         affray::diag::Report error;
-        REQUIRE(renderer::ReadExrRgba(exr, &image, &error));
+        REQUIRE(image::ReadExrRgba(exr, &image, &error));
         const size_t pixels = size_t(image.width) * size_t(image.height);
         REQUIRE(pixels > 0);
         for (const char* channel : channels) {

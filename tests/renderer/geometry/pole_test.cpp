@@ -220,7 +220,7 @@ TEST_CASE("pole: a displaced teapot lid renders with every hit certified", "[ren
     REQUIRE(renderer::PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error));
     renderer::RenderOptions options;
     options.threads = 2;
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
     CHECK(stats.camera.depthLimitHits == 0);

@@ -1,11 +1,11 @@
-// renderer/image/film.h: from camera samples to pixels: the crop window, stratified sample positions,
+// renderer/film.h: from camera samples to pixels: the crop window, stratified sample positions,
 // the reconstruction filter (RI Spec 3.2 appendix E), exposure and the AOV channels.
 //
 // How a renderer uses it (one Film per image, shared read-only by all threads):
-//   Film film(scene.camera, channels);          // channels from ParseDisplayMode(displayMode)
-//   ImageBuffer image = film.MakeImage();       // full resolution, zero outside the crop
+//   Film film(scene.camera, channels);               // channels from ParseDisplayMode(displayMode)
+//   image::ImageBuffer image = film.MakeImage();     // full resolution, zero outside the crop
 //   for each tile in film.Tiles(32), on any thread, in any order:
-//       film.TileSamples(tile, &samples);        // the tile's pixels grown by the filter margin
+//       film.TileSamples(tile, &samples);            // the tile's pixels grown by the filter margin
 //       values[i] = trace and shade samples[i].raster, for every i
 //       film.ResolveTile(tile, samples, values, &image);  // writes only the tile's pixels
 //
@@ -40,7 +40,7 @@
 
 #include <glm/glm.hpp>
 
-#include "renderer/image/exr_writer.h"
+#include "image/exr_writer.h"
 #include "renderer/scene.h"
 
 namespace affray::renderer {
@@ -140,14 +140,14 @@ class Film {
     double FilterWeight(double dx, double dy) const;
 
     /// A full-resolution image, all zero, with the extra channels `channels` asks for.
-    ImageBuffer MakeImage() const;
+    image::ImageBuffer MakeImage() const;
 
     /// Filters the tile's pixels from `samples` (as TileSamples(tile) gave them) and `values`
     /// (one per sample) into `image` (from MakeImage), applying exposure. Writes only the tile's
     /// pixels, so threads may resolve disjoint tiles into one image concurrently. Channels the
     /// image lacks are skipped.
     void ResolveTile(const PixelRange& tile, const std::vector<Sample>& samples, const std::vector<SampleValue>& values,
-                     ImageBuffer* image) const;
+                     image::ImageBuffer* image) const;
 
     /// RI Exposure: (gain * c)^(1/gamma) per component; negative components become 0 unless
     /// gamma is 1 (a power of a negative number is undefined).
@@ -176,6 +176,6 @@ std::uint64_t SampleHash(int x, int y, int index, std::uint64_t seed);
 /// Copies the pixels of `range` in every channel of `crop` into `whole` (same resolution). An
 /// empty `whole` (width 0) becomes an all-zero image shaped like `crop` first; channels `whole`
 /// lacks are added, zero. Returns false with *error set if the resolutions differ.
-bool PasteCrop(const ImageBuffer& crop, const PixelRange& range, ImageBuffer* whole, std::string* error);
+bool PasteCrop(const image::ImageBuffer& crop, const PixelRange& range, image::ImageBuffer* whole, std::string* error);
 
 }  // namespace affray::renderer

@@ -1,5 +1,5 @@
-// renderer/image/atomic_file.cpp: atomic file output (rules in atomic_file.h).
-#include "renderer/image/atomic_file.h"
+// image/atomic_file.cpp: atomic file output (rules in atomic_file.h).
+#include "image/atomic_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <system_error>
 
-namespace affray::renderer {
+namespace affray::image {
 namespace {
 
 std::atomic<int64_t> g_faultAt{-1};  // byte number of the injected failure, or -1
@@ -115,4 +115,4 @@ bool CheckWritable(const std::string& path, std::string* reason) {
     return true;
 }
 
-}  // namespace affray::renderer
+}  // namespace affray::image

@@ -1,4 +1,4 @@
-// renderer/image/exr_writer.h: the film's image buffer and its OpenEXR file I/O.
+// image/exr_writer.h: an image buffer (what the renderer's film fills) and its OpenEXR file I/O.
 // Owns the on-disk format of rendered images: RGBA as HALF, any extra channels (Z, AOVs) as
 // FLOAT, scanline order with row 0 at the top. Writes are atomic: the image goes to a temporary
 // file beside the target and is renamed onto it, so a reader never sees a half-written image.
@@ -15,7 +15,7 @@
 
 #include "diag/diagnostic.h"
 
-namespace affray::renderer {
+namespace affray::image {
 
 /// A float image: interleaved RGBA plus optional named float channels.
 struct ImageBuffer {
@@ -24,7 +24,7 @@ struct ImageBuffer {
     /// Extra float32 channels such as {"Z", ...}, width * height values each, same pixel order.
     std::vector<std::pair<std::string, std::vector<float>>> extraChannels;
     /// String attributes of the file's header, such as the render's identity that affray merge
-    /// checks ("affray:identity", renderer/tile_header.h). Read back: every string attribute.
+    /// checks ("affray:identity", renderer/tiling.h). Read back: every string attribute.
     std::map<std::string, std::string> attributes;
 };
 
@@ -49,4 +49,4 @@ bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report
 /// out->extraChannels with their names and no values. Errors as ReadExrRgba.
 bool ReadExrHeader(const std::string& path, ImageBuffer* out, diag::Report* report);
 
-}  // namespace affray::renderer
+}  // namespace affray::image

@@ -1,4 +1,4 @@
-// tests/renderer/image/exr_test.cpp: OpenEXR output (renderer/image/exr_writer.*): round trips, channel
+// tests/image/exr_test.cpp: OpenEXR output (image/exr_writer.*): round trips, channel
 // types, and clean failure without leftover temporary files.
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -12,10 +12,10 @@
 #include <fstream>
 #include <random>
 
-#include "renderer/image/exr_writer.h"
+#include "image/exr_writer.h"
 #include "tests/test_util.h"
 
-using namespace affray::renderer;
+using namespace affray::image;
 namespace fs = std::filesystem;
 
 namespace {
@@ -60,7 +60,7 @@ ImageBuffer TestImage(int width, int height) {
 
 }  // namespace
 
-TEST_CASE("EXR round trip keeps RGBA to half precision and Z exactly", "[renderer]") {
+TEST_CASE("EXR round trip keeps RGBA to half precision and Z exactly", "[image]") {
     TempDir dir;
     std::string path = (dir.path / "image.exr").string();
     ImageBuffer image = TestImage(7, 5);
@@ -85,7 +85,7 @@ TEST_CASE("EXR round trip keeps RGBA to half precision and Z exactly", "[rendere
     CHECK(ToString(back) == "7x5 RGBA + Z");
 }
 
-TEST_CASE("EXR channels are RGBA half and extra channels float", "[renderer]") {
+TEST_CASE("EXR channels are RGBA half and extra channels float", "[image]") {
     TempDir dir;
     std::string path = (dir.path / "channels.exr").string();
     ImageBuffer image = TestImage(4, 3);
@@ -117,7 +117,7 @@ TEST_CASE("EXR channels are RGBA half and extra channels float", "[renderer]") {
     CHECK(values[4 * 2 + 3] == 1.0f + 0.003f + 2000.0f);
 }
 
-TEST_CASE("EXR writes replace an existing file", "[renderer]") {
+TEST_CASE("EXR writes replace an existing file", "[image]") {
     TempDir dir;
     std::string path = (dir.path / "again.exr").string();
     affray::diag::Report error;
@@ -132,7 +132,7 @@ TEST_CASE("EXR writes replace an existing file", "[renderer]") {
     CHECK(dir.Entries() == std::vector<std::string>{"again.exr"});
 }
 
-TEST_CASE("EXR write failures are clean", "[renderer]") {
+TEST_CASE("EXR write failures are clean", "[image]") {
     TempDir dir;
     affray::diag::Report error;
 
@@ -181,7 +181,7 @@ TEST_CASE("EXR write failures are clean", "[renderer]") {
     }
 }
 
-TEST_CASE("EXR string attributes round trip, and a header alone or a band of rows can be read", "[renderer]") {
+TEST_CASE("EXR string attributes round trip, and a header alone or a band of rows can be read", "[image]") {
     TempDir dir;
     const std::string path = (dir.path / "band.exr").string();
     ImageBuffer image{5, 4, std::vector<float>(5 * 4 * 4), {{"Z", std::vector<float>(5 * 4)}}, {}};
@@ -211,8 +211,8 @@ TEST_CASE("EXR string attributes round trip, and a header alone or a band of row
 }
 
 TEST_CASE("EXR files whose attributes claim more bytes than the file holds are refused before OpenEXR reads them",
-          "[renderer]") {
-    // OpenEXR 3.1 would allocate the claim first (renderer/image/exr_check.h).
+          "[image]") {
+    // OpenEXR 3.1 would allocate the claim first (image/exr_check.h).
     TempDir dir;
     const std::string path = (dir.path / "claims.exr").string();
     ImageBuffer image = TestImage(3, 2);

@@ -1,5 +1,5 @@
-// texture/image_io.cpp: finding and loading the image-file module (texture/image_io.h).
-#include "texture/image_io.h"
+// image/image_io.cpp: finding and loading the image-file module (image/image_io.h).
+#include "image/image_io.h"
 
 #include <dlfcn.h>
 
@@ -10,7 +10,7 @@
 #include <system_error>
 #include <vector>
 
-namespace affray::texture::io {
+namespace affray::image::io {
 namespace {
 
 std::atomic<bool> g_loaded{false};
@@ -77,4 +77,4 @@ const ImageIo* Get(std::string* error) {
 
 bool Loaded() { return g_loaded; }
 
-}  // namespace affray::texture::io
+}  // namespace affray::image::io

@@ -1,5 +1,5 @@
-// renderer/image/atomic_file.h: the one way the renderer puts a finished file on disk.
-// Every image the renderer writes (the OpenEXR output with its AOVs, the PNG preview) goes
+// image/atomic_file.h: the one way affray puts a finished file on disk.
+// Every image affray writes (the OpenEXR output with its AOVs, the PNG preview) goes
 // through WriteFileAtomically: the bytes go to a new temporary file in the target's directory,
 // are written with every error checked (a full disk is a short or failed write(), or a failed
 // fsync() or close()), and only then is the file renamed onto the target. On any failure the
@@ -12,7 +12,7 @@
 #include <string>
 #include <string_view>
 
-namespace affray::renderer {
+namespace affray::image {
 
 /// Writes `bytes` to `path` atomically (see the file comment). Returns false with *reason (may
 /// be null) set to one phrase, without the path ("No space left on device", "'out' is a
@@ -37,4 +37,4 @@ void InjectWriteFaultForTesting(int64_t failAtByte, int error);
 /// Returns 0, or the errno of the failure. Counts against InjectWriteFaultForTesting.
 int WriteAll(int fd, std::string_view bytes);
 
-}  // namespace affray::renderer
+}  // namespace affray::image

@@ -1,20 +1,20 @@
-// tests/renderer/image/atomic_file_test.cpp: the one atomic writer (renderer/image/atomic_file.*)
+// tests/image/atomic_file_test.cpp: the one atomic writer (image/atomic_file.*)
 // and the image writers built on it: a missing directory, a directory as the target and a
 // failing write (injected: the Nth byte fails with ENOSPC, as on a full disk) are errors naming
 // the file, and leave no temporary file and the old file, if any, untouched.
-#include "renderer/image/atomic_file.h"
+#include "image/atomic_file.h"
 
 #include <catch2/catch.hpp>
 
 #include <cerrno>
 #include <filesystem>
 
-#include "renderer/image/exr_writer.h"
-#include "renderer/image/png_writer.h"
+#include "image/exr_writer.h"
+#include "image/png_writer.h"
 #include "tests/test_util.h"
 
 using namespace affray;
-using namespace affray::renderer;
+using namespace affray::image;
 
 namespace {
 
@@ -40,7 +40,7 @@ struct FaultGuard {
 
 }  // namespace
 
-TEST_CASE("atomic file: written whole, or an error with nothing left behind", "[renderer][image][faults]") {
+TEST_CASE("atomic file: written whole, or an error with nothing left behind", "[image][faults]") {
     test::TempDir dir;
     FaultGuard guard;
     std::string reason;
@@ -66,8 +66,7 @@ TEST_CASE("atomic file: written whole, or an error with nothing left behind", "[
     CHECK(Entries(dir) == 2);  // a.bin and d: no temporary file
 }
 
-TEST_CASE("atomic file: EXR and PNG writers fail on a full disk naming the file, leaving nothing",
-          "[renderer][image][faults]") {
+TEST_CASE("atomic file: EXR and PNG writers fail on a full disk naming the file, leaving nothing", "[image][faults]") {
     test::TempDir dir;
     FaultGuard guard;
     const ImageBuffer image = SmallImage();

@@ -1,10 +1,10 @@
-// renderer/image/exr_writer.cpp: OpenEXR output and input (format and atomicity rules in exr_writer.h).
-#include "renderer/image/exr_writer.h"
+// image/exr_writer.cpp: OpenEXR output and input (format and atomicity rules in exr_writer.h).
+#include "image/exr_writer.h"
 
 #include "diag/limits.h"
 
-#include "renderer/image/atomic_file.h"
-#include "renderer/image/exr_check.h"
+#include "image/atomic_file.h"
+#include "image/exr_check.h"
 
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
@@ -21,7 +21,7 @@
 #include <set>
 #include <stdexcept>
 
-namespace affray::renderer {
+namespace affray::image {
 namespace {
 
 constexpr const char* kRgbaNames[4] = {"R", "G", "B", "A"};
@@ -206,4 +206,4 @@ bool ReadExrRgba(const std::string& path, ImageBuffer* out, diag::Report* report
     }
 }
 
-}  // namespace affray::renderer
+}  // namespace affray::image

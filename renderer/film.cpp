@@ -1,5 +1,5 @@
-// renderer/image/film.cpp: crop window, sample positions, filtering and AOV rules (see film.h).
-#include "renderer/image/film.h"
+// renderer/film.cpp: crop window, sample positions, filtering and AOV rules (see film.h).
+#include "renderer/film.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +38,7 @@ struct ChannelPointers {
     float* err = nullptr;
 };
 
-ChannelPointers FindChannels(ImageBuffer* image) {
+ChannelPointers FindChannels(image::ImageBuffer* image) {
     ChannelPointers c;
     const struct {
         const char* name;
@@ -122,7 +122,8 @@ PixelSums Gather(const Film& film, int x, int y, const PixelRange& region, const
 }
 
 /// Normalises and exposes `sums` into pixel number `pixel` of every channel the image has.
-void WritePixel(const Film& film, const PixelSums& sums, size_t pixel, const ChannelPointers& ch, ImageBuffer* image) {
+void WritePixel(const Film& film, const PixelSums& sums, size_t pixel, const ChannelPointers& ch,
+                image::ImageBuffer* image) {
     float* rgba = &image->rgba[pixel * 4];
     const double norm = sums.weight > 0 ? 1.0 / sums.weight : 0.0;
     glm::dvec3 rgb = sums.rgb * norm;
@@ -276,8 +277,8 @@ double Film::Expose(double c) const {
     return std::pow(std::max(m_gain * c, 0.0), 1.0 / m_gamma);
 }
 
-ImageBuffer Film::MakeImage() const {
-    ImageBuffer image;
+image::ImageBuffer Film::MakeImage() const {
+    image::ImageBuffer image;
     image.width = m_xres;
     image.height = m_yres;
     const size_t pixels = static_cast<size_t>(m_xres) * m_yres;
@@ -288,7 +289,7 @@ ImageBuffer Film::MakeImage() const {
 }
 
 void Film::ResolveTile(const PixelRange& tile, const std::vector<Sample>& samples,
-                       const std::vector<SampleValue>& values, ImageBuffer* image) const {
+                       const std::vector<SampleValue>& values, image::ImageBuffer* image) const {
     const PixelRange region = SampleRegion(tile);
     const size_t expected =
         region.empty() ? 0 : static_cast<size_t>(region.width()) * region.height() * samplesPerPixel();
@@ -307,10 +308,10 @@ void Film::ResolveTile(const PixelRange& tile, const std::vector<Sample>& sample
                        image);
 }
 
-bool PasteCrop(const ImageBuffer& crop, const PixelRange& range, ImageBuffer* whole, std::string* error) {
+bool PasteCrop(const image::ImageBuffer& crop, const PixelRange& range, image::ImageBuffer* whole, std::string* error) {
     const size_t pixels = static_cast<size_t>(crop.width) * crop.height;
     if (whole->width == 0 && whole->height == 0) {
-        *whole = ImageBuffer{crop.width, crop.height, std::vector<float>(pixels * 4, 0.0f), {}, {}};
+        *whole = image::ImageBuffer{crop.width, crop.height, std::vector<float>(pixels * 4, 0.0f), {}, {}};
     }
     if (whole->width != crop.width || whole->height != crop.height) {
         if (error)

@@ -1,5 +1,5 @@
-// texture/image_io_oiio.cpp: the image-file module (libaffray_image_io.so), the only code of
-// affray that calls OpenImageIO. texture/image_io.h says why it is a module.
+// image/image_io_oiio.cpp: the image-file module (libaffray_image_io.so), the only code of
+// affray that calls OpenImageIO. image/image_io.h says why it is a module.
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
@@ -9,10 +9,10 @@
 #include <sstream>
 #include <vector>
 
-#include "renderer/image/exr_check.h"
-#include "texture/image_io.h"
+#include "image/exr_check.h"
+#include "image/image_io.h"
 
-namespace affray::texture::io {
+namespace affray::image::io {
 namespace {
 
 /// An OIIO message on one line.
@@ -103,7 +103,7 @@ class OiioReader final : public ImageReader {
 class OiioImageIo final : public ImageIo {
   public:
     std::unique_ptr<ImageReader> Open(const std::string& path, std::string* error) const override {
-        if (std::string why = TruncatedPng(path) + renderer::OversizedExrHeader(path); !why.empty()) {
+        if (std::string why = TruncatedPng(path) + OversizedExrHeader(path); !why.empty()) {
             *error = why;
             return nullptr;
         }
@@ -203,9 +203,9 @@ class OiioImageIo final : public ImageIo {
 };
 
 }  // namespace
-}  // namespace affray::texture::io
+}  // namespace affray::image::io
 
-extern "C" __attribute__((visibility("default"))) const affray::texture::io::ImageIo* affray_image_io(int abi) {
-    static const affray::texture::io::OiioImageIo io;
-    return abi == affray::texture::io::kAbi ? &io : nullptr;
+extern "C" __attribute__((visibility("default"))) const affray::image::io::ImageIo* affray_image_io(int abi) {
+    static const affray::image::io::OiioImageIo io;
+    return abi == affray::image::io::kAbi ? &io : nullptr;
 }

@@ -1,4 +1,4 @@
-// texture/image_io.h: image files through OpenImageIO, which lives in a module of its own
+// image/image_io.h: image files through OpenImageIO, which lives in a module of its own
 // (libaffray_image_io.so) loaded the first time an image is read or written.
 //
 // Why a module: OpenImageIO brings some 260 shared libraries (codecs, OpenCV, FFmpeg...), and
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace affray::texture::io {
+namespace affray::image::io {
 
 /// What a reader knows of subimage 0, MIP level 0 of a file.
 struct ImageHeader {
@@ -79,4 +79,4 @@ const ImageIo* Get(std::string* error);
 /// without textures never loads it).
 bool Loaded();
 
-}  // namespace affray::texture::io
+}  // namespace affray::image::io

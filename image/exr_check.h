@@ -1,4 +1,4 @@
-// renderer/image/exr_check.h: a check of an OpenEXR file's headers before OpenEXR reads them.
+// image/exr_check.h: a check of an OpenEXR file's headers before OpenEXR reads them.
 // Debian's OpenEXR 3.1 allocates an attribute's stated size before it reads the attribute, so a
 // 15 KB file that claims a 2 GB string takes 2 GB before it is refused (found by fuzz_texture;
 // fuzz/regressions/fuzz_texture holds the input). Every reader of EXR files an affray user gives
@@ -8,10 +8,10 @@
 
 #include <string>
 
-namespace affray::renderer {
+namespace affray::image {
 
 /// Why the OpenEXR file at `path` cannot be read, or "" when its headers are sound or it is not
 /// an OpenEXR file: every attribute of every header (one per part) must fit in the file.
 std::string OversizedExrHeader(const std::string& path);
 
-}  // namespace affray::renderer
+}  // namespace affray::image

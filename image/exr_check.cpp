@@ -1,10 +1,10 @@
-// renderer/image/exr_check.cpp: the header check of renderer/image/exr_check.h.
-#include "renderer/image/exr_check.h"
+// image/exr_check.cpp: the header check of image/exr_check.h.
+#include "image/exr_check.h"
 
 #include <cstdint>
 #include <fstream>
 
-namespace affray::renderer {
+namespace affray::image {
 
 std::string OversizedExrHeader(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -50,4 +50,4 @@ std::string OversizedExrHeader(const std::string& path) {
     }
 }
 
-}  // namespace affray::renderer
+}  // namespace affray::image

@@ -1,7 +1,7 @@
-// tests/renderer/image/film_test.cpp: the film (renderer/image/film.*): crop pixels that partition the image,
+// tests/renderer/film_test.cpp: the film (renderer/film.*): crop pixels that partition the image,
 // sample positions that do not depend on who asks, filter weights worked out by hand, images
 // that do not depend on the tiling bit for bit, the AOV rules, exposure and Display modes.
-#include "renderer/image/film.h"
+#include "renderer/film.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -10,6 +10,7 @@
 #include <functional>
 
 using namespace affray::renderer;
+using affray::image::ImageBuffer;
 
 namespace {
 

@@ -1,8 +1,8 @@
-// renderer/image/png_writer.cpp: the smallest correct PNG: IHDR, one zlib-compressed IDAT of unfiltered
+// image/png_writer.cpp: the smallest correct PNG: IHDR, one zlib-compressed IDAT of unfiltered
 // scanlines, IEND (PNG specification, ISO/IEC 15948), chunk CRCs from zlib.
-#include "renderer/image/png_writer.h"
+#include "image/png_writer.h"
 
-#include "renderer/image/atomic_file.h"
+#include "image/atomic_file.h"
 
 #include <zlib.h>
 
@@ -10,7 +10,7 @@
 #include <cmath>
 #include <vector>
 
-namespace affray::renderer {
+namespace affray::image {
 
 namespace {
 
@@ -74,4 +74,4 @@ bool WritePngPreview(const std::string& path, const ImageBuffer& image, diag::Re
     return true;
 }
 
-}  // namespace affray::renderer
+}  // namespace affray::image
