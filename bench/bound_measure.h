@@ -22,8 +22,8 @@
 
 #include "bench/evals_per_second.h"
 #include "compiler/compile.h"
-#include "renderer/geometry/surface.h"
 #include "renderer/render.h"
+#include "scene/geometry/surface.h"
 
 namespace affray::bench {
 

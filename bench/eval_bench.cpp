@@ -11,7 +11,7 @@
 
 #include "bench/evals_per_second.h"
 #include "compiler/compile.h"
-#include "renderer/geometry/surface.h"
+#include "scene/geometry/surface.h"
 
 using namespace affray;
 

@@ -29,10 +29,10 @@
 #include <vector>
 
 #include "image/exr_writer.h"
-#include "renderer/geometry/camera.h"
-#include "renderer/geometry/surface.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
+#include "scene/geometry/camera.h"
+#include "scene/geometry/surface.h"
 
 using namespace affray;
 

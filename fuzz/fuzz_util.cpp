@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "renderer/geometry/surface.h"
+#include "scene/geometry/surface.h"
 #include "vm/bytecode_file.h"
 #include "vm/interpreter.h"
 

@@ -30,7 +30,7 @@
 
 #include <glm/glm.hpp>
 
-#include "renderer/geometry/surface.h"
+#include "scene/geometry/surface.h"
 #include "vm/program.h"
 
 namespace affray::renderer {

@@ -41,7 +41,8 @@
 #include <glm/glm.hpp>
 
 #include "image/exr_writer.h"
-#include "renderer/scene.h"
+#include "scene/display.h"
+#include "scene/scene.h"
 
 namespace affray::renderer {
 
@@ -66,22 +67,6 @@ std::string ToString(const PixelRange& range);
 /// x0 = clamp(ceil(xres * xmin - 0.5)), x1 = clamp(ceil(xres * xmax - 0.5)), the same in y,
 /// clamped to the image. Crops whose windows partition [0,1]^2 partition the pixels exactly.
 PixelRange CropPixels(const CameraDesc& camera);
-
-/// The channels a Display mode asks for beyond RGBA (which are always written).
-struct DisplayChannels {
-    bool z = false, n = false, p = false, st = false, cost = false, err = false;
-    bool operator==(const DisplayChannels&) const = default;
-};
-
-/// Parses a Display mode: comma-separated groups, each one of "rgb", "rgba", "rgbz", "rgbaz",
-/// the single letters "r" "g" "b" "a" "z", prman's "Ci" and "Oi" (colour and opacity: RGBA), or
-/// the AOVs "Z" (same as "z"), "N", "P", "st",
-/// "cost", "err"; spaces around a group are ignored. Returns false with *error naming the
-/// offending group if a group is unknown or empty. RGBA are written whatever the mode says.
-bool ParseDisplayMode(const std::string& mode, DisplayChannels* out, std::string* error);
-/// Whether `group` (taken as written, spaces included) is one of the groups ParseDisplayMode
-/// accepts: the RIB reader checks a Display mode with it.
-bool DisplayGroupP(std::string_view group);
 
 /// The names Film::MakeImage gives the channels beyond RGBA, in file order.
 std::vector<std::string> ChannelNames(const DisplayChannels& channels);

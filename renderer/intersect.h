@@ -12,8 +12,8 @@
 #include <memory>
 
 #include "renderer/bound_tree.h"
-#include "renderer/geometry/camera.h"
-#include "renderer/geometry/surface.h"
+#include "scene/geometry/camera.h"
+#include "scene/geometry/surface.h"
 #include "vm/program.h"
 
 namespace affray::renderer {

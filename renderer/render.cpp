@@ -27,8 +27,8 @@
 #include "compiler/shader_cache.h"
 #include "diag/limits.h"
 #include "renderer/film.h"
-#include "renderer/geometry/camera.h"
 #include "renderer/shade.h"
+#include "scene/geometry/camera.h"
 #include "texture/texture.h"
 
 namespace affray::renderer {

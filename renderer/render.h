@@ -11,10 +11,10 @@
 
 #include "compiler/compile.h"
 #include "image/exr_writer.h"
+#include "renderer/bvh.h"
 #include "renderer/film.h"
-#include "renderer/geometry/bvh.h"
 #include "renderer/intersect.h"
-#include "renderer/scene.h"
+#include "scene/scene.h"
 
 namespace affray::renderer {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "renderer/scene.h"
 #include "rib/lexer.h"
+#include "scene/scene.h"
 
 namespace affray::rib {
 

@@ -19,8 +19,8 @@
 #include <limits>
 #include <memory>
 
-#include "renderer/geometry/camera.h"
 #include "rib/parser.h"
+#include "scene/geometry/camera.h"
 
 namespace affray::rib {
 

@@ -201,7 +201,7 @@ void RibParser::PatchColorFields(PrimitiveDesc* prim, const std::optional<ColorV
 }
 
 // A patch of homogeneous control points: on the bilinear or bicubic fast path when every w is 1,
-// else a rational patch (renderer/geometry/nurbs.h).
+// else a rational patch (scene/geometry/nurbs.h).
 bool RibParser::AddPatch(const RibRequest& r, const std::string& context, bool bicubic, bool rational,
                          const std::vector<glm::dvec4>& points, const renderer::ParameterRange& range) {
     auto point = [&](size_t i) { return glm::dvec3(points[i]); };

@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "diag/diagnostic.h"
-#include "renderer/scene.h"
 #include "rib/args.h"
 #include "rib/lexer.h"
+#include "scene/scene.h"
 
 namespace affray::rib {
 

@@ -1,7 +1,7 @@
 // rib/primvars.cpp: the colour primitive variables "Cs" and "Os" (RI Spec 3.2 section 4.1),
 // shared by every primitive request: their declaration and count checked against the storage
 // classes of the primitive (PrimvarCounts), then turned into each primitive's colour or colour
-// field (renderer/geometry/primvar.h) by the request's own file, which knows where its values
+// field (scene/geometry/primvar.h) by the request's own file, which knows where its values
 // lie over each piece.
 #include <cmath>
 

@@ -23,9 +23,9 @@
 #include <unordered_map>
 
 #include "diag/limits.h"
-#include "renderer/film.h"
 #include "rib/file.h"
 #include "rib/parser.h"
+#include "scene/display.h"
 
 namespace affray::rib {
 namespace {

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "diag/diagnostic.h"
-#include "renderer/scene.h"
+#include "scene/scene.h"
 
 namespace affray::rib {
 

@@ -4,7 +4,7 @@
 // nargs a tag; its hierarchical edits (tags that take strings) are warned about and ignored.
 // The mesh becomes a renderer::SubdivisionMesh in world space, which
 // renderer::BuildSubdivisionPatches refines and turns into patches, one primitive each
-// (renderer/geometry/subdivision.h). Tags: "hole" (face indices), "crease" (a
+// (scene/geometry/subdivision.h). Tags: "hole" (face indices), "crease" (a
 // chain of vertices, one sharpness), "corner" (vertices, one sharpness or one each),
 // "interpolateboundary" (no argument, or one integer: 0 none, 1 edges and corners, 2 edges only);
 // any other tag is warned about once and ignored. Parameters: "P" or "Pw" (w must be 1), "st" or

@@ -17,7 +17,7 @@
 
 #include "compiler/compile.h"
 #include "diag/limits.h"
-#include "renderer/geometry/surface.h"
+#include "scene/geometry/surface.h"
 
 namespace affray::test {
 

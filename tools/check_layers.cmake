@@ -23,11 +23,9 @@ set(AFFRAY_LAYERS
     "lang: diag"                             # affray_lang
     "vm: vm/numbers texture diag"            # affray_vm
     "compiler: lang vm"                      # affray_compiler
-    "renderer: diag image compiler vm"       # affray_renderer
-    # The one exception to the flow: the RIB reader builds the renderer's scene description
-    # (renderer/scene.h, renderer/geometry/) and asks the film which Display channels exist, so it
-    # links the whole renderer until the scene description is a library of its own.
-    "rib: diag renderer"                     # affray_rib
+    "scene: diag vm"                         # affray_scene
+    "renderer: diag image scene compiler vm" # affray_renderer
+    "rib: diag scene"                        # affray_rib
     "tools: rib renderer compiler vm lang image")  # affray_cli and the affray program
 
 # The files checked: C++ sources and headers, and the Flex and Bison sources (their C++ blocks).

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "renderer/geometry/camera.h"
 #include "renderer/intersect.h"
+#include "scene/geometry/camera.h"
 
 namespace affray::test {
 

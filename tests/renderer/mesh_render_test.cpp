@@ -1,5 +1,5 @@
 // tests/renderer/mesh_render_test.cpp: displaced polygon meshes through the whole renderer
-// (rib/polygons.cpp, renderer/geometry/mesh.*, renderer/render.cpp): a closed one-sided mesh with
+// (rib/polygons.cpp, scene/geometry/mesh.*, renderer/render.cpp): a closed one-sided mesh with
 // vertex normals displaced outward hides every camera ray that the undisplaced mesh stops, no
 // farther than it, so no ray passes through a crack.
 #include <catch2/catch.hpp>

@@ -1,5 +1,5 @@
 // tests/renderer/primvar_render_test.cpp: "Cs" and "Os" through the whole renderer (rib/, the
-// colour fields of renderer/geometry/primvar.h, renderer/render.cpp): a vertex-coloured mesh
+// colour fields of scene/geometry/primvar.h, renderer/render.cpp): a vertex-coloured mesh
 // shows its vertices' colours at its corners, and partly transparent surfaces are composited
 // front to back over what lies behind them, alpha their coverage.
 #include <catch2/catch.hpp>

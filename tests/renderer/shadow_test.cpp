@@ -12,9 +12,9 @@
 #include <sstream>
 
 #include "renderer/film.h"
-#include "renderer/geometry/camera.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
+#include "scene/geometry/camera.h"
 #include "tests/test_util.h"
 
 using namespace affray;

@@ -1,7 +1,7 @@
 // tests/renderer/stiff_sphere_test.cpp: the stiff suite's sphere-poles case (docs/stiff.md).
 // At a sphere's poles the (u,v) parameterisation folds a whole edge of the domain to one point:
 // dPdu vanishes, dPdu x dPdv with it, and a normal computed from it is 0/0. The quadric's normal
-// direction (renderer/geometry/quadric.h) must keep every region's bound finite there, so rays aimed at
+// direction (scene/geometry/quadric.h) must keep every region's bound finite there, so rays aimed at
 // the poles are hit with certified errors, with no region left unbounded to the depth limit.
 //
 // The reference: tests/scenes/stiff/lumpy.sl moves P along the sphere's radial normal by noise of P,
@@ -13,10 +13,10 @@
 #include <numbers>
 #include <random>
 
-#include "renderer/geometry/camera.h"
 #include "renderer/intersect.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
+#include "scene/geometry/camera.h"
 #include "tests/test_util.h"
 
 using namespace affray;

@@ -21,10 +21,10 @@
 #include <random>
 #include <sstream>
 
-#include "renderer/geometry/camera.h"
 #include "renderer/intersect.h"
 #include "renderer/render.h"
 #include "rib/rib.h"
+#include "scene/geometry/camera.h"
 #include "tests/test_util.h"
 
 using namespace affray;

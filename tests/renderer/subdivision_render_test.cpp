@@ -1,5 +1,5 @@
 // tests/renderer/subdivision_render_test.cpp: displaced subdivision meshes through the whole
-// renderer (rib/subdivision.cpp, renderer/geometry/subdivision.*, renderer/render.cpp): a closed
+// renderer (rib/subdivision.cpp, scene/geometry/subdivision.*, renderer/render.cpp): a closed
 // one-sided Catmull-Clark mesh with extraordinary vertices, a triangle and a pentagon, displaced
 // outward, hides every camera ray that the undisplaced surface stops, no farther than it, so no
 // ray passes through a crack.

@@ -5,7 +5,7 @@
 // stored as four doubles plus the enclosure [lo, hi] (below): no symbol ids, no capacity, no
 // allocation, trivially copyable (Gamito & Maddock 2007 call it reduced affine arithmetic; Knoll
 // et al. 2009 use it to ray-trace implicit surfaces). eps_u and eps_v stand for the surface
-// parameters u and v of the region (renderer/geometry/surface.h), so every linear function of u and v is
+// parameters u and v of the region (scene/geometry/surface.h), so every linear function of u and v is
 // bounded exactly, as in vm::Affine; every nonlinear operation folds its new error into e, which
 // is shared with nothing (x - x keeps 2e of error: the price of the lean form).
 // Rules every operation keeps (tested in tests/vm/numbers/reduced_affine_test.cpp), those of vm::Affine:
@@ -55,7 +55,7 @@ class ReducedAffine {
     /// gives the constant); Unbounded if either is not finite.
     static ReducedAffine FromSymbol(double center, double radius, int axis);
     /// center + u*eps_u + v*eps_v +- error with the form's own range, for a bound computed outside
-    /// this class (renderer/geometry/bicubic.cpp): `error` >= 0 must already hold every rounding
+    /// this class (scene/geometry/bicubic.cpp): `error` >= 0 must already hold every rounding
     /// of the caller's computation. Unbounded if anything is not finite.
     static ReducedAffine FromForm(double center, double u, double v, double error) {
         if (!(error >= 0)) return Unbounded();

@@ -1,6 +1,7 @@
-// tests/tools/check_layers/rib/rib.cpp: the one exception, rib/ including the renderer's scene
-// description, is allowed.
+// tests/tools/check_layers/rib/rib.cpp: rib/ builds the scene description (scene/) but does not
+// reach the renderer that renders it.
 #include "rib/rib.h"
 
-#include "renderer/geometry/bvh.h"
-#include "renderer/scene.h"
+#include "renderer/render.h"  // crosses the layers
+#include "scene/geometry/surface.h"
+#include "scene/scene.h"
