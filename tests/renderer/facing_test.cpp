@@ -153,7 +153,7 @@ constexpr int kSilhouettePixels = 1;
 
 /// Renders `rib` as test::RenderRib does (one sample at each pixel's centre, shaders from `dir`),
 /// certifying hits to kTolerance pixels.
-renderer::ImageBuffer Render(const test::TempDir& dir, const std::string& rib) {
+image::ImageBuffer Render(const test::TempDir& dir, const std::string& rib) {
     affray::diag::Report error;
     std::optional<renderer::SceneDesc> desc = rib::ParseRib(rib, dir.Path("scene.rib"), &error);
     INFO(error);
@@ -169,7 +169,7 @@ renderer::ImageBuffer Render(const test::TempDir& dir, const std::string& rib) {
     options.threads = 2;
     options.tolerancePixels = kTolerance;
     options.sceneTolerance = false;
-    renderer::ImageBuffer image;
+    image::ImageBuffer image;
     renderer::RenderStats stats;
     renderer::RenderImage(prepared, options, &image, &stats);
     CHECK(stats.camera.depthLimitHits == 0);
@@ -179,7 +179,7 @@ renderer::ImageBuffer Render(const test::TempDir& dir, const std::string& rib) {
 /// The rendered grid.
 class Grid {
   public:
-    Grid(renderer::ImageBuffer image, bool mirrored) : m_image(std::move(image)), m_mirrored(mirrored) {}
+    Grid(image::ImageBuffer image, bool mirrored) : m_image(std::move(image)), m_mirrored(mirrored) {}
     /// Pixel (x, y) of `cell` (x to the world's +x, y down), mirrored back if the camera is.
     size_t Index(int cell, int x, int y) const {
         const int column = cell % kColumns, row = cell / kColumns;
@@ -206,7 +206,7 @@ class Grid {
     }
 
   private:
-    renderer::ImageBuffer m_image;
+    image::ImageBuffer m_image;
     bool m_mirrored;
 };
 
