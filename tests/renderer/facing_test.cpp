@@ -154,26 +154,7 @@ constexpr int kSilhouettePixels = 1;
 /// Renders `rib` as test::RenderRib does (one sample at each pixel's centre, shaders from `dir`),
 /// certifying hits to kTolerance pixels.
 image::ImageBuffer Render(const test::TempDir& dir, const std::string& rib) {
-    affray::diag::Report error;
-    std::optional<renderer::SceneDesc> desc = rib::ParseRib(rib, dir.Path("scene.rib"), &error);
-    INFO(error);
-    REQUIRE(desc);
-    desc->camera.xsamples = desc->camera.ysamples = 1;
-    desc->camera.jitter = false;
-    desc->camera.filter = renderer::FilterDesc{renderer::FilterDesc::Kind::Box, 1, 1};
-    renderer::PreparedScene prepared;
-    const bool ok = renderer::PrepareScene(*desc, {dir.Path(".")}, {}, &prepared, &error);
-    INFO(error);
-    REQUIRE(ok);
-    renderer::RenderOptions options;
-    options.threads = 2;
-    options.tolerancePixels = kTolerance;
-    options.sceneTolerance = false;
-    image::ImageBuffer image;
-    renderer::RenderStats stats;
-    renderer::RenderImage(prepared, options, &image, &stats);
-    CHECK(stats.camera.depthLimitHits == 0);
-    return image;
+    return test::RenderRib(dir, rib, nullptr, kTolerance);
 }
 
 /// The rendered grid.

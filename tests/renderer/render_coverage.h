@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,9 +17,10 @@
 namespace affray::test {
 
 /// Renders `rib` (one sample per pixel at its centre, box filter, 2 threads) with shaders from
-/// `dir`; no ray may reach the depth limit. The render's statistics go to *stats if given.
-inline image::ImageBuffer RenderRib(const TempDir& dir, const std::string& rib,
-                                    renderer::RenderStats* stats = nullptr) {
+/// `dir`; no ray may reach the depth limit. The render's statistics go to *stats if given. With a
+/// `tolerancePixels`, hits are certified to it whatever the scene's own tolerance says.
+inline image::ImageBuffer RenderRib(const TempDir& dir, const std::string& rib, renderer::RenderStats* stats = nullptr,
+                                    std::optional<double> tolerancePixels = std::nullopt) {
     affray::diag::Report error;
     std::optional<renderer::SceneDesc> desc = rib::ParseRib(rib, dir.Path("scene.rib"), &error);
     INFO(error);
@@ -32,6 +34,10 @@ inline image::ImageBuffer RenderRib(const TempDir& dir, const std::string& rib,
     REQUIRE(ok);
     renderer::RenderOptions options;
     options.threads = 2;
+    if (tolerancePixels) {
+        options.tolerancePixels = *tolerancePixels;
+        options.sceneTolerance = false;
+    }
     image::ImageBuffer image;
     renderer::RenderStats own;
     if (!stats) stats = &own;
