@@ -154,6 +154,8 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         if (!instance) throw std::logic_error("lowering " + path + " with its parameter values failed");
         shader.stringParams = lowered->stringParams;
         shader.undeclared = result.undeclared;
+        shader.reads = lowered->reads;
+        shader.reads.Add(instance->reads);
         shader.bound = Emit(instance->ir, {{"P", instance->finalP}}, {});
         shader.shade = Emit(instance->ir, {{"P", instance->finalP}, {"N", instance->finalN}}, {});
         auto instanceTextures = TexturesOf(*instance);
@@ -230,6 +232,9 @@ CompileResult LoadCompiledShader(const std::string& path, const std::vector<Para
     }
     if (!SpecialiseShader(shader, kept, &result.paramErrors)) return result;
     shader.undeclared = result.undeclared;
+    // A compiled file reads no facts; its spaces only to check that they are the world's.
+    for (const vm::Program* p : {&shader.genericBound, &shader.genericShade})
+        shader.reads.spaces.insert(p->spaces.begin(), p->spaces.end());
     result.shader = std::make_shared<const CompiledShader>(std::move(shader));
     return result;
 }

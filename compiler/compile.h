@@ -34,6 +34,9 @@ struct CompiledShader {
     std::vector<std::string> undeclared;
     /// Scalar operations lowering asked for, before folding, sharing and dead-code removal.
     int opsBeforeOptimisation = 0;
+    /// What compiling it looked up in the instance's spaces and facts: all the shader depends on
+    /// of them (ShaderCache shares it between instances that agree on these).
+    SceneReads reads;
 };
 
 struct CompileResult {

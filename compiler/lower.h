@@ -40,6 +40,8 @@ struct LoweredShader {
     std::vector<std::string> stringParams;
     /// The coordinate spaces the shader names, "current" aside (sorted, once each).
     std::vector<std::string> spaces;
+    /// Every name of the scene's spaces and facts that lowering looked up (compiler/scene_facts.h).
+    SceneReads reads;
     /// The texture lookups' slots (IR Texture nodes name theirs by their channel).
     std::vector<vm::TextureSlot> textures;
 };

@@ -70,6 +70,7 @@ std::optional<std::string> Lowerer::SpaceName(const Value& v, lang::SourceLoc lo
     }
     // A scene's CoordinateSystem names come with its spaces; without a scene only the standard
     // names are known (so a typo is caught when a shader is compiled on its own).
+    m_out.reads.spaces.insert(*name);
     if (!IsKnownSpace(*name) && !(m_spaces && m_spaces->count(*name))) {
         m_diags.error(loc, "unknown coordinate space '" + *name + "'");
         return std::nullopt;
@@ -122,6 +123,7 @@ std::optional<Value> Lowerer::LowerLibraryCall(const Expr& e, std::vector<Value>
             return std::nullopt;
         }
         double nearClip = kDefaultNearClip, farClip = kDefaultFarClip;
+        m_out.reads.options.insert("Clipping");
         if (m_facts) {
             if (auto it = m_facts->options.find("Clipping");
                 it != m_facts->options.end() && it->second.numbers.size() == 2) {
@@ -291,6 +293,7 @@ Value Lowerer::MapBy(const Matrix4& m, const Matrix4& inverse, const Value& x, T
 }
 
 void Lowerer::NoteSpace(const std::string& space) {
+    m_out.reads.spaces.insert(space);
     if (std::count(m_out.spaces.begin(), m_out.spaces.end(), space)) return;
     m_out.spaces.push_back(space);
     std::sort(m_out.spaces.begin(), m_out.spaces.end());

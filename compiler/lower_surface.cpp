@@ -248,9 +248,13 @@ std::optional<Value> Lowerer::LowerQuery(const lang::Expr& e, const Value& nameA
     std::optional<FactValue> fact;
     if (e.name == "rendererinfo") {
         fact = RendererInfo(*name);
-    } else if (m_facts) {
-        const auto& known = e.name == "option" ? m_facts->options : m_facts->attributes;
-        if (auto it = known.find(*name); it != known.end()) fact = it->second;
+    } else {
+        // Asked for, found or not: either way the instance depends on it (SceneReads).
+        (e.name == "option" ? m_out.reads.options : m_out.reads.attributes).insert(*name);
+        if (m_facts) {
+            const auto& known = e.name == "option" ? m_facts->options : m_facts->attributes;
+            if (auto it = known.find(*name); it != known.end()) fact = it->second;
+        }
     }
     if (!fact) return no;
     // The types must match: a string, a float, or a float array of the same size.

@@ -220,6 +220,7 @@ std::optional<Value> Lowerer::LowerTexture(const lang::Expr& e, Type expected) {
 
     // The map, read once per file by the process-wide cache.
     std::string why;
+    m_out.reads.textureSearchPath = true;
     const std::optional<std::string> found = ResolveTexture(*name, m_diags.file().path(), m_facts, &why);
     const std::string path = found.value_or(*name);
     std::shared_ptr<const texture::TextureMap> map;

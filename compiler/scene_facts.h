@@ -10,6 +10,7 @@
 
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,23 @@ struct SceneFacts {
     /// Where texture() looks for a relative file name first (Option "searchpath" "texture"),
     /// before the shader's directory and the working directory.
     std::vector<std::string> textureSearchPath;
+};
+
+/// What a compilation looked up in its Spaces and SceneFacts: the names of the spaces it mapped
+/// through or checked, the options and attributes it asked for (found or not), and whether it
+/// resolved a texture's file (through the texture search path). Two instances that give every one
+/// of these the same value compile to the same shader, whatever else their scenes hold (a shader
+/// that names no space is compiled once for a thousand objects placed apart).
+struct SceneReads {
+    std::set<std::string> spaces, options, attributes;
+    bool textureSearchPath = false;
+
+    void Add(const SceneReads& other) {
+        spaces.insert(other.spaces.begin(), other.spaces.end());
+        options.insert(other.options.begin(), other.options.end());
+        attributes.insert(other.attributes.begin(), other.attributes.end());
+        textureSearchPath = textureSearchPath || other.textureSearchPath;
+    }
 };
 
 /// RenderMan's default clipping planes (RI_EPSILON and RI_INFINITY as affray's scene has them),

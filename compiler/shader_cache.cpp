@@ -3,6 +3,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <bit>
 #include <fstream>
 #include <sstream>
@@ -34,8 +35,7 @@ void AppendNumbers(std::string* key, const double* x, size_t n) {
 }
 
 std::string Key(const std::string& path, uint64_t sourceHash, size_t sourceSize,
-                const std::vector<ParamOverride>& overrides, const lang::PreprocessOptions& preprocess,
-                const Spaces* spaces, const SceneFacts* facts) {
+                const std::vector<ParamOverride>& overrides, const lang::PreprocessOptions& preprocess) {
     // The path is part of the key too: #include "x.h" resolves next to the including file.
     std::string key = path + '\n' + std::to_string(sourceHash) + '\n' + std::to_string(sourceSize);
     for (const std::string& d : preprocess.includeDirs) key += "\n-I" + d;
@@ -45,22 +45,34 @@ std::string Key(const std::string& path, uint64_t sourceHash, size_t sourceSize,
         AppendNumbers(&key, o.numbers.data(), o.numbers.size());
         if (o.text) key += "\"" + *o.text + "\"";
     }
-    for (const auto& [name, t] : spaces ? *spaces : Spaces{}) {
-        key += "\nspace " + name + ":";
+    return key;
+}
+
+/// The values `spaces` and `facts` give the names in `reads` (a missing one said so).
+std::string ValuesKey(const SceneReads& reads, const Spaces* spaces, const SceneFacts* facts) {
+    std::string key;
+    for (const std::string& name : reads.spaces) {
+        key += "\nspace " + name;
+        if (!spaces || !spaces->count(name)) continue;
+        const SpaceTransform& t = spaces->at(name);
+        key += ":";
         AppendNumbers(&key, t.toCurrent.data(), t.toCurrent.size());
     }
-    auto addFacts = [&](const char* kind, const std::map<std::string, FactValue>& named) {
-        for (const auto& [name, value] : named) {
-            key += std::string("\n") + kind + " " + name + "=";
-            AppendNumbers(&key, value.numbers.data(), value.numbers.size());
-            if (value.text) key += "\"" + *value.text + "\"";
+    auto addFacts = [&](const char* kind, const std::set<std::string>& names,
+                        const std::map<std::string, FactValue>* known) {
+        for (const std::string& name : names) {
+            key += std::string("\n") + kind + " " + name;
+            const auto it = known ? known->find(name) : std::map<std::string, FactValue>::const_iterator();
+            if (!known || it == known->end()) continue;
+            key += "=";
+            AppendNumbers(&key, it->second.numbers.data(), it->second.numbers.size());
+            if (it->second.text) key += "\"" + *it->second.text + "\"";
         }
     };
-    if (facts) {
-        addFacts("option", facts->options);
-        addFacts("attribute", facts->attributes);
+    addFacts("option", reads.options, facts ? &facts->options : nullptr);
+    addFacts("attribute", reads.attributes, facts ? &facts->attributes : nullptr);
+    if (reads.textureSearchPath && facts)
         for (const std::string& d : facts->textureSearchPath) key += "\ntexture path " + d;
-    }
     return key;
 }
 
@@ -89,10 +101,13 @@ CompileResult ShaderCache::Load(const std::string& path, const std::vector<Param
                                 const SceneFacts* facts) {
     const FileBytes& file = Bytes(path);
     const bool readable = !file.bytes.empty();
-    const std::string key = Key(path, file.hash, file.bytes.size(), overrides, preprocess, spaces, facts);
+    const std::string key = Key(path, file.hash, file.bytes.size(), overrides, preprocess);
     if (readable) {
-        auto it = m_compiled.find(key);
-        if (it != m_compiled.end()) {
+        // A shader compiled before with the same file and overrides, whose scene gave every name
+        // it read the value this one gives.
+        for (const ByReads& group : m_compiled[key]) {
+            auto it = group.byValues.find(ValuesKey(group.reads, spaces, facts));
+            if (it == group.byValues.end()) continue;
             ++m_hits;
             CompileResult hit;
             hit.shader = it->second;
@@ -102,7 +117,16 @@ CompileResult ShaderCache::Load(const std::string& path, const std::vector<Param
     }
     ++m_misses;
     CompileResult result = LoadShader(path, overrides, preprocess, spaces, facts);
-    if (result.ok() && readable) m_compiled.emplace(key, result.shader);
+    if (result.ok() && readable) {
+        const SceneReads& reads = result.shader->reads;
+        std::vector<ByReads>& groups = m_compiled[key];
+        auto same = std::find_if(groups.begin(), groups.end(), [&](const ByReads& g) {
+            return g.reads.spaces == reads.spaces && g.reads.options == reads.options &&
+                   g.reads.attributes == reads.attributes && g.reads.textureSearchPath == reads.textureSearchPath;
+        });
+        if (same == groups.end()) same = groups.insert(groups.end(), ByReads{reads, {}});
+        same->byValues.emplace(ValuesKey(reads, spaces, facts), result.shader);
+    }
     return result;
 }
 

@@ -17,8 +17,9 @@ namespace affray::compiler {
 class ShaderCache {
   public:
     /// LoadShader(path, overrides, preprocess, spaces, facts), or the result of an earlier call
-    /// whose file had the same bytes and whose overrides, options, spaces and facts were the
-    /// same (the one shared shader, not a copy). Failures are not kept.
+    /// whose file had the same bytes and whose overrides and options were the same, and whose
+    /// spaces and facts agree with these on every name that compilation looked up
+    /// (CompiledShader::reads): the one shared shader, not a copy. Failures are not kept.
     CompileResult Load(const std::string& path, const std::vector<ParamOverride>& overrides,
                        const lang::PreprocessOptions& preprocess, const Spaces* spaces = nullptr,
                        const SceneFacts* facts = nullptr);
@@ -43,7 +44,13 @@ class ShaderCache {
     const FileBytes& Bytes(const std::string& path);
 
     std::map<std::string, FileBytes> m_files;
-    std::map<std::string, std::shared_ptr<const CompiledShader>> m_compiled;
+    /// The shaders compiled from one file with one set of overrides and options (the key), by
+    /// what they read of their scene: per set of names read, the values those names had.
+    struct ByReads {
+        SceneReads reads;
+        std::map<std::string, std::shared_ptr<const CompiledShader>> byValues;
+    };
+    std::map<std::string, std::vector<ByReads>> m_compiled;
     int m_hits = 0, m_misses = 0;
 };
 

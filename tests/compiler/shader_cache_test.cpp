@@ -141,3 +141,80 @@ TEST_CASE("values for parameters a shader does not declare are left out, from so
     REQUIRE(loaded.paramErrors.size() == 1);
     CHECK(loaded.paramErrors[0].find("string values need the shader's source") != std::string::npos);
 }
+
+TEST_CASE("the shader cache shares a compilation between instances that differ only in what it never reads",
+          "[compiler][cache]") {
+    test::TempDir dir;
+    // Reads no space and no fact; reads "object" space; reads the attribute "Sides".
+    const std::string plain = dir.Write("plain.sl", "displacement plain(float Km = 1) { P += Km * normalize(N); }\n");
+    const std::string object = dir.Write("object.sl",
+                                         "displacement object() {\n"
+                                         "  point Po = transform(\"object\", P);\n"
+                                         "  P += xcomp(Po) * normalize(N);\n"
+                                         "}\n");
+    const std::string sides = dir.Write("sides.sl",
+                                        "displacement sides() {\n"
+                                        "  float s = 0;\n"
+                                        "  attribute(\"Sides\", s);\n"
+                                        "  P += s * normalize(N);\n"
+                                        "}\n");
+    // Two objects placed apart (their object spaces differ), with other Sides and another Format.
+    auto placed = [](double x) {
+        compiler::Spaces spaces;
+        compiler::SpaceTransform& t = spaces["object"];
+        t.toCurrent[3] = x;  // row-major 4x4: x translation
+        t.fromCurrent[3] = -x;
+        spaces["shader"] = t;
+        return spaces;
+    };
+    auto facts = [](double sidesValue, double xres) {
+        compiler::SceneFacts f;
+        f.attributes["Sides"].numbers = {sidesValue};
+        f.options["Format"].numbers = {xres, 480, 1};
+        return f;
+    };
+    const compiler::Spaces spacesA = placed(0), spacesB = placed(5);
+    const compiler::SceneFacts factsA = facts(2, 640), factsB = facts(2, 320), factsC = facts(1, 640);
+
+    compiler::ShaderCache cache;
+    auto load = [&](const std::string& path, const compiler::Spaces& s, const compiler::SceneFacts& f) {
+        compiler::CompileResult r = cache.Load(path, {}, {}, &s, &f);
+        REQUIRE(r.ok());
+        return r.shader;
+    };
+    // What it never reads does not matter: one compilation for both objects and both formats.
+    const auto plainA = load(plain, spacesA, factsA);
+    CHECK(plainA->reads.spaces.empty());
+    CHECK(load(plain, spacesB, factsB) == plainA);
+    CHECK(load(plain, spacesB, factsC) == plainA);
+    CHECK(cache.misses() == 1);
+    CHECK(cache.hits() == 2);
+
+    // A space it reads tells instances apart (and the result is each instance's own), a fact it
+    // does not read does not.
+    const auto objectA = load(object, spacesA, factsA), objectB = load(object, spacesB, factsA);
+    CHECK(objectA->reads.spaces.count("object"));
+    CHECK(objectA != objectB);
+    CHECK(load(object, spacesB, factsB) == objectB);
+    const double x = test::PointOnSquare(objectA->shade, 0.5, 0.5).z,
+                 y = test::PointOnSquare(objectB->shade, 0.5, 0.5).z;
+    CHECK_THAT(x - y, WithinAbs(5, 1e-12));  // P in object space: 5 less in x for the second
+    // The same with the cache cold: a hit is exactly what compiling again would give.
+    compiler::ShaderCache cold;
+    const compiler::CompileResult fresh = cold.Load(object, {}, {}, &spacesB, &factsB);
+    REQUIRE(fresh.ok());
+    CHECK(vm::SaveBytecode({fresh.shader->name, "", 0, fresh.shader->bound, fresh.shader->shade}) ==
+          vm::SaveBytecode({objectB->name, "", 0, objectB->bound, objectB->shade}));
+
+    // An attribute it reads tells instances apart, even one the scene does not give.
+    const auto sides2 = load(sides, spacesA, factsA), sides1 = load(sides, spacesB, factsC);
+    CHECK(sides2->reads.attributes.count("Sides"));
+    CHECK(sides2 != sides1);
+    CHECK_THAT(test::PointOnSquare(sides2->shade, 0.5, 0.5).z, WithinAbs(2, 1e-12));
+    CHECK_THAT(test::PointOnSquare(sides1->shade, 0.5, 0.5).z, WithinAbs(1, 1e-12));
+    CHECK(load(sides, spacesB, factsB) == sides2);  // Sides 2 again, another Format and place
+    const compiler::SceneFacts none;
+    const auto sidesNone = load(sides, spacesA, none);
+    CHECK(sidesNone != sides2);
+    CHECK_THAT(test::PointOnSquare(sidesNone->shade, 0.5, 0.5).z, WithinAbs(0, 1e-12));
+}
