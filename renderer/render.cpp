@@ -619,12 +619,9 @@ uint64_t SceneBytes(const PreparedScene& scene, int threads) {
             case BaseSurface::Kind::RationalPatch: bytes += sizeof(RationalPatch); break;
             case BaseSurface::Kind::MeshPiece:
                 if (const PieceMesh& m = *b.pieceRef().mesh; once(2, &m)) {
-                    bytes += sizeof(PieceMesh) + vectorBytes(m.mesh.points) + vectorBytes(m.mesh.corners) +
-                             vectorBytes(m.faceNormals) + vectorBytes(m.pieces);
-                    for (const auto* var : {&m.mesh.normals, &m.mesh.st, &m.mesh.s, &m.mesh.t})
-                        if (*var) bytes += vectorBytes((*var)->values);
-                    for (const auto& color : m.colors)
-                        if (color) bytes += vectorBytes(color->values);
+                    bytes += sizeof(PieceMesh);
+                    m.ForEachArray(
+                        [&](const char*, const auto& values, const std::string&) { bytes += vectorBytes(values); });
                 }
                 break;
             case BaseSurface::Kind::SubdivPatch:

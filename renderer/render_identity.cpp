@@ -148,30 +148,12 @@ std::string_view BytesOf(const T& x) {
     return {reinterpret_cast<const char*>(&x), sizeof x};
 }
 
-/// A polygon mesh's arrays (PieceMesh), as bytes: every value a piece of it can read.
+/// A polygon mesh's arrays (PieceMesh::ForEachArray), as bytes: every value a piece of it can read.
 void HashMesh(const PieceMesh& m, Fnv128* h) {
-    h->Field("points", BytesOf(m.mesh.points));
-    h->Field("corners", BytesOf(m.mesh.corners));
-    for (const auto* var : {&m.mesh.normals, &m.mesh.st, &m.mesh.s, &m.mesh.t}) {
-        if (!*var) {
-            h->Field("variable", "none");
-            continue;
-        }
-        h->Field("variable",
-                 std::to_string(static_cast<int>((*var)->storage)) + " " + std::to_string((*var)->components));
-        h->Field("values", BytesOf((*var)->values));
-    }
-    h->Field("face normals", BytesOf(m.faceNormals));
-    for (const PieceMesh::Corners& p : m.pieces) {
-        h->Add(BytesOf(p.faceCorner));
-        h->Add(BytesOf(p.face));
-        h->Add(BytesOf(p.normal));
-    }
-    for (const auto& color : m.colors)
-        if (color) {
-            h->Field("color", std::to_string(int(color->storage)));
-            h->Field("values", BytesOf(color->values));
-        }
+    m.ForEachArray([&](const char* name, const auto& values, const std::string& form) {
+        h->Field(name, form);
+        h->Field("values", BytesOf(values));
+    });
 }
 
 /// The scene's primitives: what ToString prints of each, except that what primitives share (a

@@ -101,11 +101,37 @@ struct PieceMesh {
         int32_t normal = kOwnNormal;
         bool triangle() const { return faceCorner[3] == faceCorner[2]; }
     };
+    static_assert(sizeof(Corners) == 24, "no padding: a mesh's identity hashes its pieces as bytes");
     static constexpr int32_t kOwnNormal = -1;
     std::vector<Corners> pieces;
     /// The mesh's "Cs" (colors[0]) and "Os" (colors[1]) if it varies over it (a constant one is
     /// the primitive's colour).
     std::optional<ColorValues> colors[2];
+
+    /// Calls visit(name, array, form) for every array of the mesh (a std::vector of plain
+    /// values; `form` its storage class and components, "none" for a variable it lacks): what
+    /// the render's identity hashes and its memory count adds up, so that an array added here
+    /// is in both.
+    template <class Visit>
+    void ForEachArray(Visit&& visit) const {
+        visit("points", mesh.points, "");
+        visit("corners", mesh.corners, "");
+        static const std::vector<double> none;
+        auto variable = [&](const char* name, const std::optional<MeshVariable>& v) {
+            if (!v) return visit(name, none, "none");
+            visit(name, v->values, std::to_string(int(v->storage)) + " " + std::to_string(v->components));
+        };
+        variable("N", mesh.normals);
+        variable("st", mesh.st);
+        variable("s", mesh.s);
+        variable("t", mesh.t);
+        visit("face normals", faceNormals, "");
+        visit("pieces", pieces, "");
+        static const std::vector<glm::dvec3> noColor;
+        for (int k = 0; k < 2; ++k)
+            visit(k ? "Os" : "Cs", colors[k] ? colors[k]->values : noColor,
+                  colors[k] ? std::to_string(int(colors[k]->storage)) : std::string("none"));
+    }
 
     /// Piece `index` with its corner values, as SplitMesh's vector form gives it.
     MeshPiece Piece(size_t index) const;
