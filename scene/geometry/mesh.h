@@ -138,6 +138,8 @@ struct PieceMesh {
     /// The face normal of piece `index` (MeshPiece::faceNormal).
     glm::dvec3 FaceNormal(size_t index) const;
     /// The values of colors[k] at piece `index`'s corners (patch order); false without colors[k].
+    /// Shading takes Cs and Os bilinear between them over the piece (so, on a triangle, linear
+    /// between the face's vertices, as RenderMan's varying values are).
     bool CornerColors(size_t index, int k, std::array<glm::dvec3, 4>* out) const;
 };
 
