@@ -42,6 +42,7 @@ struct SceneReads {
     std::set<std::string> spaces, options, attributes;
     bool textureSearchPath = false;
 
+    bool operator==(const SceneReads&) const = default;
     void Add(const SceneReads& other) {
         spaces.insert(other.spaces.begin(), other.spaces.end());
         options.insert(other.options.begin(), other.options.end());

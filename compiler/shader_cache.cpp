@@ -120,10 +120,7 @@ CompileResult ShaderCache::Load(const std::string& path, const std::vector<Param
     if (result.ok() && readable) {
         const SceneReads& reads = result.shader->reads;
         std::vector<ByReads>& groups = m_compiled[key];
-        auto same = std::find_if(groups.begin(), groups.end(), [&](const ByReads& g) {
-            return g.reads.spaces == reads.spaces && g.reads.options == reads.options &&
-                   g.reads.attributes == reads.attributes && g.reads.textureSearchPath == reads.textureSearchPath;
-        });
+        auto same = std::find_if(groups.begin(), groups.end(), [&](const ByReads& g) { return g.reads == reads; });
         if (same == groups.end()) same = groups.insert(groups.end(), ByReads{reads, {}});
         same->byValues.emplace(ValuesKey(reads, spaces, facts), result.shader);
     }

@@ -134,7 +134,7 @@ struct Primitive {
     uint32_t element = 0;  // which of desc's elements (PrimitiveDesc::elements) it is
 
     /// Its base surface (a mesh's piece or patch made from the mesh's: a handle and an index).
-    BaseSurface base() const { return element == 0 ? desc->base : desc->base.Element(element); }
+    BaseSurface base() const { return desc->base.Element(element); }
     const PrimitiveAttributes& attributes() const { return *desc->attributes; }
     const std::shared_ptr<const compiler::CompiledShader>& shader() const { return programs->shader; }
     const vm::Program& bound() const { return programs->bound; }

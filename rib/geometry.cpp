@@ -196,7 +196,7 @@ void RibParser::PatchColorFields(PrimitiveDesc* prim, const std::optional<ColorV
                 break;
             }
         }
-        SetColorField(prim, k == 1, std::move(field));
+        prim->SetColor(k, std::move(field));
     }
 }
 

@@ -152,8 +152,8 @@ bool RibParser::DoNuPatch(const RibRequest& r) {
         const renderer::ParameterRange& g = span.range;
         if (trim && trim->RemovedP(g.u0, g.u1, g.v0, g.v1)) continue;
         if (!AddRational(r, context, span.patch, span.range, trim)) return false;
-        if (span.Cs) SetColorField(&m_scene.primitives.back(), false, *span.Cs);
-        if (span.Os) SetColorField(&m_scene.primitives.back(), true, *span.Os);
+        if (span.Cs) m_scene.primitives.back().SetColor(0, *span.Cs);
+        if (span.Os) m_scene.primitives.back().SetColor(1, *span.Os);
     }
     return true;
 }

@@ -371,9 +371,9 @@ class RibParser : private RibArgChecks {
     /// primitive has no such class (NuPatch). False after a Fail.
     bool ColorPrimvar(const RibParam& p, const std::string& context, const PrimvarCounts& counts, bool facevarying,
                       ColorValues* out);
-    /// Sets prim's colour (`opacity` false) or opacity from `field`: its constant value if it has
-    /// one, else the field.
-    static void SetColorField(PrimitiveDesc* prim, bool opacity, renderer::ColorField field);
+    /// Sets prim's colour (colors[0]) and opacity (colors[1]) from those of `colors` that are
+    /// constant (a mesh keeps the others in its arrays).
+    static void SetConstantColors(const std::optional<ColorValues> (&colors)[2], PrimitiveDesc* prim);
     /// Reads a patch's (or patch mesh's) "Cs" and "Os" into colors[0] and colors[1].
     bool PatchColors(const std::vector<RibParam>& params, const std::string& context, const PrimvarCounts& counts,
                      std::optional<ColorValues> (&colors)[2]);

@@ -173,9 +173,7 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
     prim.elements = static_cast<uint32_t>(split->pieces.size());
     prim.base = renderer::BaseSurface(renderer::MeshPieceRef{std::move(split), 0});
     SetPrimitiveAttributes(r, &prim);
-    for (int k = 0; k < 2; ++k)
-        if (colors[k] && colors[k]->storage == StorageClass::Constant)
-            (k ? prim.opacity : prim.color) = colors[k]->values[0];
+    SetConstantColors(colors, &prim);
     m_scene.primitives.push_back(std::move(prim));
     return true;
 }

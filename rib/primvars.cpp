@@ -9,7 +9,6 @@
 
 namespace affray::rib {
 
-using renderer::ColorField;
 using renderer::StorageClass;
 
 size_t RibParser::PrimvarCounts::Of(StorageClass s) const {
@@ -92,8 +91,10 @@ bool RibParser::ColorPrimvar(const RibParam& p, const std::string& context, cons
     return true;
 }
 
-void RibParser::SetColorField(PrimitiveDesc* prim, bool opacity, ColorField field) {
-    prim->SetColor(opacity ? 1 : 0, std::move(field));
+void RibParser::SetConstantColors(const std::optional<ColorValues> (&colors)[2], PrimitiveDesc* prim) {
+    for (int k = 0; k < 2; ++k)
+        if (colors[k] && colors[k]->storage == StorageClass::Constant)
+            (k ? prim->opacity : prim->color) = colors[k]->values[0];
 }
 
 }  // namespace affray::rib

@@ -272,9 +272,7 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     prim.elements = static_cast<uint32_t>(patches->patches.size());
     prim.base = renderer::BaseSurface(renderer::SubdivPatchRef{std::move(patches), 0});
     SetPrimitiveAttributes(r, &prim);
-    for (int k = 0; k < 2; ++k)
-        if (colors[k] && colors[k]->storage == StorageClass::Constant)
-            (k ? prim.opacity : prim.color) = colors[k]->values[0];
+    SetConstantColors(colors, &prim);
     m_scene.primitives.push_back(std::move(prim));
     return true;
 }
