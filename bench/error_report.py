@@ -26,7 +26,7 @@ affray's render (`--stats` wall_seconds), the baseline's tessellation + BVH buil
 `process_seconds` is the whole process as measured here. `peak_rss_mb` is the peak resident set
 of the process (its own rusage, from os.wait4).
 
-Shadows: RenderImage starts a shadow ray twice the hit's certified error or the tolerance's
+Shadows: Renderer::Render starts a shadow ray twice the hit's certified error or the tolerance's
 footprint above the hit, whichever is larger. The baseline's hits have no certified error, so its
 --tolerance sets that offset alone; by default it is the reference's (--tessellation-tolerance),
 so that the baseline's error is its mesh's and not its shadow offset's.

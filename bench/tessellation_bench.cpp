@@ -1,7 +1,7 @@
 // bench/tessellation_bench.cpp: the tessellation baseline, in process. Reads and prepares a RIB
 // scene as `affray render` does, samples every primitive's displaced surface (its bound program,
 // in scalar arithmetic) on an (N+1) x (N+1) grid of (u,v), builds one Embree 3 triangle mesh per
-// primitive and renders the scene through RenderOptions::intersectorFactory: the film, samples,
+// primitive and renders the scene through Options::intersectorFactory: the film, samples,
 // shading (the shade program at the (u,v) of the hit) and shadows are affray's; only the
 // ray-surface intersection is the mesh's. The figures are what a tessellating renderer pays to
 // reach a given image error (bench/error_report.py), measured on the same machine, same samples.
@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "image/exr_writer.h"
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 #include "scene/geometry/camera.h"
 #include "scene/geometry/surface.h"
@@ -48,7 +48,7 @@ struct Options {
     int grid = 0;
     int threads = 0;  // 0: one per core
     int samples = 0;  // 0: the scene's PixelSamples
-    // RenderOptions::tolerancePixels. The meshes ignore it; RenderImage starts shadow rays twice
+    // Options::tolerancePixels. The meshes ignore it; Renderer::Render starts shadow rays twice
     // its footprint above a hit (a hit's certified error being 0 here), so it sets that offset.
     double tolerance = 0.5;
     // MEDIUM: on wave (640x480, N=512) and terrain (N=2048) it built the BVH 1.7-2.3 times faster
@@ -349,17 +349,27 @@ int main(int argc, char** argv) {
     if (ribDir.empty()) ribDir = ".";
     const std::vector<std::string> shaderPaths = {ribDir.string(), (ribDir / ".." / "shaders").string(), "shaders"};
     if (opt.samples > 0) scene->camera.xsamples = scene->camera.ysamples = opt.samples;
+    // One Renderer prepares the scene and renders it through the meshes, made in between: the
+    // film, sampling, shading and shadows of affray's own render.
+    std::vector<Mesh> meshes;
+    renderer::Options options;
+    options.threads = opt.threads;
+    options.shaderPaths = shaderPaths;
+    options.tolerancePixels = opt.tolerance;
+    options.intersectorFactory = [&meshes](const renderer::Primitive&, int index) {
+        return std::unique_ptr<renderer::SurfaceIntersector>(new MeshIntersector(meshes[static_cast<size_t>(index)]));
+    };
+    const renderer::Renderer affray(std::move(options));
     renderer::PreparedScene prepared;
-    const bool preparedOk = renderer::PrepareScene(*scene, shaderPaths, lang::PreprocessOptions{}, &prepared, &report);
+    const bool preparedOk = affray.Prepare(std::move(*scene), &prepared, &report);
     std::fputs(report.format().c_str(), stderr);
     if (!preparedOk) return diag::kExitBadInput;
-    const int threads =
-        opt.threads > 0 ? opt.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = affray.threads();
     const glm::dvec3 eye = renderer::Camera(prepared.desc.camera).Position();
 
     // Tessellate: the bound program's P at every grid point.
     const Clock::time_point tessellateStart = Clock::now();
-    std::vector<Mesh> meshes(prepared.primitives.size());
+    meshes.resize(prepared.primitives.size());
     for (size_t i = 0; i < meshes.size(); ++i) Tessellate(prepared.primitives[i], eye, opt.grid, threads, &meshes[i]);
     const double tessellateSeconds = SecondsSince(tessellateStart);
 
@@ -379,20 +389,14 @@ int main(int argc, char** argv) {
     const double bvhSeconds = SecondsSince(bvhStart);
     if (rtcGetDeviceError(device) != RTC_ERROR_NONE) return 1;
 
-    // Render through the meshes: the film, sampling, shading and shadows of RenderImage.
-    renderer::RenderOptions options;
-    options.threads = threads;
-    options.tolerancePixels = opt.tolerance;
-    options.intersectorFactory = [&meshes](const renderer::Primitive&, int index) {
-        return std::unique_ptr<renderer::SurfaceIntersector>(new MeshIntersector(meshes[static_cast<size_t>(index)]));
-    };
+    // Render through the meshes.
     const Clock::time_point renderStart = Clock::now();
     image::ImageBuffer image;
     renderer::RenderStats stats;
-    renderer::RenderImage(prepared, options, &image, &stats);
+    affray.Render(prepared, &image, &stats);
     const double renderSeconds = SecondsSince(renderStart);
 
-    const std::string outputPath = opt.outputPath.empty() ? scene->displayName : opt.outputPath;
+    const std::string outputPath = opt.outputPath.empty() ? prepared.desc.displayName : opt.outputPath;
     diag::Report output;
     if (!image::WriteExr(outputPath, image, &output)) {
         std::fputs(output.format().c_str(), stderr);

@@ -12,7 +12,7 @@
 
 #include "diag/limits.h"
 #include "fuzz/fuzz_util.h"
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 
 namespace {
@@ -28,8 +28,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const bool kLimited = (diag::SetLimit(diag::Limit::RibBytes, int64_t{1} << 26), true);
     (void)kLimited;
     static const std::string kPath = fuzz::TempDir() + "/input.rib";
-    static const std::vector<std::string> kShaderPaths = {
-        fuzz::SourceDir() + "/shaders", fuzz::SourceDir() + "/tests/golden", fuzz::SourceDir() + "/tests/corpus"};
+    // One thread: libFuzzer runs one input at a time, and a pool would only add threads to start.
+    static const renderer::Renderer kRenderer(
+        renderer::Options{.threads = 1,
+                          .shaderPaths = {fuzz::SourceDir() + "/shaders", fuzz::SourceDir() + "/tests/golden",
+                                          fuzz::SourceDir() + "/tests/corpus"}});
     const std::string_view text(reinterpret_cast<const char*>(data), size);
     diag::Report report;
     std::optional<std::vector<renderer::SceneDesc>> frames = rib::ParseRibFrames(text, kPath, &report);
@@ -40,7 +43,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         });
         renderer::PreparedScene prepared;
         diag::Report frameReport;
-        renderer::PrepareScene(frame, kShaderPaths, {}, &prepared, &frameReport);
+        kRenderer.Prepare(frame, &prepared, &frameReport);
     }
     return 0;
 }

@@ -30,8 +30,8 @@
 #include <tuple>
 #include <vector>
 
-#include "renderer/render.h"
 #include "renderer/render_identity.h"
+#include "renderer/renderer.h"
 
 namespace affray::renderer {
 

@@ -5,7 +5,7 @@
 // the statistics are sums and maxima, which do not either. Tiles a TileStore holds (a resumed
 // render's checkpoint) are copied in instead of rendered, each finished tile is handed to it, and
 // the stop flag (a signal) is checked between samples: a tile stopped part way is dropped whole.
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 
 #include <algorithm>
 #include <array>
@@ -33,47 +33,7 @@
 
 namespace affray::renderer {
 
-std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, const glm::dvec3& eye) {
-    using vm::Global;
-    std::vector<compiler::ConstantGlobal> out = {{Global::E, {eye.x, eye.y, eye.z}},
-                                                 {Global::du, {kParametricStep, 0, 0}},
-                                                 {Global::dv, {kParametricStep, 0, 0}}};
-    if (base.kind() != BaseSurface::Kind::BilinearPatch) return out;
-    const BilinearPatch& patch = base.patch();
-    // The tangents along the mesh's (u,v), as SetPatchGlobals scales them.
-    const double dsdu = base.range.unitP() ? 1.0 : 1.0 / (base.range.u1 - base.range.u0);
-    const double dtdv = base.range.unitP() ? 1.0 : 1.0 / (base.range.v1 - base.range.v0);
-    glm::dvec3 a = patch.a() * dsdu, b = patch.b() * dtdv, n = patch.flatNormal();
-    if (base.flipNormal) n = -n;
-    if (patch.flat() && std::isfinite(glm::dot(n, n))) {
-        // The same tangents and normal everywhere, the values SetPatchGlobals would give.
-        out.push_back({Global::dPdu, {a.x, a.y, a.z}});
-        out.push_back({Global::dPdv, {b.x, b.y, b.z}});
-        out.push_back({Global::N, {n.x, n.y, n.z}});
-        out.push_back({Global::Ng, {n.x, n.y, n.z}});
-    }
-    return out;
-}
-
 namespace {
-
-/// NAME.sl or, failing that, NAME.afb (compiled), in the first directory that has either. A name
-/// given with a compiled shader's extension, as scenes exported for one renderer name them
-/// (prman's .slo, BMRT's .slc, 3Delight's .sdl, Aqsis's .slx, Pixie's .sdr) or with .sl, is the
-/// shader of its stem.
-std::string FindShader(const std::string& name, const std::vector<std::string>& paths) {
-    for (const std::string& dir : paths) {
-        for (const char* extension : {".sl", ".afb"}) {
-            std::filesystem::path candidate = std::filesystem::path(dir) / (name + extension);
-            std::error_code ec;
-            if (std::filesystem::is_regular_file(candidate, ec)) return candidate.string();
-        }
-    }
-    const std::string extension = std::filesystem::path(name).extension().string();
-    for (const char* compiled : {".sl", ".slo", ".slc", ".sdl", ".slx", ".sdr"})
-        if (extension == compiled) return FindShader(name.substr(0, name.size() - extension.size()), paths);
-    return {};
-}
 
 /// The bound hierarchy of each primitive (renderer/bound_tree.h), shared by every thread and ray of
 /// a render, made when a ray first meets the primitive, by whichever thread that is: a scene of a
@@ -81,7 +41,7 @@ std::string FindShader(const std::string& name, const std::vector<std::string>& 
 /// when made, and holds some 0.5 KB).
 class LazyTrees {
   public:
-    LazyTrees(const PreparedScene& scene, const RenderOptions& options, const glm::dvec3& eye, CacheBudget* budget)
+    LazyTrees(const PreparedScene& scene, const Options& options, const glm::dvec3& eye, CacheBudget* budget)
         : m_scene(scene), m_options(options), m_eye(eye), m_budget(budget), m_trees(scene.primitives.size()) {}
     ~LazyTrees() {
         for (std::atomic<BoundTree*>& tree : m_trees) delete tree.load();
@@ -108,7 +68,7 @@ class LazyTrees {
 
   private:
     const PreparedScene& m_scene;
-    const RenderOptions& m_options;
+    const Options& m_options;
     glm::dvec3 m_eye;
     CacheBudget* m_budget;
     std::vector<std::atomic<BoundTree*>> m_trees;
@@ -123,8 +83,7 @@ struct ThreadState {
     /// Per primitive, the factor its tolerance is scaled by (ToleranceScales).
     const std::vector<double>& toleranceScale;
 
-    ThreadState(const PreparedScene& scene, const RenderOptions& options, LazyTrees& trees,
-                const std::vector<double>& scales)
+    ThreadState(const PreparedScene& scene, const Options& options, LazyTrees& trees, const std::vector<double>& scales)
         : toleranceScale(scales),
           m_scene(scene),
           m_options(options),
@@ -194,7 +153,7 @@ struct ThreadState {
     };
 
     const PreparedScene& m_scene;
-    const RenderOptions& m_options;
+    const Options& m_options;
     LazyTrees& m_trees;
     std::shared_ptr<IntersectWorkspace> m_workspace;
     std::vector<int> m_slotOf;  // per primitive, its place in m_kept or -1
@@ -207,7 +166,7 @@ struct ThreadState {
 /// The factor each primitive's tolerance is scaled by: its scene's coarser level of detail
 /// (PrimitiveAttributes::sceneTolerance) over the render's tolerance, at least 1; all 1 when the
 /// tolerance was given by the user.
-std::vector<double> ToleranceScales(const PreparedScene& scene, const RenderOptions& options) {
+std::vector<double> ToleranceScales(const PreparedScene& scene, const Options& options) {
     std::vector<double> scales(scene.primitives.size(), 1.0);
     if (!options.sceneTolerance) return scales;
     for (size_t i = 0; i < scales.size(); ++i)
@@ -402,194 +361,6 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
                         transmitted);
 }
 
-/// The largest magnitude a bound of P may reach for the intersector to measure it: the ray-frame
-/// test squares widths, which overflow past about 1e154.
-constexpr double kMeasurableLimit = 1e150;
-
-/// The ranges of P's coordinates over the cells of an n x n grid of a primitive's domain.
-using CellRanges = std::vector<std::array<vm::Interval, 3>>;
-
-/// The cells bounded with number type N.
-template <class N>
-CellRanges BoundCells(const Primitive& prim, const glm::dvec3& eye, int n) {
-    vm::Interpreter<N> interp(prim.bound());
-    const vm::ProgramOutput& output = *prim.bound().findOutput("P");
-    CellRanges cells;
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            Vec3<N> p = EvaluateOnSurface(interp, prim.base(), double(i) / n, double(i + 1) / n, double(j) / n,
-                                          double(j + 1) / n, eye, output);
-            cells.push_back({RangeOf(vm::ValueOf(p.x)), RangeOf(vm::ValueOf(p.y)), RangeOf(vm::ValueOf(p.z))});
-        }
-    return cells;
-}
-
-/// The cells bounded with B (Affine or Interval), or its dual if the bound program takes
-/// derivatives.
-template <class B>
-CellRanges BoundCellsIn(const Primitive& prim, const glm::dvec3& eye, int n) {
-    return prim.bound().usesDerivatives() ? BoundCells<vm::Dual<B>>(prim, eye, n) : BoundCells<B>(prim, eye, n);
-}
-
-/// The grid the PrepareScene checks and the BVH boxes use: kGridCells across for a scene of a few
-/// primitives, coarser for many (a mesh of thousands of faces), so that the whole scene costs
-/// about kGridCells^2 * kGridPrimitives bounds, and never fewer than 2 x 2 cells per primitive up
-/// to kOneCellPrimitives primitives, one cell past them (a mesh of a million faces costs a million
-/// bounds). The subdivision scene of bench/real (26,560 patches) renders 9 % slower with one cell
-/// per patch (its boxes looser), which its 4 x 26,560 box bounds do not pay for.
-/// A coarser grid only loosens a primitive's box (its bound's union over fewer cells), never the
-/// bounds the intersector tests.
-constexpr int kGridCells = 8;
-constexpr size_t kGridPrimitives = 64;
-constexpr size_t kOneCellPrimitives = size_t{1} << 17;
-int GridCellsFor(size_t primitives) {
-    if (primitives <= kGridPrimitives) return kGridCells;
-    if (primitives > kOneCellPrimitives) return 1;
-    const double n = kGridCells * std::sqrt(double(kGridPrimitives) / double(primitives));
-    return std::max(2, static_cast<int>(n));
-}
-
-/// Whether P's bound is measurable (finite, within kMeasurableLimit) over at least one cell.
-bool MeasurableSomewhere(const CellRanges& cells) {
-    for (const auto& cell : cells) {
-        bool measurable = true;
-        for (const vm::Interval& r : cell)
-            measurable = measurable && !r.isUnbounded() && std::fabs(r.lo()) < kMeasurableLimit &&
-                         std::fabs(r.hi()) < kMeasurableLimit;
-        if (measurable) return true;
-    }
-    return false;
-}
-
-/// The finest grid UnboundedEverywhere tries (64 x 64: 4096 cells per bounding mode, evaluated only
-/// for a surface that no coarser grid could bound).
-constexpr int kFinestCheckCells = 64;
-
-/// An error if no cell of the grids of the patch, `cells` across and then twice, four and eight...
-/// times finer up to kFinestCheckCells, has a measurable bound in either bounding mode
-/// (`intervalCells` are the interval bounds of the first grid, looked at first as they are already
-/// paid for): every region would then survive the ray test down to the depth
-/// limit, 4^depth regions per ray, a render that never ends. A shader whose bound is unbounded
-/// where a region straddles a branch (a square root on the side not taken) is bounded on finer
-/// cells, so one grid is not enough. Names the instance's parameters that are large enough to be
-/// the cause. Empty if the surface can be bounded somewhere.
-std::string UnboundedEverywhere(const Primitive& prim, const ShaderRef& ref, const glm::dvec3& eye, int cells,
-                                const CellRanges& intervalCells) {
-    if (MeasurableSomewhere(intervalCells)) return {};
-    for (int n = cells; n <= kFinestCheckCells; n *= 2) {
-        if (MeasurableSomewhere(BoundCellsIn<vm::Affine>(prim, eye, n))) return {};
-        if (n != cells && MeasurableSomewhere(BoundCellsIn<vm::Interval>(prim, eye, n))) return {};
-    }
-    std::string culprits;
-    for (const ParamValue& p : ref.params)
-        for (double x : p.numbers)
-            if (std::fabs(x) >= 1e100) {
-                char value[32];
-                std::snprintf(value, sizeof value, "%g", x);
-                culprits += std::string(culprits.empty() ? "" : ", ") + "'" + p.name + "' = " + value;
-                break;
-            }
-    std::string message = "the displaced surface of shader '" + ref.name +
-                          "' cannot be bounded over any part of the patch (NaN, infinity or values past 1e150 in "
-                          "every region), so no ray could finish";
-    if (!culprits.empty()) message += "; parameter " + culprits + " is too large";
-    return message;
-}
-
-/// The box of the displaced surface over its whole domain: the union of the bounds of the cells
-/// of a grid (tighter than one bound over everything). Infinite if any cell's bound is unbounded:
-/// the BVH then offers the primitive to every ray.
-Box UnionBox(const CellRanges& cells) {
-    Box box;
-    for (const auto& cell : cells)
-        for (int c = 0; c < 3; ++c) {
-            const vm::Interval& r = cell[c];
-            if (r.isUnbounded()) {
-                box.lo[c] = -INFINITY;
-                box.hi[c] = INFINITY;
-            } else {
-                box.lo[c] = std::min(box.lo[c], r.lo());
-                box.hi[c] = std::max(box.hi[c], r.hi());
-            }
-        }
-    return box;
-}
-
-compiler::Matrix4 RowMajor(const glm::dmat4& m) {
-    compiler::Matrix4 out{};
-    for (int row = 0; row < 4; ++row)
-        for (int col = 0; col < 4; ++col) out[4 * row + col] = m[col][row];  // glm is column-major
-    return out;
-}
-
-bool IsAffine(const compiler::Matrix4& m) { return m[12] == 0 && m[13] == 0 && m[14] == 0 && m[15] == 1; }
-
-/// The spaces a shader on `patch` sees. "current" is world space: P is computed there.
-compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveAttributes& patch) {
-    const CameraDesc& camera = scene.camera;
-    auto space = [](const glm::dmat4& toWorld) {
-        return compiler::SpaceTransform{RowMajor(toWorld), RowMajor(glm::inverse(toWorld))};
-    };
-    compiler::Spaces spaces;
-    for (const auto& [name, toWorld] : scene.coordinateSystems) spaces[name] = space(toWorld);
-    if (patch.scopedSpaces)
-        for (const auto& [name, toWorld] : *patch.scopedSpaces) spaces[name] = space(toWorld);
-    spaces["world"] = compiler::SpaceTransform{};
-    spaces["object"] = space(patch.objectToWorld);
-    spaces["shader"] = space(patch.displacement ? patch.displacement->shaderToWorld : patch.objectToWorld);
-    spaces["camera"] = space(glm::inverse(camera.worldToCamera));
-    return spaces;
-}
-
-/// `path` as the scene names it: as written if absolute, else from the RIB file's directory.
-std::string FromSceneDir(const SceneDesc& scene, const std::string& path) {
-    const std::filesystem::path p(path);
-    return p.is_absolute() ? path : (std::filesystem::path(scene.path).parent_path() / p).string();
-}
-
-/// The options and attributes a shader on `patch` may query (option(), attribute(), depth()):
-/// those of RI Spec 3.2 tables 15.4 and 15.5 that the scene holds.
-compiler::SceneFacts FactsOf(const SceneDesc& scene, const PrimitiveAttributes& patch) {
-    const CameraDesc& camera = scene.camera;
-    const double frameAspect = camera.frameAspectRatio.value_or(camera.xres * camera.pixelAspect / camera.yres);
-    compiler::SceneFacts facts;
-    auto numbers = [](std::vector<double> values) { return compiler::FactValue{std::move(values), std::nullopt}; };
-    facts.options["Format"] = numbers({double(camera.xres), double(camera.yres), camera.pixelAspect});
-    facts.options["DeviceResolution"] = facts.options["Format"];
-    facts.options["FrameAspectRatio"] = numbers({frameAspect});
-    const glm::dvec4& crop = camera.cropWindow;
-    facts.options["CropWindow"] = numbers({crop[0], crop[1], crop[2], crop[3]});
-    facts.options["Clipping"] = numbers({camera.nearClip, camera.farClip});
-    facts.attributes["Sides"] = numbers({patch.twoSided ? 2.0 : 1.0});
-    // Option "searchpath" "texture", relative directories taken from the RIB file's, then that
-    // directory itself.
-    for (const std::string& dir : scene.textureSearchPath) facts.textureSearchPath.push_back(FromSceneDir(scene, dir));
-    facts.textureSearchPath.push_back(std::filesystem::path(scene.path).parent_path().string());
-    return facts;
-}
-
-/// The scene's MakeTexture requests, in order (relative paths from the RIB file's directory); a
-/// texture newer than its picture is kept, as make would.
-void MakeTextures(const SceneDesc& desc, diag::Report* report) {
-    namespace fs = std::filesystem;
-    for (const SceneDesc::MakeTextureDesc& m : desc.makeTextures) {
-        const fs::path picture = FromSceneDir(desc, m.picture), texture = FromSceneDir(desc, m.texture);
-        std::error_code ec, ec2;
-        const auto made = fs::last_write_time(texture, ec), source = fs::last_write_time(picture, ec2);
-        if (!ec && !ec2 && made >= source) continue;
-        texture::Wrap swrap = texture::Wrap::Periodic, twrap = texture::Wrap::Periodic;
-        texture::ParseWrap(m.swrap, &swrap);
-        texture::ParseWrap(m.twrap, &twrap);
-        std::string error;
-        // As a renderer's texture maker does, a failure is reported and the render goes on: a
-        // shader that reads the texture then fails to compile, naming the file.
-        if (!texture::MakeTexture(picture.string(), texture.string(), swrap, twrap, &error) && report) {
-            const std::string& file = m.file.empty() ? desc.path : m.file;
-            report->warning({file, m.line, m.column, diag::ReadLine(file, m.line)}, error);
-        }
-    }
-}
-
 }  // namespace
 
 uint64_t SceneBytes(const PreparedScene& scene, int threads) {
@@ -638,10 +409,6 @@ uint64_t SceneBytes(const PreparedScene& scene, int threads) {
     return bytes;
 }
 
-Box DisplacedBox(const Primitive& prim, const glm::dvec3& eye, int cells) {
-    return UnionBox(BoundCellsIn<vm::Interval>(prim, eye, cells));
-}
-
 std::string RenderStats::ToJson() const {
     auto perRay = [](uint64_t n, uint64_t rays) { return rays ? double(n) / double(rays) : 0.0; };
     // A lookup that had to evaluate the bound is a miss.
@@ -681,236 +448,6 @@ std::string RenderStats::ToJson() const {
         double(sceneBytes) / (1 << 20), static_cast<unsigned long long>(primitives),
         primitives ? double(sceneBytes) / double(primitives) : 0.0, readSeconds, prepareSeconds);
     return buf;
-}
-
-namespace {
-
-/// The image-pixels, pixel-samples and film-mb limits (diag/limits.h) for `camera`'s image with
-/// the channels `displayMode` asks for; "" or the error.
-std::string CheckImageLimits(const CameraDesc& camera, const std::string& displayMode) {
-    using diag::Limit;
-    const int64_t pixels = int64_t{camera.xres} * camera.yres;
-    if (pixels > diag::LimitValue(Limit::ImagePixels))
-        return "the image of " + std::to_string(camera.xres) + "x" + std::to_string(camera.yres) +
-               " pixels is too large " + diag::LimitNote(Limit::ImagePixels);
-    if (std::max(camera.xsamples, camera.ysamples) > diag::LimitValue(Limit::PixelSamples))
-        return "the image has " + std::to_string(camera.xsamples) + "x" + std::to_string(camera.ysamples) +
-               " samples per pixel, more than allowed " + diag::LimitNote(Limit::PixelSamples);
-    DisplayChannels channels;
-    std::string ignored;  // an unknown mode is reported where the image is made
-    ParseDisplayMode(displayMode, &channels, &ignored);
-    const int64_t floats = 4 + static_cast<int64_t>(ChannelNames(channels).size());
-    const int64_t mb = (pixels * floats * int64_t{sizeof(float)} + (int64_t{1} << 20) - 1) >> 20;
-    if (mb > diag::LimitValue(Limit::FilmMb))
-        return "the film needs " + std::to_string(mb) + " MiB for " + std::to_string(pixels) + " pixels of " +
-               std::to_string(floats) + " channels " + diag::LimitNote(Limit::FilmMb);
-    return {};
-}
-
-}  // namespace
-
-bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
-                  const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report, int threads) {
-    auto fail = [&](const diag::Location& where, std::string message) {
-        if (report) report->error(where, std::move(message));
-        return false;
-    };
-    // Before anything is compiled or allocated.
-    if (std::string problem = CheckImageLimits(input.camera, input.displayMode); !problem.empty())
-        return fail({input.path}, std::move(problem));
-    // Moved, not copied: a mesh of thousands of faces is as many PrimitiveDescs.
-    out->desc = std::move(input);
-    const SceneDesc& desc = out->desc;
-    out->primitives.clear();
-    out->programs.clear();  // (a PreparedScene prepared again holds only its new programs)
-    out->identityDigest.clear();
-    MakeTextures(desc, report);
-    const glm::dvec3 eye = Camera(desc.camera).Position();
-    compiler::ShaderCache cache;
-    // The scene's search path first, relative directories taken from the RIB file's.
-    std::vector<std::string> searchPath;
-    for (const std::string& dir : desc.shaderSearchPath) searchPath.push_back(FromSceneDir(desc, dir));
-    searchPath.insert(searchPath.end(), shaderPaths.begin(), shaderPaths.end());
-    // The distinct light lists of the primitives (Illuminate), numbered in order of first use
-    // after set 0, every light.
-    std::map<std::vector<int>, int> lightSetKeys;
-    std::vector<int> allLights(desc.lights.size());
-    for (size_t i = 0; i < allLights.size(); ++i) allLights[i] = static_cast<int>(i);
-    lightSetKeys[allLights] = 0;
-    auto lightSetOf = [&](const PrimitiveAttributes& p) {
-        if (!p.lights) return 0;
-        std::vector<int> key;
-        for (int light : *p.lights)
-            if (light >= 0 && static_cast<size_t>(light) < desc.lights.size()) key.push_back(light);
-        std::sort(key.begin(), key.end());
-        key.erase(std::unique(key.begin(), key.end()), key.end());
-        return lightSetKeys.emplace(key, static_cast<int>(lightSetKeys.size())).first->second;
-    };
-    std::map<std::string, std::string> shaderFiles;  // shader name -> its file ("" if not found)
-    // Where a Displacement request is in the RIB file (its line is read again only for a message).
-    auto requestAt = [&](const ShaderRef& ref) {
-        const std::string& file = ref.file.empty() ? desc.path : ref.file;
-        return diag::Location(file, ref.line, ref.column, diag::ReadLine(file, ref.line));
-    };
-    // Each request's attributes (shared by its primitives: a mesh's faces) are looked at once:
-    // the shader instance compiled, its generic programs and the lights.
-    struct Instance {
-        std::shared_ptr<const compiler::CompiledShader> shader;  // null: no displacement (the identity)
-        int lightSet = 0;
-        /// The programs of the primitives whose surfaces have no constants beyond E, du, dv
-        /// (every kind but the bilinear patch), once made.
-        const PrimitivePrograms* general = nullptr;
-    };
-    std::unordered_map<const PrimitiveAttributes*, Instance> instances;
-    const vm::Program identity = vm::IdentityProgram();
-    // Specialising a program for a surface's constant globals (below) gives the same program for
-    // every surface with the same constants (E, du and dv for all but flat bilinear patches): made
-    // once per shader instance and constants, shared by the others.
-    std::map<std::pair<const void*, std::vector<uint64_t>>, const PrimitivePrograms*> specialised;
-    auto specialise = [&](const Instance& instance, const BaseSurface& base) {
-        const std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(base, eye);
-        // (The values by their bits: the same bits fold to the same program, a NaN included.)
-        std::pair<const void*, std::vector<uint64_t>> key{instance.shader.get(), {}};
-        for (const compiler::ConstantGlobal& c : constants) {
-            key.second.push_back(static_cast<uint64_t>(c.global));
-            for (double x : c.value) key.second.push_back(std::bit_cast<uint64_t>(x));
-        }
-        auto [found, added] = specialised.try_emplace(std::move(key), nullptr);
-        if (added) {
-            std::vector<std::string> unused;  // no overrides here: nothing can go wrong
-            const vm::Program& bound = instance.shader ? instance.shader->bound : identity;
-            const vm::Program& shade = instance.shader ? instance.shader->shade : identity;
-            out->programs.push_back({instance.shader, *compiler::Specialise(bound, {}, &unused, constants),
-                                     *compiler::Specialise(shade, {}, &unused, constants)});
-            found->second = &out->programs.back();
-        }
-        return found->second;
-    };
-    size_t elements = 0;
-    for (const PrimitiveDesc& p : desc.primitives) elements += p.elements;
-    out->primitives.reserve(elements);
-    for (const PrimitiveDesc& patch : desc.primitives) {
-        const PrimitiveAttributes& attributes = *patch.attributes;
-        auto [entry, newAttributes] = instances.try_emplace(&attributes);
-        Instance& instance = entry->second;
-        if (newAttributes) {
-            instance.lightSet = lightSetOf(attributes);
-            // The shader's file, looked up once per name; a shader that is not found leaves the
-            // surface undisplaced, as prman does, with one warning per name (a scene exported with
-            // shaders its renderer had but this machine has not).
-            std::string path;
-            if (attributes.displacement) {
-                const ShaderRef& ref = *attributes.displacement;
-                auto [known, added] = shaderFiles.try_emplace(ref.name);
-                if (added) {
-                    known->second = FindShader(ref.name, searchPath);
-                    if (known->second.empty() && report) {
-                        std::string searched;
-                        for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
-                        report->warning(requestAt(ref), "shader '" + ref.name + "' not found (searched " + searched +
-                                                            "); its surfaces render undisplaced");
-                    }
-                }
-                path = known->second;
-            }
-            if (!path.empty()) {
-                const ShaderRef& ref = *attributes.displacement;
-                auto where = [&] { return requestAt(ref); };
-                std::vector<compiler::ParamOverride> overrides;
-                for (const ParamValue& p : ref.params) {
-                    if (p.strings.size() > 1)
-                        return fail(where(), "parameter '" + p.name + "' takes one string, got " +
-                                                 std::to_string(p.strings.size()));
-                    if (p.strings.empty())
-                        overrides.emplace_back(p.name, p.numbers);
-                    else
-                        overrides.push_back(compiler::ParamOverride::String(p.name, p.strings[0]));
-                }
-                const compiler::Spaces spaces = SpacesOf(desc, attributes);
-                const compiler::SceneFacts facts = FactsOf(desc, attributes);
-                compiler::CompileResult result = cache.Load(path, overrides, preprocess, &spaces, &facts);
-                // The shader's own diagnostics (its warnings too), then what the scene asked of it.
-                if (report) report->add(result.diagnostics);
-                if (!result.ok()) {
-                    for (const std::string& e : result.paramErrors) fail(where(), e);
-                    if (result.paramErrors.empty()) fail(where(), "cannot compile shader '" + ref.name + "'");
-                    return false;
-                }
-                instance.shader = result.shader;
-                for (const std::string& name : instance.shader->genericBound.spaces) {
-                    if (spaces.count(name) && !IsAffine(spaces.at(name).toCurrent))
-                        return fail(where(), "shader '" + ref.name + "' uses coordinate space '" + name +
-                                                 "', which the scene makes projective (not supported)");
-                }
-            }
-        }
-        Primitive prim;
-        prim.desc = &patch;
-        prim.lightSet = instance.lightSet;
-        if (patch.base.kind() == BaseSurface::Kind::BilinearPatch) {
-            prim.programs = specialise(instance, patch.base);
-        } else {
-            if (!instance.general) instance.general = specialise(instance, patch.base);
-            prim.programs = instance.general;
-        }
-        // A mesh's pieces or patches: one primitive each, the same but for the element.
-        for (uint32_t e = 0; e < patch.elements; ++e) {
-            prim.element = e;
-            out->primitives.push_back(prim);
-        }
-    }
-
-    // Each primitive's box, and the check that its displaced surface can be bounded somewhere:
-    // a shader run over a grid of cells per primitive, the costly part of preparing a scene of
-    // many primitives, spread over the machine's threads (each primitive on its own).
-    const int cells = GridCellsFor(out->primitives.size());
-    std::vector<std::string> problems(out->primitives.size());
-    std::vector<Box> boxes(out->primitives.size());
-    std::atomic<size_t> next{0};
-    auto boxWorker = [&] {
-        for (size_t i = next++; i < out->primitives.size(); i = next++) {
-            Primitive& prim = out->primitives[i];
-            const CellRanges intervalCells = BoundCellsIn<vm::Interval>(prim, eye, cells);
-            if (prim.shader())  // a displacement whose shader was found
-                problems[i] = UnboundedEverywhere(prim, *prim.attributes().displacement, eye, cells, intervalCells);
-            boxes[i] = UnionBox(intervalCells);
-        }
-    };
-    const size_t cores = threads > 0 ? size_t(threads) : std::max(1u, std::thread::hardware_concurrency());
-    const size_t nThreads = std::min<size_t>(cores, std::max<size_t>(1, out->primitives.size() / 16));
-    std::vector<std::thread> workers;
-    for (size_t t = 1; t < nThreads; ++t) workers.emplace_back(boxWorker);
-    boxWorker();
-    for (std::thread& t : workers) t.join();
-    for (size_t i = 0; i < problems.size(); ++i) {
-        if (problems[i].empty()) continue;
-        return fail(requestAt(*out->primitives[i].attributes().displacement), problems[i]);
-    }
-    out->bvh = std::make_unique<Bvh>(boxes);
-    out->shadersCompiled = cache.misses();
-    out->shadersReused = cache.hits();
-    out->lights = desc.lights;
-    out->lightSets.resize(lightSetKeys.size());
-    for (const auto& [key, index] : lightSetKeys)
-        for (int light : key) out->lightSets[static_cast<size_t>(index)].push_back(desc.lights[size_t(light)]);
-    if (out->lights.empty()) {
-        // No lights: a key light from behind the camera, and a little ambient, so that something shows.
-        glm::dmat4 cameraToWorld = glm::inverse(desc.camera.worldToCamera);
-        glm::dvec3 eye = glm::dvec3(cameraToWorld * glm::dvec4(0, 0, 0, 1));
-        glm::dvec3 forward = glm::dvec3(cameraToWorld * glm::dvec4(0, 0, 1, 0));
-        LightDesc key;
-        key.kind = LightDesc::Kind::Distant;
-        key.castShadows = true;  // affray's own light, not a RenderMan one: it keeps the shadows it always had
-        key.from = eye;
-        key.to = eye + forward;
-        out->lights.push_back(key);
-        LightDesc ambient;
-        ambient.kind = LightDesc::Kind::Ambient;
-        ambient.intensity = 0.05;
-        out->lights.push_back(ambient);
-        out->lightSets = {out->lights};  // for every primitive, whatever its Illuminate said
-    }
-    return true;
 }
 
 namespace {
@@ -997,25 +534,22 @@ uint64_t PeakResidentBytes() {
     return getrusage(RUSAGE_SELF, &usage) == 0 ? static_cast<uint64_t>(usage.ru_maxrss) * 1024 : 0;
 }
 
-int RenderThreads(const RenderOptions& options) {
-    return options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-}
-
 }  // namespace
 
-int RenderTileSize(const CameraDesc& camera, const RenderOptions& options) {
-    int tileSize = std::max(1, options.tileSize);
-    if (options.fixedTileSize) return tileSize;
+Renderer::Renderer(Options options) : m_options(std::move(options)), m_pool(m_options.threads) {}
+
+int Renderer::TileSize(const CameraDesc& camera) const {
+    int tileSize = std::max(1, m_options.tileSize);
     // Smaller tiles for small images, so that every thread gets work (four tiles each at least),
     // down to 8 pixels: below that the filter margins each tile traces again cost too much.
     const Film film(camera);
-    const int nThreads = RenderThreads(options);
-    while (tileSize > 8 && static_cast<int>(film.Tiles(tileSize).size()) < 4 * nThreads) tileSize /= 2;
+    while (tileSize > 8 && static_cast<int>(film.Tiles(tileSize).size()) < 4 * threads()) tileSize /= 2;
     return tileSize;
 }
 
-void RenderImage(const PreparedScene& scene, const RenderOptions& options, image::ImageBuffer* image,
-                 RenderStats* stats) {
+void Renderer::Render(const PreparedScene& scene, image::ImageBuffer* image, RenderStats* stats,
+                      const RenderControl& control) const {
+    const Options& options = m_options;
     auto start = std::chrono::steady_clock::now();
     const uint64_t residentAtStart = ResidentBytes();
     const CameraDesc& cam = scene.desc.camera;
@@ -1028,20 +562,20 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, image
     *image = film.MakeImage();
     const Tolerance tol{options.tolerancePixels * camera.PixelWidth(), options.tolerancePixels * camera.PixelAngle(),
                         options.newton ? 1.0 : 0.0};
-    const int nThreads = RenderThreads(options);
-    std::vector<PixelRange> tiles = film.Tiles(RenderTileSize(cam, options));
+    const int nThreads = threads();
+    std::vector<PixelRange> tiles = film.Tiles(control.tileSize > 0 ? control.tileSize : TileSize(cam));
     if (options.reverseTileOrder) std::reverse(tiles.begin(), tiles.end());
-    if (options.progress) options.progress->Begin(static_cast<int>(tiles.size()));
+    if (control.progress) control.progress->Begin(static_cast<int>(tiles.size()));
     // Tiles an interrupted render finished come back from the store, and are not rendered again.
     int restored = 0;
-    if (options.tileStore)
+    if (control.tileStore)
         std::erase_if(tiles, [&](const PixelRange& tile) {
-            if (!options.tileStore->Restore(tile, image)) return false;
+            if (!control.tileStore->Restore(tile, image)) return false;
             ++restored;
-            if (options.progress) options.progress->TileDone();
+            if (control.progress) control.progress->TileDone();
             return true;
         });
-    auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
+    auto stopped = [&] { return control.stop && control.stop->load(std::memory_order_relaxed); };
 
     std::atomic<size_t> nextTile{0}, tilesDone{0};
     std::vector<IntersectStats> cameraStats(nThreads), shadowStats(nThreads);
@@ -1084,19 +618,16 @@ void RenderImage(const PreparedScene& scene, const RenderOptions& options, image
             // A stopped tile's samples are incomplete: it is left out, neither resolved nor kept.
             if (stopped()) break;
             film.ResolveTile(tiles[i], samples, values, image);
-            if (options.tileStore) options.tileStore->Finished(tiles[i], *image);
+            if (control.tileStore) control.tileStore->Finished(tiles[i], *image);
             ++tilesDone;
-            if (options.progress) options.progress->TileDone();
+            if (control.progress) control.progress->TileDone();
         }
         cameraStats[index] = ts.cameraStats;
         shadowStats[index] = ts.shadowStats;
         cameraRays[index] = ts.cameraRays;
     };
-    std::vector<std::thread> threads;
-    for (int i = 1; i < nThreads; ++i) threads.emplace_back(worker, i);
-    worker(0);
-    for (std::thread& t : threads) t.join();
-    if (options.progress) options.progress->Finish();
+    m_pool.Run(nThreads, worker);
+    if (control.progress) control.progress->Finish();
 
     *stats = RenderStats();
     trees.Merge(&stats->cache);

@@ -1,5 +1,7 @@
-// renderer/render.h: from a scene description to an image: shader compilation per instance,
-// camera rays through the guaranteed intersector, shading with shadows, threads over rows.
+// renderer/render.h: what preparing a scene makes (renderer/prepare.cpp) and rendering it
+// reads and reports (renderer/render.cpp): primitives with their specialised programs, the
+// prepared scene, the render's statistics. The Renderer that makes and renders them is
+// renderer/renderer.h.
 #pragma once
 
 #include <atomic>
@@ -17,75 +19,6 @@
 #include "scene/scene.h"
 
 namespace affray::renderer {
-
-struct Primitive;
-
-/// Makes the intersector one thread uses for one primitive (`index` in PreparedScene::primitives).
-using IntersectorFactory = std::function<std::unique_ptr<SurfaceIntersector>(const Primitive& primitive, int index)>;
-
-/// Told how a render advances: Begin(tiles) before the first tile, TileDone() from the worker
-/// threads as each tile is finished (so it must be thread-safe), Finish() after the last.
-class RenderProgress {
-  public:
-    virtual ~RenderProgress() = default;
-    virtual void Begin(int tiles) = 0;
-    virtual void TileDone() = 0;
-    virtual void Finish() = 0;
-};
-
-/// Keeps a render's finished tiles outside it and gives back those an earlier, interrupted render
-/// of the same image finished (the command line's checkpoint file, renderer/checkpoint.h).
-class TileStore {
-  public:
-    virtual ~TileStore() = default;
-    /// Before any tile is rendered, on the calling thread: copies the tile's pixels, every
-    /// channel, into `image` (from Film::MakeImage) and returns true if the store has them; the
-    /// tile is then not rendered. False: the tile is rendered.
-    virtual bool Restore(const PixelRange& tile, image::ImageBuffer* image) = 0;
-    /// The tile's pixels in `image` are final. Called from the worker threads as each tile is
-    /// finished (so it must be thread-safe); other threads meanwhile write other tiles' pixels.
-    virtual void Finished(const PixelRange& tile, const image::ImageBuffer& image) = 0;
-};
-
-/// The side of a block of pixels whose camera rays are traced as a group (`--ray-groups`).
-inline constexpr int kDefaultRayGroupPixels = 8;
-
-struct RenderOptions {
-    int threads = 0;               // 0: one per core
-    double tolerancePixels = 0.5;  // a region is a hit once its bound is smaller than this many pixels
-    /// Whether a primitive whose scene asks for a coarser tolerance (PrimitiveAttributes::sceneTolerance:
-    /// ShadingRate, GeometricApproximation) is certified to that; false when tolerancePixels was
-    /// given by the user (--tolerance).
-    bool sceneTolerance = true;
-    BoundMode bounds = BoundMode::Reduced;
-    /// Certified Newton hits (renderer/newton.h) at the leaves of the walk: a hit to rounding
-    /// where Krawczyk's test proves the leaf meets the ray once, the leaf's own bound elsewhere.
-    bool newton = false;
-    int maxDepth = 24;
-    size_t cacheBytes = kDefaultCacheBytes;        // the bound hierarchies' memory budget (renderer/bound_tree.h)
-    uint64_t regionBudget = kDefaultRegionBudget;  // per ray (renderer/intersect.h)
-    int tileSize = 32;                             // pixels per side (less for small images)
-    /// Cut the image into tiles of exactly tileSize (a resumed render must cut it as the
-    /// interrupted one did), not smaller ones for small images (RenderTileSize).
-    bool fixedTileSize = false;
-    /// Take the tiles last first: the image must not depend on the order (a test option).
-    bool reverseTileOrder = false;
-    /// Set, by a signal handler say, to stop the render: the workers check it between samples and
-    /// give up their unfinished tiles; RenderStats::stopped is then true and the image incomplete.
-    const std::atomic<bool>* stop = nullptr;
-    /// Where finished tiles are kept and restored from (null: nowhere).
-    TileStore* tileStore = nullptr;
-    /// Camera rays are traced in groups of this many pixels per side, which share the walk of the
-    /// bound hierarchies' top levels (RayGroup); blocks of the whole image, so the image does not
-    /// depend on the tiles. 0: every ray alone.
-    int rayGroupPixels = kDefaultRayGroupPixels;
-    /// Told how the render advances (the command line draws its progress bar with it); null: no one.
-    class RenderProgress* progress = nullptr;
-    /// Replaces the guaranteed intersector, for every primitive and thread: the benches' in-process
-    /// tessellation baseline (bench/) renders the same samples, shading and shadows through it.
-    /// Empty: affray's own.
-    IntersectorFactory intersectorFactory;
-};
 
 struct RenderStats {
     double wallSeconds = 0;
@@ -106,7 +39,7 @@ struct RenderStats {
     /// scene took (0 if not given).
     double readSeconds = 0, prepareSeconds = 0;
     int width = 0, height = 0;
-    bool stopped = false;   // RenderOptions::stop was set in time: some tiles are missing from the image
+    bool stopped = false;   // RenderControl::stop was set in time: some tiles are missing from the image
     int tilesRestored = 0;  // tiles the TileStore gave back instead of being rendered
 
     /// The one-line JSON of `affray render --stats`.
@@ -156,7 +89,7 @@ struct Primitive {
 
 struct PreparedScene {
     /// The scene as read; its primitives are those `primitives` point to (never changed after
-    /// PrepareScene: a vector moved with the scene keeps its elements in place).
+    /// Renderer::Prepare: a vector moved with the scene keeps its elements in place).
     SceneDesc desc;
     std::vector<Primitive> primitives;
     /// The distinct programs of the primitives (a deque: they stay in place as it grows).
@@ -183,32 +116,11 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, c
 /// infinite if a bound overflows somewhere.
 Box DisplacedBox(const Primitive& prim, const glm::dvec3& eye, int cells);
 
-/// Compiles every displacement instance of `desc` (each with its own parameter values) and
-/// specialises it for its surface (an instance like an earlier one reuses its compilation).
-/// Shaders are found as NAME.sl or NAME.afb in the scene's Option "searchpath" "shader" (relative
-/// directories taken from the RIB file's directory), then in `shaderPaths`;
-/// `preprocess` gives the -I and -D of the C preprocessor. The shaders' diagnostics go to *report
-/// (may be null); on error returns false with an error there at the Displacement request.
-/// `threads` bound the primitives' boxes (0: one per core), as RenderOptions::threads renders.
-bool PrepareScene(SceneDesc desc, const std::vector<std::string>& shaderPaths,
-                  const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report, int threads = 0);
-
 /// The memory `scene` holds, by structure (not the allocator's overhead): the primitives, their
 /// descriptions, the shapes, meshes, attributes and colour fields they share (each once), the
 /// BVH, and what a render adds per primitive (a bound hierarchy's slot, and per thread an
 /// intersector's slot) with `threads` threads. Programs and shaders
 /// are left out (a few per scene).
 uint64_t SceneBytes(const PreparedScene& scene, int threads);
-
-/// The side of the tiles RenderImage cuts `camera`'s image (its crop) into with `options`:
-/// options.tileSize, halved for small images down to 8 pixels so that every thread gets four
-/// tiles at least; exactly options.tileSize if options.fixedTileSize. The image's pixels do not
-/// depend on it.
-int RenderTileSize(const CameraDesc& camera, const RenderOptions& options);
-
-/// Renders the prepared scene into `image`: full resolution, RGBA plus the AOVs the Display mode
-/// asks for, pixels outside the CropWindow zero (renderer/film.h), row 0 at the top.
-void RenderImage(const PreparedScene& scene, const RenderOptions& options, image::ImageBuffer* image,
-                 RenderStats* stats);
 
 }  // namespace affray::renderer

@@ -245,7 +245,7 @@ const std::string& InputsDigest(const PreparedScene& scene) {
 
 /// IdentifyRender and IdentifyFrame: with `withCrop` false the crop window counts as the whole
 /// frame in the scene's hash and has no line in the options.
-RenderIdentity Identify(const PreparedScene& scene, const RenderOptions& options, bool withCrop) {
+RenderIdentity Identify(const PreparedScene& scene, const Options& options, bool withCrop) {
     Fnv128 h;
     h.Field("affray render identity", "4");
     h.Field("inputs", InputsDigest(scene));
@@ -288,11 +288,11 @@ std::string RenderIdentity::Hash() const {
     return h.Hex();
 }
 
-RenderIdentity IdentifyRender(const PreparedScene& scene, const RenderOptions& options) {
+RenderIdentity IdentifyRender(const PreparedScene& scene, const Options& options) {
     return Identify(scene, options, true);
 }
 
-RenderIdentity IdentifyFrame(const PreparedScene& scene, const RenderOptions& options) {
+RenderIdentity IdentifyFrame(const PreparedScene& scene, const Options& options) {
     return Identify(scene, options, false);
 }
 

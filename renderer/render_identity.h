@@ -28,6 +28,7 @@
 #include <string>
 #include <string_view>
 
+#include "renderer/options.h"
 #include "renderer/render.h"
 
 namespace affray::renderer {
@@ -41,12 +42,12 @@ struct RenderIdentity {
 
 /// Identifies the render of `scene` (prepared, from the RIB file scene.desc.path) with `options`.
 /// Files that cannot be read count as such (a hash of their name), never as an error.
-RenderIdentity IdentifyRender(const PreparedScene& scene, const RenderOptions& options);
+RenderIdentity IdentifyRender(const PreparedScene& scene, const Options& options);
 
 /// The identity of the whole frame that a render of `scene` is a part of: IdentifyRender with the
 /// crop window left out (the scene hashed as if it had none, and no "crop=" line in options).
 /// Tiles of one frame rendered with different crops share it (affray merge checks it).
-RenderIdentity IdentifyFrame(const PreparedScene& scene, const RenderOptions& options);
+RenderIdentity IdentifyFrame(const PreparedScene& scene, const Options& options);
 
 /// FNV-1a 128 of `bytes`, as 32 lowercase hex digits.
 std::string HashHex(std::string_view bytes);

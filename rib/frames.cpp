@@ -152,7 +152,7 @@ bool RibParser::DoWorldEnd(const RibRequest& r) {
 // MakeShadow, MakeTexture, MakeBump, MakeLatLongEnvironment, MakeCubeFaceEnvironment: they turn
 // images into maps. MakeTexture "picture" "texture" "swrap" "twrap" "filter" swidth twidth
 // [params] is recorded for every frame from there on (RenderMan makes the file when it reads the
-// request), and PrepareScene makes the texture (the filter and widths shape a scanline renderer's
+// request), and Renderer::Prepare makes the texture (the filter and widths shape a scanline renderer's
 // resampling and are not used; a failure is a warning). affray traces shadows and its shaders read
 // no environment or bump maps, so the others are skipped with a note (their file names are not
 // checked).

@@ -250,7 +250,7 @@ struct SceneDesc {
     /// Option "searchpath" "texture", likewise: where texture() looks for a relative file name,
     /// before the RIB file's directory, the shader's and the working directory.
     std::vector<std::string> textureSearchPath;
-    /// MakeTexture requests, in file order: PrepareScene makes each texture (a tiled, mip-mapped
+    /// MakeTexture requests, in file order: Renderer::Prepare makes each texture (a tiled, mip-mapped
     /// TIFF) before it compiles the shaders that may read it. Paths as written: relative ones are
     /// taken from the RIB file's directory.
     struct MakeTextureDesc {

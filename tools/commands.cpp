@@ -14,8 +14,8 @@
 #include "compiler/compile.h"
 #include "image/exr_writer.h"
 #include "image/png_writer.h"
-#include "renderer/render.h"
 #include "renderer/render_identity.h"
+#include "renderer/renderer.h"
 #include "renderer/tiling.h"
 #include "rib/rib.h"
 #include "scene/geometry/surface.h"
@@ -196,31 +196,15 @@ void WarnUndeclared(const renderer::PreparedScene& prepared, std::set<std::strin
     }
 }
 
-/// Renders one frame to `outputPath` (and `pngPath` if not empty); prints the frame's shader
-/// diagnostics (with WarnUndeclared's warnings, `warned` over the run) and, with --stats, its figures.
-int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::string& outputPath,
-                const std::string& pngPath, std::set<std::string>* warned, double readSeconds, FILE* out, FILE* err) {
-    diag::Report report;
+/// The Renderer's options from the command line: shaders are looked for beside the RIB file, in
+/// ../shaders from there and in ./shaders, after the scene's own search path.
+renderer::Options OptionsOf(const RenderCommand& cmd) {
     std::filesystem::path ribDir = std::filesystem::path(cmd.scenePath).parent_path();
     if (ribDir.empty()) ribDir = ".";
-    std::vector<std::string> shaderPaths = {ribDir.string(), (ribDir / ".." / "shaders").string(), "shaders"};
-    if (cmd.crop) scene.camera.cropWindow = glm::dvec4((*cmd.crop)[0], (*cmd.crop)[1], (*cmd.crop)[2], (*cmd.crop)[3]);
-    if (cmd.samples > 0) scene.camera.xsamples = scene.camera.ysamples = cmd.samples;
-    if (cmd.textureBytes) texture::SetTileMemoryBudget(*cmd.textureBytes);
-    const texture::CacheStats texturesBefore = texture::Stats();
-    renderer::PreparedScene prepared;
-    const std::optional<int> frameNumber = scene.frame;
-    const auto prepareStart = std::chrono::steady_clock::now();
-    const bool preparedOk =
-        renderer::PrepareScene(std::move(scene), shaderPaths, cmd.preprocess, &prepared, &report, cmd.threads);
-    const double prepareSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();
-    if (preparedOk) WarnUndeclared(prepared, warned, &report);
-    // The shaders' warnings are printed before the render starts.
-    Print(report, err);
-    if (!preparedOk) return diag::kExitBadInput;
-    renderer::RenderOptions options;
+    renderer::Options options;
     options.threads = cmd.threads;
+    options.shaderPaths = {ribDir.string(), (ribDir / ".." / "shaders").string(), "shaders"};
+    options.preprocess = cmd.preprocess;
     options.tolerancePixels = cmd.tolerance;
     options.sceneTolerance = !cmd.toleranceGiven;
     options.bounds = cmd.bounds;
@@ -230,21 +214,44 @@ int RenderFrame(const RenderCommand& cmd, renderer::SceneDesc scene, const std::
     options.rayGroupPixels = cmd.rayGroupPixels;
     options.newton = cmd.newton;
     options.reverseTileOrder = cmd.reverseTiles;
+    return options;
+}
+
+/// Renders one frame to `outputPath` (and `pngPath` if not empty); prints the frame's shader
+/// diagnostics (with WarnUndeclared's warnings, `warned` over the run) and, with --stats, its figures.
+int RenderFrame(const RenderCommand& cmd, const renderer::Renderer& renderer, renderer::SceneDesc scene,
+                const std::string& outputPath, const std::string& pngPath, std::set<std::string>* warned,
+                double readSeconds, FILE* out, FILE* err) {
+    diag::Report report;
+    if (cmd.crop) scene.camera.cropWindow = glm::dvec4((*cmd.crop)[0], (*cmd.crop)[1], (*cmd.crop)[2], (*cmd.crop)[3]);
+    if (cmd.samples > 0) scene.camera.xsamples = scene.camera.ysamples = cmd.samples;
+    const texture::CacheStats texturesBefore = texture::Stats();
+    renderer::PreparedScene prepared;
+    const std::optional<int> frameNumber = scene.frame;
+    const auto prepareStart = std::chrono::steady_clock::now();
+    const bool preparedOk = renderer.Prepare(std::move(scene), &prepared, &report);
+    const double prepareSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - prepareStart).count();
+    if (preparedOk) WarnUndeclared(prepared, warned, &report);
+    // The shaders' warnings are printed before the render starts.
+    Print(report, err);
+    if (!preparedOk) return diag::kExitBadInput;
     // Outputs checked, checkpoint started or resumed, signals stop the render.
     FrameOutput files(outputPath, pngPath);
-    if (const int status = files.Begin(cmd.resume, prepared, &options, err); status != diag::kExitSuccess)
+    renderer::RenderControl control;
+    if (const int status = files.Begin(cmd.resume, prepared, renderer, &control, err); status != diag::kExitSuccess)
         return status;
     ProgressBar bar(Progress::ShouldShow(cmd.quiet, stderr));
-    options.progress = &bar;
+    control.progress = &bar;
     image::ImageBuffer image;
     renderer::RenderStats stats;
-    renderer::RenderImage(prepared, options, &image, &stats);
+    renderer.Render(prepared, &image, &stats, control);
     stats.readSeconds = readSeconds;
     stats.prepareSeconds = prepareSeconds;
     if (const int status = files.AfterRender(stats, err); status != diag::kExitSuccess) return status;
     // The header says which render and which pixels this is, for affray merge (renderer/tiling.h).
-    renderer::StampTile(renderer::IdentifyFrame(prepared, options), renderer::CropPixels(prepared.desc.camera),
-                        kVersion, &image);
+    renderer::StampTile(renderer::IdentifyFrame(prepared, renderer.options()),
+                        renderer::CropPixels(prepared.desc.camera), kVersion, &image);
     diag::Report output;
     const bool written = image::WriteExr(outputPath, image, &output) &&
                          (pngPath.empty() || image::WritePngPreview(pngPath, image, &output));
@@ -389,6 +396,10 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
                 return diag::kExitBadInput;
             }
 
+    // The texture maps' tile budget is the process's (docs/design.md 6b); the Renderer, one for
+    // the run: its options from the command line, its threads started once.
+    if (cmd.textureBytes) texture::SetTileMemoryBudget(*cmd.textureBytes);
+    const renderer::Renderer renderer(OptionsOf(cmd));
     // Frame by frame: an error stops the run, and the frames written before it stay complete.
     // SIGINT and SIGTERM stop it too, giving up the frame being rendered.
     std::set<std::string> warned;  // WarnUndeclared's, once over the frames
@@ -396,7 +407,8 @@ int RunRender(const RenderCommand& cmd, FILE* out, FILE* err) {
         // Each frame is rendered once: its description moves into the render (no copy of its
         // primitives).
         renderer::SceneDesc& frame = frames[static_cast<size_t>(chosen[i] - frames.data())];
-        const int status = RenderFrame(cmd, std::move(frame), outputs[i], pngs[i], &warned, readSeconds, out, err);
+        const int status =
+            RenderFrame(cmd, renderer, std::move(frame), outputs[i], pngs[i], &warned, readSeconds, out, err);
         if (status != diag::kExitSuccess) return status;
     }
     return diag::kExitSuccess;

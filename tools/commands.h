@@ -12,6 +12,7 @@
 #include "diag/diagnostic.h"
 #include "lang/preprocess.h"
 #include "renderer/intersect.h"
+#include "renderer/options.h"
 #include "renderer/render.h"
 
 namespace affray::tools {

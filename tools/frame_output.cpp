@@ -18,7 +18,8 @@ void Error(const std::string& where, const std::string& message, FILE* err) {
 
 }  // namespace
 
-int FrameOutput::Begin(bool resume, const renderer::PreparedScene& scene, renderer::RenderOptions* options, FILE* err) {
+int FrameOutput::Begin(bool resume, const renderer::PreparedScene& scene, const renderer::Renderer& renderer,
+                       renderer::RenderControl* control, FILE* err) {
     // A render that could not write its image would be lost: check before it starts.
     for (const std::string& path : {m_output, m_png}) {
         std::string reason;
@@ -29,7 +30,7 @@ int FrameOutput::Begin(bool resume, const renderer::PreparedScene& scene, render
     }
     const renderer::CameraDesc& camera = scene.desc.camera;
     const renderer::Film film(camera);
-    const renderer::RenderIdentity identity = renderer::IdentifyRender(scene, *options);
+    const renderer::RenderIdentity identity = renderer::IdentifyRender(scene, renderer.options());
     m_checkpointPath = renderer::CheckpointPath(m_output);
     std::error_code ec;
     const bool resumed = resume && std::filesystem::exists(m_checkpointPath, ec);
@@ -57,8 +58,7 @@ int FrameOutput::Begin(bool resume, const renderer::PreparedScene& scene, render
                   err);
             return diag::kExitBadInput;
         }
-        options->tileSize = contents.tileSize;
-        options->fixedTileSize = true;
+        control->tileSize = contents.tileSize;
         const bool dropped = contents.droppedTail;
         m_checkpoint = renderer::CheckpointFile::Resume(m_checkpointPath, std::move(contents), &error);
         if (!m_checkpoint) {
@@ -75,17 +75,16 @@ int FrameOutput::Begin(bool resume, const renderer::PreparedScene& scene, render
                        err);
     } else {
         // Without --resume an old checkpoint is replaced.
-        options->tileSize = renderer::RenderTileSize(camera, *options);
-        options->fixedTileSize = true;
+        control->tileSize = renderer.TileSize(camera);
         std::string error;
         m_checkpoint = renderer::CheckpointFile::Create(m_checkpointPath, identity, camera.xres, camera.yres,
-                                                        options->tileSize, &error);
+                                                        control->tileSize, &error);
         if (!m_checkpoint) {
             Error(m_checkpointPath, "cannot write file: " + error, err);
             return diag::kExitOutput;
         }
     }
-    m_tiles = static_cast<int>(film.Tiles(options->tileSize).size());
+    m_tiles = static_cast<int>(film.Tiles(control->tileSize).size());
     if (resume)
         std::fputs(diag::Format({diag::Severity::Note,
                                  {m_checkpointPath},
@@ -95,8 +94,8 @@ int FrameOutput::Begin(bool resume, const renderer::PreparedScene& scene, render
                                  {}})
                        .c_str(),
                    err);
-    options->tileStore = m_checkpoint.get();
-    options->stop = &Interrupts::Flag();
+    control->tileStore = m_checkpoint.get();
+    control->stop = &Interrupts::Flag();
     return diag::kExitSuccess;
 }
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "renderer/checkpoint.h"
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "tools/commands.h"
 
 namespace affray::tools {
@@ -21,10 +21,11 @@ class FrameOutput {
         : m_output(std::move(outputPath)), m_png(std::move(pngPath)) {}
 
     /// Before the render: checks that the outputs can be written, then starts the checkpoint (with
-    /// `resume`, continues the one there if it is this render's) and sets in *options the tiling,
-    /// the tile store and the stop flag. Returns kExitSuccess, or the exit code after printing the
-    /// error to `err`.
-    int Begin(bool resume, const renderer::PreparedScene& scene, renderer::RenderOptions* options, FILE* err);
+    /// `resume`, continues the one there if it is this render's) and sets in *control the tiling,
+    /// the tile store and the stop flag for `renderer` to render `scene` with. Returns
+    /// kExitSuccess, or the exit code after printing the error to `err`.
+    int Begin(bool resume, const renderer::PreparedScene& scene, const renderer::Renderer& renderer,
+              renderer::RenderControl* control, FILE* err);
 
     /// After the render: if a signal stopped it, keeps the checkpoint and returns the exit code
     /// (128 + signal) after saying so on `err`; else kExitSuccess. Warns if the checkpoint could

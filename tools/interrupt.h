@@ -30,7 +30,7 @@ class Interrupts {
     /// True if the time limit, not a signal, set the flag.
     static bool TimedOut();
 
-    /// Set once a signal has come or the time limit has run out (RenderOptions::stop).
+    /// Set once a signal has come or the time limit has run out (RenderControl::stop).
     static const std::atomic<bool>& Flag();
     /// The signal that came (SIGINT or SIGTERM), 0 if none.
     static int Signal();

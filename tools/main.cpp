@@ -244,7 +244,7 @@ bool RenderOption(const std::string& a, Args& args, affray::tools::RenderCommand
     else if (a == "--quiet" || a == "-q")
         cmd.quiet = true;
     else if (a == "--samples")
-        cmd.samples = ParseInt(args.Value(a), a, 1, 256);  // past pixel-samples, PrepareScene says so
+        cmd.samples = ParseInt(args.Value(a), a, 1, 256);  // past pixel-samples, Renderer::Prepare says so
     else if (a == "--region-budget")
         cmd.regionBudget = ParseInt(args.Value(a), a, 1, 1 << 30);
     else if (a == "--frame")

@@ -10,7 +10,7 @@
 #include <set>
 
 #include "renderer/film.h"
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"
 #include "tests/vm/shader_containment.h"
@@ -134,16 +134,17 @@ void SmokeRender(const std::string& name, const std::string& primitive) {
     INFO(error);
     REQUIRE(desc);
     renderer::PreparedScene prepared;
-    const bool prepared_ok = renderer::PrepareScene(*desc, {CorpusDir()}, {}, &prepared, &error);
+    const bool prepared_ok =
+        renderer::Renderer(renderer::Options{.shaderPaths = {CorpusDir()}}).Prepare(*desc, &prepared, &error);
     INFO(error);
     REQUIRE(prepared_ok);
     REQUIRE(prepared.primitives.size() == 1);
     REQUIRE(prepared.primitives[0].shader());
-    renderer::RenderOptions options;
+    renderer::Options options;
     options.threads = 2;
     image::ImageBuffer image;
     renderer::RenderStats stats;
-    renderer::RenderImage(prepared, options, &image, &stats);
+    renderer::Renderer(options).Render(prepared, &image, &stats);
     REQUIRE(image.width == kWidth);
     REQUIRE(image.height == kHeight);
     int hits = 0;

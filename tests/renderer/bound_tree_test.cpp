@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "renderer/intersect.h"
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 #include "tests/test_random.h"
 #include "tests/test_util.h"
@@ -54,16 +54,17 @@ Result RenderWith(int threads, size_t cacheBytes, int tileSize = 32, int rayGrou
     INFO(error);
     REQUIRE(desc);
     PreparedScene prepared;
-    const bool ok = PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error);
+    const bool ok =
+        Renderer(Options{.shaderPaths = {test::SourceDir() + "/shaders"}}).Prepare(*desc, &prepared, &error);
     INFO(error);
     REQUIRE(ok);
-    RenderOptions options;
+    Options options;
     options.threads = threads;
     options.cacheBytes = cacheBytes;
     options.tileSize = tileSize;
     options.rayGroupPixels = rayGroupPixels;
     Result r;
-    RenderImage(prepared, options, &r.image, &r.stats);
+    Renderer(options).Render(prepared, &r.image, &r.stats);
     return r;
 }
 

@@ -36,7 +36,8 @@ PreparedScene Prepare(const test::TempDir& dir, const std::string& rib = kScene)
     INFO(error);
     REQUIRE(desc);
     PreparedScene prepared;
-    const bool ok = PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error);
+    const bool ok =
+        Renderer(Options{.shaderPaths = {test::SourceDir() + "/shaders"}}).Prepare(*desc, &prepared, &error);
     INFO(error);
     REQUIRE(ok);
     return prepared;
@@ -79,13 +80,12 @@ TEST_CASE("checkpoint: a render stopped part way and resumed equals the uninterr
           "[renderer][checkpoint]") {
     test::TempDir dir;
     const PreparedScene scene = Prepare(dir);
-    RenderOptions options;
+    Options options;
     options.threads = 2;
-    options.tileSize = 8;
-    options.fixedTileSize = true;
+    const RenderControl eight{.tileSize = 8};
     image::ImageBuffer whole;
     RenderStats stats;
-    RenderImage(scene, options, &whole, &stats);
+    Renderer(options).Render(scene, &whole, &stats, eight);
     REQUIRE_FALSE(stats.stopped);
     REQUIRE(whole.extraChannels.size() == 8);  // Z, N (3), st (2), cost and err, as the mode asks
 
@@ -97,11 +97,11 @@ TEST_CASE("checkpoint: a render stopped part way and resumed equals the uninterr
     REQUIRE(file);
     std::atomic<bool> stop{false};
     StopAfter store(file.get(), 5, &stop);
-    RenderOptions first = options;
+    RenderControl first = eight;
     first.stop = &stop;
     first.tileStore = &store;
     image::ImageBuffer partial;
-    RenderImage(scene, first, &partial, &stats);
+    Renderer(options).Render(scene, &partial, &stats, first);
     CHECK(stats.stopped);
     const int kept = file->tiles();
     CHECK(kept >= 5);
@@ -123,12 +123,13 @@ TEST_CASE("checkpoint: a render stopped part way and resumed equals the uninterr
     // Resumed with other threads and the other tile order: only the missing tiles are rendered.
     file = CheckpointFile::Resume(path, std::move(contents), &error);
     REQUIRE(file);
-    RenderOptions second = options;
+    Options second = options;
     second.threads = 3;
     second.reverseTileOrder = true;
-    second.tileStore = file.get();
+    RenderControl fromFile = eight;
+    fromFile.tileStore = file.get();
     image::ImageBuffer resumed;
-    RenderImage(scene, second, &resumed, &stats);
+    Renderer(second).Render(scene, &resumed, &stats, fromFile);
     CHECK(stats.tilesRestored == kept);
     CHECK(file->tiles() == 24);
     CHECK(SameBits(resumed, whole));
@@ -209,7 +210,7 @@ TEST_CASE("checkpoint: the render identity changes with the scene, the shader an
 
     test::TempDir dir;
     const PreparedScene scene = Prepare(dir);
-    RenderOptions options;
+    Options options;
     const RenderIdentity base = IdentifyRender(scene, options);
     CHECK(base.scene.size() == 32);
     CHECK(base.Hash().size() == 32);
@@ -219,14 +220,14 @@ TEST_CASE("checkpoint: the render identity changes with the scene, the shader an
     CHECK(IdentifyRender(Prepare(elsewhere), options).Hash() == base.Hash());
 
     // Options that do not change pixels do not change it.
-    RenderOptions same = options;
+    Options same = options;
     same.threads = 7;
     same.cacheBytes = 1 << 16;
     same.tileSize = 16;
     same.reverseTileOrder = true;
     CHECK(IdentifyRender(scene, same).Hash() == base.Hash());
 
-    RenderOptions other = options;
+    Options other = options;
     other.tolerancePixels = 0.25;
     other.bounds = BoundMode::Interval;
     const RenderIdentity changed = IdentifyRender(scene, other);
@@ -259,7 +260,7 @@ TEST_CASE(
     rib.replace(rib.find("  Displacement"), rib.find("WorldEnd") - rib.find("  Displacement"),
                 "  Displacement \"texmap\" \"mapname\" [\"" + dir.Path("a.exr") + "\"]\n" + patch +
                     "  Displacement \"texmap\" \"mapname\" [\"" + dir.Path("b.exr") + "\"]\n" + patch + patch);
-    RenderOptions options;
+    Options options;
     const std::string base = IdentifyRender(Prepare(dir, rib), options).Hash();
     CHECK(IdentifyRender(Prepare(dir, rib), options).Hash() == base);
     for (const char* name : {"a.exr", "b.exr"}) {

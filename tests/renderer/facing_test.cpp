@@ -136,7 +136,7 @@ constexpr int kColumns = 24;
 constexpr int kCentre = kCellPixels / 2;
 // A displacement along N, smooth and gentle (its slope keeps every facing as it was), which
 // vanishes where s or t is 0 or 1: the faces of a polygon cube, each lifted along its own normal,
-// stay joined at their edges. Given as bytecode: PrepareScene compiles a source shader once per
+// stay joined at their edges. Given as bytecode: Renderer::Prepare compiles a source shader once per
 // object space, which is once per cell here (milliseconds each), and only loads bytecode.
 const char* const kBumpShader =
     "displacement bump(float Km = 0.1) {\n"

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"
 
@@ -30,13 +30,14 @@ renderer::RenderStats Render(const std::string& rib, bool given) {
     renderer::SceneDesc desc = Parse(rib);
     diag::Report error;
     renderer::PreparedScene prepared;
-    REQUIRE(renderer::PrepareScene(desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error));
-    renderer::RenderOptions options;
+    REQUIRE(renderer::Renderer(renderer::Options{.shaderPaths = {test::SourceDir() + "/shaders"}})
+                .Prepare(desc, &prepared, &error));
+    renderer::Options options;
     options.threads = 2;
     options.sceneTolerance = !given;
     image::ImageBuffer image;
     renderer::RenderStats stats;
-    renderer::RenderImage(prepared, options, &image, &stats);
+    renderer::Renderer(options).Render(prepared, &image, &stats);
     CHECK(stats.camera.depthLimitHits == 0);
     return stats;
 }

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "renderer/film.h"
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"
 
@@ -29,10 +29,11 @@ inline image::ImageBuffer RenderRib(const TempDir& dir, const std::string& rib, 
     desc->camera.jitter = false;
     desc->camera.filter = renderer::FilterDesc{renderer::FilterDesc::Kind::Box, 1, 1};
     renderer::PreparedScene prepared;
-    const bool ok = renderer::PrepareScene(*desc, {dir.Path(".")}, {}, &prepared, &error);
+    const bool ok =
+        renderer::Renderer(renderer::Options{.shaderPaths = {dir.Path(".")}}).Prepare(*desc, &prepared, &error);
     INFO(error);
     REQUIRE(ok);
-    renderer::RenderOptions options;
+    renderer::Options options;
     options.threads = 2;
     if (tolerancePixels) {
         options.tolerancePixels = *tolerancePixels;
@@ -41,7 +42,7 @@ inline image::ImageBuffer RenderRib(const TempDir& dir, const std::string& rib, 
     image::ImageBuffer image;
     renderer::RenderStats own;
     if (!stats) stats = &own;
-    renderer::RenderImage(prepared, options, &image, stats);
+    renderer::Renderer(options).Render(prepared, &image, stats);
     CHECK(stats->camera.depthLimitHits == 0);
     return image;
 }

@@ -2,7 +2,7 @@
 // scenes whose answers are known by hand: clipping planes, one-sided surfaces, the shader search
 // path, named coordinate systems, clipping planes and format seen by shaders, quadrics in the BVH,
 // and AOVs.
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 
 #include <catch2/catch.hpp>
 
@@ -29,14 +29,15 @@ image::ImageBuffer Render(const test::TempDir& dir, const std::string& rib, Prep
     desc->camera.xsamples = desc->camera.ysamples = 1;
     desc->camera.filter = FilterDesc{FilterDesc::Kind::Box, 1, 1};
     PreparedScene prepared;
-    const bool prepared_ok = PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error);
+    const bool prepared_ok =
+        Renderer(Options{.shaderPaths = {test::SourceDir() + "/shaders"}}).Prepare(*desc, &prepared, &error);
     INFO(error);
     REQUIRE(prepared_ok);
-    RenderOptions options;
+    Options options;
     options.threads = 2;
     image::ImageBuffer image;
     RenderStats stats;
-    RenderImage(prepared, options, &image, &stats);
+    Renderer(options).Render(prepared, &image, &stats);
     if (keep) *keep = std::move(prepared);
     return image;
 }
@@ -128,7 +129,7 @@ TEST_CASE("render: shaders are found on the scene's search path and see its coor
     std::optional<SceneDesc> desc = ParseRib(std::string(kCamera) + world, dir.Path("scene.rib"), &error);
     REQUIRE(desc);
     PreparedScene prepared;
-    CHECK(PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error));
+    CHECK(Renderer(Options{.shaderPaths = {test::SourceDir() + "/shaders"}}).Prepare(*desc, &prepared, &error));
     CHECK(error.format().find("warning: shader 'lifted' not found") != std::string::npos);
     CHECK_FALSE(error.hasErrors());
     REQUIRE(prepared.primitives.size() == 1);
@@ -324,13 +325,13 @@ TEST_CASE("render: scenes/wavy_sheet.rib, a displaced bicubic patch mesh, render
     desc->camera.xres = 48, desc->camera.yres = 36;
     desc->camera.xsamples = desc->camera.ysamples = 1;
     PreparedScene prepared;
-    REQUIRE(PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error));
+    REQUIRE(Renderer(Options{.shaderPaths = {test::SourceDir() + "/shaders"}}).Prepare(*desc, &prepared, &error));
     // Each patch's BVH box holds its displaced points (the patches' corners included).
     test::Rng rng(5);
     const glm::dvec3 eye = Camera(prepared.desc.camera).Position();
     for (const Primitive& prim : prepared.primitives) {
         CHECK(prim.base().kind() == BaseSurface::Kind::BicubicPatch);
-        const Box box = DisplacedBox(prim, eye, 8);  // as PrepareScene makes it for 12 patches
+        const Box box = DisplacedBox(prim, eye, 8);  // as Renderer::Prepare makes it for 12 patches
         for (int k = 0; k < 40; ++k) {
             const double u = k < 4 ? (k & 1) : rng.uniform(0, 1), v = k < 4 ? (k >> 1) : rng.uniform(0, 1);
             const glm::dvec3 p = test::PointOnSurface(prim.bound(), prim.base(), u, v);
@@ -339,11 +340,11 @@ TEST_CASE("render: scenes/wavy_sheet.rib, a displaced bicubic patch mesh, render
             CHECK(glm::all(glm::lessThanEqual(p, box.hi)));
         }
     }
-    RenderOptions options;
+    Options options;
     options.threads = 2;
     image::ImageBuffer image;
     RenderStats stats;
-    RenderImage(prepared, options, &image, &stats);
+    Renderer(options).Render(prepared, &image, &stats);
     CHECK(Covered(image) > 48 * 36 / 4);
     for (float x : image.rgba) CHECK(std::isfinite(x));
     CHECK(stats.camera.depthLimitHits == 0);

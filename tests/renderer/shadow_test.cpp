@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "renderer/film.h"
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 #include "scene/geometry/camera.h"
 #include "tests/test_util.h"
@@ -80,12 +80,12 @@ std::unique_ptr<Rendered> Render(std::string rib, const test::TempDir& dir) {
     desc->camera.filter.xwidth = desc->camera.filter.ywidth = 1;
     desc->displayMode = "rgba,Z,N,P";
     auto out = std::make_unique<Rendered>();
-    REQUIRE(renderer::PrepareScene(*desc, {dir.Path("")}, {}, &out->scene, &error));
+    REQUIRE(renderer::Renderer(renderer::Options{.shaderPaths = {dir.Path("")}}).Prepare(*desc, &out->scene, &error));
     out->camera = std::make_unique<renderer::Camera>(desc->camera);
-    renderer::RenderOptions options;
+    renderer::Options options;
     options.threads = 2;
     renderer::RenderStats stats;
-    renderer::RenderImage(out->scene, options, &out->image, &stats);
+    renderer::Renderer(options).Render(out->scene, &out->image, &stats);
     REQUIRE(out->image.width == desc->camera.xres);
     REQUIRE(out->image.height == desc->camera.yres);
     return out;

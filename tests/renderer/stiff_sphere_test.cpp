@@ -14,7 +14,7 @@
 #include <random>
 
 #include "renderer/intersect.h"
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 #include "scene/geometry/camera.h"
 #include "tests/test_util.h"
@@ -40,7 +40,7 @@ SphereCase LoadSphere() {
     std::optional<renderer::SceneDesc> desc = rib::ReadRib(dir + "/sphere-poles.rib", &error);
     INFO(error);
     REQUIRE(desc);
-    REQUIRE(renderer::PrepareScene(*desc, {dir}, {}, &c.prepared, &error));
+    REQUIRE(renderer::Renderer(renderer::Options{.shaderPaths = {dir}}).Prepare(*desc, &c.prepared, &error));
     REQUIRE(c.prepared.primitives.size() == 1);
     REQUIRE(c.primitive().base().kind() == renderer::BaseSurface::Kind::Quadric);
     c.camera = std::make_unique<renderer::Camera>(desc->camera);

@@ -22,7 +22,7 @@
 #include <sstream>
 
 #include "renderer/intersect.h"
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 #include "scene/geometry/camera.h"
 #include "tests/test_util.h"
@@ -39,7 +39,7 @@ namespace {
 /// (the same line bench/stiff_table.sh passes to `affray render`).
 struct StiffScene {
     renderer::PreparedScene prepared;
-    renderer::RenderOptions options;
+    renderer::Options options;
     std::unique_ptr<renderer::Camera> camera;
 
     const renderer::Primitive& primitive() const { return prepared.primitives.at(0); }
@@ -50,8 +50,8 @@ struct StiffScene {
 
 std::string StiffDir() { return test::SourceDir() + "/tests/scenes/stiff"; }
 
-renderer::RenderOptions OptionsFromArgs(const std::string& ribPath) {
-    renderer::RenderOptions options;
+renderer::Options OptionsFromArgs(const std::string& ribPath) {
+    renderer::Options options;
     std::ifstream in(ribPath);
     std::string line;
     while (std::getline(in, line)) {
@@ -74,10 +74,11 @@ renderer::RenderOptions OptionsFromArgs(const std::string& ribPath) {
     return options;
 }
 
-StiffScene PrepareDesc(const renderer::SceneDesc& desc, const renderer::RenderOptions& options) {
+StiffScene PrepareDesc(const renderer::SceneDesc& desc, const renderer::Options& options) {
     StiffScene s;
     affray::diag::Report error;
-    bool ok = renderer::PrepareScene(desc, {StiffDir(), test::SourceDir() + "/shaders"}, {}, &s.prepared, &error);
+    bool ok = renderer::Renderer(renderer::Options{.shaderPaths = {StiffDir(), test::SourceDir() + "/shaders"}})
+                  .Prepare(desc, &s.prepared, &error);
     INFO(error);
     REQUIRE(ok);
     REQUIRE(s.prepared.primitives.size() == 1);
@@ -702,14 +703,15 @@ TEST_CASE("stiff: a wall 1e-4 thick covers every pixel of its projected rectangl
     REQUIRE(desc);
     desc->camera.filter = renderer::FilterDesc{renderer::FilterDesc::Kind::Box, 1, 1};
     renderer::PreparedScene prepared;
-    const bool ok = renderer::PrepareScene(*desc, {test::SourceDir() + "/tests/scenes/stiff"}, {}, &prepared, &error);
+    const bool ok = renderer::Renderer(renderer::Options{.shaderPaths = {test::SourceDir() + "/tests/scenes/stiff"}})
+                        .Prepare(*desc, &prepared, &error);
     INFO(error);
     REQUIRE(ok);
-    renderer::RenderOptions options;
+    renderer::Options options;
     options.threads = 2;
     image::ImageBuffer image;
     renderer::RenderStats stats;
-    renderer::RenderImage(prepared, options, &image, &stats);
+    renderer::Renderer(options).Render(prepared, &image, &stats);
     const renderer::Camera camera(desc->camera);
     const double margin = 2 * camera.PixelWidth();
     int inside = 0, missed = 0;

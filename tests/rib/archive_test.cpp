@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "renderer/film.h"
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"
 
@@ -61,14 +61,14 @@ const char* const kSquare = "Patch \"bilinear\" \"P\" [0 0 0  1 0 0  0 1 0  1 1 
 image::ImageBuffer Render(const SceneDesc& desc, const std::string& shaders = test::SourceDir() + "/shaders") {
     diag::Report error;
     PreparedScene prepared;
-    const bool ok = PrepareScene(desc, {shaders}, {}, &prepared, &error);
+    const bool ok = Renderer(Options{.shaderPaths = {shaders}}).Prepare(desc, &prepared, &error);
     INFO(error);
     REQUIRE(ok);
-    RenderOptions options;
+    Options options;
     options.threads = 2;
     image::ImageBuffer image;
     RenderStats stats;
-    RenderImage(prepared, options, &image, &stats);
+    Renderer(options).Render(prepared, &image, &stats);
     return image;
 }
 
@@ -215,7 +215,7 @@ TEST_CASE("Displacement shader messages inside an archive name the archive", "[r
     REQUIRE(desc->primitives.size() == 1);
     CHECK(desc->primitives[0].attr().displacement->file == dir.Path("part.rib"));
     PreparedScene prepared;
-    CHECK(PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &report));
+    CHECK(Renderer(Options{.shaderPaths = {test::SourceDir() + "/shaders"}}).Prepare(*desc, &prepared, &report));
     REQUIRE(!report.all().empty());
     CHECK(Line(report.all().back()).rfind("part.rib:2:1: warning: shader 'no_such_shader' not found", 0) == 0);
     CHECK(report.all().back().where.text == "Displacement \"no_such_shader\"");

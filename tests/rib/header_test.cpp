@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "renderer/film.h"
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 #include "tests/test_util.h"
 
@@ -103,16 +103,16 @@ WorldEnd
     INFO(report);
     REQUIRE(desc);
     PreparedScene prepared;
-    REQUIRE(PrepareScene(*desc, {}, {}, &prepared, &report));
+    REQUIRE(Renderer(Options{.shaderPaths = {}}).Prepare(*desc, &prepared, &report));
     // The film puts each sample at its stratum's centre.
     const Film film(desc->camera);
     CHECK(film.SamplePosition(1, 0, 0) == glm::dvec2(1.25, 0.25));
     CHECK(film.SamplePosition(1, 0, 3) == glm::dvec2(1.75, 0.75));
-    RenderOptions options;
+    Options options;
     options.threads = 2;
     image::ImageBuffer image;
     RenderStats stats;
-    RenderImage(prepared, options, &image, &stats);
+    Renderer(options).Render(prepared, &image, &stats);
     REQUIRE(image.width == 4);
     CHECK(image.rgba[3] == 1.0f);
     CHECK(image.rgba[7] == 0.5f);

@@ -8,7 +8,7 @@
 
 #include <sstream>
 
-#include "renderer/render.h"
+#include "renderer/renderer.h"
 #include "rib/rib.h"
 #include "scene/geometry/pole.h"
 #include "scene/geometry/surface.h"
@@ -217,12 +217,13 @@ TEST_CASE("pole: a displaced teapot lid renders with every hit certified", "[ren
     INFO(error);
     REQUIRE(desc);
     renderer::PreparedScene prepared;
-    REQUIRE(renderer::PrepareScene(*desc, {test::SourceDir() + "/shaders"}, {}, &prepared, &error));
-    renderer::RenderOptions options;
+    REQUIRE(renderer::Renderer(renderer::Options{.shaderPaths = {test::SourceDir() + "/shaders"}})
+                .Prepare(*desc, &prepared, &error));
+    renderer::Options options;
     options.threads = 2;
     image::ImageBuffer image;
     renderer::RenderStats stats;
-    renderer::RenderImage(prepared, options, &image, &stats);
+    renderer::Renderer(options).Render(prepared, &image, &stats);
     CHECK(stats.camera.depthLimitHits == 0);
     CHECK(stats.camera.budgetExhausted == 0);
     CHECK(stats.camera.maxRegionsPerRay < 5000);
