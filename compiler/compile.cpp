@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "compiler/emit.h"
+#include "diag/check.h"
 #include "lang/parse.h"
 #include "vm/bytecode_file.h"
 #include "vm/verify.h"
@@ -151,7 +152,8 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         // diagnostics that the generic lowering did not give.
         AddNew(again.report(), &result.diagnostics);
         if (!instance && again.hasErrors()) return result;
-        if (!instance) throw std::logic_error("lowering " + path + " with its parameter values failed");
+        // The generic lowering succeeded, so the instance's can fail only by its own errors.
+        AFFRAY_CHECK(instance);
         shader.stringParams = lowered->stringParams;
         shader.undeclared = result.undeclared;
         shader.reads = lowered->reads;
@@ -170,8 +172,10 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     }
     for (vm::Program* p : {&shader.genericBound, &shader.genericShade, &shader.bound, &shader.shade}) {
         std::string error;
-        if (!vm::Verify(*p, &error))
-            throw std::logic_error("compiler emitted an invalid program for " + path + ": " + error);
+        // The emitter's programs are valid by construction; the verifier checks that they are.
+        const bool valid = vm::Verify(*p, &error);
+        AFFRAY_CHECK_EQ(error, std::string());
+        AFFRAY_CHECK(valid);
     }
     result.shader = std::make_shared<const CompiledShader>(std::move(shader));
     return result;

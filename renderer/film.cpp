@@ -1,5 +1,6 @@
 // renderer/film.cpp: crop window, sample positions, filtering and AOV rules (see film.h).
 #include "renderer/film.h"
+#include "diag/check.h"
 
 #include <algorithm>
 #include <cmath>
@@ -242,14 +243,13 @@ void Film::ResolveTile(const PixelRange& tile, const std::vector<Sample>& sample
     const PixelRange region = SampleRegion(tile);
     const size_t expected =
         region.empty() ? 0 : static_cast<size_t>(region.width()) * region.height() * samplesPerPixel();
-    if (samples.size() != expected || values.size() != expected)
-        throw std::invalid_argument("Film::ResolveTile: " + std::to_string(samples.size()) + " samples and " +
-                                    std::to_string(values.size()) + " values for tile " + ToString(tile) +
-                                    ", expected " + std::to_string(expected));
+    // The tile's samples (TileSamples) and their values, into the film's image (MakeImage).
+    AFFRAY_CHECK_EQ(samples.size(), expected);
+    AFFRAY_CHECK_EQ(values.size(), expected);
     const size_t pixels = static_cast<size_t>(m_xres) * m_yres;
-    if (image->width != m_xres || image->height != m_yres || image->rgba.size() != pixels * 4)
-        throw std::invalid_argument("Film::ResolveTile: the image is not " + std::to_string(m_xres) + "x" +
-                                    std::to_string(m_yres));
+    AFFRAY_CHECK_EQ(image->width, m_xres);
+    AFFRAY_CHECK_EQ(image->height, m_yres);
+    AFFRAY_CHECK_EQ(image->rgba.size(), pixels * 4);
     const ChannelPointers ch = FindChannels(image);
     for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x)

@@ -2,6 +2,7 @@
 // and the scalar evaluation of one opcode that the constant folder uses.
 #include <stdexcept>
 
+#include "diag/check.h"
 #include "vm/interpreter.inl"
 
 namespace affray::vm {
@@ -9,10 +10,9 @@ template class Interpreter<double>;
 
 double RunScalarOpcode(Op op, const double* operands, uint8_t flags) {
     const int n = OperandCount(op);
-    if (FormOf(op) != OperandForm::RR || OperationOf(op) == Operation::None)
-        throw std::logic_error(std::string("RunScalarOpcode: not an all-register operation: ") + Info(op).name);
-    if (OperationOf(op) == Operation::Texture)
-        throw std::logic_error("RunScalarOpcode: a texture lookup needs its program's texture slots");
+    // An all-register operation (a texture lookup needs its program's texture slots).
+    AFFRAY_CHECK(FormOf(op) == OperandForm::RR && OperationOf(op) != Operation::None);
+    AFFRAY_CHECK(OperationOf(op) != Operation::Texture);
     // R[i] := K[i] for each operand, then the opcode reading R[0..n-1] into R[n].
     Program program;
     program.constants.assign(operands, operands + n);

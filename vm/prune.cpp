@@ -9,6 +9,7 @@
 // double operation as R + R[c] with R[c] = K[c]), and a dropped one is replaced by the operand or
 // constant the decisions proved it gives.
 #include "vm/prune.h"
+#include "diag/check.h"
 
 #include <climits>
 #include <cmath>
@@ -68,8 +69,8 @@ std::string Decisions::ToString() const {
 }
 
 void Pruner::Prune(const Program& program, const Decisions& decisions, Program* out) {
-    if (decisions.size() != program.code.size())
-        throw std::logic_error("Prune: the decisions were recorded for another program");
+    // The decisions must have been recorded for this program.
+    AFFRAY_CHECK_EQ(decisions.size(), program.code.size());
     Assembler& as = m_assembler;
     as.Clear();
     m_regValue.assign(program.registerCount, -1);
