@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <stdexcept>
 #include <thread>
 #include <unordered_map>
 #include <unordered_set>
@@ -28,7 +29,9 @@
 #include "diag/limits.h"
 #include "renderer/film.h"
 #include "renderer/shade.h"
+#include "renderer/thread_pool.h"
 #include "scene/geometry/camera.h"
+#include "scene/refine.h"
 #include "texture/texture.h"
 
 namespace affray::renderer {
@@ -711,6 +714,11 @@ std::string CheckImageLimits(const CameraDesc& camera, const std::string& displa
 
 bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
                   const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report, int threads) {
+    // The meshes as read split and refined (scene/refine.h), several at once, before anything else.
+    if (ThreadPool pool(threads); !RefineScene(&input, report, [&](size_t n, const std::function<void(size_t)>& body) {
+            pool.ForEach(n, [&](size_t i, int) { body(i); });
+        }))
+        return false;
     auto fail = [&](const diag::Location& where, std::string message) {
         if (report) report->error(where, std::move(message));
         return false;
@@ -790,6 +798,7 @@ bool PrepareScene(SceneDesc input, const std::vector<std::string>& shaderPaths,
     for (const PrimitiveDesc& p : desc.primitives) elements += p.elements;
     out->primitives.reserve(elements);
     for (const PrimitiveDesc& patch : desc.primitives) {
+        if (patch.unrefined) throw std::logic_error("PrepareScene: a mesh left unrefined (RefineScene)");
         const PrimitiveAttributes& attributes = *patch.attributes;
         auto [entry, newAttributes] = instances.try_emplace(&attributes);
         Instance& instance = entry->second;

@@ -183,13 +183,16 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, c
 /// infinite if a bound overflows somewhere.
 Box DisplacedBox(const Primitive& prim, const glm::dvec3& eye, int cells);
 
-/// Compiles every displacement instance of `desc` (each with its own parameter values) and
-/// specialises it for its surface (an instance like an earlier one reuses its compilation).
+/// Refines the meshes of `desc` that the reader left as read (RefineScene, scene/refine.h: an error
+/// there at the mesh's request), then compiles every displacement instance of `desc` (each with
+/// its own parameter values) and specialises it for its surface (an instance like an earlier one
+/// reuses its compilation).
 /// Shaders are found as NAME.sl or NAME.afb in the scene's Option "searchpath" "shader" (relative
 /// directories taken from the RIB file's directory), then in `shaderPaths`;
 /// `preprocess` gives the -I and -D of the C preprocessor. The shaders' diagnostics go to *report
 /// (may be null); on error returns false with an error there at the Displacement request.
-/// `threads` bound the primitives' boxes (0: one per core), as RenderOptions::threads renders.
+/// `threads` refine the meshes and bound the primitives' boxes (0: one per core), as
+/// RenderOptions::threads renders.
 bool PrepareScene(SceneDesc desc, const std::vector<std::string>& shaderPaths,
                   const lang::PreprocessOptions& preprocess, PreparedScene* out, diag::Report* report, int threads = 0);
 
