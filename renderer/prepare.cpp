@@ -23,10 +23,12 @@
 #include <unistd.h>
 
 #include "compiler/shader_cache.h"
+#include "diag/check.h"
 #include "diag/limits.h"
 #include "renderer/film.h"
 #include "renderer/shade.h"
 #include "scene/geometry/camera.h"
+#include "scene/refine.h"
 #include "texture/texture.h"
 
 namespace affray::renderer {
@@ -295,6 +297,11 @@ Box DisplacedBox(const Primitive& prim, const glm::dvec3& eye, int cells) {
 bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report) const {
     const std::vector<std::string>& shaderPaths = m_options.shaderPaths;
     const lang::PreprocessOptions& preprocess = m_options.preprocess;
+    // The meshes as read split and refined (scene/refine.h), several at once, before anything else.
+    const auto parallelFor = [&](size_t n, const std::function<void(size_t)>& body) {
+        m_pool.ForEach(n, [&](size_t i, int) { body(i); });
+    };
+    if (!RefineScene(&input, report, parallelFor)) return false;
     auto fail = [&](const diag::Location& where, std::string message) {
         if (report) report->error(where, std::move(message));
         return false;
@@ -374,6 +381,7 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
     for (const PrimitiveDesc& p : desc.primitives) elements += p.elements;
     out->primitives.reserve(elements);
     for (const PrimitiveDesc& patch : desc.primitives) {
+        AFFRAY_CHECK(!patch.unrefined);  // RefineScene refined every mesh as read
         const PrimitiveAttributes& attributes = *patch.attributes;
         auto [entry, newAttributes] = instances.try_emplace(&attributes);
         Instance& instance = entry->second;

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <stdexcept>
 #include <thread>
 #include <unordered_map>
 #include <unordered_set>
@@ -28,7 +29,9 @@
 #include "diag/limits.h"
 #include "renderer/film.h"
 #include "renderer/shade.h"
+#include "renderer/thread_pool.h"
 #include "scene/geometry/camera.h"
+#include "scene/refine.h"
 #include "texture/texture.h"
 
 namespace affray::renderer {

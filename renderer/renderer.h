@@ -64,7 +64,9 @@ class Renderer {
     int threads() const { return m_pool.size(); }
     ThreadPool& pool() const { return m_pool; }
 
-    /// Prepares `desc` as read for rendering into *out: checks the image against the limits, runs
+    /// Prepares `desc` as read for rendering into *out: refines the meshes the reader kept as read
+    /// (RefineScene, scene/refine.h, meshes at once on the pool: an error there at the mesh's
+    /// request), checks the image against the limits, runs
     /// its MakeTexture requests, compiles every displacement instance (each with its own
     /// parameter values; an instance like an earlier one reuses its compilation) and specialises
     /// it for its surface, and boxes every primitive for the BVH. Shaders are found as NAME.sl or

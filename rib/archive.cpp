@@ -247,16 +247,21 @@ bool RibParser::DoObjectInstance(const RibRequest& r) {
     // The object's requests inside an attribute block: the instance's graphics state, restored after.
     const ObjectDef& object = it->second;
     const State saved = m_state;
+    // The note of an error inside the replay, at the outermost instance: for the meshes it makes,
+    // whose errors RefineScene reports (AddMesh).
+    std::pair<RibPos, std::string> note{r.at, "in the instance of object " + Quote(handle) + " here"};
+    if (m_instanceDepth == 0) m_instanceNote = note;
     ++m_instanceDepth;
     for (const RibRequest& request : object.requests) {
         if (!Dispatch(request)) {
             // Each level out replaces the note, so it ends at the outermost instance.
-            m_errorNote = {r.at, "in the instance of object " + Quote(handle) + " here"};
+            m_errorNote = std::move(note);
             return false;
         }
     }
     // Record() saw that the object's blocks close inside it, so m_blocks is as it was.
     --m_instanceDepth;
+    if (m_instanceDepth == 0) m_instanceNote.reset();
     m_state = saved;
     return true;
 }

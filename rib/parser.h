@@ -18,11 +18,13 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "diag/diagnostic.h"
 #include "rib/args.h"
 #include "rib/lexer.h"
+#include "scene/refine.h"
 #include "scene/scene.h"
 
 namespace affray::rib {
@@ -344,7 +346,7 @@ class RibParser : private RibArgChecks {
     bool DoHyperboloid(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Hyperboloid); }
     bool DoParaboloid(const RibRequest& r) { return DoQuadric(r, Quadric::Kind::Paraboloid); }
     // The polygon requests (rib/polygons.cpp): each reads its counts and indices, then MeshRequest
-    // checks them and the parameter list and adds the mesh's pieces.
+    // checks them and the parameter list and adds the mesh (AddMesh).
     bool DoPolygon(const RibRequest& r);
     bool DoGeneralPolygon(const RibRequest& r);
     bool DoPointsPolygons(const RibRequest& r);
@@ -357,6 +359,11 @@ class RibParser : private RibArgChecks {
     /// from argument `first`.
     bool MeshRequest(const RibRequest& r, std::vector<int> loops, std::vector<int> loopSizes, std::vector<int> corners,
                      size_t first, bool indexed);
+    /// Adds the polygon or subdivision mesh of request `r` as read, with its "Cs" (colors[0]) and
+    /// "Os" (colors[1]): one primitive whose elements RefineScene makes (scene/refine.h), with
+    /// what it needs to report a problem at `r` as Fail would.
+    void AddMesh(const RibRequest& r, std::variant<renderer::PolygonMesh, renderer::SubdivisionMesh> mesh,
+                 std::optional<renderer::ColorValues> (&colors)[2]);
     /// Values a primitive holds per storage class (RI Spec 3.2 table 4.1): a polygon or
     /// subdivision mesh's faces, points and face corners (varying values are per point); a
     /// patch's or quadric's patches, varying values (at the patches' corners) and control points.
@@ -425,11 +432,12 @@ class RibParser : private RibArgChecks {
     std::map<std::string, ObjectDef> m_objects;              // by handle ("1" or the string)
     std::optional<ArchiveDef> m_archiveDef;                  // between ArchiveBegin and ArchiveEnd
     std::map<std::string, std::shared_ptr<const std::vector<RibRequest>>> m_inlineArchives;  // by name
-    std::optional<std::pair<std::string, ObjectDef>> m_defining;  // between ObjectBegin and ObjectEnd
-    int m_definingDepth = 0;                                      // Attribute/Transform blocks open in it
-    int m_instanceDepth = 0;                                      // ObjectInstance replays under way
-    std::optional<std::pair<RibPos, std::string>> m_errorNote;    // a note on the error, if any
-    std::set<std::string> m_warned;                               // each distinct warning once
+    std::optional<std::pair<std::string, ObjectDef>> m_defining;   // between ObjectBegin and ObjectEnd
+    int m_definingDepth = 0;                                       // Attribute/Transform blocks open in it
+    int m_instanceDepth = 0;                                       // ObjectInstance replays under way
+    std::optional<std::pair<RibPos, std::string>> m_errorNote;     // a note on the error, if any
+    std::optional<std::pair<RibPos, std::string>> m_instanceNote;  // that note for the replay under way
+    std::set<std::string> m_warned;                                // each distinct warning once
 
     SceneDesc m_scene;
     State m_state;

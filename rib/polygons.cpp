@@ -1,13 +1,14 @@
 // rib/polygons.cpp: the polygon requests of RI Spec 3.2 section 5.1: Polygon, GeneralPolygon,
 // PointsPolygons and PointsGeneralPolygons. Each becomes a renderer::PolygonMesh in world space,
-// which renderer::SplitMesh cuts into pieces, one primitive each. The parameter list is checked
-// against the mesh's counts per storage class (RI 3.2 section 4.1): constant 1, uniform one per
-// polygon, varying and vertex one per point, facevarying one per polygon corner (hole corners
-// included). Only "P", "Pw", "N", "st", "s", "t", "Cs" and "Os" are used; other variables are
-// checked, then ignored with a warning.
+// kept as read on one primitive (AddMesh, which SubdivisionMesh shares): renderer::RefineScene
+// cuts it into pieces, the primitive's elements, when the scene is prepared (scene/refine.h), and
+// reports at the request the faces it cannot cut. The parameter list is checked against the
+// mesh's counts per storage class (RI 3.2 section 4.1): constant 1, uniform one per polygon,
+// varying and vertex one per point, facevarying one per polygon corner (hole corners included).
+// Only "P", "Pw", "N", "st", "s", "t", "Cs" and "Os" are used; other variables are checked, then
+// ignored with a warning.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numeric>
 
 #include "rib/parser.h"
@@ -160,22 +161,29 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
             return Fail(position->at, context + " point " + std::to_string(i) + " overflows in world space");
     }
 
-    // One primitive for the mesh, its pieces its elements (renderer::PieceMesh); a constant Cs
-    // or Os is its colour, any other its mesh's.
-    auto split = std::make_shared<renderer::PieceMesh>();
-    if (std::string problem = renderer::SplitMesh(std::move(mesh), split.get()); !problem.empty())
-        return Fail(r.at, context + " " + problem);
-    if (split->pieces.size() > std::numeric_limits<uint32_t>::max())
-        return Fail(r.at, context + " has more than 2^32 - 1 pieces");
-    for (int k = 0; k < 2; ++k)
-        if (colors[k] && colors[k]->storage != StorageClass::Constant) split->colors[k] = std::move(*colors[k]);
+    // The mesh as read: the preparation of the scene splits it into pieces (scene/refine.h).
+    AddMesh(r, std::move(mesh), colors);
+    return true;
+}
+
+void RibParser::AddMesh(const RibRequest& r, std::variant<renderer::PolygonMesh, renderer::SubdivisionMesh> mesh,
+                        std::optional<ColorValues> (&colors)[2]) {
+    // A constant Cs or Os is the primitive's colour, any other the mesh's.
     PrimitiveDesc prim;
-    prim.elements = static_cast<uint32_t>(split->pieces.size());
-    prim.base = renderer::BaseSurface(renderer::MeshPieceRef{std::move(split), 0});
     SetPrimitiveAttributes(r, &prim);
     SetConstantColors(colors, &prim);
+    auto unrefined = std::make_shared<renderer::UnrefinedMesh>();
+    unrefined->mesh = std::move(mesh);
+    for (int k = 0; k < 2; ++k)
+        if (colors[k] && colors[k]->storage != StorageClass::Constant) unrefined->colors[k] = std::move(colors[k]);
+    unrefined->request = Quote(r.name);
+    unrefined->at = Where(r.at);
+    if (m_instanceNote)
+        unrefined->note =
+            diag::Diagnostic{diag::Severity::Note, Where(m_instanceNote->first), m_instanceNote->second, {}};
+    prim.elements = 0;
+    prim.unrefined = std::move(unrefined);
     m_scene.primitives.push_back(std::move(prim));
-    return true;
 }
 
 bool RibParser::MeshPrimvar(const RibParam& p, const std::string& context, const PrimvarCounts& counts,

@@ -2,9 +2,10 @@
 // [tags nargs intargs floatargs] parameterlist, and prman's HierarchicalSubdivisionMesh (what
 // RenderMan 16 and later exporters write), the same with a fifth array, stringargs, and three
 // nargs a tag; its hierarchical edits (tags that take strings) are warned about and ignored.
-// The mesh becomes a renderer::SubdivisionMesh in world space, which
-// renderer::BuildSubdivisionPatches refines and turns into patches, one primitive each
-// (scene/geometry/subdivision.h). Tags: "hole" (face indices), "crease" (a
+// The mesh becomes a renderer::SubdivisionMesh in world space, kept as read on one primitive
+// (AddMesh, rib/polygons.cpp): renderer::RefineScene refines it into patches, the primitive's
+// elements, when the scene is prepared (scene/refine.h, scene/geometry/subdivision.h), and
+// reports at the request a topology it cannot refine. Tags: "hole" (face indices), "crease" (a
 // chain of vertices, one sharpness), "corner" (vertices, one sharpness or one each),
 // "interpolateboundary" (no argument, or one integer: 0 none, 1 edges and corners, 2 edges only);
 // any other tag is warned about once and ignored. Parameters: "P" or "Pw" (w must be 1), "st" or
@@ -15,7 +16,6 @@
 // counts, then ignored with a warning.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numeric>
 #include <set>
 
@@ -238,42 +238,9 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
             return Fail(position->at, context + " point " + std::to_string(i) + " overflows in world space");
     }
 
-    // Cs and Os that vary within a face are refined with the mesh (vertex values as P is, the
-    // others bilinear in each face); a constant or uniform one is each patch's colour.
-    int variable[2] = {-1, -1};
-    for (int k = 0; k < 2; ++k)
-        if (colors[k] && colors[k]->storage != StorageClass::Constant && colors[k]->storage != StorageClass::Uniform) {
-            variable[k] = static_cast<int>(mesh.variables.size());
-            mesh.variables.push_back({colors[k]->storage, colors[k]->values});
-        }
-
-    renderer::SubdivisionResult result;
-    if (std::string problem = renderer::BuildSubdivisionPatches(mesh, &result); !problem.empty())
-        return Fail(r.at, context + " " + problem);
-    for (const renderer::SubdivPatch& patch : result.patches)
-        if (!patch.geometry.FiniteP()) return Fail(r.at, context + " has a patch that overflows in world space");
-    if (result.patches.empty()) return true;  // every face a hole, or on a boundary left out
-    if (result.patches.size() > std::numeric_limits<uint32_t>::max())
-        return Fail(r.at, context + " has more than 2^32 - 1 patches");
-    // One primitive for the mesh, its patches its elements (renderer::SubdivPatches), with the
-    // mesh's Cs and Os (a constant one is the primitive's colour).
-    auto patches = std::make_shared<renderer::SubdivPatches>();
-    for (int k = 0; k < 2; ++k) {
-        if (!colors[k] || colors[k]->storage == StorageClass::Constant) continue;
-        if (variable[k] < 0) {
-            patches->colors[k] = std::move(*colors[k]);
-            continue;
-        }
-        for (const renderer::BicubicPatch& values : result.variables[size_t(variable[k])])
-            patches->colorFields[k].push_back(values.c);
-    }
-    patches->patches = std::move(result.patches);
-    PrimitiveDesc prim;
-    prim.elements = static_cast<uint32_t>(patches->patches.size());
-    prim.base = renderer::BaseSurface(renderer::SubdivPatchRef{std::move(patches), 0});
-    SetPrimitiveAttributes(r, &prim);
-    SetConstantColors(colors, &prim);
-    m_scene.primitives.push_back(std::move(prim));
+    // The mesh as read, with its Cs and Os: the preparation of the scene refines it into
+    // patches (scene/refine.h).
+    AddMesh(r, std::move(mesh), colors);
     return true;
 }
 

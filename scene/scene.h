@@ -1,8 +1,9 @@
 // scene/scene.h: the parsed scene description, as plain structs in world space.
-// The RIB reader (rib/) fills these; the renderer consumes them. Nothing here knows about
-// RIB syntax: every transform has already been applied, so positions are world space and the camera
-// carries one world->camera matrix. Add a field only with a default that matches RenderMan's
-// default for it (RI Spec 3.2), and print it in the matching ToString below.
+// The RIB reader (rib/) fills these; the renderer consumes them, once RefineScene
+// (scene/refine.h) has made the elements of the meshes that the reader keeps as read. Nothing
+// here knows about RIB syntax: every transform has already been applied, so positions are world
+// space and the camera carries one world->camera matrix. Add a field only with a default that
+// matches RenderMan's default for it (RI Spec 3.2), and print it in the matching ToString below.
 #pragma once
 
 #include <array>
@@ -19,6 +20,8 @@
 #include "scene/number_text.h"
 
 namespace affray::renderer {
+
+struct UnrefinedMesh;  // scene/refine.h
 
 /// One shader parameter as written in the RIB file: a name and raw values (numbers or strings).
 struct ParamValue {
@@ -117,13 +120,18 @@ struct PrimitiveAttributes {
 /// A mesh is one PrimitiveDesc for all its pieces or patches: `elements` of them from its base's
 /// onwards, sharing everything but their shape and colours (which the mesh's shared arrays hold),
 /// so that a mesh of a million faces is one description, not a million. Element(i) is element i
-/// as a primitive of its own.
+/// as a primitive of its own. A mesh as the RIB reader leaves it has no elements yet, only its
+/// UnrefinedMesh, until RefineScene (scene/refine.h) makes them.
 struct PrimitiveDesc {
     using Transmission = PrimitiveAttributes::Transmission;
     BaseSurface base;
     /// The primitives this one stands for: a polygon mesh's pieces or a subdivision mesh's
-    /// patches; 1 for any other shape.
+    /// patches (none before RefineScene); 1 for any other shape.
     uint32_t elements = 1;
+    /// The mesh as read, before RefineScene, which replaces it by `base` and `elements`; null
+    /// after (and for every other shape). Not const: RefineScene takes its arrays when it holds
+    /// the only reference.
+    std::shared_ptr<UnrefinedMesh> unrefined;
     glm::dvec3 color{1.0};    ///< The RIB Color in effect, or the primitive's constant or uniform "Cs".
     glm::dvec3 opacity{1.0};  ///< The RIB Opacity in effect, or the primitive's constant or uniform "Os".
     /// A "Cs" or "Os" that varies over the primitive (varying, vertex, facevarying values), over

@@ -2,7 +2,8 @@
 // Owns the split of RenderMan's polygons (Polygon, GeneralPolygon, PointsPolygons,
 // PointsGeneralPolygons: RI Spec 3.2, section 5.1) into pieces, and the templated evaluation of a
 // piece for every number type, as quadric.h owns the quadrics'. A piece is one primitive for the
-// intersector; the RIB reader makes a PolygonMesh and asks SplitMesh for its pieces.
+// intersector; the RIB reader makes a PolygonMesh, and the preparation of the scene
+// (RefineScene, scene/refine.h) asks SplitMesh for its pieces.
 //
 // Parameterisation. A piece is RenderMan's bilinear patch over (u,v) in [0,1]^2 with corners
 // c0 (u0v0), c1 (u1v0), c2 (u0v1), c3 (u1v1):

@@ -1,8 +1,9 @@
 // scene/geometry/subdivision.h: Catmull-Clark subdivision meshes (RI Spec 3.2 section 5.5,
 // RiSubdivisionMesh) as displaced base surfaces, one bicubic patch per face of a refined mesh.
 // Owns the refinement (with RenderMan's tags), the patches and their templated evaluation for
-// every number type; the RIB reader (rib/subdivision.cpp) makes a SubdivisionMesh and asks
-// BuildSubdivisionPatches for its patches, one primitive each.
+// every number type; the RIB reader (rib/subdivision.cpp) makes a SubdivisionMesh, and the
+// preparation of the scene (RefineScene, scene/refine.h) asks BuildSubdivisionPatches for its
+// patches, the elements of one primitive.
 //
 // Refinement. The control mesh is refined uniformly: kSubdivisionLevels Catmull-Clark steps
 // (fewer for a dense mesh, kSubdivisionPatchBudget; more, up to kMaxSubdivisionLevels, while a

@@ -8,6 +8,7 @@
 
 #include "diag/diagnostic.h"
 #include "rib/rib.h"
+#include "scene/refine.h"
 
 namespace affray::test {
 
@@ -22,20 +23,24 @@ inline std::string ShortDiagnostic(const diag::Diagnostic& d) {
 /// `world` (a world block's body, its first line the file's line 2) as a whole RIB file.
 inline std::string InWorld(const std::string& world) { return "WorldBegin\n" + world + "\nWorldEnd\n"; }
 
-/// The scene of `world`, which must parse; its diagnostics go to *report if given.
+/// The scene of `world`, which must parse, with its meshes refined as a render prepares them
+/// (RefineScene), which must succeed; its diagnostics go to *report if given.
 inline renderer::SceneDesc ParseWorld(const std::string& world, diag::Report* report = nullptr) {
     diag::Report local;
     diag::Report& r = report ? *report : local;
     std::optional<renderer::SceneDesc> scene = rib::ParseRib(InWorld(world), "t.rib", &r);
     INFO(r);
     REQUIRE(scene);
+    REQUIRE(renderer::RefineScene(&*scene, &r));
     return *scene;
 }
 
-/// The first error of the RIB file `text` as ShortDiagnostic gives it, or "" if it parses.
+/// The first error of the RIB file `text` as ShortDiagnostic gives it, from reading it or from
+/// refining its meshes (RefineScene), or "" if neither fails.
 inline std::string FirstError(const std::string& text) {
     diag::Report report;
-    if (rib::ParseRib(text, "t.rib", &report)) return "";
+    std::optional<renderer::SceneDesc> scene = rib::ParseRib(text, "t.rib", &report);
+    if (scene && renderer::RefineScene(&*scene, &report)) return "";
     for (const diag::Diagnostic& d : report.all())
         if (d.severity == diag::Severity::Error) return ShortDiagnostic(d);
     return "(no error reported)";
