@@ -113,9 +113,12 @@ struct Row {
 int main(int argc, char** argv) {
     int nBoxes = 1000000, repeats = 5, nRays = 200000;
     for (int i = 1; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--boxes")) nBoxes = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--repeats")) repeats = std::max(1, std::atoi(argv[i + 1]));
-        else if (!std::strcmp(argv[i], "--rays")) nRays = std::atoi(argv[i + 1]);
+        if (!std::strcmp(argv[i], "--boxes"))
+            nBoxes = std::atoi(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--repeats"))
+            repeats = std::max(1, std::atoi(argv[i + 1]));
+        else if (!std::strcmp(argv[i], "--rays"))
+            nRays = std::atoi(argv[i + 1]);
         else {
             std::fprintf(stderr, "usage: affray_bench_bvh [--boxes N] [--repeats R] [--rays N]\n");
             return 2;
@@ -156,14 +159,16 @@ int main(int argc, char** argv) {
                     });
                 }
                 const double raySeconds = SecondsSince(start);
-                rows.push_back({name, split == Bvh::Split::kSah ? "SAH" : "median", threads, seconds[size_t(repeats / 2)],
-                                bvh->nodeCount(), bvh->depth(), bvh->bytes(), bvh->SahCost(), raySeconds,
-                                double(offered) / double(rays.size())});
+                rows.push_back({name, split == Bvh::Split::kSah ? "SAH" : "median", threads,
+                                seconds[size_t(repeats / 2)], bvh->nodeCount(), bvh->depth(), bvh->bytes(),
+                                bvh->SahCost(), raySeconds, double(offered) / double(rays.size())});
             }
         }
     }
-    std::printf("| input | split | threads | build | nodes | memory | depth | SAH cost | %d rays | primitives offered per ray |\n",
-                nRays);
+    std::printf(
+        "| input | split | threads | build | nodes | memory | depth | SAH cost | %d rays | primitives offered per ray "
+        "|\n",
+        nRays);
     std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
     for (const Row& r : rows)
         std::printf("| %s | %s | %d | %.3f s | %d | %.1f MB | %d | %.1f | %.3f s | %.2f |\n", r.input.c_str(),
