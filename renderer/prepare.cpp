@@ -472,7 +472,7 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
         if (problems[i].empty()) continue;
         return fail(requestAt(*out->primitives[i].attributes().displacement), problems[i]);
     }
-    out->bvh = std::make_unique<Bvh>(boxes);
+    out->bvh = std::make_unique<Bvh>(boxes, &m_pool);
     out->shadersCompiled = cache.misses();
     out->shadersReused = cache.hits();
     out->lights = desc.lights;
