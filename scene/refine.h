@@ -7,7 +7,7 @@
 // (a degenerate face, a broken topology, a patch that overflows) is reported here, at the mesh's
 // request in the RIB file, as the reader would have reported it. A new kind of mesh that the
 // reader hands over unrefined gets an alternative of UnrefinedMesh::mesh and a case in
-// RefineScene's refinement; the renderer only ever sees refined meshes (PrepareScene calls
+// RefineScene's refinement; the renderer only ever sees refined meshes (Renderer::Prepare calls
 // RefineScene first and refuses a primitive left unrefined).
 #pragma once
 
