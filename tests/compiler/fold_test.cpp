@@ -70,6 +70,20 @@ std::vector<std::vector<double>> Tuples(const std::vector<double>& values, int c
     return out;
 }
 
+/// The channel the noise operations are asked for (the others ignore it).
+constexpr uint8_t kChannel = 2;
+
+/// What the compiler folds operation f on the constants x to (empty: not folded).
+std::optional<double> FoldedValue(vm::Operation f, const std::vector<double>& x) {
+    compiler::IrBuilder ir;
+    compiler::IrNode n;
+    n.op = compiler::IrOpOf(f);
+    n.count = static_cast<uint8_t>(x.size());
+    n.channel = kChannel;
+    for (size_t k = 0; k < x.size(); ++k) n.in[k] = ir.Const(x[k]);
+    return ir.ConstValue(ir.Create(n));
+}
+
 /// What RSL and the VM's documented rules (vm/numbers/number.h) say operation f gives on x,
 /// written here from <cmath> and the rules, not through the VM: the reference both the folded
 /// and the run-time value must equal. Empty for the noise functions (their values are
@@ -133,17 +147,11 @@ TEST_CASE("folding: every scalar opcode computes its operation's reference value
             const std::optional<double> want = Reference(f, x);
             if (!want) break;
             operations.insert(f);
-            const double vmValue = vm::RunScalarOpcode(op, x.data(), 2);
+            const double vmValue = vm::RunScalarOpcode(op, x.data(), kChannel);
             INFO(vm::Info(op).name << " on " << ::Catch::Detail::stringify(x) << ": VM " << vmValue << ", reference "
                                    << *want);
             CHECK(SameDouble(vmValue, *want));
-            compiler::IrBuilder ir;
-            compiler::IrNode n;
-            n.op = compiler::IrOpOf(f);
-            n.count = static_cast<uint8_t>(count);
-            n.channel = 2;
-            for (int k = 0; k < count; ++k) n.in[k] = ir.Const(x[k]);
-            if (const std::optional<double> folded = ir.ConstValue(ir.Create(n))) {
+            if (const std::optional<double> folded = FoldedValue(f, x)) {
                 // x * 0 => 0 is compiler/fold.cpp's one algebraic rule that differs from the
                 // operation on infinite or NaN x.
                 const bool timesZero = f == vm::Operation::Mul && (x[0] == 0 || x[1] == 0);
@@ -169,14 +177,8 @@ TEST_CASE("folding: every foldable opcode folds to the scalar VM's value, and on
         ++opcodes;
         const int count = vm::OperandCount(op);
         for (const std::vector<double>& x : Tuples(all, count, 300, 17 + uint64_t(i))) {
-            compiler::IrBuilder ir;
-            compiler::IrNode n;
-            n.op = compiler::IrOpOf(f);
-            n.count = static_cast<uint8_t>(count);
-            n.channel = 2;
-            for (int k = 0; k < count; ++k) n.in[k] = ir.Const(x[k]);
-            const std::optional<double> k = ir.ConstValue(ir.Create(n));
-            const double vmValue = vm::RunScalarOpcode(op, x.data(), n.channel);
+            const std::optional<double> k = FoldedValue(f, x);
+            const double vmValue = vm::RunScalarOpcode(op, x.data(), kChannel);
             bool finiteInputs = true;
             for (double v : x) finiteInputs = finiteInputs && std::isfinite(v);
             INFO(vm::Info(op).name << " on " << ::Catch::Detail::stringify(x) << ": VM " << vmValue);
