@@ -297,19 +297,19 @@ Box DisplacedBox(const Primitive& prim, const glm::dvec3& eye, int cells) {
 bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report) const {
     const std::vector<std::string>& shaderPaths = m_options.shaderPaths;
     const lang::PreprocessOptions& preprocess = m_options.preprocess;
-    // The meshes as read split and refined (scene/refine.h), several at once, before anything else.
-    const auto parallelFor = [&](size_t n, const std::function<void(size_t)>& body) {
-        m_pool.ForEach(n, [&](size_t i, int) { body(i); });
-    };
-    if (!RefineScene(&input, report, parallelFor)) return false;
     auto fail = [&](const diag::Location& where, std::string message) {
         if (report) report->error(where, std::move(message));
         return false;
     };
-    // Before anything is compiled or allocated.
+    // Before anything is refined, compiled or allocated.
     if (std::string problem = CheckImageLimits(input.camera, input.displayMode); !problem.empty())
         return fail({input.path}, std::move(problem));
-    // Moved, not copied: a mesh of thousands of faces is as many PrimitiveDescs.
+    // The meshes as read split and refined (scene/refine.h), several at once.
+    const auto parallelFor = [&](size_t n, const std::function<void(size_t)>& body) {
+        m_pool.ForEach(n, [&](size_t i, int) { body(i); });
+    };
+    if (!RefineScene(&input, report, parallelFor)) return false;
+    // Moved, not copied: the meshes' arrays stay where refinement put them.
     out->desc = std::move(input);
     const SceneDesc& desc = out->desc;
     out->primitives.clear();
