@@ -7,20 +7,12 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <bit>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <thread>
 #include <unordered_map>
-#include <unordered_set>
-
-#include <sys/resource.h>
-#include <unistd.h>
 
 #include "compiler/shader_cache.h"
 #include "diag/check.h"

@@ -8,31 +8,20 @@
 #include "renderer/renderer.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
-#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
-#include <map>
-#include <stdexcept>
-#include <thread>
 #include <unordered_map>
 #include <unordered_set>
 
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "compiler/shader_cache.h"
-#include "diag/limits.h"
 #include "renderer/film.h"
 #include "renderer/shade.h"
-#include "renderer/thread_pool.h"
 #include "scene/geometry/camera.h"
-#include "scene/refine.h"
-#include "texture/texture.h"
 
 namespace affray::renderer {
 
