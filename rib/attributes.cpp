@@ -93,6 +93,7 @@ bool RibParser::DoAttribute(const RibRequest& r) {
         return true;
     }
     if (name == "user") return true;
+    if (name == "Ri") return RiAttributes(params);
     if (name == "light") return LightAttribute(params);
     if (name == "visibility" || name == "render") return VisibilityAttribute(name, params);
     if (name == "displacementbound")

@@ -232,6 +232,12 @@ class RibParser : private RibArgChecks {
     bool DoExposure(const RibRequest& r);
     bool DoImager(const RibRequest& r);
     bool DoOption(const RibRequest& r);
+    /// Option "Ri" and Attribute "Ri" (RenderMan 21 and later): each parameter run as the
+    /// standard request it stands for (rib/settings.cpp).
+    bool RiOptions(const std::vector<RibParam>& params);
+    bool RiAttributes(const std::vector<RibParam>& params);
+    /// Runs request `name` with `args`, located at `at` (a parameter of Option or Attribute "Ri").
+    bool Forward(const std::string& name, RibPos at, std::vector<RibArg> args);
     /// Option "searchpath" "shader" or "archive": a ':'-separated list into *out.
     bool SetSearchPath(const RibParam& p, std::vector<std::string>* out);
     bool DoHider(const RibRequest& r);

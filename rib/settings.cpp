@@ -1,5 +1,6 @@
 // rib/settings.cpp: RIB requests that set how to read or render the scene rather than what is in
-// it: Option (the search paths; other renderers' options warn), Hider, Declare, ShadingRate,
+// it: Option (the search paths; Option and Attribute "Ri" run as the standard requests they stand
+// for; other renderers' options warn), Hider, Declare, ShadingRate,
 // ShadingInterpolation and ArchiveRecord. Rules shared with rib.cpp are in rib/parser.h. Every
 // request that only tunes another renderer is accepted, its arguments checked, with one warning.
 #include <algorithm>
@@ -18,6 +19,7 @@ bool RibParser::DoOption(const RibRequest& r) {
     if (!BeforeWorld(r) || !LeadingString(r, "an option name", &name) || !ParamList(r, 1, &params)) return false;
     // Every value is kept for conditional RIB ($category:name), which is what "user" is for.
     for (const RibParam& p : params) m_options[name + ":" + p.value.name] = p.value;
+    if (name == "Ri") return RiOptions(params);
     if (name != "searchpath") {
         if (name != "user") Warn(r.at, "'Option \"" + name + "\"' does not apply to affray; ignored");
         return true;
@@ -31,6 +33,144 @@ bool RibParser::DoOption(const RibRequest& r) {
             if (!SetSearchPath(p, &m_scene.textureSearchPath)) return false;
         } else {
             Warn(p.at, "'Option \"searchpath\" \"" + p.value.name + "\"' does not apply to affray; ignored");
+        }
+    }
+    return true;
+}
+
+// RenderMan 21 and later write the standard options and attributes as parameters of Option "Ri"
+// and Attribute "Ri" ("int[2] FormatResolution" [640 480] for Format, "int Sides" [1] for Sides,
+// ...). Each is run as the request it stands for, so it gets that request's checks, effect and
+// messages; a parameter standing for a request affray ignores gets that request's warning, and
+// one standing for nothing affray knows, a warning of its own. The values stay readable by
+// conditional RIB as "Ri:name", as every option's and attribute's are.
+namespace {
+
+RibArg NumbersArg(std::vector<double> numbers, RibPos at) {
+    RibArg a;
+    a.isArray = true;
+    a.numbers = std::move(numbers);
+    a.at = at;
+    return a;
+}
+
+RibArg StringArg(std::string text, RibPos at) {
+    RibArg a;
+    a.strings = {std::move(text)};
+    a.at = at;
+    return a;
+}
+
+/// The parameters of Option and Attribute "Ri" named as the request they stand for, a request of
+/// numbers or of strings (its arguments are the parameter's values).
+// clang-format off
+constexpr std::string_view kRiOptions[] = {
+    "Clipping", "CropWindow", "DepthOfField", "FrameAspectRatio", "PixelSamples", "PixelVariance",
+    "RelativeDetail", "ScreenWindow", "Shutter",
+};
+constexpr std::string_view kRiAttributes[] = {
+    "Color", "DetailRange", "Matte", "Opacity", "Orientation", "ShadingInterpolation", "ShadingRate", "Sides",
+    "TextureCoordinates",
+};
+// clang-format on
+
+/// A standing-for parameter run as its request: numbers as one array, a string as a bare string.
+std::vector<RibArg> ArgsOf(const RibParam& p) {
+    if (!p.value.strings.empty()) {
+        std::vector<RibArg> args;
+        for (const std::string& s : p.value.strings) args.push_back(StringArg(s, p.at));
+        return args;
+    }
+    return {NumbersArg(p.value.numbers, p.at)};
+}
+
+bool RiRequestP(const std::string_view* begin, const std::string_view* end, std::string_view parameter) {
+    return std::find(begin, end, parameter) != end;
+}
+
+}  // namespace
+
+bool RibParser::Forward(const std::string& name, RibPos at, std::vector<RibArg> args) {
+    RibRequest r;
+    r.name = name;
+    r.at = at;
+    r.args = std::move(args);
+    return DispatchRequest(r);
+}
+
+bool RibParser::RiOptions(const std::vector<RibParam>& params) {
+    // Format, PixelFilter and Exposure are each split over two parameters: what one leaves out
+    // is the value in effect.
+    const RibParam *resolution = nullptr, *pixelAspect = nullptr, *filterName = nullptr, *filterWidth = nullptr,
+                   *gain = nullptr, *gamma = nullptr;
+    for (const RibParam& p : params) {
+        const std::string& name = p.value.name;
+        if (name == "FormatResolution") {
+            resolution = &p;
+        } else if (name == "FormatPixelAspectRatio") {
+            pixelAspect = &p;
+        } else if (name == "PixelFilterName") {
+            filterName = &p;
+        } else if (name == "PixelFilterWidth") {
+            filterWidth = &p;
+        } else if (name == "ExposureGain") {
+            gain = &p;
+        } else if (name == "ExposureGamma") {
+            gamma = &p;
+        } else if (name == "Frame") {
+            // The frame number, for the exporter's own bookkeeping (FrameBegin gives affray's).
+        } else if (RiRequestP(std::begin(kRiOptions), std::end(kRiOptions), name)) {
+            if (!Forward(name, p.at, ArgsOf(p))) return false;
+        } else {
+            Warn(p.at, "'Option \"Ri\"' parameter " + Quote(name) + " does not apply to affray; ignored");
+        }
+    }
+    const CameraDesc& camera = m_scene.camera;
+    // One number each: a parameter with the wrong count is refused by the request's own check.
+    auto values = [](const RibParam* p, std::vector<double> fallback) { return p ? p->value.numbers : fallback; };
+    if (resolution || pixelAspect) {
+        std::vector<double> v = values(resolution, {double(camera.xres), double(camera.yres)});
+        const std::vector<double> aspect = values(pixelAspect, {camera.pixelAspect});
+        v.insert(v.end(), aspect.begin(), aspect.end());
+        const RibPos at = (resolution ? resolution : pixelAspect)->at;
+        if (!Forward("Format", at, {NumbersArg(v, at)})) return false;
+    }
+    if (filterName || filterWidth) {
+        const RibParam* at = filterName ? filterName : filterWidth;
+        std::string name = camera.filter.kind == FilterDesc::Kind::Box ? "box" : "gaussian";
+        if (filterName) {
+            if (filterName->value.strings.size() != 1)
+                return Fail(filterName->at, "'Option \"Ri\"' parameter 'PixelFilterName' expects 1 string");
+            name = filterName->value.strings[0];
+        }
+        const std::vector<double> widths = values(filterWidth, {camera.filter.xwidth, camera.filter.ywidth});
+        if (widths.size() != 2)
+            return Fail(filterWidth->at, "'Option \"Ri\"' parameter 'PixelFilterWidth' expects 2 numbers");
+        std::vector<RibArg> args = {StringArg(name, at->at)};
+        for (double w : widths) {
+            RibArg a;
+            a.numbers = {w};
+            a.at = at->at;
+            args.push_back(a);
+        }
+        if (!Forward("PixelFilter", at->at, std::move(args))) return false;
+    }
+    if (gain || gamma) {
+        std::vector<double> v = values(gain, {camera.exposureGain});
+        const std::vector<double> g = values(gamma, {camera.exposureGamma});
+        v.insert(v.end(), g.begin(), g.end());
+        const RibPos at = (gain ? gain : gamma)->at;
+        if (!Forward("Exposure", at, {NumbersArg(v, at)})) return false;
+    }
+    return true;
+}
+
+bool RibParser::RiAttributes(const std::vector<RibParam>& params) {
+    for (const RibParam& p : params) {
+        if (RiRequestP(std::begin(kRiAttributes), std::end(kRiAttributes), p.value.name)) {
+            if (!Forward(p.value.name, p.at, ArgsOf(p))) return false;
+        } else {
+            Warn(p.at, "'Attribute \"Ri\"' parameter " + Quote(p.value.name) + " does not apply to affray; ignored");
         }
     }
     return true;

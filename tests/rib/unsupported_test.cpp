@@ -326,3 +326,54 @@ TEST_CASE("rib: a Display mode may name channels DisplayChannel, Declare or an i
     CHECK(FirstError("DisplayChannel \"  \"\nWorldBegin\nWorldEnd\n") ==
           "t.rib:1: error: 'DisplayChannel' needs a channel name");
 }
+
+TEST_CASE("rib: Option and Attribute \"Ri\" (RenderMan 21 and later) run as the requests they stand for", "[rib]") {
+    Messages messages;
+    const SceneDesc scene = Scene(
+        "Option \"Ri\" \"int[2] FormatResolution\" [320 240] \"float FormatPixelAspectRatio\" [2] \"int Frame\" [7]\n"
+        "Option \"Ri\" \"float[4] ScreenWindow\" [-2 2 -1 1] \"float[2] Clipping\" [0.5 100]\n"
+        "Option \"Ri\" \"string PixelFilterName\" [\"box\"] \"float ExposureGamma\" [2.2]\n"
+        "Option \"Ri\" \"int[2] PixelSamples\" [3 2] \"float[2] PixelFilterWidth\" [1 1.5]\n"
+        "WorldBegin\n"
+        "Attribute \"Ri\" \"int Sides\" [1] \"color Color\" [1 0 0] \"float ShadingRate\" [16]\n"
+        "Attribute \"Ri\" \"color Opacity\" [0.5 0.5 0.5] \"string Orientation\" [\"inside\"]\n" +
+            kPatch + "WorldEnd\n",
+        &messages);
+    const renderer::CameraDesc& c = scene.camera;
+    CHECK(c.xres == 320);
+    CHECK(c.yres == 240);
+    CHECK(c.pixelAspect == 2);
+    REQUIRE(c.screenWindow);
+    CHECK(*c.screenWindow == glm::dvec4(-2, 2, -1, 1));
+    CHECK(c.nearClip == 0.5);
+    CHECK(c.farClip == 100);
+    CHECK(c.xsamples == 3);
+    CHECK(c.ysamples == 2);
+    // Split requests take what the other parameter leaves out from the values in effect: the
+    // second Option "Ri" gives the widths of the filter the first one named, and the gain stays 1.
+    CHECK(c.filter.kind == renderer::FilterDesc::Kind::Box);
+    CHECK(c.filter.xwidth == 1);
+    CHECK(c.filter.ywidth == 1.5);
+    CHECK(c.exposureGain == 1);
+    CHECK(c.exposureGamma == 2.2);
+    REQUIRE(scene.primitives.size() == 1);
+    const renderer::PrimitiveDesc& p = scene.primitives[0];
+    CHECK_FALSE(p.attr().twoSided);
+    CHECK(p.attr().sceneTolerance == 2);  // 0.5 sqrt(16)
+    CHECK(p.color == glm::dvec3(1, 0, 0));
+    CHECK(p.opacity == glm::dvec3(0.5));
+    CHECK(messages == Messages{"t.rib:6: note: 'ShadingRate' 16: the primitives that follow are certified to 2 "
+                               "pixels, not 0.5 (unless --tolerance is given)"});
+    // Another renderer's options and attributes under "Ri": one warning each; a value the request
+    // refuses is refused with that request's message, at the parameter.
+    Scene("Option \"Ri\" \"int bucketorder\" [1]\nWorldBegin\nAttribute \"Ri\" \"int Coolness\" [1]\nWorldEnd\n",
+          &messages);
+    CHECK(messages == Messages{"t.rib:1: warning: 'Option \"Ri\"' parameter 'bucketorder' does not apply to affray; "
+                               "ignored",
+                               "t.rib:3: warning: 'Attribute \"Ri\"' parameter 'Coolness' does not apply to affray; "
+                               "ignored"});
+    CHECK(FirstError("Option \"Ri\" \"float[4] CropWindow\" [0.5 0.2 0 1]\nWorldBegin\nWorldEnd\n") ==
+          "t.rib:1: error: 'CropWindow' needs 0 <= xmin < xmax <= 1, got 0.5 0.2");
+    CHECK(FirstError("WorldBegin\nAttribute \"Ri\" \"int Sides\" [3]\nWorldEnd\n").find("t.rib:2: error: 'Sides'") ==
+          0);
+}
