@@ -473,6 +473,23 @@ RayGroup BlockGroup(const Camera& camera, int side, int bx, int by, int blocksX)
     return RayGroup::FromCorners(corners, 1 + uint64_t(by) * uint64_t(blocksX) + uint64_t(bx));
 }
 
+/// An atmosphere shader (AtmosphereDesc) on what a camera ray from `eye` sees at `p` (world space):
+/// I and depth(P) are taken in camera space, as the shader sees them.
+void ApplyAtmosphere(const AtmosphereDesc& atmosphere, const CameraDesc& camera, const glm::dvec3& eye,
+                     const glm::dvec3& p, glm::dvec3* Ci, glm::dvec3* Oi) {
+    const glm::dvec3 pc(camera.worldToCamera * glm::dvec4(p, 1.0));
+    double d;
+    if (atmosphere.kind == AtmosphereDesc::Kind::Fog) {
+        const glm::dvec3 ec(camera.worldToCamera * glm::dvec4(eye, 1.0));
+        d = 1.0 - std::exp(-glm::length(pc - ec) / atmosphere.distance);
+    } else {
+        const double depth = (pc.z - camera.nearClip) / (camera.farClip - camera.nearClip);
+        d = std::clamp((depth - atmosphere.minDistance) / (atmosphere.maxDistance - atmosphere.minDistance), 0.0, 1.0);
+    }
+    *Ci = glm::mix(*Ci, atmosphere.background, d);
+    *Oi = glm::mix(*Oi, glm::dvec3(1.0), d);
+}
+
 SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camera& camera, const glm::dvec2& raster,
                         const Tolerance& tol, const glm::dvec3& eye, const RayGroup* group) {
     SampleValue value;
@@ -492,9 +509,13 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
         if (nh.primitive < 0) break;
         const Primitive& prim = scene.primitives[nh.primitive];
         const HitPoint at = EvaluateHit(scene, ts, ray, nh, eye);
-        const glm::dvec3 Os = prim.OpacityAt(nh.hit.u, nh.hit.v);
-        value.rgb += through * Os * ShadeHit(scene, ts, ray, nh, at, tol);
-        through *= 1.0 - Os;
+        // Ci and Oi as RenderMan's shaders leave them: premultiplied colour, then the atmosphere.
+        glm::dvec3 Oi = prim.OpacityAt(nh.hit.u, nh.hit.v);
+        glm::dvec3 Ci = Oi * ShadeHit(scene, ts, ray, nh, at, tol);
+        if (const std::optional<AtmosphereDesc>& atmosphere = prim.desc->attr().atmosphere)
+            ApplyAtmosphere(*atmosphere, scene.desc.camera, ray.origin, ray.origin + nh.hit.t * ray.dir, &Ci, &Oi);
+        value.rgb += through * Ci;
+        through *= 1.0 - Oi;
         if (layer == 0) {
             value.z = (scene.desc.camera.worldToCamera * glm::dvec4(ray.origin + nh.hit.t * ray.dir, 1.0)).z;
             value.N = at.N;

@@ -329,6 +329,52 @@ bool RibParser::DoDisplacement(const RibRequest& r) {
     return true;
 }
 
+// Atmosphere: RI 3.2's standard volume shaders "fog" (distance, background) and "depthcue"
+// (mindistance, maxdistance, background), an attribute of the primitives that follow; "" or
+// "null" removes it. Another atmosphere shader is warned about and ignored (the primitives keep
+// the one in effect).
+bool RibParser::DoAtmosphere(const RibRequest& r) {
+    std::string name;
+    std::vector<RibParam> params;
+    if (!LeadingString(r, "an atmosphere shader name", &name)) return false;
+    const bool known = name == "fog" || name == "depthcue";
+    if (!ParamList(r, 1, &params, known)) return false;
+    if (name.empty() || name == "null") {
+        m_state.atmosphere.reset();
+        return true;
+    }
+    if (!known) {
+        Warn(r.at, "atmosphere shader " + Quote(name) + " is not supported (only \"fog\" and \"depthcue\"); ignored");
+        return true;
+    }
+    using Kind = renderer::AtmosphereDesc::Kind;
+    renderer::AtmosphereDesc atmosphere;
+    atmosphere.kind = name == "fog" ? Kind::Fog : Kind::DepthCue;
+    const std::string context = "'Atmosphere \"" + name + "\"'";
+    for (const RibParam& p : params) {
+        const std::string& n = p.value.name;
+        bool ok = true;
+        if (n == "background")
+            ok = ParamVector(p, context, &atmosphere.background);
+        else if (n == "distance" && atmosphere.kind == Kind::Fog)
+            ok = ParamNumbers(p, context, 1, &atmosphere.distance);
+        else if (n == "mindistance" && atmosphere.kind == Kind::DepthCue)
+            ok = ParamNumbers(p, context, 1, &atmosphere.minDistance);
+        else if (n == "maxdistance" && atmosphere.kind == Kind::DepthCue)
+            ok = ParamNumbers(p, context, 1, &atmosphere.maxDistance);
+        else
+            Warn(p.at, context + " has no parameter " + Quote(n) + "; ignored");
+        if (!ok) return false;
+    }
+    if (atmosphere.kind == Kind::Fog && !(atmosphere.distance > 0))
+        return Fail(r.at, context + " distance must be positive, got " + FormatNumber(atmosphere.distance));
+    if (atmosphere.kind == Kind::DepthCue && !(atmosphere.minDistance < atmosphere.maxDistance))
+        return Fail(r.at, context + " needs mindistance < maxdistance, got " + FormatNumber(atmosphere.minDistance) +
+                              " " + FormatNumber(atmosphere.maxDistance));
+    m_state.atmosphere = atmosphere;
+    return true;
+}
+
 bool RibParser::DoLightSource(const RibRequest& r) {
     std::string name;
     if (!LeadingString(r, "a light shader name", &name)) return false;

@@ -34,6 +34,7 @@ void RibParser::SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) co
         a->sceneTolerance = std::max(0.5 * std::sqrt(m_state.shadingRate), m_state.flatness);
         a->surface = m_state.surface;
         a->displacement = m_state.displacement;
+        a->atmosphere = m_state.atmosphere;
         a->line = r.at.line;
         a->column = r.at.column;
         a->objectToWorld = m_state.ctm;

@@ -64,6 +64,7 @@ class RibParser : private RibArgChecks {
         double shadingRate = 1, flatness = 0;
         SurfaceDesc surface;
         std::optional<ShaderRef> displacement;
+        std::optional<renderer::AtmosphereDesc> atmosphere;
         bool twoSided = true;  // Sides 2 (RI default)
         /// The current orientation differs from the handedness of the current coordinate system
         /// (RI 3.2 section 4.2: a transform that flips one flips the other, so only Orientation
@@ -310,6 +311,7 @@ class RibParser : private RibArgChecks {
     bool DoOrientation(const RibRequest& r);
     bool DoSurface(const RibRequest& r);
     bool DoDisplacement(const RibRequest& r);
+    bool DoAtmosphere(const RibRequest& r);
     bool DoLightSource(const RibRequest& r);
     bool DoIlluminate(const RibRequest& r);
     /// The parameters of a light shader; `shadowMapped` accepts (and ignores) those of the

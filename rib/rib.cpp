@@ -217,6 +217,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"ScopedCoordinateSystem", &RibParser::DoCoordinateSystem},
         {"Surface", &RibParser::DoSurface},
         {"Displacement", &RibParser::DoDisplacement},
+        {"Atmosphere", &RibParser::DoAtmosphere},
         {"LightSource", &RibParser::DoLightSource},
         {"Basis", &RibParser::DoBasis},
         {"Patch", &RibParser::DoPatch},

@@ -50,6 +50,19 @@ struct SurfaceDesc {
     glm::dvec3 specularColor{1.0};
 };
 
+/// An atmosphere shader (Atmosphere): RI 3.2's standard volume shaders, run on what a camera ray
+/// sees of a primitive. Fog: d = 1 - exp(-length(I) / distance); depth cue: d = (depth(P) -
+/// mindistance) / (maxdistance - mindistance) clamped to [0, 1], depth the camera depth from the
+/// near to the far clipping plane mapped to [0, 1]. Either mixes the surface's premultiplied colour
+/// towards `background` and its opacity towards 1 by d: Ci = mix(Ci, background, d), Oi = mix(Oi,
+/// 1, d).
+struct AtmosphereDesc {
+    enum class Kind { Fog, DepthCue } kind = Kind::Fog;
+    double distance = 1;                      ///< fog
+    double minDistance = 0, maxDistance = 1;  ///< depthcue
+    glm::dvec3 background{0.0};
+};
+
 /// A light source in world space ("ambientlight", "distantlight", "pointlight", "spotlight").
 struct LightDesc {
     enum class Kind { Ambient, Distant, Point, Spot } kind = Kind::Point;
@@ -85,6 +98,8 @@ struct PrimitiveAttributes {
     double sceneTolerance = 0.5;
     SurfaceDesc surface;
     std::optional<ShaderRef> displacement;
+    /// Atmosphere: what lies between the camera and the primitive (unset: nothing).
+    std::optional<AtmosphereDesc> atmosphere;
     int line = 0, column = 0;  ///< Where the request starts in the RIB file, for diagnostics.
     /// Object space: the current transform at the request (object -> world, column vectors).
     glm::dmat4 objectToWorld{1.0};
@@ -386,6 +401,15 @@ inline std::string ToString(const PrimitiveDesc& p) {
     if (p.opacityField) text += " Os=(" + ToString(*p.opacityField) + ")";
     text += " " + ToString(a.surface);
     if (a.displacement) text += " displacement " + ToString(*a.displacement);
+    if (a.atmosphere) {
+        const AtmosphereDesc& at = *a.atmosphere;
+        std::ostringstream atmosphere;
+        if (at.kind == AtmosphereDesc::Kind::Fog)
+            atmosphere << " atmosphere fog distance=" << at.distance;
+        else
+            atmosphere << " atmosphere depthcue distances=" << at.minDistance << ' ' << at.maxDistance;
+        text += atmosphere.str() + " background=" + ToString(at.background);
+    }
     return text;
 }
 

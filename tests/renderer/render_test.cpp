@@ -480,6 +480,49 @@ TEST_CASE("render: Imager \"background\" composites its colour under every pixel
     CHECK(covered == 32);
 }
 
+TEST_CASE("render: Atmosphere \"fog\" and \"depthcue\" mix what camera rays see towards their background",
+          "[renderer][render]") {
+    // RI 3.2's standard volume shaders on a constant red surface (Ci = Oi Cs): fog d = 1 -
+    // exp(-length(I) / distance), depth cue d = (depth(P) - mindistance) / (maxdistance -
+    // mindistance) clamped, depth(P) from the near (0) to the far (1) clipping plane; Ci = mix(Ci,
+    // background, d), Oi = mix(Oi, 1, d). The left half at camera depth 4, the right at 6; the
+    // atmosphere is an attribute, so the last row's patch, declared after "null", has none.
+    test::TempDir dir;
+    const auto scene = [](const std::string& atmosphere) {
+        return std::string(kCamera) +
+               "Clipping 1 9\nWorldBegin\nSurface \"constant\"\nColor [1 0 0]\nOpacity [0.5 0.5 0.5]\n" + atmosphere +
+               "\nPatch \"bilinear\" \"P\" [-1 -0.75 1  0 -0.75 1  -1 1 1  0 1 1]\n"
+               "Patch \"bilinear\" \"P\" [0 -0.75 -1  1 -0.75 -1  0 1 -1  1 1 -1]\n"
+               "Atmosphere \"null\"\nPatch \"bilinear\" \"P\" [-1 -1 1  1 -1 1  -1 -0.75 1  1 -0.75 1]\nWorldEnd\n";
+    };
+    const glm::dvec3 red(1, 0, 0), blue(0, 0, 1);
+    struct Case {
+        std::string atmosphere;
+        double nearD, farD;  // d at depth 4 and 6
+    };
+    const Case cases[] = {
+        {"Atmosphere \"fog\" \"distance\" [2] \"background\" [0 0 1]", 1 - std::exp(-2.0), 1 - std::exp(-3.0)},
+        {"Atmosphere \"depthcue\" \"mindistance\" [0.125] \"maxdistance\" [0.625] \"background\" [0 0 1]", 0.5, 1.0},
+    };
+    for (const Case& c : cases) {
+        INFO(c.atmosphere);
+        const image::ImageBuffer image = Render(dir, scene(c.atmosphere));
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                const float* rgba = &image.rgba[(size_t(y) * image.width + x) * 4];
+                // Row 7 (y up: the bottom) is the patch without atmosphere.
+                const double d = y == 7 ? 0.0 : x < 4 ? c.nearD : c.farD;
+                const glm::dvec3 ci = glm::mix(0.5 * red, blue, d);
+                const double oi = 0.5 + 0.5 * d;
+                INFO("pixel " << x << " " << y);
+                CHECK(rgba[0] == Approx(ci.x).margin(1e-6));
+                CHECK(rgba[1] == Approx(ci.y).margin(1e-6));
+                CHECK(rgba[2] == Approx(ci.z).margin(1e-6));
+                CHECK(rgba[3] == Approx(oi).margin(1e-6));
+            }
+    }
+}
+
 TEST_CASE("render: a mesh is one description whose faces share its arrays and programs, at about 200 bytes each",
           "[renderer][render][mesh]") {
     // A 40 x 40 grid of quads with vertex normals, displaced: 1,600 primitives.
