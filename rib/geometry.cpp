@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "rib/parser.h"
 
 namespace affray::rib {
@@ -423,6 +425,80 @@ bool RibParser::DoQuadric(const RibRequest& r, Quadric::Kind kind) {
     SetPrimitiveAttributes(r, &prim);
     PatchColorFields(&prim, colors, 0, {0, 1, 2, 3}, {0, 1, 2, 3}, {}, false, false);
     m_scene.primitives.push_back(std::move(prim));
+    return true;
+}
+
+// Points "P" [...] ("width" per point, or "constantwidth"; RI default width 1, in object space):
+// each point a sphere of that diameter around it, with its own Cs and Os (constant or uniform:
+// the whole request's; varying or vertex: the point's). prman draws points as discs facing the
+// camera, which a ray tracer cannot tell apart from spheres at the sizes particles have: the
+// silhouette is the same circle, and the shading a sphere's (a note says so once). A point of
+// width 0 or less draws nothing. Every point is one quadric primitive of its own.
+bool RibParser::DoPoints(const RibRequest& r) {
+    std::vector<RibParam> params;
+    if (!ParamList(r, 0, &params) || !InsideWorld(r)) return false;
+    const std::string context = Quote(r.name);
+    const RibParam* position = nullptr;
+    for (const RibParam& p : params)
+        if (p.value.name == "P") position = &p;
+    if (!position) return Fail(r.at, context + " needs \"P\"");
+    if (!position->value.strings.empty() || position->value.numbers.empty() || position->value.numbers.size() % 3 != 0)
+        return Fail(position->at,
+                    context + " parameter 'P' expects 3 numbers a point, got " +
+                        (position->value.strings.empty() ? std::to_string(position->value.numbers.size()) + " numbers"
+                                                         : std::string("strings")));
+    const std::vector<double>& P = position->value.numbers;
+    const size_t n = P.size() / 3;
+    std::vector<double> widths(1, 1.0);  // one for every point, or one each
+    std::optional<ColorValues> colors[2];
+    const PrimvarCounts counts{1, n, n, n};
+    for (const RibParam& p : params) {
+        const std::string& name = p.value.name;
+        if (name == "P") continue;
+        if (name == "width" || name == "constantwidth") {
+            const size_t got = p.value.numbers.size();
+            if (!p.value.strings.empty() || !(got == 1 || (name == "width" && got == n)))
+                return Fail(p.at, context + " parameter " + Quote(name) + " expects " +
+                                      (name == "width" ? std::to_string(n) + " numbers (one a point) or 1"
+                                                       : std::string("1 number")) +
+                                      ", got " +
+                                      (p.value.strings.empty() ? std::to_string(got) : std::string("strings")));
+            widths = p.value.numbers;
+        } else if (name == "Cs" || name == "Os") {
+            ColorValues c;
+            if (!ColorPrimvar(p, context, counts, true, &c)) return false;
+            colors[name == "Os"] = std::move(c);
+        } else {
+            Warn(p.at, context + " parameter " + Quote(name) + " is not supported yet; ignored");
+        }
+    }
+    Note(r.at, "'Points' are drawn as spheres of their width (prman draws discs facing the camera)");
+    size_t skipped = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const double width = widths[widths.size() == 1 ? 0 : i];
+        if (!(width > 0)) {
+            ++skipped;
+            continue;
+        }
+        const double radius = 0.5 * width;
+        const double v[4] = {radius, -radius, radius, 360};
+        const Quadric sphere = MakeQuadric(Quadric::Kind::Sphere, v);
+        if (std::string problem = sphere.Problem(); !problem.empty())
+            return Fail(r.at, context + " point " + std::to_string(i) + ": " + problem);
+        PrimitiveDesc prim;
+        const glm::dvec3 at(P[3 * i], P[3 * i + 1], P[3 * i + 2]);
+        prim.base = renderer::BaseSurface(renderer::PlacedQuadric{sphere, glm::translate(m_state.ctm, at)});
+        SetPrimitiveAttributes(r, &prim);
+        for (int k = 0; k < 2; ++k) {
+            if (!colors[k]) continue;
+            const std::vector<glm::dvec3>& values = colors[k]->values;
+            (k == 0 ? prim.color : prim.opacity) = values[values.size() == 1 ? 0 : i];
+        }
+        m_scene.primitives.push_back(std::move(prim));
+    }
+    if (skipped > 0)
+        Warn(r.at, context + ": " + std::to_string(skipped) + " point" + (skipped == 1 ? "" : "s") +
+                       " of width 0 or less drawn as nothing");
     return true;
 }
 

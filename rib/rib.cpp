@@ -218,6 +218,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"Surface", &RibParser::DoSurface},
         {"Displacement", &RibParser::DoDisplacement},
         {"Atmosphere", &RibParser::DoAtmosphere},
+        {"Points", &RibParser::DoPoints},
         {"LightSource", &RibParser::DoLightSource},
         {"Basis", &RibParser::DoBasis},
         {"Patch", &RibParser::DoPatch},

@@ -523,6 +523,20 @@ TEST_CASE("render: Atmosphere \"fog\" and \"depthcue\" mix what camera rays see 
     }
 }
 
+TEST_CASE("render: Points render as the spheres they stand for", "[renderer][render]") {
+    // Two points, one coloured, against the same spheres written as Sphere requests: the same image.
+    test::TempDir dir;
+    const std::string world = std::string(kCamera) + "WorldBegin\nLightSource \"distantlight\" 1\n";
+    const image::ImageBuffer points = Render(
+        dir, world + "Points \"P\" [-0.5 0 0  0.5 0.25 0] \"width\" [0.8 0.5] \"Cs\" [1 1 1  1 0 0]\nWorldEnd\n");
+    const image::ImageBuffer spheres =
+        Render(dir, world +
+                        "TransformBegin\nTranslate -0.5 0 0\nSphere 0.4 -0.4 0.4 360\nTransformEnd\n"
+                        "Translate 0.5 0.25 0\nColor [1 0 0]\nSphere 0.25 -0.25 0.25 360\nWorldEnd\n");
+    CHECK(Covered(points) > 10);
+    CHECK(points.rgba == spheres.rgba);
+}
+
 TEST_CASE("render: a mesh is one description whose faces share its arrays and programs, at about 200 bytes each",
           "[renderer][render][mesh]") {
     // A 40 x 40 grid of quads with vertex normals, displaced: 1,600 primitives.

@@ -195,23 +195,21 @@ TEST_CASE("rib: solids render their parts for unions and are skipped for interse
 TEST_CASE("rib: primitives affray cannot make are skipped with one warning per name", "[rib]") {
     Messages messages;
     const SceneDesc scene = Scene(
-        InWorld("Points \"P\" [0 0 0  1 1 1] \"constantwidth\" [0.1]\n"
-                "Curves \"cubic\" [4] \"nonperiodic\" \"P\" [0 0 0  1 1 1  2 2 2  3 3 3] \"constantwidth\" [0.1]\n"
+        InWorld("Curves \"cubic\" [4] \"nonperiodic\" \"P\" [0 0 0  1 1 1  2 2 2  3 3 3] \"constantwidth\" [0.1]\n"
                 "Blobby 1 [1001 0] [1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1] [\"\"]\n"
-                "Geometry \"teapot\"\nPoints \"P\" [0 0 0]\nVolume \"box\" [0 1 0 1 0 1] [1 1 1]\n" +
+                "Geometry \"teapot\"\nCurves \"linear\" [2] \"nonperiodic\" \"P\" [0 0 0  1 1 1]\n"
+                "Volume \"box\" [0 1 0 1 0 1] [1 1 1]\n" +
                 kPatch),
         &messages);
     CHECK(scene.primitives.size() == 1);
     CHECK(messages == Messages{
-                          "t.rib:2: warning: 'Points' is not supported yet: skipped, so the image lacks these "
+                          "t.rib:2: warning: 'Curves' is not supported yet: skipped, so the image lacks these "
                           "primitives",
-                          "t.rib:3: warning: 'Curves' is not supported yet: skipped, so the image lacks these "
+                          "t.rib:3: warning: 'Blobby' is not supported yet: skipped, so the image lacks these "
                           "primitives",
-                          "t.rib:4: warning: 'Blobby' is not supported yet: skipped, so the image lacks these "
+                          "t.rib:4: warning: 'Geometry' is not supported yet: skipped, so the image lacks these "
                           "primitives",
-                          "t.rib:5: warning: 'Geometry' is not supported yet: skipped, so the image lacks these "
-                          "primitives",
-                          "t.rib:7: warning: 'Volume' is not supported yet: skipped, so the image lacks these "
+                          "t.rib:6: warning: 'Volume' is not supported yet: skipped, so the image lacks these "
                           "primitives",
                       });
     // Outside the world they are misplaced, as every primitive is.
@@ -376,4 +374,40 @@ TEST_CASE("rib: Option and Attribute \"Ri\" (RenderMan 21 and later) run as the 
           "t.rib:1: error: 'CropWindow' needs 0 <= xmin < xmax <= 1, got 0.5 0.2");
     CHECK(FirstError("WorldBegin\nAttribute \"Ri\" \"int Sides\" [3]\nWorldEnd\n").find("t.rib:2: error: 'Sides'") ==
           0);
+}
+
+TEST_CASE("rib: Points are spheres of their width around each point, with the point's colours", "[rib]") {
+    Messages messages;
+    const SceneDesc scene = Scene(
+        InWorld("Translate 0 0 2\nOpacity [0.5 0.5 0.5]\n"
+                "Points \"P\" [0 0 0  1 0 0  2 0 0  3 0 0] \"width\" [0.5 0 1 2] \"Cs\" [1 0 0  0 1 0  0 0 1  1 1 0]\n"
+                "Points \"P\" [0 1 0] \"constantwidth\" [0.25] \"uniform color Os\" [0.2 0.3 0.4] \"N\" [0 0 1]\n"),
+        &messages);
+    // The width-0 point draws nothing; the others are spheres of radius width / 2 moved to P.
+    REQUIRE(scene.primitives.size() == 4);
+    const double radius[] = {0.25, 0.5, 1.0, 0.125};
+    const glm::dvec3 centre[] = {{0, 0, 2}, {2, 0, 2}, {3, 0, 2}, {0, 1, 2}};
+    const glm::dvec3 color[] = {{1, 0, 0}, {0, 0, 1}, {1, 1, 0}, {1, 1, 1}};
+    for (size_t i = 0; i < 4; ++i) {
+        INFO("point " << i);
+        const renderer::BaseSurface& b = scene.primitives[i].base;
+        REQUIRE(b.kind() == renderer::BaseSurface::Kind::Quadric);
+        const renderer::PlacedQuadric& q = b.quadric();
+        CHECK(q.quadric.kind == renderer::Quadric::Kind::Sphere);
+        CHECK(q.quadric.radius == radius[i]);
+        CHECK(glm::dvec3(q.objectToWorld[3]) == centre[i]);
+        CHECK(scene.primitives[i].color == color[i]);
+        CHECK(scene.primitives[i].opacity == (i < 3 ? glm::dvec3(0.5) : glm::dvec3(0.2, 0.3, 0.4)));
+    }
+    CHECK(messages ==
+          Messages{"t.rib:4: note: 'Points' are drawn as spheres of their width (prman draws discs facing the camera)",
+                   "t.rib:4: warning: 'Points': 1 point of width 0 or less drawn as nothing",
+                   "t.rib:5: warning: 'Points' parameter 'N' is not supported yet; ignored"});
+    CHECK(WorldError("Points \"P\" [0 0]") ==
+          "t.rib:2: error: 'Points' parameter 'P' expects 3 numbers a point, got 2 numbers");
+    CHECK(WorldError("Points \"constantwidth\" [1]") == "t.rib:2: error: 'Points' needs \"P\"");
+    CHECK(WorldError("Points \"P\" [0 0 0  1 1 1] \"width\" [1 2 3]") ==
+          "t.rib:2: error: 'Points' parameter 'width' expects 2 numbers (one a point) or 1, got 3");
+    CHECK(WorldError("Points \"P\" [0 0 0  1 1 1] \"Cs\" [1 0 0  0 1 0  0 0 1]")
+              .find("t.rib:2: error: 'Points' parameter 'Cs'") == 0);
 }
