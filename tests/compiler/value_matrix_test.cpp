@@ -15,6 +15,10 @@
 using namespace affray;
 using namespace affray::test::semantics;
 
+namespace {
+const char* const kTranslate567 = "matrix t = (1, 0, 0, 0,  0, 1, 0, 0,  0, 0, 1, 0,  5, 6, 7, 1);";
+}  // namespace
+
 TEST_CASE("matrices: construction, transform and vtransform", "[compiler][semantics][matrix]") {
     CheckVec(PAt(std::string(kTranslate567) + " P = transform(t, point(1, 2, 3));"), {6, 8, 10});
     CheckVec(PAt(std::string(kTranslate567) + " P = vtransform(t, vector(1, 2, 3));"), {1, 2, 3});
