@@ -47,7 +47,7 @@ TEST_CASE("ir: leaves are made once, constants told apart by their bits", "[comp
     CHECK(ir.FindLeaf(IrOp::Param, 1, 0) == compiler::kNoValue);
 }
 
-TEST_CASE("ir: an operation asked for again is the same node; commutative operands are ordered", "[compiler][ir]") {
+TEST_CASE("ir: an operation asked for again is the same node, and commutative operands are ordered", "[compiler][ir]") {
     IrBuilder ir;
     const ValueId u = ir.Global(vm::Global::u, 0);
     const ValueId v = ir.Global(vm::Global::v, 0);
