@@ -1,5 +1,6 @@
 // tests/compiler/compile_test.cpp: language semantics (expected values), compiler diagnostics
-// (exact text) and the shape of the emitted code (opcode sequences).
+// (exact text) and the shape of the emitted code (opcode sequences). Specialisation is
+// tests/compiler/specialise_test.cpp's; the listing, tests/vm/disasm_test.cpp's.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -8,7 +9,6 @@
 #include "compiler/ir.h"
 #include "tests/test_util.h"
 #include "vm/bytecode_file.h"
-#include "vm/disasm.h"
 
 using namespace affray;
 using Catch::Matchers::WithinAbs;
@@ -255,69 +255,6 @@ TEST_CASE("only the globals a shader reads are inputs", "[compiler]") {
     CHECK_FALSE(s.bound.readsGlobal(vm::Global::I));
 }
 
-TEST_CASE("the disassembly shows opcodes, constants and source lines", "[compiler]") {
-    compiler::CompiledShader s = test::CompileOrThrow("displacement t() {\n  P += 0.25 * sin(u) * N;\n}\n");
-    std::string listing = vm::Disassemble(s.bound, s.sourceText);
-    CHECK(listing.find("; 2: P += 0.25 * sin(u) * N;") != std::string::npos);
-    CHECK(listing.find("Sin") != std::string::npos);
-    CHECK(listing.find("(0.25)") != std::string::npos);
-}
-
-TEST_CASE("generic programs read parameters, specialised ones fold them away", "[compiler][specialise]") {
-    const std::string src = R"(
-        displacement t(float Km = 0.5, freq = 4; vector dir = (0, 0, 1)) {
-            P += Km * sin(freq * u) * dir;
-        })";
-    compiler::CompiledShader s = test::CompileOrThrow(src);
-    // The generic program reads Km, freq and dir from registers.
-    REQUIRE(s.genericBound.params.size() == 3);
-    CHECK(s.genericBound.params[0].name == "Km");
-    CHECK(s.genericBound.params[2].type == "vector");
-    CHECK(s.genericBound.params[2].defaults == std::vector<double>{0, 0, 1});
-    for (const vm::ProgramParam& p : s.genericBound.params) CHECK(p.firstRegister != vm::kNoRegister);
-    // Specialised with the defaults, the parameters are constants that fold into K operands
-    // (freq * u becomes one MulRK, Km * sin(...) another): shorter code, no parameter registers.
-    CHECK(s.bound.params.empty());
-    CHECK(s.bound.code.size() < s.genericBound.code.size());
-
-    // Generic (with parameter values set at run time) and specialised programs agree.
-    compiler::CompiledShader inst = test::CompileOrThrow(src, {{"Km", {2}}, {"freq", {7}}, {"dir", {0, 1, 0}}});
-    vm::Interpreter<double> generic(s.genericBound);
-    generic.SetParam(0, {2});
-    generic.SetParam(1, {7});
-    generic.SetParam(2, {0, 1, 0});
-    vm::Vec3<double> g = renderer::EvaluateOnPatch(generic, renderer::BilinearPatch::UnitSquare(), 0.3, 0.3, 0.6, 0.6,
-                                                   glm::dvec3(0), *s.genericBound.findOutput("P"));
-    glm::dvec3 p = test::PointOnSquare(inst.bound, 0.3, 0.6);
-    CHECK(g.x == p.x);
-    CHECK(g.y == p.y);
-    CHECK(g.z == p.z);
-    CHECK(p.y == Approx(0.6 + 2 * std::sin(7 * 0.3)));
-
-    // A parameter whose instance value makes code dead: Km = 0 leaves nothing but P.
-    compiler::CompiledShader zero = test::CompileOrThrow(src, {{"Km", {0}}});
-    CHECK(zero.bound.code.size() <= s.bound.code.size());
-}
-
-TEST_CASE("globals constant on a surface fold like parameters", "[compiler][specialise]") {
-    compiler::CompiledShader s = test::CompileOrThrow("displacement t() { P += 0.1 * sin(u) * normalize(N); }");
-    std::vector<std::string> errors;
-    std::optional<vm::Program> flat = compiler::Specialise(s.bound, {}, &errors, {{vm::Global::N, {0, 0, 1}}});
-    REQUIRE(flat);
-    CHECK(errors.empty());
-    CHECK_FALSE(flat->readsGlobal(vm::Global::N));
-    // normalize(N) of a constant folds away, and so do the products with its zero components:
-    // only sin(u), the product and the add on P.z remain.
-    CHECK(Opcodes(*flat) == std::vector<vm::Op>{vm::Op::Sin, vm::Op::MulRK, vm::Op::AddRR});
-    // Same values as the unspecialised program given that N.
-    glm::dvec3 a = test::PointOnSquare(s.bound, 0.3, 0.7), b = test::PointOnSquare(*flat, 0.3, 0.7);
-    CHECK(a == b);
-}
-
-// Found by fuzz_afb (fuzz/regressions/fuzz_afb/shade_poison.afb): a file whose two programs pass
-// the verifier but do not agree. The shade program's specialisation was taken for granted once
-// the bound program's had worked (a crash when it failed), and `eval` and the renderer read
-// outputs P and N that the verifier does not require.
 TEST_CASE("a loaded .afb whose shade program does not specialise or lacks an output is an error",
           "[compiler][bytecode]") {
     test::TempDir dir;

@@ -3,7 +3,7 @@
 // requires the exact, complete text: file:line:col, severity, message, the source line and the
 // caret, and any note. The "Regression tests" at the end guard bugs this suite found.
 //
-// Distinct kinds of diagnostics checked here (compile_test.cpp and lang/parser_test.cpp check
+// Distinct kinds of diagnostics checked here (compile_test.cpp and lang/parse_test.cpp check
 // more, mostly syntax):
 //   control flow     1 'break' outside of a loop            2 'continue' outside of a loop
 //                    3 'break N'/'continue N' is inside only M loops

@@ -1,6 +1,7 @@
 // tests/renderer/film_test.cpp: the film (renderer/film.*): crop pixels that partition the image,
 // sample positions that do not depend on who asks, filter weights worked out by hand, images
-// that do not depend on the tiling bit for bit, the AOV rules, exposure and Display modes.
+// that do not depend on the tiling bit for bit, the AOV rules and exposure. (Display modes are
+// tests/scene/display_test.cpp's.)
 #include "renderer/film.h"
 
 #include <catch2/catch.hpp>
@@ -396,43 +397,4 @@ TEST_CASE("Exposure maps colour through gain and gamma", "[film]") {
     c.exposureGamma = 1;
     CHECK(Film(c).Expose(0.1) == Approx(0.3));
     CHECK(Film(c).Expose(-0.1) == Approx(-0.3));  // gamma 1 is linear, negatives included
-}
-
-TEST_CASE("Display modes select the AOV channels", "[film]") {
-    auto parse = [](const std::string& mode) {
-        DisplayChannels ch;
-        std::string error;
-        INFO("mode " << mode);
-        REQUIRE(ParseDisplayMode(mode, &ch, &error));
-        return ch;
-    };
-    CHECK(parse("rgba") == DisplayChannels{});
-    CHECK(parse("rgb") == DisplayChannels{});
-    CHECK(parse("rgbz").z);
-    CHECK(parse("rgbaz") == DisplayChannels{true, false, false, false, false, false});
-    CHECK(parse("r,g,b,a") == DisplayChannels{});
-    CHECK(parse("z").z);
-    CHECK(parse("rgba,Z") == parse("rgbaz"));
-    CHECK(parse("rgba,N,P,st,cost,err") == DisplayChannels{false, true, true, true, true, true});
-    CHECK(parse(" rgb , N ") == DisplayChannels{false, true, false, false, false, false});
-    // prman's output variables for colour and opacity, as its exporters name the primary display.
-    CHECK(parse("Ci") == DisplayChannels{});
-    CHECK(parse("Ci,a") == DisplayChannels{});
-    CHECK(parse("Ci,Oi,N") == DisplayChannels{false, true, false, false, false, false});
-
-    auto fails = [](const std::string& mode, const std::string& mention) {
-        DisplayChannels ch{true, true, true, true, true, true};
-        std::string error;
-        INFO("mode '" << mode << "'");
-        REQUIRE_FALSE(ParseDisplayMode(mode, &ch, &error));
-        INFO("error: " << error);
-        CHECK(error.find(mention) != std::string::npos);
-        CHECK(ch == DisplayChannels{true, true, true, true, true, true});  // untouched on error
-    };
-    fails("rgba,foo", "'foo'");
-    fails("RGBA", "'RGBA'");
-    fails("rgba,n", "'n'");
-    fails("rgba,,Z", "empty channel group");
-    fails("", "empty channel group");
-    fails("rgba,", "empty channel group");
 }

@@ -1,15 +1,14 @@
 // tests/vm/interpreter_test.cpp: the interpreter's contracts over every shader in shaders/:
 // containment (the scalar result at any point of a region lies in the region's affine and
-// interval bounds), derivatives (duals agree with finite differences), the verifier's rejection
-// of malformed programs, and floor's splits. Every opcode under every number type, and the
-// verifier over every opcode value, are tests/vm/conformance_test.cpp's.
+// interval bounds), derivatives (duals agree with finite differences) and floor's splits. Every
+// opcode under every number type, and the verifier over every opcode value, are
+// tests/vm/conformance_test.cpp's; the verifier's own checks, tests/vm/verify_test.cpp's.
 #include <catch2/catch.hpp>
 
 #include <random>
 
 #include "tests/test_util.h"
 #include "tests/vm/shader_containment.h"
-#include "vm/verify.h"
 
 using namespace affray;
 
@@ -58,23 +57,6 @@ TEST_CASE("dual derivatives agree with finite differences", "[vm][dual]") {
             }
         }
     }
-}
-
-TEST_CASE("the verifier rejects malformed programs", "[vm]") {
-    compiler::CompiledShader s = test::CompileOrThrow("displacement t() { P += sin(u) * N; }");
-    std::string error;
-    REQUIRE(vm::Verify(s.bound, &error));
-    vm::Program bad = s.bound;
-    bad.code[0].b = 999;
-    CHECK_FALSE(vm::Verify(bad, &error));
-    bad = s.bound;
-    bad.code[0].op = static_cast<vm::Op>(200);
-    CHECK_FALSE(vm::Verify(bad, &error));
-    CHECK(error.find("unknown opcode") != std::string::npos);
-    bad = s.bound;
-    bad.outputs[0].registers[0] = 60000;
-    CHECK_FALSE(vm::Verify(bad, &error));
-    // (Random programs over every opcode value: tests/vm/conformance_test.cpp's verifier fuzz.)
 }
 
 TEST_CASE("floor straddling an integer is split into its two cases", "[vm][interpreter]") {

@@ -1,8 +1,9 @@
-// tests/rib/header_test.cpp: the requests exported scenes set in their header and attributes
-// (rib/rib.cpp, rib/args.cpp): Hider and its jitter (rendered: samples at pixel centres),
-// Declare and inline declarations on every kind of parameter list, Option and Attribute names
-// that tune other renderers, ShadingRate, ShadingInterpolation and ArchiveRecord; and a header
-// as exporters write it, which must parse with one warning per ignored name.
+// tests/rib/settings_test.cpp: the requests exported scenes set in their header and attributes
+// (rib/settings.cpp; the declarations' rules are rib/args.cpp's): Hider and its jitter (rendered:
+// samples at pixel centres), Declare and inline declarations on every kind of parameter list,
+// Option and Attribute names that tune other renderers, ShadingRate, ShadingInterpolation and
+// ArchiveRecord; and a header as exporters write it, which must parse with one warning per
+// ignored name.
 #include <catch2/catch.hpp>
 #include <string>
 #include <vector>

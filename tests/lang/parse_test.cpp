@@ -1,4 +1,4 @@
-// tests/lang/parser_test.cpp: the lexer and parser (lang/lexer.l, lang/parser.y, lang/parse.cpp)
+// tests/lang/parse_test.cpp: the lexer and parser (lang/lexer.l, lang/parser.y, lang/parse.cpp)
 // and the printed tree (lang/ast.cpp). Valid programs are checked through ToString; invalid ones
 // through the exact text of Diagnostics::format(), so a change in any message shows up here.
 #include <catch2/catch.hpp>

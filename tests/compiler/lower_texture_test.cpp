@@ -1,4 +1,4 @@
-// tests/compiler/texture_compile_test.cpp: texture() in the compiler (compiler/lower_texture.cpp):
+// tests/compiler/lower_texture_test.cpp: texture() in the compiler (compiler/lower_texture.cpp):
 // the forms and parameters a shader may give, the slots they become, the file search, the errors
 // with their locations, and the programs' values against texture::Sample of the same map. Every
 // number type's rules for the opcodes are tests/vm/conformance_test.cpp's; the maps' own,

@@ -1,4 +1,4 @@
-// tests/image/exr_test.cpp: OpenEXR output (image/exr_writer.*): round trips, channel
+// tests/image/exr_writer_test.cpp: OpenEXR output (image/exr_writer.*): round trips, channel
 // types, and clean failure without leftover temporary files.
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
