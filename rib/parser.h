@@ -212,6 +212,7 @@ class RibParser : private RibArgChecks {
     /// A quadric request: positional numbers (bare or one array), then ignored parameters.
     bool DoQuadric(const RibRequest& r, Quadric::Kind kind);
     bool DoPoints(const RibRequest& r);
+    bool DoCurves(const RibRequest& r);
 
     // Handlers, one per implemented request: options, blocks and transforms in rib.cpp; attributes
     // and lights in rib_attributes.cpp; geometry and coordinate systems in rib_geometry.cpp.

@@ -219,6 +219,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"Displacement", &RibParser::DoDisplacement},
         {"Atmosphere", &RibParser::DoAtmosphere},
         {"Points", &RibParser::DoPoints},
+        {"Curves", &RibParser::DoCurves},
         {"LightSource", &RibParser::DoLightSource},
         {"Basis", &RibParser::DoBasis},
         {"Patch", &RibParser::DoPatch},

@@ -38,7 +38,7 @@ constexpr std::string_view kIgnored[] = {
 // Primitives affray cannot render yet (RI 3.2's and prman's): skipped with one warning per name,
 // so the image lacks them (prman too skips a primitive it cannot make, with a warning).
 constexpr std::string_view kSkippedPrimitives[] = {
-    "Blobby", "Curves", "Geometry", "Volume",
+    "Blobby", "Geometry", "Volume",
 };
 // clang-format on
 

@@ -194,22 +194,18 @@ TEST_CASE("rib: solids render their parts for unions and are skipped for interse
 
 TEST_CASE("rib: primitives affray cannot make are skipped with one warning per name", "[rib]") {
     Messages messages;
-    const SceneDesc scene = Scene(
-        InWorld("Curves \"cubic\" [4] \"nonperiodic\" \"P\" [0 0 0  1 1 1  2 2 2  3 3 3] \"constantwidth\" [0.1]\n"
-                "Blobby 1 [1001 0] [1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1] [\"\"]\n"
-                "Geometry \"teapot\"\nCurves \"linear\" [2] \"nonperiodic\" \"P\" [0 0 0  1 1 1]\n"
-                "Volume \"box\" [0 1 0 1 0 1] [1 1 1]\n" +
-                kPatch),
-        &messages);
+    const SceneDesc scene = Scene(InWorld("Blobby 1 [1001 0] [1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1] [\"\"]\n"
+                                          "Geometry \"teapot\"\nGeometry \"sphere\"\n"
+                                          "Volume \"box\" [0 1 0 1 0 1] [1 1 1]\n" +
+                                          kPatch),
+                                  &messages);
     CHECK(scene.primitives.size() == 1);
     CHECK(messages == Messages{
-                          "t.rib:2: warning: 'Curves' is not supported yet: skipped, so the image lacks these "
+                          "t.rib:2: warning: 'Blobby' is not supported yet: skipped, so the image lacks these "
                           "primitives",
-                          "t.rib:3: warning: 'Blobby' is not supported yet: skipped, so the image lacks these "
+                          "t.rib:3: warning: 'Geometry' is not supported yet: skipped, so the image lacks these "
                           "primitives",
-                          "t.rib:4: warning: 'Geometry' is not supported yet: skipped, so the image lacks these "
-                          "primitives",
-                          "t.rib:6: warning: 'Volume' is not supported yet: skipped, so the image lacks these "
+                          "t.rib:5: warning: 'Volume' is not supported yet: skipped, so the image lacks these "
                           "primitives",
                       });
     // Outside the world they are misplaced, as every primitive is.
