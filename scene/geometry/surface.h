@@ -100,17 +100,18 @@ Vec3<T> Constant(const glm::dvec3& p) {
     return {T(p.x), T(p.y), T(p.z)};
 }
 
-/// The parameters of the region [s0,s1] x [t0,t1] of a patch that covers `range` of its mesh:
-/// the patch's own s, t (what the patch is evaluated at, on the symbols eps_u, eps_v exactly as
-/// RegionParameter maps the region, which the intersector relies on) and the mesh's u, v (what
-/// the shader reads; Dual derivatives are along them), with ds/du and dt/dv to carry the
-/// patch's tangents to the mesh's parameters. For a lone patch u is s and v is t.
-/// ds/du and dt/dv of a patch that covers `range` of its mesh, as PatchParameters seeds them.
+/// ds/du and dt/dv of a patch that covers `range` of its mesh, as PatchParameters seeds them (the
+/// one definition: ConstantGlobals, renderer/prepare.cpp, scales the tangents by it too).
 inline double PatchRate(const ParameterRange& range, int axis) {
     if (range.unitP()) return 1.0;
     return axis == 0 ? 1.0 / (range.u1 - range.u0) : 1.0 / (range.v1 - range.v0);
 }
 
+/// The parameters of the region [s0,s1] x [t0,t1] of a patch that covers `range` of its mesh:
+/// the patch's own s, t (what the patch is evaluated at, on the symbols eps_u, eps_v exactly as
+/// RegionParameter maps the region, which the intersector relies on) and the mesh's u, v (what
+/// the shader reads; Dual derivatives are along them), with ds/du and dt/dv to carry the
+/// patch's tangents to the mesh's parameters. For a lone patch u is s and v is t.
 template <class T>
 struct PatchParameters {
     double dsdu, dtdv;
