@@ -32,10 +32,9 @@ std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, c
                                                  {Global::dv, {kParametricStep, 0, 0}}};
     if (base.kind() != BaseSurface::Kind::BilinearPatch) return out;
     const BilinearPatch& patch = base.patch();
-    // The tangents along the mesh's (u,v), as SetPatchGlobals scales them.
-    const double dsdu = base.range.unitP() ? 1.0 : 1.0 / (base.range.u1 - base.range.u0);
-    const double dtdv = base.range.unitP() ? 1.0 : 1.0 / (base.range.v1 - base.range.v0);
-    glm::dvec3 a = patch.a() * dsdu, b = patch.b() * dtdv, n = patch.flatNormal();
+    // The tangents along the mesh's (u,v), scaled by ds/du and dt/dv as SetPatchGlobals scales them.
+    glm::dvec3 a = patch.a() * PatchRate(base.range, 0), b = patch.b() * PatchRate(base.range, 1),
+               n = patch.flatNormal();
     if (base.flipNormal) n = -n;
     if (patch.flat() && std::isfinite(glm::dot(n, n))) {
         // The same tangents and normal everywhere, the values SetPatchGlobals would give.

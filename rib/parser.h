@@ -417,6 +417,16 @@ class RibParser : private RibArgChecks {
     /// request in messages.
     bool MeshPrimvar(const RibParam& p, const std::string& context, const PrimvarCounts& counts, RibDeclaration* d,
                      bool* declared);
+    /// The points of a polygon or subdivision mesh: its "P" (`width` 3 numbers a point) or, if it
+    /// has none, its first "Pw" (4), holding `count` points.
+    struct MeshPoints {
+        const RibParam* param = nullptr;
+        size_t width = 0, count = 0;
+    };
+    /// Finds the points of mesh request `r` in its parameter list and checks that they are
+    /// numbers, a whole number of points and at least one (rib/polygons.cpp). False after a Fail.
+    bool FindMeshPoints(const RibRequest& r, const std::vector<RibParam>& params, const std::string& context,
+                        MeshPoints* out);
     /// SubdivisionMesh (rib/subdivision.cpp): its counts, tags and parameters checked, its patches added.
     bool DoSubdivisionMesh(const RibRequest& r);
     bool DoVersion(const RibRequest&) { return true; }  // "version 3.03": nothing to check

@@ -73,16 +73,10 @@ bool RibParser::MeshRequest(const RibRequest& r, std::vector<int> loops, std::ve
                                       std::to_string(loopSizes.size()) + " entries");
 
     // The points: "P" (or "Pw"), whose count a Polygon takes as its corner count.
-    const RibParam* position = nullptr;
-    for (const RibParam& p : params)
-        if (p.value.name == "P" || (p.value.name == "Pw" && !position)) position = &p;
-    if (!position) return Fail(r.at, context + " needs a \"P\" parameter");
-    const size_t width = position->value.name == "P" ? 3 : 4;
-    const size_t nPoints = position->value.numbers.size() / width;
-    if (!position->value.strings.empty() || position->value.numbers.size() % width != 0 || nPoints == 0)
-        return Fail(position->at, context + " parameter " + Quote(position->value.name) + " expects a multiple of " +
-                                      std::to_string(width) + " numbers, got " +
-                                      std::to_string(position->value.numbers.size()));
+    MeshPoints points;
+    if (!FindMeshPoints(r, params, context, &points)) return false;
+    const RibParam* const position = points.param;
+    const size_t width = points.width, nPoints = points.count;
     if (r.name == "Polygon") {
         if (nPoints < 3)
             return Fail(position->at, context + " needs at least 3 points, got " + std::to_string(nPoints));
@@ -184,6 +178,22 @@ void RibParser::AddMesh(const RibRequest& r, std::variant<renderer::PolygonMesh,
     prim.elements = 0;
     prim.unrefined = std::move(unrefined);
     m_scene.primitives.push_back(std::move(prim));
+}
+
+bool RibParser::FindMeshPoints(const RibRequest& r, const std::vector<RibParam>& params, const std::string& context,
+                               MeshPoints* out) {
+    const RibParam* position = nullptr;
+    for (const RibParam& p : params)
+        if (p.value.name == "P" || (p.value.name == "Pw" && !position)) position = &p;
+    if (!position) return Fail(r.at, context + " needs a \"P\" parameter");
+    const size_t width = position->value.name == "P" ? 3 : 4;
+    const size_t count = position->value.numbers.size() / width;
+    if (!position->value.strings.empty() || position->value.numbers.size() % width != 0 || count == 0)
+        return Fail(position->at, context + " parameter " + Quote(position->value.name) + " expects a multiple of " +
+                                      std::to_string(width) + " numbers, got " +
+                                      std::to_string(position->value.numbers.size()));
+    *out = {position, width, count};
+    return true;
 }
 
 bool RibParser::MeshPrimvar(const RibParam& p, const std::string& context, const PrimvarCounts& counts,

@@ -86,16 +86,10 @@ bool RibParser::DoSubdivisionMesh(const RibRequest& r) {
     if (vertices.size() != nCorners)
         return Fail(r.args[2].at, context + " nvertices add up to " + std::to_string(nCorners) +
                                       " vertices, but the vertices array has " + std::to_string(vertices.size()));
-    const RibParam* position = nullptr;
-    for (const RibParam& p : params)
-        if (p.value.name == "P" || (p.value.name == "Pw" && !position)) position = &p;
-    if (!position) return Fail(r.at, context + " needs a \"P\" parameter");
-    const size_t width = position->value.name == "P" ? 3 : 4;
-    const size_t nPoints = position->value.numbers.size() / width;
-    if (!position->value.strings.empty() || position->value.numbers.size() % width != 0 || nPoints == 0)
-        return Fail(position->at, context + " parameter " + Quote(position->value.name) + " expects a multiple of " +
-                                      std::to_string(width) + " numbers, got " +
-                                      std::to_string(position->value.numbers.size()));
+    MeshPoints points;
+    if (!FindMeshPoints(r, params, context, &points)) return false;
+    const RibParam* const position = points.param;
+    const size_t width = points.width, nPoints = points.count;
     for (int v : vertices)
         if (static_cast<size_t>(v) >= nPoints)
             return Fail(r.args[2].at, context + " vertex index " + std::to_string(v) + " is out of range (" +

@@ -100,17 +100,18 @@ Vec3<T> Constant(const glm::dvec3& p) {
     return {T(p.x), T(p.y), T(p.z)};
 }
 
-/// The parameters of the region [s0,s1] x [t0,t1] of a patch that covers `range` of its mesh:
-/// the patch's own s, t (what the patch is evaluated at, on the symbols eps_u, eps_v exactly as
-/// RegionParameter maps the region, which the intersector relies on) and the mesh's u, v (what
-/// the shader reads; Dual derivatives are along them), with ds/du and dt/dv to carry the
-/// patch's tangents to the mesh's parameters. For a lone patch u is s and v is t.
-/// ds/du and dt/dv of a patch that covers `range` of its mesh, as PatchParameters seeds them.
+/// ds/du and dt/dv of a patch that covers `range` of its mesh, as PatchParameters seeds them (the
+/// one definition: ConstantGlobals, renderer/prepare.cpp, scales the tangents by it too).
 inline double PatchRate(const ParameterRange& range, int axis) {
     if (range.unitP()) return 1.0;
     return axis == 0 ? 1.0 / (range.u1 - range.u0) : 1.0 / (range.v1 - range.v0);
 }
 
+/// The parameters of the region [s0,s1] x [t0,t1] of a patch that covers `range` of its mesh:
+/// the patch's own s, t (what the patch is evaluated at, on the symbols eps_u, eps_v exactly as
+/// RegionParameter maps the region, which the intersector relies on) and the mesh's u, v (what
+/// the shader reads; Dual derivatives are along them), with ds/du and dt/dv to carry the
+/// patch's tangents to the mesh's parameters. For a lone patch u is s and v is t.
 template <class T>
 struct PatchParameters {
     double dsdu, dtdv;
@@ -226,19 +227,6 @@ void SetPatchGlobals(vm::Interpreter<T>& interp, const BilinearPatch& patch, dou
     SetFrameGlobals(interp, param.u, param.v, frame, twisted ? nullptr : &flatNormal, eye, flipNormal);
 }
 
-/// SetPatchGlobals for a bicubic patch that covers `range` of its mesh.
-template <class T>
-void SetBicubicGlobals(vm::Interpreter<T>& interp, const BicubicPatch& patch, double u0, double u1, double v0,
-                       double v1, const glm::dvec3& eye, bool flipNormal = false, const ParameterRange& range = {}) {
-    if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
-    const PatchParameters<T> param(range, u0, u1, v0, v1);
-    SurfaceFrame<T> frame = BicubicFrame(patch, param.s, param.t);
-    if (patch.poles && ReadsNormal(interp.program())) PoleNormalDirection(patch, param.s, param.t, &frame);
-    if (param.dsdu != 1) frame.dPdu = frame.dPdu * param.dsdu;
-    if (param.dtdv != 1) frame.dPdv = frame.dPdv * param.dtdv;
-    SetFrameGlobals(interp, param.u, param.v, frame, nullptr, eye, flipNormal);
-}
-
 /// Sets s and t from a primitive's own "st", computed by st(&s, &t) only if the program reads
 /// either (they replace the u, v that SetFrameGlobals gave them).
 template <class T, class ST>
@@ -251,19 +239,28 @@ void SetSTGlobals(vm::Interpreter<T>& interp, ST&& st) {
     interp.SetGlobal(vm::Global::t, t);
 }
 
-/// SetPatchGlobals for a rational patch (or a NuPatch span) that covers `range` of its surface's
-/// (u,v); s and t are its "st" if it has one, else u and v.
-template <class T>
-void SetRationalGlobals(vm::Interpreter<T>& interp, const RationalPatch& patch, double u0, double u1, double v0,
-                        double v1, const glm::dvec3& eye, bool flipNormal = false, const ParameterRange& range = {}) {
+/// SetPatchGlobals for a bicubic patch, or a rational patch (or a NuPatch span), that covers
+/// `range` of its mesh or surface's (u,v): its frame from BicubicFrame or RationalFrame; a rational
+/// patch's s and t are its "st" if it has one, else u and v.
+template <class T, class Patch>
+requires std::is_same_v<Patch, BicubicPatch> || std::is_same_v<Patch, RationalPatch>
+void SetCurvedPatchGlobals(vm::Interpreter<T>& interp, const Patch& patch, double u0, double u1, double v0, double v1,
+                           const glm::dvec3& eye, bool flipNormal = false, const ParameterRange& range = {}) {
+    constexpr bool kRational = std::is_same_v<Patch, RationalPatch>;
     if constexpr (std::is_same_v<T, Affine> || std::is_same_v<T, Dual<Affine>>) Affine::BeginEvaluation();
     const PatchParameters<T> param(range, u0, u1, v0, v1);
-    SurfaceFrame<T> frame = RationalFrame(patch, param.s, param.t);
+    SurfaceFrame<T> frame = [&] {
+        if constexpr (kRational)
+            return RationalFrame(patch, param.s, param.t);
+        else
+            return BicubicFrame(patch, param.s, param.t);
+    }();
     if (patch.poles && ReadsNormal(interp.program())) PoleNormalDirection(patch, param.s, param.t, &frame);
     if (param.dsdu != 1) frame.dPdu = frame.dPdu * param.dsdu;
     if (param.dtdv != 1) frame.dPdv = frame.dPdv * param.dtdv;
     SetFrameGlobals(interp, param.u, param.v, frame, nullptr, eye, flipNormal);
-    if (patch.hasST) SetSTGlobals(interp, [&](T* s, T* t) { RationalST(patch, param.s, param.t, s, t); });
+    if constexpr (kRational)
+        if (patch.hasST) SetSTGlobals(interp, [&](T* s, T* t) { RationalST(patch, param.s, param.t, s, t); });
 }
 
 /// A quadric placed in the world by an affine object-to-world matrix (GLM's column-major).
@@ -485,8 +482,8 @@ inline BaseSurface::BaseSurface(const MeshPiece& m, bool flip) : flipNormal(flip
     m_shape = MeshPieceRef{std::move(mesh), 0};
 }
 
-/// SetPatchGlobals, SetBicubicGlobals, SetQuadricGlobals, SetMeshPieceGlobals or SetRationalGlobals,
-/// as `surface` is.
+/// SetPatchGlobals, SetCurvedPatchGlobals (bicubic and rational patches), SetQuadricGlobals,
+/// SetMeshPieceGlobals or SetSubdivGlobals, as `surface` is.
 template <class T>
 void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, double u0, double u1, double v0,
                        double v1, const glm::dvec3& eye) {
@@ -495,7 +492,7 @@ void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, d
             SetPatchGlobals(interp, surface.patch(), u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
             break;
         case BaseSurface::Kind::BicubicPatch:
-            SetBicubicGlobals(interp, surface.bicubic(), u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
+            SetCurvedPatchGlobals(interp, surface.bicubic(), u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
             break;
         case BaseSurface::Kind::Quadric:
             SetQuadricGlobals(interp, surface.quadric(), u0, u1, v0, v1, eye, surface.flipNormal);
@@ -504,7 +501,7 @@ void SetSurfaceGlobals(vm::Interpreter<T>& interp, const BaseSurface& surface, d
             SetMeshPieceGlobals(interp, surface.piece(), u0, u1, v0, v1, eye, surface.flipNormal);
             break;
         case BaseSurface::Kind::RationalPatch:
-            SetRationalGlobals(interp, surface.rational(), u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
+            SetCurvedPatchGlobals(interp, surface.rational(), u0, u1, v0, v1, eye, surface.flipNormal, surface.range);
             break;
         case BaseSurface::Kind::SubdivPatch:
             SetSubdivGlobals(interp, surface.subdiv(), u0, u1, v0, v1, eye, surface.flipNormal);

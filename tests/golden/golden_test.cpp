@@ -2,9 +2,11 @@
 // NAME.sl or NAME.rib whose first line says how to run it ("// golden: eval --at 0.5,0.5"): the
 // words after "golden:" are the `affray` arguments, with the case's file inserted after the
 // subcommand. NAME.expected holds the command line, stdout, stderr and the exit status, exactly.
-// Each case is a test case of its own ("golden: NAME.sl"), registered at start-up from the
-// directory, so a new case needs no code; tools/golden.sh runs the same cases from bash (and
-// rewrites the .expected files with --update), so both must build the text the same way.
+// Each case is a test case of its own ("golden: NAME.sl", tagged [golden][case]), registered at
+// start-up from the directory, so a new case needs no code. With AFFRAY_GOLDEN_UPDATE=1 in the
+// environment a case writes its NAME.expected from the current output instead of comparing:
+// tools/golden.sh runs the cases (and with --update rewrites the .expected files) through this
+// file, which is the one place the text is built.
 #include <catch2/catch.hpp>
 
 #include <fcntl.h>
@@ -13,7 +15,9 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -110,8 +114,8 @@ Outcome Spawn(const std::vector<std::string>& args, const fs::path& cwd, const f
     return o;
 }
 
-/// What `affray` prints for the case `file`, in the .expected format (tools/golden.sh builds the
-/// same text): "$ affray ARGS", stdout, "--- stderr" and stderr if there is any, "--- STATUS".
+/// What `affray` prints for the case `file`, in the .expected format: "$ affray ARGS", stdout,
+/// "--- stderr" and stderr if there is any, "--- STATUS".
 /// The temporary directory shows as $TMP and the case's directory is cut from paths (the
 /// preprocessor names included files by absolute path). Sets *problem if the case cannot run.
 std::string Actual(const fs::path& file, const fs::path& tmp, std::string* problem) {
@@ -193,16 +197,32 @@ std::string Mismatch(const std::string& expected, const std::string& actual) {
     return out;
 }
 
-/// Runs one case and fails with its diff if its output is not the expected one.
+/// Whether the cases write their .expected files instead of checking them (AFFRAY_GOLDEN_UPDATE=1,
+/// as tools/golden.sh --update sets it).
+bool UpdateMode() {
+    const char* update = std::getenv("AFFRAY_GOLDEN_UPDATE");
+    return update && std::string(update) == "1";
+}
+
+/// Runs one case and fails with its diff if its output is not the expected one; in UpdateMode,
+/// writes the output as the expected one.
 void CheckCase(const fs::path& file) {
     const fs::path expected = ExpectedPath(file);
     INFO("golden case tests/golden/" << file.filename().string()
                                      << " (tools/golden.sh --update rewrites the .expected files)");
-    if (!fs::exists(expected)) FAIL("no " << expected.filename().string() << " beside the case");
+    const bool update = UpdateMode();
+    if (!update && !fs::exists(expected)) FAIL("no " << expected.filename().string() << " beside the case");
     affray::test::TempDir tmp;
     std::string problem;
     const std::string actual = Actual(file, fs::path(tmp.Path("stdout")).parent_path(), &problem);
     if (!problem.empty()) FAIL(problem);
+    if (update) {
+        std::ofstream out(expected, std::ios::binary);
+        out << actual;
+        out.close();
+        if (!out) FAIL("cannot write " << expected.string());
+        return;
+    }
     const std::string diff = Mismatch(affray::test::ReadText(expected), actual);
     if (!diff.empty()) FAIL("the output differs from " << expected.filename().string() << ":\n" << diff);
 }
@@ -222,7 +242,7 @@ const bool g_casesRegistered = [] {
     for (const fs::path& file : ListCases(GoldenDir())) {
         const std::string name = "golden: " + file.filename().string();  // copied by Catch
         Catch::AutoReg(new CaseInvoker(file), CATCH_INTERNAL_LINEINFO, Catch::StringRef(),
-                       Catch::NameAndTags(name, "[golden]"));
+                       Catch::NameAndTags(name, "[golden][case]"));
     }
     return true;
 }();

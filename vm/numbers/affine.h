@@ -283,8 +283,6 @@ class Affine {
     static Affine StepForm(const Affine& x, double (*f)(double), double gLo, double gHi);
     /// 1, 0 or 0.5 +- 0.5 on a fresh symbol (affine_logic.cpp).
     static Affine FromTruth(Truth t);
-    /// Min or Max without the enclosure (affine_logic.cpp).
-    static Affine MinMaxForm(const Affine& a, const Affine& b, bool isMax);
 
     double m_center = 0;
     double m_error = 0;

@@ -6,7 +6,8 @@
 // which keeps x's symbols and adds the rounding of the form's coefficients), a Range the interval
 // on its own (FromInterval), Same/Negated x or -x exactly, Unbounded the explicit unknown value.
 // How a form keeps the new error (a fresh symbol in Affine, the one independent error term in
-// ReducedAffine) is the type's business; what the error is, is decided here, once.
+// ReducedAffine) is the type's business; what the error is, is decided here, once. So are the
+// comparisons of forms and the form of Min and Max (SignOfDifference, CompareForms, MinMaxOfForms).
 // Rules every fit keeps (tests: tests/vm/numbers/affine_test.cpp, tests/vm/numbers/reduced_affine_test.cpp): for
 // every t in the input range, glibc's f(t) (the scalar result) lies in alpha*t + [lo, hi], the
 // rounding of every computation here included; Unbounded wherever f(t) can be NaN or infinite.
@@ -157,6 +158,68 @@ inline double MinMaxSlack(const Interval& a, const Interval& b) {
 /// |(a - b)/2| <= D(1 + u) + 2^-1075: m plus D + kEpsilon*(M + D) (M = max|m|), slack included.
 inline double JoinSlack(double dMax, double mMax) {
     return AddUp(MulUp(AddUp(dMax, MulUp(AddUp(mMax, dMax), kEpsilon)), kSumSlack), kUnderflowSlack);
+}
+
+// --- Comparisons, Min and Max ----------------------------------------------------------------------
+
+/// The sign of a - b for every pair of scalar values that forms a and b of an affine type F allow,
+/// as the range of the form a - b (or, if that form is Unbounded, e.g. by overflow, of the interval
+/// difference of the ranges); Unbounded if an operand is (it may be NaN: every comparison false
+/// but !=).
+/// Why the range of the *rounded* difference decides the double comparison: the form contains the
+/// scalar fl(a - b) for each pair, and for finite doubles fl(a - b) has the sign of a - b and is 0
+/// exactly when a == b. Rounding to nearest is monotone and maps 0 to 0, so it keeps the sign
+/// (possibly giving 0 from a nonzero value only if |a - b| < 2^-1075), and a - b is a multiple of
+/// 2^-1074 (both are), so a nonzero difference is at least the smallest subnormal and rounds to
+/// itself or beyond (gradual underflow: a difference in the subnormal range is exact). An
+/// overflowed difference would be +-inf with the right sign, but then the form is Unbounded and
+/// the interval difference (directed, never overflowing silently) is used instead.
+template <class F>
+Interval SignOfDifference(const F& a, const F& b) {
+    if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
+    const F d = a - b;
+    return d.isUnbounded() ? a.range() - b.range() : d.range();
+}
+
+/// The comparisons of forms, decided by SignOfDifference.
+enum class Comparison : uint8_t { Less, LessEq, Equal, NotEqual };
+
+/// a < b, a <= b, a == b or a != b (`kComparison`) for forms of an affine type F: the interval
+/// comparison (vm/numbers/interval.h) of SignOfDifference(a, b) with 0, as a truth value (the
+/// type's FromTruth makes it a form).
+template <Comparison kComparison, class F>
+Truth CompareForms(const F& a, const F& b) {
+    const Interval d = SignOfDifference(a, b), zero(0.0);
+    if constexpr (kComparison == Comparison::Less)
+        return TruthOf(Less(d, zero));
+    else if constexpr (kComparison == Comparison::LessEq)
+        return TruthOf(LessEq(d, zero));
+    else if constexpr (kComparison == Comparison::Equal)
+        return TruthOf(Equal(d, zero));
+    else
+        return TruthOf(NotEqual(d, zero));
+}
+
+/// std::fmin (isMax false) or std::fmax of forms of an affine type F, without the enclosure: where
+/// the sign of a - b is decided, the operand itself (exactly, correlations and all); otherwise
+/// min/max(a, b) = (a + b)/2 -+ |a - b|/2 exactly in reals, plus the difference between that
+/// formula's scalar value and std::fmin's (MinMaxSlack) as independent error, which F's
+/// `withExtraError` (x with that much more error, >= 0 and rounded up) adds.
+template <class F>
+F MinMaxOfForms(const F& a, const F& b, bool isMax, F (F::*withExtraError)(double) const) {
+    if (a.isUnbounded() || b.isUnbounded()) return F::Unbounded();
+    // a <= b for every pair: fmin is a (or b, if equal: the same value), fmax is b; and so on.
+    const Interval d = SignOfDifference(a, b);
+    if (!d.isUnbounded()) {
+        if (d.hi() <= 0) return isMax ? b : a;
+        if (d.lo() >= 0) return isMax ? a : b;
+    }
+    const F mid = (a + b) * 0.5;
+    const F half = abs(a - b) * 0.5;
+    const F r = isMax ? mid + half : mid - half;
+    const double extra = MinMaxSlack(a.range(), b.range());
+    if (r.isUnbounded() || !(extra <= kMaxFinite)) return F::Unbounded();
+    return (r.*withExtraError)(extra);
 }
 
 }  // namespace affray::vm

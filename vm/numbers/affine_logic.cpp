@@ -4,7 +4,7 @@
 // each is either decided over the whole region (an exact constant, or one operand itself) or
 // bounded by a form that keeps the correlation with its operands plus a bounded jump.
 // Comparisons are decided from the affine difference a - b, so that correlated operands decide
-// where their ranges overlap (x < x + 1 for any x): see SignOfDifference. An undecided
+// where their ranges overlap (x < x + 1 for any x): see SignOfDifference (vm/numbers/affine_fit.h). An undecided
 // comparison is 0.5 +- 0.5 on a fresh symbol (the step form of AFFINE-NOTES), never Unbounded.
 // Sources: Stolfi & de Figueiredo (1997), sec. 3.10 (mixed affine-interval evaluation);
 // AFFINE-NOTES.md ("Conditionals").
@@ -49,45 +49,16 @@ Affine round(const Affine& x) {
 
 // --- Comparisons --------------------------------------------------------------------------------
 
-namespace {
+// SignOfDifference, CompareForms (vm/numbers/affine_fit.h), as for every affine type.
 
-// The sign of a - b for every pair of scalar values the operands allow, as the range of the form
-// a - b (or, if that form is Unbounded, e.g. by overflow, of the interval difference of the
-// ranges); Unbounded if an operand is (it may be NaN: every comparison false but !=).
-// Why the range of the *rounded* difference decides the double comparison: the form contains the
-// scalar fl(a - b) for each pair, and for finite doubles fl(a - b) has the sign of a - b and is 0
-// exactly when a == b. Rounding to nearest is monotone and maps 0 to 0, so it keeps the sign
-// (possibly giving 0 from a nonzero value only if |a - b| < 2^-1075), and a - b is a multiple of
-// 2^-1074 (both are), so a nonzero difference is at least the smallest subnormal and rounds to
-// itself or beyond (gradual underflow: a difference in the subnormal range is exact). An
-// overflowed difference would be +-inf with the right sign, but then the form is Unbounded and
-// the interval difference (directed, never overflowing silently) is used instead.
-Interval SignOfDifference(const Affine& a, const Affine& b) {
-    if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
-    Affine d = a - b;
-    return d.isUnbounded() ? a.range() - b.range() : d.range();
-}
+Affine Less(const Affine& a, const Affine& b) { return Affine::FromTruth(CompareForms<Comparison::Less>(a, b)); }
 
-}  // namespace
+Affine LessEq(const Affine& a, const Affine& b) { return Affine::FromTruth(CompareForms<Comparison::LessEq>(a, b)); }
 
-Affine Less(const Affine& a, const Affine& b) {
-    Interval d = SignOfDifference(a, b);
-    return Affine::FromTruth(TruthOf(Less(d, Interval(0.0))));
-}
-
-Affine LessEq(const Affine& a, const Affine& b) {
-    Interval d = SignOfDifference(a, b);
-    return Affine::FromTruth(TruthOf(LessEq(d, Interval(0.0))));
-}
-
-Affine Equal(const Affine& a, const Affine& b) {
-    Interval d = SignOfDifference(a, b);
-    return Affine::FromTruth(TruthOf(Equal(d, Interval(0.0))));
-}
+Affine Equal(const Affine& a, const Affine& b) { return Affine::FromTruth(CompareForms<Comparison::Equal>(a, b)); }
 
 Affine NotEqual(const Affine& a, const Affine& b) {
-    Interval d = SignOfDifference(a, b);
-    return Affine::FromTruth(TruthOf(NotEqual(d, Interval(0.0))));
+    return Affine::FromTruth(CompareForms<Comparison::NotEqual>(a, b));
 }
 
 // --- Logic --------------------------------------------------------------------------------------
@@ -102,34 +73,16 @@ Affine Not(const Affine& a) { return Affine::FromTruth(TruthNot(TruthOf(a))); }
 
 // --- Min, Max -----------------------------------------------------------------------------------
 
-// min/max(a, b) = (a + b)/2 -+ |a - b|/2 exactly in reals, plus the difference between that
-// formula's scalar value and std::fmin's (MinMaxSlack, vm/numbers/affine_fit.h).
-Affine Affine::MinMaxForm(const Affine& a, const Affine& b, bool isMax) {
-    if (a.isUnbounded() || b.isUnbounded()) return Affine::Unbounded();
-    // a <= b for every pair: fmin is a (or b, if equal: the same value), fmax is b; and so on.
-    Interval d = SignOfDifference(a, b);
-    if (!d.isUnbounded()) {
-        if (d.hi() <= 0) return isMax ? b : a;
-        if (d.lo() >= 0) return isMax ? a : b;
-    }
-    Affine mid = (a + b) * 0.5;
-    Affine half = abs(a - b) * 0.5;
-    Affine r = isMax ? mid + half : mid - half;
-    const double extra = MinMaxSlack(a.range(), b.range());
-    if (r.isUnbounded() || !(extra <= kMaxFinite)) return Affine::Unbounded();
-    return r.withExtraError(extra);
-}
-
-// Where the sign of a - b is decided, the operand itself (exactly, correlations and all).
-// Otherwise the abs formula keeps the symbols of a and b in (a + b)/2; abs(a - b) is min-range
-// (>= 0) on a fresh symbol. An unbounded operand leaves the form unknown, and the result is the
+// MinMaxOfForms (vm/numbers/affine_fit.h): where the sign of a - b is decided, the operand itself
+// (exactly, correlations and all). Otherwise the abs formula keeps the symbols of a and b in
+// (a + b)/2; abs(a - b) is min-range (>= 0) on a fresh symbol. An unbounded operand leaves the form unknown, and the result is the
 // interval rule's (fmin(NaN, b) = b): partial, or bounded again (min(max(x, 0), 1) in [0, 1]).
 Affine Min(const Affine& a, const Affine& b) {
-    return Affine::Tighten(Affine::MinMaxForm(a, b, false), Min(a.range(), b.range()));
+    return Affine::Tighten(MinMaxOfForms(a, b, false, &Affine::withExtraError), Min(a.range(), b.range()));
 }
 
 Affine Max(const Affine& a, const Affine& b) {
-    return Affine::Tighten(Affine::MinMaxForm(a, b, true), Max(a.range(), b.range()));
+    return Affine::Tighten(MinMaxOfForms(a, b, true, &Affine::withExtraError), Max(a.range(), b.range()));
 }
 
 // --- Join ---------------------------------------------------------------------------------------

@@ -304,34 +304,22 @@ ReducedAffine ReducedAffine::FromTruth(Truth t) {
     return Make(0.5, 0.0, 0.0, 0.5);  // range exactly [0, 1]
 }
 
-namespace {
-
-// The sign of a - b for every pair of scalar values the operands allow: the range of the form
-// a - b, or if that is Unbounded (overflow) the interval difference of the ranges; Unbounded if an
-// operand is (it may be NaN). Why the range of the rounded difference decides the double
-// comparison: see SignOfDifference in vm/numbers/affine_logic.cpp.
-Interval SignOfDifference(const ReducedAffine& a, const ReducedAffine& b) {
-    if (a.isUnbounded() || b.isUnbounded()) return Interval::Unbounded();
-    ReducedAffine d = a - b;
-    return d.isUnbounded() ? a.range() - b.range() : d.range();
-}
-
-}  // namespace
+// SignOfDifference, CompareForms (vm/numbers/affine_fit.h), as for every affine type.
 
 ReducedAffine Less(const ReducedAffine& a, const ReducedAffine& b) {
-    return ReducedAffine::FromTruth(TruthOf(Less(SignOfDifference(a, b), Interval(0.0))));
+    return ReducedAffine::FromTruth(CompareForms<Comparison::Less>(a, b));
 }
 
 ReducedAffine LessEq(const ReducedAffine& a, const ReducedAffine& b) {
-    return ReducedAffine::FromTruth(TruthOf(LessEq(SignOfDifference(a, b), Interval(0.0))));
+    return ReducedAffine::FromTruth(CompareForms<Comparison::LessEq>(a, b));
 }
 
 ReducedAffine Equal(const ReducedAffine& a, const ReducedAffine& b) {
-    return ReducedAffine::FromTruth(TruthOf(Equal(SignOfDifference(a, b), Interval(0.0))));
+    return ReducedAffine::FromTruth(CompareForms<Comparison::Equal>(a, b));
 }
 
 ReducedAffine NotEqual(const ReducedAffine& a, const ReducedAffine& b) {
-    return ReducedAffine::FromTruth(TruthOf(NotEqual(SignOfDifference(a, b), Interval(0.0))));
+    return ReducedAffine::FromTruth(CompareForms<Comparison::NotEqual>(a, b));
 }
 
 ReducedAffine And(const ReducedAffine& a, const ReducedAffine& b) {
@@ -346,29 +334,15 @@ ReducedAffine Not(const ReducedAffine& a) { return ReducedAffine::FromTruth(Trut
 
 // --- Min, Max, Join -----------------------------------------------------------------------------
 
-// The operand itself where the sign of a - b is decided; else (a + b)/2 -+ abs(a - b)/2 plus
-// MinMaxSlack (vm/numbers/affine_logic.cpp's MinMaxForm).
-ReducedAffine ReducedAffine::MinMaxForm(const ReducedAffine& a, const ReducedAffine& b, bool isMax) {
-    if (a.isUnbounded() || b.isUnbounded()) return Unbounded();
-    const Interval d = SignOfDifference(a, b);
-    if (!d.isUnbounded()) {
-        if (d.hi() <= 0) return isMax ? b : a;
-        if (d.lo() >= 0) return isMax ? a : b;
-    }
-    const ReducedAffine mid = (a + b) * 0.5;
-    const ReducedAffine half = abs(a - b) * 0.5;
-    const ReducedAffine r = isMax ? mid + half : mid - half;
-    const double extra = MinMaxSlack(a.range(), b.range());
-    if (r.isUnbounded() || !(extra <= kMaxFinite)) return Unbounded();
-    return r.withExtraError(extra);
-}
-
+// MinMaxOfForms (vm/numbers/affine_fit.h): the operand itself where the sign of a - b is decided;
+// else (a + b)/2 -+ abs(a - b)/2 plus MinMaxSlack.
 ReducedAffine Min(const ReducedAffine& a, const ReducedAffine& b) {
-    return ReducedAffine::Tighten(ReducedAffine::MinMaxForm(a, b, false), Min(a.range(), b.range()));
+    return ReducedAffine::Tighten(MinMaxOfForms(a, b, false, &ReducedAffine::withExtraError),
+                                  Min(a.range(), b.range()));
 }
 
 ReducedAffine Max(const ReducedAffine& a, const ReducedAffine& b) {
-    return ReducedAffine::Tighten(ReducedAffine::MinMaxForm(a, b, true), Max(a.range(), b.range()));
+    return ReducedAffine::Tighten(MinMaxOfForms(a, b, true, &ReducedAffine::withExtraError), Max(a.range(), b.range()));
 }
 
 // A value in a or in b, at each point: m = (a + b)/2 on the linear parts, and the error

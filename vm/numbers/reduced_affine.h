@@ -264,7 +264,6 @@ class ReducedAffine {
     static ReducedAffine IntegerPower(const ReducedAffine& x, int n);
     static ReducedAffine PowForms(const ReducedAffine& x, const ReducedAffine& y);
     static ReducedAffine Atan2Forms(const ReducedAffine& y, const ReducedAffine& x);
-    static ReducedAffine MinMaxForm(const ReducedAffine& a, const ReducedAffine& b, bool isMax);
     /// 1, 0 or 0.5 +- 0.5.
     static ReducedAffine FromTruth(Truth t);
 

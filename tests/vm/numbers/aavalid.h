@@ -178,6 +178,71 @@ std::vector<T> RunProgram(const std::vector<Step>& program, const T& u, const T&
 // types the test compares and returns its report, and expect(name, report, minBoundedFraction,
 // ratio), which checks the report against the test's width ratio limit `ratio`.
 
+/// The width ratio limits of SweepArithmetic: x * y's, x / y's, c / x's, sqr's and every linear
+/// operation's.
+struct ArithmeticRatios {
+    double product = 1.01, quotient = 1.01, reciprocal = 1.01, square = 1.01, linear = 1.01;
+};
+
+/// +, -, *, / of two operands and with a constant, negation and sqr.
+template <class Check, class Expect>
+void SweepArithmetic(Check check, Expect expect, const ArithmeticRatios& ratio) {
+    const int n = Samples(20000);
+    RegionConfig g;
+    RecipeConfig r;
+    const double k = ratio.linear;
+    // clang-format off
+    expect("x + y", check(1, n, g, r, r, [](const auto& x, const auto& y) { return x + y; }), 1.0, k);
+    expect("x - y", check(2, n, g, r, r, [](const auto& x, const auto& y) { return x - y; }), 1.0, k);
+    expect("x * y", check(3, n, g, r, r, [](const auto& x, const auto& y) { return x * y; }), 1.0, ratio.product);
+    expect("x / y", check(4, n, g, r, r, [](const auto& x, const auto& y) { return Div(x, y); }), 0.3,
+           ratio.quotient);
+    expect("-x", check(5, n, g, r, r, [](const auto& x, const auto&) { return -x; }), 1.0, k);
+    expect("x + c", check(6, n, g, r, r, [](const auto& x, const auto&) { return x + 0.1; }), 1.0, k);
+    expect("c - x", check(7, n, g, r, r, [](const auto& x, const auto&) { return 1e3 - x; }), 1.0, k);
+    expect("x * c", check(8, n, g, r, r, [](const auto& x, const auto&) { return x * 0.7; }), 1.0, k);
+    expect("x / c", check(9, n, g, r, r, [](const auto& x, const auto&) { return x / 3.0; }), 1.0, k);
+    expect("c / x", check(10, n, g, r, r, [](const auto& x, const auto&) { return Div(3.0, x); }), 0.3,
+           ratio.reciprocal);
+    expect("sqr", check(11, n, g, r, r, [](const auto& x, const auto&) { return sqr(x); }), 1.0, ratio.square);
+    // clang-format on
+}
+
+/// The width ratio limits of SweepFunctions: the smooth fits' (sqrt, log, exp, sin, cos) and
+/// abs's and sign's.
+struct FunctionRatios {
+    double smooth = 1.01, piecewise = 1.01;
+};
+
+/// sqrt, log, abs and sign over every region; exp (near overflow too), sin and cos over small ones.
+template <class Check, class Expect>
+void SweepFunctions(Check check, Expect expect, const FunctionRatios& ratio) {
+    using std::abs, std::cos, std::exp, std::log, std::sin;
+    const int n = Samples(20000);
+    RegionConfig g;
+    RecipeConfig r;
+    const double k = ratio.smooth;
+    // clang-format off
+    expect("sqrt", check(20, n, g, r, r, [](const auto& x, const auto&) { return Sqrt(x); }), 0.2, k);
+    expect("log", check(21, n, g, r, r, [](const auto& x, const auto&) { return log(x); }), 0.2, k);
+    expect("abs", check(22, n, g, r, r, [](const auto& x, const auto&) { return abs(x); }), 1.0, ratio.piecewise);
+    expect("sign", check(23, n, g, r, r, [](const auto& x, const auto&) { return sign(x); }), 1.0, ratio.piecewise);
+    RegionConfig small;
+    small.expLo = -20;
+    small.expHi = 4;
+    RecipeConfig mild = r;
+    mild.coefExpHi = 1;
+    expect("exp", check(24, n, small, mild, r, [](const auto& x, const auto&) { return exp(x); }), 0.9, k);
+    RecipeConfig nearOverflow = mild;
+    nearOverflow.shifts = {700.0, 704.0, 708.0, 709.5, 710.0};
+    nearOverflow.kindHi = 4;
+    expect("exp near overflow", check(25, n, small, nearOverflow, r, [](const auto& x, const auto&) { return exp(x); }),
+           0.1, k);
+    expect("sin", check(26, n, small, mild, r, [](const auto& x, const auto&) { return sin(x); }), 1.0, k);
+    expect("cos", check(27, n, small, mild, r, [](const auto& x, const auto&) { return cos(x); }), 1.0, k);
+    // clang-format on
+}
+
 /// sin and cos over regions a quarter, half or whole period wide (or 1e-6), centred up to 1e6.
 template <class Check, class Expect>
 void SweepSinCosPeriods(Check check, Expect expect, double ratio) {
