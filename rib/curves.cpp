@@ -207,6 +207,9 @@ bool RibParser::DoCurves(const RibRequest& r) {
                 valueAt(colors[1], j, tm, opacity);
                 if (cubic) chordError = std::max(chordError, glm::length(pointAt(j, tm) - 0.5 * (a + b)));
                 const double length = glm::length(b - a);
+                if (!std::isfinite(length) || !std::isfinite(wa) || !std::isfinite(wb))
+                    return Fail(r.at, context + " curve " + std::to_string(curve) + " overflows (a piece " +
+                                          (std::isfinite(length) ? "width" : "length") + " beyond the doubles)");
                 if (!(length > 0) || !(wa > 0 || wb > 0)) {
                     ++skipped;
                     continue;
