@@ -41,6 +41,67 @@ void SpanCoefficients(const double* x, size_t n, int components, const CubicBasi
 
 double Horner(const double* c, double t) { return ((c[0] * t + c[1]) * t + c[2]) * t + c[3]; }
 
+/// Where a span lies in the request's arrays: its curve, that curve's vertices and first vertex
+/// and varying value, its own index, and the curve's kind.
+struct SpanPlace {
+    size_t curve, vertices, firstVertex, firstVarying, varyingValues, span;
+    bool cubic, periodic;
+    const CubicBasis* basis;
+};
+
+/// Values spread as `spread` (`components` each) over one span, formed once for all the points
+/// the span is sampled at: one value, the two ends of a linear interpolation, or a cubic's
+/// power-basis coefficients.
+class SpanValue {
+  public:
+    SpanValue(CurveValues::Spread spread, const double* values, int components, const SpanPlace& at)
+        : m_components(components) {
+        using Spread = CurveValues::Spread;
+        const size_t comps = static_cast<size_t>(components);
+        switch (spread) {
+            case Spread::Constant:
+            case Spread::Uniform:
+                m_form = Form::Constant;
+                if (spread == Spread::Uniform) values += at.curve * comps;
+                std::copy(values, values + comps, m_ends[0]);
+                return;
+            case Spread::Varying:
+                Linear(values, at.firstVarying + at.span, at.firstVarying + (at.span + 1) % at.varyingValues);
+                return;
+            case Spread::Vertex:
+                if (!at.cubic) {
+                    Linear(values, at.firstVertex + at.span, at.firstVertex + (at.span + 1) % at.vertices);
+                    return;
+                }
+                m_form = Form::Cubic;
+                SpanCoefficients(values + at.firstVertex * comps, at.vertices, components, *at.basis, at.span,
+                                 at.periodic, m_cubic);
+                return;
+        }
+    }
+
+    /// The values at parameter t of the span, into out[0 .. components).
+    void At(double t, double* out) const {
+        for (int c = 0; c < m_components; ++c)
+            out[c] = m_form == Form::Constant ? m_ends[0][c]
+                     : m_form == Form::Linear ? (1 - t) * m_ends[0][c] + t * m_ends[1][c]
+                                              : Horner(m_cubic[c], t);
+    }
+
+  private:
+    void Linear(const double* values, size_t a, size_t b) {
+        m_form = Form::Linear;
+        const size_t comps = static_cast<size_t>(m_components);
+        std::copy(values + a * comps, values + (a + 1) * comps, m_ends[0]);
+        std::copy(values + b * comps, values + (b + 1) * comps, m_ends[1]);
+    }
+
+    enum class Form { Constant, Linear, Cubic } m_form = Form::Constant;
+    int m_components;
+    double m_ends[2][3] = {};
+    double m_cubic[3][4] = {};
+};
+
 }  // namespace
 
 bool RibParser::DoCurves(const RibRequest& r) {
@@ -152,60 +213,28 @@ bool RibParser::DoCurves(const RibRequest& r) {
     size_t firstVertex = 0, firstVarying = 0, skipped = 0;
     for (size_t curve = 0; curve < vertices.size(); ++curve) {
         const size_t n = vertices[curve], s = spans[curve];
-        const double* P = &position->value.numbers[3 * firstVertex];
         const size_t varyingHere = periodic ? s : s + 1;
-        // Value `v` (components comps) at parameter t of span j.
-        const auto valueAt = [&](const CurveValues& v, size_t j, double t, double* out) {
-            const int comps = v.components;
-            using Spread = CurveValues::Spread;
-            switch (v.spread) {
-                case Spread::Constant:
-                    for (int c = 0; c < comps; ++c) out[c] = v.values[static_cast<size_t>(c)];
-                    return;
-                case Spread::Uniform:
-                    for (int c = 0; c < comps; ++c) out[c] = v.values[curve * comps + c];
-                    return;
-                case Spread::Varying: {
-                    const size_t a = firstVarying + j, b = firstVarying + (j + 1) % varyingHere;
-                    for (int c = 0; c < comps; ++c)
-                        out[c] = (1 - t) * v.values[a * comps + c] + t * v.values[b * comps + c];
-                    return;
-                }
-                case Spread::Vertex: {
-                    const double* x = &v.values[firstVertex * comps];
-                    if (!cubic) {
-                        const size_t a = j, b = (j + 1) % n;
-                        for (int c = 0; c < comps; ++c) out[c] = (1 - t) * x[a * comps + c] + t * x[b * comps + c];
-                        return;
-                    }
-                    double coefficients[3][4];
-                    SpanCoefficients(x, n, comps, basis, j, periodic, coefficients);
-                    for (int c = 0; c < comps; ++c) out[c] = Horner(coefficients[c], t);
-                    return;
-                }
-            }
-        };
-        const auto pointAt = [&](size_t j, double t) {
-            if (!cubic) {
-                const size_t a = j, b = (j + 1) % n;
-                return glm::mix(glm::dvec3(P[3 * a], P[3 * a + 1], P[3 * a + 2]),
-                                glm::dvec3(P[3 * b], P[3 * b + 1], P[3 * b + 2]), t);
-            }
-            double coefficients[3][4];
-            SpanCoefficients(P, n, 3, basis, j, periodic, coefficients);
-            return glm::dvec3(Horner(coefficients[0], t), Horner(coefficients[1], t), Horner(coefficients[2], t));
-        };
         const int pieces = cubic ? kCubicPieces : 1;
-        for (size_t j = 0; j < s; ++j)
+        for (size_t j = 0; j < s; ++j) {
+            const SpanPlace place{curve, n, firstVertex, firstVarying, varyingHere, j, cubic, periodic, &basis};
+            const SpanValue points(CurveValues::Spread::Vertex, position->value.numbers.data(), 3, place);
+            const SpanValue widths(width.spread, width.values.data(), 1, place);
+            const SpanValue colorsHere(colors[0].spread, colors[0].values.data(), 3, place);
+            const SpanValue opacities(colors[1].spread, colors[1].values.data(), 3, place);
+            const auto pointAt = [&](double t) {
+                double p[3];
+                points.At(t, p);
+                return glm::dvec3(p[0], p[1], p[2]);
+            };
             for (int piece = 0; piece < pieces; ++piece) {
                 const double t0 = double(piece) / pieces, t1 = double(piece + 1) / pieces, tm = 0.5 * (t0 + t1);
-                const glm::dvec3 a = pointAt(j, t0), b = pointAt(j, t1);
+                const glm::dvec3 a = pointAt(t0), b = pointAt(t1);
                 double wa, wb, color[3], opacity[3];
-                valueAt(width, j, t0, &wa);
-                valueAt(width, j, t1, &wb);
-                valueAt(colors[0], j, tm, color);
-                valueAt(colors[1], j, tm, opacity);
-                if (cubic) chordError = std::max(chordError, glm::length(pointAt(j, tm) - 0.5 * (a + b)));
+                widths.At(t0, &wa);
+                widths.At(t1, &wb);
+                colorsHere.At(tm, color);
+                opacities.At(tm, opacity);
+                if (cubic) chordError = std::max(chordError, glm::length(pointAt(tm) - 0.5 * (a + b)));
                 const double length = glm::length(b - a);
                 if (!std::isfinite(length) || !std::isfinite(wa) || !std::isfinite(wb))
                     return Fail(r.at, context + " curve " + std::to_string(curve) + " overflows (a piece " +
@@ -234,6 +263,7 @@ bool RibParser::DoCurves(const RibRequest& r) {
                 prim.opacity = glm::clamp(glm::dvec3(opacity[0], opacity[1], opacity[2]), 0.0, 1.0);
                 m_scene.primitives.push_back(std::move(prim));
             }
+        }
         firstVertex += n;
         firstVarying += varyingHere;
     }
