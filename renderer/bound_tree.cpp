@@ -320,6 +320,11 @@ void CacheBudget::Add(uint64_t n) {
     while (now > peak && !peakBytes.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {}
 }
 
+void CacheBudget::SetOwner(TreeOwner* owner) {
+    std::lock_guard<std::mutex> lock(m_mutex);
+    m_owner = owner;
+}
+
 void CacheBudget::Enforce() {
     std::unique_lock<std::mutex> lock(m_mutex, std::try_to_lock);
     if (!lock.owns_lock()) return;  // another thread is at it
@@ -328,24 +333,54 @@ void CacheBudget::Enforce() {
         tree->Reclaim();
         return tree->m_retired.empty();
     });
-    // Blocks retired but still held by rays under way are freed at a later pass; evicting more
-    // for them would not free them sooner.
+    // Blocks retired but still held by rays under way are freed at a later pass, and trees
+    // retired once their owner frees them; evicting more for them would not free them sooner.
     const uint64_t live = bytes.load(std::memory_order_relaxed) - m_retiredBytes.load(std::memory_order_relaxed);
     if (live <= limit) return;
     m_passes.fetch_add(1, std::memory_order_relaxed);
-    // Down to half the budget, the blocks expanded longest ago first, whichever tree holds them.
+    // Down to half the budget, what was used longest ago first, whichever tree holds it: blocks
+    // by the stamp of the node they expand, idle trees (no walker holds them) by the last ray
+    // that entered them; a tree made or entered since the clock last ticked stays.
     const uint64_t excess = live - limit / 2;
+    const uint32_t now = m_clock.load(std::memory_order_relaxed);
     std::vector<uint32_t> stamps;
     for (BoundTree* tree : m_trees) tree->CollectStamps(&stamps);
-    if (stamps.empty()) return;
-    const size_t wanted =
-        std::min(stamps.size(), size_t((excess + BoundTree::kBlockBytes - 1) / BoundTree::kBlockBytes));
-    std::nth_element(stamps.begin(), stamps.begin() + long(wanted - 1), stamps.end());
-    const uint32_t threshold = stamps[wanted - 1];
+    std::vector<std::pair<uint32_t, uint64_t>> items;  // (stamp, bytes)
+    items.reserve(stamps.size());
+    for (uint32_t s : stamps) items.emplace_back(s, BoundTree::kBlockBytes);
+    std::vector<BoundTree*> idle;
+    if (m_owner) {
+        for (BoundTree* tree : m_trees) {
+            const uint32_t used = tree->m_lastUse.load(std::memory_order_relaxed);
+            if (tree->m_wholeRetired || used >= now || !tree->retirable.load() || !tree->Idle()) continue;
+            idle.push_back(tree);
+            items.emplace_back(used, tree->m_ownBytes.load(std::memory_order_relaxed));
+        }
+    }
+    if (items.empty()) return;
+    std::sort(items.begin(), items.end());
+    uint64_t freed = 0;
+    uint32_t threshold = items.back().first;
+    for (const auto& [stamp, n] : items) {
+        freed += n;
+        if (freed >= excess) {
+            threshold = stamp;
+            break;
+        }
+    }
     for (BoundTree* tree : m_trees) {
         const bool wasRetiring = !tree->m_retired.empty();
         tree->EvictExpandedBefore(threshold);
         if (!wasRetiring && !tree->m_retired.empty()) m_retiring.push_back(tree);
+    }
+    for (BoundTree* tree : idle) {
+        if (tree->m_lastUse.load(std::memory_order_relaxed) > threshold) continue;
+        if (tree->m_root.children.load(std::memory_order_acquire)) continue;  // expanded since it was entered
+        tree->m_wholeRetired = true;
+        tree->m_retiredOwnBytes = tree->m_ownBytes.load();
+        m_retiredBytes.fetch_add(tree->m_retiredOwnBytes, std::memory_order_relaxed);
+        m_treesRetired.fetch_add(1, std::memory_order_relaxed);
+        m_owner->Retire(tree);
     }
 }
 
@@ -363,9 +398,14 @@ BoundTree::BoundTree(const BaseSurface& surface, const vm::Program& boundProgram
     m_budget = budget ? budget : m_ownBudget.get();
     m_root.bound = MakeEvaluator()->Bound(0, 1, 0, 1);
     m_root.state.store(BoundNode::kReady);
-    std::lock_guard<std::mutex> lock(m_budget->m_mutex);
-    m_budgetIndex = m_budget->m_trees.size();
-    m_budget->m_trees.push_back(this);
+    m_lastUse.store(m_budget->m_clock.load(std::memory_order_relaxed), std::memory_order_relaxed);
+    {
+        std::lock_guard<std::mutex> lock(m_budget->m_mutex);
+        m_budgetIndex = m_budget->m_trees.size();
+        m_budget->m_trees.push_back(this);
+    }
+    m_budget->Add(kBytes);
+    if (m_budget->bytes.load(std::memory_order_relaxed) > m_budget->limit) m_budget->Enforce();
 }
 
 BoundTree::~BoundTree() {
@@ -381,8 +421,9 @@ BoundTree::~BoundTree() {
         freed += FreeSubtree(r.block);
         retired += r.bytes;
     }
+    if (m_wholeRetired) retired += m_retiredOwnBytes;
     m_budget->m_retiredBytes.fetch_sub(retired, std::memory_order_relaxed);
-    m_budget->Sub(freed / kBlockNodes * kBlockBytes);
+    m_budget->Sub(freed / kBlockNodes * kBlockBytes + m_ownBytes.load());
     for (Slot* s = m_slots.load(); s;) {
         Slot* next = s->next;
         delete s;
@@ -412,6 +453,8 @@ BoundTree::Slot* BoundTree::RegisterWalker() {
     }
     Slot* s = new Slot;
     s->used.store(true);
+    m_ownBytes.fetch_add(kWalkerBytes, std::memory_order_relaxed);
+    m_budget->Add(kWalkerBytes);
     Slot* head = m_slots.load();
     do s->next = head;
     while (!m_slots.compare_exchange_weak(head, s));
@@ -500,6 +543,12 @@ void BoundTree::EvictExpandedBefore(uint32_t threshold) {
     Reclaim();
 }
 
+bool BoundTree::Idle() const {
+    for (Slot* s = m_slots.load(); s; s = s->next)
+        if (s->used.load()) return false;
+    return true;
+}
+
 BoundTreeStats BoundTree::stats() const {
     BoundTreeStats s;
     s.nodes = m_nodes.load();
@@ -511,6 +560,7 @@ BoundTreeStats BoundTree::stats() const {
     s.evictions = m_evictions.load();
     s.evictionPasses = m_passes.load();
     s.buildSeconds = m_buildSeconds.load();
+    s.trees = 1;
     return s;
 }
 
@@ -523,6 +573,8 @@ void BoundTreeStats::Merge(const BoundTreeStats& o) {
     lookups += o.lookups;
     evictions += o.evictions;
     evictionPasses += o.evictionPasses;
+    trees += o.trees;
+    treesRetired += o.treesRetired;
     buildSeconds += o.buildSeconds;
 }
 
@@ -530,13 +582,14 @@ BoundTree::Walker::Walker(BoundTree& tree) : m_tree(tree), m_slot(tree.RegisterW
 
 BoundTree::Walker::~Walker() {
     m_slot->epoch.store(0);
-    m_slot->used.store(false);
     m_tree.m_lookups.fetch_add(m_lookups, std::memory_order_relaxed);
     m_tree.m_blocksBuilt.fetch_add(m_built, std::memory_order_relaxed);
     m_tree.m_evaluations.fetch_add(m_evaluations, std::memory_order_relaxed);
     m_tree.m_private.fetch_add(m_private, std::memory_order_relaxed);
     double seconds = m_tree.m_buildSeconds.load();
     while (!m_tree.m_buildSeconds.compare_exchange_weak(seconds, seconds + m_buildSeconds)) {}
+    // Last: once no walker holds it, the tree's owner may free it (BoundForest).
+    m_slot->used.store(false);
 }
 
 void BoundTree::Walker::Enter() {
@@ -552,6 +605,8 @@ void BoundTree::Walker::Enter() {
         m_tree.m_budget->m_clock.fetch_add(1, std::memory_order_relaxed);
     }
     m_clock = m_tree.m_budget->m_clock.load(std::memory_order_relaxed);
+    if (m_tree.m_lastUse.load(std::memory_order_relaxed) < m_clock)
+        m_tree.m_lastUse.store(m_clock, std::memory_order_relaxed);
     if (!m_privateBounds.empty()) m_privateBounds.clear();
 }
 
@@ -596,6 +651,95 @@ const RegionBound& BoundTree::Walker::Bound(BoundNode& child, double u0, double 
     // Claimed by another thread that has not finished: use a private copy rather than wait.
     ++m_private;
     return m_privateBounds.emplace_back(bound);
+}
+
+static_assert(sizeof(BoundTree) <= BoundTree::kBytes, "BoundTree::kBytes counts the tree in its budget");
+
+BoundForest::BoundForest(size_t count, CacheBudget& budget, Maker make)
+    : m_budget(budget), m_make(std::move(make)), m_trees(count) {
+    budget.SetOwner(this);
+}
+
+BoundForest::~BoundForest() {
+    m_budget.SetOwner(nullptr);
+    for (std::atomic<BoundTree*>& tree : m_trees) delete tree.load();
+    for (const RetiredTree& r : m_incoming) delete r.tree;
+    for (const RetiredTree& r : m_collecting) delete r.tree;
+    for (ThreadSlot* s = m_threads.load(); s;) {
+        ThreadSlot* next = s->next;
+        delete s;
+        s = next;
+    }
+}
+
+BoundForest::ThreadSlot* BoundForest::RegisterThread() {
+    ThreadSlot* s = new ThreadSlot;
+    ThreadSlot* head = m_threads.load();
+    do s->next = head;
+    while (!m_threads.compare_exchange_weak(head, s));
+    return s;
+}
+
+BoundTree& BoundForest::Tree(size_t i) {
+    // Sequentially consistent, after the caller's announcement (With): a tree retired before this
+    // read is not seen, one retired after it waits for the announcement to clear.
+    BoundTree* tree = m_trees[i].load();
+    if (tree) return *tree;
+    std::unique_ptr<BoundTree> made = m_make(i, &m_budget);
+    made->ownerIndex = i;
+    // Another thread may have made it meanwhile: the first made is kept (both are the same).
+    if (!m_trees[i].compare_exchange_strong(tree, made.get())) return *tree;
+    m_made.fetch_add(1, std::memory_order_relaxed);
+    made->retirable.store(true);
+    return *made.release();
+}
+
+void BoundForest::Retire(BoundTree* tree) {
+    // Unlink (an orphan, made again by another thread while a walker held it, is no longer linked),
+    // then close the epoch: a thread announcing a later one cannot have read the tree.
+    BoundTree* expected = tree;
+    m_trees[tree->ownerIndex].compare_exchange_strong(expected, nullptr);
+    const uint64_t epoch = m_epoch.fetch_add(1);
+    std::lock_guard<std::mutex> lock(m_incomingMutex);
+    m_incoming.push_back({tree, epoch});
+    m_pending.fetch_add(1);
+}
+
+void BoundForest::Collect() {
+    std::unique_lock<std::mutex> lock(m_collectMutex, std::try_to_lock);
+    if (!lock.owns_lock()) return;
+    {
+        std::lock_guard<std::mutex> incoming(m_incomingMutex);
+        m_collecting.insert(m_collecting.end(), m_incoming.begin(), m_incoming.end());
+        m_incoming.clear();
+    }
+    uint64_t oldest = UINT64_MAX;  // the oldest epoch a thread looking a tree up announced
+    for (ThreadSlot* s = m_threads.load(); s; s = s->next) {
+        const uint64_t e = s->epoch.load();
+        if (e != 0) oldest = std::min(oldest, e);
+    }
+    std::erase_if(m_collecting, [&](const RetiredTree& r) {
+        // A walker made in the window holds the tree on: it goes once the walker does.
+        if (r.epoch >= oldest || !r.tree->Idle()) return false;
+        BoundTreeStats s = r.tree->stats();
+        s.nodes = s.bytes = 0;  // held now: nothing, once freed
+        m_freedStats.Merge(s);
+        delete r.tree;
+        m_pending.fetch_sub(1);
+        return true;
+    });
+}
+
+void BoundForest::Merge(BoundTreeStats* stats) {
+    std::lock_guard<std::mutex> lock(m_collectMutex);
+    std::lock_guard<std::mutex> incoming(m_incomingMutex);
+    BoundTreeStats sum = m_freedStats;
+    for (const std::atomic<BoundTree*>& tree : m_trees)
+        if (const BoundTree* t = tree.load()) sum.Merge(t->stats());
+    for (const std::vector<RetiredTree>* list : {&m_incoming, &m_collecting})
+        for (const RetiredTree& r : *list) sum.Merge(r.tree->stats());
+    sum.trees = m_made.load();  // the trees made, each retired one made again counted again
+    stats->Merge(sum);
 }
 
 }  // namespace affray::renderer

@@ -12,18 +12,21 @@
 // bounds are the same either way, since a node's bound is a function of its region alone; so the
 // image does not depend on the thread count, the tile order or what the cache held.
 //
-// Memory: the trees of a render keep within one budget (CacheBudget). When a new block of children
-// takes them past it, one thread evicts the subtrees no ray has entered for the longest time,
-// whichever trees hold them (each node keeps the budget's clock at its last expansion by a ray),
-// and they are rebuilt on demand. Evicted blocks are freed
-// only once every thread that could still hold a pointer into them has finished its ray
-// (epoch-based reclamation: each walker announces the epoch in which its ray started).
+// Memory: the trees of a render keep within one budget (CacheBudget), which counts the trees
+// themselves as well as their blocks. When a new block or tree takes them past it, one thread
+// evicts the subtrees no ray has entered for the longest time, whichever trees hold them (each
+// node keeps the budget's clock at its last expansion by a ray), and whole trees no walker holds
+// (BoundForest), and they are rebuilt on demand. Evicted blocks are freed only once every thread
+// that could still hold a pointer into them has finished its ray (epoch-based reclamation: each
+// walker announces the epoch in which its ray started); retired trees likewise, once no thread
+// that looked one up can still be about to walk it.
 #pragma once
 
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -119,11 +122,23 @@ int SplitAxis(const RegionBound& b, int levelU, int levelV, int maxDepth);
 
 class BoundTree;
 
+/// What owns hierarchies that may be retired whole (BoundForest): CacheBudget hands it a tree no
+/// walker holds and no ray has entered for longest, under the budget's mutex; the owner unlinks
+/// it and frees it once no thread can still reach it.
+class TreeOwner {
+  public:
+    virtual ~TreeOwner() = default;
+    /// Called under the budget's mutex: may not take it, nor free the tree.
+    virtual void Retire(BoundTree* tree) = 0;
+};
+
 /// The memory budget that the hierarchies of one render share (`affray render --cache-mb`), and
-/// the clock their nodes are stamped with. When the trees together hold more than `limit`, one
-/// thread evicts the blocks expanded longest ago across all of them (root blocks included) until
-/// they hold half of it: a scene of thousands of primitives keeps within the budget as one of a
-/// single primitive does.
+/// the clock their nodes are stamped with. It counts the blocks of children and, since a scene of
+/// a million faces reaches a million hierarchies, the hierarchies themselves (BoundTree::kBytes,
+/// and each walker's announcement). When the trees together hold more than `limit`, one thread
+/// evicts what was used longest ago across all of them until they hold half of it: blocks
+/// (root blocks included) and, where an owner can retire them, whole idle trees. A scene of
+/// thousands of primitives keeps within the budget as one of a single primitive does.
 class CacheBudget {
   public:
     explicit CacheBudget(size_t limitBytes) : limit(limitBytes) {}
@@ -137,8 +152,13 @@ class CacheBudget {
     void Sub(uint64_t n) { bytes.fetch_sub(n, std::memory_order_relaxed); }
     /// Times the limit was enforced.
     uint64_t passes() const { return m_passes.load(std::memory_order_relaxed); }
-    /// Of `bytes`, those in blocks evicted but not yet freed (rays under way may still hold them).
+    /// Of `bytes`, those in blocks evicted but not yet freed (rays under way may still hold them),
+    /// and in trees retired but not yet freed.
     uint64_t retiredBytes() const { return m_retiredBytes.load(std::memory_order_relaxed); }
+    /// Lets `owner` retire idle trees whole (null: never; trees are then freed by whoever made them).
+    void SetOwner(TreeOwner* owner);
+    /// Trees handed to the owner.
+    uint64_t treesRetired() const { return m_treesRetired.load(std::memory_order_relaxed); }
 
   private:
     friend class BoundTree;
@@ -152,6 +172,8 @@ class CacheBudget {
     std::mutex m_mutex;                       // held by the thread enforcing the budget, and to register
     std::vector<BoundTree*> m_trees;          // under m_mutex; a tree knows its index (m_budgetIndex)
     std::vector<BoundTree*> m_retiring;       // under m_mutex: the trees with blocks retired, not freed
+    TreeOwner* m_owner = nullptr;
+    std::atomic<uint64_t> m_treesRetired{0};
 };
 
 struct BoundTreeStats {
@@ -163,6 +185,8 @@ struct BoundTreeStats {
     uint64_t lookups = 0;         // a ray asking for the bound of a child
     uint64_t evictions = 0;       // blocks evicted
     uint64_t evictionPasses = 0;  // times the budget was enforced (of one tree: passes that evicted from it)
+    uint64_t trees = 0;           // hierarchies made (a retired one made again counts again)
+    uint64_t treesRetired = 0;    // hierarchies retired whole (CacheBudget::treesRetired)
     double buildSeconds = 0;      // thread-seconds spent evaluating bounds (the price of a cold cache)
 
     /// Sums (the figures of several trees).
@@ -186,6 +210,9 @@ class BoundTree {
     /// of kDefaultCacheBytes of its own) must outlive the tree.
     BoundTree(const BaseSurface& surface, const vm::Program& boundProgram, const glm::dvec3& eye, BoundMode mode,
               int maxDepth, CacheBudget* budget = nullptr);
+    /// What a tree counts against its budget besides its blocks: itself (the root's bound, the
+    /// surface's handle, counters) and an announcement per walker thread.
+    static constexpr size_t kBytes = 576, kWalkerBytes = 64;
     ~BoundTree();
     BoundTree(const BoundTree&) = delete;
     BoundTree& operator=(const BoundTree&) = delete;
@@ -247,6 +274,8 @@ class BoundTree {
 
     /// The figures so far (exact once no walker is active).
     BoundTreeStats stats() const;
+    /// Whether no walker holds the tree (its owner may free it then). Sequentially consistent.
+    bool Idle() const;
 
   private:
     friend class Walker;
@@ -287,12 +316,92 @@ class BoundTree {
     std::atomic<Slot*> m_slots{nullptr};
 
     size_t m_budgetIndex = 0;  // in m_budget->m_trees
+    /// The budget's clock when a ray last entered the tree (for retiring it whole).
+    std::atomic<uint32_t> m_lastUse{0};
+    /// What the tree counts against the budget besides its blocks (kBytes and its walkers').
+    std::atomic<uint64_t> m_ownBytes{kBytes};
+    bool m_wholeRetired = false;     // handed to the owner (under the budget's mutex)
+    uint64_t m_retiredOwnBytes = 0;  // m_ownBytes then, counted in the budget's retired bytes
+
+  public:
+    /// Where the owner keeps the tree (BoundForest: the primitive's index).
+    size_t ownerIndex = 0;
+    /// Set by the owner once it holds the tree: only then may the budget retire it.
+    std::atomic<bool> retirable{false};
+
+  private:
     struct Retired {
         BoundNode* block;
         uint64_t epoch;
         uint64_t bytes;  // of the subtree when it was retired (it may grow until freed)
     };
     std::vector<Retired> m_retired;  // under the budget's mutex
+};
+
+/// The bound hierarchies of a scene's primitives, shared by every thread and ray of a render:
+/// primitive i's is made when a ray first meets the primitive, by whichever thread that is, so a
+/// scene of a million faces pays only for the faces its rays reach. Under the budget's pressure a
+/// hierarchy no walker holds is retired whole (CacheBudget) and made again when a ray needs it;
+/// it is freed once no thread can still be about to use it (epoch-based, as blocks are: each
+/// thread announces the epoch in which it looked the tree up until its walker holds it). The
+/// image does not depend on any of this: a hierarchy made again has the same bounds.
+class BoundForest : public TreeOwner {
+  public:
+    /// Makes primitive i's hierarchy on `budget`.
+    using Maker = std::function<std::unique_ptr<BoundTree>(size_t i, CacheBudget* budget)>;
+    /// `count` primitives; `budget` must outlive the forest, which becomes its owner.
+    BoundForest(size_t count, CacheBudget& budget, Maker make);
+    ~BoundForest() override;
+    BoundForest(const BoundForest&) = delete;
+    BoundForest& operator=(const BoundForest&) = delete;
+
+    /// One thread's announcement (RegisterThread); kept by the thread for the forest's life.
+    struct alignas(64) ThreadSlot {
+        std::atomic<uint64_t> epoch{0};  // 0: not looking a tree up
+        ThreadSlot* next = nullptr;
+    };
+    ThreadSlot* RegisterThread();
+
+    /// use(tree) with primitive i's hierarchy (made now if absent), which stays alive while `use`
+    /// runs; it must hold the tree by a walker (BoundTree::Walker) to keep it past that.
+    template <class Use>
+    auto With(ThreadSlot* slot, size_t i, Use&& use) {
+        slot->epoch.store(m_epoch.load());  // sequentially consistent: before the tree is read
+        struct Clear {
+            ThreadSlot* s;
+            ~Clear() { s->epoch.store(0); }
+        } clear{slot};
+        if (m_pending.load(std::memory_order_relaxed) != 0) Collect();
+        return use(Tree(i));
+    }
+
+    /// The statistics summed over the hierarchies made, those freed included (`trees`: how many
+    /// were made).
+    void Merge(BoundTreeStats* stats);
+
+    void Retire(BoundTree* tree) override;
+
+  private:
+    BoundTree& Tree(size_t i);
+    /// Frees the retired trees no thread can reach; returns without waiting if another thread is at it.
+    void Collect();
+
+    CacheBudget& m_budget;
+    Maker m_make;
+    std::vector<std::atomic<BoundTree*>> m_trees;
+    std::atomic<uint64_t> m_epoch{1};
+    std::atomic<ThreadSlot*> m_threads{nullptr};
+    std::atomic<uint64_t> m_made{0};
+    struct RetiredTree {
+        BoundTree* tree;
+        uint64_t epoch;  // threads announcing it or earlier may still be about to use the tree
+    };
+    std::mutex m_incomingMutex;             // Retire's queue (taken last: never held while taking another)
+    std::vector<RetiredTree> m_incoming;    // under m_incomingMutex
+    std::atomic<uint64_t> m_pending{0};     // trees retired and not freed
+    std::mutex m_collectMutex;              // the thread freeing trees (taken before the budget's)
+    std::vector<RetiredTree> m_collecting;  // under m_collectMutex
+    BoundTreeStats m_freedStats;            // under m_collectMutex
 };
 
 }  // namespace affray::renderer

@@ -27,45 +27,6 @@ namespace affray::renderer {
 
 namespace {
 
-/// The bound hierarchy of each primitive (renderer/bound_tree.h), shared by every thread and ray of
-/// a render, made when a ray first meets the primitive, by whichever thread that is: a scene of a
-/// million faces pays only for the faces its rays reach (a hierarchy evaluates its root's bound
-/// when made, and holds some 0.5 KB).
-class LazyTrees {
-  public:
-    LazyTrees(const PreparedScene& scene, const Options& options, const glm::dvec3& eye, CacheBudget* budget)
-        : m_scene(scene), m_options(options), m_eye(eye), m_budget(budget), m_trees(scene.primitives.size()) {}
-    ~LazyTrees() {
-        for (std::atomic<BoundTree*>& tree : m_trees) delete tree.load();
-    }
-    LazyTrees(const LazyTrees&) = delete;
-    LazyTrees& operator=(const LazyTrees&) = delete;
-
-    BoundTree& operator[](size_t i) {
-        BoundTree* tree = m_trees[i].load(std::memory_order_acquire);
-        if (tree) return *tree;
-        const Primitive& prim = m_scene.primitives[i];
-        auto made = std::make_unique<BoundTree>(prim.base(), prim.bound(), m_eye, m_options.bounds, m_options.maxDepth,
-                                                m_budget);
-        // Another thread may have made it meanwhile: the first made is kept (both are the same).
-        if (m_trees[i].compare_exchange_strong(tree, made.get(), std::memory_order_acq_rel)) return *made.release();
-        return *tree;
-    }
-
-    /// The statistics summed over the hierarchies made.
-    void Merge(BoundTreeStats* stats) const {
-        for (const std::atomic<BoundTree*>& tree : m_trees)
-            if (const BoundTree* t = tree.load()) stats->Merge(t->stats());
-    }
-
-  private:
-    const PreparedScene& m_scene;
-    const Options& m_options;
-    glm::dvec3 m_eye;
-    CacheBudget* m_budget;
-    std::vector<std::atomic<BoundTree*>> m_trees;
-};
-
 /// Everything one thread needs: per primitive an intersector (a walker over the primitive's shared
 /// bound hierarchy) and a shading interpreter.
 struct ThreadState {
@@ -75,11 +36,13 @@ struct ThreadState {
     /// Per primitive, the factor its tolerance is scaled by (ToleranceScales).
     const std::vector<double>& toleranceScale;
 
-    ThreadState(const PreparedScene& scene, const Options& options, LazyTrees& trees, const std::vector<double>& scales)
+    ThreadState(const PreparedScene& scene, const Options& options, BoundForest& trees,
+                const std::vector<double>& scales)
         : toleranceScale(scales),
           m_scene(scene),
           m_options(options),
           m_trees(trees),
+          m_forestSlot(trees.RegisterThread()),
           m_workspace(MakeIntersectWorkspace()),
           m_slotOf(scene.primitives.size(), -1) {}
 
@@ -113,7 +76,9 @@ struct ThreadState {
         k.used = true;
         k.intersector = m_options.intersectorFactory
                             ? m_options.intersectorFactory(m_scene.primitives[i], i)
-                            : MakeSurfaceIntersector(m_trees[i], m_options.regionBudget, m_workspace);
+                            : m_trees.With(m_forestSlot, size_t(i), [&](BoundTree& tree) {
+                                  return MakeSurfaceIntersector(tree, m_options.regionBudget, m_workspace);
+                              });
         m_slotOf[i] = slot;
         return *k.intersector;
     }
@@ -146,7 +111,8 @@ struct ThreadState {
 
     const PreparedScene& m_scene;
     const Options& m_options;
-    LazyTrees& m_trees;
+    BoundForest& m_trees;
+    BoundForest::ThreadSlot* m_forestSlot;
     std::shared_ptr<IntersectWorkspace> m_workspace;
     std::vector<int> m_slotOf;  // per primitive, its place in m_kept or -1
     std::vector<Kept> m_kept;
@@ -358,7 +324,7 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
 uint64_t SceneBytes(const PreparedScene& scene, int threads) {
     uint64_t bytes = scene.primitives.capacity() * sizeof(Primitive) +
                      scene.desc.primitives.capacity() * sizeof(PrimitiveDesc) + (scene.bvh ? scene.bvh->bytes() : 0);
-    // Per primitive in a render: LazyTrees's slot, and per thread ThreadState's intersector slot.
+    // Per primitive in a render: BoundForest's slot, and per thread ThreadState's intersector slot.
     bytes += scene.primitives.size() * (sizeof(void*) + size_t(threads) * sizeof(int));
     // What primitives share is counted once (a set of the shared objects met, which the
     // previous primitive's mostly answers); a patch's or quadric's shape, its own, once each.
@@ -414,7 +380,8 @@ std::string RenderStats::ToJson() const {
         "\"shadow_rays\":%llu,\"shadow_regions_per_ray_mean\":%.2f,\"shadow_evaluations_per_ray_mean\":%.3f,"
         "\"budget_exhausted_rays\":%llu,\"frontiers\":%llu,\"frontier_regions_mean\":%.2f,"
         "\"newton\":{\"camera_hits\":%llu,\"shadow_hits\":%llu,\"misses\":%llu,\"unknown\":%llu},"
-        "\"cache\":{\"budget_mb\":%.1f,\"peak_mb\":%.2f,\"final_mb\":%.2f,\"nodes\":%llu,"
+        "\"cache\":{\"budget_mb\":%.1f,\"peak_mb\":%.2f,\"final_mb\":%.2f,\"nodes\":%llu,\"trees\":%llu,"
+        "\"trees_retired\":%llu,"
         "\"lookups\":%llu,\"hit_rate\":%.4f,\"evaluations\":%llu,\"private_copies\":%llu,"
         "\"evictions\":%llu,\"eviction_passes\":%llu,\"build_thread_seconds\":%.3f},"
         "\"memory\":{\"resident_at_start_mb\":%.1f,\"peak_resident_mb\":%.1f,\"scene_mb\":%.1f,"
@@ -433,7 +400,8 @@ std::string RenderStats::ToJson() const {
         static_cast<unsigned long long>(camera.newtonMisses) + shadow.newtonMisses,
         static_cast<unsigned long long>(camera.newtonUnknown) + shadow.newtonUnknown,
         double(cacheBudgetBytes) / (1 << 20), double(cachePeakBytes) / (1 << 20), double(cache.bytes) / (1 << 20),
-        static_cast<unsigned long long>(cache.nodes), static_cast<unsigned long long>(cache.lookups), hitRate,
+        static_cast<unsigned long long>(cache.nodes), static_cast<unsigned long long>(cache.trees),
+        static_cast<unsigned long long>(cache.treesRetired), static_cast<unsigned long long>(cache.lookups), hitRate,
         static_cast<unsigned long long>(cache.evaluations), static_cast<unsigned long long>(cache.privateCopies),
         static_cast<unsigned long long>(cache.evictions), static_cast<unsigned long long>(cache.evictionPasses),
         cache.buildSeconds, double(residentAtStartBytes) / (1 << 20), double(peakResidentBytes) / (1 << 20),
@@ -593,9 +561,13 @@ void Renderer::Render(const PreparedScene& scene, image::ImageBuffer* image, Ren
     std::atomic<size_t> nextTile{0}, tilesDone{0};
     std::vector<IntersectStats> cameraStats(nThreads), shadowStats(nThreads);
     std::vector<uint64_t> cameraRays(nThreads);
-    // One bound hierarchy per primitive, shared by every thread and ray of this render.
+    // One bound hierarchy per primitive, shared by every thread and ray of this render, made when a
+    // ray first meets the primitive (a hierarchy evaluates its root's bound when made).
     CacheBudget budget(options.cacheBytes);
-    LazyTrees trees(scene, options, eye, &budget);
+    BoundForest trees(scene.primitives.size(), budget, [&](size_t i, CacheBudget* b) {
+        const Primitive& prim = scene.primitives[i];
+        return std::make_unique<BoundTree>(prim.base(), prim.bound(), eye, options.bounds, options.maxDepth, b);
+    });
     const std::vector<double> toleranceScales = ToleranceScales(scene, options);
     const int side = options.rayGroupPixels;
     const int blocksX = side > 0 ? (cam.xres + side - 1) / side : 0;
@@ -645,6 +617,7 @@ void Renderer::Render(const PreparedScene& scene, image::ImageBuffer* image, Ren
     *stats = RenderStats();
     trees.Merge(&stats->cache);
     stats->cache.evictionPasses = budget.passes();  // one pass serves every tree (none if none was made)
+    stats->cache.treesRetired = budget.treesRetired();
     stats->cacheBudgetBytes = options.cacheBytes;
     stats->cachePeakBytes = budget.peakBytes.load();
     for (int i = 0; i < nThreads; ++i) {

@@ -205,10 +205,116 @@ TEST_CASE("bound tree: trees sharing a budget evict each other's oldest blocks",
     // Within the limit but for one block, besides the blocks the last pass unlinked while the ray
     // under way held them (freed at the next pass).
     CHECK(budget.bytes.load() - budget.retiredBytes() <= budget.limit + kBlockNodes * sizeof(BoundNode));
-    CHECK(budget.bytes.load() == first.stats().bytes + second.stats().bytes);
+    // The blocks and the two trees themselves, each with its one walker's announcement.
+    CHECK(budget.bytes.load() ==
+          first.stats().bytes + second.stats().bytes + 2 * (BoundTree::kBytes + BoundTree::kWalkerBytes));
     CHECK(budget.passes() > 0);
     // Rebuilt on demand: the evicted tree gives the same hits again.
     CHECK(trace(first) == expected);
+}
+
+namespace {
+
+/// The hits of `rays` on the forest's tree i, walked by a walker of its own that is gone after.
+std::vector<double> TraceForest(BoundForest& forest, BoundForest::ThreadSlot* slot, size_t i,
+                                const std::vector<Ray>& rays) {
+    auto it = forest.With(slot, i, [](BoundTree& tree) { return MakeSurfaceIntersector(tree); });
+    IntersectStats stats;
+    std::vector<double> ts;
+    for (const Ray& ray : rays) {
+        Hit hit;
+        ts.push_back(it->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats) ? hit.t : -1.0);
+    }
+    return ts;
+}
+
+}  // namespace
+
+TEST_CASE("bound forest: idle trees are retired whole within the budget and made again alike", "[renderer][cache]") {
+    const vm::Program bound = NoiseOnSquare();
+    const BilinearPatch square = BilinearPatch::UnitSquare();
+    const std::vector<Ray> rays = RaysFromAbove(21, 12);
+    BoundTree alone(square, bound, glm::dvec3(0), BoundMode::Affine, 24);
+    std::vector<double> expected;
+    {
+        auto it = MakeSurfaceIntersector(alone);
+        IntersectStats stats;
+        for (const Ray& ray : rays) {
+            Hit hit;
+            expected.push_back(it->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats) ? hit.t : -1.0);
+        }
+    }
+    // 600 primitives, each the same displaced square: 600 trees hold far more than the budget
+    // (about 0.6 KB each besides their blocks), so the budget must retire trees, not only blocks.
+    constexpr size_t kCount = 600;
+    CacheBudget budget(96 << 10);
+    size_t made = 0;
+    BoundForest forest(kCount, budget, [&](size_t, CacheBudget* b) {
+        ++made;
+        return std::make_unique<BoundTree>(square, bound, glm::dvec3(0), BoundMode::Affine, 24, b);
+    });
+    BoundForest::ThreadSlot* slot = forest.RegisterThread();
+    const uint64_t slack = BoundTree::kBytes + BoundTree::kWalkerBytes + kBlockNodes * sizeof(BoundNode);
+    for (size_t i = 0; i < kCount; ++i) {
+        INFO("primitive " << i);
+        CHECK(TraceForest(forest, slot, i, rays) == expected);
+        // Within the limit but for what the walk under way adds before the next pass.
+        CHECK(budget.bytes.load() - budget.retiredBytes() <= budget.limit + slack);
+    }
+    CHECK(budget.treesRetired() > kCount / 2);
+    // A retired tree is made again on demand, with the same hits.
+    CHECK(TraceForest(forest, slot, 0, rays) == expected);
+    CHECK(made == kCount + 1);
+    BoundTreeStats stats;
+    forest.Merge(&stats);
+    CHECK(stats.trees == kCount + 1);
+    CHECK(stats.evaluations > 0);
+    // Every tree once held every ray's bounds: the peak stays near the limit, not near the
+    // 600 trees' sum.
+    CHECK(budget.peakBytes.load() <= budget.limit + 4 * slack);
+}
+
+TEST_CASE("bound forest: threads retiring and making trees at once find the same hits", "[renderer][cache]") {
+    const vm::Program bound = NoiseOnSquare();
+    const BilinearPatch square = BilinearPatch::UnitSquare();
+    const std::vector<Ray> rays = RaysFromAbove(22, 6);
+    BoundTree alone(square, bound, glm::dvec3(0), BoundMode::Affine, 24);
+    std::vector<double> expected;
+    {
+        auto it = MakeSurfaceIntersector(alone);
+        IntersectStats stats;
+        for (const Ray& ray : rays) {
+            Hit hit;
+            expected.push_back(it->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats) ? hit.t : -1.0);
+        }
+    }
+    constexpr size_t kCount = 200;
+    CacheBudget budget(48 << 10);
+    BoundForest forest(kCount, budget, [&](size_t, CacheBudget* b) {
+        return std::make_unique<BoundTree>(square, bound, glm::dvec3(0), BoundMode::Affine, 24, b);
+    });
+    std::atomic<int> wrong{0};
+    auto work = [&](uint64_t seed) {
+        BoundForest::ThreadSlot* slot = forest.RegisterThread();
+        test::Rng rng(seed);
+        // Some intersectors kept across steps (as a render thread keeps them), so that trees held
+        // by a walker meet the budget's passes too.
+        std::vector<std::unique_ptr<SurfaceIntersector>> kept;
+        for (int step = 0; step < 400; ++step) {
+            const size_t i = rng.integer<size_t>(0, kCount - 1);
+            if (TraceForest(forest, slot, i, rays) != expected) ++wrong;
+            if (step % 7 == 0) {
+                kept.push_back(forest.With(slot, rng.integer<size_t>(0, kCount - 1),
+                                           [](BoundTree& tree) { return MakeSurfaceIntersector(tree); }));
+                if (kept.size() > 4) kept.erase(kept.begin());
+            }
+        }
+    };
+    std::thread other(work, 5);
+    work(6);
+    other.join();
+    CHECK(wrong.load() == 0);
+    CHECK(budget.treesRetired() > 0);
 }
 
 TEST_CASE("bound tree: a region is split across the parameter the surface stretches along", "[renderer][cache]") {
