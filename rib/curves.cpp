@@ -118,7 +118,10 @@ bool RibParser::DoCurves(const RibRequest& r) {
     if (wrap != "periodic" && wrap != "nonperiodic")
         return Fail(r.args[2].at, context + " wrap must be \"periodic\" or \"nonperiodic\", got " + Quote(wrap));
     std::vector<RibParam> params;
-    if (!ParamList(r, 3, &params) || !InsideWorld(r)) return false;
+    m_uniformVaries = true;  // one uniform value per curve
+    const bool listed = ParamList(r, 3, &params);
+    m_uniformVaries = false;
+    if (!listed || !InsideWorld(r)) return false;
     const bool cubic = type == "cubic", periodic = wrap == "periodic";
     const CubicBasis& basis = m_state.vBasis;
     const size_t step = static_cast<size_t>(basis.step);
@@ -169,12 +172,37 @@ bool RibParser::DoCurves(const RibRequest& r) {
             Warn(p.at, context + " parameter " + Quote(name) + " is not supported yet; ignored");
             continue;
         }
-        // The spread follows from the count (a curve's storage classes have distinct counts but
-        // for coincidences, where the class with fewer values per curve is taken).
+        // The spread: the storage class of the parameter's declaration (inline or Declare'd), or
+        // without one, from the count (a curve's storage classes have distinct counts but for
+        // coincidences: varying and vertex on linear curves, where they mean the same, and on
+        // periodic cubics of vstep 1, where the standard declaration's varying is taken).
         const size_t each = static_cast<size_t>(target->components), got = p.value.numbers.size();
         using Spread = CurveValues::Spread;
         Spread spread;
-        if (!p.value.strings.empty() || got % each != 0)
+        RibDeclaration declared;
+        std::string problem;
+        if (name != "constantwidth" && !p.value.declaration.empty() &&
+            RibDeclaration::Parse(p.value.declaration, &declared, &problem) && !declared.storage.empty()) {
+            const std::string& storage = declared.storage;
+            const size_t values = storage == "constant"  ? 1
+                                  : storage == "uniform" ? vertices.size()
+                                  : storage == "varying" ? totalVarying
+                                  : storage == "vertex"  ? totalVertices
+                                                         : 0;
+            if (values == 0)
+                return Fail(p.at, context + " parameter " + Quote(name) + ": storage class " + Quote(storage) +
+                                      " is not defined on curves");
+            if (!p.value.strings.empty() || got != each * values)
+                return Fail(p.at, context + " parameter " + Quote(name) + " (" + p.value.declaration + ") expects " +
+                                      std::to_string(each * values) + (each * values == 1 ? " number" : " numbers") +
+                                      " (" + std::to_string(each) + " for each of " + std::to_string(values) + " " +
+                                      storage + (values == 1 ? " value" : " values") + "), got " +
+                                      (p.value.strings.empty() ? std::to_string(got) : std::string("strings")));
+            spread = storage == "constant"  ? Spread::Constant
+                     : storage == "uniform" ? Spread::Uniform
+                     : storage == "varying" ? Spread::Varying
+                                            : Spread::Vertex;
+        } else if (!p.value.strings.empty() || got % each != 0)
             spread = Spread::Constant, target = nullptr;
         else if (got == each)
             spread = Spread::Constant;

@@ -115,6 +115,45 @@ TEST_CASE("rib: a cubic curve is eight cones a span, their ends on the curve", "
     }
 }
 
+TEST_CASE("rib: a declared storage class decides how Curves spread a value, where counts coincide too",
+          "[rib][curves]") {
+    // A periodic b-spline of vstep 1 has as many varying points as vertices (4): undeclared (and
+    // by the standard declaration) the widths are varying, linear along each span; declared
+    // "vertex" they go through the basis, as the points do.
+    const std::string curve =
+        "Basis \"b-spline\" 1 \"b-spline\" 1\n"
+        "Curves \"cubic\" [4] \"periodic\" \"P\" [1 0 0  0 1 0  -1 0 0  0 -1 0] ";
+    const double w[4] = {0.2, 0.4, 0.6, 0.8};
+    const std::string widths = "[0.2 0.4 0.6 0.8]";
+    for (const std::string& declared :
+         {std::string("\"width\""), std::string("\"varying float width\""), std::string("\"vertex float width\"")}) {
+        INFO(declared);
+        diag::Report report;
+        const renderer::SceneDesc scene = ParseWorld(curve + declared + " " + widths, &report);
+        REQUIRE(scene.primitives.size() == 4 * 8);
+        const bool vertex = declared.find("vertex") != std::string::npos;
+        for (int span = 0; span < 4; ++span) {
+            const double start = vertex ? (w[span] + 4 * w[(span + 1) % 4] + w[(span + 2) % 4]) / 6 : w[span];
+            CHECK(ConeOf(scene.primitives[size_t(8 * span)]).ra == Approx(0.5 * start).margin(1e-12));
+        }
+    }
+    // Uniform: one width per curve.
+    diag::Report report;
+    const renderer::SceneDesc two = ParseWorld(
+        "Curves \"linear\" [2 2] \"nonperiodic\" \"P\" [0 0 0 1 0 0  0 1 0 1 1 0] \"uniform float width\" [0.2 0.6]",
+        &report);
+    REQUIRE(two.primitives.size() == 2);
+    CHECK(ConeOf(two.primitives[0]).ra == Approx(0.1));
+    CHECK(ConeOf(two.primitives[1]).rb == Approx(0.3));
+    // A declared class whose count does not fit, or one curves do not have, is refused.
+    CHECK(WorldError("Curves \"linear\" [3] \"nonperiodic\" \"P\" [0 0 0 1 0 0 2 0 0] \"uniform float width\" "
+                     "[1 2 3]") ==
+          "t.rib:2: error: 'Curves' parameter 'width' (uniform float) expects 1 number (1 for each of 1 uniform "
+          "value), got 3");
+    CHECK(WorldError("Curves \"linear\" [2] \"nonperiodic\" \"P\" [0 0 0 1 0 0] \"facevarying float width\" [1 2]") ==
+          "t.rib:2: error: 'Curves' parameter 'width': storage class 'facevarying' is not defined on curves");
+}
+
 TEST_CASE("rib: malformed Curves are refused, located", "[rib][curves]") {
     CHECK(WorldError("Curves \"quadratic\" [2] \"nonperiodic\" \"P\" [0 0 0 1 1 1]") ==
           "t.rib:2: error: 'Curves' type must be \"linear\" or \"cubic\", got 'quadratic'");
