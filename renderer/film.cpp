@@ -204,6 +204,46 @@ glm::dvec2 Film::SamplePosition(int px, int py, int index) const {
     return {px + (i + jx) / m_xsamples, py + (j + jy) / m_ysamples};
 }
 
+namespace {
+
+/// Element `i` of a permutation of [0, n) chosen by `key`: a bijection of [0, 2^k) (2^k >= n) made
+/// of invertible steps (xor with a key word, multiplication by an odd number, xor of the high bits
+/// into the low ones, all modulo 2^k), walked until it lands below n (which keeps it a
+/// bijection of [0, n)).
+uint32_t Permuted(uint32_t i, uint32_t n, uint64_t key) {
+    if (n <= 1) return 0;
+    uint32_t mask = n - 1;
+    for (int s = 1; s < 32; s <<= 1) mask |= mask >> s;
+    const uint32_t k0 = uint32_t(key), k1 = uint32_t(key >> 32) | 1u;
+    int bits = 0;
+    while ((mask >> bits) != 0) ++bits;
+    const int half = std::max(bits / 2, 1);
+    do {
+        i ^= k0;
+        i &= mask;
+        i = (i * k1) & mask;
+        i ^= (i & mask) >> half;
+        i = (i * 0x2c1b3c6dU) & mask;
+        i ^= (k0 >> 7) & mask;
+        i = (i * ((k1 ^ 0x297a2d38U) | 1u)) & mask;
+        i ^= i >> half;
+    } while (i >= n);
+    return i;
+}
+
+}  // namespace
+
+glm::dvec2 Film::LensPosition(int px, int py, int index) const {
+    const uint32_t n = uint32_t(m_xsamples) * uint32_t(m_ysamples);
+    const uint32_t stratum = Permuted(uint32_t(index), n, SampleHash(px, py, -1, m_seed ^ 0x6c656e73ull));
+    const int i = int(stratum % uint32_t(m_xsamples)), j = int(stratum / uint32_t(m_xsamples));
+    if (!m_jitter) return {(i + 0.5) / m_xsamples, (j + 0.5) / m_ysamples};
+    const std::uint64_t h = SampleHash(px, py, index, m_seed ^ 0x6c656e73ull);
+    const double jx = static_cast<double>(h >> 32) * 0x1p-32;
+    const double jy = static_cast<double>(h & 0xffffffffull) * 0x1p-32;
+    return {(i + jx) / m_xsamples, (j + jy) / m_ysamples};
+}
+
 void Film::TileSamples(const PixelRange& tile, std::vector<Sample>* out) const {
     const PixelRange region = SampleRegion(tile);
     const int spp = samplesPerPixel();
@@ -212,7 +252,8 @@ void Film::TileSamples(const PixelRange& tile, std::vector<Sample>* out) const {
     out->reserve(static_cast<size_t>(region.width()) * region.height() * spp);
     for (int py = region.y0; py < region.y1; ++py)
         for (int px = region.x0; px < region.x1; ++px)
-            for (int k = 0; k < spp; ++k) out->push_back({px, py, k, SamplePosition(px, py, k)});
+            for (int k = 0; k < spp; ++k)
+                out->push_back({px, py, k, SamplePosition(px, py, k), LensPosition(px, py, k)});
 }
 
 double Film::FilterWeight(double dx, double dy) const {

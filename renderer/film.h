@@ -76,6 +76,8 @@ struct Sample {
     int px = 0, py = 0;  ///< The pixel whose stratum holds the sample.
     int index = 0;       ///< 0 .. xsamples * ysamples - 1, row by row over the strata.
     glm::dvec2 raster{0.0};
+    /// Its point of the lens, in [0, 1]^2 (Camera::GenerateRay; unused by a pinhole camera).
+    glm::dvec2 lens{0.5};
 };
 
 /// What the renderer found for one sample.
@@ -114,6 +116,12 @@ class Film {
     /// a hash of (px, py, index, seed), so it is the same whoever asks and when; at the stratum's
     /// centre if the camera's jitter is off.
     glm::dvec2 SamplePosition(int px, int py, int index) const;
+
+    /// The lens position of sample `index` of pixel (px, py), in [0, 1]^2: the pixel's samples
+    /// take the strata of an xsamples x ysamples grid over the lens one each, in an order
+    /// shuffled per pixel (so that a sample's lens stratum does not follow its place in the
+    /// pixel), jittered within them as SamplePosition is (centred without jitter).
+    glm::dvec2 LensPosition(int px, int py, int index) const;
 
     /// Every sample of SampleRegion(tile), row by row over its pixels, then by index.
     void TileSamples(const PixelRange& tile, std::vector<Sample>* out) const;

@@ -458,10 +458,10 @@ void ApplyAtmosphere(const AtmosphereDesc& atmosphere, const CameraDesc& camera,
     *Oi = glm::mix(*Oi, glm::dvec3(1.0), d);
 }
 
-SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camera& camera, const glm::dvec2& raster,
+SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camera& camera, const Sample& sample,
                         const Tolerance& tol, const glm::dvec3& eye, const RayGroup* group) {
     SampleValue value;
-    const Ray ray = camera.GenerateRay(raster.x, raster.y);
+    const Ray ray = camera.GenerateRay(sample.raster.x, sample.raster.y, sample.lens);
     double tMin, tMax;
     ClipRange(scene.desc.camera, ray, &tMin, &tMax);
     ++ts.cameraRays;
@@ -569,7 +569,9 @@ void Renderer::Render(const PreparedScene& scene, image::ImageBuffer* image, Ren
         return std::make_unique<BoundTree>(prim.base(), prim.bound(), eye, options.bounds, options.maxDepth, b);
     });
     const std::vector<double> toleranceScales = ToleranceScales(scene, options);
-    const int side = options.rayGroupPixels;
+    // Ray groups bound camera rays from one eye; through a lens (depth of field) rays start
+    // across it, so each goes alone.
+    const int side = camera.HasLens() ? 0 : options.rayGroupPixels;
     const int blocksX = side > 0 ? (cam.xres + side - 1) / side : 0;
     auto worker = [&](int index) {
         ThreadState ts(scene, options, trees, toleranceScales);
@@ -582,7 +584,7 @@ void Renderer::Render(const PreparedScene& scene, image::ImageBuffer* image, Ren
             values.resize(samples.size());
             if (side <= 0) {
                 for (size_t k = 0; k < samples.size() && !stopped(); ++k)
-                    values[k] = TraceSample(scene, ts, camera, samples[k].raster, tol, eye, nullptr);
+                    values[k] = TraceSample(scene, ts, camera, samples[k], tol, eye, nullptr);
             } else {
                 // Block by block (the tile's margin reaches into its neighbours' blocks).
                 order.clear();
@@ -597,7 +599,7 @@ void Renderer::Render(const PreparedScene& scene, image::ImageBuffer* image, Ren
                     const glm::dvec2 p = samples[k].raster;
                     const bool inBlock =
                         p.x >= bx * side && p.x <= (bx + 1) * side && p.y >= by * side && p.y <= (by + 1) * side;
-                    values[k] = TraceSample(scene, ts, camera, p, tol, eye, inBlock ? &group : nullptr);
+                    values[k] = TraceSample(scene, ts, camera, samples[k], tol, eye, inBlock ? &group : nullptr);
                 }
             }
             // A stopped tile's samples are incomplete: it is left out, neither resolved nor kept.

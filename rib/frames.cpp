@@ -107,6 +107,10 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
         m_scene.camera.fovDegrees = m_state.perspectiveFov;
         m_state.perspectiveFov = 0;
     }
+    if (!m_scene.camera.perspective && std::isfinite(m_scene.camera.fstop)) {
+        Warn(r.at, "'DepthOfField' applies to perspective projections only; ignored: the orthographic camera is sharp");
+        m_scene.camera.fstop = std::numeric_limits<double>::infinity();
+    }
     // Lights given before WorldBegin come first, so their indices (LightSource) hold.
     for (LightDesc light : m_cameraLights) {
         light.from = TransformPoint(cameraToWorld, light.from);

@@ -230,6 +230,7 @@ class RibParser : private RibArgChecks {
     bool DoScreenWindow(const RibRequest& r);
     bool DoCropWindow(const RibRequest& r);
     bool DoClipping(const RibRequest& r);
+    bool DoDepthOfField(const RibRequest& r);
     bool DoPixelSamples(const RibRequest& r);
     bool DoPixelFilter(const RibRequest& r);
     bool DoExposure(const RibRequest& r);

@@ -188,6 +188,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"ScreenWindow", &RibParser::DoScreenWindow},
         {"CropWindow", &RibParser::DoCropWindow},
         {"Clipping", &RibParser::DoClipping},
+        {"DepthOfField", &RibParser::DoDepthOfField},
         {"PixelSamples", &RibParser::DoPixelSamples},
         {"PixelFilter", &RibParser::DoPixelFilter},
         {"Exposure", &RibParser::DoExposure},
@@ -585,6 +586,33 @@ bool RibParser::DoClipping(const RibRequest& r) {
         return Fail(r.at, "'Clipping' needs 0 <= near < far, got " + FormatNumber(v[0]) + " " + FormatNumber(v[1]));
     m_scene.camera.nearClip = v[0];
     m_scene.camera.farClip = v[1];
+    return true;
+}
+
+bool RibParser::DoDepthOfField(const RibRequest& r) {
+    if (!BeforeWorld(r)) return false;
+    CameraDesc& camera = m_scene.camera;
+    // Without arguments, or with an infinite fstop (RI_INFINITY, 1e38), a pinhole camera.
+    const bool none = r.args.empty() || (r.args.size() == 1 && r.args[0].isArray && r.args[0].numbers.empty() &&
+                                         r.args[0].strings.empty());
+    double v[3] = {std::numeric_limits<double>::infinity(), 0, 0};
+    if (!none && !Numbers(r, 3, "fstop focallength focaldistance", v)) return false;
+    if (v[0] >= 1e30) {
+        camera.fstop = std::numeric_limits<double>::infinity();
+        camera.focalLength = camera.focalDistance = 0;
+        return true;
+    }
+    if (!(v[0] > 0 && v[1] > 0 && v[2] > 0) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+        // Exporters write "DepthOfField 0 ..." for a camera without one; prman renders it sharp.
+        Warn(r.at, "'DepthOfField' " + FormatNumber(v[0]) + " " + FormatNumber(v[1]) + " " + FormatNumber(v[2]) +
+                       ": a lens needs fstop, focallength and focaldistance above 0; rendering without depth of field");
+        camera.fstop = std::numeric_limits<double>::infinity();
+        camera.focalLength = camera.focalDistance = 0;
+        return true;
+    }
+    camera.fstop = v[0];
+    camera.focalLength = v[1];
+    camera.focalDistance = v[2];
     return true;
 }
 

@@ -30,7 +30,7 @@ constexpr std::string_view kNoEffect[] = {
 // the shading requests of later RenderMan versions (co-shaders; RIS's Bxdf, Pattern, Light,
 // Integrator and filters). Skipped with one warning per name.
 constexpr std::string_view kIgnored[] = {
-    "AreaLightSource", "Bxdf", "ClippingPlane", "ColorSamples", "DepthOfField",
+    "AreaLightSource", "Bxdf", "ClippingPlane", "ColorSamples",
     "DisplayFilter", "Exterior", "Integrator", "Interior", "Light", "LightFilter", "Matte",
     "Pattern", "SampleFilter", "Shader",
 };

@@ -7,7 +7,9 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <glm/glm.hpp>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -244,6 +246,10 @@ struct CameraDesc {
     bool jitter = true;
     FilterDesc filter;
     double exposureGain = 1, exposureGamma = 1;  ///< Exposure: out = (gain * color)^(1/gamma)
+    /// DepthOfField (RI 3.2 section 4.1.2): a thin lens of diameter focalLength / fstop (camera
+    /// space units) focused on the plane z = focalDistance of camera space. An infinite fstop (the
+    /// default, and DepthOfField without arguments) is a pinhole. Perspective cameras only.
+    double fstop = std::numeric_limits<double>::infinity(), focalLength = 0, focalDistance = 0;
     /// Imager "background": the colour composited under every pixel (colour += (1 - alpha) *
     /// background, alpha = 1), before the exposure, as RI 3.2's standard imager does. Unset: none.
     std::optional<glm::dvec3> background;
@@ -431,6 +437,7 @@ inline std::string ToString(const CameraDesc& c) {
         << " filter=" << (c.filter.kind == FilterDesc::Kind::Box ? "box " : "gaussian ") << c.filter.xwidth << ' '
         << c.filter.ywidth << " exposure=" << c.exposureGain << ' ' << c.exposureGamma;
     if (c.background) out << " imager=background " << ToString(*c.background);
+    if (std::isfinite(c.fstop)) out << " depthoffield=" << c.fstop << ' ' << c.focalLength << ' ' << c.focalDistance;
     return out.str();
 }
 

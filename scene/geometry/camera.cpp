@@ -20,6 +20,9 @@ Camera::Camera(const CameraDesc& desc) : m_desc(desc) {
         m_left = -1, m_right = 1, m_bottom = -1 / aspect, m_top = 1 / aspect;
     }
     m_tanHalfFov = std::tan(glm::radians(desc.fovDegrees) / 2);
+    if (desc.perspective && std::isfinite(desc.fstop) && desc.fstop > 0 && desc.focalLength > 0 &&
+        desc.focalDistance > 0)
+        m_lensRadius = 0.5 * desc.focalLength / desc.fstop;
 
     // Pixel size at the image center, measured between world-space rays through the pixel's
     // opposite edges, so any scale in worldToCamera is accounted for.
@@ -69,6 +72,35 @@ Ray Camera::GenerateRay(double rasterX, double rasterY) const {
     ray.origin = glm::dvec3(m_cameraToWorld * glm::dvec4(origin, 1.0));
     ray.dir = glm::normalize(glm::dvec3(m_cameraToWorld * glm::dvec4(dir, 0.0)));
     return ray;
+}
+
+Ray Camera::GenerateRay(double rasterX, double rasterY, const glm::dvec2& lens) const {
+    if (m_lensRadius <= 0) return GenerateRay(rasterX, rasterY);
+    glm::dvec3 origin, dir;
+    CameraSpaceRay(rasterX, rasterY, &origin, &dir);
+    // dir has z = 1: the pinhole ray meets the focal plane at dir * focalDistance.
+    const glm::dvec3 focus = dir * m_desc.focalDistance;
+    const glm::dvec2 d = m_lensRadius * LensPoint(lens);
+    origin = glm::dvec3(d.x, d.y, 0.0);
+    Ray ray;
+    ray.origin = glm::dvec3(m_cameraToWorld * glm::dvec4(origin, 1.0));
+    ray.dir = glm::normalize(glm::dvec3(m_cameraToWorld * glm::dvec4(focus - origin, 0.0)));
+    return ray;
+}
+
+glm::dvec2 Camera::LensPoint(const glm::dvec2& u) {
+    const double a = 2 * u.x - 1, b = 2 * u.y - 1;
+    if (a == 0 && b == 0) return {0, 0};
+    constexpr double kQuarterPi = 0.78539816339744830962;
+    double r, phi;
+    if (std::fabs(a) > std::fabs(b)) {
+        r = a;
+        phi = kQuarterPi * (b / a);
+    } else {
+        r = b;
+        phi = 2 * kQuarterPi - kQuarterPi * (a / b);
+    }
+    return {r * std::cos(phi), r * std::sin(phi)};
 }
 
 glm::dvec3 Camera::Position() const { return glm::dvec3(m_cameraToWorld[3]); }

@@ -8,6 +8,12 @@
 // the default window fov spans the shorter image axis). Orthographic: screen coordinates are
 // camera x, y and every ray runs along +z. Camera space is left-handed: +x right,
 // +y up, +z into the scene. Raster (0,0) is the top-left corner of the image.
+// Depth of field (DepthOfField fstop focallength focaldistance, perspective only): a thin lens of
+// radius focallength / (2 fstop) in the plane z = 0 of camera space, focused on the plane
+// z = focaldistance: the ray of a raster position and a point of the lens starts at that point
+// and passes through where the pinhole ray of the raster position meets the focal plane, so the
+// focal plane is sharp and a point at depth z blurs over a circle of diameter
+// 2 radius |z - focaldistance| / z (on the plane z = 1, in camera units).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -37,6 +43,17 @@ class Camera {
     /// The world-space ray through raster position (rasterX, rasterY): (0,0) is the top-left
     /// corner of the image, (xres, yres) the bottom-right, pixel centers at +0.5.
     Ray GenerateRay(double rasterX, double rasterY) const;
+    /// The same through the point of the lens `lens` (in [0, 1]^2, mapped onto the lens's disc
+    /// preserving area and strata: LensPoint); the pinhole ray if the camera has no lens.
+    Ray GenerateRay(double rasterX, double rasterY, const glm::dvec2& lens) const;
+
+    /// Whether rays start across a lens (DepthOfField with a finite fstop, perspective).
+    bool HasLens() const { return m_lensRadius > 0; }
+    /// The lens's radius in camera space (0: a pinhole).
+    double LensRadius() const { return m_lensRadius; }
+    /// The point of the unit disc for `u` in [0, 1]^2 (Shirley and Chiu's concentric map: equal
+    /// areas to equal areas, and squares of a grid to compact pieces of the disc).
+    static glm::dvec2 LensPoint(const glm::dvec2& u);
 
     /// The camera's eye point in world space (for orthographic cameras, the camera-space origin).
     glm::dvec3 Position() const;
@@ -72,6 +89,7 @@ class Camera {
     double m_left = -1, m_right = 1, m_bottom = -1, m_top = 1;
     double m_tanHalfFov = 1;
     double m_pixelAngle = 0, m_pixelWidth = 0;
+    double m_lensRadius = 0;
 };
 
 }  // namespace affray::renderer

@@ -398,3 +398,32 @@ TEST_CASE("Exposure maps colour through gain and gamma", "[film]") {
     CHECK(Film(c).Expose(0.1) == Approx(0.3));
     CHECK(Film(c).Expose(-0.1) == Approx(-0.3));  // gamma 1 is linear, negatives included
 }
+
+TEST_CASE("A pixel's samples take every lens stratum once, in an order of their own", "[film]") {
+    for (const auto& [xs, ys] : {std::pair{1, 1}, std::pair{4, 4}, std::pair{3, 5}, std::pair{8, 8}}) {
+        Film film(MakeCamera(6, 4, FilterDesc::Kind::Box, 1, xs, ys), {}, 3);
+        const int n = xs * ys;
+        int sameOrder = 0;
+        std::vector<int> firstPixel;
+        for (int py = 0; py < 4; ++py)
+            for (int px = 0; px < 6; ++px) {
+                std::vector<int> count(size_t(n), 0), order;
+                for (int k = 0; k < n; ++k) {
+                    const glm::dvec2 u = film.LensPosition(px, py, k);
+                    INFO(xs << "x" << ys << " pixel " << px << "," << py << " sample " << k);
+                    REQUIRE((u.x >= 0 && u.x < 1 && u.y >= 0 && u.y < 1));
+                    const int stratum = int(u.y * ys) * xs + int(u.x * xs);
+                    ++count[size_t(stratum)];
+                    order.push_back(stratum);
+                    CHECK(film.LensPosition(px, py, k) == u);  // the same whoever asks
+                }
+                for (int c : count) CHECK(c == 1);
+                if (firstPixel.empty())
+                    firstPixel = order;
+                else
+                    sameOrder += order == firstPixel;
+            }
+        // The order is shuffled per pixel (else the lens stratum would follow the pixel stratum).
+        if (n >= 16) CHECK(sameOrder == 0);
+    }
+}

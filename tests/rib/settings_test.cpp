@@ -324,6 +324,8 @@ FrameEnd
     CHECK(scene->camera.xsamples == 3);
     CHECK(scene->camera.jitter);
     CHECK(scene->camera.background == glm::dvec3(0.0));  // Imager "background" "color bgcolor" [0 0 0]
+    CHECK(scene->camera.fstop == 1e6);                   // DepthOfField 1000000 1 1: a lens 1e-6 wide
+    CHECK(scene->camera.focalDistance == 1);
     CHECK(messages == Messages{
 
                           "t.rib:7: warning: 'Option \"limits\"' does not apply to affray; ignored",
@@ -331,7 +333,6 @@ FrameEnd
                           "t.rib:9: warning: 'Option \"trace\"' does not apply to affray; ignored",
                           "t.rib:18: warning: 'PixelVariance' does not apply to affray; ignored",
                           "t.rib:21: warning: 'Quantize' does not apply to affray; ignored",
-                          "t.rib:23: warning: request 'DepthOfField' is not supported yet; ignored",
                           "t.rib:24: warning: 'Shutter' does not apply to affray; ignored",
                           "t.rib:30: warning: 'Attribute \"identifier\"' does not apply to affray; ignored",
                           "t.rib:31: warning: 'Attribute \"visibility\"' parameter 'trace' does not apply to affray; "

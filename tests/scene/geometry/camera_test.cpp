@@ -240,3 +240,67 @@ TEST_CASE("ToRaster inverts the ray through a raster position, at any depth", "[
         CHECK(camera.ToRaster(glm::dvec3(0.1, 0.2, 0), &raster) == !perspective);
     }
 }
+
+TEST_CASE("A lens ray starts on the lens and passes where the pinhole ray meets the focal plane",
+          "[renderer][camera]") {
+    affray::diag::Report error;
+    auto scene = ParseRib(
+        "Format 64 48 1\nProjection \"perspective\" \"fov\" 40\nDepthOfField 2.8 0.5 7\nRotate 20 0 1 0\n"
+        "Translate 1 -2 5\nWorldBegin\nWorldEnd\n",
+        "t.rib", &error);
+    INFO(error);
+    REQUIRE(scene);
+    REQUIRE(scene->camera.fstop == 2.8);
+    const Camera camera(scene->camera);
+    REQUIRE(camera.HasLens());
+    CHECK(camera.LensRadius() == Approx(0.5 * 0.5 / 2.8));
+    const glm::dmat4& toCamera = scene->camera.worldToCamera;
+    for (const glm::dvec2 raster : {glm::dvec2(0, 0), glm::dvec2(32, 24), glm::dvec2(63.5, 10.25)}) {
+        const Ray pinhole = camera.GenerateRay(raster.x, raster.y);
+        const glm::dvec3 pc(toCamera * glm::dvec4(pinhole.dir, 0.0));
+        const glm::dvec3 focus = pinhole.origin + pinhole.dir * (7.0 / pc.z);  // on camera z = 7
+        for (const glm::dvec2 lens : {glm::dvec2(0, 0), glm::dvec2(1, 1), glm::dvec2(0.3, 0.9), glm::dvec2(0.5)}) {
+            INFO("raster " << raster.x << "," << raster.y << " lens " << lens.x << "," << lens.y);
+            const Ray r = camera.GenerateRay(raster.x, raster.y, lens);
+            const glm::dvec3 origin(toCamera * glm::dvec4(r.origin, 1.0));
+            CHECK(origin.z == Approx(0).margin(1e-12));
+            CHECK(std::hypot(origin.x, origin.y) <= camera.LensRadius() * (1 + 1e-12));
+            CHECK(glm::length(r.dir) == Approx(1));
+            // The ray reaches the focus point: its distance from the line is rounding.
+            const glm::dvec3 toFocus = focus - r.origin;
+            CHECK(glm::length(toFocus - glm::dot(toFocus, r.dir) * r.dir) < 1e-12 * glm::length(toFocus));
+        }
+        // The lens's centre gives the pinhole ray.
+        const Ray centre = camera.GenerateRay(raster.x, raster.y, glm::dvec2(0.5));
+        RequireVec(centre.origin, pinhole.origin);
+        RequireVec(centre.dir, pinhole.dir);
+    }
+    // No lens without DepthOfField, with an infinite fstop, or with no arguments.
+    for (const char* dof : {"", "DepthOfField 1e38 1 1\n", "DepthOfField\n", "DepthOfField 2 1 3\nDepthOfField\n"}) {
+        auto s =
+            ParseRib(std::string("Projection \"perspective\"\n") + dof + "WorldBegin\nWorldEnd\n", "t.rib", &error);
+        REQUIRE(s);
+        CHECK_FALSE(Camera(s->camera).HasLens());
+    }
+}
+
+TEST_CASE("The lens map takes the unit square onto the disc, area for area", "[renderer][camera]") {
+    CHECK(Camera::LensPoint({0.5, 0.5}) == glm::dvec2(0, 0));
+    // The square's edges go to the circle.
+    for (double t = 0; t <= 1; t += 0.125)
+        for (const glm::dvec2 u : {glm::dvec2(t, 0), glm::dvec2(t, 1), glm::dvec2(0, t), glm::dvec2(1, t)})
+            CHECK(glm::length(Camera::LensPoint(u)) == Approx(1).margin(1e-12));
+    // Equal areas: each of 8 x 8 cells, sampled finely, covers 1/64 of the disc; the rings
+    // |p| <= r hold the fraction r^2 of the points (uniform over the disc).
+    constexpr int kCells = 8, kFine = 32;
+    int inside[4] = {0, 0, 0, 0};
+    const double radii[4] = {0.25, 0.5, 0.75, 0.9};
+    for (int i = 0; i < kCells * kFine; ++i)
+        for (int j = 0; j < kCells * kFine; ++j) {
+            const glm::dvec2 p = Camera::LensPoint({(i + 0.5) / (kCells * kFine), (j + 0.5) / (kCells * kFine)});
+            REQUIRE(glm::length(p) <= 1 + 1e-12);
+            for (int k = 0; k < 4; ++k) inside[k] += glm::length(p) <= radii[k];
+        }
+    for (int k = 0; k < 4; ++k)
+        CHECK(double(inside[k]) / (kCells * kFine * kCells * kFine) == Approx(radii[k] * radii[k]).margin(6e-3));
+}
