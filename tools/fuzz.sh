@@ -8,8 +8,9 @@
 # four by default: fuzz_sl fuzz_afb fuzz_rib fuzz_texture) for SECONDS (default 60; --runs N
 # stops it after N executions if that comes first) with -timeout=25 -rss_limit_mb=2048 and its
 # dictionary. SECONDS bound the whole of a target's run, its seeds and the loading of its corpus
-# included (only the rerun of a finding comes after). New inputs go to build-fuzz/corpus/TARGET, kept from run to run. Prints per target
-# the executions, coverage (cov: edges, ft: features) and corpus size. A crash, leak, timeout or
+# included (only the rerun of a finding comes after). New inputs go to build-fuzz/corpus/TARGET,
+# kept from run to run. Prints per target the executions, coverage (cov: edges, ft: features) and
+# corpus size. A crash, leak, timeout or
 # out-of-memory keeps its input under build-fuzz/artifacts/TARGET/ with a line saying how to
 # reproduce it; if that input fails again when run alone, the exit status is 1 and, without
 # --keep-going, the remaining targets are not run. (One that does not fail again is reported and
@@ -38,7 +39,7 @@ while [[ $# -gt 0 ]]; do
         --parallel) parallel=${2:?--parallel needs N}; shift 2 ;;
         --keep-going) keep_going=1; shift ;;
         --build) build=${2:?--build needs DIR}; shift 2 ;;
-        -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         fuzz_sl|fuzz_afb|fuzz_rib|fuzz_texture) targets+=("$1"); shift ;;
         *) echo "tools/fuzz.sh: unknown argument '$1' (targets: ${all[*]})" >&2; exit 2 ;;
     esac
