@@ -6,6 +6,7 @@
 // Shaders are found in shaders/, tests/golden and tests/corpus of the source tree. A
 // gzip-compressed input is decompressed up to the rib-bytes limit, set to 64 MiB here so that a
 // small input cannot grow past libFuzzer's memory limit (-rss_limit_mb) before it is refused.
+// The compiler's program-ops and loop-iterations limits are lowered (fuzz_util.h).
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,7 +26,8 @@ bool InsideP(const std::string& path) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace affray;
-    static const bool kLimited = (diag::SetLimit(diag::Limit::RibBytes, int64_t{1} << 26), true);
+    static const bool kLimited =
+        (diag::SetLimit(diag::Limit::RibBytes, int64_t{1} << 26), fuzz::SetSmallLimits(), true);
     (void)kLimited;
     static const std::string kPath = fuzz::TempDir() + "/input.rib";
     // One thread: libFuzzer runs one input at a time, and a pool would only add threads to start.

@@ -1,7 +1,9 @@
 // fuzz/fuzz_sl.cpp: shader source (.sl text) -> preprocessor (mcpp) -> parser -> type checker ->
 // lowering -> bytecode, the whole of `affray compile`; then the four programs of a shader that
-// compiles run once in every number type of the VM, and its generic programs go through the .afb
-// writer and loader, which must read back what was written.
+// compiles run once each, in number types the input picks (every type in the replay program:
+// fuzz_util.h), and its generic programs go through the .afb writer and loader, which must read
+// back what was written. The compiler's program-ops and loop-iterations limits are lowered
+// (fuzz_util.h: SetSmallLimits).
 // The source is named as a file in shaders/ of the source tree, with shaders/, tests/corpus and
 // tests/golden as include directories, so that the seeds' #includes and texture names resolve.
 #include <cstdio>
@@ -9,11 +11,14 @@
 #include <string>
 
 #include "compiler/compile.h"
+#include "diag/limits.h"
 #include "fuzz/fuzz_util.h"
 #include "vm/bytecode_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace affray;
+    static const bool kLimited = (fuzz::SetSmallLimits(), true);
+    (void)kLimited;
     static const std::string kPath = fuzz::SourceDir() + "/shaders/fuzz_input.sl";
     static const lang::PreprocessOptions kPreprocess{
         {fuzz::SourceDir() + "/shaders", fuzz::SourceDir() + "/tests/corpus", fuzz::SourceDir() + "/tests/golden"}, {}};
@@ -21,8 +26,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const compiler::CompileResult result = compiler::CompileSource(kPath, text, {}, kPreprocess);
     if (!result.ok()) return 0;
     const compiler::CompiledShader& shader = *result.shader;
+    const uint64_t pick = fuzz::PickOf(text);
+    int k = 0;
     for (const vm::Program* p : {&shader.genericBound, &shader.genericShade, &shader.bound, &shader.shade})
-        fuzz::RunEveryNumberType(*p);
+        fuzz::RunNumberTypes(*p, pick + k++);
 
     const vm::BytecodeFile file{shader.name, shader.sourcePath, vm::HashSource(text), shader.genericBound,
                                 shader.genericShade};

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "diag/limits.h"
 #include "scene/geometry/surface.h"
 #include "vm/bytecode_file.h"
 #include "vm/interpreter.h"
@@ -18,6 +19,8 @@ namespace affray::fuzz {
 namespace fs = std::filesystem;
 
 namespace {
+
+bool g_everyNumberType = false;
 
 struct PrivateDir {
     std::string path;
@@ -87,15 +90,33 @@ void FixAfbChecksums(std::string* bytes) {
     PutU64(bytes, body, vm::HashSource(std::string_view(*bytes).substr(0, body)));
 }
 
-void RunEveryNumberType(const vm::Program& program) {
-    RunAs<double>(program);
-    RunAs<vm::Interval>(program);
-    RunAs<vm::Affine>(program);
-    RunAs<vm::ReducedAffine>(program);
-    RunAs<vm::Dual<double>>(program);
-    RunAs<vm::Dual<vm::Interval>>(program);
-    RunAs<vm::Dual<vm::Affine>>(program);
-    RunAs<vm::Dual<vm::ReducedAffine>>(program);
+void SetSmallLimits() {
+    diag::SetLimit(diag::Limit::ProgramOps, kFuzzProgramOps);
+    diag::SetLimit(diag::Limit::LoopIterations, kFuzzLoopIterations);
+}
+
+void SetEveryNumberType(bool every) { g_everyNumberType = every; }
+
+uint64_t PickOf(std::string_view bytes) {
+    uint64_t h = 14695981039346656037ull;
+    for (char c : bytes) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+    return h ^ (h >> 32);
+}
+
+void RunNumberTypes(const vm::Program& program, uint64_t pick) {
+    for (int type = 0; type < kNumberTypes; ++type) {
+        if (!g_everyNumberType && static_cast<uint64_t>(type) != pick % kNumberTypes) continue;
+        switch (type) {
+            case 0: RunAs<double>(program); break;
+            case 1: RunAs<vm::Interval>(program); break;
+            case 2: RunAs<vm::Affine>(program); break;
+            case 3: RunAs<vm::ReducedAffine>(program); break;
+            case 4: RunAs<vm::Dual<double>>(program); break;
+            case 5: RunAs<vm::Dual<vm::Interval>>(program); break;
+            case 6: RunAs<vm::Dual<vm::Affine>>(program); break;
+            default: RunAs<vm::Dual<vm::ReducedAffine>>(program); break;
+        }
+    }
 }
 
 }  // namespace affray::fuzz

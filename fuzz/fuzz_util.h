@@ -31,9 +31,28 @@ std::string SourceDir();
 /// Leaves bytes too short to hold a header as they are.
 void FixAfbChecksums(std::string* bytes);
 
-/// Runs `program` once in every number type of the VM (double, Interval, Affine, ReducedAffine
-/// and their Duals) over a small region of the unit square, for its first output of three values.
-/// `program` must have passed vm::Verify().
-void RunEveryNumberType(const vm::Program& program);
+/// The compiler's limits in the fuzz targets that compile shaders: program-ops 20,000 (default
+/// 250,000) and loop-iterations 256 (default 10,000). A shader that grows past them is refused
+/// with the limit's error, as one past the defaults is, long before its lowering takes seconds
+/// under the sanitizers (fuzz/README.md).
+inline constexpr int64_t kFuzzProgramOps = 20'000;
+inline constexpr int64_t kFuzzLoopIterations = 256;
+void SetSmallLimits();
+
+/// The number of number types of the VM: double, Interval, Affine, ReducedAffine and their Duals.
+inline constexpr int kNumberTypes = 8;
+
+/// Whether RunNumberTypes runs a program in every number type (the replay program sets it, so
+/// that CTest checks every seed and regression in all of them) or in the one an input picks
+/// (the default, under libFuzzer: eight times fewer runs of the VM an input).
+void SetEveryNumberType(bool every);
+
+/// A hash of the input's bytes (FNV-1a), for picking: any change of the input may pick another.
+uint64_t PickOf(std::string_view bytes);
+
+/// Runs `program` once over a small region of the unit square, for its first output of three
+/// values: in every number type when SetEveryNumberType(true), else in number type
+/// `pick % kNumberTypes` alone. `program` must have passed vm::Verify().
+void RunNumberTypes(const vm::Program& program, uint64_t pick);
 
 }  // namespace affray::fuzz

@@ -1,8 +1,10 @@
 // fuzz/replay_main.cpp: main() for a fuzz target built without libFuzzer (any compiler): runs
 // LLVMFuzzerTestOneInput once on every file named, and on every file under every directory named
 // (in name order), each in a buffer of exactly its size, so that a sanitizer build catches reads
-// past the input's end as libFuzzer would. Prints one line per directory and a total; a crash is
-// a crash (the sanitizer reports it), so the exit status is 0 when every input ran.
+// past the input's end as libFuzzer would. Programs run in every number type of the VM, where
+// libFuzzer runs each in the one its input picks (fuzz_util.h). Prints one line per directory
+// and a total; a crash is a crash (the sanitizer reports it), so the exit status is 0 when every
+// input ran.
 // Usage: REPLAY [--verbose] PATH...
 #include <algorithm>
 #include <chrono>
@@ -44,6 +46,7 @@ bool RunFile(const fs::path& path, bool verbose) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    affray::fuzz::SetEveryNumberType(true);
     bool verbose = false, ok = true;
     int total = 0;
     for (int i = 1; i < argc; ++i) {

@@ -8,8 +8,8 @@
 #   fuzz_rib      scenes/, tests/golden/ (and its archives/), tests/scenes/
 #   fuzz_texture  fuzz/corpus/fuzz_texture/, shaders/maps/, tests/scenes/
 # fuzz/regressions/TARGET/ is not a seed directory here: the replay tests and tools/fuzz.sh read
-# it directly. Every seed runs within a few seconds in build-fuzz (the slowest, the golden cases
-# that run into the compiler's limits, take 0.8-2 s), far from libFuzzer's -timeout.
+# it directly. Every seed runs within a second in build-fuzz (the slowest, the largest corpus
+# shaders and the first to load OpenImageIO, take 0.1-0.6 s), far from libFuzzer's -timeout.
 set -euo pipefail
 
 target=${1:?usage: fuzz/seeds.sh TARGET OUT_DIR [AFFRAY]}
