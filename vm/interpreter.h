@@ -35,6 +35,8 @@ class Interpreter {
 
     /// Sets a global the program reads; a global it does not read is ignored (cheaply), so
     /// callers may set everything or ask program().readsGlobal() first to skip computing it.
+    /// A global lives in a register that the program may reuse once it has read it (and a
+    /// shader may assign P or N): set every global the program reads before each Run().
     void SetGlobal(Global g, const T& value);
     void SetGlobal(Global g, const Vec3<T>& value);
 
