@@ -387,7 +387,10 @@ def run_set(fault_set, faults, args, workers):
     for f in faults:
         o = results[f.name]
         status = o.status + (" (equivalent)" if f.equivalent else "")
-        print(f"{f.name:{width}} {f.file:34} {status:10} {'; '.join(short_name(n) for n in o.by)}")
+        by = [short_name(n) for n in o.by]
+        if len(by) > 4:
+            by = by[:4] + [f"{len(by) - 4} more"]
+        print(f"{f.name:{width}} {f.file:34} {status:10} {'; '.join(by)}")
     s = Summary(fault_set, faults, results, total_s / 60)
     print()
     print(f"Set {s.name}: kill rate {s.killed}/{s.counted} = {s.rate:.1f} % of the counted faults "

@@ -97,7 +97,7 @@ FAULTS = [
           "a float condition means x > 0, not x != 0"),
     Fault("lower-color-with-point-accepted", "compiler/lower.cpp",
           "if (mixesColor) return bad(\": a color does not combine with a point, vector or normal\");",
-          "",
+          "(void)mixesColor;",
           "the type check that a color does not combine with a point, vector or normal is gone"),
     Fault("lower-cross-of-colors-accepted", "compiler/lower.cpp",
           "if (!IsSpatial(a->type) || !IsSpatial(b->type)) return bad(",
