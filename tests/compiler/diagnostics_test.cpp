@@ -201,6 +201,11 @@ TEST_CASE("invalid operands to arithmetic", "[compiler][diagnostics]") {
           "test.sl:2:9: error: invalid operands to '^' (point and float): '^' is the cross product of two vectors\n"
           "      P = P ^ 1;\n"
           "            ^\n");
+    // Two colors are triples but not spatial: no cross product either.
+    CHECK(Diagnose("displacement t() {\n  vector v = color(1, 0, 0) ^ color(0, 1, 0);\n}\n") ==
+          "test.sl:2:29: error: invalid operands to '^' (color and color): '^' is the cross product of two vectors\n"
+          "      vector v = color(1, 0, 0) ^ color(0, 1, 0);\n"
+          "                                ^\n");
     CHECK(Diagnose("displacement t() {\n  P += -\"a\";\n}\n") ==
           "test.sl:2:8: error: invalid operand to unary '-' (string)\n"
           "      P += -\"a\";\n"

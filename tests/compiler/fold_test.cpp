@@ -169,7 +169,7 @@ TEST_CASE("folding: every foldable opcode folds to the scalar VM's value, and on
           "[compiler][fold]") {
     std::vector<double> all = kFinite;
     all.insert(all.end(), kNonFinite.begin(), kNonFinite.end());
-    int folded = 0, checked = 0, opcodes = 0;
+    int folded = 0, checked = 0, opcodes = 0, leftToRunTime = 0;
     for (int i = 0; i < vm::kOpCount; ++i) {
         const vm::Op op = static_cast<vm::Op>(i);
         const vm::Operation f = vm::OperationOf(op);
@@ -187,6 +187,11 @@ TEST_CASE("folding: every foldable opcode folds to the scalar VM's value, and on
                 REQUIRE(k.has_value());
                 CHECK(SameDouble(*k, vmValue));
                 ++folded;
+            } else if (finiteInputs) {
+                // Finite constants whose result overflows or is NaN (exp(1e300), 0/0, log(-1)):
+                // not folded, whatever the rules; the run time computes and reports it.
+                CHECK_FALSE(k.has_value());
+                ++leftToRunTime;
             } else if (k) {
                 // Not a fold of the operation on these constants but an algebraic rule that needs
                 // no value: the same double, except x * 0 => 0 (compiler/fold.cpp's one documented
@@ -198,6 +203,7 @@ TEST_CASE("folding: every foldable opcode folds to the scalar VM's value, and on
     }
     CHECK(opcodes >= 40);
     CHECK(folded > 1000);
+    CHECK(leftToRunTime > 0);
     CHECK(checked > folded);
 }
 

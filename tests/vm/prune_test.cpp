@@ -6,9 +6,11 @@
 // exactly, and last in the intersector (renderer/intersect.cpp), which must find the same hits. AFFRAY_SAMPLES=N raises the region count; AFFRAY_VERBOSE=1 prints instruction counts.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 #include "renderer/intersect.h"
 #include "tests/test_random.h"
@@ -253,6 +255,21 @@ TEST_CASE("decided values become constants, and constant operands constant forms
     vm::Decisions far = Record<vm::Affine>(Hand({I(vm::Op::LtRK, 2, 0, 0)}, {-1.0}, 3, 2), {0.1, 0.2, 0, 1});
     REQUIRE(far.constantAt(0, &k));
     CHECK(std::bit_cast<uint64_t>(k) == std::bit_cast<uint64_t>(0.0));
+}
+
+TEST_CASE("a program that takes derivatives keeps its constant register operands in registers", "[vm][prune]") {
+    // z = 1 / Du(-v + c), c = 0 loaded into a register. Du(-v) is -0; -0 + R[c] (a dual constant,
+    // derivative +0) has the derivative +0, so z = +inf. The constant form -0 + K[c] would keep
+    // the derivative -0 and make z = -inf: with derivatives, pruning makes no constant forms.
+    const vm::Program p = Hand({I(vm::Op::LoadK, 2, 0), I(vm::Op::Neg, 3, 1), I(vm::Op::AddRR, 3, 3, 2),
+                                I(vm::Op::DerivU, 3, 3), I(vm::Op::DivKR, 3, 1, 3)},
+                               {0.0, 1.0}, 4, 3);
+    REQUIRE(p.usesDerivatives());
+    CHECK(test::PointOnSquare(p, 0.5, 0.5).z == std::numeric_limits<double>::infinity());
+    const vm::Program pruned = PruneFor(p, {0.2, 0.8, 0.2, 0.8});
+    const std::vector<vm::Op> ops = Ops(pruned);
+    CHECK(std::count(ops.begin(), ops.end(), vm::Op::AddRR) == 1);
+    CHECK(std::count(ops.begin(), ops.end(), vm::Op::AddRK) == 0);
 }
 
 TEST_CASE("floor splitting: a choice decided differently by the two cases is undecided", "[vm][prune]") {

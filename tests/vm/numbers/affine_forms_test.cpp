@@ -13,6 +13,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "vm/numbers/affine_fit.h"
 #include "vm/numbers/number.h"
 
 using namespace affray::vm;
@@ -189,4 +190,30 @@ TEMPLATE_TEST_CASE("affine forms: comparisons, Min and Max decide from the diffe
         }
     CHECK(low.range().lo() >= 0.5);
     CHECK(high.range().hi() <= 1.5);
+}
+
+TEST_CASE("affine fits: the lines of 1/x and exp have the error the calculus gives, no wider", "[vm][affine]") {
+    // Containment does not see a fit that is sound but loose: these pin [lo, hi] of
+    // g(t) = f(t) - alpha t to its extremes, worked out by hand, up to rounding.
+    // 1/x on [1, 4]: alpha is the chord's slope -1/(1 * 4); g(t) = 1/t + t/4 is 1.25 at both ends
+    // and least at t = 2, where it is 2 sqrt(-alpha) = 1.
+    const AffineFit r = ReciprocalFit(Interval(1.0, 4.0));
+    REQUIRE(r.kind == AffineFit::Kind::Line);
+    CHECK(r.alpha == -0.25);
+    CHECK(r.lo <= 1.0);
+    CHECK(r.lo == Approx(1.0).epsilon(1e-12));
+    CHECK(r.hi >= 1.25);
+    CHECK(r.hi == Approx(1.25).epsilon(1e-12));
+    // exp on [0, 1]: alpha is the chord's slope e - 1, capped at exp(1/2) (vm/numbers/affine_fit.cpp);
+    // g(t) = e^t - alpha t is 1 at 0 and e - alpha at 1, and least where e^t = alpha, at
+    // t = log(alpha) in (0, 1): alpha (1 - log(alpha)).
+    const AffineFit e = ExpFit(Interval(0.0, 1.0));
+    REQUIRE(e.kind == AffineFit::Kind::Line);
+    const double alpha = std::fmin(std::exp(1.0) - 1.0, std::exp(0.5));
+    CHECK(e.alpha == Approx(alpha).epsilon(1e-15));
+    const double least = alpha * (1.0 - std::log(alpha)), most = std::fmax(1.0, std::exp(1.0) - alpha);
+    CHECK(e.lo <= least);
+    CHECK(e.lo == Approx(least).epsilon(1e-12));
+    CHECK(e.hi >= most);
+    CHECK(e.hi == Approx(most).epsilon(1e-12));
 }
