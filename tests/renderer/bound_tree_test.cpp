@@ -215,17 +215,21 @@ TEST_CASE("bound tree: trees sharing a budget evict each other's oldest blocks",
 
 namespace {
 
-/// The hits of `rays` on the forest's tree i, walked by a walker of its own that is gone after.
-std::vector<double> TraceForest(BoundForest& forest, BoundForest::ThreadSlot* slot, size_t i,
-                                const std::vector<Ray>& rays) {
-    auto it = forest.With(slot, i, [](BoundTree& tree) { return MakeSurfaceIntersector(tree); });
+/// The hit distances of `rays` through `it` (-1 for a miss).
+std::vector<double> Hits(SurfaceIntersector& it, const std::vector<Ray>& rays) {
     IntersectStats stats;
     std::vector<double> ts;
     for (const Ray& ray : rays) {
         Hit hit;
-        ts.push_back(it->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats) ? hit.t : -1.0);
+        ts.push_back(it.Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats) ? hit.t : -1.0);
     }
     return ts;
+}
+
+/// The hits of `rays` on the forest's tree i, walked by a walker of its own that is gone after.
+std::vector<double> TraceForest(BoundForest& forest, BoundForest::ThreadSlot* slot, size_t i,
+                                const std::vector<Ray>& rays) {
+    return Hits(*forest.With(slot, i, [](BoundTree& tree) { return MakeSurfaceIntersector(tree); }), rays);
 }
 
 }  // namespace
@@ -235,15 +239,7 @@ TEST_CASE("bound forest: idle trees are retired whole within the budget and made
     const BilinearPatch square = BilinearPatch::UnitSquare();
     const std::vector<Ray> rays = RaysFromAbove(21, 12);
     BoundTree alone(square, bound, glm::dvec3(0), BoundMode::Affine, 24);
-    std::vector<double> expected;
-    {
-        auto it = MakeSurfaceIntersector(alone);
-        IntersectStats stats;
-        for (const Ray& ray : rays) {
-            Hit hit;
-            expected.push_back(it->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats) ? hit.t : -1.0);
-        }
-    }
+    const std::vector<double> expected = Hits(*MakeSurfaceIntersector(alone), rays);
     // 600 primitives, each the same displaced square: 600 trees hold far more than the budget
     // (about 0.6 KB each besides their blocks), so the budget must retire trees, not only blocks.
     constexpr size_t kCount = 600;
@@ -279,15 +275,7 @@ TEST_CASE("bound forest: threads retiring and making trees at once find the same
     const BilinearPatch square = BilinearPatch::UnitSquare();
     const std::vector<Ray> rays = RaysFromAbove(22, 6);
     BoundTree alone(square, bound, glm::dvec3(0), BoundMode::Affine, 24);
-    std::vector<double> expected;
-    {
-        auto it = MakeSurfaceIntersector(alone);
-        IntersectStats stats;
-        for (const Ray& ray : rays) {
-            Hit hit;
-            expected.push_back(it->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats) ? hit.t : -1.0);
-        }
-    }
+    const std::vector<double> expected = Hits(*MakeSurfaceIntersector(alone), rays);
     constexpr size_t kCount = 200;
     CacheBudget budget(48 << 10);
     BoundForest forest(kCount, budget, [&](size_t, CacheBudget* b) {
