@@ -10,6 +10,8 @@
 #include "rib/parser.h"
 
 namespace affray::rib {
+
+using renderer::StorageClass;
 namespace {
 
 /// Cone pieces a cubic span is drawn with.
@@ -183,25 +185,24 @@ bool RibParser::DoCurves(const RibRequest& r) {
         std::string problem;
         if (name != "constantwidth" && !p.value.declaration.empty() &&
             RibDeclaration::Parse(p.value.declaration, &declared, &problem) && !declared.storage.empty()) {
-            const std::string& storage = declared.storage;
-            const size_t values = storage == "constant"  ? 1
-                                  : storage == "uniform" ? vertices.size()
-                                  : storage == "varying" ? totalVarying
-                                  : storage == "vertex"  ? totalVertices
-                                                         : 0;
+            // A curve's uniform values are per curve, its vertex values per control point; it has
+            // no face corners, so facevarying counts none.
+            const PrimvarCounts counts{vertices.size(), totalVertices, 0, totalVarying};
+            const StorageClass storage = declared.Storage();
+            const size_t values = counts.Of(storage);
             if (values == 0)
-                return Fail(p.at, context + " parameter " + Quote(name) + ": storage class " + Quote(storage) +
+                return Fail(p.at, context + " parameter " + Quote(name) + ": storage class " + Quote(declared.storage) +
                                       " is not defined on curves");
             if (!p.value.strings.empty() || got != each * values)
                 return Fail(p.at, context + " parameter " + Quote(name) + " (" + p.value.declaration + ") expects " +
                                       std::to_string(each * values) + (each * values == 1 ? " number" : " numbers") +
                                       " (" + std::to_string(each) + " for each of " + std::to_string(values) + " " +
-                                      storage + (values == 1 ? " value" : " values") + "), got " +
+                                      declared.storage + (values == 1 ? " value" : " values") + "), got " +
                                       (p.value.strings.empty() ? std::to_string(got) : std::string("strings")));
-            spread = storage == "constant"  ? Spread::Constant
-                     : storage == "uniform" ? Spread::Uniform
-                     : storage == "varying" ? Spread::Varying
-                                            : Spread::Vertex;
+            spread = storage == StorageClass::Constant  ? Spread::Constant
+                     : storage == StorageClass::Uniform ? Spread::Uniform
+                     : storage == StorageClass::Varying ? Spread::Varying
+                                                        : Spread::Vertex;
         } else if (!p.value.strings.empty() || got % each != 0)
             spread = Spread::Constant, target = nullptr;
         else if (got == each)
