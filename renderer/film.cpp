@@ -178,7 +178,8 @@ Film::Film(const CameraDesc& camera, const DisplayChannels& channels, std::uint6
       m_gamma(camera.exposureGamma),
       m_background(camera.background),
       m_channels(channels),
-      m_seed(seed) {}
+      m_seed(seed),
+      m_lens(LensP(camera)) {}
 
 std::vector<PixelRange> Film::Tiles(int tileSize) const {
     tileSize = std::max(tileSize, 1);
@@ -253,7 +254,8 @@ void Film::TileSamples(const PixelRange& tile, std::vector<Sample>* out) const {
     for (int py = region.y0; py < region.y1; ++py)
         for (int px = region.x0; px < region.x1; ++px)
             for (int k = 0; k < spp; ++k)
-                out->push_back({px, py, k, SamplePosition(px, py, k), LensPosition(px, py, k)});
+                out->push_back(
+                    {px, py, k, SamplePosition(px, py, k), m_lens ? LensPosition(px, py, k) : glm::dvec2(0.5)});
 }
 
 double Film::FilterWeight(double dx, double dy) const {

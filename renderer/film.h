@@ -123,7 +123,8 @@ class Film {
     /// pixel), jittered within them as SamplePosition is (centred without jitter).
     glm::dvec2 LensPosition(int px, int py, int index) const;
 
-    /// Every sample of SampleRegion(tile), row by row over its pixels, then by index.
+    /// Every sample of SampleRegion(tile), row by row over its pixels, then by index; with a
+    /// lens (LensP), each with its LensPosition.
     void TileSamples(const PixelRange& tile, std::vector<Sample>* out) const;
 
     /// The filter weight of a sample at offset (dx, dy) from a pixel centre, or 0 if the offset
@@ -160,6 +161,7 @@ class Film {
     std::optional<glm::dvec3> m_background;
     DisplayChannels m_channels;
     std::uint64_t m_seed;
+    bool m_lens;  ///< LensP: samples take lens positions
 };
 
 /// The counter-based hash behind the sample jitter (splitmix64-style finaliser over the packed

@@ -419,6 +419,12 @@ inline std::string ToString(const PrimitiveDesc& p) {
     return text;
 }
 
+/// Whether the camera has a lens (DepthOfField with a finite fstop and positive lengths, on a
+/// perspective projection): camera rays then start across it.
+inline bool LensP(const CameraDesc& c) {
+    return c.perspective && std::isfinite(c.fstop) && c.fstop > 0 && c.focalLength > 0 && c.focalDistance > 0;
+}
+
 inline std::string ToString(const CameraDesc& c) {
     std::ostringstream out;
     out << c.xres << 'x' << c.yres << " pixelaspect=" << c.pixelAspect;

@@ -20,9 +20,7 @@ Camera::Camera(const CameraDesc& desc) : m_desc(desc) {
         m_left = -1, m_right = 1, m_bottom = -1 / aspect, m_top = 1 / aspect;
     }
     m_tanHalfFov = std::tan(glm::radians(desc.fovDegrees) / 2);
-    if (desc.perspective && std::isfinite(desc.fstop) && desc.fstop > 0 && desc.focalLength > 0 &&
-        desc.focalDistance > 0)
-        m_lensRadius = 0.5 * desc.focalLength / desc.fstop;
+    if (LensP(desc)) m_lensRadius = 0.5 * desc.focalLength / desc.fstop;
 
     // Pixel size at the image center, measured between world-space rays through the pixel's
     // opposite edges, so any scale in worldToCamera is accounted for.
