@@ -179,7 +179,8 @@ Film::Film(const CameraDesc& camera, const DisplayChannels& channels, std::uint6
       m_background(camera.background),
       m_channels(channels),
       m_seed(seed),
-      m_lens(LensP(camera)) {}
+      m_lens(LensP(camera)),
+      m_shutter(ShutterOpenP(camera)) {}
 
 std::vector<PixelRange> Film::Tiles(int tileSize) const {
     tileSize = std::max(tileSize, 1);
@@ -245,6 +246,15 @@ glm::dvec2 Film::LensPosition(int px, int py, int index) const {
     return {(i + jx) / m_xsamples, (j + jy) / m_ysamples};
 }
 
+double Film::TimePosition(int px, int py, int index) const {
+    constexpr uint64_t kKey = 0x74696d65ull;  // "time": strata and jitter apart from the lens's
+    const uint32_t n = uint32_t(m_xsamples) * uint32_t(m_ysamples);
+    const uint32_t stratum = Permuted(uint32_t(index), n, SampleHash(px, py, -1, m_seed ^ kKey));
+    if (!m_jitter) return (stratum + 0.5) / n;
+    const double j = static_cast<double>(SampleHash(px, py, index, m_seed ^ kKey) >> 32) * 0x1p-32;
+    return (stratum + j) / n;
+}
+
 void Film::TileSamples(const PixelRange& tile, std::vector<Sample>* out) const {
     const PixelRange region = SampleRegion(tile);
     const int spp = samplesPerPixel();
@@ -254,8 +264,9 @@ void Film::TileSamples(const PixelRange& tile, std::vector<Sample>* out) const {
     for (int py = region.y0; py < region.y1; ++py)
         for (int px = region.x0; px < region.x1; ++px)
             for (int k = 0; k < spp; ++k)
-                out->push_back(
-                    {px, py, k, SamplePosition(px, py, k), m_lens ? LensPosition(px, py, k) : glm::dvec2(0.5)});
+                out->push_back({px, py, k, SamplePosition(px, py, k),
+                                m_lens ? LensPosition(px, py, k) : glm::dvec2(0.5),
+                                m_shutter ? TimePosition(px, py, k) : 0.0});
 }
 
 double Film::FilterWeight(double dx, double dy) const {

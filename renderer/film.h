@@ -78,6 +78,9 @@ struct Sample {
     glm::dvec2 raster{0.0};
     /// Its point of the lens, in [0, 1]^2 (Camera::GenerateRay; unused by a pinhole camera).
     glm::dvec2 lens{0.5};
+    /// Its time, as a fraction of the shutter's interval in [0, 1) (Film::TimePosition; 0 when
+    /// the shutter does not open).
+    double time = 0;
 };
 
 /// What the renderer found for one sample.
@@ -122,6 +125,11 @@ class Film {
     /// shuffled per pixel (so that a sample's lens stratum does not follow its place in the
     /// pixel), jittered within them as SamplePosition is (centred without jitter).
     glm::dvec2 LensPosition(int px, int py, int index) const;
+    /// The time of sample `index` of pixel (px, py), as a fraction of the shutter's interval in
+    /// [0, 1): the pixel's samples take the strata of [0, 1) cut in xsamples * ysamples one each,
+    /// in an order shuffled per pixel apart from the lens's (so that time and lens position are
+    /// not tied), jittered as the positions are.
+    double TimePosition(int px, int py, int index) const;
 
     /// Every sample of SampleRegion(tile), row by row over its pixels, then by index; with a
     /// lens (LensP), each with its LensPosition.
@@ -161,7 +169,8 @@ class Film {
     std::optional<glm::dvec3> m_background;
     DisplayChannels m_channels;
     std::uint64_t m_seed;
-    bool m_lens;  ///< LensP: samples take lens positions
+    bool m_lens;     ///< LensP: samples take lens positions
+    bool m_shutter;  ///< ShutterOpenP: samples take times
 };
 
 /// The counter-based hash behind the sample jitter (splitmix64-style finaliser over the packed

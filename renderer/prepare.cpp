@@ -182,6 +182,32 @@ Box UnionBox(const CellRanges& cells) {
     return box;
 }
 
+/// The box a moving primitive sweeps: `placed` (its box where its path's first time placed it)
+/// carried to each time of the path. Between two times every point moves on a straight line
+/// (MotionPath), so the boxes at the times hold it throughout; padded for the rounding of the
+/// carrying. A box that is not finite reaches everywhere.
+Box SweptBox(const Box& placed, const MotionPath& path) {
+    Box swept;
+    if (!std::isfinite(placed.lo.x + placed.lo.y + placed.lo.z + placed.hi.x + placed.hi.y + placed.hi.z)) {
+        swept.lo = glm::dvec3(-INFINITY);
+        swept.hi = glm::dvec3(INFINITY);
+        return swept;
+    }
+    const glm::dmat4 fromPlaced = glm::inverse(path.matrices.front());
+    for (const glm::dmat4& m : path.matrices) {
+        const glm::dmat4 carry = m * fromPlaced;
+        for (int c = 0; c < 8; ++c) {
+            const glm::dvec3 corner((c & 1) ? placed.hi.x : placed.lo.x, (c & 2) ? placed.hi.y : placed.lo.y,
+                                    (c & 4) ? placed.hi.z : placed.lo.z);
+            swept.Extend(glm::dvec3(carry * glm::dvec4(corner, 1.0)));
+        }
+    }
+    const glm::dvec3 pad = 1e-12 * (glm::abs(swept.lo) + glm::abs(swept.hi)) + 1e-300;
+    swept.lo -= pad;
+    swept.hi += pad;
+    return swept;
+}
+
 compiler::Matrix4 RowMajor(const glm::dmat4& m) {
     compiler::Matrix4 out{};
     for (int row = 0; row < 4; ++row)
@@ -457,6 +483,7 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
             if (prim.shader())  // a displacement whose shader was found
                 problems[i] = UnboundedEverywhere(prim, *prim.attributes().displacement, eye, cells, intervalCells);
             boxes[i] = UnionBox(intervalCells);
+            if (const MotionPath* path = prim.attributes().motion.get()) boxes[i] = SweptBox(boxes[i], *path);
         },
         kBoxGrain);
     for (size_t i = 0; i < problems.size(); ++i) {

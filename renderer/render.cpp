@@ -83,6 +83,51 @@ struct ThreadState {
         return *k.intersector;
     }
 
+    /// Whether `ray` meets primitive i in [tMin, tMax] (its Intersector). A moving primitive's
+    /// geometry stands where its path's first time placed it: the ray is carried there from
+    /// its own time (the primitive's motion undone) and its hit's distances back. Ray groups
+    /// bound rays in world space only, so such a primitive takes each ray alone.
+    bool Intersect(int i, const Ray& ray, double tMin, double tMax, const Tolerance& tol, bool anyHit, Hit* hit,
+                   IntersectStats& stats, const RayGroup* group = nullptr) {
+        const MotionPath* path = m_scene.primitives[i].attributes().motion.get();
+        if (!path) return Intersector(i).Intersect(ray, tMin, tMax, tol, anyHit, hit, stats, group);
+        const MotionFrame& f = FrameAt(*path, ray.time);
+        const glm::dvec3 dir = f.toPlaced * ray.dir;
+        const double scale = glm::length(dir);  // placed distance per world distance
+        if (!(scale > 0) || !std::isfinite(scale)) return false;
+        const Ray placed{glm::dvec3(f.toPlacedPoint * glm::dvec4(ray.origin, 1.0)), dir / scale, ray.time};
+        if (!Intersector(i).Intersect(placed, tMin * scale, tMax * scale, tol, anyHit, hit, stats, nullptr))
+            return false;
+        hit->t /= scale;
+        hit->error /= scale;
+        return true;
+    }
+
+    /// A moving primitive's frames at one time: world at that time -> where its geometry is
+    /// placed (its path's first time), and back (points; directions; normals).
+    struct MotionFrame {
+        const MotionPath* path = nullptr;
+        double time = 0;
+        glm::dmat4 toPlacedPoint{1.0}, toWorldPoint{1.0};
+        glm::dmat3 toPlaced{1.0}, toWorld{1.0}, normalToWorld{1.0};
+    };
+    /// The frames of `path` at `time`: kept for the last path and time asked (a sample's camera
+    /// and shadow rays share a time, a mesh's elements a path).
+    const MotionFrame& FrameAt(const MotionPath& path, double time) {
+        if (m_frame.path == &path && m_frame.time == time) return m_frame;
+        m_frame.path = &path;
+        m_frame.time = time;
+        // At the placement's own matrix (a shutter closed at the first time) exactly the identity:
+        // the image of a still shutter is the still scene's, bit for bit.
+        const glm::dmat4 m = path.At(time);
+        m_frame.toWorldPoint = m == path.matrices.front() ? glm::dmat4(1.0) : m * glm::inverse(path.matrices.front());
+        m_frame.toPlacedPoint = glm::inverse(m_frame.toWorldPoint);
+        m_frame.toWorld = glm::dmat3(m_frame.toWorldPoint);
+        m_frame.toPlaced = glm::dmat3(m_frame.toPlacedPoint);
+        m_frame.normalToWorld = glm::transpose(m_frame.toPlaced);
+        return m_frame;
+    }
+
     /// The shading interpreter of primitive i, running its shade program. A program without
     /// parameters (every specialised one) runs on the thread's one interpreter, pointed at it;
     /// one with parameters gets an interpreter of its own, made on first use (one per program,
@@ -118,6 +163,7 @@ struct ThreadState {
     std::vector<Kept> m_kept;
     size_t m_hand = 0;
     std::unique_ptr<vm::Interpreter<vm::Dual<double>>> m_shared;
+    MotionFrame m_frame;
     std::unordered_map<const vm::Program*, std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> m_ownShaders;
 };
 
@@ -174,6 +220,14 @@ HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray
     h.N = ToGlm(interp.OutputTriple(*prim.shade().findOutput("N")));
     h.dPdu = glm::dvec3(p.x.du, p.y.du, p.z.du);
     h.dPdv = glm::dvec3(p.x.dv, p.y.dv, p.z.dv);
+    if (const MotionPath* path = prim.attributes().motion.get()) {
+        // Evaluated where the geometry is placed: carried to where it is at the ray's time.
+        const auto& f = ts.FrameAt(*path, ray.time);
+        h.P = glm::dvec3(f.toWorldPoint * glm::dvec4(h.P, 1.0));
+        h.dPdu = f.toWorld * h.dPdu;
+        h.dPdv = f.toWorld * h.dPdv;
+        h.N = f.normalToWorld * h.N;
+    }
     if (!std::isfinite(glm::dot(h.P, h.P))) h.P = ray.origin + nh.hit.t * ray.dir;
     double lengthN = glm::length(h.N);
     h.N = lengthN > 0 && std::isfinite(lengthN) ? h.N / lengthN : -ray.dir;
@@ -192,7 +246,7 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
         scene.bvh->Traverse(ray, tMin, &best, [&](int i, double) {
             if (!scene.primitives[i].cameraVisible()) return true;  // Attribute "visibility" "camera" 0
             Hit hit;
-            if (ts.Intersector(i).Intersect(ray, tMin, best, ToleranceOf(ts, i, tol), false, &hit, stats, group)) {
+            if (ts.Intersect(i, ray, tMin, best, ToleranceOf(ts, i, tol), false, &hit, stats, group)) {
                 best = hit.t;
                 nearest = {hit, i, std::nullopt};
             }
@@ -237,7 +291,7 @@ glm::dvec3 ShadowTransmission(const PreparedScene& scene, ThreadState& ts, const
             return true;
         }
         Hit hit;
-        blocked = ts.Intersector(i).Intersect(ray, tMin, tMax, ToleranceOf(ts, i, tol), true, &hit, ts.shadowStats);
+        blocked = ts.Intersect(i, ray, tMin, tMax, ToleranceOf(ts, i, tol), true, &hit, ts.shadowStats);
         return !blocked;
     });
     if (blocked) return glm::dvec3(0.0);
@@ -250,8 +304,7 @@ glm::dvec3 ShadowTransmission(const PreparedScene& scene, ThreadState& ts, const
         double from = tMin;
         for (int layer = 0; layer < kMaxLayers; ++layer) {
             Hit hit;
-            if (!ts.Intersector(i).Intersect(ray, from, tMax, ToleranceOf(ts, i, tol), false, &hit, ts.shadowStats))
-                return true;
+            if (!ts.Intersect(i, ray, from, tMax, ToleranceOf(ts, i, tol), false, &hit, ts.shadowStats)) return true;
             through *= 1.0 - prim.OpacityAt(hit.u, hit.v);
             if (through == glm::dvec3(0.0)) return false;
             from = Beyond(hit, tol);
@@ -274,7 +327,7 @@ bool ProvedBlocked(const PreparedScene& scene, ThreadState& ts, const Ray& ray, 
         if (prim.transmission() == Transmission::Transparent) return true;
         if (prim.transmission() == Transmission::Opacity && !prim.OpaqueP()) return true;
         Hit hit;
-        blocked = ts.Intersector(i).Intersect(ray, tMin, tMax, ToleranceOf(ts, i, tol), true, &hit, ts.shadowStats);
+        blocked = ts.Intersect(i, ray, tMin, tMax, ToleranceOf(ts, i, tol), true, &hit, ts.shadowStats);
         return !blocked;
     });
     return blocked;
@@ -307,11 +360,11 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
     Tolerance nearTol = shadowTol;
     nearTol.certifiedOnly = true;
     auto transmitted = [&](const glm::dvec3& toLight, double distance) {
-        Ray shadowRay{sp.P + sp.Nf * offset, toLight};
+        Ray shadowRay{sp.P + sp.Nf * offset, toLight, ray.time};
         double tMax = std::isfinite(distance) ? distance - offset : INFINITY;
         const glm::dvec3 through = ShadowTransmission(scene, ts, shadowRay, offset, tMax, shadowTol);
         if (!searchNear || through == glm::dvec3(0.0)) return through;
-        const Ray nearRay{sp.P + sp.Nf * nearOffset, toLight};
+        const Ray nearRay{sp.P + sp.Nf * nearOffset, toLight, ray.time};
         const double nearEnd = std::isfinite(distance) ? distance - nearOffset : INFINITY;
         return ProvedBlocked(scene, ts, nearRay, nearOffset, nearEnd, nearTol) ? glm::dvec3(0.0) : through;
     };
@@ -461,7 +514,9 @@ void ApplyAtmosphere(const AtmosphereDesc& atmosphere, const CameraDesc& camera,
 SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camera& camera, const Sample& sample,
                         const Tolerance& tol, const glm::dvec3& eye, const RayGroup* group) {
     SampleValue value;
-    const Ray ray = camera.GenerateRay(sample.raster.x, sample.raster.y, sample.lens);
+    const CameraDesc& cam = scene.desc.camera;
+    const double time = cam.shutterOpen + (cam.shutterClose - cam.shutterOpen) * sample.time;
+    const Ray ray = camera.GenerateRay(sample.raster.x, sample.raster.y, sample.lens, time);
     double tMin, tMax;
     ClipRange(scene.desc.camera, ray, &tMin, &tMax);
     ++ts.cameraRays;
@@ -485,7 +540,8 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
         value.rgb += through * Ci;
         through *= 1.0 - Oi;
         if (layer == 0) {
-            value.z = (scene.desc.camera.worldToCamera * glm::dvec4(ray.origin + nh.hit.t * ray.dir, 1.0)).z;
+            const glm::dmat4 worldToCamera = MatrixAt(cam.motion.get(), cam.worldToCamera, time);
+            value.z = (worldToCamera * glm::dvec4(ray.origin + nh.hit.t * ray.dir, 1.0)).z;
             value.N = at.N;
             value.P = at.P;
             // The mesh's (u,v), which the shader saw: the hit's are the patch's own.
@@ -569,9 +625,9 @@ void Renderer::Render(const PreparedScene& scene, image::ImageBuffer* image, Ren
         return std::make_unique<BoundTree>(prim.base(), prim.bound(), eye, options.bounds, options.maxDepth, b);
     });
     const std::vector<double> toleranceScales = ToleranceScales(scene, options);
-    // Ray groups bound camera rays from one eye; through a lens (depth of field) rays start
-    // across it, so each goes alone.
-    const int side = camera.HasLens() ? 0 : options.rayGroupPixels;
+    // Ray groups bound camera rays from one eye; through a lens (depth of field) or from a moving
+    // camera rays start in different places, so each goes alone.
+    const int side = camera.HasLens() || cam.motion ? 0 : options.rayGroupPixels;
     const int blocksX = side > 0 ? (cam.xres + side - 1) / side : 0;
     auto worker = [&](int index) {
         ThreadState ts(scene, options, trees, toleranceScales);

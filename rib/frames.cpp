@@ -102,6 +102,18 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
     if (!(std::fabs(det) > 0) || !std::isfinite(det) || !FiniteP(cameraToWorld))
         return Fail(r.at, "the camera transform (the transform at 'WorldBegin') is singular");
     m_scene.camera.worldToCamera = worldToCamera;
+    // A camera transform that moves (a motion block before WorldBegin): each of its matrices
+    // must be invertible too. Lights and coordinate systems given before WorldBegin are placed
+    // at its first time.
+    m_scene.camera.motion = m_state.motion;
+    if (m_state.motion)
+        for (size_t i = 0; i < m_state.motion->matrices.size(); ++i) {
+            const glm::dmat4& m = m_state.motion->matrices[i];
+            const double d = glm::determinant(m);
+            if (!(std::fabs(d) > 0) || !std::isfinite(d) || !FiniteP(glm::inverse(m)))
+                return Fail(r.at, "the camera transform at time " + FormatNumber(m_state.motion->times[i]) +
+                                      " (the moving transform at 'WorldBegin') is singular");
+        }
     if (m_state.perspectiveFov > 0) {  // DoPerspective
         m_scene.camera.perspective = true;
         m_scene.camera.fovDegrees = m_state.perspectiveFov;
@@ -135,6 +147,7 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
     m_worldSeen = true;
     Begin(r, Block::World);
     m_state.ctm = glm::dmat4(1.0);
+    m_state.motion = nullptr;
     return true;
 }
 

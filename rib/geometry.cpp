@@ -40,6 +40,7 @@ void RibParser::SetPrimitiveAttributes(const RibRequest& r, PrimitiveDesc* p) co
         a->line = r.at.line;
         a->column = r.at.column;
         a->objectToWorld = m_state.ctm;
+        a->motion = m_state.motion;
         a->twoSided = m_state.twoSided;
         a->lights = m_state.lights;
         a->scopedSpaces = m_state.scopedSpaces;

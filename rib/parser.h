@@ -47,6 +47,9 @@ class RibParser : private RibArgChecks {
   private:
     struct State {
         glm::dmat4 ctm{1.0};
+        /// The CTM over time, when a motion block of transforms made it move (null: `ctm`
+        /// stands still); `ctm` is then its matrix at its first time.
+        std::shared_ptr<const renderer::MotionPath> motion;
         /// Perspective given before WorldBegin with nothing concatenated before it: the CTM is
         /// this perspective (its fov in degrees; 0: none) followed by `ctm`, which WorldBegin
         /// makes the camera's projection (see DoPerspective).
@@ -148,8 +151,12 @@ class RibParser : private RibArgChecks {
         std::vector<RibRequest> requests;
     };
 
-    /// Runs `r`, taking motion blocks into account (only their first sample runs).
+    /// Runs `r`, taking motion blocks into account: each sample of a block of transforms runs
+    /// on the CTM at its time; of any other block only the first sample runs. A transform
+    /// request outside a block runs on every time of a moving CTM.
     bool Dispatch(const RibRequest& r);
+    /// Runs the transform request `r` on each matrix of the moving CTM.
+    bool OnEveryTime(const RibRequest& r);
     /// Runs `r` by its handler.
     bool DispatchRequest(const RibRequest& r);
     /// An open MotionBegin: where, its times, the kind of request it holds, how many so far.
@@ -158,6 +165,10 @@ class RibParser : private RibArgChecks {
         std::vector<double> times;
         std::string request;
         size_t count = 0;
+        /// A block of transforms: the CTM (and its path) before it, and the CTM each sample made.
+        glm::dmat4 ctmBefore{1.0};
+        std::shared_ptr<const renderer::MotionPath> pathBefore;
+        std::vector<glm::dmat4> ctms;
     };
     std::optional<Motion> m_motion;
     /// An open IfBegin: where; whether the branch being read is taken; whether one was already
@@ -231,6 +242,7 @@ class RibParser : private RibArgChecks {
     bool DoCropWindow(const RibRequest& r);
     bool DoClipping(const RibRequest& r);
     bool DoDepthOfField(const RibRequest& r);
+    bool DoShutter(const RibRequest& r);
     bool DoPixelSamples(const RibRequest& r);
     bool DoPixelFilter(const RibRequest& r);
     bool DoExposure(const RibRequest& r);

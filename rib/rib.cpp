@@ -130,13 +130,26 @@ std::optional<std::vector<SceneDesc>> RibParser::Run() {
     return std::move(m_frames);
 }
 
+namespace {
+
+/// The requests that change the CTM and nothing else that moves: a motion block of them moves
+/// the CTM (RibParser::Dispatch).
+constexpr std::string_view kCtmRequests[] = {
+    "ConcatTransform", "CoordSysTransform", "Identity", "Perspective", "Rotate", "Scale", "Skew",
+    "Transform",       "Translate"};
+
+}  // namespace
+
 bool RibParser::Dispatch(const RibRequest& r) {
     ++m_requestSerial;  // the primitives of one request share their attributes (SetPrimitiveAttributes)
     // Inside a solid that affray skips, only the requests that open and close blocks run, so
     // that the blocks still nest as written and the solid ends at its own SolidEnd.
     if (m_skipping > 0 && !ContainsP(std::begin(kBlockRequests), std::end(kBlockRequests), r.name)) return true;
-    // MotionBegin [t0 t1 ...] holds one request of a kind per time: the first (the shutter-open
-    // sample, as exporters write them) is run and the others are checked for kind and skipped.
+    // MotionBegin [t0 t1 ...] holds one request of a kind per time. A block of transforms moves
+    // the CTM: each sample runs on the CTM at its time, and the primitives that follow move
+    // with it (MotionPath). Of any other block (deformation, a moving light or shader) the
+    // first sample (the shutter-open one, as exporters write them) runs and the others are
+    // checked for kind and skipped.
     if (r.name == "MotionBegin") {
         if (m_motion)
             return Fail(r.at, "'MotionBegin' inside the motion block started on " + LineName(m_motion->at, r.at));
@@ -147,20 +160,22 @@ bool RibParser::Dispatch(const RibRequest& r) {
         for (size_t i = 0; i < times.size(); ++i)
             if (!std::isfinite(times[i]) || (i > 0 && !(times[i] > times[i - 1])))
                 return Fail(r.args[0].at, "'MotionBegin' times must be finite and increasing");
-        m_motion = Motion{r.at, times, "", 0};
-        Warn(r.at, "motion blur is not rendered: each motion block takes its first sample (time " +
-                       FormatNumber(times[0]) + ")");
+        m_motion = Motion{r.at, times, "", 0, {}, {}, {}};
         return true;
     }
     if (r.name == "MotionEnd") {
         if (!NoArgs(r)) return false;
         if (!m_motion) return Fail(r.at, "'MotionEnd' without matching 'MotionBegin'");
-        const Motion motion = *m_motion;
+        const Motion motion = std::move(*m_motion);
         m_motion.reset();
         if (motion.count != motion.times.size())
             return Fail(r.at, "the motion block started on " + LineName(motion.at, r.at) + " has " +
                                   std::to_string(motion.count) + " request" + (motion.count == 1 ? "" : "s") + " for " +
                                   std::to_string(motion.times.size()) + " times");
+        if (!motion.ctms.empty()) {
+            m_state.ctm = motion.ctms.front();
+            m_state.motion = renderer::MotionPath::Make(motion.times, motion.ctms);
+        }
         return true;
     }
     if (m_motion) {
@@ -172,9 +187,42 @@ bool RibParser::Dispatch(const RibRequest& r) {
         if (motion.count == motion.times.size())
             return Fail(r.at, "the motion block started on " + LineName(motion.at, r.at) +
                                   " has more requests than its " + std::to_string(motion.times.size()) + " times");
-        if (motion.count++ > 0) return true;
+        const size_t sample = motion.count++;
+        if (ContainsP(std::begin(kCtmRequests), std::end(kCtmRequests), r.name)) {
+            if (sample == 0) {
+                motion.ctmBefore = m_state.ctm;
+                motion.pathBefore = m_state.motion;
+            }
+            // A CTM that moved already is taken at this sample's time (its own times in between
+            // are not kept: the block's times are the path's).
+            m_state.ctm = renderer::MatrixAt(motion.pathBefore.get(), motion.ctmBefore, motion.times[sample]);
+            m_state.motion = nullptr;
+            if (!DispatchRequest(r)) return false;
+            motion.ctms.push_back(m_state.ctm);
+            return true;
+        }
+        if (sample > 0) return true;
+        Warn(motion.at, "motion blur of " + Quote(r.name) +
+                            " is not rendered: its motion block takes its first sample (time " +
+                            FormatNumber(motion.times[0]) + ")");
+    } else if (m_state.motion && ContainsP(std::begin(kCtmRequests), std::end(kCtmRequests), r.name)) {
+        return OnEveryTime(r);
     }
     return DispatchRequest(r);
+}
+
+bool RibParser::OnEveryTime(const RibRequest& r) {
+    const std::shared_ptr<const renderer::MotionPath> path = m_state.motion;
+    std::vector<glm::dmat4> ctms;
+    for (const glm::dmat4& m : path->matrices) {
+        m_state.ctm = m;
+        m_state.motion = nullptr;
+        if (!DispatchRequest(r)) return false;
+        ctms.push_back(m_state.ctm);
+    }
+    m_state.ctm = ctms.front();
+    m_state.motion = renderer::MotionPath::Make(path->times, ctms);
+    return true;
 }
 
 bool RibParser::DispatchRequest(const RibRequest& r) {
@@ -189,6 +237,7 @@ bool RibParser::DispatchRequest(const RibRequest& r) {
         {"CropWindow", &RibParser::DoCropWindow},
         {"Clipping", &RibParser::DoClipping},
         {"DepthOfField", &RibParser::DoDepthOfField},
+        {"Shutter", &RibParser::DoShutter},
         {"PixelSamples", &RibParser::DoPixelSamples},
         {"PixelFilter", &RibParser::DoPixelFilter},
         {"Exposure", &RibParser::DoExposure},
@@ -358,6 +407,7 @@ bool RibParser::End(const RibRequest& r, Block kind) {
     // attributes.
     if (kind == Block::Transform) {
         m_state.ctm = open.saved.ctm;
+        m_state.motion = open.saved.motion;
         m_state.perspectiveFov = open.saved.perspectiveFov;
         m_state.perspectiveAt = open.saved.perspectiveAt;
     } else if (kind != Block::Solid)
@@ -613,6 +663,19 @@ bool RibParser::DoDepthOfField(const RibRequest& r) {
     camera.fstop = v[0];
     camera.focalLength = v[1];
     camera.focalDistance = v[2];
+    return true;
+}
+
+// Shutter min max (RI 3.2 section 4.1.2): camera samples take times from min to max; motion
+// blocks place the scene at those times.
+bool RibParser::DoShutter(const RibRequest& r) {
+    double v[2];
+    if (!BeforeWorld(r) || !Numbers(r, 2, "min max", v)) return false;
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || v[1] < v[0])
+        return Fail(r.at, "'Shutter' needs finite times with max not before min, got " + FormatNumber(v[0]) + " " +
+                              FormatNumber(v[1]));
+    m_scene.camera.shutterOpen = v[0];
+    m_scene.camera.shutterClose = v[1];
     return true;
 }
 

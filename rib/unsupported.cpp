@@ -17,13 +17,13 @@ namespace {
 
 // clang-format off
 // RI 3.2 requests that tune what affray has no counterpart for (dicing, bounds,
-// quantizing an image affray writes as floats, the shutter of motion affray does not blur), and
+// quantizing an image affray writes as floats), and
 // later RenderMan requests that name things for other renderers' pipelines (prman's Camera,
 // PixelSampleImager, System): accepted with one warning per name.
 constexpr std::string_view kNoEffect[] = {
     "Begin", "Bound", "Camera", "End", "ErrorHandler",
     "PixelSampleImager", "PixelVariance", "Quantize",
-    "Shutter", "System", "TransformPoints",
+    "System", "TransformPoints",
 };
 
 // Requests whose absence changes only appearance (shading, lighting, the lens): RI 3.2's, and

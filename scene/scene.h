@@ -19,6 +19,7 @@
 
 #include "scene/geometry/primvar.h"
 #include "scene/geometry/surface.h"
+#include "scene/motion.h"
 #include "scene/number_text.h"
 
 namespace affray::renderer {
@@ -104,7 +105,13 @@ struct PrimitiveAttributes {
     std::optional<AtmosphereDesc> atmosphere;
     int line = 0, column = 0;  ///< Where the request starts in the RIB file, for diagnostics.
     /// Object space: the current transform at the request (object -> world, column vectors).
+    /// Under a moving transform (MotionBegin around transforms), its matrix at the path's first
+    /// time, where the primitive's world-space geometry is placed.
     glm::dmat4 objectToWorld{1.0};
+    /// The object -> world transform over time when it moves (null: it stands still): the
+    /// primitive is a rigid copy of its geometry at the path's first time, carried to each time
+    /// by path(time) * inverse(path(first time)).
+    std::shared_ptr<const MotionPath> motion;
     /// Sides: false for "Sides 1" (seen from behind, the surface is invisible).
     bool twoSided = true;
     /// The lights that illuminate the primitive, as indices into SceneDesc::lights: the light list
@@ -250,6 +257,13 @@ struct CameraDesc {
     /// space units) focused on the plane z = focalDistance of camera space. An infinite fstop (the
     /// default, and DepthOfField without arguments) is a pinhole. Perspective cameras only.
     double fstop = std::numeric_limits<double>::infinity(), focalLength = 0, focalDistance = 0;
+    /// Shutter (RI 3.2 section 4.1.2): the times the shutter opens and closes. Every camera
+    /// sample takes a time between them (stratified per pixel); equal times (the default, 0 0)
+    /// render the scene as it stands at that time, with no blur.
+    double shutterOpen = 0, shutterClose = 0;
+    /// The world -> camera transform over time when the camera moves (null: worldToCamera, which
+    /// is then the path's matrix at its first time).
+    std::shared_ptr<const MotionPath> motion;
     /// Imager "background": the colour composited under every pixel (colour += (1 - alpha) *
     /// background, alpha = 1), before the exposure, as RI 3.2's standard imager does. Unset: none.
     std::optional<glm::dvec3> background;
@@ -313,6 +327,17 @@ inline std::string ToString(const glm::dmat4& m) {
             AppendNumber(out, m[c][r]);
         }
     return out + ']';
+}
+
+/// The times and matrices of a moving transform: " motion t=T0 [...] t=T1 [...]".
+inline std::string ToString(const MotionPath& path) {
+    std::string out = " motion";
+    for (size_t i = 0; i < path.times.size(); ++i) {
+        out += " t=";
+        AppendNumber(out, path.times[i]);
+        out += ' ' + ToString(path.matrices[i]);
+    }
+    return out;
 }
 
 inline std::string ToString(const ParamValue& p) {
@@ -393,6 +418,7 @@ inline std::string ToString(const PrimitiveDesc& p) {
     }
     if (a.scopedSpaces)
         for (const auto& [name, m] : *a.scopedSpaces) text += " space " + name + "=" + ToString(m);
+    if (a.motion) text += ToString(*a.motion);
     if (a.transmission == PrimitiveDesc::Transmission::Opacity) text += " transmission=Os";
     if (a.transmission == PrimitiveDesc::Transmission::Transparent) text += " transmission=transparent";
     if (!a.cameraVisible) text += " camera=0";
@@ -419,6 +445,9 @@ inline std::string ToString(const PrimitiveDesc& p) {
     return text;
 }
 
+/// Whether camera samples take times across an open shutter (Shutter with close > open).
+inline bool ShutterOpenP(const CameraDesc& c) { return c.shutterClose > c.shutterOpen; }
+
 /// Whether the camera has a lens (DepthOfField with a finite fstop and positive lengths, on a
 /// perspective projection): camera rays then start across it.
 inline bool LensP(const CameraDesc& c) {
@@ -444,6 +473,8 @@ inline std::string ToString(const CameraDesc& c) {
         << c.filter.ywidth << " exposure=" << c.exposureGain << ' ' << c.exposureGamma;
     if (c.background) out << " imager=background " << ToString(*c.background);
     if (std::isfinite(c.fstop)) out << " depthoffield=" << c.fstop << ' ' << c.focalLength << ' ' << c.focalDistance;
+    if (c.shutterOpen != 0 || c.shutterClose != 0) out << " shutter=" << c.shutterOpen << ' ' << c.shutterClose;
+    if (c.motion) out << ToString(*c.motion);
     return out.str();
 }
 

@@ -74,15 +74,29 @@ Ray Camera::GenerateRay(double rasterX, double rasterY) const {
 
 Ray Camera::GenerateRay(double rasterX, double rasterY, const glm::dvec2& lens) const {
     if (m_lensRadius <= 0) return GenerateRay(rasterX, rasterY);
+    return LensRay(rasterX, rasterY, lens, m_cameraToWorld);
+}
+
+Ray Camera::GenerateRay(double rasterX, double rasterY, const glm::dvec2& lens, double time) const {
+    Ray ray = m_desc.motion ? LensRay(rasterX, rasterY, lens, glm::inverse(m_desc.motion->At(time)))
+                            : GenerateRay(rasterX, rasterY, lens);
+    ray.time = time;
+    return ray;
+}
+
+Ray Camera::LensRay(double rasterX, double rasterY, const glm::dvec2& lens, const glm::dmat4& cameraToWorld) const {
     glm::dvec3 origin, dir;
     CameraSpaceRay(rasterX, rasterY, &origin, &dir);
-    // dir has z = 1: the pinhole ray meets the focal plane at dir * focalDistance.
-    const glm::dvec3 focus = dir * m_desc.focalDistance;
-    const glm::dvec2 d = m_lensRadius * LensPoint(lens);
-    origin = glm::dvec3(d.x, d.y, 0.0);
+    if (m_lensRadius > 0) {
+        // dir has z = 1: the pinhole ray meets the focal plane at dir * focalDistance.
+        const glm::dvec3 focus = dir * m_desc.focalDistance;
+        const glm::dvec2 d = m_lensRadius * LensPoint(lens);
+        origin = glm::dvec3(d.x, d.y, 0.0);
+        dir = focus - origin;
+    }
     Ray ray;
-    ray.origin = glm::dvec3(m_cameraToWorld * glm::dvec4(origin, 1.0));
-    ray.dir = glm::normalize(glm::dvec3(m_cameraToWorld * glm::dvec4(focus - origin, 0.0)));
+    ray.origin = glm::dvec3(cameraToWorld * glm::dvec4(origin, 1.0));
+    ray.dir = glm::normalize(glm::dvec3(cameraToWorld * glm::dvec4(dir, 0.0)));
     return ray;
 }
 

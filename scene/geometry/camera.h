@@ -28,6 +28,8 @@ namespace affray::renderer {
 struct Ray {
     glm::dvec3 origin{0.0};
     glm::dvec3 dir{0.0, 0.0, 1.0};  ///< Unit length.
+    /// When the ray looks at the scene (Shutter): where moving primitives and the camera are.
+    double time = 0;
 };
 
 inline std::string ToString(const Ray& r) { return "ray origin=" + ToString(r.origin) + " dir=" + ToString(r.dir); }
@@ -46,6 +48,9 @@ class Camera {
     /// The same through the point of the lens `lens` (in [0, 1]^2, mapped onto the lens's disc
     /// preserving area and strata: LensPoint); the pinhole ray if the camera has no lens.
     Ray GenerateRay(double rasterX, double rasterY, const glm::dvec2& lens) const;
+    /// The same at `time`, from where a moving camera (CameraDesc::motion) is then; the ray
+    /// carries the time for the primitives that move.
+    Ray GenerateRay(double rasterX, double rasterY, const glm::dvec2& lens, double time) const;
 
     /// Whether rays start across a lens (DepthOfField with a finite fstop, perspective).
     bool HasLens() const { return m_lensRadius > 0; }
@@ -83,6 +88,8 @@ class Camera {
   private:
     /// The camera-space ray through a raster position, before the world transform.
     void CameraSpaceRay(double rasterX, double rasterY, glm::dvec3* origin, glm::dvec3* dir) const;
+    /// The ray through the lens point (pinhole: the centre) carried to world by `cameraToWorld`.
+    Ray LensRay(double rasterX, double rasterY, const glm::dvec2& lens, const glm::dmat4& cameraToWorld) const;
 
     CameraDesc m_desc;
     glm::dmat4 m_cameraToWorld{1.0};

@@ -705,13 +705,17 @@ TEST_CASE("RIB Option searchpath shader and texture expand & and @", "[renderer]
     CHECK(warnings[2] == "t.rib:5: warning: 'Option \"statistics\"' does not apply to affray; ignored");
 }
 
-TEST_CASE("RIB motion blocks take their first sample, with one warning", "[renderer][rib]") {
+TEST_CASE("RIB motion blocks: transforms move the CTM, other requests take their first sample", "[renderer][rib]") {
     affray::diag::Report report;
     std::optional<SceneDesc> scene = ParseRib(
         "WorldBegin\n"
         "MotionBegin [0 1]\n  Translate 1 0 0\n  Translate 5 0 0\nMotionEnd\n"
         "MotionBegin [0.25 0.5 1]\n  Sphere 1 -1 1 360\n  Sphere 2 -2 2 360\n  Sphere 3 -3 3 360\nMotionEnd\n"
         "MotionBegin [0 1]\n  Surface \"matte\"\n  Surface \"plastic\"\nMotionEnd\n"
+        "Scale 2 2 2\n"
+        "Sphere 1 -1 1 360\n"
+        "TransformBegin\nTranslate 0 1 0\nTransformEnd\n"
+        "AttributeBegin\nIdentity\nSphere 1 -1 1 360\nAttributeEnd\n"
         "Sphere 1 -1 1 360\n"
         "WorldEnd\n",
         "t.rib", &report);
@@ -720,13 +724,43 @@ TEST_CASE("RIB motion blocks take their first sample, with one warning", "[rende
     std::vector<std::string> warnings = WarningsOf(report);
     REQUIRE(warnings.size() == 2);
     CHECK(warnings[0] ==
-          "t.rib:2: warning: motion blur is not rendered: each motion block takes its first sample (time 0)");
+          "t.rib:6: warning: motion blur of 'Sphere' is not rendered: its motion block takes its first "
+          "sample (time 0.25)");
     CHECK(warnings[1] ==
-          "t.rib:6: warning: motion blur is not rendered: each motion block takes its first sample (time 0.25)");
-    REQUIRE(scene->primitives.size() == 2);
+          "t.rib:11: warning: motion blur of 'Surface' is not rendered: its motion block takes its "
+          "first sample (time 0)");
+    REQUIRE(scene->primitives.size() == 4);
+    // The first sample places the geometry; the path holds the CTM at each time.
     CHECK(scene->primitives[0].base.quadric().quadric.radius == 1);
     RequireVec(Apply(scene->primitives[0].attr().objectToWorld, {0, 0, 0}), {1, 0, 0});
+    REQUIRE(scene->primitives[0].attr().motion);
+    const MotionPath& path = *scene->primitives[0].attr().motion;
+    CHECK(path.times == std::vector<double>{0, 1});
+    RequireVec(Apply(path.matrices[1], {0, 0, 0}), {5, 0, 0});
+    RequireVec(Apply(path.At(0.25), {0, 0, 0}), {2, 0, 0});
     CHECK(scene->primitives[1].attr().surface.model == SurfaceDesc::Model::Matte);
+    // A transform after the block applies at every time: Scale 2 after each Translate.
+    REQUIRE(scene->primitives[1].attr().motion);
+    RequireVec(Apply(scene->primitives[1].attr().motion->matrices[0], {1, 0, 0}), {3, 0, 0});
+    RequireVec(Apply(scene->primitives[1].attr().motion->matrices[1], {1, 0, 0}), {7, 0, 0});
+    // Identity stops the motion; TransformEnd and AttributeEnd restore the moving CTM.
+    CHECK_FALSE(scene->primitives[2].attr().motion);
+    REQUIRE(scene->primitives[3].attr().motion);
+    CHECK(scene->primitives[3].attr().motion->matrices == scene->primitives[1].attr().motion->matrices);
+
+    // A block of equal transforms moves nothing; a block under a moving CTM takes the CTM at its
+    // own times (the path's times are the block's).
+    scene = ParseRib(
+        "WorldBegin\nMotionBegin [0 1]\nTranslate 1 0 0\nTranslate 1 0 0\nMotionEnd\nSphere 1 -1 1 "
+        "360\nMotionBegin [0 1]\nTranslate 0 0 0\nTranslate 0 2 0\nMotionEnd\n"
+        "MotionBegin [0 0.5]\nScale 1 1 1\nScale 1 1 1\nMotionEnd\nSphere 1 -1 1 360\nWorldEnd\n",
+        "t.rib", &report);
+    REQUIRE(scene);
+    REQUIRE(scene->primitives.size() == 2);
+    CHECK_FALSE(scene->primitives[0].attr().motion);
+    REQUIRE(scene->primitives[1].attr().motion);
+    CHECK(scene->primitives[1].attr().motion->times == std::vector<double>{0, 0.5});
+    RequireVec(Apply(scene->primitives[1].attr().motion->matrices[1], {0, 0, 0}), {1, 1, 0});
 
     CHECK(ErrorOf("WorldBegin\nMotionBegin [0 1]\nTranslate 1 0 0\nRotate 1 0 0 1\nMotionEnd\nWorldEnd\n") ==
           "t.rib:4: error: a motion block holds one kind of request, one per time: 'Rotate' after 'Translate'");

@@ -243,6 +243,24 @@ TEST_CASE("Illuminate turns lights on and off, and an unknown handle warns", "[r
           Messages{"t.rib:2: error: 'Illuminate' expects 0 or 1, got 2"});
 }
 
+TEST_CASE("Shutter sets the times camera samples take", "[renderer][rib]") {
+    Messages messages;
+    std::optional<SceneDesc> scene = Parse("Shutter 0.25 0.75\nWorldBegin\nWorldEnd\n", &messages);
+    REQUIRE(scene);
+    CHECK(messages.empty());
+    CHECK(scene->camera.shutterOpen == 0.25);
+    CHECK(scene->camera.shutterClose == 0.75);
+    CHECK(ShutterOpenP(scene->camera));
+    scene = Parse("Option \"Ri\" \"float[2] Shutter\" [2 2]\nWorldBegin\nWorldEnd\n", &messages);
+    REQUIRE(scene);
+    CHECK(scene->camera.shutterOpen == 2);
+    CHECK_FALSE(ShutterOpenP(scene->camera));  // a shutter that does not open: no blur
+    CHECK(ErrorsOf("Shutter 1 0\nWorldBegin\nWorldEnd\n") ==
+          Messages{"t.rib:1: error: 'Shutter' needs finite times with max not before min, got 1 0"});
+    CHECK(ErrorsOf("WorldBegin\nShutter 0 1\nWorldEnd\n") ==
+          Messages{"t.rib:2: error: 'Shutter' is an option and must come before 'WorldBegin'"});
+}
+
 TEST_CASE("ShadingRate, ShadingInterpolation and ArchiveRecord", "[renderer][rib]") {
     Messages messages;
     std::optional<SceneDesc> scene = Parse(
@@ -326,6 +344,8 @@ FrameEnd
     CHECK(scene->camera.background == glm::dvec3(0.0));  // Imager "background" "color bgcolor" [0 0 0]
     CHECK(scene->camera.fstop == 1e6);                   // DepthOfField 1000000 1 1: a lens 1e-6 wide
     CHECK(scene->camera.focalDistance == 1);
+    CHECK(scene->camera.shutterOpen == 0);  // Shutter 0 1
+    CHECK(scene->camera.shutterClose == 1);
     CHECK(messages == Messages{
 
                           "t.rib:7: warning: 'Option \"limits\"' does not apply to affray; ignored",
@@ -333,7 +353,6 @@ FrameEnd
                           "t.rib:9: warning: 'Option \"trace\"' does not apply to affray; ignored",
                           "t.rib:18: warning: 'PixelVariance' does not apply to affray; ignored",
                           "t.rib:21: warning: 'Quantize' does not apply to affray; ignored",
-                          "t.rib:24: warning: 'Shutter' does not apply to affray; ignored",
                           "t.rib:30: warning: 'Attribute \"identifier\"' does not apply to affray; ignored",
                           "t.rib:31: warning: 'Attribute \"visibility\"' parameter 'trace' does not apply to affray; "
                           "ignored",

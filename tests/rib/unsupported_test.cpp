@@ -70,11 +70,13 @@ TEST_CASE("rib: a world inside TransformBegin or AttributeBegin starts from the 
     SceneDesc scene = Scene(
         "Translate 1 0 0\nTransformBegin\n" + camera + "WorldBegin\n" + kPatch + "WorldEnd\nTransformEnd\n", &messages);
     CHECK(scene.camera.worldToCamera[3] == glm::dvec4(1, 0, 5, 1));  // Translate, then the first sample
+    // The camera moves: Translate, then each sample.
+    REQUIRE(scene.camera.motion);
+    CHECK(scene.camera.motion->matrices[1][3] == glm::dvec4(1, 0, 6, 1));
     REQUIRE(scene.primitives.size() == 1);
     CHECK(scene.primitives[0].base.patch().corners[3] == glm::dvec3(1, 1, 0));  // world space starts at identity
+    CHECK_FALSE(scene.primitives[0].attr().motion);                             // and stands still
     CHECK(messages == Messages{
-                          "t.rib:3: warning: motion blur is not rendered: each motion block takes its first sample "
-                          "(time 0)",
                           "t.rib:7: note: 'WorldBegin' inside 'TransformBegin': the world starts from the transform "
                           "current here (the camera transform), and 'TransformEnd' after 'WorldEnd' ends the block",
                       });

@@ -1,5 +1,5 @@
 // tests/tools/scenes_test.cpp: the gallery scenes of scenes/ (showcase, orbs, vase, donut,
-// columns, mixed, rock, nurbs, creature, teapot, textured, focus) through the `affray` program, shrunk so that this stays cheap: each renders,
+// columns, mixed, rock, nurbs, creature, teapot, textured, focus, motion) through the `affray` program, shrunk so that this stays cheap: each renders,
 // writes every AOV channel its Display mode asks for, hits something at a finite depth and
 // reports a positive cost. The full-size figures are in each scene's header comment.
 #include <catch2/catch.hpp>
@@ -35,7 +35,7 @@ TEST_CASE("scenes cli: the gallery scenes render shrunk with every AOV", "[tools
     fs::copy(test::SourceDir() + "/shaders", dir.Path("shaders"), fs::copy_options::recursive);
     const char* channels[] = {"Z", "N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z", "st.s", "st.t", "cost", "err"};
     for (const char* name : {"showcase", "orbs", "vase", "donut", "columns", "mixed", "rock", "nurbs", "creature",
-                             "teapot", "textured", "focus"}) {
+                             "teapot", "textured", "focus", "motion"}) {
         INFO(name);
         const fs::path rib = dir.Path(std::string("scenes/") + name + ".rib");
         REQUIRE(fs::exists(rib));
