@@ -5,7 +5,7 @@ and leaf tests, the ray-box and ray-group tests, the parallelogram narrowing and
 error of a hit.
 
 Issue 33, item 3. The binary holds the renderer's intersection tests (intersect, bound tree and
-ray groups, Newton, stiff surfaces, BVH, shadows, facing) and the whole-render tests of
+ray groups, measures, Newton, stiff surfaces, BVH, shadows, facing) and the whole-render tests of
 render_test.cpp, and links the renderer and what it needs (not the CLI). A mutant rebuilds one or
 a few renderer sources and relinks.
 """
@@ -67,7 +67,13 @@ FAULTS = [
     Fault("box-range-no-slack", "renderer/intersect.cpp",
           "const double slack = 2 * kUlp * (std::fabs(b.lo[i]) + std::fabs(b.hi[i]) + std::fabs(m_origin[i]));",
           "const double slack = 0;",
-          "the ray-box test leaves out the rounding of the box's offsets"),
+          "the ray-box test leaves out the rounding of the box's offsets",
+          equivalent="redundant slack: a difference of two doubles rounds by half an ulp of itself, not "
+          "of its operands, so with the reciprocal and the product each slab end is within 3 ulps of "
+          "its exact value and the 4-ulp widening after it holds it (a direction component so small "
+          "that its reciprocal overflows gives infinite or NaN ends, which cull nothing either way): "
+          "without the slack no region the ray can meet is culled; it only keeps fewer regions the "
+          "ray misses by an ulp of the coordinates, so a result can move by rounding at most"),
     Fault("box-range-parallel-ray-inverted", "renderer/intersect.cpp",
           "if (c0 - slack > 0 || c1 + slack < 0) return false;",
           "if (c0 - slack < 0 && c1 + slack > 0) return false;",
@@ -161,6 +167,7 @@ SET = FaultSet(
     what="the renderer's intersector: culling, order, splitting, tolerance and leaf tests, ray-box tests",
     test_sources=[
         "tests/renderer/intersect_test.cpp",
+        "tests/renderer/measure_test.cpp",
         "tests/renderer/bound_tree_test.cpp",
         "tests/renderer/newton_test.cpp",
         "tests/renderer/stiff_test.cpp",
