@@ -436,19 +436,19 @@ TEST_CASE("intersector: a ray along a curved surface's mean plane is not culled 
     // z = 0.4 (u - 1/2)^2 over the unit square, bounded as reduced affine forms: over the root
     // region z has no eps_u or eps_v part (the parabola is even about u = 1/2), only an error
     // term, so the parallelogram across a ray along +x is degenerate and the edge-on test
-    // decides, on that error alone. The ray at height 0.05 meets the parabola first at
-    // u = 1/2 - sqrt(0.05 / 0.4), by hand.
+    // decides, on that error alone. A ray at height h meets the parabola first at
+    // u = 1/2 - sqrt(h / 0.4), by hand.
     const compiler::CompiledShader s =
         test::CompileOrThrow("displacement bowl() { P += vector(0, 0, 0.4 * (u - 0.5) * (u - 0.5)); }");
     for (const BoundMode mode : {BoundMode::Reduced, BoundMode::Affine}) {
         auto intersector = renderer::MakeSurfaceIntersector(kSquare, s.bound, glm::dvec3(0), mode, 24);
-        for (const double y : {0.25, 0.6}) {
-            const Ray ray{{-1.0, y, 0.05}, {1, 0, 0}};
+        for (const glm::dvec2 yh : {glm::dvec2(0.25, 0.03), glm::dvec2(0.6, 0.07), glm::dvec2(0.4, 0.01)}) {
+            const Ray ray{{-1.0, yh.x, yh.y}, {1, 0, 0}};
             Hit hit;
             IntersectStats stats;
-            INFO("mode " << int(mode) << " y " << y);
+            INFO("mode " << int(mode) << " y " << yh.x << " height " << yh.y);
             REQUIRE(intersector->Intersect(ray, 0, INFINITY, {1e-4, 0}, false, &hit, stats));
-            const double tRef = 1.0 + 0.5 - std::sqrt(0.05 / 0.4);
+            const double tRef = 1.0 + 0.5 - std::sqrt(yh.y / 0.4);
             CHECK(std::fabs(hit.t - tRef) <= hit.error + 1e-12);
             CheckCertificate(s.bound, ray, hit);
         }
