@@ -9,6 +9,7 @@
 #include <random>
 
 #include "renderer/intersect.h"
+#include "scene/geometry/nurbs.h"
 #include "tests/test_util.h"
 
 using namespace affray;
@@ -260,4 +261,196 @@ TEST_CASE("intersector: certified-only walks report proved roots alone", "[rende
     Hit hit;
     CHECK_FALSE(stepped->Intersect(riser, 0.0, INFINITY, tol, false, &hit, stats));
     CHECK(stepped->Intersect(riser, 0.0, INFINITY, Tolerance{2e-4, 0.0}, false, &hit, stats));
+}
+
+TEST_CASE("intersector: a ray along the surface is hit where it first reaches it", "[renderer][intersect]") {
+    // Rays in the plane of the flat unit square, along +x from x = -1: the parallelogram is
+    // degenerate across them (not narrowed), and their first surface point is (0, y, 0), at
+    // t = 1. A leaf hit's (u, v) stands for the region where the ray reaches it first (at a
+    // silhouette the side facing the ray comes first), so the surface there is no farther along
+    // the ray than the hit.
+    const vm::Program identity = vm::IdentityProgram();
+    auto intersector = renderer::MakeSurfaceIntersector(kSquare, identity, glm::dvec3(0), BoundMode::Affine, 24);
+    for (const double y : {0.3, 0.55, 0.8}) {
+        const Ray ray{{-1.0, y, 0.0}, {1.0, 0.0, 0.0}};
+        Hit hit;
+        IntersectStats stats;
+        INFO("y " << y);
+        REQUIRE(intersector->Intersect(ray, 0, INFINITY, {1e-3, 0}, false, &hit, stats));
+        CHECK(hit.t >= 1 - 1e-12);
+        CHECK(hit.t <= 1 + hit.error);
+        const glm::dvec3 at = test::PointOnSquare(identity, hit.u, hit.v);
+        CHECK(glm::dot(at - ray.origin, ray.dir) <= hit.t + 1e-12);
+        CheckCertificate(identity, ray, hit);
+    }
+}
+
+TEST_CASE("intersector: no hit is reported in a trimmed hole", "[renderer][intersect]") {
+    // The flat unit square as a NuPatch with the square [0.4, 0.6]^2 trimmed away: rays through
+    // the hole meet no surface (the patch is flat, so its root region is already a leaf there),
+    // rays beside it meet the plane z = 0, at t = -oz / dz.
+    const renderer::RationalPatch square = renderer::RationalPatch::Bilinear(
+        {glm::dvec4(0, 0, 0, 1), glm::dvec4(1, 0, 0, 1), glm::dvec4(0, 1, 0, 1), glm::dvec4(1, 1, 0, 1)});
+    auto hole = std::make_shared<renderer::TrimCurves>();
+    hole->loops = {{{0.4, 0.4}, {0.6, 0.4}, {0.6, 0.6}, {0.4, 0.6}}};
+    hole->keepInside = false;
+    const renderer::BaseSurface surface(square, false, {}, hole);
+    const vm::Program identity = vm::IdentityProgram();
+    auto intersector = renderer::MakeSurfaceIntersector(surface, identity, glm::dvec3(0), BoundMode::Affine, 24);
+    // Without and with certified Newton (it checks the trim of the point it proves).
+    for (const double newtonReach : {0.0, 1.0}) {
+        const Tolerance tol{1e-4, 0.0, newtonReach};
+        IntersectStats stats;
+        Hit hit;
+        INFO("newtonReach " << newtonReach);
+        CHECK_FALSE(intersector->Intersect({{0.5, 0.5, 2.0}, {0, 0, -1}}, 0, INFINITY, tol, false, &hit, stats));
+        // Oblique, through the hole to (0.55, 0.45, 0).
+        const glm::dvec3 from(0.45, 0.5, 1.0), to(0.55, 0.45, 0.0);
+        CHECK_FALSE(intersector->Intersect({from, glm::normalize(to - from)}, 0, INFINITY, tol, false, &hit, stats));
+        for (const glm::dvec2 xy : {glm::dvec2(0.2, 0.7), glm::dvec2(0.5, 0.35), glm::dvec2(0.65, 0.5)}) {
+            INFO("beside the hole at (" << xy.x << ", " << xy.y << ")");
+            REQUIRE(intersector->Intersect({{xy.x, xy.y, 2.0}, {0, 0, -1}}, 0, INFINITY, tol, false, &hit, stats));
+            CHECK(std::fabs(hit.t - 2.0) <= hit.error + 1e-12);
+        }
+    }
+}
+
+TEST_CASE("intersector: a region at the depth limit along one parameter is split along the other",
+          "[renderer][intersect]") {
+    // A strip 256 long in u and 1 wide in v, rippled along v only (z = 0.05 sin(6 pi v)): its
+    // regions stretch along u and are split along u (SplitAxis), so they reach the depth limit 8
+    // in u while a quarter wide in v, where 3/4 of a ripple makes their bound far thicker than
+    // the tolerance. Split along v from there, they become small: certified hits (no depth-limit
+    // hit), at the ripple's height under the ray, z = 0.05 sin(6 pi y) by hand.
+    const renderer::BilinearPatch strip{
+        {glm::dvec3(0, 0, 0), glm::dvec3(256, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(256, 1, 0)}};
+    const compiler::CompiledShader s =
+        test::CompileOrThrow("displacement ripple() { P += vector(0, 0, 0.05 * sin(6 * PI * v)); }");
+    auto intersector = renderer::MakeSurfaceIntersector(strip, s.bound, glm::dvec3(0), BoundMode::Affine, 8);
+    const double tol = 5e-3;
+    IntersectStats stats;
+    for (const glm::dvec2 xy : {glm::dvec2(100.3, 0.4), glm::dvec2(17.9, 0.13), glm::dvec2(230.05, 0.77)}) {
+        const Ray ray{{xy.x, xy.y, 2.0}, {0, 0, -1}};
+        Hit hit;
+        INFO("ray down at (" << xy.x << ", " << xy.y << ")");
+        REQUIRE(intersector->Intersect(ray, 0, INFINITY, {tol, 0}, false, &hit, stats));
+        CHECK_FALSE(hit.depthLimited);
+        CHECK(hit.error <= tol);
+        const double tRef = 2.0 - 0.05 * std::sin(6 * M_PI * xy.y);
+        CHECK(std::fabs(hit.t - tRef) <= hit.error + 1e-12);
+    }
+    CHECK(stats.depthLimitHits == 0);
+}
+
+TEST_CASE("intersector: near-tangent crossings closer than the tolerance are told apart",
+          "[renderer][intersect][newton]") {
+    // z = 0.1 sin(2 pi u) and a ray along +x just under its crest (z = 0.1 at u = 1/4): it
+    // crosses the surface twice, at u = 1/4 -+ acos(1 - h / 0.1) / (2 pi) for a depth h under
+    // the crest (1.4e-3 and 4.5e-3 apart below). Krawczyk's test cannot prove a region holding
+    // both crossings, so such a leaf is split down to an eighth of the tolerance (kUnprovedLeaf,
+    // intersect.cpp) rather than taken at the tolerance: the hit is the first crossing, to an
+    // eighth of the tolerance at worst.
+    const compiler::CompiledShader s =
+        test::CompileOrThrow("displacement crest() { P += vector(0, 0, 0.1 * sin(2 * PI * u)); }");
+    auto intersector = renderer::MakeSurfaceIntersector(kSquare, s.bound, glm::dvec3(0), BoundMode::Reduced, 24);
+    const double tol = 1e-2;
+    IntersectStats stats;
+    for (const double h : {1e-6, 1e-5}) {
+        const Ray ray{{-1.0, 0.5, 0.1 - h}, {1, 0, 0}};
+        Hit hit;
+        INFO("depth under the crest " << h);
+        REQUIRE(intersector->Intersect(ray, 0, INFINITY, {tol, 0, 1.0}, false, &hit, stats));
+        const double tRef = 1.0 + 0.25 - std::acos(1 - h / 0.1) / (2 * M_PI);
+        CHECK(std::fabs(hit.t - tRef) <= hit.error + 1e-12);
+        CHECK(hit.error <= tol / 8);
+        CheckCertificate(s.bound, ray, hit);
+    }
+    CHECK(stats.newtonUnknown > 0);
+}
+
+TEST_CASE("intersector: a surface point at tMin is hit, and no hit lies before tMin", "[renderer][intersect][newton]") {
+    // Rays onto the flat unit square with tMin the t of their meeting point with the plane z = 0
+    // (by hand: -oz / dz, rounded): the one root Newton proves has a t range of about rounding
+    // around it, reaching below tMin. [tMin, tMax] is closed, so the point is a hit, and the
+    // hit's t is not below tMin. With tMin a few ulps past the point, within that range, a hit
+    // may still be reported (a leaf whose bound reaches tMin), but not before tMin.
+    const vm::Program identity = vm::IdentityProgram();
+    auto intersector = renderer::MakeSurfaceIntersector(kSquare, identity, glm::dvec3(0, 0, 5), BoundMode::Reduced, 24);
+    std::mt19937_64 rng(19);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    IntersectStats stats;
+    for (int i = 0; i < 100; ++i) {
+        const glm::dvec3 target(0.05 + 0.9 * unit(rng), 0.05 + 0.9 * unit(rng), 0.0);
+        const glm::dvec3 up = RandomDirectionAbove(rng, 20.0);
+        const Ray ray{target + up * (0.5 + 2 * unit(rng)), -up};
+        const double tPlane = -ray.origin.z / ray.dir.z;
+        const Tolerance tol{1e-4, 0.0, 1.0};
+        Hit hit;
+        INFO("ray " << i << " tPlane " << tPlane);
+        REQUIRE(intersector->Intersect(ray, tPlane, INFINITY, tol, false, &hit, stats));
+        CHECK(hit.t >= tPlane);
+        CHECK(hit.t <= tPlane + hit.error + 1e-12);
+        for (int k = 1; k <= 16; ++k) {
+            const double tMin = tPlane * (1 + k * 1e-16);
+            if (intersector->Intersect(ray, tMin, INFINITY, tol, false, &hit, stats)) CHECK(hit.t >= tMin);
+        }
+    }
+    CHECK(stats.newtonHits + stats.newtonUnknown > 0);
+}
+
+TEST_CASE("intersector: out of budget, the nearest pending region is the possible hit", "[renderer][intersect]") {
+    // With a budget of 10 regions, rays at low elevation over wave.sl stop with regions pending
+    // along them. The region holding the ray's first crossing of the surface (the brute-force
+    // march) is among them, so the hit, the nearest one's near end, is not beyond that crossing.
+    compiler::CompileResult r = compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl");
+    REQUIRE(r.ok());
+    const vm::Program& program = r.shader->bound;
+    auto intersector =
+        renderer::MakeSurfaceIntersector(kSquare, program, glm::dvec3(0, 0, 5), BoundMode::Reduced, 24, 10);
+    std::mt19937_64 rng(20);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    IntersectStats stats;
+    int budgetHits = 0;
+    for (int i = 0; i < 40; ++i) {
+        // From above one side of the square to below the other, 10 to 25 degrees down.
+        const double phi = 2 * M_PI * unit(rng), elevation = (10 + 15 * unit(rng)) * M_PI / 180;
+        const glm::dvec3 across(std::cos(phi), std::sin(phi), 0.0);
+        const glm::dvec3 from = glm::dvec3(0.5, 0.5, 0.1) - 0.45 * across;
+        const glm::dvec3 dir(std::cos(elevation) * across.x, std::cos(elevation) * across.y, -std::sin(elevation));
+        const Ray ray{from, dir};
+        const double tEnd = 1.2;
+        const double tRef = MarchHeightField(program, ray, tEnd, 20000);
+        if (tRef < 0) continue;
+        Hit hit;
+        INFO("ray " << i << " tRef " << tRef);
+        REQUIRE(intersector->Intersect(ray, 0.0, tEnd, Tolerance{2e-4, 0.0}, false, &hit, stats));
+        if (!hit.depthLimited) continue;
+        ++budgetHits;
+        CHECK(hit.t <= tRef + 1e-12);
+    }
+    CHECK(budgetHits > 20);
+    CHECK(stats.budgetExhausted >= uint64_t(budgetHits));
+}
+
+TEST_CASE("intersector: a ray along a curved surface's mean plane is not culled edge-on", "[renderer][intersect]") {
+    // z = 0.4 (u - 1/2)^2 over the unit square, bounded as reduced affine forms: over the root
+    // region z has no eps_u or eps_v part (the parabola is even about u = 1/2), only an error
+    // term, so the parallelogram across a ray along +x is degenerate and the edge-on test
+    // decides, on that error alone. A ray at height h meets the parabola first at
+    // u = 1/2 - sqrt(h / 0.4), by hand.
+    const compiler::CompiledShader s =
+        test::CompileOrThrow("displacement bowl() { P += vector(0, 0, 0.4 * (u - 0.5) * (u - 0.5)); }");
+    for (const BoundMode mode : {BoundMode::Reduced, BoundMode::Affine}) {
+        auto intersector = renderer::MakeSurfaceIntersector(kSquare, s.bound, glm::dvec3(0), mode, 24);
+        for (const glm::dvec2 yh : {glm::dvec2(0.25, 0.03), glm::dvec2(0.6, 0.07), glm::dvec2(0.4, 0.01)}) {
+            const Ray ray{{-1.0, yh.x, yh.y}, {1, 0, 0}};
+            Hit hit;
+            IntersectStats stats;
+            INFO("mode " << int(mode) << " y " << yh.x << " height " << yh.y);
+            REQUIRE(intersector->Intersect(ray, 0, INFINITY, {1e-4, 0}, false, &hit, stats));
+            const double tRef = 1.0 + 0.5 - std::sqrt(yh.y / 0.4);
+            CHECK(std::fabs(hit.t - tRef) <= hit.error + 1e-12);
+            CheckCertificate(s.bound, ray, hit);
+        }
+    }
 }

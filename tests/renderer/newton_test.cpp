@@ -99,6 +99,36 @@ TEST_CASE("newton: a box with two roots is never proved to hold one", "[renderer
     }
 }
 
+TEST_CASE("newton: an image inside the box at one end only proves nothing", "[renderer][newton]") {
+    // G(u, v) = (G0(u), v) with G0(0.5) = -0.5 and G0' anywhere in [0.5, 1.5] over X = [0, 1] x
+    // [-1, 1], c = (0.5, 0). Y = I (J's midpoint), I - Y J = diag([-0.5, 0.5], 0), so by hand
+    // K(X) = (0.5 + 0.5 + [-0.5, 0.5] (X0 - 0.5), 0) = ([0.75, 1.25], [0, 0]): inside X at u's
+    // low end, past it at the high end. Such a G0 may have no root in X (slope 0.5: root 1.5) or
+    // one (slope 1.5: root 5/6), so neither One nor None may be said.
+    const Box2 X{{Interval(0.0, 1.0), Interval(-1.0, 1.0)}};
+    const double c[2] = {0.5, 0.0};
+    const Interval g[2] = {Interval(-0.5), Interval(0.0)};
+    const Interval J[2][2] = {{Interval(0.5, 1.5), Interval(0.0)}, {Interval(0.0), Interval(1.0)}};
+    Box2 K;
+    CHECK(renderer::Krawczyk(X, c, g, J, &K) == Roots::Unknown);
+    CHECK(K.x[0].lo() <= 0.75);
+    CHECK(K.x[0].hi() >= 1.25);
+    // The same past the low end ([-0.25, 0.25]: G0(0.5) = 0.5), and past v's high end (the
+    // components swapped).
+    const Interval gLow[2] = {Interval(0.5), Interval(0.0)};
+    CHECK(renderer::Krawczyk(X, c, gLow, J, &K) == Roots::Unknown);
+    const Box2 Xs{{Interval(-1.0, 1.0), Interval(0.0, 1.0)}};
+    const double cs[2] = {0.0, 0.5};
+    const Interval gs[2] = {Interval(0.0), Interval(-0.5)};
+    const Interval Js[2][2] = {{Interval(1.0), Interval(0.0)}, {Interval(0.0), Interval(0.5, 1.5)}};
+    CHECK(renderer::Krawczyk(Xs, cs, gs, Js, &K) == Roots::Unknown);
+    // With G0(0.5) = -0.25 and G0' in [0.8, 1.2] every such G0 has its one root in [0.70, 0.82],
+    // and K(X) = ([0.65, 0.85], [0, 0]) lies inside X: one root.
+    const Interval gIn[2] = {Interval(-0.25), Interval(0.0)};
+    const Interval JIn[2][2] = {{Interval(0.8, 1.2), Interval(0.0)}, {Interval(0.0), Interval(1.0)}};
+    CHECK(renderer::Krawczyk(X, c, gIn, JIn, &K) == Roots::One);
+}
+
 namespace {
 
 /// A plane P(u, v) = p0 + u a + v b with exact slopes, as an evaluator: CertifyRegion's own
@@ -291,4 +321,28 @@ TEST_CASE("newton: certified regions of every shader hold the aimed point and no
     std::sort(errors.begin(), errors.end());
     REQUIRE_FALSE(errors.empty());
     CHECK(errors[errors.size() / 2] < 1e-9);
+}
+
+TEST_CASE("newton: a certified hit's error covers its spread along the ray", "[renderer][newton]") {
+    // NewtonHit: the one meeting point has t somewhere in [tLo, tHi], and every point of the
+    // final box lies within `error` of o + t d, so the error is at least the distance from t to
+    // either end. A plane 1000 units up, hit straight down from 2 above: the point's rounding
+    // (relative to its coordinates) is about 1e-11 along the ray and 1e-14 across it.
+    PlaneEvaluator plane(glm::dvec3(0, 0, 1000), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0));
+    for (const double x : {0.3, 0.37, 0.41}) {
+        const double y = 0.6;
+        const renderer::RayFrame frame = FrameOf(glm::dvec3(x, y, 1002), glm::dvec3(0, 0, -1));
+        const renderer::NewtonHit hit =
+            renderer::CertifyRegion(plane, frame, {0.25, 0.5, 0.5, 0.75, 0.25, 0.5, 0.5, 0.75}, 0.375, 0.625);
+        INFO("x " << x << " t [" << hit.tLo << ", " << hit.tHi << "] error " << hit.error);
+        REQUIRE(hit.roots == Roots::One);
+        // The meeting point is (x, y, 1000), at t = 2.
+        CHECK(hit.tLo <= 2.0);
+        CHECK(hit.tHi >= 2.0);
+        CHECK(std::fabs(hit.u - x) < 1e-12);
+        CHECK(std::fabs(hit.v - y) < 1e-12);
+        CHECK(hit.error >= hit.t - hit.tLo);
+        CHECK(hit.error >= hit.tHi - hit.t);
+        CHECK(hit.error >= std::fabs(hit.t - 2.0));
+    }
 }
