@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "compiler/lower.h"
+#include "compiler/typecheck.h"
 #include "diag/limits.h"
 
 namespace affray::compiler {
@@ -275,7 +276,6 @@ class Lowerer {
     std::unordered_set<const lang::Stmt*> m_endlessLoops;  // loops past loop-iterations (reported)
 };
 
-std::string Article(Type t);
 /// The names of the built-ins lower_extras.cpp and lower_surface.cpp lower.
 std::vector<std::string> ExtraCallNames();
 std::vector<std::string> SurfaceCallNames();
