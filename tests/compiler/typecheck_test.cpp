@@ -1,9 +1,14 @@
-// tests/compiler/typecheck_test.cpp: the type rules (compiler/typecheck.h) on their own. The
-// messages a shader gets for the same mistakes, with their locations and order, are pinned by
-// tests/golden (diag_*.sl).
+// tests/compiler/typecheck_test.cpp: the type rules (compiler/typecheck.h) on their own, and the
+// typed AST the typing pass records for a parsed shader. The messages a shader gets for the same
+// mistakes, with their locations and order, are pinned by tests/golden (diag_*.sl).
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <functional>
+
 #include "compiler/typecheck.h"
+#include "lang/parse.h"
+#include "tests/test_util.h"
 
 using namespace affray;
 using namespace affray::compiler;
@@ -92,4 +97,107 @@ TEST_CASE("?:, triples, matrices, casts and conversions", "[compiler][typecheck]
     CHECK(CastType(Type::Point, Type::Float, false).error == "cannot cast a point to float");
     CHECK(CastType(Type::String, Type::Point, true).error == "cannot cast a string to point");
     CHECK(CastType(Type::Color, Type::Matrix, false).error == "cannot cast a color to matrix");
+}
+
+namespace {
+/// Parses `text` (one shader, no errors) and types it; `visit` gets the typed AST and the unit.
+void WithTypes(const std::string& text,
+               const std::function<void(const TypedShader&, const lang::TranslationUnit&)>& visit) {
+    lang::SourceFile file("t.sl", text);
+    lang::Diagnostics diags(file);
+    lang::TranslationUnit unit = lang::Parse(diags);
+    REQUIRE_FALSE(diags.hasErrors());
+    REQUIRE(unit.shaders.size() == 1);
+    visit(Typecheck(unit.shaders[0], unit.functions), unit);
+}
+
+/// The expression of statement `i` of the shader's body (an expression statement).
+const lang::Expr& Statement(const lang::TranslationUnit& unit, size_t i) { return *unit.shaders[0].body.at(i)->expr; }
+}  // namespace
+
+TEST_CASE("the typed AST: names resolved, every expression typed", "[compiler][typecheck]") {
+    WithTypes(
+        "displacement d(float Km = 1; string space = \"object\") {\n"
+        "  vector offset = 0;\n"
+        "  float w[3] = {1, 2, 3};\n"
+        "  offset += Km * N;\n"
+        "  P + offset;\n"
+        "  w[1] > 0 ? Km : PI;\n"
+        "  space == \"world\";\n"
+        "  (Km, u, v) . normal(1);\n"
+        "}\n",
+        [](const TypedShader& typed, const lang::TranslationUnit& unit) {
+            const lang::Expr& assign = Statement(unit, 2);
+            CHECK(typed.TypeOf(assign) == Type::Vector);
+            CHECK(typed.Find(assign)->symbol == SymbolKind::Local);
+            const lang::Expr& product = *assign.args[0];
+            CHECK(typed.TypeOf(product) == Type::Normal);
+            CHECK(typed.Find(*product.args[0])->symbol == SymbolKind::Parameter);
+            CHECK(typed.Find(*product.args[1])->symbol == SymbolKind::Global);
+            // point + vector: the first triple's type.
+            CHECK(typed.TypeOf(Statement(unit, 3)) == Type::Point);
+            const lang::Expr& choice = Statement(unit, 4);
+            CHECK(typed.TypeOf(choice) == Type::Float);
+            CHECK(typed.TypeOf(*choice.args[0]) == Type::Bool);
+            CHECK(typed.Find(*choice.args[0]->args[0]->args[0])->arraySize == 3);
+            CHECK(typed.TypeOf(*choice.args[0]->args[0]) == Type::Float);  // an element
+            CHECK(typed.TypeOf(Statement(unit, 5)) == Type::Bool);
+            CHECK(typed.TypeOf(Statement(unit, 6)) == Type::Float);
+        });
+}
+
+TEST_CASE("the typed AST: user functions, scopes, and what is left untyped", "[compiler][typecheck]") {
+    WithTypes(
+        "color tint(float x) { return color(x); }\n"
+        "displacement d() {\n"
+        "  tint(u);\n"
+        "  { point q = P; }\n"
+        "  q;\n"
+        "  color P = 0;\n"
+        "  P;\n"
+        "  sin(u);\n"
+        "  N + color(1);\n"
+        "  float inner() { return 1; }\n"
+        "  inner();\n"
+        "}\n",
+        [](const TypedShader& typed, const lang::TranslationUnit& unit) {
+            const lang::Expr& call = Statement(unit, 0);
+            CHECK(typed.TypeOf(call) == Type::Color);
+            CHECK(typed.Find(call)->callee == unit.functions[0].get());
+            CHECK(typed.TypeOf(*call.args[0]) == Type::Float);
+            // The function's own body is typed too, in its own scope.
+            const lang::Expr& returned = *unit.functions[0]->body[0]->expr;
+            CHECK(typed.TypeOf(returned) == Type::Color);
+            CHECK(typed.Find(*returned.args[0])->symbol == SymbolKind::Parameter);
+            // A block's variable is gone after it; a local shadows a global.
+            CHECK(typed.Find(Statement(unit, 2)) == nullptr);
+            CHECK(typed.TypeOf(Statement(unit, 4)) == Type::Color);
+            // A built-in's result is the lowering's to choose (by overload); an ill-typed
+            // expression has no type.
+            CHECK(typed.Find(Statement(unit, 5)) == nullptr);
+            CHECK(typed.TypeOf(*Statement(unit, 5).args[0]) == Type::Float);
+            CHECK(typed.Find(Statement(unit, 6)) == nullptr);
+            CHECK(typed.TypeOf(Statement(unit, 8)) == Type::Float);
+        });
+}
+
+TEST_CASE("every shader of the suite and the library is typed without a fault", "[compiler][typecheck]") {
+    // The checker walks trees the lowering then rejects too (tests/golden/diag_*.sl): redefined
+    // names, unknown ones, missing arms. It must type what it can and never trip over the rest.
+    int shaders = 0;
+    for (const std::string dir : {"/tests/golden", "/tests/corpus", "/shaders"}) {
+        for (const auto& entry : std::filesystem::directory_iterator(test::SourceDir() + dir)) {
+            if (entry.path().extension() != ".sl") continue;
+            lang::SourceFile file("", "");
+            REQUIRE(lang::SourceFile::Load(entry.path().string(), &file, nullptr));
+            lang::Diagnostics diags(file);
+            const lang::TranslationUnit unit = lang::PreprocessAndParse(diags, {});
+            if (diags.hasErrors() || unit.shaders.empty()) continue;
+            INFO(entry.path().string());
+            const TypedShader typed = Typecheck(unit.shaders[0], unit.functions);
+            CHECK(typed.size() > 0);
+            ++shaders;
+        }
+    }
+    CHECK(shaders > 100);
 }
