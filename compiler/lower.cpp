@@ -364,6 +364,12 @@ std::optional<Value> Lowerer::LowerExpecting(const Expr& e, Type expected) {
 }
 
 std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
+    std::optional<Value> v = LowerExprOnce(e);
+    if (m_observer && v) m_observer(e, *v);
+    return v;
+}
+
+std::optional<Value> Lowerer::LowerExprOnce(const Expr& e) {
     switch (e.kind) {
         case ExprKind::Number: return m_ops.Constant(e.number);
         case ExprKind::String: return StringValue(e.text);
@@ -619,10 +625,12 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
     return !m_diags.hasErrors();
 }
 
-std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
-                                   const std::vector<std::vector<double>>* paramValues,
-                                   const std::map<std::string, std::string>* stringValues, const Spaces* spaces,
-                                   const SceneFacts* facts) {
+namespace {
+/// Lower() and LowerObserved(): the checks of the unit as a whole, then the one shader.
+std::optional<LoweredShader> LowerUnit(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
+                                       const std::vector<std::vector<double>>* paramValues,
+                                       const std::map<std::string, std::string>* stringValues, const Spaces* spaces,
+                                       const SceneFacts* facts, Lowerer::Observer observe) {
     if (unit.shaders.empty()) {
         if (!diags.hasErrors()) diags.error({1, 1}, "no shader definition in file");
         return std::nullopt;
@@ -637,8 +645,22 @@ std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diag
     }
     LoweredShader out;
     Lowerer lowerer(out, diags, paramValues, stringValues, spaces, facts);
+    lowerer.Observe(std::move(observe));
     if (!lowerer.Run(shader, unit.functions)) return std::nullopt;
     return out;
+}
+}  // namespace
+
+std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
+                                   const std::vector<std::vector<double>>* paramValues,
+                                   const std::map<std::string, std::string>* stringValues, const Spaces* spaces,
+                                   const SceneFacts* facts) {
+    return LowerUnit(unit, diags, paramValues, stringValues, spaces, facts, nullptr);
+}
+
+std::optional<LoweredShader> LowerObserved(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
+                                           Lowerer::Observer observe) {
+    return LowerUnit(unit, diags, nullptr, nullptr, nullptr, nullptr, std::move(observe));
 }
 
 }  // namespace affray::compiler

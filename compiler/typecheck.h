@@ -10,7 +10,8 @@
 // node (TypedShader), leaving the tree as the parser built it. It reports nothing. The lowering
 // does not read it yet: built-in calls (typed by the lowering's overload choice) and names a
 // nested function reaches in its caller's scopes are not typed here (docs/design.md, "Compiler
-// passes").
+// passes"). Where it does give a type, a test holds it to the lowering's (LowerObserved, over
+// every shader of the suite and the library).
 #pragma once
 
 #include <memory>
