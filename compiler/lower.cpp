@@ -1,11 +1,11 @@
-// compiler/lower.cpp: type checking and lowering of names, declarations and expressions, and
-// the entry point. Siblings: lower_logic.cpp (comparisons, conditions, ?:), lower_flow.cpp
-// (statements and control flow), lower_functions.cpp (user functions, arrays),
-// lower_library.cpp (noise, transforms, spline, filterstep); the state they share: lowerer.h.
-// Names: a stack of scopes over the shader globals (P, N, ... from vm/program.h) and the
-// parameters. A variable holds a Value (IR node ids), so assignment rebinds and never copies.
-// Every error is reported where it happens and the expression yields nothing; callers pass the
-// nothing on silently, so one mistake gives one message.
+// compiler/lower.cpp: lowering of names, declarations and expressions (their types checked by
+// the rules of typecheck.h), and the entry point. Siblings: lower_logic.cpp (comparisons,
+// conditions, ?:), lower_flow.cpp (statements and control flow), lower_functions.cpp (user
+// functions, arrays), lower_library.cpp (noise, transforms, spline, filterstep); the state
+// they share: lowerer.h. Names: a stack of scopes over the shader globals (P, N, ... from
+// vm/program.h) and the parameters. A variable holds a Value (IR node ids), so assignment
+// rebinds and never copies. Every error is reported where it happens and the expression yields
+// nothing; callers pass the nothing on silently, so one mistake gives one message.
 #include "compiler/lower.h"
 
 #include <cmath>
@@ -67,12 +67,6 @@ const std::string& Lowerer::UnknownString() {
     return unknown;
 }
 
-std::string Article(Type t) {
-    std::string name = ToString(t);
-    return (name[0] == 'a' || name[0] == 'e' || name[0] == 'i' || name[0] == 'o' || name[0] == 'u' ? "an " : "a ") +
-           name;
-}
-
 Variable* Lowerer::Find(const std::string& name) {
     for (auto scope = m_state.scopes.rbegin(); scope != m_state.scopes.rend(); ++scope) {
         auto it = scope->find(name);
@@ -92,13 +86,14 @@ void Lowerer::PopScope() {
 }
 
 std::optional<Value> Lowerer::Convert(const Value& value, Type target, SourceLoc loc, const std::string& what) {
+    const Typed typed = ConvertType(value.type, target, what);
+    if (!typed.ok()) {
+        m_diags.error(loc, typed.error);
+        return std::nullopt;
+    }
     Value v = value;
     if (v.type == Type::Bool && target != Type::Bool) v.type = Type::Float;  // 1 or 0, as in C
-    if (v.type == target) return v;
-    if ((IsTriple(target) || target == Type::Matrix) && v.type == Type::Float) return m_ops.Promote(v, target);
-    if (IsSpatial(target) && IsSpatial(v.type)) return m_ops.Promote(v, target);
-    m_diags.error(loc, "cannot assign " + Article(v.type) + " to " + what);
-    return std::nullopt;
+    return v.type == target ? v : m_ops.Promote(v, target);
 }
 
 std::optional<Value> Lowerer::LowerIdent(const Expr& e) {
@@ -202,6 +197,11 @@ std::optional<Value> Lowerer::LowerBinary(const Expr& e) {
     std::optional<Value> a = LowerExpr(*e.args[0]);
     std::optional<Value> b = LowerExpr(*e.args[1]);
     if (!a || !b) return std::nullopt;
+    const Typed typed = BinaryType(e.binaryOp, a->type, b->type);
+    if (!typed.ok()) {
+        m_diags.error(e.loc, typed.error);
+        return std::nullopt;
+    }
     m_ops.SetLine(e.loc.line);
     switch (e.binaryOp) {
         case BinaryOp::Less:
@@ -217,41 +217,13 @@ std::optional<Value> Lowerer::LowerBinary(const Expr& e) {
     // A boolean in arithmetic is the float 1 or 0, as in C.
     if (a->type == Type::Bool) a->type = Type::Float;
     if (b->type == Type::Bool) b->type = Type::Float;
-    const char* opName = lang::ToString(e.binaryOp);
-    auto bad = [&](const std::string& why) {
-        m_diags.error(e.loc, "invalid operands to '" + std::string(opName) + "' (" + ToString(a->type) + " and " +
-                                 ToString(b->type) + ")" + why);
-        return std::nullopt;
-    };
-    if (!IsNumeric(a->type) || !IsNumeric(b->type)) return bad("");
-    if (a->type == Type::Matrix || b->type == Type::Matrix) {
-        // Matrices multiply and divide (by the inverse) each other and floats; a point goes
-        // through transform().
-        const bool mulOrDiv = e.binaryOp == BinaryOp::Mul || e.binaryOp == BinaryOp::Div;
-        if (!mulOrDiv || IsTriple(a->type) || IsTriple(b->type))
-            return bad(": a matrix only multiplies or divides a matrix or a float (transform() applies it to a point)");
-        m_ops.SetLine(e.loc.line);
-        return e.binaryOp == BinaryOp::Mul ? m_ops.Mul(*a, *b) : m_ops.Div(*a, *b);
-    }
     switch (e.binaryOp) {
-        case BinaryOp::Add:
-        case BinaryOp::Sub:
-        case BinaryOp::Mul:
-        case BinaryOp::Div: {
-            bool mixesColor =
-                (a->type == Type::Color && IsSpatial(b->type)) || (b->type == Type::Color && IsSpatial(a->type));
-            if (mixesColor) return bad(": a color does not combine with a point, vector or normal");
-            if (e.binaryOp == BinaryOp::Add) return m_ops.Add(*a, *b);
-            if (e.binaryOp == BinaryOp::Sub) return m_ops.Sub(*a, *b);
-            if (e.binaryOp == BinaryOp::Mul) return m_ops.Mul(*a, *b);
-            return m_ops.Div(*a, *b);
-        }
-        case BinaryOp::Dot:
-            if (!IsTriple(a->type) || !IsTriple(b->type)) return bad(": '.' is the dot product of two triples");
-            return m_ops.Dot(*a, *b);
-        case BinaryOp::Cross:
-            if (!IsSpatial(a->type) || !IsSpatial(b->type)) return bad(": '^' is the cross product of two vectors");
-            return m_ops.Cross(*a, *b);
+        case BinaryOp::Add: return m_ops.Add(*a, *b);
+        case BinaryOp::Sub: return m_ops.Sub(*a, *b);
+        case BinaryOp::Mul: return m_ops.Mul(*a, *b);
+        case BinaryOp::Div: return m_ops.Div(*a, *b);  // a matrix divides by the other's inverse
+        case BinaryOp::Dot: return m_ops.Dot(*a, *b);
+        case BinaryOp::Cross: return m_ops.Cross(*a, *b);
         default: break;
     }
     return std::nullopt;  // the comparisons were handled above
@@ -295,22 +267,9 @@ std::optional<Value> Lowerer::LowerAssign(const Expr& e) {
             m_diags.warning(e.loc, "variable '" + e.name + "' is used before it is assigned a value (it is 0 here)");
             var->assigned = true;
         }
-        const bool matrixOp = var->type == Type::Matrix &&
-                              (e.assignOp == lang::AssignOp::MulAssign || e.assignOp == lang::AssignOp::DivAssign);
-        if ((!IsTriple(var->type) && var->type != Type::Float && !matrixOp) ||
-            (var->type == Type::Matrix && value.type != Type::Float && value.type != Type::Matrix) ||
-            (value.type == Type::Matrix && var->type != Type::Matrix)) {
-            m_diags.error(e.loc, "invalid operands to '" + std::string(lang::ToString(e.assignOp)) + "' (" +
-                                     ToString(var->type) + " and " + ToString(value.type) + ")");
-            return std::nullopt;
-        }
-        if (IsTriple(value.type) && !IsTriple(var->type)) {
-            m_diags.error(e.loc, "cannot assign " + Article(value.type) + " to " + what);
-            return std::nullopt;
-        }
-        if ((var->type == Type::Color && IsSpatial(value.type)) ||
-            (IsSpatial(var->type) && value.type == Type::Color)) {
-            m_diags.error(e.loc, "cannot assign " + Article(value.type) + " to " + what);
+        const Typed typed = CompoundAssignType(e.assignOp, var->type, value.type, what);
+        if (!typed.ok()) {
+            m_diags.error(e.loc, typed.error);
             return std::nullopt;
         }
         switch (e.assignOp) {
@@ -344,6 +303,10 @@ std::optional<Value> Lowerer::LowerCast(const Expr& e) {
     }
     std::optional<Value> v = LowerExpecting(*e.args[0], target);
     if (!v) return std::nullopt;
+    if (const Typed typed = CastType(v->type, target, !e.castSpace.empty()); !typed.ok()) {
+        m_diags.error(e.loc, typed.error);
+        return std::nullopt;
+    }
     if (v->type == Type::Bool) v->type = Type::Float;
     if (!e.castSpace.empty() && target == Type::Color && (v->type == Type::Float || IsTriple(v->type))) {
         // `color "hsv" (h, s, v)`: components given in that space, converted to rgb.
@@ -363,11 +326,6 @@ std::optional<Value> Lowerer::LowerCast(const Expr& e) {
         return e.castSpace.empty() ? m : m_ops.MatrixProduct(CurrentTo(e.castSpace), m);
     }
     if (v->type == target) return v;
-    if (target == Type::Float || v->type == Type::String || target == Type::String || target == Type::Void ||
-        target == Type::Matrix || v->type == Type::Matrix) {
-        m_diags.error(e.loc, "cannot cast " + Article(v->type) + " to " + ToString(target));
-        return std::nullopt;
-    }
     return m_ops.Promote(*v, target);
 }
 
@@ -406,6 +364,12 @@ std::optional<Value> Lowerer::LowerExpecting(const Expr& e, Type expected) {
 }
 
 std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
+    std::optional<Value> v = LowerExprOnce(e);
+    if (m_observer && v) m_observer(e, *v);
+    return v;
+}
+
+std::optional<Value> Lowerer::LowerExprOnce(const Expr& e) {
     switch (e.kind) {
         case ExprKind::Number: return m_ops.Constant(e.number);
         case ExprKind::String: return StringValue(e.text);
@@ -419,11 +383,11 @@ std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
             }
             std::optional<Value> a = LowerExpr(*e.args[0]);
             if (!a) return std::nullopt;
-            if (a->type == Type::Bool) a->type = Type::Float;
-            if (a->type != Type::Float && !IsTriple(a->type)) {
-                m_diags.error(e.loc, "invalid operand to unary '-' (" + std::string(ToString(a->type)) + ")");
+            if (const Typed typed = NegateType(a->type); !typed.ok()) {
+                m_diags.error(e.loc, typed.error);
                 return std::nullopt;
             }
+            if (a->type == Type::Bool) a->type = Type::Float;
             m_ops.SetLine(e.loc.line);
             return m_ops.Neg(*a);
         }
@@ -435,8 +399,8 @@ std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
             bool ok = true;
             for (int i = 0; i < 3; ++i) {
                 std::optional<Value> v = LowerExpr(*e.args[i]);
-                if (v && v->type != Type::Float) {
-                    m_diags.error(e.args[i]->loc, "a triple's components must be floats, got " + Article(v->type));
+                if (const Typed typed = v ? TripleComponentType(v->type) : Typed{}; !typed.ok()) {
+                    m_diags.error(e.args[i]->loc, typed.error);
                     v.reset();
                 }
                 if (v) c[i] = v->c[0];
@@ -453,9 +417,8 @@ std::optional<Value> Lowerer::LowerExpr(const Expr& e) {
             bool ok = true;
             for (int i = 0; i < 16; ++i) {
                 std::optional<Value> v = LowerExpr(*e.args[i]);
-                if (v && v->type == Type::Bool) v->type = Type::Float;
-                if (v && v->type != Type::Float) {
-                    m_diags.error(e.args[i]->loc, "a matrix's entries must be floats, got " + Article(v->type));
+                if (const Typed typed = v ? MatrixEntryType(v->type) : Typed{}; !typed.ok()) {
+                    m_diags.error(e.args[i]->loc, typed.error);
                     v.reset();
                 }
                 if (v) m.c[i] = v->c[0];
@@ -662,10 +625,12 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
     return !m_diags.hasErrors();
 }
 
-std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
-                                   const std::vector<std::vector<double>>* paramValues,
-                                   const std::map<std::string, std::string>* stringValues, const Spaces* spaces,
-                                   const SceneFacts* facts) {
+namespace {
+/// Lower() and LowerObserved(): the checks of the unit as a whole, then the one shader.
+std::optional<LoweredShader> LowerUnit(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
+                                       const std::vector<std::vector<double>>* paramValues,
+                                       const std::map<std::string, std::string>* stringValues, const Spaces* spaces,
+                                       const SceneFacts* facts, Lowerer::Observer observe) {
     if (unit.shaders.empty()) {
         if (!diags.hasErrors()) diags.error({1, 1}, "no shader definition in file");
         return std::nullopt;
@@ -680,8 +645,22 @@ std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diag
     }
     LoweredShader out;
     Lowerer lowerer(out, diags, paramValues, stringValues, spaces, facts);
+    lowerer.Observe(std::move(observe));
     if (!lowerer.Run(shader, unit.functions)) return std::nullopt;
     return out;
+}
+}  // namespace
+
+std::optional<LoweredShader> Lower(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
+                                   const std::vector<std::vector<double>>* paramValues,
+                                   const std::map<std::string, std::string>* stringValues, const Spaces* spaces,
+                                   const SceneFacts* facts) {
+    return LowerUnit(unit, diags, paramValues, stringValues, spaces, facts, nullptr);
+}
+
+std::optional<LoweredShader> LowerObserved(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
+                                           Lowerer::Observer observe) {
+    return LowerUnit(unit, diags, nullptr, nullptr, nullptr, nullptr, std::move(observe));
 }
 
 }  // namespace affray::compiler

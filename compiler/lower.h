@@ -1,6 +1,9 @@
 // compiler/lower.h: checking and lowering a shader's syntax tree to the value graph.
-// One walk does both, as Lua's code generator does: each expression is type-checked and turned
-// into IR nodes in the same visit, so there is no annotated tree to keep in step.
+// One walk does both, as Lua's code generator does: each expression is checked and turned into
+// IR nodes in the same visit. What an operator, condition, conversion or cast accepts is decided
+// by the type rules (compiler/typecheck.h), which the walk asks with its operands' types; names,
+// built-in calls, and everything that depends on values (constant indices, space names, loop
+// bounds) are still checked here.
 #pragma once
 
 #include <map>

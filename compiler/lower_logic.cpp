@@ -1,5 +1,6 @@
 // compiler/lower_logic.cpp: comparisons, && || !, conditions and ?: (the values control flow
 // selects on). A comparison is a Bool: 1 or 0 in the VM, an undecided [0, 1] in a bound type.
+// Their operands are checked by the type rules (compiler/typecheck.h) before they get here.
 #include "compiler/lowerer.h"
 
 namespace affray::compiler {
@@ -9,46 +10,29 @@ using lang::Expr;
 std::optional<Value> Lowerer::LowerComparison(const Expr& e, const Value& a, const Value& b) {
     using lang::BinaryOp;
     const BinaryOp op = e.binaryOp;
-    const std::string opName = lang::ToString(op);
-    auto bad = [&](const std::string& why) {
-        m_diags.error(e.loc, "invalid operands to '" + opName + "' (" + ToString(a.type) + " and " + ToString(b.type) +
-                                 ")" + why);
-        return std::nullopt;
-    };
     auto boolean = [&](ValueId v) { return Value{Type::Bool, {v, v, v}}; };
     if (op == BinaryOp::And || op == BinaryOp::Or) {
-        auto truth = [&](const Value& v) -> std::optional<ValueId> {
-            if (v.type == Type::Bool) return v.c[0];
-            if (v.type == Type::Float) return ir().Binary(IrOp::Ne, v.c[0], ir().Const(0.0), e.loc.line);
-            return std::nullopt;
+        // A float operand means "!= 0".
+        auto truth = [&](const Value& v) {
+            return v.type == Type::Bool ? v.c[0] : ir().Binary(IrOp::Ne, v.c[0], ir().Const(0.0), e.loc.line);
         };
-        std::optional<ValueId> x = truth(a), y = truth(b);
-        if (!x || !y) return bad(": '" + opName + "' combines conditions");
-        return boolean(ir().Binary(op == BinaryOp::And ? IrOp::And : IrOp::Or, *x, *y, e.loc.line));
+        return boolean(ir().Binary(op == BinaryOp::And ? IrOp::And : IrOp::Or, truth(a), truth(b), e.loc.line));
     }
     // Strings compare by their ids (one id per distinct text): folded when both are known, a
     // comparison of ids when a string was chosen by a condition.
-    if (a.type == Type::String || b.type == Type::String) {
-        if (a.type != b.type || (op != BinaryOp::Equal && op != BinaryOp::NotEqual))
-            return bad(": strings compare only with == and != to strings");
+    if (a.type == Type::String) {
         const ValueId same = ir().Binary(IrOp::Eq, a.c[0], b.c[0], e.loc.line);
         return boolean(op == BinaryOp::Equal ? same : ir().Unary(IrOp::Not, same, e.loc.line));
     }
     Value x = a, y = b;
     for (Value* v : {&x, &y})
         if (v->type == Type::Bool) v->type = Type::Float;
-    if (!IsNumeric(x.type) || !IsNumeric(y.type)) return bad("");
     if (op == BinaryOp::Equal || op == BinaryOp::NotEqual) {
-        if ((x.type == Type::Color && IsSpatial(y.type)) || (y.type == Type::Color && IsSpatial(x.type)))
-            return bad(": a color does not compare with a point, vector or normal");
-        if ((x.type == Type::Matrix && IsTriple(y.type)) || (y.type == Type::Matrix && IsTriple(x.type)))
-            return bad(": a matrix compares with a matrix or a float");
         // Triples and matrices are equal when every component is.
         m_ops.SetLine(e.loc.line);
         const ValueId all = m_ops.AllEqual(x, y);
         return boolean(op == BinaryOp::Equal ? all : ir().Unary(IrOp::Not, all, e.loc.line));
     }
-    if (x.type != Type::Float || y.type != Type::Float) return bad(": only floats are ordered");
     // a > b is b < a, a >= b is b <= a.
     const bool swap = op == BinaryOp::Greater || op == BinaryOp::GreaterEq;
     const IrOp irOp = op == BinaryOp::Less || op == BinaryOp::Greater ? IrOp::Lt : IrOp::Le;
@@ -59,11 +43,14 @@ std::optional<Value> Lowerer::LowerComparison(const Expr& e, const Value& a, con
 std::optional<ValueId> Lowerer::LowerCondition(const Expr& e) {
     std::optional<Value> v = LowerExpr(e);
     if (!v) return std::nullopt;
+    if (const Typed typed = ConditionType(v->type); !typed.ok()) {
+        m_diags.error(e.loc, typed.error);
+        return std::nullopt;
+    }
     if (v->type == Type::Bool) return v->c[0];
     // A float condition means "!= 0" (C's rule; some RenderMan compilers accept it too).
     if (v->type == Type::Float) return ir().Binary(IrOp::Ne, v->c[0], ir().Const(0.0), e.loc.line);
-    m_diags.error(e.loc, "a condition must be a comparison or a float, not " + Article(v->type));
-    return std::nullopt;
+    return std::nullopt;  // not reached: ConditionType accepts only these two
 }
 
 std::optional<Value> Lowerer::LowerTernary(const Expr& e) {
@@ -81,6 +68,10 @@ std::optional<Value> Lowerer::LowerTernary(const Expr& e) {
     std::optional<Value> a = arm(*e.args[1], k && *k == 0.0);
     std::optional<Value> b = arm(*e.args[2], k && *k != 0.0);
     if (!c || !a || !b) return std::nullopt;
+    if (const Typed typed = TernaryType(a->type, b->type); !typed.ok()) {
+        m_diags.error(e.loc, typed.error);
+        return std::nullopt;
+    }
     Value x = *a, y = *b;
     if (x.type == Type::Bool && y.type == Type::Bool) {
         ValueId v = ir().Select(*c, x.c[0], y.c[0], e.loc.line);
@@ -91,16 +82,6 @@ std::optional<Value> Lowerer::LowerTernary(const Expr& e) {
     if (x.type == Type::String && y.type == Type::String) {
         ValueId id = ir().Select(*c, x.c[0], y.c[0], e.loc.line);
         return Value{Type::String, {id, id, id}};
-    }
-    const bool numeric = IsNumeric(x.type) && IsNumeric(y.type);
-    const bool mixesColor =
-        (x.type == Type::Color && IsSpatial(y.type)) || (y.type == Type::Color && IsSpatial(x.type));
-    const bool mixesMatrix =
-        (x.type == Type::Matrix && IsTriple(y.type)) || (y.type == Type::Matrix && IsTriple(x.type));
-    if (!numeric || mixesColor || mixesMatrix) {
-        m_diags.error(e.loc, "the two results of '?:' have incompatible types (" + std::string(ToString(x.type)) +
-                                 " and " + ToString(y.type) + ")");
-        return std::nullopt;
     }
     m_ops.SetLine(e.loc.line);
     return m_ops.SelectValue(m_ops.Float(*c), x, y);

@@ -16,12 +16,14 @@
 // dependence" (POPL 1983), i.e. if-conversion; OSL's runtime optimiser for the folding.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
 #include "compiler/lower.h"
+#include "compiler/typecheck.h"
 #include "diag/limits.h"
 
 namespace affray::compiler {
@@ -74,9 +76,15 @@ class Lowerer {
 
     bool Run(const lang::ShaderDef& shader, const std::vector<std::shared_ptr<lang::FunctionDef>>& functions);
 
+    /// Called with every expression LowerExpr lowers and the value it got (see LowerObserved).
+    using Observer = std::function<void(const lang::Expr&, const Value&)>;
+    void Observe(Observer observer) { m_observer = std::move(observer); }
+
   private:
     // --- expressions (lower.cpp; comparisons, conditions and ?: in lower_logic.cpp)
     std::optional<Value> LowerExpr(const lang::Expr& e);
+    std::optional<Value> LowerExprOnce(const lang::Expr& e);  // LowerExpr before the observer
+    Observer m_observer;
     std::optional<Value> LowerBinary(const lang::Expr& e);
     std::optional<Value> LowerComparison(const lang::Expr& e, const Value& a, const Value& b);
     std::optional<Value> LowerTernary(const lang::Expr& e);
@@ -275,9 +283,14 @@ class Lowerer {
     std::unordered_set<const lang::Stmt*> m_endlessLoops;  // loops past loop-iterations (reported)
 };
 
-std::string Article(Type t);
 /// The names of the built-ins lower_extras.cpp and lower_surface.cpp lower.
 std::vector<std::string> ExtraCallNames();
 std::vector<std::string> SurfaceCallNames();
+
+/// Lower() without an instance, with `observe` called on every expression the walk lowers
+/// (each time: once per unrolled iteration, once per inlined call) and the Value it got. For
+/// the test that the typed AST (typecheck.h) gives every expression the lowering's type.
+std::optional<LoweredShader> LowerObserved(const lang::TranslationUnit& unit, lang::Diagnostics& diags,
+                                           Lowerer::Observer observe);
 
 }  // namespace affray::compiler

@@ -78,7 +78,7 @@ FAULTS = [
           ": n.op == IrOp::Select ? m_nodes[n.in[1]].boolean || m_nodes[n.in[2]].boolean",
           "a select counts as boolean when one arm is"),
 
-    # --- compiler/lower.cpp, lower_logic.cpp: operators and type checks ---------------------------------
+    # --- compiler/lower.cpp, lower_logic.cpp, typecheck.cpp: operators and type checks ---------------------------------
     Fault("lower-greater-equal-not-swapped", "compiler/lower_logic.cpp",
           "const bool swap = op == BinaryOp::Greater || op == BinaryOp::GreaterEq;",
           "const bool swap = op == BinaryOp::Greater;",
@@ -95,13 +95,13 @@ FAULTS = [
           "if (v->type == Type::Float) return ir().Binary(IrOp::Ne, v->c[0], ir().Const(0.0), e.loc.line);",
           "if (v->type == Type::Float) return ir().Binary(IrOp::Lt, ir().Const(0.0), v->c[0], e.loc.line);",
           "a float condition means x > 0, not x != 0"),
-    Fault("lower-color-with-point-accepted", "compiler/lower.cpp",
+    Fault("lower-color-with-point-accepted", "compiler/typecheck.cpp",
           "if (mixesColor) return bad(\": a color does not combine with a point, vector or normal\");",
           "(void)mixesColor;",
           "the type check that a color does not combine with a point, vector or normal is gone"),
-    Fault("lower-cross-of-colors-accepted", "compiler/lower.cpp",
-          "if (!IsSpatial(a->type) || !IsSpatial(b->type)) return bad(",
-          "if (!IsTriple(a->type) || !IsTriple(b->type)) return bad(",
+    Fault("lower-cross-of-colors-accepted", "compiler/typecheck.cpp",
+          "if (!IsSpatial(x) || !IsSpatial(y)) return bad(",
+          "if (!IsTriple(x) || !IsTriple(y)) return bad(",
           "the cross product accepts colors"),
     Fault("lower-logical-not-dropped", "compiler/lower.cpp",
           "ValueId v = ir().Unary(IrOp::Not, *c, e.loc.line);",
