@@ -19,10 +19,11 @@
 // primitive did. The order a tree visits primitives in does not change the image (issue 32: before,
 // where two surfaces' hits lay within the tolerance of each other, the one met second was kept, and
 // the SAH tree changed 7 of the 18 scenes, scenes/mixed.rib by RMSE 3e-3 where the cone stands on
-// the displaced floor): renderer/render.cpp's TraceNearest keeps the nearest hit by (t, primitive),
-// searching each primitive from its box's entry, which Traverse passes; a node's entry is never
-// past its primitives' (the union of their float boxes, and the slab test is monotone in a box's
-// sides), so skipping boxes entered beyond tMax skips no hit at tMax or nearer.
+// the displaced floor): renderer/render.cpp's TraceNearest keeps the nearest hit (equal ones in an
+// order of their own), searching each primitive from its box's entry, which Traverse passes; a
+// node's entry is never past its primitives' (the union of their float boxes, and the slab test
+// is monotone in a box's sides), so skipping boxes entered beyond tMax skips no hit at tMax or
+// nearer.
 //
 // Why SAH: a median split cuts clusters and long thin primitives wherever the count says, so its
 // nodes overlap and a ray tests more boxes; SAH puts the cut where the empty space is. It does not

@@ -182,6 +182,19 @@ HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray
     return h;
 }
 
+/// Whether hit a on primitive ia is kept before hit b on primitive ib: the nearer; of hits at the
+/// same t (two surfaces' regions whose ranges along the ray are the same, as a surface and its
+/// copy moved along z give where the x and y sides of their bounds bound the range), the one
+/// with the smaller certified error, then the smaller (u, v): an order of the hits themselves,
+/// so that the scene's order of primitives decides only between hits the same in all of these.
+bool Before(const Hit& a, int ia, const Hit& b, int ib) {
+    if (a.t != b.t) return a.t < b.t;
+    if (a.error != b.error) return a.error < b.error;
+    if (a.u != b.u) return a.u < b.u;
+    if (a.v != b.v) return a.v < b.v;
+    return ia < ib;
+}
+
 /// The nearest hit along `ray` in [tMin, tMax] over the primitives the BVH offers. A one-sided
 /// primitive (Sides 1) seen from behind (its geometric normal away from the ray) is not hit: the
 /// search goes on past it.
@@ -189,8 +202,8 @@ HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray
 /// the order it offers them in (issue 32): each primitive's hit does not depend on the tMax it is
 /// searched with (SurfaceIntersector::Intersect), only whether it is reported; it lies past
 /// where the ray enters the primitive's box (the search starts there), so the BVH skips only
-/// boxes entered beyond a hit already found; and of hits at the same t the one of the lowest
-/// primitive index is kept. Two surfaces whose hits lie within the tolerance of each other (a
+/// boxes entered beyond a hit already found; and of hits at the same t one is kept by an order
+/// of the hits themselves (Before). Two surfaces whose hits lie within the tolerance of each other (a
 /// cone standing on a displaced floor) are then told apart by the same rule on every BVH.
 NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& ray, double tMin, double tMax,
                         const Tolerance& tol, IntersectStats& stats, const glm::dvec3& eye, const RayGroup* group) {
@@ -205,7 +218,7 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
             // BVH would otherwise skip, its box entered beyond a nearer hit's t.
             Hit hit;
             if (ts.Intersector(i).Intersect(ray, tEntry, best, ToleranceOf(ts, i, tol), false, &hit, stats, group) &&
-                (hit.t < best || nearest.primitive < 0 || i < nearest.primitive)) {
+                (nearest.primitive < 0 || Before(hit, i, nearest.hit, nearest.primitive))) {
                 best = hit.t;
                 nearest = {hit, i, std::nullopt};
             }

@@ -595,10 +595,12 @@ TEST_CASE("render: a mesh is one description whose faces share its arrays and pr
 TEST_CASE("render: the hit kept depends on neither the BVH's shape nor the primitives' order",
           "[renderer][render][bvh]") {
     // Issue 32: two rippled grids of 6 x 6 faces, red and blue, the blue 0.004 above the red:
-    // their hits lie well within the tolerance of each other (some 0.02 here), so which one a
-    // ray keeps is the tie-break's, on the faces that the BVH offers in an order its shape
-    // decides. The same image, to the bit, from a SAH and a median BVH, and with the grids
-    // given in the other order (other primitive indices, another tree).
+    // their hits lie well within the tolerance of each other (some 0.02 here), on faces that the
+    // BVH offers in an order its shape decides (before, the one met second was kept where its
+    // range reached the first's hit). The same image, to the bit, from a SAH and a median BVH,
+    // and with the grids given in the other order (other primitive indices, another tree): where
+    // a red and a blue region have the same range along the ray (bounded by the x and y sides of
+    // their bounds, which are the same), the tie is broken by the hits, not by the indices.
     test::TempDir dir;
     const int n = 6;
     auto grid = [&](const char* color, double z) {
@@ -623,16 +625,17 @@ TEST_CASE("render: the hit kept depends on neither the BVH's shape nor the primi
 Projection "perspective" "fov" [40]
 Display "t.exr" "file" "rgba,Z"
 Translate 0 0 3.2
-Rotate -50 1 0 0
+Rotate -130 1 0 0
 WorldBegin
-LightSource "distantlight" 1 "from" [1 1 3] "to" [0 0 0]
+LightSource "ambientlight" 1 "intensity" [0.2]
+LightSource "distantlight" 2 "from" [1 1 3] "to" [0 0 0]
 )";
     const std::string red = grid("0.9 0.1 0.1", 0), blue = grid("0.1 0.1 0.9", 0.004);
     PreparedScene sah, median, swapped;
     const image::ImageBuffer a = Render(dir, head + red + blue + "WorldEnd\n", &sah);
     const image::ImageBuffer b = Render(dir, head + red + blue + "WorldEnd\n", &median, Bvh::Split::kMedian);
     const image::ImageBuffer c = Render(dir, head + blue + red + "WorldEnd\n", &swapped);
-    // The trees differ, and both grids are seen: the tie-break decides many pixels.
+    // The trees differ, and both grids are seen (the nearer, blue, mostly).
     REQUIRE(sah.primitives.size() == size_t(2 * n * n));
     CHECK_FALSE(*sah.bvh == *median.bvh);
     int reds = 0, blues = 0;
@@ -640,8 +643,8 @@ LightSource "distantlight" 1 "from" [1 1 3] "to" [0 0 0]
         reds += a.rgba[p] > 2 * a.rgba[p + 2];
         blues += a.rgba[p + 2] > 2 * a.rgba[p];
     }
-    CHECK(reds > 50);
-    CHECK(blues > 50);
+    CHECK(reds > 10);
+    CHECK(blues > 300);
     CHECK(a.rgba == b.rgba);
     CHECK(a.rgba == c.rgba);
     CHECK(Channel(a, "Z") == Channel(b, "Z"));
