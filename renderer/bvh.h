@@ -16,10 +16,14 @@
 // (the same as rounding their union outwards): a node is 32 bytes and there are between n - 1 and
 // 2n - 1 of them (1.12n to 1.19n on the benchmark's inputs), a leaf's primitive 28 bytes: some 64
 // bytes a primitive. Leaves of two visit their primitives nearest entry first, as a leaf per
-// primitive did; leaves of four changed images within the tolerance (a different one of two
-// overlapping hits found first: the showcase's RMSE 6e-4), and so does the new tree on a few pixels
-// where two surfaces meet (scenes/mixed.rib: 7 pixels where the cone stands on the displaced floor,
-// RMSE 3e-3; the same image at --tolerance 0.1).
+// primitive did. The order a tree visits primitives in does not change the image (issue 32: before,
+// where two surfaces' hits lay within the tolerance of each other, the one met second was kept, and
+// the SAH tree changed 7 of the 18 scenes, scenes/mixed.rib by RMSE 3e-3 where the cone stands on
+// the displaced floor): renderer/render.cpp's TraceNearest keeps the nearest hit (equal ones in an
+// order of their own), searching each primitive from its box's entry, which Traverse passes; a
+// node's entry is never past its primitives' (the union of their float boxes, and the slab test
+// is monotone in a box's sides), so skipping boxes entered beyond tMax skips no hit at tMax or
+// nearer.
 //
 // Why SAH: a median split cuts clusters and long thin primitives wherever the count says, so its
 // nodes overlap and a ray tests more boxes; SAH puts the cut where the empty space is. It does not
@@ -91,6 +95,8 @@ class Bvh {
     /// nearer leaves first (by entry; a leaf's primitives in its order), skipping boxes entered
     /// beyond *tMax, which `visit` may lower (to the nearest hit so far) through the caller's
     /// variable; Traverse only reads it. visit returns false to stop the traversal (any-hit).
+    /// tEntry, at least tMin, is where the ray enters i's box: a function of the ray, tMin and
+    /// that box alone (not of *tMax or the tree), at or before every point of the box on the ray.
     template <class Visit>
     void Traverse(const Ray& ray, double tMin, const double* tMax, Visit&& visit) const;
 

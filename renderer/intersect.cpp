@@ -272,13 +272,17 @@ class TreeIntersector final : public SurfaceIntersector {
     /// its nodes stay valid for the group's later rays while the walker's epoch is the same, and
     /// it is built again otherwise.
     void BuildFrontier(const RayGroup& group, IntersectStats& stats);
-    /// Measures the entry's bound `b` against the ray; false if it provably misses.
-    bool Test(Entry& e, const RegionBound& b, double tMin, double tMax);
+    /// Measures the entry's bound `b` against the ray, its surface points on the ray known to lie
+    /// at t >= from (the ray's start, or where its parent's begin): e.tLo and e.tHi are clipped to
+    /// that, and are a function of the region and `from` alone. False if it provably misses, or
+    /// if it lies beyond `best` (e.tLo > best: no hit in it or below it can be at best or nearer).
+    bool Test(Entry& e, const RegionBound& b, double from, double best);
     /// The children of the measured entry `e`, split by e.axis, that the ray provably misses by
     /// e's bound over each child's part of the parameters where that bound can meet the ray (the
-    /// bound holds every child's points at their own parameters): bit i for child i. Their
-    /// bounds need not be evaluated.
-    uint8_t ChildrenMissed(const Entry& e, double tMin, double tMax) const;
+    /// bound holds every child's points at their own parameters), or that lie wholly beyond
+    /// `best`: bit i for child i. Their bounds need not be evaluated. childLo[i] gets where the
+    /// others' points on the ray begin, at least e.tLo.
+    uint8_t ChildrenMissed(const Entry& e, double best, double childLo[4]) const;
     /// The ray's t range through the box of the bound's bounded coordinates, within [lo, hi]
     /// (narrowed); false if it misses.
     bool BoxRange(const RegionBound& b, double* lo, double* hi) const;
@@ -366,7 +370,7 @@ bool TreeIntersector::BoxRange(const RegionBound& b, double* lo, double* hi) con
     return *lo <= *hi;
 }
 
-bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double tMax) {
+bool TreeIntersector::Test(Entry& e, const RegionBound& b, double from, double best) {
     ++m_tested;
     e.hu = 0.5 * (e.u0 + e.u1);
     e.hv = 0.5 * (e.v0 + e.v1);
@@ -375,23 +379,29 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
     e.ru1 = e.u1;
     e.rv0 = e.v0;
     e.rv1 = e.v1;
-    double lo = tMin, hi = tMax;
+    // [lo, hi] narrows to where the region's points on the ray can be, never by `best`: the
+    // region's range, and so its hit (Intersect), does not depend on the hits found before it
+    // (in this primitive or, through tMax, in others). `best` only discards, where lo, which
+    // every later value of e.tLo is at least, lies beyond it.
+    double lo = from, hi = INFINITY;
     // The box first: cheap, and it may be tighter than the forms (it holds the bound's enclosure).
-    if (!BoxRange(b, &lo, &hi)) return false;
+    if (!BoxRange(b, &lo, &hi) || lo > best) return false;
     Measure m[3];
     MeasureAlong<3>(b, m_origin, m_frame, m);
     const Measure &d1 = m[0], &d2 = m[1], &t = m[2];
     const Range r1 = Over(d1, 0, 1, 0, 1), r2 = Over(d2, 0, 1, 0, 1), rt = Over(t, 0, 1, 0, 1);
     // Each bounded measure may rule the region out on its own, even if another is unbounded.
     if ((d1.bounded && r1.excludesZero()) || (d2.bounded && r2.excludesZero())) return false;
-    if (t.bounded && (rt.hi < tMin || rt.lo > tMax)) return false;
+    if (t.bounded) {
+        lo = std::max(lo, rt.lo);
+        hi = std::min(hi, rt.hi);
+        if (lo > hi || lo > best) return false;
+    }
     if (!d1.bounded || !d2.bounded || !t.bounded) {
         // Not ruled out by the ray frame: the coordinates that are still bounded give a box
         // (unbounded along the others), which the ray crosses over [lo, hi]: around a singular
         // point of the shader (log(0), 1/0) this keeps the regions that can still reach the ray
         // to the few it passes, instead of all of them.
-        if (t.bounded) lo = std::max(lo, rt.lo), hi = std::min(hi, rt.hi);
-        if (lo > hi) return false;
         e.tLo = lo;
         e.tHi = hi;
         e.size = INFINITY;
@@ -443,7 +453,7 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
         e1 = Over(d1, cu, ru, cv, rv);
         e2 = Over(d2, cu, ru, cv, rv);
         et = Over(t, cu, ru, cv, rv);
-        if (e1.excludesZero() || e2.excludesZero() || et.hi < tMin || et.lo > tMax) return false;
+        if (e1.excludesZero() || e2.excludesZero() || et.hi < lo || et.lo > best) return false;
         // The reachable parameters: eps in [lo, hi] is u in pu + pr * [lo, hi], rounded outward.
         const double su = 4 * kUlp * (std::fabs(pu) + pr), sv = 4 * kUlp * (std::fabs(pv) + prv);
         e.ru0 = std::max(e.u0, pu + pr * (cu - ru) - su);
@@ -462,7 +472,7 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
     e.hv = std::clamp(pv + prv * hitV, e.v0, e.v1);
     e.tLo = std::max(et.lo, lo);
     e.tHi = std::min(et.hi, hi);
-    if (e.tLo > e.tHi) return false;
+    if (e.tLo > e.tHi || e.tLo > best) return false;
     // The reachable part lies in the form's parallelogram and in the region's box as well: its
     // extent along each axis of the ray frame is the smaller of the two. (A form may be far wider
     // than its enclosure, e.g. after a steep fit whose interval range was clipped: the box then
@@ -482,7 +492,8 @@ bool TreeIntersector::Test(Entry& e, const RegionBound& b, double tMin, double t
     return true;
 }
 
-uint8_t TreeIntersector::ChildrenMissed(const Entry& e, double tMin, double tMax) const {
+uint8_t TreeIntersector::ChildrenMissed(const Entry& e, double best, double childLo[4]) const {
+    for (int i = 0; i < 4; ++i) childLo[i] = e.tLo;
     Measure m[3];
     MeasureAlong<3>(*e.bound, m_origin, m_frame, m);
     if (!m[0].bounded || !m[1].bounded || !m[2].bounded) return 0;
@@ -523,7 +534,11 @@ uint8_t TreeIntersector::ChildrenMissed(const Entry& e, double tMin, double tMax
         const double cu = 0.5 * (uLo + uHi), ru = std::max(uHi - cu, cu - uLo) * (1 + 4 * kUlp);
         const double cv = 0.5 * (vLo + vHi), rv = std::max(vHi - cv, cv - vLo) * (1 + 4 * kUlp);
         const Range e1 = Over(m[0], cu, ru, cv, rv), e2 = Over(m[1], cu, ru, cv, rv), et = Over(m[2], cu, ru, cv, rv);
-        if (e1.excludesZero() || e2.excludesZero() || et.hi < tMin || et.lo > tMax) missed |= uint8_t(1u << i);
+        // The child's points on the ray lie in e's bound over its part, at et and past e.tLo: the
+        // child is measured from there (Test), so that it is discarded here exactly when its
+        // measured range would lie beyond best.
+        childLo[i] = std::max(e.tLo, et.lo);
+        if (e1.excludesZero() || e2.excludesZero() || et.hi < e.tLo || childLo[i] > best) missed |= uint8_t(1u << i);
     }
     return missed;
 }
@@ -561,6 +576,16 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
         BuildFrontier(*group, stats);
     }
 
+    // The hit is a function of the ray, tMin and the tolerance (and the group) alone: tMax
+    // decides only whether it is reported (its t <= tMax) or not, never which it is. So a
+    // region's range and its hit's t depend on its own bound and its ancestors' ranges (Test),
+    // never on the best hit so far, which only discards regions that lie wholly beyond it; a
+    // hit is kept at t <= best (inclusive), the last found of equal ones; and every hit a
+    // region or its descendants can give lies in the region's [tLo, tHi] (children are
+    // measured from their parent's tLo). Then the walk finds the same hit with any tMax at
+    // least its t, and a caller may keep the nearest of several primitives' hits by t in any
+    // order (renderer/render.cpp: TraceNearest). The region budget is the exception: a walk
+    // given a nearer tMax tests fewer regions, so it may finish where a farther one ran out.
     double best = tMax;
     bool found = false;
     const int maxDepth = m_tree.maxDepth();
@@ -568,9 +593,9 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
     const BaseSurface& surface = m_tree.surface();
     // Measures the entry in the stack's next slot against the ray, with its bound `b`: it stays
     // on the stack if the ray can meet it.
-    auto measure = [&](const RegionBound& b) {
+    auto measure = [&](const RegionBound& b, double lo) {
         Entry& e = m_stack[m_top];
-        if (!Test(e, b, tMin, best)) return;
+        if (!Test(e, b, lo, best)) return;
         e.axis = SplitAxis(b, e.levelU, e.levelV, maxDepth);
         e.bound = &b;
         ++m_top;
@@ -585,12 +610,12 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
         // A coherent ray starts from its group's frontier instead of the root.
         for (const FrontierNode& f : m_frontier) {
             m_stack[m_top] = f.entry;
-            measure(f.bound);
+            measure(f.bound, tMin);
         }
         sortFrom(0);
     } else {
         m_stack[m_top] = RootEntry(m_tree.root());
-        measure(m_tree.root().bound);
+        measure(m_tree.root().bound, tMin);
     }
 
     while (m_top > 0) {
@@ -627,17 +652,24 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
             const NewtonHit n =
                 CertifyRegion(*m_evaluator, frame, {r.u0, r.u1, r.v0, r.v1, r.ru0, r.ru1, r.rv0, r.rv1}, r.hu, r.hv);
             ++m_evaluated;
-            if (n.roots == Roots::None || (n.roots == Roots::One && (n.tHi < tMin || n.tLo > best))) {
+            // A proved root is the region's hit: Newton's point, held to the region's range
+            // (moving it by its rounding at most, which the error takes in) so that no hit below
+            // a region lies nearer than its tLo. Whether it is past best is decided on that point
+            // alone, not on the window around it, which best may cut: the same with any best.
+            // (A root whose window straddles tMin is split as before, whatever best.)
+            const double tHit = std::min(std::max(n.t, r.tLo), r.tHi);
+            const bool proved = n.roots == Roots::One && n.tLo >= tMin;
+            if (n.roots == Roots::None || (n.roots == Roots::One && n.tHi < tMin) || (proved && tHit > best)) {
                 ++stats.newtonMisses;
                 continue;
             }
-            if (n.roots == Roots::One && n.tLo >= tMin && n.tHi <= best) {
+            if (proved) {
                 ++stats.newtonHits;
                 // The region's one point is trimmed away: no hit in it.
                 if (!surface.KeptP(n.u, n.v)) continue;
-                best = n.t;
+                best = tHit;
                 found = true;
-                *hit = Hit{n.t, n.u, n.v, n.error, false};
+                *hit = Hit{tHit, n.u, n.v, n.error + std::fabs(tHit - n.t), false};
                 if (anyHit) break;
                 continue;
             }
@@ -653,8 +685,10 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
             if (!surface.KeptP(r.hu, r.hv)) continue;
             double tHit = 0, error = 0;
             if (std::isfinite(r.size)) {
-                // The bound's t range meets [tMin, best] (checked when measured and popped).
-                tHit = std::clamp(0.5 * (r.tLo + r.tHi), std::max(r.tLo, tMin), std::min(r.tHi, best));
+                // The middle of the region's range (tMin <= tLo <= tHi: Test); kept only if
+                // no hit found before is nearer.
+                tHit = std::clamp(0.5 * (r.tLo + r.tHi), r.tLo, r.tHi);
+                if (tHit > best) continue;
                 error = r.size;
             } else {
                 // Unbounded down to the depth limit: nothing rules a hit out, so this is a possible
@@ -666,7 +700,9 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
                 if (!m_evaluator->PointAt(r.hu, r.hv, &p)) continue;
                 ++m_evaluated;
                 tHit = glm::dot(p - m_origin, m_dir);
-                if (!std::isfinite(tHit) || tHit < tMin || tHit > best) continue;
+                if (!std::isfinite(tHit) || tHit < tMin) continue;
+                tHit = std::min(std::max(tHit, r.tLo), r.tHi);  // in the region's range, as every hit
+                if (tHit > best) continue;
                 error = INFINITY;
             }
             if (atLimit && !small) ++stats.depthLimitHits;
@@ -683,14 +719,15 @@ bool TreeIntersector::Intersect(const Ray& ray, double tMin, double tMax, const 
         // first). A child outside the parameters where the parent's parallelogram meets the ray
         // is missed without being looked at.
         BoundNode* kids = m_walker.Children(*r.node);
-        const uint8_t missed = m_tree.costlyBounds() ? ChildrenMissed(r, tMin, best) : 0;
+        double childLo[4] = {r.tLo, r.tLo, r.tLo, r.tLo};
+        const uint8_t missed = m_tree.costlyBounds() ? ChildrenMissed(r, best, childLo) : 0;
         const size_t first = m_top;
         for (int i = 0; i < ChildCount(r); ++i) {
             Entry& c = m_stack[m_top];
             SetChild(r, kids, i, &c);
             if (c.u1 < r.ru0 || c.u0 > r.ru1 || c.v1 < r.rv0 || c.v0 > r.rv1) continue;
             if (missed & (1u << i)) continue;
-            measure(m_walker.Bound(kids[i], c.u0, c.u1, c.v0, c.v1, *m_evaluator, &m_evaluated));
+            measure(m_walker.Bound(kids[i], c.u0, c.u1, c.v0, c.v1, *m_evaluator, &m_evaluated), childLo[i]);
         }
         sortFrom(first);
     }

@@ -97,6 +97,10 @@ class SurfaceIntersector {
     /// found (for shadow rays). A ray of a `group` (it must lie inside it) shares the walk of the
     /// top levels with the group's other rays; its result is a function of the ray and the group,
     /// whichever rays came before.
+    /// Without `anyHit` the hit does not depend on tMax: it is the hit the search up to any farther
+    /// tMax finds, or none if that lies beyond tMax (outside the region budget, which a nearer tMax
+    /// may not exhaust). A caller may so search several surfaces, each up to the nearest hit so
+    /// far, and keep the nearest in any order (renderer/render.cpp: TraceNearest).
     virtual bool Intersect(const Ray& ray, double tMin, double tMax, const Tolerance& tolerance, bool anyHit, Hit* hit,
                            IntersectStats& stats, const RayGroup* group = nullptr) = 0;
 };

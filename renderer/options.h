@@ -12,6 +12,7 @@
 
 #include "lang/preprocess.h"
 #include "renderer/bound_tree.h"
+#include "renderer/bvh.h"
 #include "renderer/intersect.h"
 
 namespace affray::renderer {
@@ -52,6 +53,9 @@ struct Options {
     int tileSize = 32;                             // pixels per side (less for small images: Renderer::TileSize)
     /// Take the tiles last first: the image must not depend on the order (a test option).
     bool reverseTileOrder = false;
+    /// How the top-level BVH splits its nodes: the image must not depend on the tree's shape (a
+    /// test option, issue 32).
+    Bvh::Split bvhSplit = Bvh::Split::kSah;
     /// Camera rays are traced in groups of this many pixels per side, which share the walk of the
     /// bound hierarchies' top levels (RayGroup); blocks of the whole image, so the image does not
     /// depend on the tiles. 0: every ray alone.

@@ -490,7 +490,7 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
         if (problems[i].empty()) continue;
         return fail(requestAt(*out->primitives[i].attributes().displacement), problems[i]);
     }
-    out->bvh = std::make_unique<Bvh>(boxes, &m_pool);
+    out->bvh = std::make_unique<Bvh>(boxes, &m_pool, m_options.bvhSplit);
     out->shadersCompiled = cache.misses();
     out->shadersReused = cache.hits();
     out->lights = desc.lights;

@@ -32,6 +32,8 @@ namespace {
 struct ThreadState {
     IntersectStats cameraStats, shadowStats;
     uint64_t cameraRays = 0;
+    /// ShadowTransmission's scratch: the partly transparent primitives a shadow ray passes.
+    std::vector<std::pair<int, glm::dvec3>> shadowShares;
 
     /// Per primitive, the factor its tolerance is scaled by (ToleranceScales).
     const std::vector<double>& toleranceScale;
@@ -234,19 +236,43 @@ HitPoint EvaluateHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray
     return h;
 }
 
+/// Whether hit a on primitive ia is kept before hit b on primitive ib: the nearer; of hits at the
+/// same t (two surfaces' regions whose ranges along the ray are the same, as a surface and its
+/// copy moved along z give where the x and y sides of their bounds bound the range), the one
+/// with the smaller certified error, then the smaller (u, v): an order of the hits themselves,
+/// so that the scene's order of primitives decides only between hits the same in all of these.
+bool Before(const Hit& a, int ia, const Hit& b, int ib) {
+    if (a.t != b.t) return a.t < b.t;
+    if (a.error != b.error) return a.error < b.error;
+    if (a.u != b.u) return a.u < b.u;
+    if (a.v != b.v) return a.v < b.v;
+    return ia < ib;
+}
+
 /// The nearest hit along `ray` in [tMin, tMax] over the primitives the BVH offers. A one-sided
 /// primitive (Sides 1) seen from behind (its geometric normal away from the ray) is not hit: the
 /// search goes on past it.
+/// The hit kept is a function of the ray and the scene's primitives, whatever the BVH's shape or
+/// the order it offers them in (issue 32): each primitive's hit does not depend on the tMax it is
+/// searched with (SurfaceIntersector::Intersect), only whether it is reported; it lies past
+/// where the ray enters the primitive's box (the search starts there), so the BVH skips only
+/// boxes entered beyond a hit already found; and of hits at the same t one is kept by an order
+/// of the hits themselves (Before). Two surfaces whose hits lie within the tolerance of each other (a
+/// cone standing on a displaced floor) are then told apart by the same rule on every BVH.
 NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& ray, double tMin, double tMax,
                         const Tolerance& tol, IntersectStats& stats, const glm::dvec3& eye, const RayGroup* group) {
     constexpr int kMaxBackFaces = 16;
     for (int attempt = 0; attempt <= kMaxBackFaces; ++attempt) {
         NearestHit nearest;
         double best = tMax;
-        scene.bvh->Traverse(ray, tMin, &best, [&](int i, double) {
+        scene.bvh->Traverse(ray, tMin, &best, [&](int i, double tEntry) {
             if (!scene.primitives[i].cameraVisible()) return true;  // Attribute "visibility" "camera" 0
+            // From the box's entry (at least tMin, and a function of the ray and the primitive's
+            // box alone): every surface point lies past it, and so then does the hit, which the
+            // BVH would otherwise skip, its box entered beyond a nearer hit's t.
             Hit hit;
-            if (ts.Intersect(i, ray, tMin, best, ToleranceOf(ts, i, tol), false, &hit, stats, group)) {
+            if (ts.Intersect(i, ray, tEntry, best, ToleranceOf(ts, i, tol), false, &hit, stats, group) &&
+                (nearest.primitive < 0 || Before(hit, i, nearest.hit, nearest.primitive))) {
                 best = hit.t;
                 nearest = {hit, i, std::nullopt};
             }
@@ -295,23 +321,36 @@ glm::dvec3 ShadowTransmission(const PreparedScene& scene, ThreadState& ts, const
         return !blocked;
     });
     if (blocked) return glm::dvec3(0.0);
-    glm::dvec3 through(1.0);
-    if (!partly) return through;
+    if (!partly) return glm::dvec3(1.0);
+    // Each partly transparent primitive's share, the product over its hits nearest first; the
+    // shares multiplied in primitive order after, not in the BVH's (products round differently
+    // in another order).
+    std::vector<std::pair<int, glm::dvec3>>& shares = ts.shadowShares;
+    shares.clear();
+    bool dark = false;
     tEnd = tMax;
     scene.bvh->Traverse(ray, tMin, &tEnd, [&](int i, double) {
         const Primitive& prim = scene.primitives[i];
         if (prim.transmission() != Transmission::Opacity || prim.OpaqueP()) return true;
+        glm::dvec3 share(1.0);
         double from = tMin;
         for (int layer = 0; layer < kMaxLayers; ++layer) {
             Hit hit;
-            if (!ts.Intersect(i, ray, from, tMax, ToleranceOf(ts, i, tol), false, &hit, ts.shadowStats)) return true;
-            through *= 1.0 - prim.OpacityAt(hit.u, hit.v);
-            if (through == glm::dvec3(0.0)) return false;
+            if (!ts.Intersect(i, ray, from, tMax, ToleranceOf(ts, i, tol), false, &hit, ts.shadowStats)) {
+                shares.emplace_back(i, share);
+                return true;
+            }
+            share *= 1.0 - prim.OpacityAt(hit.u, hit.v);
+            if (share == glm::dvec3(0.0)) break;
             from = Beyond(hit, tol);
         }
-        through = glm::dvec3(0.0);
+        dark = true;  // blocked, or more layers than kMaxLayers: taken as blocked
         return false;
     });
+    if (dark) return glm::dvec3(0.0);
+    std::sort(shares.begin(), shares.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    glm::dvec3 through(1.0);
+    for (const auto& [i, share] : shares) through *= share;
     return through;
 }
 

@@ -214,6 +214,7 @@ renderer::Options OptionsOf(const RenderCommand& cmd) {
     options.rayGroupPixels = cmd.rayGroupPixels;
     options.newton = cmd.newton;
     options.reverseTileOrder = cmd.reverseTiles;
+    options.bvhSplit = cmd.medianBvh ? renderer::Bvh::Split::kMedian : renderer::Bvh::Split::kSah;
     return options;
 }
 

@@ -60,6 +60,7 @@ struct RenderCommand {
     std::optional<int> frame;   // --frame N: only the frames numbered N (FrameBegin N)
     bool resume = false;        // --resume: continue the checkpoint beside the output (tools/frame_output.h)
     bool reverseTiles = false;  // --tile-order reverse (a test option: the image must not change)
+    bool medianBvh = false;     // --bvh median (a test option: the image must not change)
 };
 
 /// affray split: the tiles of every frame as Slurm job scripts, or as shell commands.

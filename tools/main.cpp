@@ -257,6 +257,11 @@ bool RenderOption(const std::string& a, Args& args, affray::tools::RenderCommand
         if (order != "forward" && order != "reverse")
             throw UsageError{"--tile-order takes forward or reverse, got '" + order + "'"};
         cmd.reverseTiles = order == "reverse";
+    } else if (a == "--bvh") {
+        // For tests of determinism; not in the usage text.
+        const std::string split = args.Value(a);
+        if (split != "sah" && split != "median") throw UsageError{"--bvh takes sah or median, got '" + split + "'"};
+        cmd.medianBvh = split == "median";
     } else if (a == "--ray-groups")
         cmd.rayGroupPixels = ParseInt(args.Value(a), a, 0, 256);
     else if (a == "--newton")

@@ -454,3 +454,65 @@ TEST_CASE("intersector: a ray along a curved surface's mean plane is not culled 
         }
     }
 }
+
+TEST_CASE("intersector: a hit does not depend on tMax, only whether it is reported", "[renderer][intersect]") {
+    // Issue 32: a render keeps the nearest of its primitives' hits, searching each only up to the
+    // nearest hit so far. For the hit kept not to depend on the order the BVH offers them in, a
+    // primitive's hit must be the same with any tMax at or beyond its t, and none nearer: the
+    // same bits, with leaf and Newton hits, cheap and costly bounds (stucco's noise: the parent's
+    // bound culls children, BoundTree::costlyBounds), alone or in a ray group (from its frontier).
+    compiler::CompileResult wave = compiler::CompileFile(test::SourceDir() + "/shaders/wave.sl");
+    compiler::CompileResult stucco =
+        compiler::CompileFile(test::SourceDir() + "/shaders/stucco.sl", {{"frequency", {9}}, {"Km", {0.1}}});
+    REQUIRE(wave.ok());
+    REQUIRE(stucco.ok());
+    // Rays from one point above the square, through the quadrilateral of a group's corners.
+    const glm::dvec3 eye(0.45, 0.55, 1.5);
+    const glm::dvec3 quad[4] = {{0.1, 0.1, 0}, {0.9, 0.1, 0}, {0.9, 0.9, 0}, {0.1, 0.9, 0}};
+    Ray corners[4];
+    for (int k = 0; k < 4; ++k) corners[k] = Ray{eye, glm::normalize(quad[k] - eye)};
+    const renderer::RayGroup group = renderer::RayGroup::FromCorners(corners, 1);
+    auto same = [](const Hit& a, const Hit& b) {
+        return a.t == b.t && a.u == b.u && a.v == b.v && a.error == b.error && a.depthLimited == b.depthLimited;
+    };
+    for (const vm::Program* program : {&wave.shader->bound, &stucco.shader->bound})
+        for (const double newtonReach : {0.0, 1.0})
+            for (const bool grouped : {false, true}) {
+                INFO("program of " << program->code.size() << " operations, Newton reach " << newtonReach
+                                   << (grouped ? ", grouped" : ""));
+                auto intersector = renderer::MakeSurfaceIntersector(kSquare, *program, eye, BoundMode::Reduced, 24);
+                // A coarse tolerance: leaves whose ranges overlap, where the nearest hit so far
+                // would cut them.
+                const Tolerance tol{3e-3, 0.0, newtonReach};
+                std::mt19937_64 rng(31);
+                std::uniform_real_distribution<double> unit(0.0, 1.0);
+                IntersectStats stats;
+                const renderer::RayGroup* g = grouped ? &group : nullptr;
+                int hits = 0;
+                for (int i = 0; i < 60; ++i) {
+                    const double a = unit(rng), b = unit(rng);
+                    const glm::dvec3 target =
+                        (1 - a) * ((1 - b) * quad[0] + b * quad[3]) + a * ((1 - b) * quad[1] + b * quad[2]);
+                    const Ray ray{eye, glm::normalize(target - eye)};
+                    Hit hit;
+                    if (!intersector->Intersect(ray, 0.0, INFINITY, tol, false, &hit, stats, g)) continue;
+                    ++hits;
+                    INFO("ray " << i << ": t " << hit.t << ", error " << hit.error);
+                    for (const double tMax : {hit.t, std::nextafter(hit.t, INFINITY), hit.t + 0.3 * hit.error,
+                                              hit.t + hit.error, hit.t + 3 * hit.error, 2 * hit.t}) {
+                        Hit again;
+                        INFO("tMax " << tMax);
+                        REQUIRE(intersector->Intersect(ray, 0.0, tMax, tol, false, &again, stats, g));
+                        CHECK(same(again, hit));
+                    }
+                    for (const double tMax : {std::nextafter(hit.t, 0.0), hit.t - 0.3 * hit.error}) {
+                        if (!(tMax < hit.t)) continue;
+                        Hit nearer;
+                        INFO("tMax " << tMax);
+                        CHECK_FALSE(intersector->Intersect(ray, 0.0, tMax, tol, false, &nearer, stats, g));
+                    }
+                }
+                CHECK(hits > 40);
+                if (newtonReach > 0) CHECK(stats.newtonHits > 0);
+            }
+}
