@@ -9,10 +9,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "renderer/renderer.h"
-#include "rib/rib.h"
 #include "scene/geometry/camera.h"
-#include "tests/test_util.h"
+#include "tests/renderer/render_text.h"
 
 using namespace affray;
 using namespace affray::renderer;
@@ -48,41 +46,13 @@ std::string Scene(const std::string& camera, int samples) {
     return rib.str();
 }
 
-image::ImageBuffer RenderText(const std::string& rib) {
-    diag::Report error;
-    std::optional<SceneDesc> desc = rib::ParseRib(rib, "t.rib", &error);
-    INFO(error);
-    REQUIRE(desc);
-    PreparedScene prepared;
-    const bool ok =
-        Renderer(Options{.shaderPaths = {test::SourceDir() + "/shaders"}}).Prepare(*desc, &prepared, &error);
-    INFO(error);
-    REQUIRE(ok);
-    Options options;
-    options.threads = 2;
-    image::ImageBuffer image;
-    RenderStats stats;
-    Renderer(options).Render(prepared, &image, &stats);
-    return image;
-}
-
-double Rmse(const image::ImageBuffer& a, const image::ImageBuffer& b) {
-    double sum = 0;
-    for (size_t i = 0; i < a.rgba.size(); ++i) {
-        if (i % 4 == 3) continue;
-        const double d = double(a.rgba[i]) - double(b.rgba[i]);
-        sum += d * d;
-    }
-    return std::sqrt(sum / double(a.rgba.size() / 4 * 3));
-}
-
 }  // namespace
 
 TEST_CASE("depth of field: the lens image is the mean of pinhole images from the lens's points", "[renderer][dof]") {
     std::ostringstream dof;
     dof << "DepthOfField " << kFstop << ' ' << kFocalLength << ' ' << kFocalDistance << "\n";
-    const image::ImageBuffer lens = RenderText(Scene(dof.str(), 16));
-    const image::ImageBuffer pinhole = RenderText(Scene("", 16));
+    const image::ImageBuffer lens = test::RenderText(Scene(dof.str(), 16));
+    const image::ImageBuffer pinhole = test::RenderText(Scene("", 16));
 
     // The brute force: 8 x 8 points of the lens (stratum centres, mapped onto the disc as the
     // renderer maps its samples), a pinhole image from each.
@@ -100,12 +70,12 @@ TEST_CASE("depth of field: the lens image is the mean of pinhole images from the
             camera.precision(17);
             camera << "ScreenWindow " << -aspect - dx << ' ' << aspect - dx << ' ' << -1 - dy << ' ' << 1 - dy
                    << "\nTranslate " << -l.x << ' ' << -l.y << " 0\n";
-            const image::ImageBuffer view = RenderText(Scene(camera.str(), 4));
+            const image::ImageBuffer view = test::RenderText(Scene(camera.str(), 4));
             for (size_t k = 0; k < sum.size(); ++k) sum[k] += view.rgba[k];
         }
     for (size_t k = 0; k < sum.size(); ++k) mean.rgba[k] = float(sum[k] / (kLensGrid * kLensGrid));
 
-    const double error = Rmse(lens, mean), blur = Rmse(pinhole, mean);
+    const double error = test::RgbRmse(lens, mean), blur = test::RgbRmse(pinhole, mean);
     INFO("RMSE of the lens image against the brute force " << error << ", of the pinhole image " << blur);
     // Measured: 0.0035, against 0.050 for the pinhole image; a lens of twice the radius gave
     // 0.047, one focused 10 % nearer 0.027.

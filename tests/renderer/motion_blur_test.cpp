@@ -8,9 +8,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "renderer/renderer.h"
-#include "rib/rib.h"
-#include "tests/test_util.h"
+#include "tests/renderer/render_text.h"
 
 using namespace affray;
 using namespace affray::renderer;
@@ -44,34 +42,6 @@ std::string Scene(const std::string& camera, const std::string& sphere, int samp
     return rib.str();
 }
 
-image::ImageBuffer RenderText(const std::string& rib) {
-    diag::Report error;
-    std::optional<SceneDesc> desc = rib::ParseRib(rib, "t.rib", &error);
-    INFO(error);
-    REQUIRE(desc);
-    PreparedScene prepared;
-    const bool ok =
-        Renderer(Options{.shaderPaths = {test::SourceDir() + "/shaders"}}).Prepare(*desc, &prepared, &error);
-    INFO(error);
-    REQUIRE(ok);
-    Options options;
-    options.threads = 2;
-    image::ImageBuffer image;
-    RenderStats stats;
-    Renderer(options).Render(prepared, &image, &stats);
-    return image;
-}
-
-double Rmse(const image::ImageBuffer& a, const image::ImageBuffer& b) {
-    double sum = 0;
-    for (size_t i = 0; i < a.rgba.size(); ++i) {
-        if (i % 4 == 3) continue;
-        const double d = double(a.rgba[i]) - double(b.rgba[i]);
-        sum += d * d;
-    }
-    return std::sqrt(sum / double(a.rgba.size() / 4 * 3));
-}
-
 /// The mean of still renders at kTimes times (stratum centres of [0, 1)), each made by
 /// `still`(time) -> RIB.
 template <typename Still>
@@ -79,7 +49,7 @@ image::ImageBuffer MeanOfStills(Still still) {
     image::ImageBuffer mean;
     std::vector<double> sum;
     for (int i = 0; i < kTimes; ++i) {
-        const image::ImageBuffer view = RenderText(still((i + 0.5) / kTimes));
+        const image::ImageBuffer view = test::RenderText(still((i + 0.5) / kTimes));
         if (sum.empty()) {
             sum.assign(view.rgba.size(), 0.0);
             mean = view;
@@ -100,7 +70,7 @@ std::string Translate(double x, double y, double z) {
 /// Checks a blurred render against the brute force and against the still image at time 0.
 void CheckBlur(const image::ImageBuffer& blurred, const image::ImageBuffer& mean, const image::ImageBuffer& still,
                double bound, double ratio) {
-    const double error = Rmse(blurred, mean), blur = Rmse(still, mean);
+    const double error = test::RgbRmse(blurred, mean), blur = test::RgbRmse(still, mean);
     INFO("RMSE of the blurred image against the brute force " << error << ", of the still image " << blur);
     CHECK(error < bound);
     // The blur is there to be measured: the still image differs several times more.
@@ -112,10 +82,10 @@ void CheckBlur(const image::ImageBuffer& blurred, const image::ImageBuffer& mean
 TEST_CASE("motion blur: a sliding displaced sphere is the mean of still spheres over the shutter",
           "[renderer][motion]") {
     const std::string motion = "MotionBegin [0 1]\n" + Translate(-0.7, 0, 0) + Translate(0.7, 0.2, 0) + "MotionEnd\n";
-    const image::ImageBuffer blurred = RenderText(Scene("", motion, kSamples, "Shutter 0 1\n"));
+    const image::ImageBuffer blurred = test::RenderText(Scene("", motion, kSamples, "Shutter 0 1\n"));
     const image::ImageBuffer mean =
         MeanOfStills([](double t) { return Scene("", Translate(-0.7 + 1.4 * t, 0.2 * t, 0), kSamples); });
-    const image::ImageBuffer still = RenderText(Scene("", Translate(-0.7, 0, 0), kSamples));
+    const image::ImageBuffer still = test::RenderText(Scene("", Translate(-0.7, 0, 0), kSamples));
     // Measured: 0.0046, against 0.138 for the still image. Planted faults: shadow rays at time 0
     // give 0.077; hit points, normals and tangents left where the geometry is placed, 0.016.
     CheckBlur(blurred, mean, still, 0.008, 10);
@@ -127,7 +97,7 @@ TEST_CASE("motion blur: a spinning sphere and a moving camera", "[renderer][moti
         // interpolates the same matrices (a ConcatTransform of each time's).
         const std::string motion =
             "MotionBegin [0 0.5 1]\nRotate 0 0 0 1\nRotate 45 0 0 1\nRotate 90 0 0 1\nMotionEnd\n";
-        const image::ImageBuffer blurred = RenderText(Scene("", motion, kSamples, "Shutter 0 1\n"));
+        const image::ImageBuffer blurred = test::RenderText(Scene("", motion, kSamples, "Shutter 0 1\n"));
         auto matrix = [](double t) {
             const double a0 = t < 0.5 ? 0 : 45, a1 = t < 0.5 ? 45 : 90, w = t < 0.5 ? 2 * t : 2 * t - 1;
             const double c = (1 - w) * std::cos(a0 * M_PI / 180) + w * std::cos(a1 * M_PI / 180);
@@ -138,17 +108,17 @@ TEST_CASE("motion blur: a spinning sphere and a moving camera", "[renderer][moti
             return out.str();
         };
         const image::ImageBuffer mean = MeanOfStills([&](double t) { return Scene("", matrix(t), kSamples); });
-        const image::ImageBuffer still = RenderText(Scene("", "", kSamples));
+        const image::ImageBuffer still = test::RenderText(Scene("", "", kSamples));
         // Measured: 0.0039, against 0.016 for the still image (the bumps move, the outline does
         // not); shadow rays at time 0 give 0.0095.
         CheckBlur(blurred, mean, still, 0.008, 3);
     }
     SECTION("a camera moving across the scene") {
         const std::string motion = "MotionBegin [0 1]\n" + Translate(0.5, 0, 0) + Translate(-0.5, 0, 0) + "MotionEnd\n";
-        const image::ImageBuffer blurred = RenderText(Scene(motion, "", kSamples, "Shutter 0 1\n"));
+        const image::ImageBuffer blurred = test::RenderText(Scene(motion, "", kSamples, "Shutter 0 1\n"));
         const image::ImageBuffer mean =
             MeanOfStills([](double t) { return Scene(Translate(0.5 - t, 0, 0), "", kSamples); });
-        const image::ImageBuffer still = RenderText(Scene(Translate(0.5, 0, 0), "", kSamples));
+        const image::ImageBuffer still = test::RenderText(Scene(Translate(0.5, 0, 0), "", kSamples));
         // Measured: 0.0045, against 0.135 for the still image.
         CheckBlur(blurred, mean, still, 0.008, 10);
     }
@@ -158,11 +128,12 @@ TEST_CASE("motion blur: a shutter that does not open, or a scene that does not m
           "[renderer][motion]") {
     const std::string motion = "MotionBegin [0 1]\n" + Translate(-0.7, 0, 0) + Translate(0.7, 0, 0) + "MotionEnd\n";
     // Shutter 0 0 (the default): every sample at time 0, where the block's first sample places it.
-    CHECK(Rmse(RenderText(Scene("", motion, 2)), RenderText(Scene("", Translate(-0.7, 0, 0), 2))) == 0);
+    CHECK(test::RgbRmse(test::RenderText(Scene("", motion, 2)),
+                        test::RenderText(Scene("", Translate(-0.7, 0, 0), 2))) == 0);
     // Shutter 0.5 0.5: halfway.
-    CHECK(Rmse(RenderText(Scene("", motion, 2, "Shutter 0.5 0.5\n")), RenderText(Scene("", Translate(0, 0, 0), 2))) <
-          1e-5);
+    CHECK(test::RgbRmse(test::RenderText(Scene("", motion, 2, "Shutter 0.5 0.5\n")),
+                        test::RenderText(Scene("", Translate(0, 0, 0), 2))) < 1e-5);
     // An open shutter over a scene that stands still: the same image, bit for bit.
-    CHECK(Rmse(RenderText(Scene("", Translate(0.2, 0, 0), 2, "Shutter 0 1\n")),
-               RenderText(Scene("", Translate(0.2, 0, 0), 2))) == 0);
+    CHECK(test::RgbRmse(test::RenderText(Scene("", Translate(0.2, 0, 0), 2, "Shutter 0 1\n")),
+                        test::RenderText(Scene("", Translate(0.2, 0, 0), 2))) == 0);
 }
