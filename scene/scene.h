@@ -449,9 +449,27 @@ inline std::string ToString(const PrimitiveDesc& p) {
 inline bool ShutterOpenP(const CameraDesc& c) { return c.shutterClose > c.shutterOpen; }
 
 /// Whether the camera has a lens (DepthOfField with a finite fstop and positive lengths, on a
-/// perspective projection): camera rays then start across it.
+/// perspective projection) whose blur can show: camera rays then start across it. A lens point
+/// at distance d from the centre moves the image of a point at camera depth z by d |1/z - 1/f|
+/// on the plane z = 1 (f the focal distance), most at the clipping planes; a lens that moves no
+/// image by a hundredth of a pixel there (exporters write `DepthOfField 1000000 1 1` for a
+/// pinhole, with near clipping far from the eye) is taken as the pinhole it draws, so that ray
+/// groups still apply.
 inline bool LensP(const CameraDesc& c) {
-    return c.perspective && std::isfinite(c.fstop) && c.fstop > 0 && c.focalLength > 0 && c.focalDistance > 0;
+    if (!(c.perspective && std::isfinite(c.fstop) && c.fstop > 0 && c.focalLength > 0 && c.focalDistance > 0))
+        return false;
+    const double radius = 0.5 * c.focalLength / c.fstop, f = c.focalDistance;
+    const double spread = radius * std::max(std::fabs(1 / c.nearClip - 1 / f), std::fabs(1 / c.farClip - 1 / f));
+    // A pixel on the plane z = 1, the smaller of its sides (Camera's screen window, as derived there).
+    const double aspect = c.frameAspectRatio.value_or(c.xres * c.pixelAspect / c.yres);
+    const double tanHalf = std::tan(c.fovDegrees * (3.14159265358979323846 / 360));
+    double width = aspect >= 1 ? 2 * aspect : 2, height = aspect >= 1 ? 2 : 2 / aspect;
+    if (c.screenWindow) {
+        width = std::fabs(c.screenWindow->y - c.screenWindow->x);
+        height = std::fabs(c.screenWindow->w - c.screenWindow->z);
+    }
+    const double pixel = tanHalf * std::min(width / c.xres, height / c.yres);
+    return !(spread < 0.01 * pixel);  // NaN (a clipping plane at 0): a lens
 }
 
 inline std::string ToString(const CameraDesc& c) {

@@ -282,6 +282,19 @@ TEST_CASE("A lens ray starts on the lens and passes where the pinhole ray meets 
         REQUIRE(s);
         CHECK_FALSE(Camera(s->camera).HasLens());
     }
+    // A lens too small to move any image by a hundredth of a pixel between the clipping planes is
+    // the pinhole it draws; the same lens with the near plane at 1e-4 (images there move by
+    // radius / 1e-4 = 5e-3 on the plane z = 1, more than a pixel) is a lens. A pixel there is
+    // 2 tan(45 deg) / 480 = 4.2e-3 at the default 640x480 and fov 90.
+    auto lens = [&](const std::string& rib) {
+        auto s = ParseRib("Projection \"perspective\"\n" + rib + "WorldBegin\nWorldEnd\n", "t.rib", &error);
+        REQUIRE(s);
+        return Camera(s->camera).HasLens();
+    };
+    CHECK_FALSE(lens("Clipping 0.1 10000\nDepthOfField 1000000 1 1\n"));  // radius 5e-7: moves images by 5e-6
+    CHECK(lens("Clipping 0.0001 10000\nDepthOfField 1000000 1 1\n"));
+    CHECK(lens("DepthOfField 1000000 1 1\n"));                    // the RI default near plane, 1e-10
+    CHECK(lens("Clipping 0.1 10000\nDepthOfField 22 0.05 1\n"));  // a real lens: radius 1.1e-3
 }
 
 TEST_CASE("The lens map takes the unit square onto the disc, area for area", "[renderer][camera]") {
