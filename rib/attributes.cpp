@@ -386,6 +386,7 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     std::vector<RibParam> params;  // those of a light affray does not have are unchecked
     if (!ParamList(r, 2, &params, shader != nullptr)) return false;
     if (m_worldEnded) return Fail(r.at, "'LightSource' after 'WorldEnd'");
+    WarnIfMoving(r);
 
     LightDesc light;
     light.line = r.at.line;

@@ -157,6 +157,9 @@ class RibParser : private RibArgChecks {
     bool Dispatch(const RibRequest& r);
     /// Runs the transform request `r` on each matrix of the moving CTM.
     bool OnEveryTime(const RibRequest& r);
+    /// Warns that `r` (a light or a coordinate system) is placed at the first time of a moving
+    /// CTM, if the CTM moves: they do not move with it.
+    void WarnIfMoving(const RibRequest& r);
     /// Runs `r` by its handler.
     bool DispatchRequest(const RibRequest& r);
     /// An open MotionBegin: where, its times, the kind of request it holds, how many so far.

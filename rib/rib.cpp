@@ -225,6 +225,12 @@ bool RibParser::OnEveryTime(const RibRequest& r) {
     return true;
 }
 
+void RibParser::WarnIfMoving(const RibRequest& r) {
+    if (!m_state.motion) return;
+    Warn(r.at, Quote(r.name) + " under a moving transform is placed where the transform is at its first time (" +
+                   FormatNumber(m_state.motion->times.front()) + "): lights and coordinate systems do not move");
+}
+
 bool RibParser::DispatchRequest(const RibRequest& r) {
     static const std::unordered_map<std::string_view, Handler> kHandlers = {
         {"Format", &RibParser::DoFormat},
