@@ -560,4 +560,24 @@ Vec3<T> EvaluateOnPatch(vm::Interpreter<T>& interp, const BilinearPatch& patch, 
     return EvaluateOnSurface(interp, BaseSurface(patch), u0, u1, v0, v1, eye, output);
 }
 
+// The surface setters for the VM's eight number types are compiled once, in surface.cpp, not in
+// every file that sets or evaluates a surface (the renderer, the CLI and forty test files): the
+// frames of six surface kinds in eight types were a third to a half of those files' compile time.
+// Another type (a test's) still instantiates them from the templates above.
+#define AFFRAY_SURFACE_INSTANCES(EXTERN, T)                                                                            \
+    EXTERN template void SetSurfaceGlobals<T>(vm::Interpreter<T>&, const BaseSurface&, double, double, double, double, \
+                                              const glm::dvec3&);                                                      \
+    EXTERN template Vec3<T> EvaluateOnSurface<T>(vm::Interpreter<T>&, const BaseSurface&, double, double, double,      \
+                                                 double, const glm::dvec3&, const vm::ProgramOutput&);                 \
+    EXTERN template Vec3<T> EvaluateOnPatch<T>(vm::Interpreter<T>&, const BilinearPatch&, double, double, double,      \
+                                               double, const glm::dvec3&, const vm::ProgramOutput&);
+// (clang-format's layout of this list is not stable from one run to the next.)
+// clang-format off
+#define AFFRAY_SURFACE_NUMBER_TYPES(X, EXTERN) \
+    X(EXTERN, double) X(EXTERN, vm::Interval) X(EXTERN, vm::Affine) X(EXTERN, vm::ReducedAffine) \
+    X(EXTERN, vm::Dual<double>) X(EXTERN, vm::Dual<vm::Interval>) X(EXTERN, vm::Dual<vm::Affine>) \
+    X(EXTERN, vm::Dual<vm::ReducedAffine>)
+// clang-format on
+AFFRAY_SURFACE_NUMBER_TYPES(AFFRAY_SURFACE_INSTANCES, extern)
+
 }  // namespace affray::renderer
