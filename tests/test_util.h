@@ -63,6 +63,25 @@ class TempDir {
     std::filesystem::path m_path;
 };
 
+/// True in an AddressSanitizer build. GCC defines __SANITIZE_ADDRESS__; clang 14, which CI's
+/// sanitizer build uses, does not, and answers __has_feature(address_sanitizer) instead.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kSanitized = true;
+#else
+inline constexpr bool kSanitized = false;
+#endif
+#else
+inline constexpr bool kSanitized = false;
+#endif
+
+/// The heaviest property tests take this fraction of their samples under the sanitizers (-O1,
+/// several times slower, there to catch memory and undefined behaviour rather than rare
+/// regions); the Release suite takes them all.
+inline constexpr int kSanitizerDivisor = kSanitized ? 4 : 1;
+
 inline std::string SourceDir() { return AFFRAY_SOURCE_DIR; }
 
 /// The first line of the last diagnostic in `report` ("file: error: message"), "" if none.

@@ -20,11 +20,8 @@ using namespace affray;
 
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kWorkDivisor = 4;  // ASan + UBSan build (-O1): a quarter of the regions, half the pixels
-#else
-constexpr int kWorkDivisor = 1;
-#endif
+// Under the sanitizers: a quarter of the regions, half the pixels each way.
+constexpr int kWorkDivisor = test::kSanitizerDivisor;
 
 constexpr int kWidth = kWorkDivisor == 1 ? 24 : 12, kHeight = kWorkDivisor == 1 ? 18 : 9;
 

@@ -17,17 +17,7 @@ using namespace affray;
 
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
+using test::kSanitized;
 
 /// The number after "\"key\":" in a --stats line (the first such key), or NaN.
 double StatField(const std::string& json, const std::string& key) {

@@ -17,8 +17,9 @@ TEST_CASE("containment: every shader's scalar P lies in its affine and interval 
         compiler::CompileResult r = compiler::CompileFile(path);
         INFO(path << "\n" << r.diagnostics);
         REQUIRE(r.ok());
-        test::CheckContainment<vm::Affine, vm::Interval>(path, r.shader->bound, 2000, 24, 42);
-        test::CheckContainment<vm::Affine, vm::Interval>(path + " (shade)", r.shader->shade, 60, 12, 43);
+        test::CheckContainment<vm::Affine, vm::Interval>(path, r.shader->bound, 2000 / test::kSanitizerDivisor, 24, 42);
+        test::CheckContainment<vm::Affine, vm::Interval>(path + " (shade)", r.shader->shade,
+                                                         60 / test::kSanitizerDivisor, 12, 43);
     }
 }
 

@@ -302,8 +302,10 @@ TEST_CASE("containment: every shader's scalar P lies in its reduced affine bound
         affray::compiler::CompileResult r = affray::compiler::CompileFile(path);
         INFO(path << "\n" << r.diagnostics);
         REQUIRE(r.ok());
-        affray::test::CheckContainment<ReducedAffine>(path, r.shader->bound, 2000, 24, 42);
-        affray::test::CheckContainment<ReducedAffine>(path + " (shade)", r.shader->shade, 60, 12, 43);
+        affray::test::CheckContainment<ReducedAffine>(path, r.shader->bound, 2000 / affray::test::kSanitizerDivisor, 24,
+                                                      42);
+        affray::test::CheckContainment<ReducedAffine>(path + " (shade)", r.shader->shade,
+                                                      60 / affray::test::kSanitizerDivisor, 12, 43);
     }
 }
 
