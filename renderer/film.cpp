@@ -233,26 +233,35 @@ uint32_t Permuted(uint32_t i, uint32_t n, uint64_t key) {
     return i;
 }
 
+/// Where sample `index` of pixel (px, py) falls among the pixel's `n` strata of a lens or shutter
+/// dimension: its stratum, in an order shuffled per pixel, and its jitter within the stratum in
+/// [0, 1) (0.5 without jitter). `key` keeps the dimensions' orders and jitters apart.
+struct Stratum {
+    uint32_t index;
+    double jitterX, jitterY;
+};
+Stratum ShuffledStratum(int px, int py, int index, uint32_t n, uint64_t seed, uint64_t key, bool jitter) {
+    const uint32_t stratum = Permuted(uint32_t(index), n, SampleHash(px, py, -1, seed ^ key));
+    if (!jitter) return {stratum, 0.5, 0.5};
+    const std::uint64_t h = SampleHash(px, py, index, seed ^ key);
+    return {stratum, static_cast<double>(h >> 32) * 0x1p-32, static_cast<double>(h & 0xffffffffull) * 0x1p-32};
+}
+
 }  // namespace
 
 glm::dvec2 Film::LensPosition(int px, int py, int index) const {
+    constexpr uint64_t kKey = 0x6c656e73ull;  // "lens"
     const uint32_t n = uint32_t(m_xsamples) * uint32_t(m_ysamples);
-    const uint32_t stratum = Permuted(uint32_t(index), n, SampleHash(px, py, -1, m_seed ^ 0x6c656e73ull));
-    const int i = int(stratum % uint32_t(m_xsamples)), j = int(stratum / uint32_t(m_xsamples));
-    if (!m_jitter) return {(i + 0.5) / m_xsamples, (j + 0.5) / m_ysamples};
-    const std::uint64_t h = SampleHash(px, py, index, m_seed ^ 0x6c656e73ull);
-    const double jx = static_cast<double>(h >> 32) * 0x1p-32;
-    const double jy = static_cast<double>(h & 0xffffffffull) * 0x1p-32;
-    return {(i + jx) / m_xsamples, (j + jy) / m_ysamples};
+    const Stratum s = ShuffledStratum(px, py, index, n, m_seed, kKey, m_jitter);
+    const int i = int(s.index % uint32_t(m_xsamples)), j = int(s.index / uint32_t(m_xsamples));
+    return {(i + s.jitterX) / m_xsamples, (j + s.jitterY) / m_ysamples};
 }
 
 double Film::TimePosition(int px, int py, int index) const {
     constexpr uint64_t kKey = 0x74696d65ull;  // "time": strata and jitter apart from the lens's
     const uint32_t n = uint32_t(m_xsamples) * uint32_t(m_ysamples);
-    const uint32_t stratum = Permuted(uint32_t(index), n, SampleHash(px, py, -1, m_seed ^ kKey));
-    if (!m_jitter) return (stratum + 0.5) / n;
-    const double j = static_cast<double>(SampleHash(px, py, index, m_seed ^ kKey) >> 32) * 0x1p-32;
-    return (stratum + j) / n;
+    const Stratum s = ShuffledStratum(px, py, index, n, m_seed, kKey, m_jitter);
+    return (s.index + s.jitterX) / n;
 }
 
 void Film::TileSamples(const PixelRange& tile, std::vector<Sample>* out) const {

@@ -12,6 +12,7 @@
 
 #include "renderer/thread_pool.h"
 #include "tests/test_random.h"
+#include "tests/test_util.h"
 
 using namespace affray::renderer;
 
@@ -268,8 +269,9 @@ TEST_CASE("bvh: the SAH tree visits every crossed box, on random and degenerate 
 
 TEST_CASE("bvh: the tree is the same, node for node, for any number of threads", "[renderer][bvh]") {
     affray::test::Rng rng(8);
-    // Big enough that the top levels bin on the pool's threads and there are many subtrees.
-    const std::vector<Box> boxes = ClusteredBoxes(100000, rng);
+    // Big enough that the top levels bin on the pool's threads and there are many subtrees (half
+    // as many under the sanitizers: still above kParallelBinItems, 32,768).
+    const std::vector<Box> boxes = ClusteredBoxes(affray::test::kSanitized ? 50000 : 100000, rng);
     for (const Bvh::Split split : {Bvh::Split::kSah, Bvh::Split::kMedian}) {
         const Bvh serial(boxes, nullptr, split);
         for (int threads : {1, 2, 4}) {
