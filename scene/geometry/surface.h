@@ -561,8 +561,8 @@ Vec3<T> EvaluateOnPatch(vm::Interpreter<T>& interp, const BilinearPatch& patch, 
 }
 
 // The surface setters for the VM's eight number types are compiled once, in surface.cpp, not in
-// every file that sets or evaluates a surface (the renderer, the CLI and forty test files): the
-// frames of six surface kinds in eight types were a third to a half of those files' compile time.
+// every file that sets or evaluates a surface (the renderer, the CLI and some thirty test files):
+// the frames of six surface kinds in eight types were up to 60 % of such a file's compile time.
 // Another type (a test's) still instantiates them from the templates above.
 #define AFFRAY_SURFACE_INSTANCES(EXTERN, T)                                                                            \
     EXTERN template void SetSurfaceGlobals<T>(vm::Interpreter<T>&, const BaseSurface&, double, double, double, double, \
