@@ -162,6 +162,16 @@ std::uint64_t SampleHash(int x, int y, int index, std::uint64_t seed) {
     return Mix64(h ^ static_cast<std::uint32_t>(index));
 }
 
+namespace {
+
+/// The two 32-bit halves of the hash `h` as jitters in [0, 1): exact in a double, so a sample
+/// stays in its stratum.
+glm::dvec2 HashJitter(std::uint64_t h) {
+    return {static_cast<double>(h >> 32) * 0x1p-32, static_cast<double>(h & 0xffffffffull) * 0x1p-32};
+}
+
+}  // namespace
+
 Film::Film(const CameraDesc& camera, const DisplayChannels& channels, std::uint64_t seed)
     : m_xres(std::max(camera.xres, 0)),
       m_yres(std::max(camera.yres, 0)),
@@ -199,11 +209,8 @@ PixelRange Film::SampleRegion(const PixelRange& tile) const {
 glm::dvec2 Film::SamplePosition(int px, int py, int index) const {
     const int i = index % m_xsamples, j = index / m_xsamples;
     if (!m_jitter) return {px + (i + 0.5) / m_xsamples, py + (j + 0.5) / m_ysamples};
-    const std::uint64_t h = SampleHash(px, py, index, m_seed);
-    // Two 32-bit halves as jitters in [0, 1): exact in a double, so a sample stays in its stratum.
-    const double jx = static_cast<double>(h >> 32) * 0x1p-32;
-    const double jy = static_cast<double>(h & 0xffffffffull) * 0x1p-32;
-    return {px + (i + jx) / m_xsamples, py + (j + jy) / m_ysamples};
+    const glm::dvec2 jitter = HashJitter(SampleHash(px, py, index, m_seed));
+    return {px + (i + jitter.x) / m_xsamples, py + (j + jitter.y) / m_ysamples};
 }
 
 namespace {
@@ -238,13 +245,12 @@ uint32_t Permuted(uint32_t i, uint32_t n, uint64_t key) {
 /// [0, 1) (0.5 without jitter). `key` keeps the dimensions' orders and jitters apart.
 struct Stratum {
     uint32_t index;
-    double jitterX, jitterY;
+    glm::dvec2 jitter;
 };
 Stratum ShuffledStratum(int px, int py, int index, uint32_t n, uint64_t seed, uint64_t key, bool jitter) {
     const uint32_t stratum = Permuted(uint32_t(index), n, SampleHash(px, py, -1, seed ^ key));
-    if (!jitter) return {stratum, 0.5, 0.5};
-    const std::uint64_t h = SampleHash(px, py, index, seed ^ key);
-    return {stratum, static_cast<double>(h >> 32) * 0x1p-32, static_cast<double>(h & 0xffffffffull) * 0x1p-32};
+    if (!jitter) return {stratum, glm::dvec2(0.5)};
+    return {stratum, HashJitter(SampleHash(px, py, index, seed ^ key))};
 }
 
 }  // namespace
@@ -254,14 +260,14 @@ glm::dvec2 Film::LensPosition(int px, int py, int index) const {
     const uint32_t n = uint32_t(m_xsamples) * uint32_t(m_ysamples);
     const Stratum s = ShuffledStratum(px, py, index, n, m_seed, kKey, m_jitter);
     const int i = int(s.index % uint32_t(m_xsamples)), j = int(s.index / uint32_t(m_xsamples));
-    return {(i + s.jitterX) / m_xsamples, (j + s.jitterY) / m_ysamples};
+    return {(i + s.jitter.x) / m_xsamples, (j + s.jitter.y) / m_ysamples};
 }
 
 double Film::TimePosition(int px, int py, int index) const {
     constexpr uint64_t kKey = 0x74696d65ull;  // "time": strata and jitter apart from the lens's
     const uint32_t n = uint32_t(m_xsamples) * uint32_t(m_ysamples);
     const Stratum s = ShuffledStratum(px, py, index, n, m_seed, kKey, m_jitter);
-    return (s.index + s.jitterX) / n;
+    return (s.index + s.jitter.x) / n;
 }
 
 void Film::TileSamples(const PixelRange& tile, std::vector<Sample>* out) const {
