@@ -670,13 +670,49 @@ inline QuadAxis MakeQuadAxis(const ReducedAffine& p, double k, int own) {
 /// from its plane (tests/vm/numbers/noise_test.cpp).
 [[gnu::flatten]] inline ReducedAffine QuadraticCellOnRegion(const QuadAxis* const* axes, int dims,
                                                             const double (*g)[4]) {
-    QuadForm t[4], fade[4];
+    // The corner values g_o . (t - o), linear in eps_u, eps_v and the coordinates' own symbols
+    // since each t_i is, with their coefficients summed in FadedCellPolynomial's order (offset
+    // t_i - o_i, then the terms of AddTerm: a component +-1 adds or subtracts, 0 skips), so each
+    // is the double that order gives. The remainder bounds the rounding of the double corner
+    // value at any point of the region (at most 3 dims roundings: the offsets, the products and
+    // the sums, each of at most M = sum |g_i| (|tc_i| + o_i + |a_i| + |b_i| + own_i + r_i) and a
+    // little) and of these coefficients against the exact ones (at most 3 dims for the constant,
+    // 2 dims each for the slopes and one for the own terms, each of at most M): (10 dims + 2) u M.
+    QuadForm v[16];
+    QuadSums vs[16];
+    double tMagnitude[4];  // |tc_i| + 1 + sum |t_i's coefficients| + r_i
     for (int i = 0; i < dims; ++i) {
-        t[i] = axes[i]->t;
-        fade[i] = axes[i]->fade;
+        const QuadForm& t = axes[i]->t;
+        tMagnitude[i] = std::fabs(t.c[QuadForm::k0]) + 1.0 + t.coefficientSum() + t.r;
     }
-    const QuadForm raw =
-        FadedCellPolynomial(t, fade, dims, [&](int o, int i) { return g[o][i]; }) * NoiseScale(dims) + 0.5;
+    const int corners = 1 << dims;
+    for (int o = 0; o < corners; ++o) {
+        // (g_i x is exactly +-x for a component +-1, and 0 + x is x: the same doubles.)
+        QuadForm& z = v[o];
+        z = QuadForm{};
+        double r = 0, magnitude = 0;
+        for (int i = 0; i < dims; ++i) {
+            const double gi = g[o][i];
+            if (gi == 0) continue;
+            const QuadForm& t = axes[i]->t;
+            z.c[QuadForm::k0] += gi * ((o >> i) & 1 ? t.c[QuadForm::k0] - 1.0 : t.c[QuadForm::k0]);
+            for (int k = QuadForm::kU; k < QuadForm::kCount; ++k) z.c[k] += gi * t.c[k];
+            for (int k = 0; k < QuadForm::kOwn; ++k) z.o[k] += gi * t.o[k];
+            const double ag = std::fabs(gi);
+            r += ag * t.r;
+            magnitude += ag * tMagnitude[i];
+        }
+        z.r = (r + (10 * dims + 2) * kEpsilon * magnitude) * kSumSlack + kUnderflowSlack;
+        vs[o] = SumsOf(z);
+    }
+    // Lerp away dimension 0, then 1, ... (FadedCellPolynomial), each fade's sums computed once.
+    for (int i = 0, n = corners; i < dims; ++i) {
+        n >>= 1;
+        const QuadForm& s = axes[i]->fade;
+        const QuadSums ss = SumsOf(s);
+        for (int j = 0; j < n; ++j) v[j] = Lerp(v[2 * j], vs[2 * j], v[2 * j + 1], vs[2 * j + 1], s, ss, &vs[j]);
+    }
+    const QuadForm raw = v[0] * NoiseScale(dims) + 0.5;
     double lo, hi;
     raw.quadraticRange(&lo, &hi);
     const double quadratic =

@@ -142,11 +142,20 @@ inline QuadForm operator*(const QuadForm& x, double k) {
 }
 inline QuadForm operator*(double k, const QuadForm& x) { return x * k; }
 
-/// x * y. The product's terms of degree 3 and 4 are reduced monomial by monomial (the head
-/// comment); the rest of the error: |x's polynomial| ry + |y's| rx + rx ry, the rounding of
-/// every coefficient (each a sum of at most eight terms: 16 u of the terms' magnitudes) and that
-/// of the double product (u of the largest |x y|).
-inline QuadForm operator*(const QuadForm& x, const QuadForm& y) {
+/// The sums of a form's coefficients that its products and lerps need: sum |c_k| and sum |o_k|
+/// (as QuadForm::polynomialSum and ownSum compute them, so that a caller holding them spares
+/// computing them again).
+struct QuadSums {
+    double polynomial, own;
+    double all() const { return polynomial + own; }
+};
+inline QuadSums SumsOf(const QuadForm& x) { return {x.polynomialSum(), x.ownSum()}; }
+
+/// x * y, given their sums (SumsOf). The product's terms of degree 3 and 4 are reduced monomial
+/// by monomial (the head comment); the rest of the error: |x's polynomial| ry + |y's| rx + rx ry,
+/// the rounding of every coefficient (each a sum of at most eight terms: 16 u of the terms'
+/// magnitudes) and that of the double product (u of the largest |x y|).
+inline QuadForm Multiply(const QuadForm& x, const QuadSums& xs, const QuadForm& y, const QuadSums& ys) {
     enum { k0 = QuadForm::k0, kU = QuadForm::kU, kV = QuadForm::kV, kUU = QuadForm::kUU };
     enum { kUV = QuadForm::kUV, kVV = QuadForm::kVV };
     const double* a = x.c;
@@ -178,8 +187,8 @@ inline QuadForm operator*(const QuadForm& x, const QuadForm& y) {
     // The own symbols: times the other's constant they stay; times anything else they are
     // remainder (each symbol and monomial in [-1, 1]).
     for (int k = 0; k < QuadForm::kOwn; ++k) z.o[k] = a[k0] * y.o[k] + b[k0] * x.o[k];
-    const double ox = x.ownSum(), oy = y.ownSum();
-    const double ax = x.polynomialSum() + ox, ay = y.polynomialSum() + oy;
+    const double ox = xs.own, oy = ys.own;
+    const double ax = xs.polynomial + ox, ay = ys.polynomial + oy;
     const double owned = ox * (ay - std::fabs(b[k0])) + oy * (ax - std::fabs(a[k0]));  // ox oy twice
     const double crossed = ax * y.r + ay * x.r + x.r * y.r;
     // Every product a_i b_j is a term of some coefficient (sum |a_i| |b_j| = ax ay), scaled by at
@@ -189,6 +198,9 @@ inline QuadForm operator*(const QuadForm& x, const QuadForm& y) {
     return z;
 }
 
+/// x * y (Multiply).
+inline QuadForm operator*(const QuadForm& x, const QuadForm& y) { return Multiply(x, SumsOf(x), y, SumsOf(y)); }
+
 /// v0 + s (v1 - v0), as the double computes it, for an s whose double values at the points that
 /// matter lie in [0, 1] (up to 2^-40: a noise fade at a local coordinate in [0, 1]); elsewhere the
 /// result holds nothing. The same real number is (1 - s) v0 + s v1, so the remainders of v0 and
@@ -196,16 +208,24 @@ inline QuadForm operator*(const QuadForm& x, const QuadForm& y) {
 /// count r0 twice (in v0 and in v1 - v0) and a chain of lerps compound it. The rest: the product
 /// s (v1 - v0) of the polynomial parts (its reductions, s's remainder, the roundings of the
 /// difference's coefficients), the sum's roundings, and the three roundings of the double lerp
-/// against the real one, at most 3.01 u (|v0| + |v1|).
-inline QuadForm Lerp(const QuadForm& v0, const QuadForm& v1, const QuadForm& s) {
+/// against the real one, at most 3.01 u (|v0| + |v1|). The operands' sums are given (SumsOf) and
+/// the result's returned in zs, for the next lerp of a chain.
+inline QuadForm Lerp(const QuadForm& v0, const QuadSums& v0s, const QuadForm& v1, const QuadSums& v1s,
+                     const QuadForm& s, const QuadSums& ss, QuadSums* zs) {
     QuadForm d = AddCoefficients<true>(v1, v0);
-    d.r = LinearError(0.0, d.coefficientSum());
-    const QuadForm p = s * d;
+    const QuadSums ds = SumsOf(d);
+    d.r = LinearError(0.0, ds.all());
+    const QuadForm p = Multiply(s, ss, d, ds);
     QuadForm z = AddCoefficients<false>(v0, p);
-    const double magnitudes = v0.coefficientSum() + v0.r + v1.coefficientSum() + v1.r;
+    *zs = SumsOf(z);
+    const double magnitudes = v0s.all() + v0.r + v1s.all() + v1.r;
     const double convex = (v0.r > v1.r ? v0.r : v1.r) * (1 + 0x1p-38);
-    z.r = (LinearError(p.r, z.coefficientSum()) + convex + 2 * kEpsilon * magnitudes) * kSumSlack + kUnderflowSlack;
+    z.r = (LinearError(p.r, zs->all()) + convex + 2 * kEpsilon * magnitudes) * kSumSlack + kUnderflowSlack;
     return z;
+}
+inline QuadForm Lerp(const QuadForm& v0, const QuadForm& v1, const QuadForm& s) {
+    QuadSums zs;
+    return Lerp(v0, SumsOf(v0), v1, SumsOf(v1), s, SumsOf(s), &zs);
 }
 
 }  // namespace affray::vm
