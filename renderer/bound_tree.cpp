@@ -306,9 +306,12 @@ int SplitAxis(const RegionBound& b, int levelU, int levelV, int maxDepth) {
     // The first two levels split both ways: a region spanning half a turn or more of a periodic
     // parameter (a sphere's u) has a linear part near 0 along it however far it stretches.
     if (!b.bounded() || std::abs(levelU - levelV) >= kMaxImbalance || std::min(levelU, levelV) < 2) return balanced;
-    // Twice as long: four times the squared length.
+    // Twice as long: four times the squared length. Generators dwarfed by the rest of the bound
+    // (the segment and the box: a region whose form has lost its slopes to its error) say
+    // nothing of the shape: split both ways.
     const double a2 = glm::dot(b.a, b.a), b2 = glm::dot(b.b, b.b);
     if (!std::isfinite(a2 + b2)) return balanced;
+    if (std::max(a2, b2) < glm::dot(b.g, b.g) + glm::dot(b.r, b.r)) return balanced;
     if (a2 > 4 * b2) return kSplitU;
     if (b2 > 4 * a2) return kSplitV;
     return balanced;

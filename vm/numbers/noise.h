@@ -1060,6 +1060,11 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
     // Every operand is finite here, so the value is in [0, 1]: a bound that overflowed (p -
     // floor(p) over a range reaching +-1e308) is that range, with unknown derivatives.
     if (RangeOf(ValueOf(value)).isUnbounded()) return SpreadOf<T>(Interval(0.0, 1.0));
+    // A region over more cells than are bounded one by one gets the cell polynomial with the
+    // gradients' ranges: a reduced affine form with an error of thousands around its range
+    // [0, 1], which every product downstream would carry into the displaced point's form (the
+    // range alone is then the better form).
+    if constexpr (std::is_same_v<T, ReducedAffine>) return ReducedAffine::RangeIfNarrower(ClampUnit(value));
     return ClampUnit(value);
 }
 

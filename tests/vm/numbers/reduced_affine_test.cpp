@@ -297,6 +297,30 @@ TEST_CASE("reduced affine basics", "[vm][reduced]") {
     CHECK(d2.du.range().hi() <= 3.0 + 1e-12);
 }
 
+TEST_CASE("reduced affine: a form whose error outweighs its range gives way to the range", "[vm][reduced]") {
+    const ReducedAffine u = ReducedAffine::FromSymbol(0.0, 1.0, ReducedAffine::kSymbolU);
+    // A form of error 3 whose values are known to lie in [0, 1] (a clamp, an enclosure): the
+    // range, 0.5 +- 0.5, says more.
+    const ReducedAffine wide = ReducedAffine::FromForm(0.5, 0.25, 0.0, 3.0);
+    const ReducedAffine narrow = ReducedAffine::Within(wide, Interval(0.0, 1.0));
+    CHECK(narrow.coefficientU() == 0);
+    CHECK(narrow.error() <= 0.5 + 1e-15);
+    CHECK(narrow.range().lo() == 0.0);
+    CHECK(narrow.range().hi() == 1.0);
+    CHECK(ReducedAffine::RangeIfNarrower(narrow).error() == narrow.error());
+    // Never wider than the form in a sum that cancels its linear part.
+    CHECK((narrow - u * 0.25).range().width() <= (wide - u * 0.25).range().width());
+    // A form whose slopes outweigh the excess stays: they may cancel later (x - floor(x)).
+    const ReducedAffine steep =
+        ReducedAffine::Within(ReducedAffine::FromForm(0.0, 10.0, 0.0, 0.6), Interval(-10.0, 10.0));
+    CHECK(steep.coefficientU() == 10.0);
+    CHECK(steep.error() == 0.6);
+    // A point keeps its form; so does an unbounded value.
+    const ReducedAffine point = ReducedAffine::Within(ReducedAffine::FromForm(2.0, 0.0, 0.0, 1e-15), Interval(2.0));
+    CHECK(point.error() == 1e-15);
+    CHECK(ReducedAffine::RangeIfNarrower(ReducedAffine::Unbounded()).isUnbounded());
+}
+
 TEST_CASE("containment: every shader's scalar P lies in its reduced affine bound", "[vm][reduced][containment]") {
     for (const std::string& path : affray::test::AllShaders()) {
         affray::compiler::CompileResult r = affray::compiler::CompileFile(path);
