@@ -208,6 +208,17 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     CHECK_FALSE(Open(text, &error));
     CHECK(error.find(text) != std::string::npos);
 
+    // One reader per file, chosen by its signature, else its extension: never OpenImageIO's
+    // try-every-reader, whose RLA reader aborts the process on a damaged file
+    // (fuzz/regressions/fuzz_texture/rla_channel_type_oiio_assert); RLA is not read at all.
+    for (const char* name : {"image.rla", "image.unknown", "image"}) {
+        const std::string other = dir.path(name);
+        std::ofstream(other) << "not an image\n";
+        error.clear();
+        CHECK_FALSE(Open(other, &error));
+        CHECK(error.find("not a file of an image format affray reads") != std::string::npos);
+    }
+
     // PNG files that end early (fuzz/regressions/fuzz_texture): refused, naming the file and
     // where it ends, before OpenImageIO reads them (image/image_io_oiio.cpp says why).
     const std::string signature = "\x89PNG\r\n\x1a\n";
@@ -226,6 +237,12 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     }
     REQUIRE(bytes.compare(0, 8, signature) == 0);
     REQUIRE(Open(cut, &error));
+    // The signature decides, not the name: a PNG named .exr reads as the PNG it is.
+    const std::string misnamed = dir.path("misnamed.exr");
+    std::ofstream(misnamed, std::ios::binary) << bytes;
+    error.clear();
+    CHECK(Open(misnamed, &error));
+    CHECK(error.empty());
     const std::string half = dir.path("half.png");
     std::ofstream(half, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
     error.clear();
