@@ -247,14 +247,12 @@ T Fade(const T& x) {
     return x * x * x * (x * (x * 6.0 - 15.0) + 10.0);
 }
 
-/// The cell polynomial's lerp v0 + s (v1 - v0) in T's arithmetic; in QuadForms by Lerp, whose
-/// remainder is a convex combination of the ends' (the fades lie in [0, 1] wherever a cell's
-/// bound must hold).
+/// The cell polynomial's lerp v0 + s (v1 - v0) in T's arithmetic (QuadraticCellOnRegion lerps
+/// its QuadForms by Lerp, whose remainder is a convex combination of the ends').
 template <class T>
 T CellLerp(const T& v0, const T& v1, const T& s) {
     return v0 + s * (v1 - v0);
 }
-inline QuadForm CellLerp(const QuadForm& v0, const QuadForm& v1, const QuadForm& s) { return Lerp(v0, v1, s); }
 
 /// raw(t) of one cell given the fades of its local coordinates, fade[i] = Fade(t[i]) (see
 /// CellPolynomial).
@@ -1060,11 +1058,9 @@ T GradientNoise(const T* p, const T* period, int dims, uint32_t seed,
     // Every operand is finite here, so the value is in [0, 1]: a bound that overflowed (p -
     // floor(p) over a range reaching +-1e308) is that range, with unknown derivatives.
     if (RangeOf(ValueOf(value)).isUnbounded()) return SpreadOf<T>(Interval(0.0, 1.0));
-    // A region over more cells than are bounded one by one gets the cell polynomial with the
-    // gradients' ranges: a reduced affine form with an error of thousands around its range
-    // [0, 1], which every product downstream would carry into the displaced point's form (the
-    // range alone is then the better form).
-    if constexpr (std::is_same_v<T, ReducedAffine>) return ReducedAffine::RangeIfNarrower(ClampUnit(value));
+    // (A region over more cells than are bounded one by one gets the cell polynomial with the
+    // gradients' ranges: in reduced affine arithmetic a form with an error of thousands, which
+    // the scaling above and the clamp narrow to their ranges, ReducedAffine::Tighten.)
     return ClampUnit(value);
 }
 
