@@ -1,8 +1,8 @@
 // fuzz/fuzz_texture.cpp: image file bytes -> OpenImageIO (in libaffray_image_io.so) -> a texture
 // map as texture() opens one (header checks, the min/max pyramid built from bands of rows) ->
 // texels, ranges and lookups read through its tiles.
-// The bytes are written to a file named by the signature they begin with ("input.png"), or without
-// an extension, so that OpenImageIO tries every format it has (NameFor). An image whose header
+// The bytes are written to a file without an extension: the image module picks the one reader
+// their signature names (image/image_io_oiio.cpp, FormatOf), or refuses them. An image whose header
 // asks for more than kMaxTexels texels (and that the map would accept: sides and tile counts up
 // to 2^30) is skipped before the map reads it: the map allocates as the header says, and reads
 // and checks every texel for its pyramid, about 0.2 us a texel under the sanitizers, so that a
@@ -22,34 +22,12 @@ namespace {
 constexpr int64_t kMaxTexels = int64_t{1} << 16;
 constexpr int64_t kMaxSide = int64_t{1} << 30;
 
-/// The file name for the bytes: with the extension of the format whose signature they begin with
-/// ("input.png" for a PNG signature), so that OpenImageIO tries that format first, else "input".
-/// Without an extension OpenImageIO tries every format it has, constructing each reader (LibRaw's
-/// alone clears megabytes), 3-5 ms an input under ASan; with one it still tries every other
-/// format when that one cannot read the file.
-std::string NameFor(std::string_view bytes) {
-    using namespace std::string_view_literals;
-    static constexpr struct {
-        std::string_view magic, name;
-    } kFormats[] = {
-        {"\x89PNG"sv, "input.png"}, {"\xff\xd8\xff"sv, "input.jpg"}, {"v/1\x01"sv, "input.exr"},
-        {"II*"sv, "input.tif"},     {"MM\0*"sv, "input.tif"},        {"BM"sv, "input.bmp"},
-        {"P1"sv, "input.pnm"},      {"P2"sv, "input.pnm"},           {"P3"sv, "input.pnm"},
-        {"P4"sv, "input.pnm"},      {"P5"sv, "input.pnm"},           {"P6"sv, "input.pnm"},
-        {"Pf"sv, "input.pfm"},      {"PF"sv, "input.pfm"},           {"#?"sv, "input.hdr"},
-        {"GIF8"sv, "input.gif"},    {"DDS "sv, "input.dds"},         {"8BPS"sv, "input.psd"},
-    };
-    for (const auto& f : kFormats)
-        if (bytes.substr(0, f.magic.size()) == f.magic) return std::string(f.name);
-    return "input";
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace affray;
     const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-    const std::string path = fuzz::WriteTemp(NameFor(bytes), bytes);
+    const std::string path = fuzz::WriteTemp("input", bytes);
     std::string error;
     const image::io::ImageIo* images = image::io::Get(&error);
     if (!images) {
