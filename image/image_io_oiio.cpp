@@ -93,7 +93,8 @@ std::string FormatOf(const std::string& path, std::string* why) {
     if (bytes.size() >= 2 && bytes[0] == 'P' && std::string_view("123456fF").find(bytes[1]) != std::string_view::npos)
         return "pnm";
     const size_t slash = path.find_last_of('/'), dot = path.find_last_of('.');
-    if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) {
+    const bool hasExtension = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+    if (hasExtension) {
         std::string extension = path.substr(dot + 1);
         for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         for (const auto& [format, extensions] : OIIO::get_extension_map())
@@ -101,7 +102,7 @@ std::string FormatOf(const std::string& path, std::string* why) {
                 return format;
     }
     *why = "not a file of an image format affray reads (no known signature";
-    *why += dot != std::string::npos && (slash == std::string::npos || dot > slash) ? ", nor extension)" : ")";
+    *why += hasExtension ? ", nor extension)" : ")";
     return "";
 }
 
