@@ -3,8 +3,52 @@
 
 #include <cstdint>
 #include <fstream>
+#include <string>
 
 namespace affray::image {
+namespace {
+
+uint32_t Le32(const std::string& bytes, size_t at) {
+    uint32_t v = 0;
+    for (int i = 3; i >= 0; --i) v = v << 8 | static_cast<unsigned char>(bytes[at + static_cast<size_t>(i)]);
+    return v;
+}
+
+/// Why a channel list's `value` is refused, or "". OpenEXR reads the entries from the stream until
+/// an empty name, whatever the attribute's size says, and stores a pixel type it does not know,
+/// on which OpenImageIO's reader (2.4, built with assertions) aborts the process (found by
+/// fuzz_texture): so the entries must fill the value exactly, each with a pixel type of 0-2.
+std::string BadChannelList(const std::string& value) {
+    size_t at = 0;
+    for (;;) {
+        const size_t end = value.find('\0', at);
+        if (end == std::string::npos || end - at > 255) return "a channel name does not end within 255 characters";
+        if (end == at) {
+            if (end + 1 != value.size()) return "its channels end before its size";
+            return "";
+        }
+        const std::string name = value.substr(at, end - at);
+        if (end + 17 > value.size()) return "the channel '" + name + "' ends past its size";
+        const uint32_t pixelType = Le32(value, end + 1);
+        if (pixelType > 2)
+            return "the channel '" + name + "' has pixel type " + std::to_string(pixelType) +
+                   " (0, 1 and 2 are uint, half and float)";
+        at = end + 17;
+    }
+}
+
+/// Why a preview image's `value` is refused, or "": OpenEXR allocates its width x height pixels
+/// (4 bytes each) before it reads them, so they must be what the value holds.
+std::string BadPreview(const std::string& value) {
+    if (value.size() < 8) return "the preview image has no size";
+    const uint64_t width = Le32(value, 0), height = Le32(value, 4);
+    if (8 + width * height * 4 != value.size())
+        return "the preview image of " + std::to_string(width) + " x " + std::to_string(height) +
+               " pixels does not fill its " + std::to_string(value.size()) + " bytes";
+    return "";
+}
+
+}  // namespace
 
 std::string OversizedExrHeader(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -12,16 +56,27 @@ std::string OversizedExrHeader(const std::string& path) {
     if (!in.read(reinterpret_cast<char*>(head), 8)) return "";
     if (!(head[0] == 0x76 && head[1] == 0x2f && head[2] == 0x31 && head[3] == 0x01)) return "";
     const bool multipart = (head[5] & 0x10) != 0;
+    // Names and type names: 1-31 characters, or up to 255 in a file with the long-names flag. A
+    // longer one is refused rather than read: OpenEXR stops reading a name at its limit and takes
+    // what follows for the next field, so that the sizes it would then read are not the ones
+    // checked here (found by fuzz_texture: a name of 60 bytes hid a 2 GB string's claim).
+    const size_t maxName = (head[5] & 0x04) != 0 ? 255 : 31;
     in.seekg(0, std::ios::end);
     const auto size = static_cast<uint64_t>(in.tellg());
     in.seekg(8);
     const char* const early = "the OpenEXR header ends before the end of its attributes";
-    // A name or type: up to 255 characters and a terminating 0.
+    std::string tooLong;
+    // A name or type: up to maxName characters and a terminating 0.
     auto word = [&](std::string* out) {
         out->clear();
         for (char c; in.get(c);) {
             if (c == '\0') return true;
-            if (out->size() == 255) return false;
+            if (out->size() == maxName) {
+                tooLong = "an OpenEXR attribute's name or type at byte " +
+                          std::to_string(static_cast<uint64_t>(in.tellg()) - maxName - 1) + " is longer than " +
+                          std::to_string(maxName) + " characters";
+                return false;
+            }
             out->push_back(c);
         }
         return false;
@@ -34,16 +89,23 @@ std::string OversizedExrHeader(const std::string& path) {
             if (next == 0) return "";
         }
         for (std::string name, type;;) {
-            if (!word(&name)) return early;
+            if (!word(&name)) return tooLong.empty() ? early : tooLong;
             if (name.empty()) break;
             unsigned char bytes[4];
-            if (!word(&type) || !in.read(reinterpret_cast<char*>(bytes), 4)) return early;
+            if (!word(&type)) return tooLong.empty() ? early : tooLong;
+            if (!in.read(reinterpret_cast<char*>(bytes), 4)) return early;
             const uint64_t length =
                 uint64_t{bytes[0]} | uint64_t{bytes[1]} << 8 | uint64_t{bytes[2]} << 16 | uint64_t{bytes[3]} << 24;
             const auto at = static_cast<uint64_t>(in.tellg());
             if (length > size - at)
                 return "the OpenEXR attribute '" + name + "' claims " + std::to_string(length) +
                        " bytes, but the file has " + std::to_string(size - at) + " left";
+            if (type == "chlist" || type == "preview") {
+                std::string value(length, '\0');
+                in.read(value.data(), static_cast<std::streamsize>(length));
+                if (std::string why = type == "chlist" ? BadChannelList(value) : BadPreview(value); !why.empty())
+                    return "the OpenEXR attribute '" + name + "' at byte " + std::to_string(at) + ": " + why;
+            }
             in.seekg(static_cast<std::streamoff>(at + length));
         }
         if (!multipart) return "";

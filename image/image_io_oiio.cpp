@@ -54,14 +54,61 @@ std::string TruncatedPng(const std::string& path) {
     }
 }
 
+/// Why the GIF file at `path` is not read, or "" when it may be or is not a GIF: OpenImageIO's GIF
+/// reader allocates the whole canvas of 4-byte pixels as it opens the file, in a size it computes
+/// in an int, so that a 60-byte file claiming 31090 x 29440 pixels takes 3.6 GB or ends the
+/// process by an uncaught length_error (both found by fuzz_texture; fuzz/regressions/fuzz_texture
+/// holds the inputs). A GIF of more than kMaxGifPixels is refused before it is opened.
+constexpr uint64_t kMaxGifPixels = uint64_t{1} << 26;  // 8192 x 8192, a 256 MB canvas
+std::string OversizedGif(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    unsigned char head[10] = {};
+    in.read(reinterpret_cast<char*>(head), sizeof head);
+    if (in.gcount() < 4 || std::string_view(reinterpret_cast<const char*>(head), 4) != "GIF8") return "";
+    if (in.gcount() < 10) return "the GIF file ends in its header, at byte " + std::to_string(in.gcount());
+    const uint64_t width = head[6] | head[7] << 8, height = head[8] | head[9] << 8;
+    if (width * height <= kMaxGifPixels) return "";
+    return "the GIF canvas of " + std::to_string(width) + " x " + std::to_string(height) +
+           " pixels is larger than affray reads (" + std::to_string(kMaxGifPixels) + " pixels)";
+}
+
+/// Calls `read`, turning an exception thrown inside OpenImageIO or a library it calls (a reader
+/// sizing a buffer from a damaged header) into the false, nullptr or empty value of its type, with
+/// the exception's text in `*thrown`.
+template <class Read>
+auto Guarded(std::string* thrown, Read&& read) -> decltype(read()) {
+    try {
+        return read();
+    } catch (const std::exception& e) {
+        *thrown = std::string("the image library failed: ") + e.what();
+    } catch (...) {
+        *thrown = "the image library failed with an unknown exception";
+    }
+    return {};
+}
+
 /// The OpenImageIO format that reads `path`: the one its first bytes are the signature of, else
-/// the one its extension names; "" if neither. OpenImageIO's own open tries every reader it has
-/// on a file that its extension's reader cannot read, and Debian's RLA reader (2.4, built with
-/// assertions) aborts the process on a malformed channel type (found by fuzz_texture;
-/// fuzz/regressions/fuzz_texture holds the input): so one reader only, and never RLA's (a format
-/// with no signature, which a damaged file of any other kind could pass for).
+/// the one its extension names; "" with the reason in `*why` if neither, or if affray does not
+/// read that format. One reader only: OpenImageIO's own open tries every reader it has on a file
+/// that its extension's reader cannot read, and Debian's RLA reader (2.4, built with assertions)
+/// aborts the process on a malformed channel type. And only the formats of texture maps: the
+/// readers of the others met under fuzz_texture allocated what a damaged header claimed as they
+/// opened the file (DPX: 1.9 GB from a 6 KB file), where a reader of these allocates at most a
+/// row or tile at a time, or is checked first (GIF, PNG, OpenEXR above). Every input is in
+/// fuzz/regressions/fuzz_texture.
 std::string FormatOf(const std::string& path, std::string* why) {
     using namespace std::string_view_literals;
+    static constexpr struct {
+        std::string_view format, name;
+        bool read;
+    } kFormats[] = {
+        {"tiff", "TIFF", true},      {"openexr", "OpenEXR", true},  {"png", "PNG", true},
+        {"jpeg", "JPEG", true},      {"hdr", "Radiance HDR", true}, {"pnm", "PNM", true},
+        {"bmp", "BMP", true},        {"gif", "GIF", true},          {"targa", "Targa", true},
+        {"dds", "DDS", false},       {"psd", "Photoshop", false},   {"dpx", "DPX", false},
+        {"cineon", "Cineon", false}, {"sgi", "SGI", false},         {"fits", "FITS", false},
+        {"rla", "RLA", false},
+    };
     static constexpr struct {
         std::string_view magic, format;
     } kSignatures[] = {
@@ -83,23 +130,34 @@ std::string FormatOf(const std::string& path, std::string* why) {
         {"\x01\xda"sv, "sgi"},
         {"SIMPLE"sv, "fits"},
     };
+    const auto decide = [&](std::string_view format, const char* how) -> std::string {
+        std::string name = "'" + std::string(format) + "'";
+        for (const auto& f : kFormats)
+            if (f.format == format) {
+                if (f.read && OIIO::is_imageio_format_name(f.format)) return std::string(format);
+                name = f.name;
+            }
+        *why = name + " by its " + how +
+               ", not a format affray reads texture maps from: TIFF, OpenEXR, PNG, JPEG, Radiance HDR, PNM, BMP, "
+               "GIF or Targa (convert it, e.g. with oiiotool)";
+        return "";
+    };
     char head[8] = {};
     std::ifstream in(path, std::ios::binary);
     in.read(head, sizeof head);
     const std::string_view bytes(head, static_cast<size_t>(in.gcount()));
     for (const auto& s : kSignatures)
-        if (bytes.substr(0, s.magic.size()) == s.magic && OIIO::is_imageio_format_name(s.format))
-            return std::string(s.format);
+        if (bytes.substr(0, s.magic.size()) == s.magic) return decide(s.format, "signature");
     if (bytes.size() >= 2 && bytes[0] == 'P' && std::string_view("123456fF").find(bytes[1]) != std::string_view::npos)
-        return "pnm";
+        return decide("pnm", "signature");
     const size_t slash = path.find_last_of('/'), dot = path.find_last_of('.');
     const bool hasExtension = dot != std::string::npos && (slash == std::string::npos || dot > slash);
     if (hasExtension) {
         std::string extension = path.substr(dot + 1);
         for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         for (const auto& [format, extensions] : OIIO::get_extension_map())
-            if (format != "rla" && std::find(extensions.begin(), extensions.end(), extension) != extensions.end())
-                return format;
+            if (std::find(extensions.begin(), extensions.end(), extension) != extensions.end())
+                return decide(format, "extension");
     }
     *why = "not a file of an image format affray reads (no known signature";
     *why += hasExtension ? ", nor extension)" : ")";
@@ -127,6 +185,20 @@ class OiioReader final : public ImageReader {
         : m_input(std::move(input)), m_header(header), m_native(native) {}
     const ImageHeader& header() const override { return m_header; }
     bool readScanlines(int y0, int y1, float* out) override {
+        return Guarded(&m_thrown, [&] { return scanlines(y0, y1, out); });
+    }
+    bool readTiles(int x0, int x1, int y0, int y1, float* out) override {
+        // (OpenImageIO's conversion here: a format's native tile read may write whole tiles past
+        // the image's edge.)
+        return Guarded(&m_thrown, [&] {
+            return m_input->read_tiles(0, 0, m_header.x + x0, m_header.x + x1, m_header.y + y0, m_header.y + y1,
+                                       m_header.z, m_header.z + 1, 0, m_header.channels, OIIO::TypeDesc::FLOAT, out);
+        });
+    }
+    std::string error() override { return m_thrown.empty() ? OneLine(m_input->geterror()) : m_thrown; }
+
+  private:
+    bool scanlines(int y0, int y1, float* out) {
         if (m_native == OIIO::TypeDesc::UNKNOWN)
             return m_input->read_scanlines(0, 0, m_header.y + y0, m_header.y + y1, m_header.z, 0, m_header.channels,
                                            OIIO::TypeDesc::FLOAT, out);
@@ -139,25 +211,34 @@ class OiioReader final : public ImageReader {
         return read(m_scratch.data()) && OIIO::convert_pixel_values(m_native, m_scratch.data(), OIIO::TypeDesc::FLOAT,
                                                                     out, static_cast<int>(count));
     }
-    bool readTiles(int x0, int x1, int y0, int y1, float* out) override {
-        // (OpenImageIO's conversion here: a format's native tile read may write whole tiles past
-        // the image's edge.)
-        return m_input->read_tiles(0, 0, m_header.x + x0, m_header.x + x1, m_header.y + y0, m_header.y + y1, m_header.z,
-                                   m_header.z + 1, 0, m_header.channels, OIIO::TypeDesc::FLOAT, out);
-    }
-    std::string error() override { return OneLine(m_input->geterror()); }
 
-  private:
     std::unique_ptr<OIIO::ImageInput> m_input;
     ImageHeader m_header;
     OIIO::TypeDesc m_native;  ///< the file's one pixel type, or UNKNOWN for a type per channel
     std::vector<unsigned char> m_scratch;
+    std::string m_thrown;  ///< what an exception inside OpenImageIO said, if one was thrown
 };
 
 class OiioImageIo final : public ImageIo {
   public:
     std::unique_ptr<ImageReader> Open(const std::string& path, std::string* error) const override {
-        if (std::string why = TruncatedPng(path) + OversizedExrHeader(path); !why.empty()) {
+        return Guarded(error, [&] { return open(path, error); });
+    }
+
+    bool MakeTx(const std::string& picture, const std::string& output, const std::string& wrapmodes,
+                std::optional<PixelFormat> format, std::string* error) const override {
+        return Guarded(error, [&] { return makeTx(picture, output, wrapmodes, format, error); });
+    }
+
+    bool Write(const std::string& path, int width, int height, int channels, const float* texels,
+               const WriteLayout& layout, std::string* error) const override {
+        return Guarded(error, [&] { return write(path, width, height, channels, texels, layout, error); });
+    }
+
+  private:
+    /// The file at `path` opened by the one reader FormatOf picks, once the checks above pass.
+    static std::unique_ptr<OIIO::ImageInput> openInput(const std::string& path, std::string* error) {
+        if (std::string why = TruncatedPng(path) + OversizedExrHeader(path) + OversizedGif(path); !why.empty()) {
             *error = why;
             return nullptr;
         }
@@ -170,6 +251,12 @@ class OiioImageIo final : public ImageIo {
             *error = OneLine(why.empty() ? "the " + format + " reader cannot read it" : why);
             return nullptr;
         }
+        return input;
+    }
+
+    static std::unique_ptr<ImageReader> open(const std::string& path, std::string* error) {
+        std::unique_ptr<OIIO::ImageInput> input = openInput(path, error);
+        if (!input) return nullptr;
         const OIIO::ImageSpec spec = input->spec(0, 0);
         ImageHeader h;
         h.width = spec.width;
@@ -192,23 +279,32 @@ class OiioImageIo final : public ImageIo {
         return std::make_unique<OiioReader>(std::move(input), h, native);
     }
 
-    bool MakeTx(const std::string& picture, const std::string& output, const std::string& wrapmodes,
-                std::optional<PixelFormat> format, std::string* error) const override {
+    static bool makeTx(const std::string& picture, const std::string& output, const std::string& wrapmodes,
+                       std::optional<PixelFormat> format, std::string* error) {
         OIIO::ImageSpec config;
         if (format) config.format = TypeOf(*format);
         config.attribute("wrapmodes", wrapmodes);
         // Always a TIFF, whatever the name: prman's txmake names its files .tex or .tx, and the
         // scenes written for it name the made file so (OIIO picks a writer by extension).
         config.attribute("maketx:fileformatname", "tiff");
+        // The picture is read here, by the one reader openInput picks after its checks, not by
+        // make_texture's own open (which would try every reader on a damaged file).
+        std::unique_ptr<OIIO::ImageInput> input = openInput(picture, error);
+        if (!input) return false;
+        OIIO::ImageBuf image(input->spec(0, 0));
+        if (!input->read_image(0, 0, 0, image.nchannels(), image.spec().format, image.localpixels())) {
+            *error = OneLine(input->geterror());
+            return false;
+        }
         std::ostringstream messages;
-        if (OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, picture, output, config, &messages))
+        if (OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, image, output, config, &messages))
             return true;
         *error = OneLine(messages.str());
         return false;
     }
 
-    bool Write(const std::string& path, int width, int height, int channels, const float* texels,
-               const WriteLayout& layout, std::string* error) const override {
+    static bool write(const std::string& path, int width, int height, int channels, const float* texels,
+                      const WriteLayout& layout, std::string* error) {
         auto fail = [&](const std::string& why) {
             *error = "cannot write '" + path + "': " + OneLine(why);
             return false;

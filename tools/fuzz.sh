@@ -12,7 +12,8 @@
 # kept from run to run. Prints per target the executions, coverage (cov: edges, ft: features) and
 # corpus size. A crash, leak, timeout or
 # out-of-memory keeps its input under build-fuzz/artifacts/TARGET/ with a line saying how to
-# reproduce it; if that input fails again when run alone, the exit status is 1 and, without
+# reproduce it, the report's stack and (up to 4 KB) the input in base64, so that a CI log alone
+# reproduces it; if that input fails again when run alone, the exit status is 1 and, without
 # --keep-going, the remaining targets are not run. (One that does not fail again is reported and
 # not counted: see below.) --parallel N runs N targets at once (one core each).
 set -euo pipefail
@@ -128,6 +129,16 @@ fuzz_one() {
     fi
     echo "$t FAILED (exit $rc); log: $log" >>"$out"
     [[ -n "$crash" ]] && echo "reproduce: $build/fuzz/$t $crash" >>"$out"
+    # CI keeps only what is printed: the report's stack (affray's and the libraries' frames, not
+    # libFuzzer's or the sanitizer's) and, when small, the input itself, so that the finding can
+    # be reproduced from the log alone (base64 -d > input).
+    grep -m3 -E "Assertion|terminate called|what\(\):" "$log" >>"$out" || true
+    grep -E '^ +#[0-9]+ ' "$log" | grep -v -E 'fuzzer::|__sanitizer|__asan|__ubsan|libc_start|_start |raise |abort ' |
+        head -12 >>"$out" || true
+    if [[ -n "$crash" && -f "$crash" && $(stat -c %s "$crash") -le 4096 ]]; then
+        echo "the input, base64:" >>"$out"
+        base64 -w 100 "$crash" >>"$out"
+    fi
     return 1
 }
 
