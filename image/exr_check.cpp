@@ -48,6 +48,58 @@ std::string BadPreview(const std::string& value) {
     return "";
 }
 
+/// Why a string vector's `value` is refused, or "": OpenEXR allocates each string's stated size
+/// before it reads it, so each must lie within the value.
+std::string BadStringVector(const std::string& value) {
+    for (size_t at = 0; at < value.size();) {
+        if (at + 4 > value.size()) return "a string's size ends past the attribute's";
+        const uint64_t length = Le32(value, at);
+        if (length > value.size() - at - 4)
+            return "a string claims " + std::to_string(length) + " bytes, but the attribute has " +
+                   std::to_string(value.size() - at - 4) + " left";
+        at += 4 + length;
+    }
+    return "";
+}
+
+/// The size of an attribute of the OpenEXR type `type`, or -1 for a type of any size. OpenEXR reads
+/// a value of these types in its own size whatever the attribute says, so that a wrong size would
+/// make it read the fields after it from other bytes than the ones checked here.
+int FixedSize(const std::string& type) {
+    static const struct {
+        const char* type;
+        int size;
+    } kSizes[] = {
+        {"box2i", 16},
+        {"box2f", 16},
+        {"chromaticities", 32},
+        {"compression", 1},
+        {"deepImageState", 1},
+        {"double", 8},
+        {"envmap", 1},
+        {"float", 4},
+        {"int", 4},
+        {"keycode", 28},
+        {"lineOrder", 1},
+        {"m33f", 36},
+        {"m33d", 72},
+        {"m44f", 64},
+        {"m44d", 128},
+        {"rational", 8},
+        {"tiledesc", 9},
+        {"timecode", 8},
+        {"v2i", 8},
+        {"v2f", 8},
+        {"v2d", 16},
+        {"v3i", 12},
+        {"v3f", 12},
+        {"v3d", 24},
+    };
+    for (const auto& s : kSizes)
+        if (type == s.type) return s.size;
+    return -1;
+}
+
 }  // namespace
 
 std::string OversizedExrHeader(const std::string& path) {
@@ -100,10 +152,16 @@ std::string OversizedExrHeader(const std::string& path) {
             if (length > size - at)
                 return "the OpenEXR attribute '" + name + "' claims " + std::to_string(length) +
                        " bytes, but the file has " + std::to_string(size - at) + " left";
-            if (type == "chlist" || type == "preview") {
+            if (const int fixed = FixedSize(type); fixed >= 0 && length != static_cast<uint64_t>(fixed))
+                return "the OpenEXR attribute '" + name + "' at byte " + std::to_string(at) + " has " +
+                       std::to_string(length) + " bytes, where its type " + type + " has " + std::to_string(fixed);
+            if (type == "chlist" || type == "preview" || type == "stringvector") {
                 std::string value(length, '\0');
                 in.read(value.data(), static_cast<std::streamsize>(length));
-                if (std::string why = type == "chlist" ? BadChannelList(value) : BadPreview(value); !why.empty())
+                const std::string why = type == "chlist"    ? BadChannelList(value)
+                                        : type == "preview" ? BadPreview(value)
+                                                            : BadStringVector(value);
+                if (!why.empty())
                     return "the OpenEXR attribute '" + name + "' at byte " + std::to_string(at) + ": " + why;
             }
             in.seekg(static_cast<std::streamoff>(at + length));

@@ -338,6 +338,19 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     CHECK(error.find("': the OpenEXR attribute 'channels' at byte " + std::to_string(value) +
                      ": its channels end before its size") != std::string::npos);
 
+    // A value of a fixed-size type in another size: OpenEXR would read it in its own size and the
+    // fields after it from other bytes (fuzz/regressions/fuzz_texture/exr_v2f_short_hides_2gb_string).
+    const std::string widthAttribute("screenWindowWidth\0float\0", 24);
+    const size_t widthAt = original.find(widthAttribute);
+    REQUIRE(widthAt != std::string::npos);
+    std::string shortFloat = original;
+    shortFloat[widthAt + 24] = 1;
+    std::ofstream(typed, std::ios::binary) << shortFloat;
+    error.clear();
+    CHECK_FALSE(Open(typed, &error));
+    CHECK(error == "cannot read texture '" + typed + "': the OpenEXR attribute 'screenWindowWidth' at byte " +
+                       std::to_string(widthAt + 28) + " has 1 bytes, where its type float has 4");
+
     // GIF files whose canvas is larger than 2^26 pixels: refused before OpenImageIO, which would
     // allocate the canvas as it opens the file (or end the process when its size overflows an
     // int; fuzz/regressions/fuzz_texture).
