@@ -224,12 +224,13 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     // signature whatever the name, or by extension.
     const std::string readList =
         ", not a format affray reads texture maps from: TIFF, OpenEXR, PNG, JPEG, "
-        "Radiance HDR, PNM, BMP, GIF or Targa (convert it, e.g. with oiiotool)";
+        "Radiance HDR, PNM, GIF or Targa (convert it, e.g. with oiiotool)";
     for (const auto& [name, bytes, expected] :
          {std::tuple<const char*, const char*, std::string>{"image.rla", "not an image\n", "RLA by its extension"},
           {"image.dpx", "not an image\n", "DPX by its extension"},
           {"dpx.png", "SDPX and more", "DPX by its signature"},
-          {"photoshop.tif", "8BPS and more", "Photoshop by its signature"}}) {
+          {"photoshop.tif", "8BPS and more", "Photoshop by its signature"},
+          {"bitmap.png", "BM and more", "BMP by its signature"}}) {
         const std::string other = dir.path(name);
         std::ofstream(other) << bytes;
         error.clear();
