@@ -45,7 +45,7 @@ inline std::optional<BenchShader> LoadBenchShader(const std::string& path, std::
         return std::nullopt;
     }
     const std::vector<compiler::ConstantGlobal> constants =
-        renderer::ConstantGlobals(renderer::BilinearPatch::UnitSquare(), glm::dvec3(0.0));
+        renderer::ConstantGlobals(renderer::BilinearPatch::UnitSquare(), glm::dvec3(0.0), 0.0, 0.0);
     std::vector<std::string> errors;
     std::optional<vm::Program> program = compiler::Specialise(result.shader->bound, {}, &errors, constants);
     if (!program) {

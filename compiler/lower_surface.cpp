@@ -68,9 +68,9 @@ struct SurfaceGlobal {
 };
 
 constexpr SurfaceGlobal kSurfaceGlobals[] = {
-    {"Cs", Type::Color},     {"Os", Type::Color},    {"Ci", Type::Color},       {"Oi", Type::Color},
-    {"L", Type::Vector},     {"Cl", Type::Color},    {"Ol", Type::Color},       {"alpha", Type::Float},
-    {"ncomps", Type::Float}, {"dtime", Type::Float}, {"dPdtime", Type::Vector},
+    {"Cs", Type::Color},     {"Os", Type::Color},       {"Ci", Type::Color}, {"Oi", Type::Color},
+    {"L", Type::Vector},     {"Cl", Type::Color},       {"Ol", Type::Color}, {"alpha", Type::Float},
+    {"ncomps", Type::Float}, {"dPdtime", Type::Vector},
 };
 
 const SurfaceCall* FindSurfaceCall(const std::string& name) {

@@ -25,11 +25,14 @@
 
 namespace affray::renderer {
 
-std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, const glm::dvec3& eye) {
+std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, const glm::dvec3& eye,
+                                                      double shutterOpen, double shutterClose) {
     using vm::Global;
     std::vector<compiler::ConstantGlobal> out = {{Global::E, {eye.x, eye.y, eye.z}},
                                                  {Global::du, {kParametricStep, 0, 0}},
-                                                 {Global::dv, {kParametricStep, 0, 0}}};
+                                                 {Global::dv, {kParametricStep, 0, 0}},
+                                                 {Global::time, {shutterOpen, 0, 0}},
+                                                 {Global::dtime, {shutterClose - shutterOpen, 0, 0}}};
     if (base.kind() != BaseSurface::Kind::BilinearPatch) return out;
     const BilinearPatch& patch = base.patch();
     // The tangents along the mesh's (u,v), scaled by ds/du and dt/dv as SetPatchGlobals scales them.
@@ -376,7 +379,8 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
     // once per shader instance and constants, shared by the others.
     std::map<std::pair<const void*, std::vector<uint64_t>>, const PrimitivePrograms*> specialised;
     auto specialise = [&](const Instance& instance, const BaseSurface& base) {
-        const std::vector<compiler::ConstantGlobal> constants = ConstantGlobals(base, eye);
+        const std::vector<compiler::ConstantGlobal> constants =
+            ConstantGlobals(base, eye, desc.camera.shutterOpen, desc.camera.shutterClose);
         // (The values by their bits: the same bits fold to the same program, a NaN included.)
         std::pair<const void*, std::vector<uint64_t>> key{instance.shader.get(), {}};
         for (const compiler::ConstantGlobal& c : constants) {

@@ -107,9 +107,11 @@ struct PreparedScene {
     mutable std::string identityDigest;
 };
 
-/// The shader globals that do not vary over `base` seen from `eye`, for specialising its programs:
-/// E, du, dv, and for a flat patch N, Ng, dPdu and dPdv.
-std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, const glm::dvec3& eye);
+/// The shader globals that do not vary over `base` seen from `eye` under a shutter open from
+/// `shutterOpen` to `shutterClose`, for specialising its programs: E, du, dv, time (the opening)
+/// and dtime (the shutter's length), and for a flat patch N, Ng, dPdu and dPdv.
+std::vector<compiler::ConstantGlobal> ConstantGlobals(const BaseSurface& base, const glm::dvec3& eye,
+                                                      double shutterOpen, double shutterClose);
 
 /// The box of `prim`'s displaced surface over its whole domain seen from `eye`, as its BVH box is
 /// made: the union of its interval bounds over a grid of `cells` x `cells` cells of its (u,v);

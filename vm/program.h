@@ -14,7 +14,10 @@
 
 namespace affray::vm {
 
-/// The shader globals a displacement shader can read (RenderMan names).
+/// The shader globals a displacement shader can read (RenderMan names). `time` and `dtime` are the
+/// shutter's opening time and its length: a displacement is evaluated once for all the times of
+/// the shutter, at its opening, as a Reyes renderer shades its grids (renderer/prepare.cpp binds
+/// both as constants of each program).
 #define AFFRAY_GLOBALS(X) \
     X(P, 3)               \
     X(N, 3)               \
@@ -28,7 +31,9 @@ namespace affray::vm {
     X(u, 1)               \
     X(v, 1)               \
     X(du, 1)              \
-    X(dv, 1)
+    X(dv, 1)              \
+    X(time, 1)            \
+    X(dtime, 1)
 
 enum class Global : uint8_t {
 #define AFFRAY_GLOBAL_ENUM(name, size) name,

@@ -173,6 +173,9 @@ void SetFrameGlobals(vm::Interpreter<T>& interp, const T& u, const T& v, const S
     interp.SetGlobal(Global::t, v);
     interp.SetGlobal(Global::du, T(kParametricStep));
     interp.SetGlobal(Global::dv, T(kParametricStep));
+    // The default shutter's (0 0); a render binds its scene's as constants (ConstantGlobals).
+    interp.SetGlobal(Global::time, T(0.0));
+    interp.SetGlobal(Global::dtime, T(0.0));
     interp.SetGlobal(Global::dPdu, frame.dPdu);
     interp.SetGlobal(Global::dPdv, frame.dPdv);
     if (ReadsNormal(program)) {

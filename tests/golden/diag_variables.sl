@@ -18,4 +18,5 @@ displacement t(string mode = "up") {
     a[0] = P;
     P += nothere * N;
     P += k * N;
+    time = dtime;
 }

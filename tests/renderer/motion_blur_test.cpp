@@ -137,3 +137,34 @@ TEST_CASE("motion blur: a shutter that does not open, or a scene that does not m
     CHECK(test::RgbRmse(test::RenderText(Scene("", Translate(0.2, 0, 0), 2, "Shutter 0 1\n")),
                         test::RenderText(Scene("", Translate(0.2, 0, 0), 2))) == 0);
 }
+
+TEST_CASE("motion blur: displacement shaders see time and dtime, the shutter's opening and length",
+          "[renderer][motion]") {
+    // A displacement is evaluated once for all the shutter's times, at its opening (as a Reyes
+    // renderer shades): the shader reading time and dtime renders as one given their values.
+    test::TempDir dir;
+    dir.Write("timed.sl",
+              "displacement timed(float Km = 0.1) {\n"
+              "    P += normalize(N) * Km * (time + 2 * dtime);\n"
+              "    N = calculatenormal(P);\n"
+              "}\n");
+    dir.Write("fixed.sl",
+              "displacement fixed(float Km = 0.1; float at = 0) {\n"
+              "    P += normalize(N) * Km * at;\n"
+              "    N = calculatenormal(P);\n"
+              "}\n");
+    auto scene = [&](const std::string& shutter, const std::string& displacement) {
+        return "Format 16 12 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" [40]\n" + shutter +
+               "Option \"searchpath\" \"shader\" [\"" + dir.Path("") + ":&\"]\nTranslate 0 0 3\nWorldBegin\n" +
+               "LightSource \"distantlight\" 1 \"from\" [1 1 -2] \"to\" [0 0 0]\nSurface \"matte\"\n" + displacement +
+               "\nSphere 0.5 -0.5 0.5 360\nWorldEnd\n";
+    };
+    const image::ImageBuffer timed = test::RenderText(scene("Shutter 0.25 0.75\n", "Displacement \"timed\""));
+    CHECK(test::RgbRmse(timed,
+                        test::RenderText(scene("Shutter 0.25 0.75\n", "Displacement \"fixed\" \"at\" [1.25]"))) == 0);
+    // The default shutter (0 0): both are 0.
+    CHECK(test::RgbRmse(test::RenderText(scene("", "Displacement \"timed\"")),
+                        test::RenderText(scene("", "Displacement \"fixed\""))) == 0);
+    // The displacement is there to be seen.
+    CHECK(test::RgbRmse(timed, test::RenderText(scene("Shutter 0.25 0.75\n", "Displacement \"fixed\""))) > 0.01);
+}

@@ -16,8 +16,9 @@ TEST_CASE("program: the globals' names and sizes", "[vm][program]") {
     const std::pair<Global, const char*> triples[] = {{Global::P, "P"},      {Global::N, "N"}, {Global::Ng, "Ng"},
                                                       {Global::I, "I"},      {Global::E, "E"}, {Global::dPdu, "dPdu"},
                                                       {Global::dPdv, "dPdv"}};
-    const std::pair<Global, const char*> floats[] = {{Global::s, "s"}, {Global::t, "t"},   {Global::u, "u"},
-                                                     {Global::v, "v"}, {Global::du, "du"}, {Global::dv, "dv"}};
+    const std::pair<Global, const char*> floats[] = {
+        {Global::s, "s"},   {Global::t, "t"},   {Global::u, "u"},       {Global::v, "v"},
+        {Global::du, "du"}, {Global::dv, "dv"}, {Global::time, "time"}, {Global::dtime, "dtime"}};
     for (const auto& [g, name] : triples) {
         CHECK(std::string(vm::GlobalName(g)) == name);
         CHECK(vm::GlobalSize(g) == 3);
@@ -26,7 +27,7 @@ TEST_CASE("program: the globals' names and sizes", "[vm][program]") {
         CHECK(std::string(vm::GlobalName(g)) == name);
         CHECK(vm::GlobalSize(g) == 1);
     }
-    CHECK(vm::kGlobalCount == 13);
+    CHECK(vm::kGlobalCount == 15);
 }
 
 TEST_CASE("program: outputs by name, and whether it takes derivatives", "[vm][program]") {
