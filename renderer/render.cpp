@@ -262,6 +262,12 @@ bool Before(const Hit& a, int ia, const Hit& b, int ib) {
 NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& ray, double tMin, double tMax,
                         const Tolerance& tol, IntersectStats& stats, const glm::dvec3& eye, const RayGroup* group) {
     constexpr int kMaxBackFaces = 16;
+    // The primitives seen from behind so far, each searched again only beyond its hit's certified
+    // error (Beyond); the others from the nearest such hit on, so that a surface in front within
+    // that error of the one seen from behind (a one-sided solid's front and back faces meeting at
+    // its silhouette, a face just behind a one-sided decal) is still found.
+    std::pair<int, double> behind[kMaxBackFaces];
+    int behindCount = 0;
     for (int attempt = 0; attempt <= kMaxBackFaces; ++attempt) {
         NearestHit nearest;
         double best = tMax;
@@ -270,8 +276,12 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
             // From the box's entry (at least tMin, and a function of the ray and the primitive's
             // box alone): every surface point lies past it, and so then does the hit, which the
             // BVH would otherwise skip, its box entered beyond a nearer hit's t.
+            double from = tEntry;
+            for (int k = 0; k < behindCount; ++k)
+                if (behind[k].first == i) from = std::max(from, behind[k].second);
+            if (from > best) return true;
             Hit hit;
-            if (ts.Intersect(i, ray, tEntry, best, ToleranceOf(ts, i, tol), false, &hit, stats, group) &&
+            if (ts.Intersect(i, ray, from, best, ToleranceOf(ts, i, tol), false, &hit, stats, group) &&
                 (nearest.primitive < 0 || Before(hit, i, nearest.hit, nearest.primitive))) {
                 best = hit.t;
                 nearest = {hit, i, std::nullopt};
@@ -289,8 +299,13 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
         const double length = glm::length(ng);
         const glm::dvec3 facing = length > 0 && std::isfinite(length) ? ng / length : at.N;
         if (glm::dot(facing, ray.dir) < 0) return nearest;
-        // Seen from behind: look again beyond this hit's certified error.
-        tMin = Beyond(nearest.hit, tol);
+        // Seen from behind: look again, this primitive beyond its hit's certified error.
+        if (attempt == kMaxBackFaces) break;
+        int k = 0;
+        while (k < behindCount && behind[k].first != nearest.primitive) ++k;
+        if (k == behindCount) ++behindCount;
+        behind[k] = {nearest.primitive, Beyond(nearest.hit, tol)};
+        tMin = nearest.hit.t;
     }
     return {};
 }

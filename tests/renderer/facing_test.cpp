@@ -529,3 +529,30 @@ TEST_CASE("facing: under a mirroring camera, world space is right-handed: Orient
     const std::vector<Shape> shapes = {polygons[0], polygons[3], quadrics[0], quadrics[3]};
     CHECK(CheckFacing(shapes, true) == (3 + 3 + 1 + 1) * kPerShape);
 }
+
+TEST_CASE("facing: a surface seen from behind hides nothing behind it, however close", "[renderer][facing]") {
+    // Two one-sided squares facing opposite ways, 0.02 apart along the view (a tenth of the
+    // tolerance, about a pixel here): the one nearer the camera seen from behind, the farther one
+    // from the front. The search goes on past the first only: the second shows, in every pixel.
+    // (It used to go on past the first's certified error for every primitive, and saw neither.)
+    test::TempDir dir;
+    const std::string camera = "Format 16 12 1\nProjection \"perspective\" \"fov\" [40]\nWorldBegin\n"
+                               "Sides 1\nSurface \"constant\"\n";
+    auto square = [](double z, bool reversed) {
+        std::ostringstream out;
+        out << "AttributeBegin\n" << (reversed ? "ReverseOrientation\n" : "") << "Patch \"bilinear\" \"P\" [-9 -9 " << z
+            << "  9 -9 " << z << "  -9 9 " << z << "  9 9 " << z << "]\nAttributeEnd\n";
+        return out.str();
+    };
+    auto covered = [](const image::ImageBuffer& image) {
+        int n = 0;
+        for (size_t p = 0; p * 4 < image.rgba.size(); ++p) n += image.rgba[4 * p + 3] > 0.5f;
+        return n;
+    };
+    // Which of the two orientations the camera sees from the front.
+    const bool frontReversed = covered(test::RenderRib(dir, camera + square(5, true) + "WorldEnd\n")) > 0;
+    REQUIRE(covered(test::RenderRib(dir, camera + square(5, !frontReversed) + "WorldEnd\n")) == 0);
+    const image::ImageBuffer both =
+        test::RenderRib(dir, camera + square(5, !frontReversed) + square(5.02, frontReversed) + "WorldEnd\n");
+    CHECK(covered(both) == 16 * 12);
+}
