@@ -249,9 +249,38 @@ bool Before(const Hit& a, int ia, const Hit& b, int ib) {
     return ia < ib;
 }
 
+/// The hits a camera ray has gone past (surfaces seen from behind, partly transparent layers),
+/// each primitive's latest: that primitive is searched again only beyond the hit's certified
+/// error (Beyond), the others from the hit on, so that a surface within that error behind it (a
+/// one-sided solid's back face meeting its front face at the silhouette, a face just behind a
+/// one-sided decal or a veil) is still found. Once full, the next search starts beyond the last
+/// hit for every primitive, as with no list.
+struct PassedHits {
+    static constexpr int kCapacity = 32;
+    std::pair<int, double> from[kCapacity];  // (primitive, where its search starts again)
+    int count = 0;
+
+    /// Where primitive i's search starts, at least `t`.
+    double From(int i, double t) const {
+        for (int k = 0; k < count; ++k)
+            if (from[k].first == i) return std::max(t, from[k].second);
+        return t;
+    }
+    /// Goes past `hit` on primitive i; returns where the ray's next search starts.
+    double Pass(int i, const Hit& hit, const Tolerance& tol) {
+        const double beyond = Beyond(hit, tol);
+        int k = 0;
+        while (k < count && from[k].first != i) ++k;
+        if (k == kCapacity) return beyond;
+        if (k == count) ++count;
+        from[k] = {i, beyond};
+        return hit.t;
+    }
+};
+
 /// The nearest hit along `ray` in [tMin, tMax] over the primitives the BVH offers. A one-sided
 /// primitive (Sides 1) seen from behind (its geometric normal away from the ray) is not hit: the
-/// search goes on past it.
+/// search goes on past it (`passed` holds it and the hits the ray went past before: PassedHits).
 /// The hit kept is a function of the ray and the scene's primitives, whatever the BVH's shape or
 /// the order it offers them in (issue 32): each primitive's hit does not depend on the tMax it is
 /// searched with (SurfaceIntersector::Intersect), only whether it is reported; it lies past
@@ -260,14 +289,9 @@ bool Before(const Hit& a, int ia, const Hit& b, int ib) {
 /// of the hits themselves (Before). Two surfaces whose hits lie within the tolerance of each other (a
 /// cone standing on a displaced floor) are then told apart by the same rule on every BVH.
 NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& ray, double tMin, double tMax,
-                        const Tolerance& tol, IntersectStats& stats, const glm::dvec3& eye, const RayGroup* group) {
+                        const Tolerance& tol, IntersectStats& stats, const glm::dvec3& eye, const RayGroup* group,
+                        PassedHits* passed) {
     constexpr int kMaxBackFaces = 16;
-    // The primitives seen from behind so far, each searched again only beyond its hit's certified
-    // error (Beyond); the others from the nearest such hit on, so that a surface in front within
-    // that error of the one seen from behind (a one-sided solid's front and back faces meeting at
-    // its silhouette, a face just behind a one-sided decal) is still found.
-    std::pair<int, double> behind[kMaxBackFaces];
-    int behindCount = 0;
     for (int attempt = 0; attempt <= kMaxBackFaces; ++attempt) {
         NearestHit nearest;
         double best = tMax;
@@ -276,9 +300,7 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
             // From the box's entry (at least tMin, and a function of the ray and the primitive's
             // box alone): every surface point lies past it, and so then does the hit, which the
             // BVH would otherwise skip, its box entered beyond a nearer hit's t.
-            double from = tEntry;
-            for (int k = 0; k < behindCount; ++k)
-                if (behind[k].first == i) from = std::max(from, behind[k].second);
+            const double from = passed->From(i, tEntry);
             if (from > best) return true;
             Hit hit;
             if (ts.Intersect(i, ray, from, best, ToleranceOf(ts, i, tol), false, &hit, stats, group) &&
@@ -300,12 +322,7 @@ NearestHit TraceNearest(const PreparedScene& scene, ThreadState& ts, const Ray& 
         const glm::dvec3 facing = length > 0 && std::isfinite(length) ? ng / length : at.N;
         if (glm::dot(facing, ray.dir) < 0) return nearest;
         // Seen from behind: look again, this primitive beyond its hit's certified error.
-        if (attempt == kMaxBackFaces) break;
-        int k = 0;
-        while (k < behindCount && behind[k].first != nearest.primitive) ++k;
-        if (k == behindCount) ++behindCount;
-        behind[k] = {nearest.primitive, Beyond(nearest.hit, tol)};
-        tMin = nearest.hit.t;
+        tMin = passed->Pass(nearest.primitive, nearest.hit, tol);
     }
     return {};
 }
@@ -581,8 +598,9 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
     // composited over what lies behind); an opaque layer ends the ray. The AOVs are the nearest
     // surface's; alpha is the coverage, 1 - the mean of what gets through.
     glm::dvec3 through(1.0);
+    PassedHits passed;
     for (int layer = 0; layer < kMaxLayers; ++layer) {
-        const NearestHit nh = TraceNearest(scene, ts, ray, tMin, tMax, tol, ts.cameraStats, eye, group);
+        const NearestHit nh = TraceNearest(scene, ts, ray, tMin, tMax, tol, ts.cameraStats, eye, group, &passed);
         if (nh.primitive < 0) break;
         const Primitive& prim = scene.primitives[nh.primitive];
         const HitPoint at = EvaluateHit(scene, ts, ray, nh, eye);
@@ -604,7 +622,7 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
             value.err = nh.hit.error;
         }
         if (through == glm::dvec3(0.0)) break;
-        tMin = Beyond(nh.hit, tol);
+        tMin = passed.Pass(nh.primitive, nh.hit, tol);
     }
     value.alpha = 1.0 - (through.x + through.y + through.z) / 3.0;
     value.cost = static_cast<int64_t>(ts.cameraStats.regionsBounded - before);

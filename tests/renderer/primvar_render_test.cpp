@@ -66,6 +66,16 @@ TEST_CASE("primvar render: partly transparent surfaces composite front to back",
     // The blue alone.
     CHECK(glm::length(Rgb(image, 28, 4) - glm::dvec3(0, 0, 1)) < 1e-6);
     CHECK(Alpha(image, 28, 28) == 0.0f);
+    // The blue square 0.01 behind the red one, within the red hit's certified error (a pixel is
+    // 0.0625 here): the ray goes on past the red square alone, and still meets the blue one.
+    const std::string close = std::string(kCamera) +
+                              "AttributeBegin\nOpacity 0.5 0.5 0.5\nColor 1 0 0\n"
+                              "Patch \"bilinear\" \"P\" [-1 -1 -1  0 -1 -1  -1 1 -1  0 1 -1]\nAttributeEnd\n"
+                              "Color 0 0 1\nPatch \"bilinear\" \"P\" [-1 0 -0.99  1 0 -0.99  -1 1 -0.99  1 1 -0.99]\n"
+                              "WorldEnd\n";
+    const image::ImageBuffer near = test::RenderRib(dir, close);
+    CHECK(glm::length(Rgb(near, 4, 4) - glm::dvec3(0.5, 0, 0.5)) < 1e-6);
+    CHECK(Alpha(near, 4, 4) == 1.0f);
     // An "Os" primitive variable: opaque at the left edge, clear at the right, over the blue.
     const std::string varying = std::string(kCamera) +
                                 "Color 1 0 0\nPatch \"bilinear\" \"P\" [-1 -1 -1  1 -1 -1  -1 1 -1  1 1 -1]"
