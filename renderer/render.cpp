@@ -34,6 +34,7 @@ struct ThreadState {
     uint64_t cameraRays = 0;
     /// ShadowTransmission's scratch: the partly transparent primitives a shadow ray passes.
     std::vector<std::pair<int, glm::dvec3>> shadowShares;
+    std::vector<LightDesc> movedLights;  // a light set's lights at a ray's time (ShadeHit), if any moves
 
     /// Per primitive, the factor its tolerance is scaled by (ToleranceScales).
     const std::vector<double>& toleranceScale;
@@ -439,8 +440,15 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
         const double nearEnd = std::isfinite(distance) ? distance - nearOffset : INFINITY;
         return ProvedBlocked(scene, ts, nearRay, nearOffset, nearEnd, nearTol) ? glm::dvec3(0.0) : through;
     };
-    return ShadeSurface(prim.surface(), prim.ColorAt(nh.hit.u, nh.hit.v), sp, scene.lightSets[prim.lightSet],
-                        transmitted);
+    // Lights that move (LightDesc::motion) stand where they are at the ray's time; the shadow rays
+    // toward them keep that time too.
+    const std::vector<LightDesc>* lights = &scene.lightSets[prim.lightSet];
+    if (std::any_of(lights->begin(), lights->end(), [](const LightDesc& l) { return l.motion != nullptr; })) {
+        ts.movedLights.clear();
+        for (const LightDesc& light : *lights) ts.movedLights.push_back(LightAt(light, ray.time));
+        lights = &ts.movedLights;
+    }
+    return ShadeSurface(prim.surface(), prim.ColorAt(nh.hit.u, nh.hit.v), sp, *lights, transmitted);
 }
 
 }  // namespace

@@ -386,7 +386,9 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     std::vector<RibParam> params;  // those of a light affray does not have are unchecked
     if (!ParamList(r, 2, &params, shader != nullptr)) return false;
     if (m_worldEnded) return Fail(r.at, "'LightSource' after 'WorldEnd'");
-    WarnIfMoving(r);
+    // A light in the world moves with a moving transform (LightDesc::motion); one given before
+    // WorldBegin, in camera space, is placed once the camera is known, at its first time.
+    if (!m_worldSeen) WarnIfMoving(r, "lights given before 'WorldBegin'");
 
     LightDesc light;
     light.line = r.at.line;
@@ -418,6 +420,7 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     if (!m_worldSeen && !NoPendingPerspective(r)) return false;
     light.from = TransformPoint(m_state.ctm, light.from);
     light.to = TransformPoint(m_state.ctm, light.to);
+    if (m_worldSeen) light.motion = m_state.motion;
     bool aimed = light.kind == LightDesc::Kind::Distant || light.kind == LightDesc::Kind::Spot;
     if (aimed && light.from == light.to) return Fail(r.at, context + " 'from' and 'to' must differ");
     // Its index: lights given before WorldBegin come first in the frame's list (DoWorldBegin).

@@ -517,7 +517,7 @@ bool RibParser::DoCoordinateSystem(const RibRequest& r) {
                                             "screen", "shader",  "world",  "NDC"};
     for (const char* standard : kStandard)
         if (name == standard) return Fail(r.at, Quote(r.name) + " cannot redefine the standard space " + Quote(name));
-    WarnIfMoving(r);
+    WarnIfMoving(r, "coordinate systems");
     if (m_worldSeen && r.name == "ScopedCoordinateSystem") {
         auto spaces = m_state.scopedSpaces ? std::make_shared<std::map<std::string, glm::dmat4>>(*m_state.scopedSpaces)
                                            : std::make_shared<std::map<std::string, glm::dmat4>>();

@@ -159,7 +159,9 @@ class RibParser : private RibArgChecks {
     bool OnEveryTime(const RibRequest& r);
     /// Warns that `r` (a light or a coordinate system) is placed at the first time of a moving
     /// CTM, if the CTM moves: they do not move with it.
-    void WarnIfMoving(const RibRequest& r);
+    /// Warns that the request `r`, under a moving transform, is placed at the path's first time:
+    /// "`what` do not move".
+    void WarnIfMoving(const RibRequest& r, const std::string& what);
     /// Runs `r` by its handler.
     bool DispatchRequest(const RibRequest& r);
     /// An open MotionBegin: where, its times, the kind of request it holds, how many so far.

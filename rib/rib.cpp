@@ -225,10 +225,10 @@ bool RibParser::OnEveryTime(const RibRequest& r) {
     return true;
 }
 
-void RibParser::WarnIfMoving(const RibRequest& r) {
+void RibParser::WarnIfMoving(const RibRequest& r, const std::string& what) {
     if (!m_state.motion) return;
     Warn(r.at, Quote(r.name) + " under a moving transform is placed where the transform is at its first time (" +
-                   FormatNumber(m_state.motion->times.front()) + "): lights and coordinate systems do not move");
+                   FormatNumber(m_state.motion->times.front()) + "): " + what + " do not move");
 }
 
 bool RibParser::DispatchRequest(const RibRequest& r) {

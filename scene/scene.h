@@ -77,6 +77,10 @@ struct LightDesc {
     double coneAngle = 0.5235987755982988, coneDeltaAngle = 0.08726646259971647, beamDistribution = 2;
     std::string handle;  ///< The RIB light handle (number or string), as text.
     int line = 0;
+    /// A light declared under a moving transform (MotionBegin around transform requests): from and
+    /// to are where the path's first matrix places them, carried at time t by At(t) times the
+    /// first matrix's inverse (LightAt). Null for a light that stands still.
+    std::shared_ptr<const MotionPath> motion;
     /// Whether the light traces shadow rays. RenderMan's standard lights cast no shadows (their
     /// shaders never call shadow()); the RIB reader turns this on for the shadow-map lights
     /// (shadowspot...), a light given a "shadowname", and BMRT's Attribute "light" "shadows" "on".
@@ -372,7 +376,18 @@ inline std::string ToString(const LightDesc& l) {
         out << " coneangle=" << l.coneAngle << " conedeltaangle=" << l.coneDeltaAngle
             << " beamdistribution=" << l.beamDistribution;
     if (l.castShadows) out << " shadows";
+    if (l.motion) out << ToString(*l.motion);
     return out.str();
+}
+
+/// `light` where it stands at `time`: from and to carried along its motion path.
+inline LightDesc LightAt(const LightDesc& light, double time) {
+    if (!light.motion) return light;
+    LightDesc at = light;
+    const glm::dmat4 move = light.motion->At(time) * glm::inverse(light.motion->matrices.front());
+    at.from = glm::dvec3(move * glm::dvec4(light.from, 1.0));
+    at.to = glm::dvec3(move * glm::dvec4(light.to, 1.0));
+    return at;
 }
 
 inline std::string ToString(const PrimitiveDesc& p) {

@@ -536,12 +536,14 @@ TEST_CASE("facing: a surface seen from behind hides nothing behind it, however c
     // from the front. The search goes on past the first only: the second shows, in every pixel.
     // (It used to go on past the first's certified error for every primitive, and saw neither.)
     test::TempDir dir;
-    const std::string camera = "Format 16 12 1\nProjection \"perspective\" \"fov\" [40]\nWorldBegin\n"
-                               "Sides 1\nSurface \"constant\"\n";
+    const std::string camera =
+        "Format 16 12 1\nProjection \"perspective\" \"fov\" [40]\nWorldBegin\n"
+        "Sides 1\nSurface \"constant\"\n";
     auto square = [](double z, bool reversed) {
         std::ostringstream out;
-        out << "AttributeBegin\n" << (reversed ? "ReverseOrientation\n" : "") << "Patch \"bilinear\" \"P\" [-9 -9 " << z
-            << "  9 -9 " << z << "  -9 9 " << z << "  9 9 " << z << "]\nAttributeEnd\n";
+        out << "AttributeBegin\n"
+            << (reversed ? "ReverseOrientation\n" : "") << "Patch \"bilinear\" \"P\" [-9 -9 " << z << "  9 -9 " << z
+            << "  -9 9 " << z << "  9 9 " << z << "]\nAttributeEnd\n";
         return out.str();
     };
     auto covered = [](const image::ImageBuffer& image) {
