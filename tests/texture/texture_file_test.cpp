@@ -219,6 +219,14 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
         CHECK_FALSE(Open(other, &error));
         CHECK(error.find("not a file of an image format affray reads") != std::string::npos);
     }
+    // The formats read, each as OpenImageIO writes it (Targa known by its extension alone).
+    for (const char* name : {"map.tif", "map.exr", "map.png", "map.jpg", "map.hdr", "map.ppm", "map.gif", "map.tga"}) {
+        const std::string written = dir.path(name);
+        WriteImage(written, 8, 8, 3, RandomTexels(rng, 8 * 8 * 3));
+        error.clear();
+        INFO(name << ": " << error);
+        CHECK(Open(written, &error));
+    }
     // Only the formats of texture maps: the readers of others allocate what a damaged header
     // claims as they open it (fuzz/regressions/fuzz_texture/dpx_header_claims_2gb). Refused by
     // signature whatever the name, or by extension.
