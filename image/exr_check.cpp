@@ -42,7 +42,8 @@ std::string BadChannelList(const std::string& value) {
 std::string BadPreview(const std::string& value) {
     if (value.size() < 8) return "the preview image has no size";
     const uint64_t width = Le32(value, 0), height = Le32(value, 4);
-    if (8 + width * height * 4 != value.size())
+    // (Each side at most the value's size first, so that the product cannot wrap around.)
+    if (width > value.size() || height > value.size() || 8 + width * height * 4 != value.size())
         return "the preview image of " + std::to_string(width) + " x " + std::to_string(height) +
                " pixels does not fill its " + std::to_string(value.size()) + " bytes";
     return "";

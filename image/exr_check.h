@@ -11,7 +11,9 @@
 namespace affray::image {
 
 /// Why the OpenEXR file at `path` cannot be read, or "" when its headers are sound or it is not
-/// an OpenEXR file: every attribute of every header (one per part) must fit in the file.
+/// an OpenEXR file: every attribute of every header (one per part) must fit in the file, with
+/// names and types no longer than OpenEXR reads them, values of fixed-size types in their size,
+/// and channel lists, previews and string vectors holding what they say (image/exr_check.cpp).
 std::string OversizedExrHeader(const std::string& path);
 
 }  // namespace affray::image

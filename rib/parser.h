@@ -157,10 +157,8 @@ class RibParser : private RibArgChecks {
     bool Dispatch(const RibRequest& r);
     /// Runs the transform request `r` on each matrix of the moving CTM.
     bool OnEveryTime(const RibRequest& r);
-    /// Warns that `r` (a light or a coordinate system) is placed at the first time of a moving
-    /// CTM, if the CTM moves: they do not move with it.
-    /// Warns that the request `r`, under a moving transform, is placed at the path's first time:
-    /// "`what` do not move".
+    /// Warns that `r` (a light given before WorldBegin, a coordinate system) is placed at the first
+    /// time of the CTM, if the CTM moves: "`what` do not move".
     void WarnIfMoving(const RibRequest& r, const std::string& what);
     /// Runs `r` by its handler.
     bool DispatchRequest(const RibRequest& r);

@@ -360,6 +360,17 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     CHECK(error == "cannot read texture '" + typed + "': the OpenEXR attribute 'screenWindowWidth' at byte " +
                        std::to_string(widthAt + 28) + " has 1 bytes, where its type float has 4");
 
+    // A preview whose 2^31 x 2^31 pixels would wrap a 64-bit product around to the 0 bytes it
+    // holds: OpenEXR would allocate them first.
+    std::string preview = original;
+    preview.insert(8, std::string("preview\0preview\0\x08\0\0\0\0\0\0\x80\0\0\0\x80", 28));
+    std::ofstream(typed, std::ios::binary) << preview;
+    error.clear();
+    CHECK_FALSE(Open(typed, &error));
+    CHECK(error == "cannot read texture '" + typed +
+                       "': the OpenEXR attribute 'preview' at byte 28: the preview image of 2147483648 x "
+                       "2147483648 pixels does not fill its 8 bytes");
+
     // GIF files whose canvas is larger than 2^26 pixels: refused before OpenImageIO, which would
     // allocate the canvas as it opens the file (or end the process when its size overflows an
     // int; fuzz/regressions/fuzz_texture).
