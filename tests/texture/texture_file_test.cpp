@@ -224,8 +224,9 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
         const std::string written = dir.path(name);
         WriteImage(written, 8, 8, 3, RandomTexels(rng, 8 * 8 * 3));
         error.clear();
+        const bool opened = Open(written, &error) != nullptr;
         INFO(name << ": " << error);
-        CHECK(Open(written, &error));
+        CHECK(opened);
     }
     // Only the formats of texture maps: the readers of others allocate what a damaged header
     // claims as they open it (fuzz/regressions/fuzz_texture/dpx_header_claims_2gb). Refused by
