@@ -8,10 +8,10 @@
 namespace affray::image {
 namespace {
 
-uint32_t Le32(const std::string& bytes, size_t at) {
-    uint32_t v = 0;
-    for (int i = 3; i >= 0; --i) v = v << 8 | static_cast<unsigned char>(bytes[at + static_cast<size_t>(i)]);
-    return v;
+/// The little-endian 32-bit number at `p` (OpenEXR's sizes and numbers).
+uint32_t Le32(const void* p) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    return uint32_t{b[0]} | uint32_t{b[1]} << 8 | uint32_t{b[2]} << 16 | uint32_t{b[3]} << 24;
 }
 
 /// Why a channel list's `value` is refused, or "". OpenEXR reads the entries from the stream until
@@ -29,7 +29,7 @@ std::string BadChannelList(const std::string& value) {
         }
         const std::string name = value.substr(at, end - at);
         if (end + 17 > value.size()) return "the channel '" + name + "' ends past its size";
-        const uint32_t pixelType = Le32(value, end + 1);
+        const uint32_t pixelType = Le32(value.data() + end + 1);
         if (pixelType > 2)
             return "the channel '" + name + "' has pixel type " + std::to_string(pixelType) +
                    " (0, 1 and 2 are uint, half and float)";
@@ -41,7 +41,7 @@ std::string BadChannelList(const std::string& value) {
 /// (4 bytes each) before it reads them, so they must be what the value holds.
 std::string BadPreview(const std::string& value) {
     if (value.size() < 8) return "the preview image has no size";
-    const uint64_t width = Le32(value, 0), height = Le32(value, 4);
+    const uint64_t width = Le32(value.data()), height = Le32(value.data() + 4);
     // (Each side at most the value's size first, so that the product cannot wrap around.)
     if (width > value.size() || height > value.size() || 8 + width * height * 4 != value.size())
         return "the preview image of " + std::to_string(width) + " x " + std::to_string(height) +
@@ -54,7 +54,7 @@ std::string BadPreview(const std::string& value) {
 std::string BadStringVector(const std::string& value) {
     for (size_t at = 0; at < value.size();) {
         if (at + 4 > value.size()) return "a string's size ends past the attribute's";
-        const uint64_t length = Le32(value, at);
+        const uint64_t length = Le32(value.data() + at);
         if (length > value.size() - at - 4)
             return "a string claims " + std::to_string(length) + " bytes, but the attribute has " +
                    std::to_string(value.size() - at - 4) + " left";
@@ -147,8 +147,7 @@ std::string OversizedExrHeader(const std::string& path) {
             unsigned char bytes[4];
             if (!word(&type)) return tooLong.empty() ? early : tooLong;
             if (!in.read(reinterpret_cast<char*>(bytes), 4)) return early;
-            const uint64_t length =
-                uint64_t{bytes[0]} | uint64_t{bytes[1]} << 8 | uint64_t{bytes[2]} << 16 | uint64_t{bytes[3]} << 24;
+            const uint64_t length = Le32(bytes);
             const auto at = static_cast<uint64_t>(in.tellg());
             if (length > size - at)
                 return "the OpenEXR attribute '" + name + "' claims " + std::to_string(length) +

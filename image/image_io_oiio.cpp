@@ -236,14 +236,19 @@ class OiioImageIo final : public ImageIo {
     }
 
   private:
-    /// The file at `path` opened by the one reader FormatOf picks, once the checks above pass.
+    /// The file at `path` opened by the one reader FormatOf picks, once that format's check above
+    /// passes (each check is of a format known by its signature, which FormatOf looks at first).
     static std::unique_ptr<OIIO::ImageInput> openInput(const std::string& path, std::string* error) {
-        if (std::string why = TruncatedPng(path) + OversizedExrHeader(path) + OversizedGif(path); !why.empty()) {
+        const std::string format = FormatOf(path, error);
+        if (format.empty()) return nullptr;
+        const std::string why = format == "png"       ? TruncatedPng(path)
+                                : format == "openexr" ? OversizedExrHeader(path)
+                                : format == "gif"     ? OversizedGif(path)
+                                                      : std::string();
+        if (!why.empty()) {
             *error = why;
             return nullptr;
         }
-        const std::string format = FormatOf(path, error);
-        if (format.empty()) return nullptr;
         std::unique_ptr<OIIO::ImageInput> input = OIIO::ImageInput::create(format);
         OIIO::ImageSpec opened;
         if (!input || !input->open(path, opened)) {
