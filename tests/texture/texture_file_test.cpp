@@ -228,6 +228,13 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
         INFO(name << ": " << error);
         CHECK(opened);
     }
+    // The error of opening `bytes` written to `path`, which must be refused.
+    auto refusal = [&](const std::string& path, const std::string& bytes) {
+        std::ofstream(path, std::ios::binary) << bytes;
+        std::string why;
+        CHECK_FALSE(Open(path, &why));
+        return why;
+    };
     // Only the formats of texture maps: the readers of others allocate what a damaged header
     // claims as they open it (fuzz/regressions/fuzz_texture/dpx_header_claims_2gb). Refused by
     // signature whatever the name, or by extension.
@@ -241,10 +248,7 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
           {"photoshop.tif", "8BPS and more", "Photoshop by its signature"},
           {"bitmap.png", "BM and more", "BMP by its signature"}}) {
         const std::string other = dir.path(name);
-        std::ofstream(other) << bytes;
-        error.clear();
-        CHECK_FALSE(Open(other, &error));
-        CHECK(error == "cannot read texture '" + other + "': " + expected + readList);
+        CHECK(refusal(other, bytes) == "cannot read texture '" + other + "': " + expected + readList);
     }
 
     // PNG files that end early (fuzz/regressions/fuzz_texture): refused, naming the file and
@@ -258,11 +262,7 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     CHECK(error == "cannot read texture '" + truncated + "': the PNG file ends at byte 8, before its IEND chunk");
     const std::string cut = dir.path("cut.png");
     WriteImage(cut, 8, 8, 3, RandomTexels(rng, 8 * 8 * 3));
-    std::string bytes;
-    {
-        std::ifstream in(cut, std::ios::binary);
-        bytes.assign(std::istreambuf_iterator<char>(in), {});
-    }
+    const std::string bytes = affray::test::ReadText(cut);
     REQUIRE(bytes.compare(0, 8, signature) == 0);
     REQUIRE(Open(cut, &error));
     // The signature decides, not the name: a PNG named .exr reads as the PNG it is.
@@ -283,11 +283,7 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     // A multi-part file (headers one after another) reads as usual.
     const std::string multipart = affray::test::SourceDir() + "/fuzz/corpus/fuzz_texture/multipart4x4.exr";
     REQUIRE(Open(multipart, &error));
-    std::string exr;
-    {
-        std::ifstream in(multipart, std::ios::binary);
-        exr.assign(std::istreambuf_iterator<char>(in), {});
-    }
+    std::string exr = affray::test::ReadText(multipart);
     // The first attribute: its name and type after the 8 bytes of magic number and version, then
     // its size.
     const size_t nameEnd = exr.find('\0', 8), typeEnd = exr.find('\0', nameEnd + 1);
@@ -307,26 +303,18 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     std::string longName = exr;
     longName.replace(8, nameEnd - 8, std::string(40, 'n'));
     const std::string named = dir.path("named.exr");
-    std::ofstream(named, std::ios::binary) << longName;
-    error.clear();
-    CHECK_FALSE(Open(named, &error));
-    CHECK(error == "cannot read texture '" + named +
-                       "': an OpenEXR attribute's name or type at byte 8 is longer than 31 characters");
+    CHECK(refusal(named, longName) ==
+          "cannot read texture '" + named +
+              "': an OpenEXR attribute's name or type at byte 8 is longer than 31 characters");
     // With the flag, names up to 255 characters are read as the attribute they are.
     longName[5] = static_cast<char>(longName[5] | 0x04);
-    std::ofstream(named, std::ios::binary) << longName;
-    error.clear();
-    CHECK_FALSE(Open(named, &error));
-    CHECK(error.find("longer than") == std::string::npos);
-    CHECK(error.find("' claims 2147483647 bytes") != std::string::npos);
+    const std::string flagged = refusal(named, longName);
+    CHECK(flagged.find("longer than") == std::string::npos);
+    CHECK(flagged.find("' claims 2147483647 bytes") != std::string::npos);
 
     // A channel of an unknown pixel type (OpenImageIO's reader would abort on it), or a channel
     // list that does not fill its stated size (OpenEXR reads channels until an empty name).
-    std::string original;
-    {
-        std::ifstream in(multipart, std::ios::binary);
-        original.assign(std::istreambuf_iterator<char>(in), {});
-    }
+    const std::string original = affray::test::ReadText(multipart);
     const size_t chlist = original.find(std::string("channels\0chlist\0", 16));
     REQUIRE(chlist != std::string::npos);
     const size_t value = chlist + 16 + 4, channelEnd = original.find('\0', value);
@@ -334,19 +322,14 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     std::string badType = original;
     badType[channelEnd + 1] = 3;
     const std::string typed = dir.path("typed.exr");
-    std::ofstream(typed, std::ios::binary) << badType;
-    error.clear();
-    CHECK_FALSE(Open(typed, &error));
-    CHECK(error == "cannot read texture '" + typed + "': the OpenEXR attribute 'channels' at byte " +
-                       std::to_string(value) + ": the channel '" + channel +
-                       "' has pixel type 3 (0, 1 and 2 are uint, half and float)");
+    CHECK(refusal(typed, badType) == "cannot read texture '" + typed + "': the OpenEXR attribute 'channels' at byte " +
+                                         std::to_string(value) + ": the channel '" + channel +
+                                         "' has pixel type 3 (0, 1 and 2 are uint, half and float)");
     std::string shortList = original;
     shortList[value] = '\0';  // an empty first name: the list ends before its size
-    std::ofstream(typed, std::ios::binary) << shortList;
-    error.clear();
-    CHECK_FALSE(Open(typed, &error));
-    CHECK(error.find("': the OpenEXR attribute 'channels' at byte " + std::to_string(value) +
-                     ": its channels end before its size") != std::string::npos);
+    CHECK(refusal(typed, shortList)
+              .find("': the OpenEXR attribute 'channels' at byte " + std::to_string(value) +
+                    ": its channels end before its size") != std::string::npos);
 
     // A value of a fixed-size type in another size: OpenEXR would read it in its own size and the
     // fields after it from other bytes (fuzz/regressions/fuzz_texture/exr_v2f_short_hides_2gb_string).
@@ -355,22 +338,17 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     REQUIRE(widthAt != std::string::npos);
     std::string shortFloat = original;
     shortFloat[widthAt + 24] = 1;
-    std::ofstream(typed, std::ios::binary) << shortFloat;
-    error.clear();
-    CHECK_FALSE(Open(typed, &error));
-    CHECK(error == "cannot read texture '" + typed + "': the OpenEXR attribute 'screenWindowWidth' at byte " +
-                       std::to_string(widthAt + 28) + " has 1 bytes, where its type float has 4");
+    CHECK(refusal(typed, shortFloat) == "cannot read texture '" + typed +
+                                            "': the OpenEXR attribute 'screenWindowWidth' at byte " +
+                                            std::to_string(widthAt + 28) + " has 1 bytes, where its type float has 4");
 
     // A preview whose 2^31 x 2^31 pixels would wrap a 64-bit product around to the 0 bytes it
     // holds: OpenEXR would allocate them first.
     std::string preview = original;
     preview.insert(8, std::string("preview\0preview\0\x08\0\0\0\0\0\0\x80\0\0\0\x80", 28));
-    std::ofstream(typed, std::ios::binary) << preview;
-    error.clear();
-    CHECK_FALSE(Open(typed, &error));
-    CHECK(error == "cannot read texture '" + typed +
-                       "': the OpenEXR attribute 'preview' at byte 28: the preview image of 2147483648 x "
-                       "2147483648 pixels does not fill its 8 bytes");
+    CHECK(refusal(typed, preview) == "cannot read texture '" + typed +
+                                         "': the OpenEXR attribute 'preview' at byte 28: the preview image of "
+                                         "2147483648 x 2147483648 pixels does not fill its 8 bytes");
 
     // GIF files whose canvas is larger than 2^26 pixels: refused before OpenImageIO, which would
     // allocate the canvas as it opens the file (or end the process when its size overflows an
@@ -378,24 +356,16 @@ TEST_CASE("texture file: the map cache, rewritten files, missing and broken file
     const std::string gif = dir.path("small.gif");
     WriteImage(gif, 8, 8, 3, RandomTexels(rng, 8 * 8 * 3));
     REQUIRE(Open(gif, &error));
-    std::string gifBytes;
-    {
-        std::ifstream in(gif, std::ios::binary);
-        gifBytes.assign(std::istreambuf_iterator<char>(in), {});
-    }
+    std::string gifBytes = affray::test::ReadText(gif);
     REQUIRE(gifBytes.compare(0, 4, "GIF8") == 0);
     gifBytes.replace(6, 4, std::string("\x72\x79\x00\x73", 4));
     const std::string huge = dir.path("huge.gif");
-    std::ofstream(huge, std::ios::binary) << gifBytes;
-    error.clear();
-    CHECK_FALSE(Open(huge, &error));
-    CHECK(error == "cannot read texture '" + huge +
-                       "': the GIF canvas of 31090 x 29440 pixels is larger than affray reads (67108864 pixels)");
+    CHECK(refusal(huge, gifBytes) ==
+          "cannot read texture '" + huge +
+              "': the GIF canvas of 31090 x 29440 pixels is larger than affray reads (67108864 pixels)");
     const std::string stub = dir.path("stub.gif");
-    std::ofstream(stub, std::ios::binary) << "GIF89a\x01";
-    error.clear();
-    CHECK_FALSE(Open(stub, &error));
-    CHECK(error == "cannot read texture '" + stub + "': the GIF file ends in its header, at byte 7");
+    CHECK(refusal(stub, "GIF89a\x01") ==
+          "cannot read texture '" + stub + "': the GIF file ends in its header, at byte 7");
 }
 
 TEST_CASE("texture file: tiles under a tiny budget give the same lookups, from several threads", "[texture]") {
