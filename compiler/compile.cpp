@@ -107,11 +107,22 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
     for (const ParamInfo& p : lowered->params)
         params.push_back(
             {p.name, ParamTypeName(p), ScalarCount(p.type) * std::max(p.arraySize, 1), vm::kNoRegister, p.defaults});
+    shader.kind = lowered->kind;
+    const bool surface = shader.kind == lang::ShaderKind::Surface;
+    // The programs of one lowering: a displacement's bound and shade, or a surface's.
+    auto emit = [&](const LoweredShader& l, const std::vector<vm::ProgramParam>& with, vm::Program* bound,
+                    vm::Program* shade, vm::Program* surfaceProgram) {
+        if (surface) {
+            *surfaceProgram = Emit(l.ir, {{"Ci", l.finalCi}, {"Oi", l.finalOi}}, with);
+        } else {
+            *bound = Emit(l.ir, {{"P", l.finalP}}, with);
+            *shade = Emit(l.ir, {{"P", l.finalP}, {"N", l.finalN}}, with);
+        }
+    };
     try {
-        shader.genericBound = Emit(lowered->ir, {{"P", lowered->finalP}}, params);
-        shader.genericShade = Emit(lowered->ir, {{"P", lowered->finalP}, {"N", lowered->finalN}}, params);
+        emit(*lowered, params, &shader.genericBound, &shader.genericShade, &shader.genericSurface);
         auto genericTextures = TexturesOf(*lowered);
-        for (vm::Program* p : {&shader.genericBound, &shader.genericShade}) {
+        for (vm::Program* p : {&shader.genericBound, &shader.genericShade, &shader.genericSurface}) {
             p->shaderName = shader.name;
             p->sourcePath = path;
             p->spaces = lowered->spaces;
@@ -143,7 +154,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
             }
         }
         std::optional<std::vector<std::vector<double>>> values =
-            BindParameters(shader.genericBound, numeric, &result.paramErrors);
+            BindParameters(shader.generic(), numeric, &result.paramErrors);
         if (!values || !stringsOk) return result;
         lang::Diagnostics again(file);  // the same diagnostics as the generic lowering, and more
         std::optional<LoweredShader> instance = Lower(unit, again, &*values, &strings, spaces, facts);
@@ -158,10 +169,9 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         shader.undeclared = result.undeclared;
         shader.reads = lowered->reads;
         shader.reads.Add(instance->reads);
-        shader.bound = Emit(instance->ir, {{"P", instance->finalP}}, {});
-        shader.shade = Emit(instance->ir, {{"P", instance->finalP}, {"N", instance->finalN}}, {});
+        emit(*instance, {}, &shader.bound, &shader.shade, &shader.surface);
         auto instanceTextures = TexturesOf(*instance);
-        for (vm::Program* p : {&shader.bound, &shader.shade}) {
+        for (vm::Program* p : {&shader.bound, &shader.shade, &shader.surface}) {
             p->shaderName = shader.name;
             p->sourcePath = path;
             p->textures = instanceTextures;
@@ -170,10 +180,11 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         result.diagnostics.error({path}, e.what());
         return result;
     }
-    for (vm::Program* p : {&shader.genericBound, &shader.genericShade, &shader.bound, &shader.shade}) {
+    for (vm::Program* p : {&shader.genericBound, &shader.genericShade, &shader.bound, &shader.shade,
+                           &shader.genericSurface, &shader.surface}) {
         std::string error;
         // The emitter's programs are valid by construction; the verifier checks that they are.
-        const bool valid = vm::Verify(*p, &error);
+        const bool valid = vm::Verify(*p, &error, surface);
         AFFRAY_CHECK_EQ(error, std::string());
         AFFRAY_CHECK(valid);
     }

@@ -21,12 +21,21 @@ struct CompiledShader {
     std::string name;
     std::string sourcePath;
     std::string sourceText;
+    /// Displacement (bound and shade programs) or surface (the surface program; bound and shade
+    /// are empty).
+    lang::ShaderKind kind = lang::ShaderKind::Displacement;
     /// The programs as compiled: parameters are registers (see vm::Program::params).
     vm::Program genericBound;  // outputs: P
     vm::Program genericShade;  // outputs: P, N
     /// The same, specialised for this instance's parameter values.
     vm::Program bound;
     vm::Program shade;
+    /// A surface shader's programs, generic and specialised: outputs Ci and Oi, with Light
+    /// instructions for its light loops (vm/lights.h); run on points only.
+    vm::Program genericSurface;
+    vm::Program surface;
+    /// The generic program parameters are bound against: genericBound, or genericSurface.
+    const vm::Program& generic() const { return kind == lang::ShaderKind::Surface ? genericSurface : genericBound; }
     std::vector<ParamInfo> params;
     std::vector<std::string> stringParams;
     /// The instance's parameter values that name no parameter of the shader, left out of it, as

@@ -469,14 +469,19 @@ void Lowerer::DeclarePlaceholder(const lang::VarDecl& d, Type type) {
 
 bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_ptr<lang::FunctionDef>>& functions) {
     m_out.name = shader.name;
+    m_out.kind = m_kind = shader.kind;
     for (const auto& f : functions) DefineFunction(*f);
-    // Scope 0: the globals. P and N are the ones a displacement shader may write.
+    // Scope 0: the globals. P and N are the ones a displacement shader may write; Cs and Os are a
+    // surface shader's (a displacement shader cannot name them).
     PushScope();
     for (int g = 0; g < vm::kGlobalCount; ++g) {
         auto global = static_cast<vm::Global>(g);
         Variable var;
         std::string name = vm::GlobalName(global);
+        const bool colour = name == "Cs" || name == "Os";
+        if (colour && !IsSurface()) continue;
         var.type = vm::GlobalSize(global) == 1   ? Type::Float
+                   : colour                      ? Type::Color
                    : name == "N" || name == "Ng" ? Type::Normal
                    : name == "P" || name == "E"  ? Type::Point
                                                  : Type::Vector;
@@ -487,6 +492,15 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
         if (var.type == Type::Float) var.value.c[1] = var.value.c[2] = var.value.c[0];
         var.value.type = var.type;
         m_state.scopes.back().emplace(name, var);
+    }
+    if (IsSurface()) {
+        // A surface shader's outputs Ci (black until it sets it) and Oi (Os until then), and the
+        // rest of its globals: L and Cl, which a light loop sets for each light (0 outside
+        // one), Ol, alpha, ncomps and dPdtime, which affray gives as 0 (or 3 components).
+        AddSurfaceGlobals(m_state.scopes.back());
+        m_state.scopes.back().at("Oi").value = Find("Os")->value;
+        m_state.scopes.back().at("ncomps").value = m_ops.Constant(3.0);
+        for (const char* name : {"Ci", "Oi"}) m_state.scopes.back().at(name).writable = true;
     }
     const Value inputP = Find("P")->value, inputN = Find("N")->value;
 
@@ -613,7 +627,10 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
     m_out.finalN = N.value;
     m_out.writesP = P.value.c != inputP.c;
     m_out.writesN = N.value.c != inputN.c;
-    if (!m_out.writesP && !m_out.writesN && !m_diags.hasErrors()) {
+    if (IsSurface()) {
+        m_out.finalCi = Find("Ci")->value;
+        m_out.finalOi = Find("Oi")->value;
+    } else if (!m_out.writesP && !m_out.writesN && !m_diags.hasErrors()) {
         // String parameters are folded: a shader may move P only for a value a scene gives them.
         std::string defaults;
         for (const std::string& d : defaultStrings) defaults += (defaults.empty() ? "" : ", ") + d;
@@ -638,9 +655,9 @@ std::optional<LoweredShader> LowerUnit(const lang::TranslationUnit& unit, lang::
     for (size_t i = 1; i < unit.shaders.size(); ++i)
         diags.error(unit.shaders[i].loc, "only one shader per file is supported");
     const lang::ShaderDef& shader = unit.shaders.front();
-    if (shader.kind != lang::ShaderKind::Displacement) {
+    if (shader.kind != lang::ShaderKind::Displacement && shader.kind != lang::ShaderKind::Surface) {
         diags.error(shader.loc, std::string(lang::ToString(shader.kind)) +
-                                    " shaders are not supported yet; affray renders displacement shaders");
+                                    " shaders are not supported yet; affray runs displacement and surface shaders");
         return std::nullopt;
     }
     LoweredShader out;

@@ -29,12 +29,16 @@ struct ParamInfo {
     int arraySize = -1;  // an array of that many elements of `type`, else -1
 };
 
-/// The result of lowering one shader instance: its IR and the final values of P and N.
+/// The result of lowering one shader instance: its IR and the final values of its outputs, P and
+/// N for a displacement shader, Ci and Oi for a surface shader.
 struct LoweredShader {
     std::string name;
+    lang::ShaderKind kind = lang::ShaderKind::Displacement;
     IrBuilder ir;
     Value finalP;
     Value finalN;
+    Value finalCi;
+    Value finalOi;
     bool writesP = false;
     bool writesN = false;
     std::vector<ParamInfo> params;
@@ -49,7 +53,7 @@ struct LoweredShader {
     std::vector<vm::TextureSlot> textures;
 };
 
-/// Checks and lowers the one displacement shader in `unit`. Parameters stay IR Param nodes (the
+/// Checks and lowers the one displacement or surface shader in `unit`. Parameters stay IR Param nodes (the
 /// i-th declared parameter is index i of `params`), with constant defaults, unless
 /// `paramValues` gives every parameter's value: then they are constants, and every branch and
 /// loop they decide is folded while lowering (a shader instance's specialisation); string

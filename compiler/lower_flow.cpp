@@ -125,8 +125,14 @@ void Lowerer::KeepUsedFlags(FlowState& into) const {
 }
 
 void Lowerer::LowerIf(const Stmt& s) {
+    if (IsSurface() && s.expr && s.expr->kind == lang::ExprKind::Call && s.expr->name == "illuminance")
+        return LowerIlluminance(s);
     std::optional<ValueId> cond = LowerCondition(*s.expr);
     const ValueId c = cond.value_or(True());  // after an error, both arms still get checked
+    LowerBranches(c, *s.body[0], s.body.size() > 1 ? s.body[1].get() : nullptr);
+}
+
+void Lowerer::LowerBranches(ValueId c, const Stmt& thenStmt, const Stmt* elseStmt) {
     const std::optional<double> k = ir().ConstValue(c);
     FlowState before = m_state;
 
@@ -134,15 +140,15 @@ void Lowerer::LowerIf(const Stmt& s) {
     // 0), so its assignments fold away and its loops do not unroll.
     if (k && *k == 0.0) m_state.alive = False();
     PushScope();
-    LowerStmt(*s.body[0]);
+    LowerStmt(thenStmt);
     PopScope();
     FlowState thenState = std::move(m_state);
 
     m_state = std::move(before);
     if (k && *k != 0.0) m_state.alive = False();
-    if (s.body.size() > 1 && s.body[1]) {
+    if (elseStmt) {
         PushScope();
-        LowerStmt(*s.body[1]);
+        LowerStmt(*elseStmt);
         PopScope();
     }
     if (k) {

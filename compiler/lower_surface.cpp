@@ -13,8 +13,10 @@
 // and no store (RI Spec 3.2 section 15.8; prman's rule for the types).
 // To add a function: a row in kSurfaceCalls (argument letters below, then the result).
 #include <cstring>
+#include <numbers>
 
 #include "compiler/lowerer.h"
+#include "vm/lights.h"
 
 namespace affray::compiler {
 
@@ -60,17 +62,6 @@ constexpr SurfaceCall kSurfaceCalls[] = {
     {"illuminance", "?*", 'f'},
     {"illuminate", "t*", 'f'},
     {"solar", "*", 'f'},
-};
-
-struct SurfaceGlobal {
-    const char* name;
-    Type type;
-};
-
-constexpr SurfaceGlobal kSurfaceGlobals[] = {
-    {"Cs", Type::Color},     {"Os", Type::Color},       {"Ci", Type::Color}, {"Oi", Type::Color},
-    {"L", Type::Vector},     {"Cl", Type::Color},       {"Ol", Type::Color}, {"alpha", Type::Float},
-    {"ncomps", Type::Float}, {"dPdtime", Type::Vector},
 };
 
 const SurfaceCall* FindSurfaceCall(const std::string& name) {
@@ -134,6 +125,9 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
         return std::nullopt;
     }
     if (e.name == "texture") return LowerTexture(e, expected);
+    if (IsSurface() && (e.name == "ambient" || e.name == "diffuse" || e.name == "specular" ||
+                        e.name == "specularbrdf" || e.name == "phong"))
+        return LowerLighting(e);
     bool ok = true;
     std::optional<Value> firstValue;  // a query's name
     Variable* output = nullptr;
@@ -191,6 +185,10 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
     if (!m_checkingOnly && !(alive && *alive == 0.0)) {
         if (call.texture)
             m_diags.error(e.loc, "function '" + e.name + "' is not supported yet: affray reads texture() maps only");
+        else if (IsSurface())
+            m_diags.error(e.loc, "function '" + e.name +
+                                     "' is not supported yet in surface shaders (affray gives them illuminance, "
+                                     "ambient, diffuse, specular, specularbrdf, phong and texture)");
         else
             m_diags.error(
                 e.loc,
@@ -273,6 +271,183 @@ std::optional<Value> Lowerer::LowerQuery(const lang::Expr& e, const Value& nameA
         out.assigned = true;
     }
     return yes;
+}
+
+}  // namespace affray::compiler
+
+namespace affray::compiler {
+
+// --- surface shaders' light loops (RI Spec 3.2 sections 15.5.1 and 15.7.2)
+
+Value Lowerer::LightVector(int slot) {
+    Value L;
+    L.type = Type::Vector;
+    for (int i = 0; i < 3; ++i) L.c[i] = ir().Call(IrOp::Light, {False(), ir().Const(i)}, slot, Line());
+    return L;
+}
+
+Value Lowerer::LightColor(int slot, ValueId shadowed) {
+    Value Cl;
+    Cl.type = Type::Color;
+    for (int i = 0; i < 3; ++i) Cl.c[i] = ir().Call(IrOp::Light, {shadowed, ir().Const(3 + i)}, slot, Line());
+    return Cl;
+}
+
+ValueId Lowerer::InCone(const Value& Ln, const Value& axisN, const Value& angle) {
+    // cos(angle) <= Ln.axisN; an angle of PI or more admits every direction (the dot product of
+    // two unit vectors may round below -1).
+    const ValueId within =
+        ir().Binary(IrOp::Le, ir().Unary(IrOp::Cos, angle.c[0], Line()), m_ops.Dot(Ln, axisN).c[0], Line());
+    const ValueId all = ir().Binary(IrOp::Le, ir().Const(std::numbers::pi), angle.c[0], Line());
+    return ir().Binary(IrOp::Or, all, within, Line());
+}
+
+std::vector<int> Lowerer::LightSlots(const std::string& category) {
+    m_out.reads.lights = true;
+    std::vector<int> slots;
+    if (!m_facts) return slots;
+    const bool exclude = !category.empty() && category[0] == '-';
+    const std::string wanted = exclude ? category.substr(1) : category;
+    for (size_t i = 0; i < m_facts->lightCategories.size() && i < size_t(vm::kMaxLightSlots); ++i) {
+        // A light's __category is a comma-separated list of names.
+        bool member = false;
+        const std::string& list = m_facts->lightCategories[i];
+        for (size_t start = 0; start <= list.size();) {
+            size_t end = list.find(',', start);
+            if (end == std::string::npos) end = list.size();
+            member = member || list.substr(start, end - start) == wanted;
+            start = end + 1;
+        }
+        if (wanted.empty() || member != exclude) slots.push_back(static_cast<int>(i));
+    }
+    return slots;
+}
+
+void Lowerer::LowerIlluminance(const lang::Stmt& s) {
+    const lang::Expr& call = *s.expr;
+    m_line = call.loc.line;
+    m_ops.SetLine(m_line);
+    std::vector<Value> args;
+    bool ok = true;
+    for (const lang::ExprPtr& a : call.args) {
+        std::optional<Value> v = LowerExpr(*a);
+        if (!v) ok = false;
+        args.push_back(v ? *v : m_ops.Constant(0.0));
+    }
+    // illuminance ([string category,] point position [, vector axis, float angle]) body
+    std::string category;
+    size_t first = 0;
+    if (ok && !args.empty() && args[0].type == Type::String) {
+        std::optional<std::string> text = StringOf(args[0]);
+        if (!text) {
+            m_diags.error(call.args[0]->loc, "the category of 'illuminance' must be a constant string");
+            ok = false;
+        }
+        category = text.value_or("");
+        first = 1;
+    }
+    const size_t n = args.size() - first;
+    if (ok && n != 1 && n != 3) {
+        m_diags.error(call.loc, "'illuminance' expects a position, and optionally an axis and an angle" +
+                                    std::string(first ? " after its category" : "") + ", got " + std::to_string(n) +
+                                    " argument" + (n == 1 ? "" : "s"));
+        ok = false;
+    }
+    auto spatial = [&](size_t i, const char* what) {
+        const Type t = args[first + i].type;
+        if (IsSpatial(t)) return true;
+        m_diags.error(call.args[first + i]->loc, std::string("the ") + what + " of 'illuminance' must be " +
+                                                     "a point, vector or normal, not " + Article(t));
+        return false;
+    };
+    if (ok) ok = spatial(0, "position");
+    if (ok && n == 3) {
+        ok = spatial(1, "axis");
+        if (ok && args[first + 2].type != Type::Float && args[first + 2].type != Type::Bool) {
+            m_diags.error(call.args[first + 2]->loc,
+                          "the angle of 'illuminance' must be a float, not " + Article(args[first + 2].type));
+            ok = false;
+        }
+    }
+    // The body is checked once as dead code when there is no light to visit (or an error). L
+    // and Cl are the globals (scope 0, looked up again each time: lowering the body replaces the
+    // scopes).
+    auto global = [&](const char* name) -> Variable& { return m_state.scopes.front().at(name); };
+    const Value outsideL = global("L").value, outsideCl = global("Cl").value;
+    const std::vector<int> slots = ok ? LightSlots(category) : std::vector<int>{};
+    if (slots.empty()) LowerBranches(False(), *s.body[0], nullptr);
+    for (int slot : slots) {
+        m_ops.SetLine(call.loc.line);
+        const Value toLight = LightVector(slot);
+        ValueId cond = True();
+        if (n == 3) cond = InCone(m_ops.Normalize(toLight), m_ops.Normalize(args[first + 1]), args[first + 2]);
+        global("L").value = toLight;
+        global("Cl").value = LightColor(slot, cond);
+        LowerBranches(cond, *s.body[0], nullptr);
+    }
+    global("L").value = outsideL;
+    global("Cl").value = outsideCl;
+}
+
+std::optional<Value> Lowerer::LowerLighting(const lang::Expr& e) {
+    std::vector<Value> args;
+    for (const lang::ExprPtr& a : e.args) {
+        std::optional<Value> v = LowerExpr(*a);
+        if (!v) return std::nullopt;
+        args.push_back(*v);
+    }
+    // Argument kinds: 't' a point, vector or normal, 'f' a float (kSurfaceCalls checked counts).
+    const char* kinds = e.name == "diffuse"        ? "t"
+                        : e.name == "specular"     ? "ttf"
+                        : e.name == "specularbrdf" ? "tttf"
+                        : e.name == "phong"        ? "ttf"
+                                                   : "";
+    for (size_t i = 0; i < args.size(); ++i) {
+        const Type t = args[i].type == Type::Bool ? Type::Float : args[i].type;
+        const bool fits = kinds[i] == 't' ? IsSpatial(t) : t == Type::Float;
+        if (!fits) {
+            m_diags.error(e.args[i]->loc, "argument " + std::to_string(i + 1) + " of '" + e.name + "' must be " +
+                                              Describe(kinds[i]) + ", not " + Article(t));
+            return std::nullopt;
+        }
+    }
+    m_ops.SetLine(e.loc.line);
+    const Value zero = m_ops.Promote(m_ops.Constant(0.0), Type::Color);
+    if (e.name == "ambient") {
+        m_out.reads.lights = true;
+        return LightColor(vm::kAmbientSlot, False());
+    }
+    // pow(max(0, Nn.H), 1/roughness), H halfway between Ln and Vn.
+    auto brdf = [&](const Value& Ln, const Value& Nn, const Value& Vn, const Value& roughness) {
+        const Value H = m_ops.Normalize(m_ops.Add(Ln, Vn));
+        const Value cosine = m_ops.Binary(IrOp::Max, m_ops.Constant(0.0), m_ops.Dot(Nn, H));
+        return m_ops.Pow(cosine, m_ops.Div(m_ops.Constant(1.0), roughness));
+    };
+    if (e.name == "specularbrdf")
+        return m_ops.Promote(
+            brdf(m_ops.Normalize(args[0]), m_ops.Normalize(args[1]), m_ops.Normalize(args[2]), args[3]), Type::Color);
+    // The others sum over the lights in the hemisphere about N (illuminance (P, N, PI/2)).
+    const Value Nn = m_ops.Normalize(args[0]);
+    Value sum = zero;
+    Value R;
+    if (e.name == "phong")
+        R = m_ops.Sub(
+            m_ops.Neg(m_ops.Normalize(args[1])),  // reflect(-Vn, Nn)
+            m_ops.Mul(m_ops.Mul(m_ops.Constant(2.0), m_ops.Dot(m_ops.Neg(m_ops.Normalize(args[1])), Nn)), Nn));
+    for (int slot : LightSlots("")) {
+        const Value Ln = m_ops.Normalize(LightVector(slot));
+        const ValueId cond = InCone(Ln, Nn, m_ops.Constant(std::numbers::pi / 2));
+        const Value Cl = LightColor(slot, cond);
+        Value weight;
+        if (e.name == "diffuse")
+            weight = m_ops.Dot(Ln, Nn);
+        else if (e.name == "specular")
+            weight = brdf(Ln, Nn, m_ops.Normalize(args[1]), args[2]);
+        else
+            weight = m_ops.Pow(m_ops.Binary(IrOp::Max, m_ops.Constant(0.0), m_ops.Dot(R, Ln)), args[2]);
+        sum = m_ops.SelectValue(m_ops.Float(cond), m_ops.Add(sum, m_ops.Mul(Cl, weight)), sum);
+    }
+    return sum;
 }
 
 }  // namespace affray::compiler

@@ -164,10 +164,34 @@ class Lowerer {
     std::optional<int> TextureSlotIndex(const vm::TextureSlot& slot);
     /// The shader's parameter `name` as it is now, or null (also inside inlined functions).
     const Variable* ShaderParameter(const std::string& name) const;
+    /// Whether a surface shader is being lowered (its globals, light loops and lighting
+    /// functions are real; in a displacement shader they are only checked).
+    bool IsSurface() const { return m_kind == lang::ShaderKind::Surface; }
+    lang::ShaderKind m_kind = lang::ShaderKind::Displacement;
+    /// `illuminance ([category,] P [, axis, angle]) body` (s: the `if` the parser made of it):
+    /// the body once per light slot the category admits, with L and Cl that light's, under the
+    /// condition that L lies within the cone (RI Spec 3.2 section 15.5.1).
+    void LowerIlluminance(const lang::Stmt& s);
+    /// A light slot's L (the vector from the shaded point to the light) and Cl (its colour
+    /// there, shadowed where `shadowed` is not 0); slot vm::kAmbientSlot: the ambient lights.
+    Value LightVector(int slot);
+    Value LightColor(int slot, ValueId shadowed);
+    /// Whether the unit vector Ln lies within `angle` of the unit vector `axisN` (the cone of a
+    /// light loop; PI and more: every direction).
+    ValueId InCone(const Value& Ln, const Value& axisN, const Value& angle);
+    /// The light slots of the instance a loop of category `category` visits ("" all; "-name"
+    /// those not in category name), in order; notes the read (SceneReads::lights).
+    std::vector<int> LightSlots(const std::string& category);
+    /// ambient(), diffuse(N), specular(N, V, roughness), specularbrdf(L, N, V, roughness) and
+    /// phong(N, V, size) of a surface shader, from their RI Spec 3.2 definitions by illuminance.
+    std::optional<Value> LowerLighting(const lang::Expr& e);
 
     // --- statements and control flow (lower_flow.cpp)
     void LowerStmt(const lang::Stmt& s);
     void LowerIf(const lang::Stmt& s);
+    /// if (c) then else: the arms lowered and merged (`elseStmt` may be null); `c` a condition
+    /// value already lowered.
+    void LowerBranches(ValueId c, const lang::Stmt& thenStmt, const lang::Stmt* elseStmt);
     void LowerLoop(const lang::Stmt& s);
     void LowerJump(const lang::Stmt& s);
     /// Merges `thenState` (the state after the then arm) into the current state (after the else

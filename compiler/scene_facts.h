@@ -31,6 +31,10 @@ struct SceneFacts {
     /// Where texture() looks for a relative file name first (Option "searchpath" "texture"),
     /// before the shader's directory and the working directory.
     std::vector<std::string> textureSearchPath;
+    /// The lights a surface shader's light loops visit (illuminance; diffuse, specular and phong
+    /// through it): per light slot (vm/lights.h), in order, the light's `__category` ("" if it
+    /// has none). The ambient lights are not among them (ambient() sums those).
+    std::vector<std::string> lightCategories;
 };
 
 /// What a compilation looked up in its Spaces and SceneFacts: the names of the spaces it mapped
@@ -41,6 +45,8 @@ struct SceneFacts {
 struct SceneReads {
     std::set<std::string> spaces, options, attributes;
     bool textureSearchPath = false;
+    /// The light slots and their categories (a surface shader's light loop).
+    bool lights = false;
 
     bool operator==(const SceneReads&) const = default;
     void Add(const SceneReads& other) {
@@ -48,6 +54,7 @@ struct SceneReads {
         options.insert(other.options.begin(), other.options.end());
         attributes.insert(other.attributes.begin(), other.attributes.end());
         textureSearchPath = textureSearchPath || other.textureSearchPath;
+        lights = lights || other.lights;
     }
 };
 

@@ -73,6 +73,8 @@ std::string ValuesKey(const SceneReads& reads, const Spaces* spaces, const Scene
     addFacts("attribute", reads.attributes, facts ? &facts->attributes : nullptr);
     if (reads.textureSearchPath && facts)
         for (const std::string& d : facts->textureSearchPath) key += "\ntexture path " + d;
+    if (reads.lights && facts)
+        for (const std::string& c : facts->lightCategories) key += "\nlight " + c;
     return key;
 }
 

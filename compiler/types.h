@@ -24,4 +24,17 @@ inline int ScalarCount(Type t) {
 /// The types arithmetic works on.
 inline bool IsNumeric(Type t) { return t == Type::Float || IsTriple(t) || t == Type::Matrix; }
 
+/// A global variable of surface and light shaders (RI Spec 3.2 table 15.1) and its type.
+struct SurfaceGlobal {
+    const char* name;
+    Type type;
+};
+/// Those a surface shader has besides the VM's globals (vm/program.h), Cs and Os among them
+/// (which are the VM's too, for surface shaders only).
+inline constexpr SurfaceGlobal kSurfaceGlobals[] = {
+    {"Cs", Type::Color},     {"Os", Type::Color},       {"Ci", Type::Color}, {"Oi", Type::Color},
+    {"L", Type::Vector},     {"Cl", Type::Color},       {"Ol", Type::Color}, {"alpha", Type::Float},
+    {"ncomps", Type::Float}, {"dPdtime", Type::Vector},
+};
+
 }  // namespace affray::compiler

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <unordered_map>
 
 #include "compiler/shader_cache.h"
@@ -66,6 +67,19 @@ std::string FindShader(const std::string& name, const std::vector<std::string>& 
     const std::string extension = std::filesystem::path(name).extension().string();
     for (const char* compiled : {".sl", ".slo", ".slc", ".sdl", ".slx", ".sdr"})
         if (extension == compiled) return FindShader(name.substr(0, name.size() - extension.size()), paths);
+    return {};
+}
+
+/// A shader request's parameter values as the compiler takes them; "" or what is wrong.
+std::string OverridesOf(const ShaderRef& ref, std::vector<compiler::ParamOverride>* out) {
+    for (const ParamValue& p : ref.params) {
+        if (p.strings.size() > 1)
+            return "parameter '" + p.name + "' takes one string, got " + std::to_string(p.strings.size());
+        if (p.strings.empty())
+            out->emplace_back(p.name, p.numbers);
+        else
+            out->push_back(compiler::ParamOverride::String(p.name, p.strings[0]));
+    }
     return {};
 }
 
@@ -357,16 +371,87 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
         key.erase(std::unique(key.begin(), key.end()), key.end());
         return lightSetKeys.emplace(key, static_cast<int>(lightSetKeys.size())).first->second;
     };
-    std::map<std::string, std::string> shaderFiles;  // shader name -> its file ("" if not found)
-    // Where a Displacement request is in the RIB file (its line is read again only for a message).
+    // Where a Displacement or Surface request is in the RIB file (its line is read again only for a message).
     auto requestAt = [&](const ShaderRef& ref) {
         const std::string& file = ref.file.empty() ? desc.path : ref.file;
         return diag::Location(file, ref.line, ref.column, diag::ReadLine(file, ref.line));
     };
+    std::map<std::string, std::string> shaderFiles;  // shader name -> its file ("" if not found)
+    // The lights of light set `index` (the indices of its key; every light for set 0).
+    auto lightSetKey = [&](int index) {
+        for (const auto& [key, i] : lightSetKeys)
+            if (i == index) return key;
+        return allLights;
+    };
+    // Surface shaders: a name's file, looked up once; names warned about, once each.
+    std::map<std::string, std::string> surfaceFiles;
+    std::set<std::string> surfaceWarned;  // names warned about in this scene
+    // A warning once per sentence over the frames this renderer prepares.
+    auto warnRun = [&](const diag::Location& at, const std::string& sentence) {
+        if (!report) return;
+        std::lock_guard<std::mutex> lock(m_warnedMutex);
+        if (m_warned.insert(sentence).second) report->warning(at, sentence);
+    };
+    // The surface shader of `attributes` (its Surface request `ref`) lit by the lights `key`
+    // (indices into desc.lights; the scene's default light if it has none), or null where the
+    // built-in model renders it: the shader is not found (a warning for names affray has no
+    // model of), or does not compile (its errors are warnings, then the model renders it).
+    auto surfaceOf = [&](const PrimitiveAttributes& attrs, const ShaderRef& ref,
+                         const std::vector<int>& key) -> std::shared_ptr<const compiler::CompiledShader> {
+        const bool builtIn =
+            ref.name == "matte" || ref.name == "metal" || ref.name == "constant" || ref.name == "plastic";
+        auto [known, added] = surfaceFiles.try_emplace(ref.name);
+        if (added) known->second = FindShader(ref.name, searchPath);
+        const std::string& path = known->second;
+        auto warnOnce = [&](const std::string& message) {
+            if (surfaceWarned.insert(ref.name).second) warnRun(requestAt(ref), message);
+        };
+        if (path.empty()) {
+            if (!builtIn) {
+                std::string searched;
+                for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
+                warnOnce("surface shader '" + ref.name + "' not found (searched " + searched + "); using \"plastic\"");
+            }
+            return nullptr;
+        }
+        std::vector<compiler::ParamOverride> overrides;
+        std::string problem = OverridesOf(ref, &overrides);
+        compiler::SceneFacts facts = FactsOf(desc, attrs);
+        if (desc.lights.empty()) facts.lightCategories = {""};  // the default key light (below)
+        for (int light : key)
+            if (desc.lights[size_t(light)].kind != LightDesc::Kind::Ambient)
+                facts.lightCategories.push_back(desc.lights[size_t(light)].category);
+        const compiler::Spaces spaces = SpacesOf(desc, attrs);
+        compiler::CompileResult result;
+        if (problem.empty()) {
+            result = cache.Load(path, overrides, preprocess, &spaces, &facts);
+            // The shader's warnings as they are, its errors as warnings: the render goes on.
+            for (diag::Diagnostic d : result.diagnostics.all()) {
+                d.severity = diag::Severity::Warning;
+                std::lock_guard<std::mutex> lock(m_warnedMutex);
+                if (report && m_warned.insert(diag::Format(d)).second) report->add(d);
+            }
+            if (result.ok() && result.shader->kind != lang::ShaderKind::Surface)
+                problem = "it is a " + std::string(lang::ToString(result.shader->kind)) + " shader";
+            else if (!result.paramErrors.empty())
+                problem = result.paramErrors.front();
+            else if (!result.ok())
+                problem = "it does not compile";
+        }
+        if (!problem.empty()) {
+            warnOnce("surface shader '" + ref.name + "' in " + path + " cannot be used (" + problem + "); using " +
+                     (builtIn ? "affray's built-in \"" + ref.name + "\"" : std::string("\"plastic\"")));
+            return nullptr;
+        }
+        for (const std::string& sentence : result.undeclared)  // as tools/commands.cpp's WarnUndeclared
+            warnRun(requestAt(ref), sentence + "; ignored");
+        return result.shader;
+    };
     // Each request's attributes (shared by its primitives: a mesh's faces) are looked at once:
     // the shader instance compiled, its generic programs and the lights.
     struct Instance {
-        std::shared_ptr<const compiler::CompiledShader> shader;  // null: no displacement (the identity)
+        std::shared_ptr<const compiler::CompiledShader> shader;   // null: no displacement (the identity)
+        std::shared_ptr<const compiler::CompiledShader> surface;  // null: the built-in model
         int lightSet = 0;
         /// The programs of the primitives whose surfaces have no constants beyond E, du, dv
         /// (every kind but the bilinear patch), once made.
@@ -383,6 +468,7 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
             ConstantGlobals(base, eye, desc.camera.shutterOpen, desc.camera.shutterClose);
         // (The values by their bits: the same bits fold to the same program, a NaN included.)
         std::pair<const void*, std::vector<uint64_t>> key{instance.shader.get(), {}};
+        key.second.push_back(std::bit_cast<uint64_t>(instance.surface.get()));
         for (const compiler::ConstantGlobal& c : constants) {
             key.second.push_back(static_cast<uint64_t>(c.global));
             for (double x : c.value) key.second.push_back(std::bit_cast<uint64_t>(x));
@@ -393,7 +479,7 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
             const vm::Program& bound = instance.shader ? instance.shader->bound : identity;
             const vm::Program& shade = instance.shader ? instance.shader->shade : identity;
             out->programs.push_back({instance.shader, *compiler::Specialise(bound, {}, &unused, constants),
-                                     *compiler::Specialise(shade, {}, &unused, constants)});
+                                     *compiler::Specialise(shade, {}, &unused, constants), instance.surface});
             found->second = &out->programs.back();
         }
         return found->second;
@@ -430,15 +516,7 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
                 const ShaderRef& ref = *attributes.displacement;
                 auto where = [&] { return requestAt(ref); };
                 std::vector<compiler::ParamOverride> overrides;
-                for (const ParamValue& p : ref.params) {
-                    if (p.strings.size() > 1)
-                        return fail(where(), "parameter '" + p.name + "' takes one string, got " +
-                                                 std::to_string(p.strings.size()));
-                    if (p.strings.empty())
-                        overrides.emplace_back(p.name, p.numbers);
-                    else
-                        overrides.push_back(compiler::ParamOverride::String(p.name, p.strings[0]));
-                }
+                if (std::string problem = OverridesOf(ref, &overrides); !problem.empty()) return fail(where(), problem);
                 const compiler::Spaces spaces = SpacesOf(desc, attributes);
                 const compiler::SceneFacts facts = FactsOf(desc, attributes);
                 compiler::CompileResult result = cache.Load(path, overrides, preprocess, &spaces, &facts);
@@ -456,6 +534,8 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
                                                  "', which the scene makes projective (not supported)");
                 }
             }
+            if (attributes.surface.shader)
+                instance.surface = surfaceOf(attributes, *attributes.surface.shader, lightSetKey(instance.lightSet));
         }
         Primitive prim;
         prim.desc = &patch;

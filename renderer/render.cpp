@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -35,6 +36,18 @@ struct ThreadState {
     /// ShadowTransmission's scratch: the partly transparent primitives a shadow ray passes.
     std::vector<std::pair<int, glm::dvec3>> shadowShares;
     std::vector<LightDesc> movedLights;  // a light set's lights at a ray's time (ShadeHit), if any moves
+    ShadingLights shadingLights;         // a surface program's lights at the point it shades
+
+    /// The interpreter of number type T running surface program `program` (ShadeHit).
+    template <class T>
+    vm::Interpreter<T>& Surface(const vm::Program& program) {
+        std::unique_ptr<vm::Interpreter<T>>& own = std::get<std::unique_ptr<vm::Interpreter<T>>>(m_surfaces);
+        if (!own)
+            own = std::make_unique<vm::Interpreter<T>>(program);
+        else if (&own->program() != &program)
+            own->SetProgram(program);
+        return *own;
+    }
 
     /// Per primitive, the factor its tolerance is scaled by (ToleranceScales).
     const std::vector<double>& toleranceScale;
@@ -150,6 +163,7 @@ struct ThreadState {
     }
 
   private:
+    std::tuple<std::unique_ptr<vm::Interpreter<double>>, std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> m_surfaces;
     static constexpr size_t kKeptIntersectors = 2048;
     struct Kept {
         std::unique_ptr<SurfaceIntersector> intersector;
@@ -405,10 +419,65 @@ bool ProvedBlocked(const PreparedScene& scene, ThreadState& ts, const Ray& ray, 
     return blocked;
 }
 
-/// Shades the nearest hit of a camera ray: the surface model at P, N (EvaluateHit) with Cs at
-/// the hit and shadow rays through the same intersector. The colour is not yet multiplied by Os.
-glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh,
-                    const HitPoint& at, const Tolerance& tol) {
+/// What a surface gives a camera ray: Ci (premultiplied by the opacity, as RenderMan's shaders
+/// leave it) and Oi.
+struct Shaded {
+    glm::dvec3 Ci, Oi;
+};
+
+/// Runs the surface program `program` at the hit (P, N, dPdu, dPdv as EvaluateHit gives them,
+/// in world space at the ray's time; the other globals from the primitive's base surface at the
+/// hit's (u, v), as the displacement saw them), its light loops answered by ts.shadingLights.
+/// T is double, or Dual<double> for a program that takes derivatives (Du, Dv, calculatenormal,
+/// area): P then carries dPdu and dPdv as its derivatives.
+template <class T>
+Shaded RunSurface(const vm::Program& program, ThreadState& ts, const PreparedScene& scene, const Primitive& prim,
+                  const Ray& ray, const NearestHit& nh, const HitPoint& at, const glm::dvec3& Cs,
+                  const glm::dvec3& Os) {
+    using vm::Global;
+    vm::Interpreter<T>& interp = ts.Surface<T>(program);
+    interp.SetLights(&ts.shadingLights);
+    // The parameters (u, v, s, t, du, dv) are the base surface's, set with its frame (whose P,
+    // N and tangents are replaced below): only for a shader that reads them.
+    bool parameters = false;
+    for (Global g : {Global::u, Global::v, Global::s, Global::t, Global::du, Global::dv})
+        parameters = parameters || program.readsGlobal(g);
+    if (parameters) SetSurfaceGlobals(interp, prim.base(), nh.hit.u, nh.hit.u, nh.hit.v, nh.hit.v, ray.origin);
+    vm::Vec3<T> P;
+    for (int i = 0; i < 3; ++i) {
+        if constexpr (std::is_same_v<T, double>)
+            P[i] = at.P[i];
+        else
+            P[i] = T(at.P[i], at.dPdu[i], at.dPdv[i]);
+    }
+    // Ng: the displaced surface's, dPdu x dPdv, on N's side (N where the tangents are parallel).
+    glm::dvec3 Ng = glm::cross(at.dPdu, at.dPdv);
+    const double lengthNg = glm::length(Ng);
+    Ng = lengthNg > 0 && std::isfinite(lengthNg) ? Ng / lengthNg : at.N;
+    if (glm::dot(Ng, at.N) < 0) Ng = -Ng;
+    interp.SetGlobal(Global::P, P);
+    interp.SetGlobal(Global::N, Constant<T>(at.N));
+    interp.SetGlobal(Global::Ng, Constant<T>(Ng));
+    interp.SetGlobal(Global::E, Constant<T>(ray.origin));
+    interp.SetGlobal(Global::I, P - Constant<T>(ray.origin));
+    interp.SetGlobal(Global::dPdu, Constant<T>(at.dPdu));
+    interp.SetGlobal(Global::dPdv, Constant<T>(at.dPdv));
+    interp.SetGlobal(Global::time, T(ray.time));
+    interp.SetGlobal(Global::dtime, T(scene.desc.camera.shutterClose - scene.desc.camera.shutterOpen));
+    interp.SetGlobal(Global::Cs, Constant<T>(Cs));
+    interp.SetGlobal(Global::Os, Constant<T>(Os));
+    interp.Run();
+    auto output = [&](const char* name) {
+        const vm::Vec3<T> x = interp.OutputTriple(*program.findOutput(name));
+        return glm::dvec3(vm::ValueOf(x.x), vm::ValueOf(x.y), vm::ValueOf(x.z));
+    };
+    return {output("Ci"), output("Oi")};
+}
+
+/// Shades the nearest hit of a camera ray: the surface shader or the built-in surface model at
+/// P, N (EvaluateHit) with Cs and Os at the hit and shadow rays through the same intersector.
+Shaded ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, const NearestHit& nh, const HitPoint& at,
+                const Tolerance& tol) {
     const Primitive& prim = scene.primitives[nh.primitive];
     ShadingPoint sp;
     sp.P = at.P;
@@ -448,7 +517,15 @@ glm::dvec3 ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray,
         for (const LightDesc& light : *lights) ts.movedLights.push_back(LightAt(light, ray.time));
         lights = &ts.movedLights;
     }
-    return ShadeSurface(prim.surface(), prim.ColorAt(nh.hit.u, nh.hit.v), sp, *lights, transmitted);
+    const glm::dvec3 Cs = prim.ColorAt(nh.hit.u, nh.hit.v), Os = prim.OpacityAt(nh.hit.u, nh.hit.v);
+    if (const std::shared_ptr<const compiler::CompiledShader>& surface = prim.programs->surface) {
+        const ShadowTest shadow = transmitted;
+        ts.shadingLights.Reset(*lights, sp.P, &shadow);
+        const vm::Program& program = surface->surface;
+        return program.usesDerivatives() ? RunSurface<vm::Dual<double>>(program, ts, scene, prim, ray, nh, at, Cs, Os)
+                                         : RunSurface<double>(program, ts, scene, prim, ray, nh, at, Cs, Os);
+    }
+    return {Os * ShadeSurface(prim.surface(), Cs, sp, *lights, transmitted), Os};
 }
 
 }  // namespace
@@ -613,8 +690,7 @@ SampleValue TraceSample(const PreparedScene& scene, ThreadState& ts, const Camer
         const Primitive& prim = scene.primitives[nh.primitive];
         const HitPoint at = EvaluateHit(scene, ts, ray, nh, eye);
         // Ci and Oi as RenderMan's shaders leave them: premultiplied colour, then the atmosphere.
-        glm::dvec3 Oi = prim.OpacityAt(nh.hit.u, nh.hit.v);
-        glm::dvec3 Ci = Oi * ShadeHit(scene, ts, ray, nh, at, tol);
+        auto [Ci, Oi] = ShadeHit(scene, ts, ray, nh, at, tol);
         if (const std::optional<AtmosphereDesc>& atmosphere = prim.desc->attr().atmosphere)
             ApplyAtmosphere(*atmosphere, scene.desc.camera, ray.origin, ray.origin + nh.hit.t * ray.dir, &Ci, &Oi);
         value.rgb += through * Ci;

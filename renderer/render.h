@@ -54,6 +54,9 @@ struct PrimitivePrograms {
     std::shared_ptr<const compiler::CompiledShader> shader;  // null: no displacement
     vm::Program bound;
     vm::Program shade;
+    /// The surface shader compiled for the primitive's light set (its `surface` program), or
+    /// null: the built-in model of SurfaceDesc shades it.
+    std::shared_ptr<const compiler::CompiledShader> surface;
 };
 
 /// A primitive ready to render: its description (base surface, colours and attributes, in

@@ -3,6 +3,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -215,6 +216,22 @@ const std::string& InputsDigest(const PreparedScene& scene) {
     h.Field("scene", ToStringSettings(scene.desc));
     HashPrimitives(scene.desc, &h);
     const Primitive* previous = nullptr;
+    // The surface shaders, each once, in the order the primitives first use them: their source
+    // and programs (their parameter values and lights are in the scene's text above).
+    std::vector<const compiler::CompiledShader*> surfaces;
+    for (const PrimitivePrograms& programs : scene.programs)
+        if (programs.surface && std::find(surfaces.begin(), surfaces.end(), programs.surface.get()) == surfaces.end())
+            surfaces.push_back(programs.surface.get());
+    for (const compiler::CompiledShader* surface : surfaces) {
+        h.Field("surface source", surface->sourceText);
+        vm::BytecodeFile program;
+        program.shaderName = surface->name;
+        program.sourcePath = FileName(surface->sourcePath);
+        program.sourceHash = vm::HashSource(surface->sourceText);
+        program.bound = WithoutDirectories(surface->surface);
+        h.Field("surface program", vm::SaveBytecode(program));
+        AddTextures(surface->surface, &h);
+    }
     for (const Primitive& prim : scene.primitives) {
         if (!prim.shader()) {
             h.Field("primitive", "no shader");

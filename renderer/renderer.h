@@ -5,6 +5,8 @@
 #pragma once
 
 #include <atomic>
+#include <mutex>
+#include <set>
 #include <string>
 
 #include "diag/diagnostic.h"
@@ -88,6 +90,10 @@ class Renderer {
   private:
     Options m_options;
     mutable ThreadPool m_pool;  // used by const calls: running a job changes no result
+    /// What Prepare has warned about surface shaders, once per sentence over every frame the
+    /// renderer prepares (a scene's frames name the same shaders).
+    mutable std::mutex m_warnedMutex;
+    mutable std::set<std::string> m_warned;
 };
 
 }  // namespace affray::renderer

@@ -100,4 +100,47 @@ glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const 
     }
 }
 
+void ShadingLights::Reset(const std::vector<LightDesc>& lights, const glm::dvec3& P, const ShadowTest* shadow) {
+    m_slots.clear();
+    m_ambient = glm::dvec3(0.0);
+    m_P = P;
+    m_shadow = shadow;
+    for (const LightDesc& light : lights) {
+        if (light.kind == LightDesc::Kind::Ambient)
+            m_ambient += light.intensity * light.color;
+        else if (m_slots.size() < size_t(vm::kMaxLightSlots))
+            m_slots.push_back({&light});
+    }
+}
+
+void ShadingLights::Compute(Slot& slot) const {
+    const LightDesc& light = *slot.light;
+    slot.computed = true;
+    if (light.kind == LightDesc::Kind::Distant) {
+        slot.L = glm::normalize(light.from - light.to);
+        slot.distance = INFINITY;
+    } else {
+        slot.L = light.from - m_P;
+        slot.distance = glm::length(slot.L);
+    }
+    const std::optional<Incident> in = Illuminate(light, m_P);
+    slot.Cl = in ? in->Cl : glm::dvec3(0.0);
+}
+
+double ShadingLights::Light(int index, int component, bool shadowed) {
+    if (component < 0 || component >= vm::kLightComponents) return 0;
+    if (index == vm::kAmbientSlot) return component < 3 ? 0.0 : m_ambient[component - 3];
+    if (index < 0 || static_cast<size_t>(index) >= m_slots.size()) return 0;  // (a light set smaller than compiled for)
+    Slot& slot = m_slots[static_cast<size_t>(index)];
+    if (!slot.computed) Compute(slot);
+    if (component < 3) return slot.L[component];
+    if (!shadowed || !slot.light->castShadows || !m_shadow || slot.Cl == glm::dvec3(0.0)) return slot.Cl[component - 3];
+    if (!slot.shadowTraced) {
+        slot.shadowTraced = true;
+        const glm::dvec3 toLight = std::isfinite(slot.distance) ? slot.L / slot.distance : slot.L;
+        slot.shadowedCl = slot.Cl * (*m_shadow)(toLight, slot.distance);
+    }
+    return slot.shadowedCl[component - 3];
+}
+
 }  // namespace affray::renderer

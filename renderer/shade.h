@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"
+#include "vm/lights.h"
 
 namespace affray::renderer {
 
@@ -40,5 +41,32 @@ using ShadowTest = std::function<glm::dvec3(const glm::dvec3& toLight, double di
 /// uses. The result is the colour Ci before RenderMan's final Ci *= Os (the caller composites).
 glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const ShadingPoint& sp,
                         const std::vector<LightDesc>& lights, const ShadowTest& shadow);
+
+/// What a surface shader's light loops ask at one shading point (vm/lights.h), from the same
+/// lights as ShadeSurface: slot k is the k-th light of the set that is not ambient, the ambient
+/// slot the sum of the ambient lights. L is the vector from P to the light (a distant light's
+/// unit direction towards it); Cl the light's colour arriving at P, as ShadeSurface takes it (0
+/// outside a spotlight's cone or at the light), times what `shadow` lets through when the
+/// shader wants the light's shadow, the light casts shadows and its colour is not 0. Each light
+/// is computed once per point, its shadow ray traced at most once, when first wanted. Reset for
+/// each point; kept per thread (no allocation once it has seen the largest light set).
+class ShadingLights final : public vm::LightQueries {
+  public:
+    void Reset(const std::vector<LightDesc>& lights, const glm::dvec3& P, const ShadowTest* shadow);
+    double Light(int slot, int component, bool shadowed) override;
+
+  private:
+    struct Slot {
+        const LightDesc* light = nullptr;
+        bool computed = false, shadowTraced = false;
+        glm::dvec3 L{0.0}, Cl{0.0}, shadowedCl{0.0};
+        double distance = 0;
+    };
+    void Compute(Slot& slot) const;
+    std::vector<Slot> m_slots;
+    glm::dvec3 m_ambient{0.0};
+    glm::dvec3 m_P{0.0};
+    const ShadowTest* m_shadow = nullptr;
+};
 
 }  // namespace affray::renderer

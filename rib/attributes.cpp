@@ -257,15 +257,26 @@ bool RibParser::DoOrientation(const RibRequest& r) {
     return true;
 }
 
-// The built-in surfaces of RI 3.2 appendix A; an unknown name falls back to plastic.
+// The built-in surfaces of RI 3.2 appendix A, and the shader the request names, which a scene
+// renders with when it is found (renderer/prepare.cpp); an unknown name not found falls back to
+// plastic.
 bool RibParser::DoSurface(const RibRequest& r) {
     std::string name;
     std::vector<RibParam> params;
     if (!LeadingString(r, "a surface shader name", &name)) return false;
-    // The parameters of a shader affray replaces are ignored, their declarations unchecked.
+    // The parameters of a shader affray may not find are checked by its compiler, if found.
     const bool known = name == "matte" || name == "metal" || name == "constant" || name == "plastic";
     if (!ParamList(r, 1, &params, known)) return false;
     SurfaceDesc surface;  // plastic defaults
+    // The shader itself, looked for on the search path when the scene is prepared.
+    ShaderRef shader;
+    shader.name = name;
+    shader.file = FileOf(r.at);
+    shader.line = r.at.line;
+    shader.column = r.at.column;
+    shader.shaderToWorld = m_state.ctm;
+    for (const RibParam& p : params) shader.params.push_back(p.value);
+    if (!name.empty()) surface.shader = std::move(shader);
     using Model = SurfaceDesc::Model;
     if (name == "matte") {
         surface.model = Model::Matte;
@@ -280,8 +291,7 @@ bool RibParser::DoSurface(const RibRequest& r) {
         surface.Kd = 0;
         surface.Ks = 0;
     } else if (name != "plastic") {
-        Warn(r.at, "surface shader " + Quote(name) + " is not supported yet; using \"plastic\"");
-        m_state.surface = surface;
+        m_state.surface = surface;  // plastic unless the shader is found (renderer/prepare.cpp)
         return true;
     }
     const std::string context = "'Surface \"" + name + "\"'";
@@ -497,6 +507,10 @@ bool RibParser::LightParams(const std::string& context, const std::vector<RibPar
             ok = ParamNumbers(p, context, 1, &light->coneDeltaAngle);
         else if (n == "beamdistribution" && spot)
             ok = ParamNumbers(p, context, 1, &light->beamDistribution);
+        else if (n == "__category" && p.value.strings.size() == 1)
+            light->category = p.value.strings[0];
+        else if (n == "__category")
+            return Fail(p.at, context + " parameter '__category' takes one string");
         else
             Warn(p.at, context + " has no parameter " + Quote(n) + "; ignored");
         if (!ok) return false;

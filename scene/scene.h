@@ -51,6 +51,10 @@ struct SurfaceDesc {
     enum class Model { Constant, Matte, Metal, Plastic } model = Model::Plastic;
     double Ka = 1, Kd = 0.5, Ks = 0.5, roughness = 0.1;
     glm::dvec3 specularColor{1.0};
+    /// The Surface request's shader and parameters: its .sl (or a shader of the same name on the
+    /// search path, for the names above) is compiled and run on the VM; the model above is what
+    /// renders where no such shader is found, or it does not compile (warned).
+    std::optional<ShaderRef> shader;
 };
 
 /// An atmosphere shader (Atmosphere): RI 3.2's standard volume shaders, run on what a camera ray
@@ -76,6 +80,9 @@ struct LightDesc {
     /// and the exponent of the cosine fall-off across the beam.
     double coneAngle = 0.5235987755982988, coneDeltaAngle = 0.08726646259971647, beamDistribution = 2;
     std::string handle;  ///< The RIB light handle (number or string), as text.
+    /// Its `__category` parameter: the comma-separated categories a surface shader's
+    /// illuminance ("category", ...) selects lights by ("" if none).
+    std::string category;
     int line = 0;
     /// A light declared under a moving transform (MotionBegin around transform requests): from and
     /// to are where the path's first matrix places them, carried at time t by At(t) times the
@@ -364,6 +371,7 @@ inline std::string ToString(const SurfaceDesc& s) {
     std::ostringstream out;
     out << kNames[static_cast<int>(s.model)] << " Ka=" << s.Ka << " Kd=" << s.Kd << " Ks=" << s.Ks
         << " roughness=" << s.roughness << " specularcolor=" << ToString(s.specularColor);
+    if (s.shader) out << " shader " << ToString(*s.shader);
     return out.str();
 }
 
@@ -376,6 +384,7 @@ inline std::string ToString(const LightDesc& l) {
         out << " coneangle=" << l.coneAngle << " conedeltaangle=" << l.coneDeltaAngle
             << " beamdistribution=" << l.beamDistribution;
     if (l.castShadows) out << " shadows";
+    if (!l.category.empty()) out << " category=\"" << l.category << "\"";
     if (l.motion) out << ToString(*l.motion);
     return out.str();
 }

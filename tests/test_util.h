@@ -199,11 +199,18 @@ inline void RequireVec(const glm::dvec3& got, const glm::dvec3& want) {
     REQUIRE(got.z == Approx(want.z).margin(1e-12));
 }
 
-/// Every .sl file in shaders/, sorted.
-inline std::vector<std::string> AllShaders() {
+/// The .sl files in shaders/, sorted: the displacement shaders (every bound test's subjects), or
+/// with `surfaces` the surface shaders (the standard surfaces, RI Spec 3.2 appendix A). A file
+/// is a surface shader's if a line of it starts with "surface ".
+inline std::vector<std::string> AllShaders(bool surfaces = false) {
     std::vector<std::string> paths;
-    for (const auto& entry : std::filesystem::directory_iterator(SourceDir() + "/shaders"))
-        if (entry.path().extension() == ".sl") paths.push_back(entry.path().string());
+    for (const auto& entry : std::filesystem::directory_iterator(SourceDir() + "/shaders")) {
+        if (entry.path().extension() != ".sl") continue;
+        std::ifstream in(entry.path());
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const bool surface = text.rfind("surface ", 0) == 0 || text.find("\nsurface ") != std::string::npos;
+        if (surface == surfaces) paths.push_back(entry.path().string());
+    }
     std::sort(paths.begin(), paths.end());
     return paths;
 }

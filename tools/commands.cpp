@@ -76,7 +76,10 @@ std::string InstructionCounts(const compiler::CompiledShader& s) {
     auto count = [](const vm::Program& p) { return std::to_string(p.code.size()); };
     return "\"operations_requested\":" + std::to_string(s.opsBeforeOptimisation) +
            ",\"bound_generic\":" + count(s.genericBound) + ",\"bound_specialised\":" + count(s.bound) +
-           ",\"shade_generic\":" + count(s.genericShade) + ",\"shade_specialised\":" + count(s.shade);
+           ",\"shade_generic\":" + count(s.genericShade) + ",\"shade_specialised\":" + count(s.shade) +
+           (s.kind == lang::ShaderKind::Surface
+                ? ",\"surface_generic\":" + count(s.genericSurface) + ",\"surface_specialised\":" + count(s.surface)
+                : std::string());
 }
 
 }  // namespace
@@ -90,13 +93,28 @@ int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
     const compiler::CompiledShader& shader = *result.shader;
     std::string listing = "; " + shader.name + " from " + shader.sourcePath + ": " +
                           std::to_string(shader.opsBeforeOptimisation) + " operations before optimisation\n";
-    listing += "; ---- bound program (displaced P only) ----\n" + vm::Disassemble(shader.bound, shader.sourceText);
-    listing += "; ---- shade program (P and N) ----\n" + vm::Disassemble(shader.shade, shader.sourceText);
+    const bool surface = shader.kind == lang::ShaderKind::Surface;
+    if (surface) {
+        listing += "; ---- surface program (Ci and Oi) ----\n" + vm::Disassemble(shader.surface, shader.sourceText);
+    } else {
+        listing += "; ---- bound program (displaced P only) ----\n" + vm::Disassemble(shader.bound, shader.sourceText);
+        listing += "; ---- shade program (P and N) ----\n" + vm::Disassemble(shader.shade, shader.sourceText);
+    }
     if (cmd.disasm) std::fputs(listing.c_str(), out);
+    if (!cmd.outputPath.empty() && surface) {
+        // (Checked before the statistics, so that nothing is printed for a refused command.)
+        diag::Report report;
+        report.error({shader.sourcePath}, "surface shader '" + shader.name +
+                                              "' cannot be written as bytecode (.afb files hold displacement "
+                                              "shaders); a scene compiles its surface shaders from source");
+        Print(report, err);
+        return diag::kExitBadInput;
+    }
     if (cmd.stats) {
+        const vm::Program& read = surface ? shader.surface : shader.shade;
         std::string globals;
         for (int g = 0; g < vm::kGlobalCount; ++g)
-            if (shader.shade.readsGlobal(static_cast<vm::Global>(g)))
+            if (read.readsGlobal(static_cast<vm::Global>(g)))
                 globals +=
                     std::string(globals.empty() ? "" : ",") + "\"" + vm::GlobalName(static_cast<vm::Global>(g)) + "\"";
         std::fprintf(out, "{\"shader\":\"%s\",%s,\"params\":%zu,\"globals_read\":[%s]}\n", shader.name.c_str(),
@@ -124,6 +142,13 @@ int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
     Print(report, err);
     if (!result.ok() || !result.undeclared.empty()) return diag::kExitBadInput;
     const compiler::CompiledShader& shader = *result.shader;
+    if (shader.kind != lang::ShaderKind::Displacement) {
+        diag::Report refused;
+        refused.error({cmd.shaderPath}, "'affray eval' evaluates displacement shaders; '" + shader.name +
+                                            "' is a surface shader (render a scene that uses it)");
+        Print(refused, err);
+        return diag::kExitBadInput;
+    }
     const renderer::BilinearPatch square = renderer::BilinearPatch::UnitSquare();
 
     auto bound = [&](double u0, double u1, double v0, double v1) {

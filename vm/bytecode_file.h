@@ -11,7 +11,7 @@
 //
 //   offset  size  field
 //   0       8     magic "AFRAYBC\0"
-//   8       4     u32 format version (kBytecodeVersion = 5)
+//   8       4     u32 format version (kBytecodeVersion = 6)
 //   12      8     u64 file length L in bytes, this header and the final checksum included
 //   20      8     u64 header check: FNV-1a 64 of bytes 0..19
 //   28      ...   str shaderName, str sourcePath, u64 sourceHash (FNV-1a 64 of the source)
@@ -51,8 +51,8 @@ namespace affray::vm {
 
 /// The only format version this affray writes and reads.
 // 2: control flow, noise, Ext words, flags; 3: tan (63); 4: texture slots, Texture2 and Texture8;
-// 5: the globals time and dtime.
-static constexpr uint32_t kBytecodeVersion = 5;
+// 5: the globals time and dtime; 6: the globals Cs and Os, the Light opcode (66).
+static constexpr uint32_t kBytecodeVersion = 6;
 
 /// What an .afb file holds.
 struct BytecodeFile {

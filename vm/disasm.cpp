@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "vm/lights.h"
+
 namespace affray::vm {
 
 namespace {
@@ -52,6 +54,8 @@ std::string DisassembleInstr(const Program& program, const Instr* in, size_t ava
     }
     if (OperationOf(in->op) == Operation::Texture)
         out += "  [texture " + std::to_string(in->flags) + "]";
+    else if (in->op == Op::Light)
+        out += in->flags == kAmbientSlot ? std::string("  [ambient]") : "  [light " + std::to_string(in->flags) + "]";
     else if (in->flags != 0)
         out += "  [channel " + std::to_string(in->flags) + "]";
     return out;

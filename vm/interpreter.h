@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "vm/lights.h"
 #include "vm/numbers/number.h"
 #include "vm/numbers/vec3.h"
 #include "vm/program.h"
@@ -40,6 +41,11 @@ class Interpreter {
     void SetGlobal(Global g, const T& value);
     void SetGlobal(Global g, const Vec3<T>& value);
 
+    /// Where Light instructions (a surface program's light loops) get their answers, or null: then
+    /// every light is dark (0). Only the point types (double, Dual<double>) ask; a bound type
+    /// gives the unbounded value (a verified bound or shade program has no Light instruction).
+    void SetLights(LightQueries* lights) { m_lights = lights; }
+
     /// Sets parameter `index` of program().params (size values) for the following runs; until
     /// then a parameter has its default. Specialised programs have no parameters.
     void SetParam(size_t index, const std::vector<double>& values);
@@ -70,6 +76,8 @@ class Interpreter {
     /// floor/ceil/round (`f` its scalar, `bounded` its T version) of x, split as Run() says.
     template <class F, class B>
     T Rounding(const T& x, F f, B bounded);
+    /// A Light instruction's value (SetLights).
+    T LightValue(uint8_t slot, const T& shadowed, const T& component) const;
 
     const Program* m_program;
     std::vector<T> m_registers;
@@ -83,6 +91,7 @@ class Interpreter {
     std::vector<T> m_saved, m_joined;
     bool m_recording = false;
     Decisions m_record;
+    LightQueries* m_lights = nullptr;
 };
 
 /// The scalar VM's result of the all-register opcode `op` (OperandForm::RR) on `operands`

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 #include "vm/interpreter.h"
@@ -68,6 +69,22 @@ double ResultConstant(Op op, const T& x) {
 }
 
 }  // namespace detail
+
+template <class T>
+T Interpreter<T>::LightValue(uint8_t slot, const T& shadowed, const T& component) const {
+    if constexpr (std::is_same_v<T, double> || std::is_same_v<T, Dual<double>>) {
+        auto value = [](const T& x) {
+            if constexpr (std::is_same_v<T, double>)
+                return x;
+            else
+                return x.v;
+        };
+        if (!m_lights) return T(0.0);
+        return T(m_lights->Light(slot, static_cast<int>(value(component)), value(shadowed) != 0));
+    } else {
+        return T(std::numeric_limits<double>::quiet_NaN());  // every number type's "unbounded"
+    }
+}
 
 template <class T>
 Interpreter<T>::Interpreter(const Program& program) : m_program(&program) {
@@ -320,6 +337,7 @@ void Interpreter<T>::RunOnce() {
                 A = TextureLookupQuad((*m_program->textures)[in.flags], args);
                 break;
             }
+            case Op::Light: A = LightValue(in.flags, R[in.b], R[in.c]); break;
         }
         if constexpr (kRecord) {
             if (std::isnan(constant)) constant = detail::ResultConstant(in.op, A);

@@ -7,7 +7,8 @@
 //
 //   bits  0..7   op      (MAXARG_OP = 255)
 //   bits  8..15  flags   (the noise functions' seed, which picks an independent channel; the
-//                        texture functions' slot in Program::textures; else 0)
+//                        texture functions' slot in Program::textures; the light slot of
+//                        Light, vm/lights.h; else 0)
 //   bits 16..31  A       destination register
 //   bits 32..47  B       first operand: a register R[B] or a constant K[B]
 //   bits 48..63  C       second operand: a register R[C] or a constant K[C]
@@ -60,7 +61,8 @@ enum OperationFlag : uint8_t {
 // compiler's IR operations are these plus its leaves (compiler/ir.h), and every fact a consumer
 // needs about an operation is a column here.
 //  X(name, operands (-1: varies, the noise and texture functions), flags, RSL spelling)
-// Texture is not foldable: its value depends on a file, read when the program is made.
+// Texture is not foldable: its value depends on a file, read when the program is made; Light
+// neither: the renderer answers it at each shaded point (vm/lights.h).
 #define AFFRAY_OPERATIONS(X)                                                       \
     X(Neg, 1, kFoldable, "-x")                                                     \
     X(Sqr, 1, kFoldable, "x * x")                                                  \
@@ -99,7 +101,8 @@ enum OperationFlag : uint8_t {
     X(Noise, -1, kFoldable, "noise(p)")                                            \
     X(PNoise, -1, kFoldable, "pnoise(p, period)")                                  \
     X(CellNoise, -1, kFoldable | kJumps, "cellnoise(p)")                           \
-    X(Texture, -1, kPointwiseSlope, "texture(name, s, t)")
+    X(Texture, -1, kPointwiseSlope, "texture(name, s, t)")                         \
+    X(Light, -1, 0, "the L and Cl of a light (illuminance)")
 
 enum class Operation : uint8_t {
     None,  // not an operation: LoadK, Move, Ext
@@ -195,7 +198,8 @@ constexpr bool Has(Operation f, OperationFlag flag) { return (Info(f).flags & fl
     X(CellNoise4, 62, "wrrrr-", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D], R[E])")              \
     X(Tan, 63, "wr-", Tan, "R[A] := tan(R[B])")                                                      \
     X(Texture2, 64, "wrr", Texture, "R[A] := texture(slot flags; s = R[B], t = R[C])")               \
-    X(Texture8, 65, "wrrrrrrrr", Texture, "R[A] := texture(slot flags; corners s1, t1 ... s4, t4)")
+    X(Texture8, 65, "wrrrrrrrr", Texture, "R[A] := texture(slot flags; corners s1, t1 ... s4, t4)")  \
+    X(Light, 66, "wrr", Light, "R[A] := component R[C] of light slot flags; R[B] != 0: shadows wanted")
 
 enum class Op : uint8_t {
 #define AFFRAY_OP_ENUM(name, number, format, operation, meaning) name = number,

@@ -14,10 +14,11 @@
 
 namespace affray::vm {
 
-/// The shader globals a displacement shader can read (RenderMan names). `time` and `dtime` are the
-/// shutter's opening time and its length: a displacement is evaluated once for all the times of
-/// the shutter, at its opening, as a Reyes renderer shades its grids (renderer/prepare.cpp binds
-/// both as constants of each program).
+/// The shader globals a program can read (RenderMan names). `time` and `dtime` are the shutter's
+/// opening time and its length: a displacement is evaluated once for all the times of the
+/// shutter, at its opening, as a Reyes renderer shades its grids (renderer/prepare.cpp binds both
+/// as constants of each program). Cs and Os, the surface's colour and opacity, are globals of
+/// surface shaders only (a displacement shader cannot name them).
 #define AFFRAY_GLOBALS(X) \
     X(P, 3)               \
     X(N, 3)               \
@@ -33,7 +34,9 @@ namespace affray::vm {
     X(du, 1)              \
     X(dv, 1)              \
     X(time, 1)            \
-    X(dtime, 1)
+    X(dtime, 1)           \
+    X(Cs, 3)              \
+    X(Os, 3)
 
 enum class Global : uint8_t {
 #define AFFRAY_GLOBAL_ENUM(name, size) name,

@@ -12,7 +12,7 @@ bool Fail(std::string* error, const std::string& message) {
 }
 }  // namespace
 
-bool Verify(const Program& program, std::string* error) {
+bool Verify(const Program& program, std::string* error, bool lights) {
     const int nRegs = program.registerCount;
     if (nRegs < 0 || nRegs > kMaxRegisters) return Fail(error, "register count out of range");
     if (program.constants.size() > static_cast<size_t>(kMaxConstants)) return Fail(error, "too many constants");
@@ -53,6 +53,7 @@ bool Verify(const Program& program, std::string* error) {
             if (program.code[pc + w].op != Op::Ext) return Fail(error, where + "its operand words are missing");
         if (OperationOf(in.op) == Operation::Texture && (!program.textures || in.flags >= program.textures->size()))
             return Fail(error, where + "texture slot " + std::to_string(in.flags) + " out of range");
+        if (in.op == Op::Light && !lights) return Fail(error, where + "a light query outside a surface program");
         // Reads first, then the write: an instruction may overwrite one of its own operands.
         for (int i = 0; format[i]; ++i) {
             uint16_t x = OperandOf(&in, i);

@@ -11,7 +11,8 @@ namespace affray::vm {
 /// range, every register read after it is written (globals count as written at the start),
 /// every output and global register in range, and the line table as long as the code. Otherwise
 /// returns false with the first problem in *error ("instruction 12: register r40 out of range").
-/// Never crashes on garbage.
-bool Verify(const Program& program, std::string* error);
+/// Never crashes on garbage. Light instructions (vm/lights.h) are allowed only with `lights`: in
+/// a surface shader's program, which runs on points alone, never on a bound type.
+bool Verify(const Program& program, std::string* error, bool lights = false);
 
 }  // namespace affray::vm

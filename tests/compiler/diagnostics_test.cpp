@@ -430,10 +430,10 @@ TEST_CASE("unknown and unsupported functions and types", "[compiler][diagnostics
           "test.sl:2:8: error: function 'environment' is not supported yet: affray reads texture() maps only\n"
           "      P += environment(\"x\", N);\n"
           "           ^\n");
-    CHECK(Diagnose("surface t() {\n  P += 1;\n}\n") ==
-          "test.sl:1:9: error: surface shaders are not supported yet; affray renders displacement shaders\n"
-          "    surface t() {\n"
-          "            ^\n");
+    CHECK(Diagnose("imager t() {\n  P += 1;\n}\n") ==
+          "test.sl:1:8: error: imager shaders are not supported yet; affray runs displacement and surface shaders\n"
+          "    imager t() {\n"
+          "           ^\n");
 }
 
 TEST_CASE("arguments of built-ins", "[compiler][diagnostics]") {

@@ -1,5 +1,14 @@
 // golden: compile
-// Only displacement shaders render.
-surface t() {
-    P += N;
+// A surface shader's light loops must have a position, or a position, an axis and an angle; the
+// functions affray does not give surface shaders yet are errors where they run.
+surface t(float Kd = 1) {
+    color C = 0;
+    illuminance (P, N) {
+        C += Cl;
+    }
+    illuminance ("key", P, N, PI / 2, 1)
+        C += Cl;
+    illuminance (1, N, PI / 2)
+        C += Cl;
+    Ci = Kd * C + trace(P, N) + environment("sky.tx", N);
 }

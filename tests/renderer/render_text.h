@@ -1,6 +1,7 @@
 // tests/renderer/render_text.h: a RIB text rendered as the renderer renders it (its own samples,
 // filter and options, shaders from shaders/, 2 threads), and the RMSE of two images' RGB: for the
-// brute-force tests of camera effects (depth of field, motion blur), which compare whole images.
+// brute-force tests of camera effects (depth of field, motion blur) and of surface shaders, which
+// compare whole images.
 #pragma once
 
 #include <catch2/catch.hpp>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "renderer/renderer.h"
 #include "rib/rib.h"
@@ -15,14 +17,16 @@
 
 namespace affray::test {
 
-/// The image of the RIB text `rib`, which must read and prepare.
-inline image::ImageBuffer RenderText(const std::string& rib) {
+/// The image of the RIB text `rib`, which must read and prepare, with shaders from `shaderPaths`
+/// (shaders/ unless given).
+inline image::ImageBuffer RenderText(const std::string& rib, std::optional<std::vector<std::string>> shaderPaths = {}) {
     diag::Report error;
     std::optional<renderer::SceneDesc> desc = rib::ParseRib(rib, "t.rib", &error);
     INFO(error);
     REQUIRE(desc);
     renderer::PreparedScene prepared;
-    const bool ok = renderer::Renderer(renderer::Options{.shaderPaths = {SourceDir() + "/shaders"}})
+    const bool ok = renderer::Renderer(
+                        renderer::Options{.shaderPaths = shaderPaths.value_or(std::vector{SourceDir() + "/shaders"})})
                         .Prepare(*desc, &prepared, &error);
     INFO(error);
     REQUIRE(ok);

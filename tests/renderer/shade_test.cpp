@@ -272,3 +272,52 @@ TEST_CASE("Lights that cast no shadows trace no shadow rays, a partial shadow sc
     CHECK(occ.calls == 1);
     RequireNear(c, Cs * 0.1 + (Cs * 0.5 + glm::dvec3(0.5)) * occ.through);
 }
+
+TEST_CASE("ShadingLights: each light's L and Cl as the built-in models take them, its shadow traced once",
+          "[shade][surface]") {
+    // Slots: the point light (0), the spotlight (1), a distant light (2); the ambient lights sum.
+    LightDesc distant;
+    distant.kind = LightDesc::Kind::Distant;
+    distant.from = {0, 0, 5};
+    distant.to = {1, 0, 5};
+    distant.intensity = 0.5;
+    distant.color = {1, 0.5, 0.25};
+    const std::vector<LightDesc> lights = {Ambient(0.1), Point({0, 3, 4}, 25), Spot(), Ambient(0.2), distant};
+    CountingOcclusion occlusion;
+    occlusion.through = {0.5, 0.25, 1};
+    const ShadowTest shadow = occlusion.Test();
+    ShadingLights q;
+    q.Reset(lights, glm::dvec3(0.0), &shadow);
+    auto L = [&](int slot) {
+        return glm::dvec3(q.Light(slot, 0, false), q.Light(slot, 1, false), q.Light(slot, 2, false));
+    };
+    auto Cl = [&](int slot, bool shadowed) {
+        return glm::dvec3(q.Light(slot, 3, shadowed), q.Light(slot, 4, shadowed), q.Light(slot, 5, shadowed));
+    };
+    CHECK(Cl(affray::vm::kAmbientSlot, true) == glm::dvec3(0.1 + 0.2));
+    CHECK(L(affray::vm::kAmbientSlot) == glm::dvec3(0.0));
+    // The point light: from P to the light, its colour falling off with the squared distance (5).
+    CHECK(L(0) == glm::dvec3(0, 3, 4));
+    CHECK(Cl(0, false) == glm::dvec3(1.0));
+    CHECK(occlusion.calls == 0);
+    // With its shadow: one shadow ray, however often the colour is asked.
+    CHECK(Cl(0, true) == glm::dvec3(0.5, 0.25, 1));
+    CHECK(Cl(0, true) == glm::dvec3(0.5, 0.25, 1));
+    CHECK(occlusion.calls == 1);
+    // The spotlight straight above: its whole beam (4 / 2^2), L up to it.
+    CHECK(L(1) == glm::dvec3(0, 0, 2));
+    CHECK(Cl(1, false).x == Approx(1.0));
+    // The distant light: the unit direction towards it, no fall-off.
+    CHECK(L(2) == glm::dvec3(-1, 0, 0));
+    CHECK(Cl(2, false) == 0.5 * distant.color);
+    // A light that casts no shadows traces none.
+    CHECK(Cl(2, true) == 0.5 * distant.color);
+    CHECK(occlusion.calls == 1);
+    // Outside the spot's cone the colour is 0 and no shadow ray is traced for it.
+    q.Reset(lights, glm::dvec3(3, 0, 0), &shadow);
+    CHECK(Cl(1, true) == glm::dvec3(0.0));
+    CHECK(occlusion.calls == 1);
+    // Slots past the set, and unknown components, are dark.
+    CHECK(q.Light(3, 3, true) == 0.0);
+    CHECK(q.Light(0, 6, true) == 0.0);
+}

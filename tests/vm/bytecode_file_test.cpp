@@ -184,7 +184,7 @@ TEST_CASE("layout: little-endian fields at documented offsets, exact doubles", "
                             std::numeric_limits<double>::denorm_min()};
     file.bound.code = {vm::Instr{vm::Op::LoadK, 0, 0, 3, 0}};
     const std::string bytes = vm::SaveBytecode(file);
-    CHECK(bytes.substr(0, 12) == std::string("AFRAYBC\0\5\0\0\0", 12));  // magic, version 5
+    CHECK(bytes.substr(0, 12) == std::string("AFRAYBC\0\6\0\0\0", 12));  // magic, version 6
     uint64_t length = 0;
     for (int i = 7; i >= 0; --i) length = (length << 8) | static_cast<uint8_t>(bytes[12 + i]);
     CHECK(length == bytes.size());

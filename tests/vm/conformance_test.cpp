@@ -1,7 +1,8 @@
 // tests/vm/conformance_test.cpp: the opcode conformance suite (issue 14, item 4). It iterates the
 // opcode list itself (vm/opcodes.h), so an opcode added later without a sample here does not
 // compile: SampleFor's switch names every opcode (-Wswitch under -Werror), and a static_assert
-// checks that every opcode but Ext has a sample whose operand count is its format's.
+// checks that every opcode but Ext and Light has a sample whose operand count is its format's
+// (Light is no arithmetic: the renderer answers it, tests/vm/lights_test.cpp).
 // A sample builds a one-instruction program from the opcode's format (registers, constants, Ext
 // words), names the scalar reference (written here from the meaning strings and vm/numbers/number.h, not
 // taken from the VM; the noise functions have no independent definition, so they compare with
@@ -409,7 +410,8 @@ constexpr Sample SampleFor(Op op) {
         case Op::AndRR: return Make(ref::And, 2, truths, truths).asTruth().withKink(kink::EitherAtZero);
         case Op::OrRR: return Make(ref::Or, 2, truths, truths).asTruth().withKink(kink::EitherAtZero);
         case Op::Select: return Make(ref::Select, 3, truths, small, small).withKink(kink::AtZero);
-        case Op::Ext: return Sample();
+        case Op::Ext:
+        case Op::Light: return Sample();
         // (Radii up to 10, 5, 4 and 4 cells: some regions touch more than kNoiseCellCap cells and
         // take the cell-independent bound.)
         case Op::Noise1: return NoiseSample(ref::Noise<1>, 1, 0, 10);
@@ -441,7 +443,7 @@ constexpr int OperandCount(const char* format) {
 constexpr bool EveryOpcodeHasASample() {
     for (int i = 0; i < vm::kOpCount; ++i) {
         const Op op = static_cast<Op>(i);
-        if (op == Op::Ext) continue;
+        if (op == Op::Ext || op == Op::Light) continue;
         const Sample s = SampleFor(op);
         // (Not s.ref == nullptr: GCC with sanitizers cannot fold the address of a template
         // instance, ref::Noise<1>, in a constant expression. Every maker sets ref.)
@@ -451,7 +453,7 @@ constexpr bool EveryOpcodeHasASample() {
     return true;
 }
 static_assert(EveryOpcodeHasASample(),
-              "every opcode but Ext needs a sample in SampleFor, with as many operands as its format reads");
+              "every opcode but Ext and Light needs a sample in SampleFor, with as many operands as its format reads");
 
 // ---------------------------------------------------------------------------------------------
 // Operands: forms over the region's symbols, exact at the points drawn.
@@ -1196,14 +1198,14 @@ std::string Summary(Op op, const Report& rep) {
 
 }  // namespace
 
-TEST_CASE("conformance: every opcode but Ext has a sample", "[conformance]") {
+TEST_CASE("conformance: every opcode but Ext and Light has a sample", "[conformance]") {
     // (The static_assert above already guarantees it; this lists the samples for the record.)
     int sampled = 0;
     for (int i = 0; i < vm::kOpCount; ++i) {
         const Op op = static_cast<Op>(i);
         const Sample s = SampleFor(op);
         INFO(vm::kOpInfo[i].name << " " << vm::kOpInfo[i].format);
-        if (op == Op::Ext) {
+        if (op == Op::Ext || op == Op::Light) {
             CHECK(s.kind == Kind::None);
             continue;
         }
@@ -1211,18 +1213,18 @@ TEST_CASE("conformance: every opcode but Ext has a sample", "[conformance]") {
         CHECK(s.arity == OperandCount(vm::kOpInfo[i].format));
         ++sampled;
     }
-    CHECK(sampled == vm::kOpCount - 1);
+    CHECK(sampled == vm::kOpCount - 2);
 }
 
 namespace {
 
-/// Runs check(op, rep) under T for every opcode but Ext, and requires no failures; harness(op,
-/// rep) checks more of the report (of the harness itself).
+/// Runs check(op, rep) under T for every opcode but Ext and Light, and requires no failures;
+/// harness(op, rep) checks more of the report (of the harness itself).
 template <class T, class Check, class Harness>
 void EveryOpcode(Check check, Harness harness) {
     for (int i = 0; i < vm::kOpCount; ++i) {
         const Op op = static_cast<Op>(i);
-        if (op == Op::Ext) continue;
+        if (op == Op::Ext || op == Op::Light) continue;
         Report rep;
         check(op, rep);
         INFO(vm::NumberTraits<T>::kName << " " << Summary(op, rep));
@@ -1453,8 +1455,12 @@ TEST_CASE("conformance: the verifier over every opcode value, and what it accept
             p.lines.assign(size, 7);
         }
 
+        // A light query is allowed only in a surface program (Verify's `lights`).
+        const bool lights = rng.chance(0.5);
+        for (size_t pc = 0; pc < p.code.size(); ++pc)
+            if (p.code[pc].op == Op::Light && !lights) valid = false;
         std::string error;
-        const bool ok = vm::Verify(p, &error);
+        const bool ok = vm::Verify(p, &error, lights);
         if (!ok) {
             if (error.empty()) fail("rejected without a message, iteration " + std::to_string(iter));
             if (valid) fail("a well-formed program rejected: " + error + ", iteration " + std::to_string(iter));

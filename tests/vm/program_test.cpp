@@ -13,9 +13,9 @@ using namespace affray;
 using vm::Global;
 
 TEST_CASE("program: the globals' names and sizes", "[vm][program]") {
-    const std::pair<Global, const char*> triples[] = {{Global::P, "P"},      {Global::N, "N"}, {Global::Ng, "Ng"},
-                                                      {Global::I, "I"},      {Global::E, "E"}, {Global::dPdu, "dPdu"},
-                                                      {Global::dPdv, "dPdv"}};
+    const std::pair<Global, const char*> triples[] = {
+        {Global::P, "P"},       {Global::N, "N"},       {Global::Ng, "Ng"}, {Global::I, "I"},  {Global::E, "E"},
+        {Global::dPdu, "dPdu"}, {Global::dPdv, "dPdv"}, {Global::Cs, "Cs"}, {Global::Os, "Os"}};
     const std::pair<Global, const char*> floats[] = {
         {Global::s, "s"},   {Global::t, "t"},   {Global::u, "u"},       {Global::v, "v"},
         {Global::du, "du"}, {Global::dv, "dv"}, {Global::time, "time"}, {Global::dtime, "dtime"}};
@@ -27,7 +27,7 @@ TEST_CASE("program: the globals' names and sizes", "[vm][program]") {
         CHECK(std::string(vm::GlobalName(g)) == name);
         CHECK(vm::GlobalSize(g) == 1);
     }
-    CHECK(vm::kGlobalCount == 15);
+    CHECK(vm::kGlobalCount == 17);
 }
 
 TEST_CASE("program: outputs by name, and whether it takes derivatives", "[vm][program]") {
