@@ -170,6 +170,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         shader.reads = lowered->reads;
         shader.reads.Add(instance->reads);
         emit(*instance, {}, &shader.bound, &shader.shade, &shader.surface);
+        shader.surfaceDerivatives = shader.surface.usesDerivatives();
         auto instanceTextures = TexturesOf(*instance);
         for (vm::Program* p : {&shader.bound, &shader.shade, &shader.surface}) {
             p->shaderName = shader.name;

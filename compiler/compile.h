@@ -34,6 +34,8 @@ struct CompiledShader {
     /// instructions for its light loops (vm/lights.h); run on points only.
     vm::Program genericSurface;
     vm::Program surface;
+    /// surface.usesDerivatives(), once: the renderer then runs it in duals.
+    bool surfaceDerivatives = false;
     /// The generic program parameters are bound against: genericBound, or genericSurface.
     const vm::Program& generic() const { return kind == lang::ShaderKind::Surface ? genericSurface : genericBound; }
     std::vector<ParamInfo> params;

@@ -12,7 +12,10 @@
 // output variable when the name is known and the variable's type (and array size) match, else 0
 // and no store (RI Spec 3.2 section 15.8; prman's rule for the types).
 // To add a function: a row in kSurfaceCalls (argument letters below, then the result).
+#include <algorithm>
+#include <array>
 #include <cstring>
+#include <functional>
 #include <numbers>
 
 #include "compiler/lowerer.h"
@@ -389,6 +392,74 @@ void Lowerer::LowerIlluminance(const lang::Stmt& s) {
     global("Cl").value = outsideCl;
 }
 
+bool Lowerer::IsUnit(const Value& v) const {
+    if (!IsTriple(v.type)) return false;
+    const IrBuilder& ir = m_out.ir;
+    auto isConst = [&](ValueId x, double k) { return ir.node(x).op == IrOp::Const && ir.node(x).k == k; };
+    // The operand of binary node n other than the constant k, or kNoValue.
+    auto besides = [&](ValueId n, IrOp op, double k) {
+        const IrNode& node = ir.node(n);
+        if (node.op != op || node.count != 2) return kNoValue;
+        if (isConst(node.in[0], k)) return ValueId(node.in[1]);
+        if (isConst(node.in[1], k)) return ValueId(node.in[0]);
+        return kNoValue;
+    };
+    // ValueOps::Normalize: min(max(a_i * inverse, -1), 1) with inverse = 0 < |a| ? 1 / |a| : 0 and
+    // |a| = sqrt(sqr a_0 + sqr a_1 + sqr a_2), the same a and inverse for the three components.
+    auto normalized = [&](const std::array<ValueId, 3>& c) {
+        ValueId inverse = kNoValue;
+        std::array<ValueId, 3> a{};
+        for (int i = 0; i < 3; ++i) {
+            const ValueId clamped = besides(c[i], IrOp::Min, 1.0);
+            const ValueId product = clamped == kNoValue ? kNoValue : besides(clamped, IrOp::Max, -1.0);
+            if (product == kNoValue || ir.node(product).op != IrOp::Mul) return false;
+            const IrNode& mul = ir.node(product);
+            // (a_i, inverse) in either order: the inverse is the operand that is a Select.
+            const bool first = ir.node(mul.in[0]).op == IrOp::Select;
+            const ValueId inv = first ? mul.in[0] : mul.in[1];
+            a[size_t(i)] = first ? mul.in[1] : mul.in[0];
+            if (i > 0 && inv != inverse) return false;
+            inverse = inv;
+        }
+        const IrNode& select = ir.node(inverse);
+        if (select.op != IrOp::Select || !isConst(select.in[2], 0.0)) return false;
+        const ValueId length = besides(select.in[1], IrOp::Div, 1.0);
+        if (length == kNoValue || !isConst(ir.node(select.in[1]).in[0], 1.0)) return false;
+        const IrNode& root = ir.node(length);
+        if (root.op != IrOp::Sqrt) return false;
+        // The sum of the three squares, in any association and order.
+        std::vector<ValueId> squares, stack{root.in[0]};
+        while (!stack.empty() && squares.size() <= 3) {
+            const ValueId x = stack.back();
+            stack.pop_back();
+            if (ir.node(x).op == IrOp::Add) {
+                stack.push_back(ir.node(x).in[0]);
+                stack.push_back(ir.node(x).in[1]);
+            } else if (ir.node(x).op == IrOp::Sqr) {
+                squares.push_back(ir.node(x).in[0]);
+            } else {
+                return false;
+            }
+        }
+        std::sort(squares.begin(), squares.end());
+        std::array<ValueId, 3> sorted = a;
+        std::sort(sorted.begin(), sorted.end());
+        return squares.size() == 3 && std::equal(squares.begin(), squares.end(), sorted.begin());
+    };
+    std::function<bool(const std::array<ValueId, 3>&, int)> unit = [&](const std::array<ValueId, 3>& c, int depth) {
+        if (depth > 8) return false;
+        if (normalized(c)) return true;
+        const IrNode &n0 = ir.node(c[0]), &n1 = ir.node(c[1]), &n2 = ir.node(c[2]);
+        if (n0.op == IrOp::Neg && n1.op == IrOp::Neg && n2.op == IrOp::Neg)
+            return unit({n0.in[0], n1.in[0], n2.in[0]}, depth + 1);
+        if (n0.op == IrOp::Select && n1.op == IrOp::Select && n2.op == IrOp::Select && n0.in[0] == n1.in[0] &&
+            n0.in[0] == n2.in[0])
+            return unit({n0.in[1], n1.in[1], n2.in[1]}, depth + 1) && unit({n0.in[2], n1.in[2], n2.in[2]}, depth + 1);
+        return false;
+    };
+    return unit({v.c[0], v.c[1], v.c[2]}, 0);
+}
+
 std::optional<Value> Lowerer::LowerLighting(const lang::Expr& e) {
     std::vector<Value> args;
     for (const lang::ExprPtr& a : e.args) {
@@ -424,16 +495,16 @@ std::optional<Value> Lowerer::LowerLighting(const lang::Expr& e) {
         return m_ops.Pow(cosine, m_ops.Div(m_ops.Constant(1.0), roughness));
     };
     if (e.name == "specularbrdf")
-        return m_ops.Promote(
-            brdf(m_ops.Normalize(args[0]), m_ops.Normalize(args[1]), m_ops.Normalize(args[2]), args[3]), Type::Color);
+        return m_ops.Promote(brdf(NormalizeOnce(args[0]), NormalizeOnce(args[1]), NormalizeOnce(args[2]), args[3]),
+                             Type::Color);
     // The others sum over the lights in the hemisphere about N (illuminance (P, N, PI/2)).
-    const Value Nn = m_ops.Normalize(args[0]);
+    const Value Nn = NormalizeOnce(args[0]);
+    const Value Vn = args.size() > 1 ? NormalizeOnce(args[1]) : Nn;
     Value sum = zero;
     Value R;
     if (e.name == "phong")
-        R = m_ops.Sub(
-            m_ops.Neg(m_ops.Normalize(args[1])),  // reflect(-Vn, Nn)
-            m_ops.Mul(m_ops.Mul(m_ops.Constant(2.0), m_ops.Dot(m_ops.Neg(m_ops.Normalize(args[1])), Nn)), Nn));
+        R = m_ops.Sub(m_ops.Neg(Vn),  // reflect(-Vn, Nn)
+                      m_ops.Mul(m_ops.Mul(m_ops.Constant(2.0), m_ops.Dot(m_ops.Neg(Vn), Nn)), Nn));
     for (int slot : LightSlots("")) {
         const Value Ln = m_ops.Normalize(LightVector(slot));
         const ValueId cond = InCone(Ln, Nn, m_ops.Constant(std::numbers::pi / 2));
@@ -442,7 +513,7 @@ std::optional<Value> Lowerer::LowerLighting(const lang::Expr& e) {
         if (e.name == "diffuse")
             weight = m_ops.Dot(Ln, Nn);
         else if (e.name == "specular")
-            weight = brdf(Ln, Nn, m_ops.Normalize(args[1]), args[2]);
+            weight = brdf(Ln, Nn, Vn, args[2]);
         else
             weight = m_ops.Pow(m_ops.Binary(IrOp::Max, m_ops.Constant(0.0), m_ops.Dot(R, Ln)), args[2]);
         sum = m_ops.SelectValue(m_ops.Float(cond), m_ops.Add(sum, m_ops.Mul(Cl, weight)), sum);

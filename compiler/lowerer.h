@@ -182,6 +182,12 @@ class Lowerer {
     /// The light slots of the instance a loop of category `category` visits ("" all; "-name"
     /// those not in category name), in order; notes the read (SceneReads::lights).
     std::vector<int> LightSlots(const std::string& category);
+    /// Whether `v` is a unit (or zero) vector by construction: a normalize's result (its pattern
+    /// in the IR), its negation, or a select of such vectors by one condition (faceforward's).
+    bool IsUnit(const Value& v) const;
+    /// normalize(v), or v itself where IsUnit(v): normalising a normalised vector again changes
+    /// it by an ulp at most, and costs 18 instructions.
+    Value NormalizeOnce(const Value& v) { return IsUnit(v) ? v : m_ops.Normalize(v); }
     /// ambient(), diffuse(N), specular(N, V, roughness), specularbrdf(L, N, V, roughness) and
     /// phong(N, V, size) of a surface shader, from their RI Spec 3.2 definitions by illuminance.
     std::optional<Value> LowerLighting(const lang::Expr& e);

@@ -2,7 +2,8 @@
 // lowering -> bytecode, the whole of `affray compile`; then the four programs of a shader that
 // compiles run once each, in number types the input picks (every type in the replay program:
 // fuzz_util.h), and its generic programs go through the .afb writer and loader, which must read
-// back what was written. The compiler's program-ops and loop-iterations limits are lowered
+// back what was written; a surface shader (compiled with two light slots) runs its programs on a
+// point instead. The compiler's program-ops and loop-iterations limits are lowered
 // (fuzz_util.h: SetSmallLimits).
 // The source is named as a file in shaders/ of the source tree, with shaders/, tests/corpus and
 // tests/golden as include directories, so that the seeds' #includes and texture names resolve.
@@ -22,11 +23,23 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static const std::string kPath = fuzz::SourceDir() + "/shaders/fuzz_input.sl";
     static const lang::PreprocessOptions kPreprocess{
         {fuzz::SourceDir() + "/shaders", fuzz::SourceDir() + "/tests/corpus", fuzz::SourceDir() + "/tests/golden"}, {}};
+    // Two light slots, one of category "key": a surface shader's light loops visit them.
+    static const compiler::SceneFacts kFacts = [] {
+        compiler::SceneFacts facts;
+        facts.lightCategories = {"", "key"};
+        return facts;
+    }();
     const std::string text(reinterpret_cast<const char*>(data), size);
-    const compiler::CompileResult result = compiler::CompileSource(kPath, text, {}, kPreprocess);
+    const compiler::CompileResult result = compiler::CompileSource(kPath, text, {}, kPreprocess, nullptr, &kFacts);
     if (!result.ok()) return 0;
     const compiler::CompiledShader& shader = *result.shader;
     const uint64_t pick = fuzz::PickOf(text);
+    if (shader.kind == lang::ShaderKind::Surface) {
+        // Surface programs run on points only; .afb files do not hold them.
+        fuzz::RunSurface(shader.genericSurface, pick);
+        fuzz::RunSurface(shader.surface, pick + 1);
+        return 0;
+    }
     int k = 0;
     for (const vm::Program* p : {&shader.genericBound, &shader.genericShade, &shader.bound, &shader.shade})
         fuzz::RunNumberTypes(*p, pick + k++);

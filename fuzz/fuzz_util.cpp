@@ -52,6 +52,29 @@ void RunAs(const vm::Program& program) {
     }
 }
 
+/// Two lights and an ambient colour, whatever a surface program asks.
+struct FixedLights final : vm::LightQueries {
+    double Light(int slot, int component, bool shadowed) override {
+        if (slot == vm::kAmbientSlot) return component < 3 ? 0.0 : 0.1;
+        const double L[2][3] = {{1, 2, 3}, {0, 0, -1}};
+        if (component < 3) return slot < 2 ? L[slot][component] : 0.0;
+        return shadowed ? 0.5 : 1.0;
+    }
+};
+
+template <class N>
+void RunSurfaceAs(const vm::Program& program) {
+    FixedLights lights;
+    vm::Interpreter<N> interp(program);
+    interp.SetLights(&lights);
+    for (const vm::ProgramOutput& out : program.outputs) {
+        if (out.size != 3) continue;
+        renderer::EvaluateOnPatch(interp, renderer::BilinearPatch::UnitSquare(), 0.25, 0.25, 0.5, 0.5,
+                                  glm::dvec3(0.0, 0.0, -5.0), out);
+        return;
+    }
+}
+
 void PutU64(std::string* bytes, size_t offset, uint64_t x) {
     for (int i = 0; i < 8; ++i) (*bytes)[offset + i] = static_cast<char>((x >> (8 * i)) & 0xff);
 }
@@ -117,6 +140,11 @@ void RunNumberTypes(const vm::Program& program, uint64_t pick) {
             default: RunAs<vm::Dual<vm::ReducedAffine>>(program); break;
         }
     }
+}
+
+void RunSurface(const vm::Program& program, uint64_t pick) {
+    if (g_everyNumberType || pick % 2 == 0) RunSurfaceAs<double>(program);
+    if (g_everyNumberType || pick % 2 == 1) RunSurfaceAs<vm::Dual<double>>(program);
 }
 
 }  // namespace affray::fuzz

@@ -54,5 +54,9 @@ uint64_t PickOf(std::string_view bytes);
 /// values: in every number type when SetEveryNumberType(true), else in number type
 /// `pick % kNumberTypes` alone. `program` must have passed vm::Verify().
 void RunNumberTypes(const vm::Program& program, uint64_t pick);
+/// Runs a surface program (one that asks for lights: Light instructions) on a patch point, in
+/// the point types it may run in (double, and Dual<double>), its lights answered by a fixed set
+/// of two.
+void RunSurface(const vm::Program& program, uint64_t pick);
 
 }  // namespace affray::fuzz

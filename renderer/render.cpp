@@ -522,8 +522,8 @@ Shaded ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, con
         const ShadowTest shadow = transmitted;
         ts.shadingLights.Reset(*lights, sp.P, &shadow);
         const vm::Program& program = surface->surface;
-        return program.usesDerivatives() ? RunSurface<vm::Dual<double>>(program, ts, scene, prim, ray, nh, at, Cs, Os)
-                                         : RunSurface<double>(program, ts, scene, prim, ray, nh, at, Cs, Os);
+        return surface->surfaceDerivatives ? RunSurface<vm::Dual<double>>(program, ts, scene, prim, ray, nh, at, Cs, Os)
+                                           : RunSurface<double>(program, ts, scene, prim, ray, nh, at, Cs, Os);
     }
     return {Os * ShadeSurface(prim.surface(), Cs, sp, *lights, transmitted), Os};
 }

@@ -232,10 +232,11 @@ TEST_CASE("surface shader: ambient, diffuse, specular, specularbrdf and phong as
         "}\n";
     glm::dvec3 plasticSpecular(0.0);
     for (int i : front)
-        plasticSpecular += lights.Cl[size_t(i)] *
-                           std::pow(std::max(0.0, glm::dot(N, glm::normalize(glm::normalize(lights.L[size_t(i)]) + V))),
-                                    1 / 0.1);
-    CheckClose(CiOf(plastic, lights, three), at.Os * (at.Cs * (lights.ambient + 0.5 * diffuse) + 0.5 * plasticSpecular));
+        plasticSpecular +=
+            lights.Cl[size_t(i)] *
+            std::pow(std::max(0.0, glm::dot(N, glm::normalize(glm::normalize(lights.L[size_t(i)]) + V))), 1 / 0.1);
+    CheckClose(CiOf(plastic, lights, three),
+               at.Os * (at.Cs * (lights.ambient + 0.5 * diffuse) + 0.5 * plasticSpecular));
 }
 
 TEST_CASE("surface shader: instances share a compilation only for the same light categories", "[compiler][surface]") {
@@ -249,4 +250,21 @@ TEST_CASE("surface shader: instances share a compilation only for the same light
     compiler::CompileResult plain = Compile("surface t() { Ci = Cs; }", {""});
     REQUIRE(plain.ok());
     CHECK_FALSE(plain.shader->reads.lights);
+}
+
+TEST_CASE("surface shader: a vector normalised by construction is not normalised again", "[compiler][surface]") {
+    // diffuse and specular normalise N and V (RI Spec 3.2); Nf = faceforward(normalize(N), I) and
+    // V = -normalize(I) are unit already: the program takes four square roots (N, I, L, and H),
+    // not six.
+    auto roots = [](const std::string& source) {
+        compiler::CompileResult r = Compile(source, {""});
+        REQUIRE(r.ok());
+        int n = 0;
+        for (const vm::Instr& in : r.shader->surface.code) n += in.op == vm::Op::Sqrt;
+        return n;
+    };
+    CHECK(roots("surface t() { normal Nf = faceforward(normalize(N), I); vector V = -normalize(I);\n"
+                "Ci = diffuse(Nf) + specular(Nf, V, 0.1); }") == 4);
+    // A vector that is not unit by construction still is normalised: N scaled, then I.
+    CHECK(roots("surface t() { Ci = diffuse(2 * N) + specular(N, -I, 0.1); }") == 5);
 }

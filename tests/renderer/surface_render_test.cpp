@@ -57,8 +57,7 @@ WorldEnd
 
 }  // namespace
 
-TEST_CASE("surface render: the standard surfaces of shaders/ give the built-in models' images",
-          "[renderer][surface]") {
+TEST_CASE("surface render: the standard surfaces of shaders/ give the built-in models' images", "[renderer][surface]") {
     const image::ImageBuffer fromShaders = test::RenderText(kStandardScene);
     const image::ImageBuffer builtIn = test::RenderText(kStandardScene, std::vector<std::string>{});
     const double rmse = test::RgbRmse(fromShaders, builtIn);

@@ -122,6 +122,25 @@ TEST_CASE("cli: compile exits 0 or prints diagnostics and exits 1", "[tools]") {
     fs::remove_all(dir);
 }
 
+TEST_CASE("cli: a surface shader compiles and disassembles, but is neither written as .afb nor evaluated",
+          "[tools][surface]") {
+    const std::string plastic = test::SourceDir() + "/shaders/plastic.sl";
+    Output listing = Run("compile " + plastic + " --disasm --stats");
+    CHECK(listing.status == 0);
+    CHECK(listing.out.find("surface program (Ci and Oi)") != std::string::npos);
+    CHECK(listing.out.find("\"surface_specialised\":") != std::string::npos);
+    CHECK(listing.out.find("\"globals_read\":[\"Cs\",\"Os\"]") != std::string::npos);  // no light list here
+    fs::path dir = TempDir("surface");
+    Output afb = Run("compile " + plastic + " -o " + (dir / "plastic.afb").string(), true);
+    CHECK(afb.status == 1);
+    CHECK(afb.out.find("error: surface shader 'plastic' cannot be written as bytecode") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "plastic.afb"));
+    Output eval = Run("eval " + plastic + " --at 0.5,0.5", true);
+    CHECK(eval.status == 1);
+    CHECK(eval.out.find("'affray eval' evaluates displacement shaders; 'plastic' is a surface shader") !=
+          std::string::npos);
+}
+
 TEST_CASE("cli: a tiny render is lit, shadowed, and the same with any thread count", "[tools][render]") {
     fs::path dir = TempDir("render");
     fs::copy_file(kWave, dir / "wave.sl");
