@@ -81,6 +81,22 @@ const std::vector<Builtin>& Rows() {
              Value sideU = o.Mul(Scalar(o, IrOp::DerivU, a[0]), du), sideV = o.Mul(Scalar(o, IrOp::DerivV, a[0]), dv);
              return o.Length(o.Cross(sideU, sideV));
          }},
+        {"filterwidth", "f",
+         [](ValueOps& o, A a) {
+             // prman's filterwidth(x) (as Gritz's filterwidth.h defines it): how much x changes
+             // across one step of the parameters, abs(Du(x) du) + abs(Dv(x) dv), at least 1e-6.
+             Value du = o.Float(o.ir().Global(vm::Global::du, 0)), dv = o.Float(o.ir().Global(vm::Global::dv, 0));
+             Value change = o.Add(o.Map(IrOp::Abs, o.Mul(Scalar(o, IrOp::DerivU, a[0]), du)),
+                                  o.Map(IrOp::Abs, o.Mul(Scalar(o, IrOp::DerivV, a[0]), dv)));
+             return o.Binary(IrOp::Max, change, o.Constant(1e-6));
+         }},
+        {"filterwidthp", "t",
+         [](ValueOps& o, A a) {
+             // filterwidthp(p) = sqrt(area(p)), at least 1e-6.
+             Value du = o.Float(o.ir().Global(vm::Global::du, 0)), dv = o.Float(o.ir().Global(vm::Global::dv, 0));
+             Value sideU = o.Mul(Scalar(o, IrOp::DerivU, a[0]), du), sideV = o.Mul(Scalar(o, IrOp::DerivV, a[0]), dv);
+             return o.Binary(IrOp::Max, Scalar(o, IrOp::Sqrt, o.Length(o.Cross(sideU, sideV))), o.Constant(1e-6));
+         }},
         {"Deriv", "af",
          [](ValueOps& o, A a) {
              // Deriv(num, den) = Du(num)/Du(den) + Dv(num)/Dv(den), a term 0 where den does not

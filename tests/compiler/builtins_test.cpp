@@ -1,7 +1,7 @@
 // tests/compiler/builtins_test.cpp: the built-ins of the table (compiler/builtins.cpp), each against its
 // RenderMan value: abs, sign, floor, ceil, round, mod, min, max, clamp, step, smoothstep, pow,
 // sqrt, inversesqrt, exp, log, trigonometry, length, distance, normalize, the component setters,
-// mix, faceforward, reflect, calculatenormal, Du, Dv, area and Deriv. (docs/builtins.md against
+// mix, faceforward, reflect, calculatenormal, Du, Dv, area, filterwidth and Deriv. (docs/builtins.md against
 // the table, and the built-ins composed elsewhere, are tests/compiler/library_test.cpp's.)
 // Part of the language-semantics suite: values worked out by hand on the unit square, each
 // cross-checked as tests/compiler/semantics_util.h says.
@@ -177,6 +177,11 @@ TEST_CASE("built-ins: Du Dv area Deriv", "[compiler][semantics][builtins]") {
     CheckVec(PAt("P = Du(vector(u * u, v, u * v));", 0.25, 0.75), {0.5, 0, 0.75});
     // area(P) = |Du(P) du ^ Dv(P) dv|; P scaled by 2 has 4 du dv.
     CHECK_THAT(Z("P *= 2; P += area(P) * 1024 * 1024;"), WithinAbs(4, 1e-9));
+    // filterwidth(x) = |Du(x) du| + |Dv(x) dv|, at least 1e-6: 8 du + 2 dv for 8u - 2v;
+    // filterwidthp(P) = sqrt(area(P)): 2 du for P scaled by 2 (du = dv).
+    CHECK_THAT(Z("P += filterwidth(8 * u - 2 * v) * 1024;"), WithinAbs(10, 1e-9));
+    CHECK_THAT(Z("P += filterwidth(3);"), WithinAbs(1e-6, 1e-18));
+    CHECK_THAT(Z("P *= 2; P += filterwidthp(P) * 1024;"), WithinAbs(2, 1e-9));
     // Deriv(uv, u + v) = v / 1 + u / 1.
     CHECK_THAT(Z("P += Deriv(u * v, u + v);", 0.25, 0.75), WithinAbs(1, kEps));
     // Derivatives of variables and of user function results.
