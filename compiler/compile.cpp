@@ -109,20 +109,26 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
             {p.name, ParamTypeName(p), ScalarCount(p.type) * std::max(p.arraySize, 1), vm::kNoRegister, p.defaults});
     shader.kind = lowered->kind;
     const bool surface = shader.kind == lang::ShaderKind::Surface;
-    // The programs of one lowering: a displacement's bound and shade, or a surface's.
+    const bool light = shader.kind == lang::ShaderKind::Light;
+    shader.emission = lowered->emission;
+    // The programs of one lowering: a displacement's bound and shade, a surface's, or a light's.
     auto emit = [&](const LoweredShader& l, const std::vector<vm::ProgramParam>& with, vm::Program* bound,
-                    vm::Program* shade, vm::Program* surfaceProgram) {
+                    vm::Program* shade, vm::Program* surfaceProgram, vm::Program* lightProgram) {
         if (surface) {
             *surfaceProgram = Emit(l.ir, {{"Ci", l.finalCi}, {"Oi", l.finalOi}}, with);
+        } else if (light) {
+            *lightProgram = Emit(l.ir, {{"Cl", l.finalCl}, {"L", l.finalL}, {"lit", l.finalLit}}, with);
         } else {
             *bound = Emit(l.ir, {{"P", l.finalP}}, with);
             *shade = Emit(l.ir, {{"P", l.finalP}, {"N", l.finalN}}, with);
         }
     };
     try {
-        emit(*lowered, params, &shader.genericBound, &shader.genericShade, &shader.genericSurface);
+        emit(*lowered, params, &shader.genericBound, &shader.genericShade, &shader.genericSurface,
+             &shader.genericLight);
         auto genericTextures = TexturesOf(*lowered);
-        for (vm::Program* p : {&shader.genericBound, &shader.genericShade, &shader.genericSurface}) {
+        for (vm::Program* p :
+             {&shader.genericBound, &shader.genericShade, &shader.genericSurface, &shader.genericLight}) {
             p->shaderName = shader.name;
             p->sourcePath = path;
             p->spaces = lowered->spaces;
@@ -169,10 +175,12 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         shader.undeclared = result.undeclared;
         shader.reads = lowered->reads;
         shader.reads.Add(instance->reads);
-        emit(*instance, {}, &shader.bound, &shader.shade, &shader.surface);
+        emit(*instance, {}, &shader.bound, &shader.shade, &shader.surface, &shader.light);
         shader.surfaceDerivatives = shader.surface.usesDerivatives();
+        shader.emission = instance->emission;
+        shader.strings = instance->stringValues;
         auto instanceTextures = TexturesOf(*instance);
-        for (vm::Program* p : {&shader.bound, &shader.shade, &shader.surface}) {
+        for (vm::Program* p : {&shader.bound, &shader.shade, &shader.surface, &shader.light}) {
             p->shaderName = shader.name;
             p->sourcePath = path;
             p->textures = instanceTextures;
@@ -182,7 +190,7 @@ CompileResult CompileSource(const std::string& path, const std::string& text,
         return result;
     }
     for (vm::Program* p : {&shader.genericBound, &shader.genericShade, &shader.bound, &shader.shade,
-                           &shader.genericSurface, &shader.surface}) {
+                           &shader.genericSurface, &shader.surface, &shader.genericLight, &shader.light}) {
         std::string error;
         // The emitter's programs are valid by construction; the verifier checks that they are.
         const bool valid = vm::Verify(*p, &error, surface);

@@ -4,6 +4,7 @@
 // intersector evaluates millions of times), the *shade program* computes P and N.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -36,8 +37,22 @@ struct CompiledShader {
     vm::Program surface;
     /// surface.usesDerivatives(), once: the renderer then runs it in duals.
     bool surfaceDerivatives = false;
-    /// The generic program parameters are bound against: genericBound, or genericSurface.
-    const vm::Program& generic() const { return kind == lang::ShaderKind::Surface ? genericSurface : genericBound; }
+    /// A light shader's programs, generic and specialised: outputs Cl, L (from the light to the
+    /// point lit, the global Ps) and lit (1 where an illuminate or solar statement ran); run on
+    /// points only. `emission` says which statement it has (neither: an ambient light).
+    vm::Program genericLight;
+    vm::Program light;
+    LoweredShader::Emission emission = LoweredShader::Emission::Ambient;
+    /// The instance's string parameters and their values (the scene's, else the defaults): a
+    /// light's `__category` is one.
+    std::map<std::string, std::string> strings;
+    /// The generic program parameters are bound against: genericBound, genericSurface or
+    /// genericLight.
+    const vm::Program& generic() const {
+        return kind == lang::ShaderKind::Surface ? genericSurface
+               : kind == lang::ShaderKind::Light ? genericLight
+                                                 : genericBound;
+    }
     std::vector<ParamInfo> params;
     std::vector<std::string> stringParams;
     /// The instance's parameter values that name no parameter of the shader, left out of it, as

@@ -479,12 +479,12 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
         Variable var;
         std::string name = vm::GlobalName(global);
         const bool colour = name == "Cs" || name == "Os";
-        if (colour && !IsSurface()) continue;
-        var.type = vm::GlobalSize(global) == 1   ? Type::Float
-                   : colour                      ? Type::Color
-                   : name == "N" || name == "Ng" ? Type::Normal
-                   : name == "P" || name == "E"  ? Type::Point
-                                                 : Type::Vector;
+        if ((colour && !IsSurface()) || (name == "Ps" && !IsLight())) continue;
+        var.type = vm::GlobalSize(global) == 1                  ? Type::Float
+                   : colour                                     ? Type::Color
+                   : name == "N" || name == "Ng"                ? Type::Normal
+                   : name == "P" || name == "E" || name == "Ps" ? Type::Point
+                                                                : Type::Vector;
         var.isGlobal = true;
         var.assigned = true;
         var.writable = name == "P" || name == "N";
@@ -501,6 +501,20 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
         m_state.scopes.back().at("Oi").value = Find("Os")->value;
         m_state.scopes.back().at("ncomps").value = m_ops.Constant(3.0);
         for (const char* name : {"Ci", "Oi"}) m_state.scopes.back().at(name).writable = true;
+    }
+    if (IsLight()) {
+        // A light shader's outputs L (from the light to Ps) and Cl, black until it sets them, and
+        // Ol; it has no surface of its own to colour (Cs, Os, Ci, Oi are not its).
+        for (const SurfaceGlobal& g : kSurfaceGlobals) {
+            const std::string name = g.name;
+            if (name != "L" && name != "Cl" && name != "Ol") continue;
+            Variable var;
+            var.type = g.type;
+            var.value = m_ops.Promote(m_ops.Constant(0.0), g.type);
+            var.assigned = var.used = var.isGlobal = true;
+            m_state.scopes.back().emplace(name, var);
+        }
+        m_lit = False();
     }
     const Value inputP = Find("P")->value, inputN = Find("N")->value;
 
@@ -556,6 +570,7 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
                 var.value = StringValue(m_stringValues->at(p.name));
             else if (std::optional<std::string> text = StringOf(var.value))
                 defaultStrings.push_back(p.name + " = \"" + *text + "\"");
+            if (std::optional<std::string> text = StringOf(var.value)) m_out.stringValues[p.name] = *text;
             var.assigned = var.used = true;
             var.writable = false;
             var.loc = p.loc;
@@ -630,6 +645,10 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
     if (IsSurface()) {
         m_out.finalCi = Find("Ci")->value;
         m_out.finalOi = Find("Oi")->value;
+    } else if (IsLight()) {
+        m_out.finalCl = Find("Cl")->value;
+        m_out.finalL = Find("L")->value;
+        m_out.finalLit = m_ops.Float(m_lit);
     } else if (!m_out.writesP && !m_out.writesN && !m_diags.hasErrors()) {
         // String parameters are folded: a shader may move P only for a value a scene gives them.
         std::string defaults;
@@ -655,9 +674,11 @@ std::optional<LoweredShader> LowerUnit(const lang::TranslationUnit& unit, lang::
     for (size_t i = 1; i < unit.shaders.size(); ++i)
         diags.error(unit.shaders[i].loc, "only one shader per file is supported");
     const lang::ShaderDef& shader = unit.shaders.front();
-    if (shader.kind != lang::ShaderKind::Displacement && shader.kind != lang::ShaderKind::Surface) {
+    if (shader.kind != lang::ShaderKind::Displacement && shader.kind != lang::ShaderKind::Surface &&
+        shader.kind != lang::ShaderKind::Light) {
         diags.error(shader.loc, std::string(lang::ToString(shader.kind)) +
-                                    " shaders are not supported yet; affray runs displacement and surface shaders");
+                                    " shaders are not supported yet; affray runs displacement, surface and light "
+                                    "shaders");
         return std::nullopt;
     }
     LoweredShader out;

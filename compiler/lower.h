@@ -39,12 +39,19 @@ struct LoweredShader {
     Value finalN;
     Value finalCi;
     Value finalOi;
+    /// A light shader's outputs: Cl, L (from the light to the point lit) and `lit` (1 where an
+    /// illuminate or solar statement ran, else 0), and which of them it has: neither (an ambient
+    /// light), illuminate (a local light) or solar (a distant one).
+    Value finalCl, finalL, finalLit;
+    enum class Emission { Ambient, Illuminate, Solar } emission = Emission::Ambient;
     bool writesP = false;
     bool writesN = false;
     std::vector<ParamInfo> params;
     /// String parameters: compile-time constants (their default, or the instance's value), so
     /// not in `params` and not in the programs.
     std::vector<std::string> stringParams;
+    /// Their values, as lowered (a value that is not one constant string is left out).
+    std::map<std::string, std::string> stringValues;
     /// The coordinate spaces the shader names, "current" aside (sorted, once each).
     std::vector<std::string> spaces;
     /// Every name of the scene's spaces and facts that lowering looked up (compiler/scene_facts.h).

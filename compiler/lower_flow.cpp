@@ -127,6 +127,9 @@ void Lowerer::KeepUsedFlags(FlowState& into) const {
 void Lowerer::LowerIf(const Stmt& s) {
     if (IsSurface() && s.expr && s.expr->kind == lang::ExprKind::Call && s.expr->name == "illuminance")
         return LowerIlluminance(s);
+    if (IsLight() && s.expr && s.expr->kind == lang::ExprKind::Call &&
+        (s.expr->name == "illuminate" || s.expr->name == "solar"))
+        return LowerIlluminate(s);
     std::optional<ValueId> cond = LowerCondition(*s.expr);
     const ValueId c = cond.value_or(True());  // after an error, both arms still get checked
     LowerBranches(c, *s.body[0], s.body.size() > 1 ? s.body[1].get() : nullptr);

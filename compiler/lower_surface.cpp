@@ -128,6 +128,14 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
         return std::nullopt;
     }
     if (e.name == "texture") return LowerTexture(e, expected);
+    if (IsLight() && e.name == "shadow") {
+        // A shadow map's occlusion: 0 (none), since affray traces a light's shadows instead
+        // (LightDesc::castShadows: a light given a shadow map name casts them). The arguments
+        // are still checked.
+        for (const lang::ExprPtr& a : e.args)
+            if (!LowerExpr(*a)) return std::nullopt;
+        return m_ops.Promote(m_ops.Constant(0.0), expected == Type::Color ? Type::Color : Type::Float);
+    }
     if (IsSurface() && (e.name == "ambient" || e.name == "diffuse" || e.name == "specular" ||
                         e.name == "specularbrdf" || e.name == "phong"))
         return LowerLighting(e);
@@ -192,6 +200,10 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
             m_diags.error(e.loc, "function '" + e.name +
                                      "' is not supported yet in surface shaders (affray gives them illuminance, "
                                      "ambient, diffuse, specular, specularbrdf, phong and texture)");
+        else if (IsLight())
+            m_diags.error(e.loc, "function '" + e.name +
+                                     "' is not supported yet in light shaders (affray gives them illuminate, solar, "
+                                     "shadow and texture)");
         else
             m_diags.error(
                 e.loc,
@@ -458,6 +470,58 @@ bool Lowerer::IsUnit(const Value& v) const {
         return false;
     };
     return unit({v.c[0], v.c[1], v.c[2]}, 0);
+}
+
+void Lowerer::LowerIlluminate(const lang::Stmt& s) {
+    const lang::Expr& call = *s.expr;
+    const bool solar = call.name == "solar";
+    m_line = call.loc.line;
+    m_ops.SetLine(m_line);
+    std::vector<Value> args;
+    bool ok = true;
+    for (const lang::ExprPtr& a : call.args) {
+        std::optional<Value> v = LowerExpr(*a);
+        if (!v) ok = false;
+        args.push_back(v ? *v : m_ops.Constant(0.0));
+    }
+    // illuminate (point from [, vector axis, float angle]); solar (vector axis, float angle).
+    const size_t n = args.size();
+    if (ok && (solar ? n != 2 : n != 1 && n != 3)) {
+        m_diags.error(call.loc, solar
+                                    ? "'solar' expects an axis and an angle, got " + std::to_string(n) + " argument" +
+                                          (n == 1 ? "" : "s") + " (a solar light without an axis is not supported yet)"
+                                    : "'illuminate' expects a position, and optionally an axis and an angle, got " +
+                                          std::to_string(n) + " argument" + (n == 1 ? "" : "s"));
+        ok = false;
+    }
+    for (size_t i = 0; ok && i < n; ++i) {
+        const bool angle = (solar && i == 1) || (!solar && i == 2);
+        const Type t = args[i].type;
+        if (angle ? (t == Type::Float || t == Type::Bool) : IsSpatial(t)) continue;
+        const char* what = angle ? "angle" : (solar || i == 1) ? "axis" : "position";
+        m_diags.error(call.args[i]->loc, "the " + std::string(what) + " of '" + call.name + "' must be " +
+                                             (angle ? "a float" : "a point, vector or normal") + ", not " + Article(t));
+        ok = false;
+    }
+    if (!ok) {
+        LowerBranches(False(), *s.body[0], nullptr);  // checked as dead code
+        return;
+    }
+    if (m_out.emission == LoweredShader::Emission::Ambient || solar)
+        m_out.emission = solar ? LoweredShader::Emission::Solar : LoweredShader::Emission::Illuminate;
+    Variable& L = m_state.scopes.front().at("L");
+    ValueId cond = True();
+    if (solar) {
+        L.value = m_ops.Promote(args[0], Type::Vector);  // the direction the light travels
+    } else {
+        const Value Ps{
+            Type::Point,
+            {ir().Global(vm::Global::Ps, 0), ir().Global(vm::Global::Ps, 1), ir().Global(vm::Global::Ps, 2)}};
+        L.value = m_ops.Promote(m_ops.Sub(Ps, args[0]), Type::Vector);
+        if (n == 3) cond = InCone(m_ops.Normalize(L.value), m_ops.Normalize(args[1]), args[2]);
+    }
+    m_lit = ir().Binary(IrOp::Or, ir().Binary(IrOp::And, m_state.alive, cond, Line()), m_lit, Line());
+    LowerBranches(cond, *s.body[0], nullptr);
 }
 
 std::optional<Value> Lowerer::LowerLighting(const lang::Expr& e) {

@@ -167,6 +167,14 @@ class Lowerer {
     /// Whether a surface shader is being lowered (its globals, light loops and lighting
     /// functions are real; in a displacement shader they are only checked).
     bool IsSurface() const { return m_kind == lang::ShaderKind::Surface; }
+    bool IsLight() const { return m_kind == lang::ShaderKind::Light; }
+    /// A light shader's `illuminate (from [, axis, angle]) body` and `solar (axis, angle) body`
+    /// (s: the `if` the parser made of it): L set (Ps - from, or the axis), the body run where L
+    /// lies within the cone (always for solar: the cone is the lit surface's to test), and the
+    /// shader's `lit` output set there.
+    void LowerIlluminate(const lang::Stmt& s);
+    /// Where an illuminate or solar statement has run (a light shader's `lit`).
+    ValueId m_lit = kNoValue;
     lang::ShaderKind m_kind = lang::ShaderKind::Displacement;
     /// `illuminance ([category,] P [, axis, angle]) body` (s: the `if` the parser made of it):
     /// the body once per light slot the category admits, with L and Cl that light's, under the

@@ -193,18 +193,23 @@ class Checker {
         for (const auto& f : functions) m_functions.back().emplace(f->name, f.get());
         m_scopes.emplace_back();
         const bool surface = shader.kind == lang::ShaderKind::Surface;
+        const bool light = shader.kind == lang::ShaderKind::Light;
         for (int g = 0; g < vm::kGlobalCount; ++g) {
             const auto global = static_cast<vm::Global>(g);
             const std::string name = vm::GlobalName(global);
             if ((name == "Cs" || name == "Os") && !surface) continue;  // a surface shader's (below)
-            const Type type = vm::GlobalSize(global) == 1   ? Type::Float
-                              : name == "N" || name == "Ng" ? Type::Normal
-                              : name == "P" || name == "E"  ? Type::Point
-                                                            : Type::Vector;
+            if (name == "Ps" && !light) continue;                      // a light shader's
+            const Type type = vm::GlobalSize(global) == 1                  ? Type::Float
+                              : name == "N" || name == "Ng"                ? Type::Normal
+                              : name == "P" || name == "E" || name == "Ps" ? Type::Point
+                                                                           : Type::Vector;
             m_scopes.back()[name] = {type, SymbolKind::Global, -1};
         }
-        if (surface)
-            for (const SurfaceGlobal& g : kSurfaceGlobals) m_scopes.back()[g.name] = {g.type, SymbolKind::Global, -1};
+        for (const SurfaceGlobal& g : kSurfaceGlobals) {
+            const std::string name = g.name;
+            if (surface || (light && (name == "L" || name == "Cl" || name == "Ol")))
+                m_scopes.back()[g.name] = {g.type, SymbolKind::Global, -1};
+        }
         // A top-level function sees the globals only (its callers' variables through extern).
         for (const auto& f : functions) Function(*f);
         Push();

@@ -2,8 +2,8 @@
 // lowering -> bytecode, the whole of `affray compile`; then the four programs of a shader that
 // compiles run once each, in number types the input picks (every type in the replay program:
 // fuzz_util.h), and its generic programs go through the .afb writer and loader, which must read
-// back what was written; a surface shader (compiled with two light slots) runs its programs on a
-// point instead. The compiler's program-ops and loop-iterations limits are lowered
+// back what was written; a surface shader (compiled with two light slots) or a light shader runs
+// its programs on a point instead. The compiler's program-ops and loop-iterations limits are lowered
 // (fuzz_util.h: SetSmallLimits).
 // The source is named as a file in shaders/ of the source tree, with shaders/, tests/corpus and
 // tests/golden as include directories, so that the seeds' #includes and texture names resolve.
@@ -34,10 +34,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (!result.ok()) return 0;
     const compiler::CompiledShader& shader = *result.shader;
     const uint64_t pick = fuzz::PickOf(text);
-    if (shader.kind == lang::ShaderKind::Surface) {
-        // Surface programs run on points only; .afb files do not hold them.
-        fuzz::RunSurface(shader.genericSurface, pick);
-        fuzz::RunSurface(shader.surface, pick + 1);
+    if (shader.kind == lang::ShaderKind::Surface || shader.kind == lang::ShaderKind::Light) {
+        // Surface and light programs run on points only; .afb files do not hold them.
+        const bool surface = shader.kind == lang::ShaderKind::Surface;
+        fuzz::RunSurface(surface ? shader.genericSurface : shader.genericLight, pick);
+        fuzz::RunSurface(surface ? shader.surface : shader.light, pick + 1);
         return 0;
     }
     int k = 0;

@@ -235,20 +235,28 @@ compiler::Matrix4 RowMajor(const glm::dmat4& m) {
 bool IsAffine(const compiler::Matrix4& m) { return m[12] == 0 && m[13] == 0 && m[14] == 0 && m[15] == 1; }
 
 /// The spaces a shader on `patch` sees. "current" is world space: P is computed there.
-compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveAttributes& patch) {
+compiler::Spaces SpacesOf(const SceneDesc& scene, const glm::dmat4& objectToWorld, const glm::dmat4& shaderToWorld,
+                          const std::map<std::string, glm::dmat4>* scoped) {
     const CameraDesc& camera = scene.camera;
     auto space = [](const glm::dmat4& toWorld) {
         return compiler::SpaceTransform{RowMajor(toWorld), RowMajor(glm::inverse(toWorld))};
     };
     compiler::Spaces spaces;
     for (const auto& [name, toWorld] : scene.coordinateSystems) spaces[name] = space(toWorld);
-    if (patch.scopedSpaces)
-        for (const auto& [name, toWorld] : *patch.scopedSpaces) spaces[name] = space(toWorld);
+    if (scoped)
+        for (const auto& [name, toWorld] : *scoped) spaces[name] = space(toWorld);
     spaces["world"] = compiler::SpaceTransform{};
-    spaces["object"] = space(patch.objectToWorld);
-    spaces["shader"] = space(patch.displacement ? patch.displacement->shaderToWorld : patch.objectToWorld);
+    spaces["object"] = space(objectToWorld);
+    spaces["shader"] = space(shaderToWorld);
     spaces["camera"] = space(glm::inverse(camera.worldToCamera));
     return spaces;
+}
+
+/// The spaces of a shader on `patch` (its request `shader`: the displacement's unless given).
+compiler::Spaces SpacesOf(const SceneDesc& scene, const PrimitiveAttributes& patch, const ShaderRef* shader = nullptr) {
+    if (!shader && patch.displacement) shader = &*patch.displacement;
+    return SpacesOf(scene, patch.objectToWorld, shader ? shader->shaderToWorld : patch.objectToWorld,
+                    patch.scopedSpaces.get());
 }
 
 /// `path` as the scene names it: as written if absolute, else from the RIB file's directory.
@@ -419,9 +427,9 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
         compiler::SceneFacts facts = FactsOf(desc, attrs);
         if (desc.lights.empty()) facts.lightCategories = {""};  // the default key light (below)
         for (int light : key)
-            if (desc.lights[size_t(light)].kind != LightDesc::Kind::Ambient)
-                facts.lightCategories.push_back(desc.lights[size_t(light)].category);
-        const compiler::Spaces spaces = SpacesOf(desc, attrs);
+            if (RoleOf(desc.lights[size_t(light)]) == LightRole::Lit)
+                facts.lightCategories.push_back(CategoryOf(desc.lights[size_t(light)]));
+        const compiler::Spaces spaces = SpacesOf(desc, attrs, &ref);
         compiler::CompileResult result;
         if (problem.empty()) {
             result = cache.Load(path, overrides, preprocess, &spaces, &facts);
@@ -484,6 +492,80 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
         }
         return found->second;
     };
+    // Light shaders, before the surfaces whose light loops visit them: a LightSource's .sl,
+    // found as surface shaders are, compiled once per light with its parameter values; a point,
+    // vector or normal value the scene gives is in the light's shader space, and mapped to world
+    // space as RenderMan maps it (so compiled again when there is one). Not found, or not
+    // compiling: the standard light of its name renders it, or for another name no light (one
+    // warning per name over the run).
+    std::map<std::string, std::string> lightFiles;
+    std::set<std::string> lightWarned;
+    for (LightDesc& light : out->desc.lights) {
+        if (!light.shader) continue;
+        const ShaderRef& ref = *light.shader;
+        auto [known, added] = lightFiles.try_emplace(ref.name);
+        if (added) known->second = FindShader(ref.name, searchPath);
+        const std::string& path = known->second;
+        auto warnOnce = [&](const std::string& message) {
+            if (lightWarned.insert(ref.name).second) warnRun(requestAt(ref), message);
+        };
+        const std::string fallback = light.builtIn ? "using affray's built-in \"" + ref.name + "\"" : "ignored";
+        if (path.empty()) {
+            if (!light.builtIn) {
+                std::string searched;
+                for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
+                warnOnce("light source '" + ref.name + "' not found (searched " + searched + "); ignored");
+            }
+            continue;
+        }
+        std::vector<compiler::ParamOverride> overrides;
+        std::string problem = OverridesOf(ref, &overrides);
+        const compiler::SceneFacts facts = FactsOf(desc, PrimitiveAttributes{});
+        const compiler::Spaces spaces = SpacesOf(desc, ref.shaderToWorld, ref.shaderToWorld, nullptr);
+        compiler::CompileResult result;
+        auto compile = [&] {
+            result = cache.Load(path, overrides, preprocess, &spaces, &facts);
+            for (diag::Diagnostic d : result.diagnostics.all()) {
+                d.severity = diag::Severity::Warning;
+                std::lock_guard<std::mutex> lock(m_warnedMutex);
+                if (report && m_warned.insert(diag::Format(d)).second) report->add(d);
+            }
+        };
+        if (problem.empty()) compile();
+        if (problem.empty() && result.ok() && result.shader->kind == lang::ShaderKind::Light) {
+            bool mapped = false;
+            for (compiler::ParamOverride& o : overrides) {
+                if (o.text || o.numbers.size() != 3) continue;
+                for (const compiler::ParamInfo& info : result.shader->params) {
+                    if (info.name != o.name || !compiler::IsSpatial(info.type) || info.arraySize >= 0) continue;
+                    const glm::dvec3 x(o.numbers[0], o.numbers[1], o.numbers[2]);
+                    const glm::dmat4& m = ref.shaderToWorld;
+                    const glm::dvec3 y = info.type == compiler::Type::Point ? glm::dvec3(m * glm::dvec4(x, 1.0))
+                                         : info.type == compiler::Type::Vector
+                                             ? glm::dvec3(m * glm::dvec4(x, 0.0))
+                                             : glm::transpose(glm::inverse(glm::dmat3(m))) * x;
+                    o.numbers = {y.x, y.y, y.z};
+                    mapped = true;
+                }
+            }
+            if (mapped) compile();
+        }
+        if (problem.empty()) {
+            if (result.ok() && result.shader->kind != lang::ShaderKind::Light)
+                problem = "it is a " + std::string(lang::ToString(result.shader->kind)) + " shader";
+            else if (!result.paramErrors.empty())
+                problem = result.paramErrors.front();
+            else if (!result.ok())
+                problem = "it does not compile";
+        }
+        if (!problem.empty()) {
+            warnOnce("light source '" + ref.name + "' in " + path + " cannot be used (" + problem + "); " + fallback);
+            continue;
+        }
+        for (const std::string& sentence : result.undeclared) warnRun(requestAt(ref), sentence + "; ignored");
+        light.program = result.shader;
+    }
+
     size_t elements = 0;
     for (const PrimitiveDesc& p : desc.primitives) elements += p.elements;
     out->primitives.reserve(elements);

@@ -518,14 +518,14 @@ Shaded ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, con
         lights = &ts.movedLights;
     }
     const glm::dvec3 Cs = prim.ColorAt(nh.hit.u, nh.hit.v), Os = prim.OpacityAt(nh.hit.u, nh.hit.v);
+    const ShadowTest shadow = transmitted;
+    ts.shadingLights.Reset(*lights, sp.P, &shadow, ray.origin);
     if (const std::shared_ptr<const compiler::CompiledShader>& surface = prim.programs->surface) {
-        const ShadowTest shadow = transmitted;
-        ts.shadingLights.Reset(*lights, sp.P, &shadow);
         const vm::Program& program = surface->surface;
         return surface->surfaceDerivatives ? RunSurface<vm::Dual<double>>(program, ts, scene, prim, ray, nh, at, Cs, Os)
                                            : RunSurface<double>(program, ts, scene, prim, ray, nh, at, Cs, Os);
     }
-    return {Os * ShadeSurface(prim.surface(), Cs, sp, *lights, transmitted), Os};
+    return {Os * ShadeSurface(prim.surface(), Cs, sp, *lights, shadow, &ts.shadingLights), Os};
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <optional>
 
+#include "compiler/compile.h"
+
 namespace affray::renderer {
 
 namespace {
@@ -63,7 +65,7 @@ double SpecularWeight(const glm::dvec3& Nf, const glm::dvec3& L, const glm::dvec
 }  // namespace
 
 glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const ShadingPoint& sp,
-                        const std::vector<LightDesc>& lights, const ShadowTest& shadow) {
+                        const std::vector<LightDesc>& lights, const ShadowTest& shadow, ShadingLights* shaders) {
     using Model = SurfaceDesc::Model;
     if (surface.model == Model::Constant) return Cs;  // no lights, so no shadow rays either
     // The terms the model uses; the others are neither summed nor worth a shadow ray.
@@ -71,12 +73,37 @@ glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const 
     const bool wantsSpecular = surface.model != Model::Matte && surface.roughness > 0;
 
     glm::dvec3 ambient(0.0), diffuse(0.0), specular(0.0);
+    int slot = -1;  // the light's slot in `shaders`, for lights that run a light shader
     for (const LightDesc& light : lights) {
-        if (light.kind == LightDesc::Kind::Ambient) {
-            ambient += light.intensity * light.color;
+        const LightRole role = RoleOf(light);
+        if (role == LightRole::None) continue;
+        if (role == LightRole::Lit) ++slot;
+        if (light.program && !shaders) continue;
+        if (role == LightRole::Ambient) {
+            if (!light.program) ambient += light.intensity * light.color;
             continue;
         }
-        const std::optional<Incident> in = Illuminate(light, sp.P);
+        std::optional<Incident> in;
+        if (light.program) {
+            auto query = [&](int first, bool shadowed) {
+                return glm::dvec3(shaders->Light(slot, first, shadowed), shaders->Light(slot, first + 1, shadowed),
+                                  shaders->Light(slot, first + 2, shadowed));
+            };
+            const glm::dvec3 toLight = query(0, false);
+            const glm::dvec3 Cl = query(3, false);
+            const double length = glm::length(toLight);
+            if (!(length > 0) || Cl == glm::dvec3(0.0)) continue;
+            const bool solar = light.program->emission == compiler::LoweredShader::Emission::Solar;
+            in = Incident{Cl, toLight / length, solar ? INFINITY : length};
+            const double cosine = glm::dot(sp.Nf, in->L);
+            if (cosine <= 0) continue;
+            // Its shadow, as the light shader's slot traces it (once per point).
+            const glm::dvec3 shadowed = light.castShadows ? query(3, true) : Cl;
+            if (wantsDiffuse) diffuse += shadowed * cosine;
+            if (wantsSpecular) specular += shadowed * SpecularWeight(sp.Nf, in->L, sp.V, surface.roughness);
+            continue;
+        }
+        in = Illuminate(light, sp.P);
         if (!in) continue;
         const double cosine = glm::dot(sp.Nf, in->L);
         if (cosine <= 0) continue;  // the light is behind the surface: no need for a shadow ray
@@ -92,6 +119,11 @@ glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const 
         diffuse += d;
         specular += s;
     }
+    // Ambient lights that run a light shader: `shaders` sums every ambient light.
+    if (shaders && std::any_of(lights.begin(), lights.end(),
+                               [](const LightDesc& l) { return l.program && RoleOf(l) == LightRole::Ambient; }))
+        ambient = glm::dvec3(shaders->Light(vm::kAmbientSlot, 3, false), shaders->Light(vm::kAmbientSlot, 4, false),
+                             shaders->Light(vm::kAmbientSlot, 5, false));
     switch (surface.model) {
         case Model::Metal: return Cs * (surface.Ka * ambient + surface.Ks * specular);
         case Model::Plastic:
@@ -100,22 +132,96 @@ glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const 
     }
 }
 
-void ShadingLights::Reset(const std::vector<LightDesc>& lights, const glm::dvec3& P, const ShadowTest* shadow) {
+LightRole RoleOf(const LightDesc& light) {
+    if (light.program)
+        return light.program->emission == compiler::LoweredShader::Emission::Ambient ? LightRole::Ambient
+                                                                                     : LightRole::Lit;
+    if (!light.builtIn) return LightRole::None;
+    return light.kind == LightDesc::Kind::Ambient ? LightRole::Ambient : LightRole::Lit;
+}
+
+std::string CategoryOf(const LightDesc& light) {
+    if (light.program) {
+        auto it = light.program->strings.find("__category");
+        return it == light.program->strings.end() ? std::string() : it->second;
+    }
+    return light.category;
+}
+
+ShadingLights::ShadingLights() = default;
+ShadingLights::~ShadingLights() = default;
+
+void ShadingLights::Reset(const std::vector<LightDesc>& lights, const glm::dvec3& P, const ShadowTest* shadow,
+                          const glm::dvec3& eye) {
     m_slots.clear();
-    m_ambient = glm::dvec3(0.0);
+    m_ambientLights.clear();
+    m_ambientComputed = false;
     m_P = P;
+    m_eye = eye;
     m_shadow = shadow;
     for (const LightDesc& light : lights) {
-        if (light.kind == LightDesc::Kind::Ambient)
-            m_ambient += light.intensity * light.color;
-        else if (m_slots.size() < size_t(vm::kMaxLightSlots))
+        const LightRole role = RoleOf(light);
+        if (role == LightRole::Ambient)
+            m_ambientLights.push_back(&light);
+        else if (role == LightRole::Lit && m_slots.size() < size_t(vm::kMaxLightSlots))
             m_slots.push_back({&light});
     }
 }
 
-void ShadingLights::Compute(Slot& slot) const {
+void ShadingLights::RunLight(const LightDesc& light, glm::dvec3* Cl, glm::dvec3* L, bool* lit) {
+    using vm::Global;
+    const vm::Program& program = light.program->light;
+    if (!m_interpreter)
+        m_interpreter = std::make_unique<vm::Interpreter<double>>(program);
+    else if (&m_interpreter->program() != &program)
+        m_interpreter->SetProgram(program);
+    vm::Interpreter<double>& interp = *m_interpreter;
+    auto triple = [](const glm::dvec3& x) { return vm::Vec3<double>(x.x, x.y, x.z); };
+    // The light's own surface is a point, the origin of its shader space. A light that moves
+    // runs where it stood at the shutter's opening: the point lit is carried there, its L back.
+    const bool moving = light.moved != glm::dmat4(1.0);
+    const glm::dmat4 back = moving ? glm::inverse(light.moved) : glm::dmat4(1.0);
+    const glm::dvec3 Ps = moving ? glm::dvec3(back * glm::dvec4(m_P, 1.0)) : m_P;
+    const glm::dvec3 eye = moving ? glm::dvec3(back * glm::dvec4(m_eye, 1.0)) : m_eye;
+    const glm::dvec3 origin(light.shader->shaderToWorld * glm::dvec4(0, 0, 0, 1));
+    interp.SetGlobal(Global::Ps, triple(Ps));
+    interp.SetGlobal(Global::E, triple(eye));
+    interp.SetGlobal(Global::P, triple(origin));
+    interp.SetGlobal(Global::I, triple(Ps - eye));
+    for (Global g : {Global::N, Global::Ng, Global::dPdu, Global::dPdv}) interp.SetGlobal(g, triple(glm::dvec3(0.0)));
+    for (Global g : {Global::s, Global::t, Global::u, Global::v, Global::du, Global::dv, Global::time, Global::dtime})
+        interp.SetGlobal(g, 0.0);
+    interp.Run();
+    auto out = [&](const char* name) {
+        const vm::Vec3<double> x = interp.OutputTriple(*program.findOutput(name));
+        return glm::dvec3(x.x, x.y, x.z);
+    };
+    *Cl = out("Cl");
+    *L = moving ? glm::dvec3(light.moved * glm::dvec4(out("L"), 0.0)) : out("L");
+    *lit = interp.Register(program.findOutput("lit")->registers[0]) != 0;
+}
+
+void ShadingLights::Compute(Slot& slot) {
     const LightDesc& light = *slot.light;
     slot.computed = true;
+    if (light.program) {
+        glm::dvec3 Cl, fromLight;
+        bool lit = false;
+        RunLight(light, &Cl, &fromLight, &lit);
+        slot.Cl = lit && std::isfinite(Cl.x + Cl.y + Cl.z) ? Cl : glm::dvec3(0.0);
+        if (light.program->emission == compiler::LoweredShader::Emission::Solar) {
+            const double length = glm::length(fromLight);
+            slot.L = length > 0 && std::isfinite(length) ? -fromLight / length : glm::dvec3(0.0);
+            slot.distance = INFINITY;
+        } else {
+            slot.L = -fromLight;
+            slot.distance = glm::length(fromLight);
+        }
+        if (!(glm::length(slot.L) > 0) || !std::isfinite(slot.distance)) {
+            if (light.program->emission != compiler::LoweredShader::Emission::Solar) slot.Cl = glm::dvec3(0.0);
+        }
+        return;
+    }
     if (light.kind == LightDesc::Kind::Distant) {
         slot.L = glm::normalize(light.from - light.to);
         slot.distance = INFINITY;
@@ -129,7 +235,24 @@ void ShadingLights::Compute(Slot& slot) const {
 
 double ShadingLights::Light(int index, int component, bool shadowed) {
     if (component < 0 || component >= vm::kLightComponents) return 0;
-    if (index == vm::kAmbientSlot) return component < 3 ? 0.0 : m_ambient[component - 3];
+    if (index == vm::kAmbientSlot) {
+        if (component < 3) return 0.0;
+        if (!m_ambientComputed) {
+            m_ambientComputed = true;
+            m_ambient = glm::dvec3(0.0);
+            for (const LightDesc* light : m_ambientLights) {
+                if (!light->program) {
+                    m_ambient += light->intensity * light->color;
+                    continue;
+                }
+                glm::dvec3 Cl, L;
+                bool lit = false;
+                RunLight(*light, &Cl, &L, &lit);
+                if (std::isfinite(Cl.x + Cl.y + Cl.z)) m_ambient += Cl;
+            }
+        }
+        return m_ambient[component - 3];
+    }
     if (index < 0 || static_cast<size_t>(index) >= m_slots.size()) return 0;  // (a light set smaller than compiled for)
     Slot& slot = m_slots[static_cast<size_t>(index)];
     if (!slot.computed) Compute(slot);

@@ -2,11 +2,14 @@
 #pragma once
 
 #include <functional>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"
+#include "vm/interpreter.h"
 #include "vm/lights.h"
 
 namespace affray::renderer {
@@ -39,8 +42,22 @@ using ShadowTest = std::function<glm::dvec3(const glm::dvec3& toLight, double di
 /// is scaled by what `shadow` lets through. `shadow` is asked only about such lights that would
 /// add something: in front of the surface and with a nonzero contribution to a term the model
 /// uses. The result is the colour Ci before RenderMan's final Ci *= Os (the caller composites).
+/// Lights that run a light shader (LightDesc::program) are asked of `shaders` (reset for this
+/// point and these lights), and left out without it; a light shader affray did not find gives
+/// no light.
+class ShadingLights;
 glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const ShadingPoint& sp,
-                        const std::vector<LightDesc>& lights, const ShadowTest& shadow);
+                        const std::vector<LightDesc>& lights, const ShadowTest& shadow,
+                        ShadingLights* shaders = nullptr);
+
+/// How a light takes part in shading: not at all (a light shader affray did not find, with no
+/// standard light of its name), as an ambient light (ambient() sums it: an "ambientlight", or a
+/// light shader with neither illuminate nor solar), or as a light that light loops visit.
+enum class LightRole { None, Ambient, Lit };
+LightRole RoleOf(const LightDesc& light);
+/// The light's categories (its `__category`): its shader's value if a shader renders it, else
+/// the RIB's.
+std::string CategoryOf(const LightDesc& light);
 
 /// What a surface shader's light loops ask at one shading point (vm/lights.h), from the same
 /// lights as ShadeSurface: slot k is the k-th light of the set that is not ambient, the ambient
@@ -52,7 +69,14 @@ glm::dvec3 ShadeSurface(const SurfaceDesc& surface, const glm::dvec3& Cs, const 
 /// each point; kept per thread (no allocation once it has seen the largest light set).
 class ShadingLights final : public vm::LightQueries {
   public:
-    void Reset(const std::vector<LightDesc>& lights, const glm::dvec3& P, const ShadowTest* shadow);
+    ShadingLights();
+    ~ShadingLights() override;
+    ShadingLights(const ShadingLights&) = delete;
+    ShadingLights& operator=(const ShadingLights&) = delete;
+    /// A light that runs a light shader (LightDesc::program) is that program at P seen from
+    /// `eye` (the global Ps, E): its Cl, and L reversed (the program's runs from the light).
+    void Reset(const std::vector<LightDesc>& lights, const glm::dvec3& P, const ShadowTest* shadow,
+               const glm::dvec3& eye = glm::dvec3(0.0));
     double Light(int slot, int component, bool shadowed) override;
 
   private:
@@ -62,11 +86,16 @@ class ShadingLights final : public vm::LightQueries {
         glm::dvec3 L{0.0}, Cl{0.0}, shadowedCl{0.0};
         double distance = 0;
     };
-    void Compute(Slot& slot) const;
+    void Compute(Slot& slot);
+    /// Runs `light`'s program at the point: its Cl, its L (from the light) and whether it lit.
+    void RunLight(const LightDesc& light, glm::dvec3* Cl, glm::dvec3* L, bool* lit);
     std::vector<Slot> m_slots;
+    std::vector<const LightDesc*> m_ambientLights;
     glm::dvec3 m_ambient{0.0};
-    glm::dvec3 m_P{0.0};
+    bool m_ambientComputed = false;
+    glm::dvec3 m_P{0.0}, m_eye{0.0};
     const ShadowTest* m_shadow = nullptr;
+    std::unique_ptr<vm::Interpreter<double>> m_interpreter;  // the light programs', made once
 };
 
 }  // namespace affray::renderer

@@ -404,10 +404,27 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     light.line = r.at.line;
     const RibArg& handle = r.args[1];
     light.handle = handle.StringsP() ? handle.strings[0] : FormatNumber(handle.numbers[0]);
+    // The shader itself, looked for on the search path when the scene is prepared: it renders
+    // the light where found (renderer/prepare.cpp).
+    ShaderRef ref;
+    ref.name = name;
+    ref.file = FileOf(r.at);
+    ref.line = r.at.line;
+    ref.column = r.at.column;
+    ref.shaderToWorld = m_state.ctm;  // before WorldBegin camera space, mapped at WorldBegin
+    for (const RibParam& p : params) ref.params.push_back(p.value);
+    light.shader = std::move(ref);
     if (!shader) {
-        Warn(r.at, "light source " + Quote(name) + " is not supported yet; ignored");
-        m_lightHandles[light.handle] = -1;  // Illuminate may still name it
-        return true;
+        // Another light shader: only its .sl can render it. Its shadows: as a standard light's
+        // (a shadow map name given, or the attribute).
+        light.builtIn = false;
+        for (const RibParam& p : params)
+            if ((p.value.name == "shadowname" || p.value.name == "shadowmap") && p.value.strings.size() == 1 &&
+                !p.value.strings[0].empty())
+                light.castShadows = true;
+        light.castShadows = light.castShadows || m_state.lightShadows;
+        if (m_worldSeen) light.motion = m_state.motion;
+        return AddLight(light);
     }
     light.kind = shader->kind;
     const std::string standard = shader->kind == LightDesc::Kind::Distant ? "distantlight"
@@ -433,6 +450,10 @@ bool RibParser::DoLightSource(const RibRequest& r) {
     if (m_worldSeen) light.motion = m_state.motion;
     bool aimed = light.kind == LightDesc::Kind::Distant || light.kind == LightDesc::Kind::Spot;
     if (aimed && light.from == light.to) return Fail(r.at, context + " 'from' and 'to' must differ");
+    return AddLight(light);
+}
+
+bool RibParser::AddLight(const LightDesc& light) {
     // Its index: lights given before WorldBegin come first in the frame's list (DoWorldBegin).
     const int index = static_cast<int>(m_scene.lights.size() + m_cameraLights.size());
     if (m_worldSeen)

@@ -127,6 +127,7 @@ bool RibParser::DoWorldBegin(const RibRequest& r) {
     for (LightDesc light : m_cameraLights) {
         light.from = TransformPoint(cameraToWorld, light.from);
         light.to = TransformPoint(cameraToWorld, light.to);
+        if (light.shader) light.shader->shaderToWorld = cameraToWorld * light.shader->shaderToWorld;
         m_scene.lights.push_back(light);
     }
     m_cameraLights.clear();

@@ -160,6 +160,9 @@ class RibParser : private RibArgChecks {
     /// Warns that `r` (a light given before WorldBegin, a coordinate system) is placed at the first
     /// time of the CTM, if the CTM moves: "`what` do not move".
     void WarnIfMoving(const RibRequest& r, const std::string& what);
+    /// Adds `light` to the frame's lights (after those given before WorldBegin) and turns it on
+    /// in the current attributes; true.
+    bool AddLight(const LightDesc& light);
     /// Runs `r` by its handler.
     bool DispatchRequest(const RibRequest& r);
     /// An open MotionBegin: where, its times, the kind of request it holds, how many so far.

@@ -22,6 +22,10 @@
 #include "scene/motion.h"
 #include "scene/number_text.h"
 
+namespace affray::compiler {
+struct CompiledShader;  // a light's program (compiler/compile.h)
+}  // namespace affray::compiler
+
 namespace affray::renderer {
 
 struct UnrefinedMesh;  // scene/refine.h
@@ -88,6 +92,16 @@ struct LightDesc {
     /// to are where the path's first matrix places them, carried at time t by At(t) times the
     /// first matrix's inverse (LightAt). Null for a light that stands still.
     std::shared_ptr<const MotionPath> motion;
+    /// The LightSource request's shader and parameters (shader space: the transform at the
+    /// request). Its .sl, found on the shader search path, is compiled (`program`, by
+    /// Renderer::Prepare) and run on the VM; where none is found the fields above render it as
+    /// the standard light of its name, or, for another name (`builtIn` false), it gives no light.
+    std::optional<ShaderRef> shader;
+    bool builtIn = true;
+    std::shared_ptr<const compiler::CompiledShader> program;
+    /// For a light that moves, as LightAt places it: the map from where it stands at the
+    /// shutter's opening to where it stands now (its program runs in the first frame).
+    glm::dmat4 moved{1.0};
     /// Whether the light traces shadow rays. RenderMan's standard lights cast no shadows (their
     /// shaders never call shadow()); the RIB reader turns this on for the shadow-map lights
     /// (shadowspot...), a light given a "shadowname", and BMRT's Attribute "light" "shadows" "on".
@@ -396,6 +410,7 @@ inline LightDesc LightAt(const LightDesc& light, double time) {
     const glm::dmat4 move = light.motion->At(time) * glm::inverse(light.motion->matrices.front());
     at.from = glm::dvec3(move * glm::dvec4(light.from, 1.0));
     at.to = glm::dvec3(move * glm::dvec4(light.to, 1.0));
+    at.moved = move;
     return at;
 }
 

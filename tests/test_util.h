@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -199,17 +200,25 @@ inline void RequireVec(const glm::dvec3& got, const glm::dvec3& want) {
     REQUIRE(got.z == Approx(want.z).margin(1e-12));
 }
 
-/// The .sl files in shaders/, sorted: the displacement shaders (every bound test's subjects), or
-/// with `surfaces` the surface shaders (the standard surfaces, RI Spec 3.2 appendix A). A file
-/// is a surface shader's if a line of it starts with "surface ".
-inline std::vector<std::string> AllShaders(bool surfaces = false) {
+/// The .sl files in shaders/ of one kind, sorted: the displacement shaders (every bound test's
+/// subjects), or "surface" or "light" shaders (the standard ones, RI Spec 3.2 appendix A). A
+/// file's kind is the first word of its line that starts with one.
+inline std::vector<std::string> AllShaders(const std::string& kind = "displacement") {
     std::vector<std::string> paths;
     for (const auto& entry : std::filesystem::directory_iterator(SourceDir() + "/shaders")) {
         if (entry.path().extension() != ".sl") continue;
         std::ifstream in(entry.path());
-        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        const bool surface = text.rfind("surface ", 0) == 0 || text.find("\nsurface ") != std::string::npos;
-        if (surface == surfaces) paths.push_back(entry.path().string());
+        std::string fileKind = "displacement", line;
+        while (std::getline(in, line)) {
+            bool found = false;
+            for (const char* k : {"surface ", "light ", "displacement "})
+                if (line.rfind(k, 0) == 0) {
+                    fileKind = std::string(k, std::strlen(k) - 1);
+                    found = true;
+                }
+            if (found) break;
+        }
+        if (fileKind == kind) paths.push_back(entry.path().string());
     }
     std::sort(paths.begin(), paths.end());
     return paths;

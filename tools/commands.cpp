@@ -79,6 +79,9 @@ std::string InstructionCounts(const compiler::CompiledShader& s) {
            ",\"shade_generic\":" + count(s.genericShade) + ",\"shade_specialised\":" + count(s.shade) +
            (s.kind == lang::ShaderKind::Surface
                 ? ",\"surface_generic\":" + count(s.genericSurface) + ",\"surface_specialised\":" + count(s.surface)
+                : std::string()) +
+           (s.kind == lang::ShaderKind::Light
+                ? ",\"light_generic\":" + count(s.genericLight) + ",\"light_specialised\":" + count(s.light)
                 : std::string());
 }
 
@@ -94,24 +97,29 @@ int RunCompile(const CompileCommand& cmd, FILE* out, FILE* err) {
     std::string listing = "; " + shader.name + " from " + shader.sourcePath + ": " +
                           std::to_string(shader.opsBeforeOptimisation) + " operations before optimisation\n";
     const bool surface = shader.kind == lang::ShaderKind::Surface;
+    const bool light = shader.kind == lang::ShaderKind::Light;
     if (surface) {
         listing += "; ---- surface program (Ci and Oi) ----\n" + vm::Disassemble(shader.surface, shader.sourceText);
+    } else if (light) {
+        listing += "; ---- light program (Cl, L and lit) ----\n" + vm::Disassemble(shader.light, shader.sourceText);
     } else {
         listing += "; ---- bound program (displaced P only) ----\n" + vm::Disassemble(shader.bound, shader.sourceText);
         listing += "; ---- shade program (P and N) ----\n" + vm::Disassemble(shader.shade, shader.sourceText);
     }
     if (cmd.disasm) std::fputs(listing.c_str(), out);
-    if (!cmd.outputPath.empty() && surface) {
+    if (!cmd.outputPath.empty() && (surface || light)) {
         // (Checked before the statistics, so that nothing is printed for a refused command.)
+        const std::string kind = lang::ToString(shader.kind);
         diag::Report report;
-        report.error({shader.sourcePath}, "surface shader '" + shader.name +
+        report.error({shader.sourcePath}, kind + " shader '" + shader.name +
                                               "' cannot be written as bytecode (.afb files hold displacement "
-                                              "shaders); a scene compiles its surface shaders from source");
+                                              "shaders); a scene compiles its " +
+                                              kind + " shaders from source");
         Print(report, err);
         return diag::kExitBadInput;
     }
     if (cmd.stats) {
-        const vm::Program& read = surface ? shader.surface : shader.shade;
+        const vm::Program& read = surface ? shader.surface : light ? shader.light : shader.shade;
         std::string globals;
         for (int g = 0; g < vm::kGlobalCount; ++g)
             if (read.readsGlobal(static_cast<vm::Global>(g)))
@@ -144,8 +152,8 @@ int RunEval(const EvalCommand& cmd, FILE* out, FILE* err) {
     const compiler::CompiledShader& shader = *result.shader;
     if (shader.kind != lang::ShaderKind::Displacement) {
         diag::Report refused;
-        refused.error({cmd.shaderPath}, "'affray eval' evaluates displacement shaders; '" + shader.name +
-                                            "' is a surface shader (render a scene that uses it)");
+        refused.error({cmd.shaderPath}, "'affray eval' evaluates displacement shaders; '" + shader.name + "' is a " +
+                                            lang::ToString(shader.kind) + " shader (render a scene that uses it)");
         Print(refused, err);
         return diag::kExitBadInput;
     }

@@ -51,7 +51,7 @@ namespace affray::vm {
 
 /// The only format version this affray writes and reads.
 // 2: control flow, noise, Ext words, flags; 3: tan (63); 4: texture slots, Texture2 and Texture8;
-// 5: the globals time and dtime; 6: the globals Cs and Os, the Light opcode (66).
+// 5: the globals time and dtime; 6: the globals Cs, Os and Ps, the Light opcode (66).
 static constexpr uint32_t kBytecodeVersion = 6;
 
 /// What an .afb file holds.

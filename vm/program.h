@@ -18,7 +18,8 @@ namespace affray::vm {
 /// opening time and its length: a displacement is evaluated once for all the times of the
 /// shutter, at its opening, as a Reyes renderer shades its grids (renderer/prepare.cpp binds both
 /// as constants of each program). Cs and Os, the surface's colour and opacity, are globals of
-/// surface shaders only (a displacement shader cannot name them).
+/// surface shaders only (a displacement shader cannot name them), Ps (the point being lit) of
+/// light shaders only.
 #define AFFRAY_GLOBALS(X) \
     X(P, 3)               \
     X(N, 3)               \
@@ -36,7 +37,8 @@ namespace affray::vm {
     X(time, 1)            \
     X(dtime, 1)           \
     X(Cs, 3)              \
-    X(Os, 3)
+    X(Os, 3)              \
+    X(Ps, 3)
 
 enum class Global : uint8_t {
 #define AFFRAY_GLOBAL_ENUM(name, size) name,

@@ -180,9 +180,10 @@ TEST_CASE("compiler diagnostics are exact", "[compiler]") {
     CHECK(Diagnose("displacement t() {\n  P += P . 1;\n}\n") ==
           "test.sl:2:10: error: invalid operands to '.' (point and float): '.' is the dot product of two triples\n"
           "      P += P . 1;\n             ^\n");
-    CHECK(Diagnose("light t() {\n  P += 1;\n}\n") ==
-          "test.sl:1:7: error: light shaders are not supported yet; affray runs displacement and surface shaders\n"
-          "    light t() {\n          ^\n");
+    CHECK(Diagnose("volume t() {\n  P += 1;\n}\n") ==
+          "test.sl:1:8: error: volume shaders are not supported yet; affray runs displacement, surface and light "
+          "shaders\n"
+          "    volume t() {\n           ^\n");
     CHECK(Diagnose("displacement t(float k) {\n  P += k;\n}\n") ==
           "test.sl:1:22: error: parameter 'k' needs a default value\n    displacement t(float k) {\n                   "
           "      ^\n");

@@ -431,7 +431,8 @@ TEST_CASE("unknown and unsupported functions and types", "[compiler][diagnostics
           "      P += environment(\"x\", N);\n"
           "           ^\n");
     CHECK(Diagnose("imager t() {\n  P += 1;\n}\n") ==
-          "test.sl:1:8: error: imager shaders are not supported yet; affray runs displacement and surface shaders\n"
+          "test.sl:1:8: error: imager shaders are not supported yet; affray runs displacement, surface and light "
+          "shaders\n"
           "    imager t() {\n"
           "           ^\n");
 }

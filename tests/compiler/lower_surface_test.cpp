@@ -268,3 +268,86 @@ TEST_CASE("surface shader: a vector normalised by construction is not normalised
     // A vector that is not unit by construction still is normalised: N scaled, then I.
     CHECK(roots("surface t() { Ci = diffuse(2 * N) + specular(N, -I, 0.1); }") == 5);
 }
+
+namespace {
+
+/// A light shader's Cl, L and lit at the point Ps.
+struct LightAt {
+    glm::dvec3 Cl, L;
+    bool lit;
+};
+LightAt RunLight(const compiler::CompiledShader& shader, const glm::dvec3& Ps) {
+    vm::Interpreter<double> interp(shader.light);
+    interp.SetGlobal(vm::Global::Ps, vm::Vec3<double>(Ps.x, Ps.y, Ps.z));
+    interp.Run();
+    auto triple = [&](const char* name) {
+        const vm::Vec3<double> x = interp.OutputTriple(*shader.light.findOutput(name));
+        return glm::dvec3(x.x, x.y, x.z);
+    };
+    return {triple("Cl"), triple("L"), interp.Register(shader.light.findOutput("lit")->registers[0]) != 0};
+}
+
+compiler::CompiledShader CompileLight(const std::string& file,
+                                      const std::vector<compiler::ParamOverride>& params = {}) {
+    compiler::CompileResult r = compiler::CompileFile(std::string(AFFRAY_SOURCE_DIR) + "/shaders/" + file, params);
+    INFO(r.diagnostics.format());
+    REQUIRE(r.ok());
+    REQUIRE(r.shader->kind == lang::ShaderKind::Light);
+    return *r.shader;
+}
+
+}  // namespace
+
+TEST_CASE("light shader: the standard lights of shaders/ as RI Spec 3.2 defines them", "[compiler][light]") {
+    using Emission = compiler::LoweredShader::Emission;
+    const compiler::CompiledShader ambient = CompileLight("ambientlight.sl", {{"intensity", {0.5}}});
+    CHECK(ambient.emission == Emission::Ambient);
+    LightAt a = RunLight(ambient, {1, 2, 3});
+    CheckClose(a.Cl, glm::dvec3(0.5));
+    CHECK_FALSE(a.lit);
+
+    const compiler::CompiledShader distant =
+        CompileLight("distantlight.sl", {{"from", {0, 0, 5}}, {"to", {0, 0, 0}}, {"intensity", {2}}});
+    CHECK(distant.emission == Emission::Solar);
+    a = RunLight(distant, {1, 2, 3});
+    CheckClose(a.Cl, glm::dvec3(2.0));
+    CheckClose(a.L, glm::dvec3(0, 0, -5));  // the direction the light travels
+    CHECK(a.lit);
+
+    const compiler::CompiledShader point = CompileLight("pointlight.sl", {{"from", {0, 0, 2}}, {"intensity", {8}}});
+    CHECK(point.emission == Emission::Illuminate);
+    a = RunLight(point, {0, 0, 0});
+    CheckClose(a.Cl, glm::dvec3(2.0));  // 8 / 2^2
+    CheckClose(a.L, glm::dvec3(0, 0, -2));
+    CHECK(a.lit);
+
+    // The spotlight: inside its cone, its beam; outside, nothing lit.
+    const compiler::CompiledShader spot =
+        CompileLight("spotlight.sl", {{"from", {0, 0, 2}}, {"to", {0, 0, 0}}, {"intensity", {4}}});
+    a = RunLight(spot, {0, 0, 0});
+    CHECK(a.lit);
+    CheckClose(a.Cl, glm::dvec3(1.0));
+    a = RunLight(spot, {3, 0, 0});
+    CHECK_FALSE(a.lit);
+}
+
+TEST_CASE("light shader: shadow() is no occlusion, other surface functions are errors, __category is kept",
+          "[compiler][light]") {
+    compiler::CompileResult r =
+        compiler::CompileSource("test.sl",
+                                "light t(string shadowname = \"\"; string __category = \"rim\") {\n"
+                                "  illuminate (point(0, 0, 1)) { Cl = 1 - shadow(shadowname, Ps); }\n}\n",
+                                {compiler::ParamOverride::String("shadowname", "key.shd")});
+    REQUIRE(r.ok());
+    CHECK(r.shader->strings.at("__category") == "rim");
+    CHECK(r.shader->strings.at("shadowname") == "key.shd");
+    CheckClose(RunLight(*r.shader, {0, 0, 0}).Cl, glm::dvec3(1.0));
+    compiler::CompileResult bad = compiler::CompileSource("test.sl", "light t() { Cl = diffuse(N); }\n");
+    CHECK_FALSE(bad.ok());
+    CHECK(bad.diagnostics.format().find("function 'diffuse' is not supported yet in light shaders") !=
+          std::string::npos);
+    compiler::CompileResult noAxis = compiler::CompileSource("test.sl", "light t() { solar () Cl = 1; }\n");
+    CHECK_FALSE(noAxis.ok());
+    CHECK(noAxis.diagnostics.format().find("'solar' expects an axis and an angle, got 0 arguments") !=
+          std::string::npos);
+}

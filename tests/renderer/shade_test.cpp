@@ -6,6 +6,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "compiler/compile.h"
+
 using namespace affray::renderer;
 
 namespace {
@@ -320,4 +322,55 @@ TEST_CASE("ShadingLights: each light's L and Cl as the built-in models take them
     // Slots past the set, and unknown components, are dark.
     CHECK(q.Light(3, 3, true) == 0.0);
     CHECK(q.Light(0, 6, true) == 0.0);
+}
+
+TEST_CASE("ShadingLights: the standard lights as light shaders give the built-in lights' L and Cl", "[shade][light]") {
+    // The .sl versions in shaders/, compiled for each light's parameters, against the built-in
+    // models of the same LightDesc, at points around them.
+    auto withShader = [](LightDesc light, const std::string& name,
+                         const std::vector<affray::compiler::ParamOverride>& params) {
+        affray::compiler::CompileResult r =
+            affray::compiler::CompileFile(std::string(AFFRAY_SOURCE_DIR) + "/shaders/" + name + ".sl", params);
+        INFO(r.diagnostics.format());
+        REQUIRE(r.ok());
+        light.shader = affray::renderer::ShaderRef{name, {}, 0, 0, {}, glm::dmat4(1.0)};
+        light.program = r.shader;
+        return light;
+    };
+    auto v = [](const glm::dvec3& x) { return std::vector<double>{x.x, x.y, x.z}; };
+    const LightDesc point = Point({1, 2, 3}, 5);
+    const LightDesc spot = Spot(6);
+    LightDesc distant;
+    distant.kind = LightDesc::Kind::Distant;
+    distant.from = {1, 1, 1};
+    distant.to = {0, 0, -1};
+    distant.color = {1, 0.5, 0.25};
+    const std::vector<LightDesc> builtIn = {Ambient(0.25), point, spot, distant};
+    const std::vector<LightDesc> shaders = {
+        withShader(Ambient(0.25), "ambientlight", {{"intensity", {0.25}}}),
+        withShader(point, "pointlight", {{"from", v(point.from)}, {"intensity", {5}}}),
+        withShader(spot, "spotlight",
+                   {{"from", v(spot.from)},
+                    {"to", v(spot.to)},
+                    {"intensity", {6}},
+                    {"coneangle", {spot.coneAngle}},
+                    {"conedeltaangle", {spot.coneDeltaAngle}},
+                    {"beamdistribution", {spot.beamDistribution}}}),
+        withShader(distant, "distantlight",
+                   {{"from", v(distant.from)}, {"to", v(distant.to)}, {"lightcolor", v(distant.color)}})};
+    const ShadowTest shadow = [](const glm::dvec3&, double) { return glm::dvec3(1.0); };
+    ShadingLights a, b;
+    int compared = 0;
+    for (const glm::dvec3& P :
+         {glm::dvec3(0.0), glm::dvec3(0.2, -0.1, 0.3), glm::dvec3(3, 0, 0), glm::dvec3(-1, 4, -2)}) {
+        a.Reset(builtIn, P, &shadow);
+        b.Reset(shaders, P, &shadow);
+        for (int slot : {0, 1, 2, affray::vm::kAmbientSlot})
+            for (int component = 0; component < 6; ++component) {
+                INFO("P " << P.x << " " << P.y << " " << P.z << ", slot " << slot << ", component " << component);
+                CHECK(b.Light(slot, component, true) == Approx(a.Light(slot, component, true)).margin(1e-12));
+                ++compared;
+            }
+    }
+    CHECK(compared == 4 * 4 * 6);
 }

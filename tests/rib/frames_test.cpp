@@ -230,7 +230,10 @@ WorldEnd
                                            &report);
     REQUIRE(frames.size() == 1);
     const std::vector<LightDesc>& lights = frames[0].lights;
-    REQUIRE(lights.size() == 6);  // the area light is not supported
+    REQUIRE(lights.size() == 7);  // the area light's shader is looked for when the scene is prepared
+    CHECK_FALSE(lights[6].builtIn);
+    REQUIRE(lights[6].shader);
+    CHECK(lights[6].shader->name == "arealight");
     CHECK(lights[0].kind == LightDesc::Kind::Spot);
     CHECK(lights[0].intensity == 3);
     CHECK(lights[0].color == glm::dvec3(1, 0.5, 0.25));
@@ -243,8 +246,7 @@ WorldEnd
     CHECK(lights[2].kind == LightDesc::Kind::Distant);
     CHECK(lights[3].kind == LightDesc::Kind::Spot);
     CHECK(lights[4].kind == LightDesc::Kind::Point);
-    // One note per shadow-map shader and one per standard light given a shadowname; unknown
-    // shaders keep their warning.
+    // One note per shadow-map shader and one per standard light given a shadowname.
     // Each note's tail, shared: whole strings below, no literal split over lines.
     const std::string mapIgnored =
         " with traced shadows; its shadow map parameters (shadowname, samples, width, "
@@ -256,8 +258,7 @@ WorldEnd
                                    "7: light source 'shadowdistant' renders as 'distantlight'" + mapIgnored,
                                    "8: 'LightSource \"spotlight\"" + traced,
                                    "9: 'LightSource \"pointlight\"" + traced});
-    CHECK(Messages(report, Severity::Warning) ==
-          std::vector<std::string>{"11: light source 'arealight' is not supported yet; ignored"});
+    CHECK(Messages(report, Severity::Warning).empty());  // (the area light's shader: looked for later)
     // The standard lights take no other shadow-map parameter.
     Report other;
     Frames("WorldBegin\nLightSource \"spotlight\" 1 \"samples\" [4]\nWorldEnd\n", &other);
@@ -309,8 +310,8 @@ WorldEnd
     CHECK(lightsOf(5) == Lights{0, 1, 3});  // a light off outside its block can be turned on
     CHECK(lightsOf(6) == Lights{0, 3});     // an object's Illuminate applies inside it
     CHECK(lightsOf(7) == Lights{0, 1, 3});  // and not after the instance
+    // (The area light's shader is looked for when the scene is prepared: its light is the fifth.)
     CHECK(Messages(report, Severity::Warning) ==
-          std::vector<std::string>{"25: 'Illuminate': no light source has the handle 'nobody'; ignored",
-                                   "26: light source 'arealight' is not supported yet; ignored"});
-    CHECK(frames[0].lights.size() == 4);
+          std::vector<std::string>{"25: 'Illuminate': no light source has the handle 'nobody'; ignored"});
+    CHECK(frames[0].lights.size() == 5);
 }

@@ -283,8 +283,8 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
     CHECK(ErrorOf("WorldBegin\nPatch \"bicubic\" \"P\" [0 0 0]\nWorldEnd\n") ==
           "t.rib:2: error: 'Patch \"bicubic\"' parameter 'P' expects 48 numbers, got 3");
 
-    // Other ignored things: unknown shader parameters and light shaders. A surface shader is
-    // looked for when the scene is prepared (renderer/prepare.cpp), not read.
+    // Other ignored things: unknown parameters of a standard shader. Surface and light shaders
+    // are looked for when the scene is prepared (renderer/prepare.cpp), not read.
     error = {};
     scene = ParseRib(
         "WorldBegin\nLightSource \"arealight\" 1\nSurface \"wood\"\n"
@@ -292,9 +292,8 @@ TEST_CASE("Unsupported RIB requests warn once per name, unknown ones are errors"
         "t.rib", &error);
     REQUIRE(scene);
     warnings = WarningsOf(error);
-    REQUIRE(warnings.size() == 2);
-    CHECK(warnings[0] == "t.rib:2: warning: light source 'arealight' is not supported yet; ignored");
-    CHECK(warnings[1] == "t.rib:4: warning: 'Surface \"plastic\"' has no parameter 'foo'; ignored");
+    REQUIRE(warnings.size() == 1);
+    CHECK(warnings[0] == "t.rib:4: warning: 'Surface \"plastic\"' has no parameter 'foo'; ignored");
 }
 
 TEST_CASE("Malformed RIB gives exact errors with the line", "[renderer][rib]") {
