@@ -216,21 +216,27 @@ const std::string& InputsDigest(const PreparedScene& scene) {
     h.Field("scene", ToStringSettings(scene.desc));
     HashPrimitives(scene.desc, &h);
     const Primitive* previous = nullptr;
-    // The surface shaders, each once, in the order the primitives first use them: their source
-    // and programs (their parameter values and lights are in the scene's text above).
+    // The surface shaders, each once, in the order the primitives first use them, then the light
+    // shaders: their source and programs (their parameter values and lights are in the scene's
+    // text above).
     std::vector<const compiler::CompiledShader*> surfaces;
     for (const PrimitivePrograms& programs : scene.programs)
         if (programs.surface && std::find(surfaces.begin(), surfaces.end(), programs.surface.get()) == surfaces.end())
             surfaces.push_back(programs.surface.get());
+    // The light shaders, each once: their source and programs (their parameters are the scene's).
+    for (const LightDesc& light : scene.desc.lights)
+        if (light.program && std::find(surfaces.begin(), surfaces.end(), light.program.get()) == surfaces.end())
+            surfaces.push_back(light.program.get());
     for (const compiler::CompiledShader* surface : surfaces) {
         h.Field("surface source", surface->sourceText);
         vm::BytecodeFile program;
         program.shaderName = surface->name;
         program.sourcePath = FileName(surface->sourcePath);
         program.sourceHash = vm::HashSource(surface->sourceText);
-        program.bound = WithoutDirectories(surface->surface);
+        const vm::Program& shading = surface->kind == lang::ShaderKind::Light ? surface->light : surface->surface;
+        program.bound = WithoutDirectories(shading);
         h.Field("surface program", vm::SaveBytecode(program));
-        AddTextures(surface->surface, &h);
+        AddTextures(shading, &h);
     }
     for (const Primitive& prim : scene.primitives) {
         if (!prim.shader()) {

@@ -399,6 +399,7 @@ inline std::string ToString(const LightDesc& l) {
             << " beamdistribution=" << l.beamDistribution;
     if (l.castShadows) out << " shadows";
     if (!l.category.empty()) out << " category=\"" << l.category << "\"";
+    if (l.shader) out << " shader " << ToString(*l.shader) << (l.builtIn ? "" : " (no built-in)");
     if (l.motion) out << ToString(*l.motion);
     return out.str();
 }

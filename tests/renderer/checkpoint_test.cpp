@@ -272,3 +272,27 @@ TEST_CASE(
         CHECK(IdentifyRender(Prepare(dir, rib), options).Hash() == base);
     }
 }
+
+TEST_CASE("checkpoint: the render identity follows the surface and light shaders' sources", "[renderer][checkpoint]") {
+    // A scene whose surface and light come from .sl files of its own directory: editing either
+    // changes the identity (a resumed render must not mix the two).
+    test::TempDir dir;
+    const std::string surface =
+        "surface mine(float Kd = 1) { Oi = Os; Ci = Os * Cs * Kd * diffuse(faceforward(normalize(N), I)); }\n";
+    const std::string light = "light lamp(float intensity = 1) { solar (vector(0, 0, -1), 0) Cl = intensity; }\n";
+    dir.Write("mine.sl", surface);
+    dir.Write("lamp.sl", light);
+    std::string rib = kScene;
+    rib.replace(rib.find("WorldBegin"), 10, "Option \"searchpath\" \"shader\" [\"" + dir.Path("") + "\"]\nWorldBegin");
+    rib.replace(rib.find("LightSource \"distantlight\""), 26, "LightSource \"lamp\"");
+    rib.replace(rib.find("  Displacement"), 0, "  Surface \"mine\"\n");
+    Options options;
+    const std::string base = IdentifyRender(Prepare(dir, rib), options).Hash();
+    CHECK(IdentifyRender(Prepare(dir, rib), options).Hash() == base);
+    dir.Write("mine.sl", surface + "// edited\n");
+    CHECK(IdentifyRender(Prepare(dir, rib), options).Hash() != base);
+    dir.Write("mine.sl", surface);
+    CHECK(IdentifyRender(Prepare(dir, rib), options).Hash() == base);
+    dir.Write("lamp.sl", light + "// edited\n");
+    CHECK(IdentifyRender(Prepare(dir, rib), options).Hash() != base);
+}
