@@ -467,9 +467,14 @@ Shaded RunSurface(const vm::Program& program, ThreadState& ts, const PreparedSce
     interp.SetGlobal(Global::Cs, Constant<T>(Cs));
     interp.SetGlobal(Global::Os, Constant<T>(Os));
     interp.Run();
+    // A component that is not finite (a shader's 0/0) is 0: one pixel's NaN would otherwise
+    // spread through the filter to its neighbours and into every later composite.
     auto output = [&](const char* name) {
         const vm::Vec3<T> x = interp.OutputTriple(*program.findOutput(name));
-        return glm::dvec3(vm::ValueOf(x.x), vm::ValueOf(x.y), vm::ValueOf(x.z));
+        glm::dvec3 c(vm::ValueOf(x.x), vm::ValueOf(x.y), vm::ValueOf(x.z));
+        for (int i = 0; i < 3; ++i)
+            if (!std::isfinite(c[i])) c[i] = 0;
+        return c;
     };
     return {output("Ci"), output("Oi")};
 }

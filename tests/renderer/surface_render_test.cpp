@@ -114,11 +114,12 @@ WorldEnd
     CHECK(centre("-key") == glm::dvec3(0, 0, 1));
 }
 
-TEST_CASE("surface render: a shader's derivatives and its own opacity", "[renderer][surface]") {
+TEST_CASE("surface render: a shader's derivatives, its own opacity, and values that are not finite", "[renderer][surface]") {
     test::TempDir dir;
     // s and t run along u and v over a lone patch: Du(s) = Dv(t) = 1 (the dual VM's derivatives).
     dir.Write("slopes.sl", "surface slopes() { Ci = color(Du(s), Dv(t), Du(t)); Oi = 1; }\n");
     dir.Write("veil.sl", "surface veil() { Oi = 0.25; Ci = Oi * color(1, 1, 0); }\n");
+    dir.Write("broken.sl", "surface broken() { float zero = u - u; Ci = color(zero / zero, 1 / zero, 0.5); Oi = 1; }\n");
     const std::string rib = R"(Format 8 8 1
 Projection "perspective" "fov" [30]
 Translate 0 0 5
@@ -136,6 +137,8 @@ WorldEnd
     CHECK(slopes.x == Approx(1.0).margin(1e-9));
     CHECK(slopes.y == Approx(1.0).margin(1e-9));
     CHECK(slopes.z == Approx(0.0).margin(1e-9));
+    // A component that is not finite (0/0, 1/0) renders as 0, not as a NaN that spreads.
+    CHECK(Pixel(render("broken"), 4, 4) == glm::dvec3(0, 0, 0.5));
     // The shader's Oi is the surface's coverage: a quarter of its colour, alpha a quarter.
     const image::ImageBuffer veil = render("veil");
     CHECK(Pixel(veil, 4, 4) == glm::dvec3(0.25, 0.25, 0.0));
