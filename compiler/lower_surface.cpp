@@ -136,6 +136,28 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
             if (!LowerExpr(*a)) return std::nullopt;
         return m_ops.Promote(m_ops.Constant(0.0), expected == Type::Color ? Type::Color : Type::Float);
     }
+    if (IsSurface() && e.name == "trace") {
+        // trace(P, R): the colour seen from the shaded point along R (the renderer traces from
+        // its own hit point: P is checked, not used), each channel a Trace instruction.
+        std::vector<Value> args;
+        for (size_t i = 0; i < e.args.size(); ++i) {
+            std::optional<Value> v = LowerExpr(*e.args[i]);
+            if (!v) return std::nullopt;
+            if (!IsSpatial(v->type)) {
+                m_diags.error(e.args[i]->loc, "argument " + std::to_string(i + 1) +
+                                                  " of 'trace' must be a point, vector or normal, not " +
+                                                  Article(v->type));
+                return std::nullopt;
+            }
+            args.push_back(*v);
+        }
+        m_ops.SetLine(e.loc.line);
+        Value seen;
+        seen.type = Type::Color;
+        for (int c = 0; c < 3; ++c)
+            seen.c[c] = ir().Call(IrOp::Trace, {args[1].c[0], args[1].c[1], args[1].c[2]}, c, Line());
+        return seen;
+    }
     if (IsSurface() && (e.name == "ambient" || e.name == "diffuse" || e.name == "specular" ||
                         e.name == "specularbrdf" || e.name == "phong"))
         return LowerLighting(e);
@@ -199,7 +221,7 @@ std::optional<Value> Lowerer::LowerSurfaceCall(const lang::Expr& e, Type expecte
         else if (IsSurface())
             m_diags.error(e.loc, "function '" + e.name +
                                      "' is not supported yet in surface shaders (affray gives them illuminance, "
-                                     "ambient, diffuse, specular, specularbrdf, phong and texture)");
+                                     "ambient, diffuse, specular, specularbrdf, phong, trace and texture)");
         else if (IsLight())
             m_diags.error(e.loc, "function '" + e.name +
                                      "' is not supported yet in light shaders (affray gives them illuminate, solar, "

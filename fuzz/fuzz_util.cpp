@@ -54,6 +54,7 @@ void RunAs(const vm::Program& program) {
 
 /// Two lights and an ambient colour, whatever a surface program asks.
 struct FixedLights final : vm::LightQueries {
+    double Trace(const double direction[3], int channel) override { return direction[channel] * 0.5; }
     double Light(int slot, int component, bool shadowed) override {
         if (slot == vm::kAmbientSlot) return component < 3 ? 0.0 : 0.1;
         const double L[2][3] = {{1, 2, 3}, {0, 0, -1}};

@@ -8,11 +8,13 @@
 #include "renderer/renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
@@ -35,13 +37,21 @@ struct ThreadState {
     uint64_t cameraRays = 0;
     /// ShadowTransmission's scratch: the partly transparent primitives a shadow ray passes.
     std::vector<std::pair<int, glm::dvec3>> shadowShares;
-    std::vector<LightDesc> movedLights;  // a light set's lights at a ray's time (ShadeHit), if any moves
-    ShadingLights shadingLights;         // a surface program's lights at the point it shades
+    /// How deep in trace() calls shading is (0: a camera ray's hit), and the deepest it goes:
+    /// past it trace() sees black. Each depth has its own shading state, since a trace() shades
+    /// while the shading that called it is halfway through its program.
+    static constexpr int kMaxTraceDepth = 3;
+    int depth = 0;
+    /// Per depth: a light set's lights at a ray's time (ShadeHit), if any moves, and a surface
+    /// program's lights at the point it shades.
+    std::array<std::vector<LightDesc>, kMaxTraceDepth + 1> movedLights;
+    std::array<ShadingLights, kMaxTraceDepth + 1> shadingLights;
 
     /// The interpreter of number type T running surface program `program` (ShadeHit).
     template <class T>
     vm::Interpreter<T>& Surface(const vm::Program& program) {
-        std::unique_ptr<vm::Interpreter<T>>& own = std::get<std::unique_ptr<vm::Interpreter<T>>>(m_surfaces);
+        std::unique_ptr<vm::Interpreter<T>>& own =
+            std::get<std::unique_ptr<vm::Interpreter<T>>>(m_surfaces[static_cast<size_t>(depth)]);
         if (!own)
             own = std::make_unique<vm::Interpreter<T>>(program);
         else if (&own->program() != &program)
@@ -163,7 +173,9 @@ struct ThreadState {
     }
 
   private:
-    std::tuple<std::unique_ptr<vm::Interpreter<double>>, std::unique_ptr<vm::Interpreter<vm::Dual<double>>>> m_surfaces;
+    std::array<std::tuple<std::unique_ptr<vm::Interpreter<double>>, std::unique_ptr<vm::Interpreter<vm::Dual<double>>>>,
+               kMaxTraceDepth + 1>
+        m_surfaces;
     static constexpr size_t kKeptIntersectors = 2048;
     struct Kept {
         std::unique_ptr<SurfaceIntersector> intersector;
@@ -436,7 +448,7 @@ Shaded RunSurface(const vm::Program& program, ThreadState& ts, const PreparedSce
                   const glm::dvec3& Os) {
     using vm::Global;
     vm::Interpreter<T>& interp = ts.Surface<T>(program);
-    interp.SetLights(&ts.shadingLights);
+    interp.SetLights(&ts.shadingLights[static_cast<size_t>(ts.depth)]);
     // The parameters (u, v, s, t, du, dv) are the base surface's, set with its frame (whose P,
     // N and tangents are replaced below): only for a shader that reads them.
     bool parameters = false;
@@ -518,19 +530,38 @@ Shaded ShadeHit(const PreparedScene& scene, ThreadState& ts, const Ray& ray, con
     // toward them keep that time too.
     const std::vector<LightDesc>* lights = &scene.lightSets[prim.lightSet];
     if (std::any_of(lights->begin(), lights->end(), [](const LightDesc& l) { return l.motion != nullptr; })) {
-        ts.movedLights.clear();
-        for (const LightDesc& light : *lights) ts.movedLights.push_back(LightAt(light, ray.time));
-        lights = &ts.movedLights;
+        std::vector<LightDesc>& moved = ts.movedLights[static_cast<size_t>(ts.depth)];
+        moved.clear();
+        for (const LightDesc& light : *lights) moved.push_back(LightAt(light, ray.time));
+        lights = &moved;
     }
     const glm::dvec3 Cs = prim.ColorAt(nh.hit.u, nh.hit.v), Os = prim.OpacityAt(nh.hit.u, nh.hit.v);
     const ShadowTest shadow = transmitted;
-    ts.shadingLights.Reset(*lights, sp.P, &shadow, ray.origin);
+    // trace(P, R): the colour the surface seen along R shows, shaded one level deeper; rays
+    // start off the surface on R's side by the shadow rays' offset.
+    const std::function<glm::dvec3(const glm::dvec3&)> trace = [&](const glm::dvec3& R) {
+        const double length = glm::length(R);
+        if (ts.depth >= ThreadState::kMaxTraceDepth || !(length > 0) || !std::isfinite(length)) return glm::dvec3(0.0);
+        const glm::dvec3 d = R / length;
+        const Ray traced{sp.P + (glm::dot(d, sp.Nf) < 0 ? -offset : offset) * sp.Nf, d, ray.time};
+        PassedHits passed;
+        const NearestHit hit =
+            TraceNearest(scene, ts, traced, 0.0, INFINITY, shadowTol, ts.cameraStats, traced.origin, nullptr, &passed);
+        if (hit.primitive < 0) return glm::dvec3(0.0);
+        const HitPoint where = EvaluateHit(scene, ts, traced, hit, traced.origin);
+        ++ts.depth;
+        const Shaded seen = ShadeHit(scene, ts, traced, hit, where, shadowTol);
+        --ts.depth;
+        return seen.Ci;
+    };
+    ShadingLights& shading = ts.shadingLights[static_cast<size_t>(ts.depth)];
+    shading.Reset(*lights, sp.P, &shadow, ray.origin, &trace);
     if (const std::shared_ptr<const compiler::CompiledShader>& surface = prim.programs->surface) {
         const vm::Program& program = surface->surface;
         return surface->surfaceDerivatives ? RunSurface<vm::Dual<double>>(program, ts, scene, prim, ray, nh, at, Cs, Os)
                                            : RunSurface<double>(program, ts, scene, prim, ray, nh, at, Cs, Os);
     }
-    return {Os * ShadeSurface(prim.surface(), Cs, sp, *lights, shadow, &ts.shadingLights), Os};
+    return {Os * ShadeSurface(prim.surface(), Cs, sp, *lights, shadow, &shading), Os};
 }
 
 }  // namespace

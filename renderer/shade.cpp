@@ -152,7 +152,9 @@ ShadingLights::ShadingLights() = default;
 ShadingLights::~ShadingLights() = default;
 
 void ShadingLights::Reset(const std::vector<LightDesc>& lights, const glm::dvec3& P, const ShadowTest* shadow,
-                          const glm::dvec3& eye) {
+                          const glm::dvec3& eye, const TraceFunction* trace) {
+    m_trace = trace;
+    m_hasTraced = false;
     m_slots.clear();
     m_ambientLights.clear();
     m_ambientComputed = false;
@@ -231,6 +233,17 @@ void ShadingLights::Compute(Slot& slot) {
     }
     const std::optional<Incident> in = Illuminate(light, m_P);
     slot.Cl = in ? in->Cl : glm::dvec3(0.0);
+}
+
+double ShadingLights::Trace(const double direction[3], int channel) {
+    if (channel < 0 || channel > 2 || !m_trace) return 0;
+    const glm::dvec3 d(direction[0], direction[1], direction[2]);
+    if (!m_hasTraced || d != m_traced) {
+        m_traced = d;
+        m_tracedColor = (*m_trace)(d);
+        m_hasTraced = true;
+    }
+    return m_tracedColor[channel];
 }
 
 double ShadingLights::Light(int index, int component, bool shadowed) {

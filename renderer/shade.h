@@ -75,9 +75,13 @@ class ShadingLights final : public vm::LightQueries {
     ShadingLights& operator=(const ShadingLights&) = delete;
     /// A light that runs a light shader (LightDesc::program) is that program at P seen from
     /// `eye` (the global Ps, E): its Cl, and L reversed (the program's runs from the light).
+    /// `trace` answers trace() (the colour seen along a direction), or null: black.
+    using TraceFunction = std::function<glm::dvec3(const glm::dvec3& direction)>;
     void Reset(const std::vector<LightDesc>& lights, const glm::dvec3& P, const ShadowTest* shadow,
-               const glm::dvec3& eye = glm::dvec3(0.0));
+               const glm::dvec3& eye = glm::dvec3(0.0), const TraceFunction* trace = nullptr);
     double Light(int slot, int component, bool shadowed) override;
+    /// The colour `trace` gives along `direction`, traced once for its three channels.
+    double Trace(const double direction[3], int channel) override;
 
   private:
     struct Slot {
@@ -95,6 +99,9 @@ class ShadingLights final : public vm::LightQueries {
     bool m_ambientComputed = false;
     glm::dvec3 m_P{0.0}, m_eye{0.0};
     const ShadowTest* m_shadow = nullptr;
+    const TraceFunction* m_trace = nullptr;
+    glm::dvec3 m_traced{0.0}, m_tracedColor{0.0};  // the last direction traced, and what it saw
+    bool m_hasTraced = false;
     std::unique_ptr<vm::Interpreter<double>> m_interpreter;  // the light programs', made once
 };
 

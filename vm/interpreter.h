@@ -76,8 +76,9 @@ class Interpreter {
     /// floor/ceil/round (`f` its scalar, `bounded` its T version) of x, split as Run() says.
     template <class F, class B>
     T Rounding(const T& x, F f, B bounded);
-    /// A Light instruction's value (SetLights).
+    /// A Light instruction's value (SetLights), and a Trace instruction's.
     T LightValue(uint8_t slot, const T& shadowed, const T& component) const;
+    T TraceValue(uint8_t channel, const T* direction) const;
 
     const Program* m_program;
     std::vector<T> m_registers;

@@ -87,6 +87,17 @@ T Interpreter<T>::LightValue(uint8_t slot, const T& shadowed, const T& component
 }
 
 template <class T>
+T Interpreter<T>::TraceValue(uint8_t channel, const T* direction) const {
+    if constexpr (std::is_same_v<T, double> || std::is_same_v<T, Dual<double>>) {
+        if (!m_lights) return T(0.0);
+        const double d[3] = {ValueOf(direction[0]), ValueOf(direction[1]), ValueOf(direction[2])};
+        return T(m_lights->Trace(d, channel));
+    } else {
+        return T(std::numeric_limits<double>::quiet_NaN());  // every number type's "unbounded"
+    }
+}
+
+template <class T>
 Interpreter<T>::Interpreter(const Program& program) : m_program(&program) {
     for (const ProgramParam& p : program.params) m_paramValues.push_back(p.defaults);
     SetProgram(program);
@@ -338,6 +349,12 @@ void Interpreter<T>::RunOnce() {
                 break;
             }
             case Op::Light: A = LightValue(in.flags, R[in.b], R[in.c]); break;
+            case Op::Trace: {
+                T args[3];
+                noiseArgs(3, args);
+                A = TraceValue(in.flags, args);
+                break;
+            }
         }
         if constexpr (kRecord) {
             if (std::isnan(constant)) constant = detail::ResultConstant(in.op, A);

@@ -1,4 +1,4 @@
-// vm/lights.h: what a surface shader's light loops ask of the renderer. The compiler unrolls
+// vm/lights.h: what a surface shader's light loops (and its trace calls) ask of the renderer. The compiler unrolls
 // `illuminance` (and ambient, diffuse, specular, phong, which RI Spec 3.2 defines by it) over the
 // light slots of the instance's light list; each light's L and Cl are Light instructions, which
 // the interpreter answers through the LightQueries the renderer gives it for the point it shades.
@@ -25,6 +25,10 @@ class LightQueries {
     /// direction towards it), or Cl, its colour arriving there, times what gets through to the
     /// point if `shadowed` and the light casts shadows.
     virtual double Light(int slot, int component, bool shadowed) = 0;
+    /// Channel `channel` (0-2) of the colour a ray from the shaded point along `direction` sees
+    /// (trace(P, R), RI Spec 3.2 section 15.5.2): the shaded colour of the surface it hits first,
+    /// black where it hits nothing.
+    virtual double Trace(const double direction[3], int channel) = 0;
 };
 
 }  // namespace affray::vm

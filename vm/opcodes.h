@@ -62,7 +62,7 @@ enum OperationFlag : uint8_t {
 // needs about an operation is a column here.
 //  X(name, operands (-1: varies, the noise and texture functions), flags, RSL spelling)
 // Texture is not foldable: its value depends on a file, read when the program is made; Light
-// neither: the renderer answers it at each shaded point (vm/lights.h).
+// neither: the renderer answers it at each shaded point (vm/lights.h), nor Trace.
 #define AFFRAY_OPERATIONS(X)                                                       \
     X(Neg, 1, kFoldable, "-x")                                                     \
     X(Sqr, 1, kFoldable, "x * x")                                                  \
@@ -102,7 +102,8 @@ enum OperationFlag : uint8_t {
     X(PNoise, -1, kFoldable, "pnoise(p, period)")                                  \
     X(CellNoise, -1, kFoldable | kJumps, "cellnoise(p)")                           \
     X(Texture, -1, kPointwiseSlope, "texture(name, s, t)")                         \
-    X(Light, -1, 0, "the L and Cl of a light (illuminance)")
+    X(Light, -1, 0, "the L and Cl of a light (illuminance)")                       \
+    X(Trace, -1, 0, "trace(P, R)")
 
 enum class Operation : uint8_t {
     None,  // not an operation: LoadK, Move, Ext
@@ -132,74 +133,75 @@ constexpr const OperationInfo& Info(Operation f) { return kOperationInfo[static_
 constexpr bool Has(Operation f, OperationFlag flag) { return (Info(f).flags & flag) != 0; }
 
 //  X(name, number, format, operation, meaning)
-#define AFFRAY_OPCODES(X)                                                                            \
-    X(LoadK, 0, "wk-", None, "R[A] := K[B]")                                                         \
-    X(Move, 1, "wr-", None, "R[A] := R[B]")                                                          \
-    X(Neg, 2, "wr-", Neg, "R[A] := -R[B]")                                                           \
-    X(AddRR, 3, "wrr", Add, "R[A] := R[B] + R[C]")                                                   \
-    X(AddRK, 4, "wrk", Add, "R[A] := R[B] + K[C]")                                                   \
-    X(SubRR, 5, "wrr", Sub, "R[A] := R[B] - R[C]")                                                   \
-    X(SubRK, 6, "wrk", Sub, "R[A] := R[B] - K[C]")                                                   \
-    X(SubKR, 7, "wkr", Sub, "R[A] := K[B] - R[C]")                                                   \
-    X(MulRR, 8, "wrr", Mul, "R[A] := R[B] * R[C]")                                                   \
-    X(MulRK, 9, "wrk", Mul, "R[A] := R[B] * K[C]")                                                   \
-    X(DivRR, 10, "wrr", Div, "R[A] := R[B] / R[C]")                                                  \
-    X(DivRK, 11, "wrk", Div, "R[A] := R[B] / K[C]")                                                  \
-    X(DivKR, 12, "wkr", Div, "R[A] := K[B] / R[C]")                                                  \
-    X(Sqr, 13, "wr-", Sqr, "R[A] := R[B] * R[B]  (one operand: bounds stay correlated)")             \
-    X(Sqrt, 14, "wr-", Sqrt, "R[A] := sqrt(R[B])")                                                   \
-    X(Exp, 15, "wr-", Exp, "R[A] := exp(R[B])")                                                      \
-    X(Log, 16, "wr-", Log, "R[A] := log(R[B])  (natural)")                                           \
-    X(Sin, 17, "wr-", Sin, "R[A] := sin(R[B])")                                                      \
-    X(Cos, 18, "wr-", Cos, "R[A] := cos(R[B])")                                                      \
-    X(Abs, 19, "wr-", Abs, "R[A] := |R[B]|")                                                         \
-    X(Sign, 20, "wr-", Sign, "R[A] := sign(R[B])  (-1, 0 or 1)")                                     \
-    X(PowRR, 21, "wrr", Pow, "R[A] := pow(R[B], R[C])")                                              \
-    X(PowRK, 22, "wrk", Pow, "R[A] := pow(R[B], K[C])")                                              \
-    X(DerivU, 23, "wr-", DerivU, "R[A] := d R[B] / du  (needs a number type with derivatives)")      \
-    X(DerivV, 24, "wr-", DerivV, "R[A] := d R[B] / dv")                                              \
-    X(Floor, 25, "wr-", Floor, "R[A] := floor(R[B])")                                                \
-    X(Ceil, 26, "wr-", Ceil, "R[A] := ceil(R[B])")                                                   \
-    X(Round, 27, "wr-", Round, "R[A] := round(R[B])  (halves away from 0)")                          \
-    X(Asin, 28, "wr-", Asin, "R[A] := asin(R[B])")                                                   \
-    X(Acos, 29, "wr-", Acos, "R[A] := acos(R[B])")                                                   \
-    X(Atan, 30, "wr-", Atan, "R[A] := atan(R[B])")                                                   \
-    X(Not, 31, "wr-", Not, "R[A] := R[B] == 0")                                                      \
-    X(Atan2RR, 32, "wrr", Atan2, "R[A] := atan2(R[B], R[C])  (y, x)")                                \
-    X(MinRR, 33, "wrr", Min, "R[A] := min(R[B], R[C])")                                              \
-    X(MinRK, 34, "wrk", Min, "R[A] := min(R[B], K[C])")                                              \
-    X(MaxRR, 35, "wrr", Max, "R[A] := max(R[B], R[C])")                                              \
-    X(MaxRK, 36, "wrk", Max, "R[A] := max(R[B], K[C])")                                              \
-    X(LtRR, 37, "wrr", Lt, "R[A] := R[B] < R[C]")                                                    \
-    X(LtRK, 38, "wrk", Lt, "R[A] := R[B] < K[C]")                                                    \
-    X(LtKR, 39, "wkr", Lt, "R[A] := K[B] < R[C]")                                                    \
-    X(LeRR, 40, "wrr", Le, "R[A] := R[B] <= R[C]")                                                   \
-    X(LeRK, 41, "wrk", Le, "R[A] := R[B] <= K[C]")                                                   \
-    X(LeKR, 42, "wkr", Le, "R[A] := K[B] <= R[C]")                                                   \
-    X(EqRR, 43, "wrr", Eq, "R[A] := R[B] == R[C]")                                                   \
-    X(EqRK, 44, "wrk", Eq, "R[A] := R[B] == K[C]")                                                   \
-    X(NeRR, 45, "wrr", Ne, "R[A] := R[B] != R[C]")                                                   \
-    X(NeRK, 46, "wrk", Ne, "R[A] := R[B] != K[C]")                                                   \
-    X(AndRR, 47, "wrr", And, "R[A] := R[B] != 0 && R[C] != 0")                                       \
-    X(OrRR, 48, "wrr", Or, "R[A] := R[B] != 0 || R[C] != 0")                                         \
-    X(Select, 49, "wrrr--", Select, "R[A] := R[B] != 0 ? R[C] : R[D]  (undecided: a bound of both)") \
-    X(Ext, 50, "---", None, "further operands of the instruction before; never runs on its own")     \
-    X(Noise1, 51, "wr-", Noise, "R[A] := noise(R[B]), channel = flags")                              \
-    X(Noise2, 52, "wrr", Noise, "R[A] := noise(R[B], R[C])")                                         \
-    X(Noise3, 53, "wrrr--", Noise, "R[A] := noise(R[B], R[C], R[D])")                                \
-    X(Noise4, 54, "wrrrr-", Noise, "R[A] := noise(R[B], R[C], R[D], R[E])")                          \
-    X(PNoise1, 55, "wrr", PNoise, "R[A] := pnoise(x; period), operands x then period")               \
-    X(PNoise2, 56, "wrrrr-", PNoise, "R[A] := pnoise(x, y; periods)")                                \
-    X(PNoise3, 57, "wrrrrrr--", PNoise, "R[A] := pnoise(x, y, z; periods)")                          \
-    X(PNoise4, 58, "wrrrrrrrr", PNoise, "R[A] := pnoise(x, y, z, w; periods)")                       \
-    X(CellNoise1, 59, "wr-", CellNoise, "R[A] := cellnoise(R[B]), channel = flags")                  \
-    X(CellNoise2, 60, "wrr", CellNoise, "R[A] := cellnoise(R[B], R[C])")                             \
-    X(CellNoise3, 61, "wrrr--", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D])")                    \
-    X(CellNoise4, 62, "wrrrr-", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D], R[E])")              \
-    X(Tan, 63, "wr-", Tan, "R[A] := tan(R[B])")                                                      \
-    X(Texture2, 64, "wrr", Texture, "R[A] := texture(slot flags; s = R[B], t = R[C])")               \
-    X(Texture8, 65, "wrrrrrrrr", Texture, "R[A] := texture(slot flags; corners s1, t1 ... s4, t4)")  \
-    X(Light, 66, "wrr", Light, "R[A] := component R[C] of light slot flags; R[B] != 0: shadows wanted")
+#define AFFRAY_OPCODES(X)                                                                               \
+    X(LoadK, 0, "wk-", None, "R[A] := K[B]")                                                            \
+    X(Move, 1, "wr-", None, "R[A] := R[B]")                                                             \
+    X(Neg, 2, "wr-", Neg, "R[A] := -R[B]")                                                              \
+    X(AddRR, 3, "wrr", Add, "R[A] := R[B] + R[C]")                                                      \
+    X(AddRK, 4, "wrk", Add, "R[A] := R[B] + K[C]")                                                      \
+    X(SubRR, 5, "wrr", Sub, "R[A] := R[B] - R[C]")                                                      \
+    X(SubRK, 6, "wrk", Sub, "R[A] := R[B] - K[C]")                                                      \
+    X(SubKR, 7, "wkr", Sub, "R[A] := K[B] - R[C]")                                                      \
+    X(MulRR, 8, "wrr", Mul, "R[A] := R[B] * R[C]")                                                      \
+    X(MulRK, 9, "wrk", Mul, "R[A] := R[B] * K[C]")                                                      \
+    X(DivRR, 10, "wrr", Div, "R[A] := R[B] / R[C]")                                                     \
+    X(DivRK, 11, "wrk", Div, "R[A] := R[B] / K[C]")                                                     \
+    X(DivKR, 12, "wkr", Div, "R[A] := K[B] / R[C]")                                                     \
+    X(Sqr, 13, "wr-", Sqr, "R[A] := R[B] * R[B]  (one operand: bounds stay correlated)")                \
+    X(Sqrt, 14, "wr-", Sqrt, "R[A] := sqrt(R[B])")                                                      \
+    X(Exp, 15, "wr-", Exp, "R[A] := exp(R[B])")                                                         \
+    X(Log, 16, "wr-", Log, "R[A] := log(R[B])  (natural)")                                              \
+    X(Sin, 17, "wr-", Sin, "R[A] := sin(R[B])")                                                         \
+    X(Cos, 18, "wr-", Cos, "R[A] := cos(R[B])")                                                         \
+    X(Abs, 19, "wr-", Abs, "R[A] := |R[B]|")                                                            \
+    X(Sign, 20, "wr-", Sign, "R[A] := sign(R[B])  (-1, 0 or 1)")                                        \
+    X(PowRR, 21, "wrr", Pow, "R[A] := pow(R[B], R[C])")                                                 \
+    X(PowRK, 22, "wrk", Pow, "R[A] := pow(R[B], K[C])")                                                 \
+    X(DerivU, 23, "wr-", DerivU, "R[A] := d R[B] / du  (needs a number type with derivatives)")         \
+    X(DerivV, 24, "wr-", DerivV, "R[A] := d R[B] / dv")                                                 \
+    X(Floor, 25, "wr-", Floor, "R[A] := floor(R[B])")                                                   \
+    X(Ceil, 26, "wr-", Ceil, "R[A] := ceil(R[B])")                                                      \
+    X(Round, 27, "wr-", Round, "R[A] := round(R[B])  (halves away from 0)")                             \
+    X(Asin, 28, "wr-", Asin, "R[A] := asin(R[B])")                                                      \
+    X(Acos, 29, "wr-", Acos, "R[A] := acos(R[B])")                                                      \
+    X(Atan, 30, "wr-", Atan, "R[A] := atan(R[B])")                                                      \
+    X(Not, 31, "wr-", Not, "R[A] := R[B] == 0")                                                         \
+    X(Atan2RR, 32, "wrr", Atan2, "R[A] := atan2(R[B], R[C])  (y, x)")                                   \
+    X(MinRR, 33, "wrr", Min, "R[A] := min(R[B], R[C])")                                                 \
+    X(MinRK, 34, "wrk", Min, "R[A] := min(R[B], K[C])")                                                 \
+    X(MaxRR, 35, "wrr", Max, "R[A] := max(R[B], R[C])")                                                 \
+    X(MaxRK, 36, "wrk", Max, "R[A] := max(R[B], K[C])")                                                 \
+    X(LtRR, 37, "wrr", Lt, "R[A] := R[B] < R[C]")                                                       \
+    X(LtRK, 38, "wrk", Lt, "R[A] := R[B] < K[C]")                                                       \
+    X(LtKR, 39, "wkr", Lt, "R[A] := K[B] < R[C]")                                                       \
+    X(LeRR, 40, "wrr", Le, "R[A] := R[B] <= R[C]")                                                      \
+    X(LeRK, 41, "wrk", Le, "R[A] := R[B] <= K[C]")                                                      \
+    X(LeKR, 42, "wkr", Le, "R[A] := K[B] <= R[C]")                                                      \
+    X(EqRR, 43, "wrr", Eq, "R[A] := R[B] == R[C]")                                                      \
+    X(EqRK, 44, "wrk", Eq, "R[A] := R[B] == K[C]")                                                      \
+    X(NeRR, 45, "wrr", Ne, "R[A] := R[B] != R[C]")                                                      \
+    X(NeRK, 46, "wrk", Ne, "R[A] := R[B] != K[C]")                                                      \
+    X(AndRR, 47, "wrr", And, "R[A] := R[B] != 0 && R[C] != 0")                                          \
+    X(OrRR, 48, "wrr", Or, "R[A] := R[B] != 0 || R[C] != 0")                                            \
+    X(Select, 49, "wrrr--", Select, "R[A] := R[B] != 0 ? R[C] : R[D]  (undecided: a bound of both)")    \
+    X(Ext, 50, "---", None, "further operands of the instruction before; never runs on its own")        \
+    X(Noise1, 51, "wr-", Noise, "R[A] := noise(R[B]), channel = flags")                                 \
+    X(Noise2, 52, "wrr", Noise, "R[A] := noise(R[B], R[C])")                                            \
+    X(Noise3, 53, "wrrr--", Noise, "R[A] := noise(R[B], R[C], R[D])")                                   \
+    X(Noise4, 54, "wrrrr-", Noise, "R[A] := noise(R[B], R[C], R[D], R[E])")                             \
+    X(PNoise1, 55, "wrr", PNoise, "R[A] := pnoise(x; period), operands x then period")                  \
+    X(PNoise2, 56, "wrrrr-", PNoise, "R[A] := pnoise(x, y; periods)")                                   \
+    X(PNoise3, 57, "wrrrrrr--", PNoise, "R[A] := pnoise(x, y, z; periods)")                             \
+    X(PNoise4, 58, "wrrrrrrrr", PNoise, "R[A] := pnoise(x, y, z, w; periods)")                          \
+    X(CellNoise1, 59, "wr-", CellNoise, "R[A] := cellnoise(R[B]), channel = flags")                     \
+    X(CellNoise2, 60, "wrr", CellNoise, "R[A] := cellnoise(R[B], R[C])")                                \
+    X(CellNoise3, 61, "wrrr--", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D])")                       \
+    X(CellNoise4, 62, "wrrrr-", CellNoise, "R[A] := cellnoise(R[B], R[C], R[D], R[E])")                 \
+    X(Tan, 63, "wr-", Tan, "R[A] := tan(R[B])")                                                         \
+    X(Texture2, 64, "wrr", Texture, "R[A] := texture(slot flags; s = R[B], t = R[C])")                  \
+    X(Texture8, 65, "wrrrrrrrr", Texture, "R[A] := texture(slot flags; corners s1, t1 ... s4, t4)")     \
+    X(Light, 66, "wrr", Light, "R[A] := component R[C] of light slot flags; R[B] != 0: shadows wanted") \
+    X(Trace, 67, "wrrr--", Trace, "R[A] := channel flags of the colour seen along (R[B], R[C], R[D])")
 
 enum class Op : uint8_t {
 #define AFFRAY_OP_ENUM(name, number, format, operation, meaning) name = number,

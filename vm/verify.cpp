@@ -53,7 +53,8 @@ bool Verify(const Program& program, std::string* error, bool lights) {
             if (program.code[pc + w].op != Op::Ext) return Fail(error, where + "its operand words are missing");
         if (OperationOf(in.op) == Operation::Texture && (!program.textures || in.flags >= program.textures->size()))
             return Fail(error, where + "texture slot " + std::to_string(in.flags) + " out of range");
-        if (in.op == Op::Light && !lights) return Fail(error, where + "a light query outside a surface program");
+        if ((in.op == Op::Light || in.op == Op::Trace) && !lights)
+            return Fail(error, where + "a light query outside a surface program");
         // Reads first, then the write: an instruction may overwrite one of its own operands.
         for (int i = 0; format[i]; ++i) {
             uint16_t x = OperandOf(&in, i);

@@ -27,6 +27,7 @@ struct FakeLights final : vm::LightQueries {
     std::vector<int> shadowWanted;  // per slot: colour queries with shadows wanted
     std::vector<int> asked;         // per slot: queries of any kind
 
+    double Trace(const double direction[3], int channel) override { return direction[channel] * 0.5; }
     double Light(int slot, int component, bool shadowed) override {
         if (slot == vm::kAmbientSlot) return component < 3 ? 0.0 : ambient[component - 3];
         REQUIRE(slot >= 0);

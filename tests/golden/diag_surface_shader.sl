@@ -10,5 +10,6 @@ surface t(float Kd = 1) {
         C += Cl;
     illuminance (1, N, PI / 2)
         C += Cl;
-    Ci = Kd * C + trace(P, N) + environment("sky.tx", N);
+    float k = 0;
+    Ci = Kd * C * lightsource("intensity", k) + environment("sky.tx", N);
 }

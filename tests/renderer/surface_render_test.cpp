@@ -114,12 +114,14 @@ WorldEnd
     CHECK(centre("-key") == glm::dvec3(0, 0, 1));
 }
 
-TEST_CASE("surface render: a shader's derivatives, its own opacity, and values that are not finite", "[renderer][surface]") {
+TEST_CASE("surface render: a shader's derivatives, its own opacity, and values that are not finite",
+          "[renderer][surface]") {
     test::TempDir dir;
     // s and t run along u and v over a lone patch: Du(s) = Dv(t) = 1 (the dual VM's derivatives).
     dir.Write("slopes.sl", "surface slopes() { Ci = color(Du(s), Dv(t), Du(t)); Oi = 1; }\n");
     dir.Write("veil.sl", "surface veil() { Oi = 0.25; Ci = Oi * color(1, 1, 0); }\n");
-    dir.Write("broken.sl", "surface broken() { float zero = u - u; Ci = color(zero / zero, 1 / zero, 0.5); Oi = 1; }\n");
+    dir.Write("broken.sl",
+              "surface broken() { float zero = u - u; Ci = color(zero / zero, 1 / zero, 0.5); Oi = 1; }\n");
     const std::string rib = R"(Format 8 8 1
 Projection "perspective" "fov" [30]
 Translate 0 0 5
@@ -143,4 +145,45 @@ WorldEnd
     const image::ImageBuffer veil = render("veil");
     CHECK(Pixel(veil, 4, 4) == glm::dvec3(0.25, 0.25, 0.0));
     CHECK(veil.rgba[(4 * 8 + 4) * 4 + 3] == Approx(0.25));
+}
+
+TEST_CASE("surface render: trace() sees the surface along a ray, shaded, to a depth limit", "[renderer][surface]") {
+    test::TempDir dir;
+    // A mirror facing the camera reflects a red wall behind it (which the camera does not see).
+    dir.Write("mirror.sl", "surface mirror(float Kr = 1) { Oi = 1; Ci = Kr * trace(P, reflect(I, normalize(N))); }\n");
+    dir.Write("flat.sl", "surface flat() { Oi = 1; Ci = Cs; }\n");
+    const std::string rib = R"(Format 16 16 1
+Projection "perspective" "fov" [30]
+WorldBegin
+  Surface "mirror" "Kr" [0.5]
+  Patch "bilinear" "P" [-5 -5 3  5 -5 3  -5 5 3  5 5 3]
+  Color [1 0 0]
+  Surface "flat"
+  Patch "bilinear" "P" [-20 -20 -2  20 -20 -2  -20 20 -2  20 20 -2]
+WorldEnd
+)";
+    const image::ImageBuffer image = test::RenderText(rib, std::vector<std::string>{dir.Path("")});
+    for (const auto& [x, y] : {std::pair{8, 8}, std::pair{1, 1}, std::pair{14, 3}}) {
+        const glm::dvec3 c = Pixel(image, x, y);
+        INFO(x << " " << y << ": " << c.x << " " << c.y << " " << c.z);
+        CHECK(c.x == Approx(0.5).margin(1e-6));
+        CHECK(c.y == 0);
+        CHECK(c.z == 0);
+    }
+    // Without the wall the mirror sees nothing: black.
+    std::string open = rib;
+    open.replace(open.find("  Color [1 0 0]"), open.find("WorldEnd") - open.find("  Color [1 0 0]"), "");
+    CHECK(Pixel(test::RenderText(open, std::vector<std::string>{dir.Path("")}), 8, 8) == glm::dvec3(0.0));
+    // Two mirrors facing each other: each trace goes one level deeper, until the limit.
+    const std::string hall = R"(Format 8 8 1
+Projection "perspective" "fov" [20]
+Translate 0 0 -1
+WorldBegin
+  Surface "mirror" "Kr" [0.5]
+  Patch "bilinear" "P" [-5 -5 0  5 -5 0  -5 5 0  5 5 0]
+  Patch "bilinear" "P" [-5 -5 -2  5 -5 -2  -5 5 -2  5 5 -2]
+WorldEnd
+)";
+    const image::ImageBuffer mirrors = test::RenderText(hall, std::vector<std::string>{dir.Path("")});
+    CHECK(Pixel(mirrors, 4, 4) == glm::dvec3(0.0));  // black all the way down, and it ends
 }

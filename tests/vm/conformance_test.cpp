@@ -1,8 +1,8 @@
 // tests/vm/conformance_test.cpp: the opcode conformance suite (issue 14, item 4). It iterates the
 // opcode list itself (vm/opcodes.h), so an opcode added later without a sample here does not
 // compile: SampleFor's switch names every opcode (-Wswitch under -Werror), and a static_assert
-// checks that every opcode but Ext and Light has a sample whose operand count is its format's
-// (Light is no arithmetic: the renderer answers it, tests/vm/lights_test.cpp).
+// checks that every opcode but Ext, Light and Trace has a sample whose operand count is its
+// format's (Light and Trace are no arithmetic: the renderer answers them, tests/renderer/).
 // A sample builds a one-instruction program from the opcode's format (registers, constants, Ext
 // words), names the scalar reference (written here from the meaning strings and vm/numbers/number.h, not
 // taken from the VM; the noise functions have no independent definition, so they compare with
@@ -411,7 +411,8 @@ constexpr Sample SampleFor(Op op) {
         case Op::OrRR: return Make(ref::Or, 2, truths, truths).asTruth().withKink(kink::EitherAtZero);
         case Op::Select: return Make(ref::Select, 3, truths, small, small).withKink(kink::AtZero);
         case Op::Ext:
-        case Op::Light: return Sample();
+        case Op::Light:
+        case Op::Trace: return Sample();
         // (Radii up to 10, 5, 4 and 4 cells: some regions touch more than kNoiseCellCap cells and
         // take the cell-independent bound.)
         case Op::Noise1: return NoiseSample(ref::Noise<1>, 1, 0, 10);
@@ -443,7 +444,7 @@ constexpr int OperandCount(const char* format) {
 constexpr bool EveryOpcodeHasASample() {
     for (int i = 0; i < vm::kOpCount; ++i) {
         const Op op = static_cast<Op>(i);
-        if (op == Op::Ext || op == Op::Light) continue;
+        if (op == Op::Ext || op == Op::Light || op == Op::Trace) continue;
         const Sample s = SampleFor(op);
         // (Not s.ref == nullptr: GCC with sanitizers cannot fold the address of a template
         // instance, ref::Noise<1>, in a constant expression. Every maker sets ref.)
@@ -452,8 +453,9 @@ constexpr bool EveryOpcodeHasASample() {
     }
     return true;
 }
-static_assert(EveryOpcodeHasASample(),
-              "every opcode but Ext and Light needs a sample in SampleFor, with as many operands as its format reads");
+static_assert(
+    EveryOpcodeHasASample(),
+    "every opcode but Ext, Light and Trace needs a sample in SampleFor, with as many operands as its format reads");
 
 // ---------------------------------------------------------------------------------------------
 // Operands: forms over the region's symbols, exact at the points drawn.
@@ -1198,14 +1200,14 @@ std::string Summary(Op op, const Report& rep) {
 
 }  // namespace
 
-TEST_CASE("conformance: every opcode but Ext and Light has a sample", "[conformance]") {
+TEST_CASE("conformance: every opcode but Ext, Light and Trace has a sample", "[conformance]") {
     // (The static_assert above already guarantees it; this lists the samples for the record.)
     int sampled = 0;
     for (int i = 0; i < vm::kOpCount; ++i) {
         const Op op = static_cast<Op>(i);
         const Sample s = SampleFor(op);
         INFO(vm::kOpInfo[i].name << " " << vm::kOpInfo[i].format);
-        if (op == Op::Ext || op == Op::Light) {
+        if (op == Op::Ext || op == Op::Light || op == Op::Trace) {
             CHECK(s.kind == Kind::None);
             continue;
         }
@@ -1213,18 +1215,18 @@ TEST_CASE("conformance: every opcode but Ext and Light has a sample", "[conforma
         CHECK(s.arity == OperandCount(vm::kOpInfo[i].format));
         ++sampled;
     }
-    CHECK(sampled == vm::kOpCount - 2);
+    CHECK(sampled == vm::kOpCount - 3);
 }
 
 namespace {
 
-/// Runs check(op, rep) under T for every opcode but Ext and Light, and requires no failures;
+/// Runs check(op, rep) under T for every opcode but Ext, Light and Trace, and requires no failures;
 /// harness(op, rep) checks more of the report (of the harness itself).
 template <class T, class Check, class Harness>
 void EveryOpcode(Check check, Harness harness) {
     for (int i = 0; i < vm::kOpCount; ++i) {
         const Op op = static_cast<Op>(i);
-        if (op == Op::Ext || op == Op::Light) continue;
+        if (op == Op::Ext || op == Op::Light || op == Op::Trace) continue;
         Report rep;
         check(op, rep);
         INFO(vm::NumberTraits<T>::kName << " " << Summary(op, rep));
@@ -1458,7 +1460,7 @@ TEST_CASE("conformance: the verifier over every opcode value, and what it accept
         // A light query is allowed only in a surface program (Verify's `lights`).
         const bool lights = rng.chance(0.5);
         for (size_t pc = 0; pc < p.code.size(); ++pc)
-            if (p.code[pc].op == Op::Light && !lights) valid = false;
+            if ((p.code[pc].op == Op::Light || p.code[pc].op == Op::Trace) && !lights) valid = false;
         std::string error;
         const bool ok = vm::Verify(p, &error, lights);
         if (!ok) {

@@ -63,11 +63,14 @@ TEST_CASE("opcode table: the constant forms derived from the table", "[vm][opcod
 /// The operands opcode `op` takes, read from its operation's RSL spelling in vm/opcodes.h ("pow(x,
 /// y)": x and y; "c ? x : y": three) or, for noise, pnoise and cellnoise, from the dimension that
 /// ends the opcode's name (pnoise takes a period per dimension too); for texture, the count that
-/// ends its name (s and t, or the four corners' s and t).
+/// ends its name (s and t, or the four corners' s and t); for the renderer's queries (Light,
+/// Trace), their operands as vm/lights.h describes them.
 int SpelledOperands(vm::Op op) {
     const vm::Operation f = vm::OperationOf(op);
     const std::string name = vm::Info(op).name;
     if (f == vm::Operation::Texture) return name.back() - '0';
+    if (f == vm::Operation::Light) return 2;  // whether shadows are wanted, and the component
+    if (f == vm::Operation::Trace) return 3;  // trace(P, R): the three components of R
     if (f == vm::Operation::Noise || f == vm::Operation::PNoise || f == vm::Operation::CellNoise) {
         const int dims = name.back() - '0';
         return f == vm::Operation::PNoise ? 2 * dims : dims;
