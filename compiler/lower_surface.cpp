@@ -360,17 +360,23 @@ std::vector<int> Lowerer::LightSlots(const std::string& category) {
     return slots;
 }
 
-void Lowerer::LowerIlluminance(const lang::Stmt& s) {
-    const lang::Expr& call = *s.expr;
+std::vector<Value> Lowerer::LowerLoopArguments(const lang::Expr& call, bool* ok) {
     m_line = call.loc.line;
     m_ops.SetLine(m_line);
     std::vector<Value> args;
-    bool ok = true;
+    *ok = true;
     for (const lang::ExprPtr& a : call.args) {
         std::optional<Value> v = LowerExpr(*a);
-        if (!v) ok = false;
+        if (!v) *ok = false;
         args.push_back(v ? *v : m_ops.Constant(0.0));
     }
+    return args;
+}
+
+void Lowerer::LowerIlluminance(const lang::Stmt& s) {
+    const lang::Expr& call = *s.expr;
+    bool ok = true;
+    std::vector<Value> args = LowerLoopArguments(call, &ok);
     // illuminance ([string category,] point position [, vector axis, float angle]) body
     std::string category;
     size_t first = 0;
@@ -497,15 +503,8 @@ bool Lowerer::IsUnit(const Value& v) const {
 void Lowerer::LowerIlluminate(const lang::Stmt& s) {
     const lang::Expr& call = *s.expr;
     const bool solar = call.name == "solar";
-    m_line = call.loc.line;
-    m_ops.SetLine(m_line);
-    std::vector<Value> args;
     bool ok = true;
-    for (const lang::ExprPtr& a : call.args) {
-        std::optional<Value> v = LowerExpr(*a);
-        if (!v) ok = false;
-        args.push_back(v ? *v : m_ops.Constant(0.0));
-    }
+    const std::vector<Value> args = LowerLoopArguments(call, &ok);
     // illuminate (point from [, vector axis, float angle]); solar (vector axis, float angle).
     const size_t n = args.size();
     if (ok && (solar ? n != 2 : n != 1 && n != 3)) {

@@ -173,6 +173,8 @@ class Lowerer {
     /// lies within the cone (always for solar: the cone is the lit surface's to test), and the
     /// shader's `lit` output set there.
     void LowerIlluminate(const lang::Stmt& s);
+    /// The arguments of a light loop's call, each lowered (0 after an error, *ok then false).
+    std::vector<Value> LowerLoopArguments(const lang::Expr& call, bool* ok);
     /// Where an illuminate or solar statement has run (a light shader's `lit`).
     ValueId m_lit = kNoValue;
     lang::ShaderKind m_kind = lang::ShaderKind::Displacement;

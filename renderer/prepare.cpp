@@ -83,6 +83,16 @@ std::string OverridesOf(const ShaderRef& ref, std::vector<compiler::ParamOverrid
     return {};
 }
 
+/// Why the compilation `result` of a shader the scene names as a `want` shader cannot render
+/// it: "" if it can.
+std::string UnusableBecause(const compiler::CompileResult& result, lang::ShaderKind want) {
+    if (result.ok() && result.shader->kind != want)
+        return "it is a " + std::string(lang::ToString(result.shader->kind)) + " shader";
+    if (!result.paramErrors.empty()) return result.paramErrors.front();
+    if (!result.ok()) return "it does not compile";
+    return {};
+}
+
 /// The largest magnitude a bound of P may reach for the intersector to measure it: the ray-frame
 /// test squares widths, which overflow past about 1e154.
 constexpr double kMeasurableLimit = 1e150;
@@ -400,6 +410,15 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
         std::lock_guard<std::mutex> lock(m_warnedMutex);
         if (m_warned.insert(sentence).second) report->warning(at, sentence);
     };
+    // A surface or light shader's diagnostics, its errors as warnings (the render goes on
+    // without it), each once over the run.
+    auto warnDiagnostics = [&](const diag::Report& diagnostics) {
+        for (diag::Diagnostic d : diagnostics.all()) {
+            d.severity = diag::Severity::Warning;
+            std::lock_guard<std::mutex> lock(m_warnedMutex);
+            if (report && m_warned.insert(diag::Format(d)).second) report->add(d);
+        }
+    };
     // The surface shader of `attributes` (its Surface request `ref`) lit by the lights `key`
     // (indices into desc.lights; the scene's default light if it has none), or null where the
     // built-in model renders it: the shader is not found (a warning for names affray has no
@@ -434,17 +453,8 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
         if (problem.empty()) {
             result = cache.Load(path, overrides, preprocess, &spaces, &facts);
             // The shader's warnings as they are, its errors as warnings: the render goes on.
-            for (diag::Diagnostic d : result.diagnostics.all()) {
-                d.severity = diag::Severity::Warning;
-                std::lock_guard<std::mutex> lock(m_warnedMutex);
-                if (report && m_warned.insert(diag::Format(d)).second) report->add(d);
-            }
-            if (result.ok() && result.shader->kind != lang::ShaderKind::Surface)
-                problem = "it is a " + std::string(lang::ToString(result.shader->kind)) + " shader";
-            else if (!result.paramErrors.empty())
-                problem = result.paramErrors.front();
-            else if (!result.ok())
-                problem = "it does not compile";
+            warnDiagnostics(result.diagnostics);
+            problem = UnusableBecause(result, lang::ShaderKind::Surface);
         }
         if (!problem.empty()) {
             warnOnce("surface shader '" + ref.name + "' in " + path + " cannot be used (" + problem + "); using " +
@@ -525,11 +535,7 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
         compiler::CompileResult result;
         auto compile = [&] {
             result = cache.Load(path, overrides, preprocess, &spaces, &facts);
-            for (diag::Diagnostic d : result.diagnostics.all()) {
-                d.severity = diag::Severity::Warning;
-                std::lock_guard<std::mutex> lock(m_warnedMutex);
-                if (report && m_warned.insert(diag::Format(d)).second) report->add(d);
-            }
+            warnDiagnostics(result.diagnostics);
         };
         if (problem.empty()) compile();
         if (problem.empty() && result.ok() && result.shader->kind == lang::ShaderKind::Light) {
@@ -550,14 +556,7 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
             }
             if (mapped) compile();
         }
-        if (problem.empty()) {
-            if (result.ok() && result.shader->kind != lang::ShaderKind::Light)
-                problem = "it is a " + std::string(lang::ToString(result.shader->kind)) + " shader";
-            else if (!result.paramErrors.empty())
-                problem = result.paramErrors.front();
-            else if (!result.ok())
-                problem = "it does not compile";
-        }
+        if (problem.empty()) problem = UnusableBecause(result, lang::ShaderKind::Light);
         if (!problem.empty()) {
             warnOnce("light source '" + ref.name + "' in " + path + " cannot be used (" + problem + "); " + fallback);
             continue;
