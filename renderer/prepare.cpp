@@ -423,6 +423,7 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
     // (indices into desc.lights; the scene's default light if it has none), or null where the
     // built-in model renders it: the shader is not found (a warning for names affray has no
     // model of), or does not compile (its errors are warnings, then the model renders it).
+    bool defaultLights = false;  // set once the light shaders are compiled (below)
     auto surfaceOf = [&](const PrimitiveAttributes& attrs, const ShaderRef& ref,
                          const std::vector<int>& key) -> std::shared_ptr<const compiler::CompiledShader> {
         const bool builtIn =
@@ -444,7 +445,7 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
         std::vector<compiler::ParamOverride> overrides;
         std::string problem = OverridesOf(ref, &overrides);
         compiler::SceneFacts facts = FactsOf(desc, attrs);
-        if (desc.lights.empty()) facts.lightCategories = {""};  // the default key light (below)
+        if (defaultLights) facts.lightCategories = {""};  // the default key light (below)
         for (int light : key)
             if (RoleOf(desc.lights[size_t(light)]) == LightRole::Lit)
                 facts.lightCategories.push_back(CategoryOf(desc.lights[size_t(light)]));
@@ -565,6 +566,11 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
         light.program = result.shader;
     }
 
+    // A scene with no light that gives light (none, or only light shaders that were not found)
+    // gets affray's default lights (below), as a scene without lights always has.
+    defaultLights = std::none_of(desc.lights.begin(), desc.lights.end(),
+                                 [](const LightDesc& l) { return RoleOf(l) != LightRole::None; });
+
     size_t elements = 0;
     for (const PrimitiveDesc& p : desc.primitives) elements += p.elements;
     out->primitives.reserve(elements);
@@ -662,8 +668,9 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
     out->lightSets.resize(lightSetKeys.size());
     for (const auto& [key, index] : lightSetKeys)
         for (int light : key) out->lightSets[static_cast<size_t>(index)].push_back(desc.lights[size_t(light)]);
-    if (out->lights.empty()) {
-        // No lights: a key light from behind the camera, and a little ambient, so that something shows.
+    if (defaultLights) {
+        // No lights (none that gives light): a key light from behind the camera, and a little
+        // ambient, so that something shows.
         glm::dmat4 cameraToWorld = glm::inverse(desc.camera.worldToCamera);
         glm::dvec3 eye = glm::dvec3(cameraToWorld * glm::dvec4(0, 0, 0, 1));
         glm::dvec3 forward = glm::dvec3(cameraToWorld * glm::dvec4(0, 0, 1, 0));

@@ -187,3 +187,22 @@ WorldEnd
     const image::ImageBuffer mirrors = test::RenderText(hall, std::vector<std::string>{dir.Path("")});
     CHECK(Pixel(mirrors, 4, 4) == glm::dvec3(0.0));  // black all the way down, and it ends
 }
+
+TEST_CASE("surface render: a scene whose only lights are not found is lit as a scene without lights",
+          "[renderer][surface]") {
+    // An exported scene's own light shaders that this machine lacks: they give no light, and the
+    // scene gets affray's default key and ambient lights, as a scene without lights does.
+    const std::string unlit = R"(Format 16 12 1
+Projection "perspective" "fov" [40]
+Translate 0 0 5
+WorldBegin
+  Surface "plastic"
+  Sphere 1 -1 1 360
+WorldEnd
+)";
+    std::string missing = unlit;
+    missing.replace(missing.find("  Surface"), 0, "  LightSource \"nosuchlight\" 1 \"intensity\" [3]\n");
+    const image::ImageBuffer a = test::RenderText(unlit), b = test::RenderText(missing);
+    CHECK(test::RgbRmse(a, b) == 0.0);
+    CHECK(Pixel(b, 8, 6).x > 0.1);  // lit
+}
