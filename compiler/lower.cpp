@@ -478,13 +478,8 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
         auto global = static_cast<vm::Global>(g);
         Variable var;
         std::string name = vm::GlobalName(global);
-        const bool colour = name == "Cs" || name == "Os";
-        if ((colour && !IsSurface()) || (name == "Ps" && !IsLight())) continue;
-        var.type = vm::GlobalSize(global) == 1                  ? Type::Float
-                   : colour                                     ? Type::Color
-                   : name == "N" || name == "Ng"                ? Type::Normal
-                   : name == "P" || name == "E" || name == "Ps" ? Type::Point
-                                                                : Type::Vector;
+        if (!KindHasGlobal(m_kind, name)) continue;
+        var.type = GlobalType(name, vm::GlobalSize(global));
         var.isGlobal = true;
         var.assigned = true;
         var.writable = name == "P" || name == "N";
@@ -507,7 +502,7 @@ bool Lowerer::Run(const lang::ShaderDef& shader, const std::vector<std::shared_p
         // Ol; it has no surface of its own to colour (Cs, Os, Ci, Oi are not its).
         for (const SurfaceGlobal& g : kSurfaceGlobals) {
             const std::string name = g.name;
-            if (name != "L" && name != "Cl" && name != "Ol") continue;
+            if (!KindHasGlobal(m_kind, name)) continue;
             Variable var;
             var.type = g.type;
             var.value = m_ops.Promote(m_ops.Constant(0.0), g.type);

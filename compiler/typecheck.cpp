@@ -3,6 +3,8 @@
 // taken as the float 1 or 0 in arithmetic (as in C) but not as a triple's component.
 #include "compiler/typecheck.h"
 
+#include <algorithm>
+#include <iterator>
 #include <map>
 
 #include "vm/program.h"
@@ -52,6 +54,25 @@ std::string Article(Type t) {
     std::string name = ToString(t);
     return (name[0] == 'a' || name[0] == 'e' || name[0] == 'i' || name[0] == 'o' || name[0] == 'u' ? "an " : "a ") +
            name;
+}
+
+Type GlobalType(const std::string& name, int size) {
+    for (const SurfaceGlobal& g : kSurfaceGlobals)
+        if (name == g.name) return g.type;
+    return size == 1                                    ? Type::Float
+           : name == "N" || name == "Ng"                ? Type::Normal
+           : name == "P" || name == "E" || name == "Ps" ? Type::Point
+                                                        : Type::Vector;
+}
+
+bool KindHasGlobal(lang::ShaderKind kind, const std::string& name) {
+    const bool surfaceGlobal = std::any_of(std::begin(kSurfaceGlobals), std::end(kSurfaceGlobals),
+                                           [&](const SurfaceGlobal& g) { return name == g.name; });
+    if (name == "L" || name == "Cl" || name == "Ol")
+        return kind == lang::ShaderKind::Surface || kind == lang::ShaderKind::Light;
+    if (surfaceGlobal) return kind == lang::ShaderKind::Surface;
+    if (name == "Ps") return kind == lang::ShaderKind::Light;
+    return true;
 }
 
 Typed NegateType(Type a) {
@@ -192,24 +213,14 @@ class Checker {
         m_functions.emplace_back();
         for (const auto& f : functions) m_functions.back().emplace(f->name, f.get());
         m_scopes.emplace_back();
-        const bool surface = shader.kind == lang::ShaderKind::Surface;
-        const bool light = shader.kind == lang::ShaderKind::Light;
         for (int g = 0; g < vm::kGlobalCount; ++g) {
             const auto global = static_cast<vm::Global>(g);
             const std::string name = vm::GlobalName(global);
-            if ((name == "Cs" || name == "Os") && !surface) continue;  // a surface shader's (below)
-            if (name == "Ps" && !light) continue;                      // a light shader's
-            const Type type = vm::GlobalSize(global) == 1                  ? Type::Float
-                              : name == "N" || name == "Ng"                ? Type::Normal
-                              : name == "P" || name == "E" || name == "Ps" ? Type::Point
-                                                                           : Type::Vector;
-            m_scopes.back()[name] = {type, SymbolKind::Global, -1};
+            if (KindHasGlobal(shader.kind, name))
+                m_scopes.back()[name] = {GlobalType(name, vm::GlobalSize(global)), SymbolKind::Global, -1};
         }
-        for (const SurfaceGlobal& g : kSurfaceGlobals) {
-            const std::string name = g.name;
-            if (surface || (light && (name == "L" || name == "Cl" || name == "Ol")))
-                m_scopes.back()[g.name] = {g.type, SymbolKind::Global, -1};
-        }
+        for (const SurfaceGlobal& g : kSurfaceGlobals)
+            if (KindHasGlobal(shader.kind, g.name)) m_scopes.back()[g.name] = {g.type, SymbolKind::Global, -1};
         // A top-level function sees the globals only (its callers' variables through extern).
         for (const auto& f : functions) Function(*f);
         Push();

@@ -34,6 +34,13 @@ struct Typed {
 /// "a float", "an integer": a type with its indefinite article, for messages.
 std::string Article(Type t);
 
+/// The type of the shader global `name` (a VM global of `size` scalars, vm/program.h, or one
+/// of kSurfaceGlobals), and whether a shader of `kind` has it: Cs and Os and the surface
+/// globals are a surface shader's, Ps and L, Cl, Ol a light shader's, the other VM globals
+/// every shader's.
+Type GlobalType(const std::string& name, int size);
+bool KindHasGlobal(lang::ShaderKind kind, const std::string& name);
+
 /// Unary minus: a float or a triple, negated component by component.
 Typed NegateType(Type a);
 /// A binary operator on operands of types `a` and `b` (a comparison or && || gives Bool).
