@@ -394,16 +394,24 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
         const std::string& file = ref.file.empty() ? desc.path : ref.file;
         return diag::Location(file, ref.line, ref.column, diag::ReadLine(file, ref.line));
     };
-    std::map<std::string, std::string> shaderFiles;  // shader name -> its file ("" if not found)
+    // A shader name's file ("" if not found), looked up once whatever kind of request names it,
+    // and the search path as "not found" messages give it.
+    std::map<std::string, std::string> shaderFiles;
+    auto fileOf = [&](const std::string& name) -> const std::string& {
+        auto [known, added] = shaderFiles.try_emplace(name);
+        if (added) known->second = FindShader(name, searchPath);
+        return known->second;
+    };
+    std::string searched;
+    for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
     // The lights of light set `index` (the indices of its key; every light for set 0).
     auto lightSetKey = [&](int index) {
         for (const auto& [key, i] : lightSetKeys)
             if (i == index) return key;
         return allLights;
     };
-    // Surface shaders: a name's file, looked up once; names warned about, once each.
-    std::map<std::string, std::string> surfaceFiles;
-    std::set<std::string> surfaceWarned;  // names warned about in this scene
+    // Displacement and surface shaders' names warned about in this scene, once each.
+    std::set<std::string> displacementWarned, surfaceWarned;
     // A warning once per sentence over the frames this renderer prepares.
     auto warnRun = [&](const diag::Location& at, const std::string& sentence) {
         if (!report) return;
@@ -428,18 +436,13 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
                          const std::vector<int>& key) -> std::shared_ptr<const compiler::CompiledShader> {
         const bool builtIn =
             ref.name == "matte" || ref.name == "metal" || ref.name == "constant" || ref.name == "plastic";
-        auto [known, added] = surfaceFiles.try_emplace(ref.name);
-        if (added) known->second = FindShader(ref.name, searchPath);
-        const std::string& path = known->second;
+        const std::string& path = fileOf(ref.name);
         auto warnOnce = [&](const std::string& message) {
             if (surfaceWarned.insert(ref.name).second) warnRun(requestAt(ref), message);
         };
         if (path.empty()) {
-            if (!builtIn) {
-                std::string searched;
-                for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
+            if (!builtIn)
                 warnOnce("surface shader '" + ref.name + "' not found (searched " + searched + "); using \"plastic\"");
-            }
             return nullptr;
         }
         std::vector<compiler::ParamOverride> overrides;
@@ -509,24 +512,18 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
     // space as RenderMan maps it (so compiled again when there is one). Not found, or not
     // compiling: the standard light of its name renders it, or for another name no light (one
     // warning per name over the run).
-    std::map<std::string, std::string> lightFiles;
     std::set<std::string> lightWarned;
     for (LightDesc& light : out->desc.lights) {
         if (!light.shader) continue;
         const ShaderRef& ref = *light.shader;
-        auto [known, added] = lightFiles.try_emplace(ref.name);
-        if (added) known->second = FindShader(ref.name, searchPath);
-        const std::string& path = known->second;
+        const std::string& path = fileOf(ref.name);
         auto warnOnce = [&](const std::string& message) {
             if (lightWarned.insert(ref.name).second) warnRun(requestAt(ref), message);
         };
         const std::string fallback = light.builtIn ? "using affray's built-in \"" + ref.name + "\"" : "ignored";
         if (path.empty()) {
-            if (!light.builtIn) {
-                std::string searched;
-                for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
+            if (!light.builtIn)
                 warnOnce("light source '" + ref.name + "' not found (searched " + searched + "); ignored");
-            }
             continue;
         }
         std::vector<compiler::ParamOverride> overrides;
@@ -587,17 +584,10 @@ bool Renderer::Prepare(SceneDesc input, PreparedScene* out, diag::Report* report
             std::string path;
             if (attributes.displacement) {
                 const ShaderRef& ref = *attributes.displacement;
-                auto [known, added] = shaderFiles.try_emplace(ref.name);
-                if (added) {
-                    known->second = FindShader(ref.name, searchPath);
-                    if (known->second.empty() && report) {
-                        std::string searched;
-                        for (const std::string& p : searchPath) searched += (searched.empty() ? "" : ", ") + p;
-                        report->warning(requestAt(ref), "shader '" + ref.name + "' not found (searched " + searched +
-                                                            "); its surfaces render undisplaced");
-                    }
-                }
-                path = known->second;
+                path = fileOf(ref.name);
+                if (path.empty() && report && displacementWarned.insert(ref.name).second)
+                    report->warning(requestAt(ref), "shader '" + ref.name + "' not found (searched " + searched +
+                                                        "); its surfaces render undisplaced");
             }
             if (!path.empty()) {
                 const ShaderRef& ref = *attributes.displacement;
