@@ -41,17 +41,6 @@ struct PrivateDir {
     }
 };
 
-template <class N>
-void RunAs(const vm::Program& program) {
-    vm::Interpreter<N> interp(program);
-    for (const vm::ProgramOutput& out : program.outputs) {
-        if (out.size != 3) continue;
-        renderer::EvaluateOnPatch(interp, renderer::BilinearPatch::UnitSquare(), 0.25, 0.5, 0.25, 0.5,
-                                  glm::dvec3(0.0, 0.0, -5.0), out);
-        return;
-    }
-}
-
 /// Two lights and an ambient colour, whatever a surface program asks.
 struct FixedLights final : vm::LightQueries {
     double Trace(const double direction[3], int channel) override { return direction[channel] * 0.5; }
@@ -63,14 +52,16 @@ struct FixedLights final : vm::LightQueries {
     }
 };
 
+/// Runs `program` over a region of the unit square, to its first triple output; with `lights`
+/// (a surface or light program, which runs on points only) at one point, its lights answered.
 template <class N>
-void RunSurfaceAs(const vm::Program& program) {
-    FixedLights lights;
+void RunAs(const vm::Program& program, vm::LightQueries* lights = nullptr) {
     vm::Interpreter<N> interp(program);
-    interp.SetLights(&lights);
+    interp.SetLights(lights);
+    const double u1 = lights ? 0.25 : 0.5, v0 = lights ? 0.5 : 0.25;
     for (const vm::ProgramOutput& out : program.outputs) {
         if (out.size != 3) continue;
-        renderer::EvaluateOnPatch(interp, renderer::BilinearPatch::UnitSquare(), 0.25, 0.25, 0.5, 0.5,
+        renderer::EvaluateOnPatch(interp, renderer::BilinearPatch::UnitSquare(), 0.25, u1, v0, 0.5,
                                   glm::dvec3(0.0, 0.0, -5.0), out);
         return;
     }
@@ -144,8 +135,9 @@ void RunNumberTypes(const vm::Program& program, uint64_t pick) {
 }
 
 void RunSurface(const vm::Program& program, uint64_t pick) {
-    if (g_everyNumberType || pick % 2 == 0) RunSurfaceAs<double>(program);
-    if (g_everyNumberType || pick % 2 == 1) RunSurfaceAs<vm::Dual<double>>(program);
+    FixedLights lights;
+    if (g_everyNumberType || pick % 2 == 0) RunAs<double>(program, &lights);
+    if (g_everyNumberType || pick % 2 == 1) RunAs<vm::Dual<double>>(program, &lights);
 }
 
 }  // namespace affray::fuzz

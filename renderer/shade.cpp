@@ -218,9 +218,8 @@ void ShadingLights::Compute(Slot& slot) {
         } else {
             slot.L = -fromLight;
             slot.distance = glm::length(fromLight);
-        }
-        if (!(glm::length(slot.L) > 0) || !std::isfinite(slot.distance)) {
-            if (light.program->emission != compiler::LoweredShader::Emission::Solar) slot.Cl = glm::dvec3(0.0);
+            // At the light, or past any distance: no light arrives (as Illuminate has it).
+            if (!(slot.distance > 0 && std::isfinite(slot.distance))) slot.Cl = glm::dvec3(0.0);
         }
         return;
     }
